@@ -1,0 +1,67 @@
+// Golden model of the enhanced-disparity stereo pipeline (thesis Sec. 3.1), bit-exact.
+// Every stage is specified to the bit in docs/fixed-point.md; the RTL modules and the HLS
+// kernels carry the same names and must reproduce these functions exactly.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "stereo/constants.hpp"
+#include "stereo/dsi.hpp"
+#include "stereo/image.hpp"
+
+namespace stereo {
+
+struct MatchParams {
+    int ndisp = fx::kDefaultDisparities;  // labels 0 .. ndisp-1
+    int window = fx::kDefaultWindow;      // odd side of the square aggregation window
+    double sigma = fx::kDefaultSigma;     // Gaussian sigma in pixels
+    bool use_ca = true;                   // apply CA rules 1 and 2
+};
+
+// Pixels whose result depends on a sample outside the image (zero padding) are invalid.
+struct InvalidBorder {
+    int left = 0;
+    int right = 0;
+    int top = 0;
+    int bottom = 0;
+    bool contains(int x, int y, int width, int height) const {
+        return x >= left && x < width - right && y >= top && y < height - bottom;
+    }
+};
+
+// Throws std::invalid_argument with a one-line message when the parameters are impossible
+// for this image size (even/too-large window, ndisp out of range, image smaller than border).
+void validate(const MatchParams& params, int width, int height);
+
+// Integer 1-D Gaussian kernel of `window` taps (odd), non-negative, summing to fx::kKernelSum.
+std::vector<std::int32_t> gaussian_kernel(int window, double sigma);
+
+InvalidBorder invalid_border(const MatchParams& params);
+
+// Stage 1. C(x,y,d) = sum over channels |L(x,y) - R(x-d,y)|; 0 where x-d < 0.
+// Grey images are matched as if every channel held the grey value (3 * |L - R|).
+Dsi cost(const Image& left, const Image& right, int ndisp);
+
+// Stage 2. Gaussian-weighted window sum with zero padding, one final rounding shift.
+Dsi aggregate(const Dsi& cost, const std::vector<std::int32_t>& kernel);
+
+// Stage 3. CA rule 1 (synchronous): a cell whose d-1 or d+1 neighbour differs from it by less
+// than half its value becomes the rounded mean of its 3x3 in-plane neighbourhood.
+Dsi ca_rule1(const Dsi& dsi);
+
+// Stage 4. CA rule 2 (synchronous): a cell with at least 7 of 8 in-plane neighbours that differ
+// from it by less than half its value is divided by 1.3 (rounded).
+Dsi ca_rule2(const Dsi& dsi);
+
+// Stage 5. Argmin over d (ties to the smallest d); pixels outside the border's valid region get
+// disparity 0 and valid flag 0.
+DisparityMap wta(const Dsi& dsi, const InvalidBorder& border);
+
+// The whole pipeline: validate, cost, aggregate, [ca_rule1, ca_rule2], wta.
+DisparityMap match(const Image& left, const Image& right, const MatchParams& params);
+
+// Throws std::invalid_argument unless the two images have the same size and channel count.
+void check_pair(const Image& left, const Image& right);
+
+}  // namespace stereo

@@ -1,0 +1,26 @@
+// Independent implementations of the pipeline used only to check the golden model.
+#pragma once
+
+#include "stereo/pipeline.hpp"
+
+namespace stereo::naive {
+
+// Obviously-correct integer versions: direct 2-D window sums, integer division for the
+// rounded 1/9 and 1/1.3, no separability, no incremental tricks. They must equal the
+// optimised stages of pipeline.hpp exactly.
+Dsi cost(const Image& left, const Image& right, int ndisp);
+Dsi aggregate(const Dsi& cost, const std::vector<std::int32_t>& kernel);
+Dsi ca_rule1(const Dsi& dsi);
+Dsi ca_rule2(const Dsi& dsi);
+DisparityMap wta(const Dsi& dsi, const InvalidBorder& border);
+DisparityMap match(const Image& left, const Image& right, const MatchParams& params);
+
+}  // namespace stereo::naive
+
+namespace stereo::floating {
+
+// The same algorithm in double precision: exact normalised Gaussian weights, exact 1/9 and
+// 1/1.3, no rounding anywhere. Used to measure what the fixed-point form changes.
+DisparityMap match(const Image& left, const Image& right, const MatchParams& params);
+
+}  // namespace stereo::floating

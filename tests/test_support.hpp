@@ -1,0 +1,63 @@
+// Shared helpers for the tests: seeded random images and access to the shared data folder.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <random>
+#include <string>
+
+#include "stereo/image.hpp"
+
+namespace stereo::test {
+
+// The seed comes from STEREO_SEED when set, so a failing random test can be replayed.
+inline std::uint32_t test_seed() {
+    static const std::uint32_t seed = [] {
+        const char* text = std::getenv("STEREO_SEED");
+        const std::uint32_t value =
+            text != nullptr ? static_cast<std::uint32_t>(std::strtoul(text, nullptr, 10))
+                            : std::random_device{}();
+        std::cout << "[seed] STEREO_SEED=" << value << '\n';
+        return value;
+    }();
+    return seed;
+}
+
+inline Image random_image(int width, int height, int channels, std::mt19937& rng) {
+    Image image(width, height, channels);
+    std::uniform_int_distribution<int> value(0, 255);
+    for (auto& p : image.pixels) {
+        p = static_cast<std::uint8_t>(value(rng));
+    }
+    return image;
+}
+
+// A right image with right(x) = left(x + shift) plus noise (true disparity `shift`), so that matching has
+// a true answer and the CA rules see realistic, not only random, cost volumes.
+inline Image shifted_copy(const Image& left, int shift, int noise, std::mt19937& rng) {
+    Image right(left.width, left.height, left.channels);
+    std::uniform_int_distribution<int> jitter(-noise, noise);
+    for (int y = 0; y < left.height; ++y) {
+        for (int x = 0; x < left.width; ++x) {
+            const int source = std::clamp(x + shift, 0, left.width - 1);
+            for (int c = 0; c < left.channels; ++c) {
+                const int v = left.at(source, y, c) + jitter(rng);
+                right.at(x, y, c) = static_cast<std::uint8_t>(std::clamp(v, 0, 255));
+            }
+        }
+    }
+    return right;
+}
+
+inline std::filesystem::path data_dir() {
+#ifdef STEREO_DATA_DIR
+    return STEREO_DATA_DIR;
+#else
+    return "../shared/data";
+#endif
+}
+
+}  // namespace stereo::test
