@@ -137,7 +137,7 @@ TEST(Cost, HandComputed) {
     const Dsi c = cost(left, right, 2);
     EXPECT_EQ(c.at(0, 0, 0), 3 + 2 + 0);
     EXPECT_EQ(c.at(1, 0, 0), 40 + 50 + 60);
-    EXPECT_EQ(c.at(0, 0, 1), 0);                 // x - d < 0: defined as 0
+    EXPECT_EQ(c.at(0, 0, 1), fx::kCostMax);      // x - d < 0: the right pixel is outside
     EXPECT_EQ(c.at(1, 0, 1), 27 + 32 + 30);      // left(1) against right(0)
     Image grey_left(2, 1, 1);
     Image grey_right(2, 1, 1);
@@ -199,19 +199,36 @@ TEST(Wta, TiesGoToSmallestDisparityAndBorderIsInvalid) {
     const DisparityMap all = wta(dsi, InvalidBorder{});
     EXPECT_EQ(all.disparity, (std::vector<std::uint8_t>{0, 1, 2, 2}));
     EXPECT_EQ(all.valid, (std::vector<std::uint8_t>{1, 1, 1, 1}));
-    const DisparityMap bordered = wta(dsi, InvalidBorder{1, 1, 0, 0});
-    EXPECT_EQ(bordered.disparity, (std::vector<std::uint8_t>{0, 1, 2, 0}));
-    EXPECT_EQ(bordered.valid, (std::vector<std::uint8_t>{0, 1, 1, 0}));
+    // Reach 0: x=2 wins d=2 and x - d = 0 >= 0, valid; x=1 wins d=1, valid.
+    // With a 1x... image height 1 any reach >= 1 leaves no row inside: all invalid.
+    const DisparityMap none = wta(dsi, InvalidBorder{1});
+    EXPECT_EQ(none.valid, (std::vector<std::uint8_t>{0, 0, 0, 0}));
+    EXPECT_EQ(none.disparity, (std::vector<std::uint8_t>{0, 0, 0, 0}));
 }
 
-TEST(InvalidBorderTest, FollowsWindowNdispAndCa) {
-    EXPECT_EQ(invalid_border({16, 11, 3.0, true}).left, 5 + 1 + 15);
-    EXPECT_EQ(invalid_border({16, 11, 3.0, true}).right, 6);
-    EXPECT_EQ(invalid_border({16, 11, 3.0, false}).top, 5);
-    EXPECT_EQ(invalid_border({1, 1, 3.0, false}).left, 0);
+TEST(Wta, WinnerMustKeepItsWindowInsideTheRightImage) {
+    // 5x3 image, reach 1: only row 1, columns 1..3 have their window inside. At x=1 a winning
+    // d=1 would read right column x - d - reach = -1: invalid; at x=3, d=1 is fine.
+    Dsi dsi(5, 3, 2);
+    for (int y = 0; y < 3; ++y) {
+        for (int x = 0; x < 5; ++x) {
+            dsi.at(x, y, 0) = 10;
+            dsi.at(x, y, 1) = 5;  // d = 1 wins everywhere
+        }
+    }
+    const DisparityMap map = wta(dsi, InvalidBorder{1});
+    EXPECT_EQ(map.valid, (std::vector<std::uint8_t>{0, 0, 0, 0, 0, 0, 0, 1, 1, 0, 0, 0, 0, 0, 0}));
+    EXPECT_EQ(map.disparity[map.index(2, 1)], 1);
+    EXPECT_EQ(map.disparity[map.index(1, 1)], fx::kInvalidDisparity);
 }
 
-TEST(Match, ValidPixelsAreExactlyTheInteriorAndRecoverAShift) {
+TEST(InvalidBorderTest, ReachIsRadiusPlusOneWithCa) {
+    EXPECT_EQ(invalid_border({16, 11, 3.0, true}).reach, 5 + 1);
+    EXPECT_EQ(invalid_border({16, 11, 3.0, false}).reach, 5);
+    EXPECT_EQ(invalid_border({1, 1, 3.0, false}).reach, 0);
+}
+
+TEST(Match, RecoversAShiftAndFlagsEveryPixelByTheBorderRule) {
     std::mt19937 rng(test::test_seed());
     const Image left = test::random_image(80, 40, 3, rng);
     const Image right = test::shifted_copy(left, 5, 0, rng);  // right(x) = left(x + 5): d = 5
@@ -219,18 +236,31 @@ TEST(Match, ValidPixelsAreExactlyTheInteriorAndRecoverAShift) {
     const DisparityMap map = match(left, right, params);
     const InvalidBorder border = invalid_border(params);
     int wrong = 0;
+    int valid = 0;
     for (int y = 0; y < map.height; ++y) {
         for (int x = 0; x < map.width; ++x) {
-            const bool inside = border.contains(x, y, map.width, map.height);
-            ASSERT_EQ(map.valid[map.index(x, y)], inside ? 1 : 0) << x << "," << y;
-            if (!inside) {
-                ASSERT_EQ(map.disparity[map.index(x, y)], fx::kInvalidDisparity);
-            } else if (map.disparity[map.index(x, y)] != 5) {
+            const auto i = map.index(x, y);
+            if (map.valid[i] == 0) {
+                ASSERT_EQ(map.disparity[i], fx::kInvalidDisparity) << x << "," << y;
+                // An invalid pixel is one whose window leaves the image or whose winner reads
+                // outside the right image; the true d = 5 would have been valid and must not be
+                // where it was also the unique best match (checked below).
+                ASSERT_FALSE(border.valid(x, y, 5, map.width, map.height) &&
+                             x + 5 + border.reach < map.width)
+                    << "pixel " << x << "," << y << " with a clean d=5 match marked invalid";
+                continue;
+            }
+            ++valid;
+            ASSERT_TRUE(border.valid(x, y, map.disparity[i], map.width, map.height));
+            // Columns whose right window is untouched by the clamped copy must recover d = 5.
+            if (x - 5 >= border.reach && x + 5 + border.reach < map.width &&
+                map.disparity[i] != 5) {
                 ++wrong;
             }
         }
     }
     EXPECT_EQ(wrong, 0);
+    EXPECT_GT(valid, 0);
 }
 
 TEST(Validate, RejectsImpossibleParameters) {
@@ -242,6 +272,7 @@ TEST(Validate, RejectsImpossibleParameters) {
     EXPECT_THROW(validate({16, 11, 0.0, true}, 100, 100), std::invalid_argument);
     EXPECT_THROW(validate({16, 11, 3.0, true}, 100, 12), std::invalid_argument);  // too small
     EXPECT_NO_THROW(validate({16, 11, 3.0, true}, 100, 13));
+    EXPECT_THROW(validate({8, 11, 3.0, true}, 12, 100), std::invalid_argument);
     Image a(10, 10, 3);
     Image b(11, 10, 3);
     Image grey(10, 10, 1);

@@ -129,14 +129,14 @@ DisparityMap match(const Image& left, const Image& right, const MatchParams& par
     DisparityMap map(left.width, left.height);
     for (int y = 0; y < dsi.height; ++y) {
         for (int x = 0; x < dsi.width; ++x) {
-            if (!border.contains(x, y, dsi.width, dsi.height)) {
-                continue;
-            }
             int best = 0;
             for (int d = 1; d < dsi.ndisp; ++d) {
                 if (dsi.at(x, y, d) < dsi.at(x, y, best)) {
                     best = d;
                 }
+            }
+            if (!border.valid(x, y, best, dsi.width, dsi.height)) {
+                continue;
             }
             map.disparity[map.index(x, y)] = static_cast<std::uint8_t>(best);
             map.valid[map.index(x, y)] = 1;

@@ -30,7 +30,7 @@ Dsi cost(const Image& left, const Image& right, int ndisp) {
         for (int x = 0; x < left.width; ++x) {
             for (int d = 0; d < ndisp; ++d) {
                 if (x - d < 0) {
-                    dsi.at(x, y, d) = 0;
+                    dsi.at(x, y, d) = fx::kCostMax;  // the right pixel is outside the image
                     continue;
                 }
                 int sum = 0;
@@ -127,14 +127,16 @@ DisparityMap wta(const Dsi& dsi, const InvalidBorder& border) {
     DisparityMap map(dsi.width(), dsi.height());
     for (int y = 0; y < dsi.height(); ++y) {
         for (int x = 0; x < dsi.width(); ++x) {
-            if (!border.contains(x, y, dsi.width(), dsi.height())) {
-                continue;
-            }
             int best = 0;
             for (int d = 1; d < dsi.ndisp(); ++d) {
                 if (dsi.at(x, y, d) < dsi.at(x, y, best)) {
                     best = d;
                 }
+            }
+            const int r = border.reach;
+            const bool inside = x >= r && y >= r && x < dsi.width() - r && y < dsi.height() - r;
+            if (!inside || x - best < r) {
+                continue;
             }
             map.disparity[map.index(x, y)] = static_cast<std::uint8_t>(best);
             map.valid[map.index(x, y)] = 1;

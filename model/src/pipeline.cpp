@@ -50,10 +50,8 @@ void check_pair(const Image& left, const Image& right) {
 }
 
 InvalidBorder invalid_border(const MatchParams& params) {
-    // Aggregation reaches `radius` pixels out; the CA rules one pixel more (3x3). The cost at
-    // column x' needs the right pixel x' - d >= 0 for every d < ndisp.
-    const int reach = params.window / 2 + (params.use_ca ? 1 : 0);
-    return {reach + params.ndisp - 1, reach, reach, reach};
+    // Aggregation reaches `radius` pixels out; the CA rules one pixel more (3x3).
+    return {params.window / 2 + (params.use_ca ? 1 : 0)};
 }
 
 void validate(const MatchParams& params, int width, int height) {
@@ -68,7 +66,7 @@ void validate(const MatchParams& params, int width, int height) {
     }
     (void)gaussian_kernel(params.window, params.sigma);  // throws on a bad window or sigma
     const InvalidBorder border = invalid_border(params);
-    if (width <= border.left + border.right || height <= border.top + border.bottom) {
+    if (width <= 2 * border.reach || height <= 2 * border.reach) {
         throw std::invalid_argument("image " + size_text(width, height) +
                                     " is too small for ndisp " + std::to_string(params.ndisp) +
                                     " and window " + std::to_string(params.window) +
@@ -89,11 +87,14 @@ Dsi cost(const Image& left, const Image& right, int ndisp) {
     Dsi dsi(width, height, ndisp);
     for (int d = 0; d < ndisp; ++d) {
         for (int y = 0; y < height; ++y) {
+            std::fill_n(&dsi.at(0, y, d), std::min(d, width), static_cast<Value>(fx::kCostOutside));
+        }
+        for (int y = 0; y < height; ++y) {
             const std::uint8_t* left_row = &left.pixels[static_cast<std::size_t>(y) * width * channels];
             const std::uint8_t* right_row =
                 &right.pixels[static_cast<std::size_t>(y) * width * channels];
             Value* out = &dsi.at(0, y, d);
-            for (int x = d; x < width; ++x) {  // x - d < 0 keeps the zero it was created with
+            for (int x = d; x < width; ++x) {
                 int sum = 0;
                 for (int c = 0; c < channels; ++c) {
                     sum += std::abs(left_row[x * channels + c] - right_row[(x - d) * channels + c]);
@@ -241,8 +242,8 @@ DisparityMap wta(const Dsi& dsi, const InvalidBorder& border) {
     DisparityMap map(width, height);
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
-            if (border.contains(x, y, width, height)) {
-                const std::size_t i = map.index(x, y);
+            const std::size_t i = map.index(x, y);
+            if (border.valid(x, y, best_label[i], width, height)) {
                 map.disparity[i] = best_label[i];
                 map.valid[i] = 1;
             }

@@ -17,6 +17,7 @@ inline constexpr int kChannels = 3;  // RGB; a grey pixel g is matched as (g, g,
 // ---- Stage 1: absolute-difference cost over RGB ------------------------------------------
 inline constexpr int kCostMax = kChannels * kPixelMax;  // 765
 inline constexpr int kCostBits = 10;
+inline constexpr int kCostOutside = kCostMax;  // cost where x - d < 0 (right pixel outside)
 static_assert(kCostMax < (1 << kCostBits));
 
 // ---- Stage 2: Gaussian window aggregation ------------------------------------------------

@@ -19,14 +19,18 @@ struct MatchParams {
     bool use_ca = true;                   // apply CA rules 1 and 2
 };
 
-// Pixels whose result depends on a sample outside the image (zero padding) are invalid.
+// Which outputs are valid. `reach` is how far a result looks from its pixel: the aggregation
+// radius, plus one for the 3x3 CA neighbourhoods. A pixel is valid when everything its winning
+// disparity d depends on lies inside both images: the window stays inside the image
+// (reach <= x < width - reach, reach <= y < height - reach) and its right-image samples do too
+// (x - d - reach >= 0).
 struct InvalidBorder {
-    int left = 0;
-    int right = 0;
-    int top = 0;
-    int bottom = 0;
-    bool contains(int x, int y, int width, int height) const {
-        return x >= left && x < width - right && y >= top && y < height - bottom;
+    int reach = 0;
+    bool window_inside(int x, int y, int width, int height) const {
+        return x >= reach && x < width - reach && y >= reach && y < height - reach;
+    }
+    bool valid(int x, int y, int d, int width, int height) const {
+        return window_inside(x, y, width, height) && x - d >= reach;
     }
 };
 
@@ -39,7 +43,8 @@ std::vector<std::int32_t> gaussian_kernel(int window, double sigma);
 
 InvalidBorder invalid_border(const MatchParams& params);
 
-// Stage 1. C(x,y,d) = sum over channels |L(x,y) - R(x-d,y)|; 0 where x-d < 0.
+// Stage 1. C(x,y,d) = sum over channels |L(x,y) - R(x-d,y)|; fx::kCostMax where x-d < 0 (a
+// match outside the right image costs the most, so it never wins).
 // Grey images are matched as if every channel held the grey value (3 * |L - R|).
 Dsi cost(const Image& left, const Image& right, int ndisp);
 
@@ -54,8 +59,8 @@ Dsi ca_rule1(const Dsi& dsi);
 // from it by less than half its value is divided by 1.3 (rounded).
 Dsi ca_rule2(const Dsi& dsi);
 
-// Stage 5. Argmin over d (ties to the smallest d); pixels outside the border's valid region get
-// disparity 0 and valid flag 0.
+// Stage 5. Argmin over d (ties to the smallest d); pixels the border rule marks invalid get
+// disparity fx::kInvalidDisparity and valid flag 0.
 DisparityMap wta(const Dsi& dsi, const InvalidBorder& border);
 
 // The whole pipeline: validate, cost, aggregate, [ca_rule1, ca_rule2], wta.
