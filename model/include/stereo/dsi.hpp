@@ -5,13 +5,15 @@
 #include <span>
 #include <vector>
 
+#include "stereo/constants.hpp"
+
 namespace stereo {
 
 // Layout is plane-major, [d][y][x], so every stage that works inside a constant-disparity
 // plane (aggregation, the 3x3 CA neighbourhoods) walks contiguous memory.
 class Dsi {
 public:
-    using Value = std::uint16_t;  // wide enough for every stage (fx::kAggBits <= 16)
+    using Value = std::uint16_t;  // wide enough for every stage (checked below)
 
     Dsi() = default;
     Dsi(int width, int height, int ndisp)
@@ -48,5 +50,7 @@ private:
     int ndisp_ = 0;
     std::vector<Value> cells_;
 };
+
+static_assert(fx::kAggBits <= 16 && fx::kCostBits <= 16, "DSI cells are 16 bits");
 
 }  // namespace stereo
