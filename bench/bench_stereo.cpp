@@ -1,0 +1,633 @@
+// bench_stereo: where the golden model's time goes, and how it compares with OpenCV's block
+// matcher and semi-global matcher on the same pair (Middlebury Teddy), 64 disparities, one thread.
+//
+// After the Google Benchmark table it prints the time ratios measured in this same run and
+// checks the speed budget of the issue: the whole model match must take less than 3x the time of
+// StereoSGBM. The exit status is 1 when the budget is exceeded (or a benchmark failed), 0
+// otherwise, 2 on a command-line error, so ctest can run it (test bench_stereo_budget).
+//
+// Options besides Google Benchmark's own (--benchmark_filter, --benchmark_min_time, ...):
+//   --json-summary FILE   also write the per-benchmark numbers and the ratios as JSON
+// Environment:
+//   STEREO_DATA_DIR       data folder, overrides the one baked in at build time
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "stereo/pipeline.hpp"
+
+#ifndef STEREO_DATA_DIR
+#define STEREO_DATA_DIR ""
+#endif
+
+namespace {
+
+constexpr int kDisparities = 64;
+constexpr double kBudgetRatio = 3.0;  // the issue: model match < 3x StereoSGBM, single-threaded
+
+// Default --benchmark_min_time. Set through the flag rather than Benchmark::MinTime() because a
+// per-benchmark MinTime() would override the command line (ctest passes a shorter one).
+constexpr std::string_view kDefaultMinTimeFlag = "--benchmark_min_time=1.0";
+
+// StereoBM gets the model's aggregation window so both aggregate over the same support.
+constexpr int kBmBlockSize = stereo::fx::kDefaultWindow;
+// StereoSGBM's path smoothing does what the large window does in the model, so it runs with
+// the small block OpenCV's documentation uses; P1 and P2 follow its 8 (32) * channels * block^2
+// rule. Left-right check and speckle filter stay off (create()'s defaults), as in the model.
+constexpr int kSgbmBlockSize = 5;
+constexpr int kSgbmChannels = 3;
+constexpr int kSgbmP1 = 8 * kSgbmChannels * kSgbmBlockSize * kSgbmBlockSize;
+constexpr int kSgbmP2 = 32 * kSgbmChannels * kSgbmBlockSize * kSgbmBlockSize;
+constexpr int kSgbmUniquenessRatio = 10;
+
+// The synthetic fallback has Teddy's size, so its timings stay comparable.
+constexpr int kSyntheticWidth = 450;
+constexpr int kSyntheticHeight = 375;
+constexpr int kSyntheticBackgroundDisparity = 12;
+constexpr int kSyntheticForegroundDisparity = 40;
+
+constexpr int kExitPass = 0;
+constexpr int kExitFail = 1;
+constexpr int kExitUsage = 2;
+
+const std::string kModelMatch = "BM_ModelMatch";
+const std::string kModelMatchNoCa = "BM_ModelMatchNoCa";
+const std::string kStagePrefix = "BM_ModelStage/";
+const std::string kOpenCvBm = "BM_OpenCvStereoBM";
+const std::string kOpenCvSgbm = "BM_OpenCvStereoSGBM";
+const std::vector<std::string> kStageNames = {"cost", "aggregate", "ca_rule1", "ca_rule2", "wta"};
+
+// ---- Input pair ---------------------------------------------------------------------------
+
+struct StereoPair {
+    std::string description;  // where the images came from, printed with the results
+    bool synthetic = false;
+    cv::Mat left_bgr;  // OpenCV's channel order, for StereoSGBM
+    cv::Mat right_bgr;
+    cv::Mat left_grey;  // StereoBM only takes 8-bit grey
+    cv::Mat right_grey;
+    stereo::Image left_rgb;  // the golden model's input
+    stereo::Image right_rgb;
+
+    int width() const { return left_bgr.cols; }
+    int height() const { return left_bgr.rows; }
+    // Disparity evaluations per match: one per pixel and label.
+    double evaluations() const { return static_cast<double>(width()) * height() * kDisparities; }
+};
+
+std::filesystem::path data_dir() {
+    // The run-time override wins so one binary can be pointed at another copy of the data.
+    if (const char* from_env = std::getenv("STEREO_DATA_DIR");
+        from_env != nullptr && *from_env != '\0') {
+        return from_env;
+    }
+    return STEREO_DATA_DIR;
+}
+
+stereo::Image to_model_image(const cv::Mat& bgr) {
+    cv::Mat rgb;
+    cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
+    stereo::Image image(rgb.cols, rgb.rows, 3);
+    const auto row_bytes = static_cast<std::size_t>(rgb.cols) * 3;
+    for (int y = 0; y < rgb.rows; ++y) {  // row by row: a cv::Mat need not be continuous
+        std::copy_n(rgb.ptr<std::uint8_t>(y), row_bytes,
+                    image.pixels.begin() + static_cast<std::ptrdiff_t>(y * row_bytes));
+    }
+    return image;
+}
+
+StereoPair make_pair(cv::Mat left_bgr, cv::Mat right_bgr, std::string description, bool synthetic) {
+    StereoPair pair;
+    pair.description = std::move(description);
+    pair.synthetic = synthetic;
+    pair.left_rgb = to_model_image(left_bgr);
+    pair.right_rgb = to_model_image(right_bgr);
+    cv::cvtColor(left_bgr, pair.left_grey, cv::COLOR_BGR2GRAY);
+    cv::cvtColor(right_bgr, pair.right_grey, cv::COLOR_BGR2GRAY);
+    pair.left_bgr = std::move(left_bgr);
+    pair.right_bgr = std::move(right_bgr);
+    return pair;
+}
+
+// Right image: a smooth random colour texture. Left image: the same texture shifted by one
+// disparity in the background and another inside a centred rectangle, so every matcher has a
+// real search to do. Deterministic: mt19937's output sequence is fixed by the C++ standard.
+std::pair<cv::Mat, cv::Mat> synthetic_pair() {
+    std::mt19937 engine(20240601U);
+    cv::Mat noise(kSyntheticHeight, kSyntheticWidth, CV_8UC3);
+    for (int y = 0; y < noise.rows; ++y) {
+        std::uint8_t* row = noise.ptr<std::uint8_t>(y);
+        for (int i = 0; i < noise.cols * noise.channels(); ++i) {
+            row[i] = static_cast<std::uint8_t>(engine() >> 24);  // top bits: the best mixed
+        }
+    }
+    cv::Mat right;
+    cv::GaussianBlur(noise, right, cv::Size(5, 5), 1.0);
+
+    const cv::Rect foreground(kSyntheticWidth / 3, kSyntheticHeight / 4, kSyntheticWidth / 3,
+                              kSyntheticHeight / 2);
+    cv::Mat left(right.size(), right.type());
+    for (int y = 0; y < left.rows; ++y) {
+        for (int x = 0; x < left.cols; ++x) {
+            const int disparity = foreground.contains({x, y}) ? kSyntheticForegroundDisparity
+                                                              : kSyntheticBackgroundDisparity;
+            const int source_x = x - disparity;
+            // Where the match would fall outside the right image, fresh texture (occlusion).
+            left.at<cv::Vec3b>(y, x) =
+                source_x >= 0 ? right.at<cv::Vec3b>(y, source_x) : noise.at<cv::Vec3b>(y, x);
+        }
+    }
+    return {std::move(left), std::move(right)};
+}
+
+StereoPair load_pair() {
+    const std::filesystem::path folder = data_dir() / "middlebury2003" / "teddy";
+    const std::filesystem::path left_path = folder / "left.png";
+    const std::filesystem::path right_path = folder / "right.png";
+    if (std::filesystem::is_regular_file(left_path) &&
+        std::filesystem::is_regular_file(right_path)) {
+        cv::Mat left = cv::imread(left_path.string(), cv::IMREAD_COLOR);
+        cv::Mat right = cv::imread(right_path.string(), cv::IMREAD_COLOR);
+        if (!left.empty() && !right.empty() && left.size() == right.size()) {
+            return make_pair(std::move(left), std::move(right),
+                             "Middlebury 2003 Teddy (" + folder.string() + ")", false);
+        }
+        std::cerr << "bench_stereo: could not read a same-size pair from " << folder << "\n";
+    }
+    std::cerr << "bench_stereo: Teddy not found at " << folder
+              << " (set STEREO_DATA_DIR to the shared data folder).\n"
+              << "bench_stereo: FALLING BACK to a deterministic synthetic " << kSyntheticWidth
+              << "x" << kSyntheticHeight
+              << " textured pair: the timings are NOT measured on Teddy.\n";
+    auto [left, right] = synthetic_pair();
+    return make_pair(std::move(left), std::move(right), "SYNTHETIC textured pair (Teddy not found)",
+                     true);
+}
+
+// ---- Precomputed inputs of the single-stage benchmarks ------------------------------------
+
+// The default pipeline (CA on), stopped after each stage.
+struct StageInputs {
+    std::vector<std::int32_t> kernel;
+    stereo::InvalidBorder border;
+    stereo::Dsi cost;
+    stereo::Dsi aggregated;
+    stereo::Dsi rule1;
+    stereo::Dsi rule2;
+};
+
+// Built on first use, so a --benchmark_filter that skips the stages does not pay for it.
+class StageInputCache {
+  public:
+    StageInputCache(const StereoPair& pair, const stereo::MatchParams& params)
+        : pair_(pair), params_(params) {}
+
+    const StageInputs& get() {
+        if (!inputs_) {
+            StageInputs inputs;
+            inputs.kernel = stereo::gaussian_kernel(params_.window, params_.sigma);
+            inputs.border = stereo::invalid_border(params_);
+            inputs.cost = stereo::cost(pair_.left_rgb, pair_.right_rgb, params_.ndisp);
+            inputs.aggregated = stereo::aggregate(inputs.cost, inputs.kernel);
+            inputs.rule1 = stereo::ca_rule1(inputs.aggregated);
+            inputs.rule2 = stereo::ca_rule2(inputs.rule1);
+            inputs_ = std::move(inputs);
+        }
+        return *inputs_;
+    }
+
+  private:
+    const StereoPair& pair_;
+    const stereo::MatchParams params_;
+    std::optional<StageInputs> inputs_;
+};
+
+// ---- Benchmarks ---------------------------------------------------------------------------
+
+void set_throughput(benchmark::State& state, const StereoPair& pair) {
+    // Per-iteration value, turned into a rate over the (real) time by the library.
+    state.counters["Mde/s"] =
+        benchmark::Counter(pair.evaluations() / 1e6, benchmark::Counter::kIsIterationInvariantRate);
+}
+
+void bm_model_match(benchmark::State& state, const StereoPair& pair,
+                    const stereo::MatchParams& params) {
+    for (auto _ : state) {
+        auto map = stereo::match(pair.left_rgb, pair.right_rgb, params);
+        benchmark::DoNotOptimize(map);
+    }
+    set_throughput(state, pair);
+}
+
+template <typename Stage>
+void bm_model_stage(benchmark::State& state, const StereoPair& pair, StageInputCache& cache,
+                    const Stage& stage) {
+    const StageInputs& inputs = cache.get();  // outside the timed loop
+    for (auto _ : state) {
+        auto output = stage(inputs);
+        benchmark::DoNotOptimize(output);
+    }
+    set_throughput(state, pair);
+}
+
+void bm_opencv_bm(benchmark::State& state, const StereoPair& pair) {
+    const cv::Ptr<cv::StereoBM> matcher = cv::StereoBM::create(kDisparities, kBmBlockSize);
+    cv::Mat disparity;
+    for (auto _ : state) {
+        matcher->compute(pair.left_grey, pair.right_grey, disparity);
+        benchmark::DoNotOptimize(disparity.data);
+        benchmark::ClobberMemory();
+    }
+    set_throughput(state, pair);
+}
+
+void bm_opencv_sgbm(benchmark::State& state, const StereoPair& pair) {
+    const cv::Ptr<cv::StereoSGBM> matcher = cv::StereoSGBM::create(
+        /*minDisparity=*/0, kDisparities, kSgbmBlockSize, kSgbmP1, kSgbmP2,
+        /*disp12MaxDiff=*/0, /*preFilterCap=*/0, kSgbmUniquenessRatio,
+        /*speckleWindowSize=*/0, /*speckleRange=*/0, cv::StereoSGBM::MODE_SGBM);
+    cv::Mat disparity;
+    for (auto _ : state) {
+        matcher->compute(pair.left_bgr, pair.right_bgr, disparity);
+        benchmark::DoNotOptimize(disparity.data);
+        benchmark::ClobberMemory();
+    }
+    set_throughput(state, pair);
+}
+
+void register_benchmarks(const StereoPair& pair, StageInputCache& cache) {
+    const auto configure = [](benchmark::internal::Benchmark* bench) {
+        bench->UseRealTime()->Unit(benchmark::kMillisecond);
+    };
+    const stereo::MatchParams with_ca{.ndisp = kDisparities};
+    const stereo::MatchParams without_ca{.ndisp = kDisparities, .use_ca = false};
+
+    configure(benchmark::RegisterBenchmark(kModelMatch.c_str(), [&pair, with_ca](auto& state) {
+        bm_model_match(state, pair, with_ca);
+    }));
+    configure(benchmark::RegisterBenchmark(
+        kModelMatchNoCa.c_str(),
+        [&pair, without_ca](auto& state) { bm_model_match(state, pair, without_ca); }));
+
+    const auto register_stage = [&](const std::string& name, auto stage) {
+        configure(benchmark::RegisterBenchmark(
+            (kStagePrefix + name).c_str(),
+            [&pair, &cache, stage](auto& state) { bm_model_stage(state, pair, cache, stage); }));
+    };
+    register_stage("cost", [&pair](const StageInputs&) {
+        return stereo::cost(pair.left_rgb, pair.right_rgb, kDisparities);
+    });
+    register_stage("aggregate",
+                   [](const StageInputs& in) { return stereo::aggregate(in.cost, in.kernel); });
+    register_stage("ca_rule1",
+                   [](const StageInputs& in) { return stereo::ca_rule1(in.aggregated); });
+    register_stage("ca_rule2", [](const StageInputs& in) { return stereo::ca_rule2(in.rule1); });
+    register_stage("wta", [](const StageInputs& in) { return stereo::wta(in.rule2, in.border); });
+
+    configure(benchmark::RegisterBenchmark(kOpenCvBm.c_str(),
+                                           [&pair](auto& state) { bm_opencv_bm(state, pair); }));
+    configure(benchmark::RegisterBenchmark(kOpenCvSgbm.c_str(),
+                                           [&pair](auto& state) { bm_opencv_sgbm(state, pair); }));
+}
+
+// ---- Collecting the results ---------------------------------------------------------------
+
+struct Measurement {
+    double seconds = 0.0;  // real time per iteration
+    double mde_per_second = 0.0;
+};
+
+double median(std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    const std::size_t middle = values.size() / 2;
+    return values.size() % 2 == 1 ? values[middle] : (values[middle - 1] + values[middle]) / 2.0;
+}
+
+// Forwards everything to the display reporter (so --benchmark_format and --benchmark_color still
+// work) and keeps each run's real time per iteration for the summary.
+class CollectingReporter final : public benchmark::BenchmarkReporter {
+  public:
+    explicit CollectingReporter(benchmark::BenchmarkReporter& display) : display_(display) {}
+
+    bool ReportContext(const Context& context) override { return display_.ReportContext(context); }
+
+    void ReportRuns(const std::vector<Run>& runs) override {
+        for (const Run& run : runs) {
+            record(run);
+        }
+        display_.ReportRuns(runs);
+    }
+
+    void Finalize() override { display_.Finalize(); }
+
+    bool any_error() const { return any_error_; }
+
+    // One measurement per benchmark: the median over repetitions, or the library's median
+    // aggregate when only aggregates were reported.
+    std::map<std::string, Measurement> results() const {
+        std::map<std::string, Measurement> out = medians_;
+        for (const auto& [name, samples] : samples_) {
+            std::vector<double> seconds;
+            std::vector<double> rates;
+            for (const Measurement& sample : samples) {
+                seconds.push_back(sample.seconds);
+                rates.push_back(sample.mde_per_second);
+            }
+            out[name] = {median(seconds), median(rates)};
+        }
+        return out;
+    }
+
+  private:
+    void record(const Run& run) {
+        if (run.error_occurred) {
+            any_error_ = true;
+            return;
+        }
+        const auto counter = run.counters.find("Mde/s");
+        const Measurement measurement{
+            run.GetAdjustedRealTime() / benchmark::GetTimeUnitMultiplier(run.time_unit),
+            counter != run.counters.end() ? counter->second.value : 0.0};
+        // function_name is the registered name, without the "/real_time" decoration.
+        const std::string& name = run.run_name.function_name;
+        if (run.run_type == Run::RT_Iteration) {
+            samples_[name].push_back(measurement);
+        } else if (run.aggregate_name == "median") {
+            medians_[name] = measurement;
+        }
+    }
+
+    benchmark::BenchmarkReporter& display_;
+    std::map<std::string, std::vector<Measurement>> samples_;
+    std::map<std::string, Measurement> medians_;
+    bool any_error_ = false;
+};
+
+// ---- Summary ------------------------------------------------------------------------------
+
+// Pipeline order, so the table reads like the benchmark output above it.
+std::vector<std::string> registration_order() {
+    std::vector<std::string> names = {kModelMatch, kModelMatchNoCa};
+    for (const std::string& stage : kStageNames) {
+        names.push_back(kStagePrefix + stage);
+    }
+    names.push_back(kOpenCvBm);
+    names.push_back(kOpenCvSgbm);
+    return names;
+}
+
+std::optional<double> time_ratio(const std::map<std::string, Measurement>& results,
+                                 const std::string& numerator, const std::string& denominator) {
+    const auto top = results.find(numerator);
+    const auto bottom = results.find(denominator);
+    if (top == results.end() || bottom == results.end() || bottom->second.seconds <= 0.0) {
+        return std::nullopt;
+    }
+    return top->second.seconds / bottom->second.seconds;
+}
+
+std::string format_ratio(const std::optional<double>& ratio,
+                         std::string_view missing = "not measured") {
+    if (!ratio) {
+        return std::string(missing);
+    }
+    std::ostringstream text;
+    text << std::fixed << std::setprecision(2) << *ratio;
+    return text.str();
+}
+
+nlohmann::json optional_json(const std::optional<double>& value) {
+    return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
+}
+
+// Prints the ratio table, writes the JSON summary if asked, and returns the exit status.
+int summarise(const std::map<std::string, Measurement>& results, bool any_error,
+              const StereoPair& pair, std::ostream& out,
+              const std::optional<std::filesystem::path>& json_path) {
+    const std::optional<double> over_sgbm = time_ratio(results, kModelMatch, kOpenCvSgbm);
+    const std::optional<double> over_bm = time_ratio(results, kModelMatch, kOpenCvBm);
+    const std::optional<double> no_ca_over_sgbm = time_ratio(results, kModelMatchNoCa, kOpenCvSgbm);
+    const bool checked = over_sgbm.has_value();
+    const bool pass = checked && *over_sgbm <= kBudgetRatio;
+    const int status = any_error || (checked && !pass) ? kExitFail : kExitPass;
+
+    out << "\n==== bench_stereo summary: " << pair.description << ", " << pair.width() << "x"
+        << pair.height() << ", " << kDisparities << " disparities, OpenCV threads "
+        << cv::getNumThreads() << " ====\n";
+    out << std::left << std::setw(26) << "benchmark" << std::right << std::setw(14)
+        << "real ms/iter" << std::setw(12) << "Mde/s" << std::setw(12) << "x SGBM time"
+        << "\n";
+    for (const std::string& name : registration_order()) {
+        const auto found = results.find(name);
+        if (found == results.end()) {
+            continue;
+        }
+        const Measurement& measurement = found->second;
+        out << std::left << std::setw(26) << name << std::right << std::fixed
+            << std::setprecision(3) << std::setw(14) << measurement.seconds * 1e3
+            << std::setprecision(1) << std::setw(12) << measurement.mde_per_second << std::setw(12)
+            << format_ratio(time_ratio(results, name, kOpenCvSgbm), "-") << "\n";
+    }
+    out << "model_match / StereoSGBM time ratio       = " << format_ratio(over_sgbm);
+    if (checked) {
+        out << " (budget " << std::setprecision(2) << kBudgetRatio << ": "
+            << (pass ? "PASS" : "FAIL") << ")";
+    }
+    out << "\nmodel_match / StereoBM time ratio         = " << format_ratio(over_bm)
+        << "\nmodel_match_no_ca / StereoSGBM time ratio = " << format_ratio(no_ca_over_sgbm)
+        << "\n";
+
+    const auto rate = [&](const std::string& name) -> std::optional<double> {
+        const auto found = results.find(name);
+        return found == results.end() ? std::nullopt
+                                      : std::optional<double>(found->second.mde_per_second);
+    };
+    out << "throughput Mde/s: model " << format_ratio(rate(kModelMatch)) << ", model no CA "
+        << format_ratio(rate(kModelMatchNoCa)) << ", StereoSGBM " << format_ratio(rate(kOpenCvSgbm))
+        << ", StereoBM " << format_ratio(rate(kOpenCvBm)) << "\n";
+
+    // Share of each stage in the sum of the stages, to show where the model's time goes.
+    double stage_total = 0.0;
+    for (const std::string& stage : kStageNames) {
+        const auto found = results.find(kStagePrefix + stage);
+        stage_total += found != results.end() ? found->second.seconds : 0.0;
+    }
+    if (stage_total > 0.0) {
+        out << "model stages (share of their sum " << std::setprecision(1) << stage_total * 1e3
+            << " ms):";
+        for (const std::string& stage : kStageNames) {
+            const auto found = results.find(kStagePrefix + stage);
+            if (found != results.end()) {
+                out << " " << stage << " " << std::setprecision(1)
+                    << 100.0 * found->second.seconds / stage_total << "%";
+            }
+        }
+        out << "\n";
+    }
+    if (pair.synthetic) {
+        out << "NOTE: measured on the SYNTHETIC fallback pair, not on Teddy.\n";
+    }
+    if (any_error) {
+        out << "RESULT: FAIL - at least one benchmark reported an error\n";
+    } else if (!checked) {
+        out << "RESULT: budget NOT CHECKED - it needs both " << kModelMatch << " and "
+            << kOpenCvSgbm << " in the run\n";
+    } else if (pass) {
+        out << "RESULT: PASS - the model match takes " << format_ratio(over_sgbm)
+            << "x StereoSGBM's time, within the " << std::setprecision(2) << kBudgetRatio
+            << "x budget\n";
+    } else {
+        out << "RESULT: FAIL - the model match takes " << format_ratio(over_sgbm)
+            << "x StereoSGBM's time, over the " << std::setprecision(2) << kBudgetRatio
+            << "x budget\n";
+    }
+
+    if (json_path) {
+        nlohmann::json benchmarks = nlohmann::json::object();
+        for (const auto& [name, measurement] : results) {
+            benchmarks[name] = {{"real_time_s", measurement.seconds},
+                                {"mde_per_s", measurement.mde_per_second}};
+        }
+        const nlohmann::json summary = {
+            {"input",
+             {{"description", pair.description},
+              {"synthetic", pair.synthetic},
+              {"width", pair.width()},
+              {"height", pair.height()},
+              {"ndisp", kDisparities}}},
+            {"opencv_threads", cv::getNumThreads()},
+            {"benchmarks", benchmarks},
+            {"ratios",
+             {{"model_match_over_sgbm", optional_json(over_sgbm)},
+              {"model_match_over_bm", optional_json(over_bm)},
+              {"model_match_no_ca_over_sgbm", optional_json(no_ca_over_sgbm)}}},
+            {"budget",
+             {{"max_model_match_over_sgbm", kBudgetRatio},
+              {"checked", checked},
+              {"pass", checked ? nlohmann::json(pass) : nlohmann::json(nullptr)}}},
+            {"any_error", any_error},
+            {"exit_status", status}};
+        std::ofstream file(*json_path);
+        file << summary.dump(2) << "\n";
+        if (!file) {
+            std::cerr << "bench_stereo: cannot write " << *json_path << "\n";
+            return kExitUsage;
+        }
+    }
+    return status;
+}
+
+// ---- Command line -------------------------------------------------------------------------
+
+struct Options {
+    std::optional<std::filesystem::path> json_summary;
+    std::vector<std::string> benchmark_args;  // argv for Google Benchmark, program name first
+};
+
+Options parse_arguments(int argc, char** argv) {
+    constexpr std::string_view kJsonFlag = "--json-summary";
+    Options options;
+    options.benchmark_args.emplace_back(argc > 0 ? argv[0] : "bench_stereo");
+    // First, so a --benchmark_min_time given by the user (parsed later) wins.
+    options.benchmark_args.emplace_back(kDefaultMinTimeFlag);
+    for (int i = 1; i < argc; ++i) {
+        const std::string_view arg = argv[i];
+        if (arg == kJsonFlag) {
+            if (i + 1 >= argc) {
+                throw std::invalid_argument("--json-summary needs a file name");
+            }
+            options.json_summary = argv[++i];
+        } else if (arg.starts_with(std::string(kJsonFlag) + "=")) {
+            const std::string_view file = arg.substr(kJsonFlag.size() + 1);
+            if (file.empty()) {
+                throw std::invalid_argument("--json-summary needs a file name");
+            }
+            options.json_summary = std::filesystem::path(file);
+        } else {
+            options.benchmark_args.emplace_back(arg);
+        }
+    }
+    return options;
+}
+
+void print_help() {
+    benchmark::PrintDefaultHelp();
+    std::cout
+        << "\nbench_stereo options:\n"
+           "  --json-summary FILE   write the measured ratios and budget verdict as JSON\n"
+           "Environment: STEREO_DATA_DIR overrides the data folder (needs\n"
+           "  middlebury2003/teddy/left.png and right.png; a synthetic pair is used "
+           "otherwise).\n"
+           "Exit status: 0 budget met or not checked, 1 model match > 3x StereoSGBM time or a\n"
+           "  benchmark error, 2 command-line error.\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    cv::setNumThreads(1);  // the comparison is single-threaded on both sides
+
+    Options options;
+    try {
+        options = parse_arguments(argc, argv);
+    } catch (const std::invalid_argument& error) {
+        std::cerr << "bench_stereo: " << error.what() << "\n";
+        return kExitUsage;
+    }
+    // Google Benchmark removes the flags it knows from this array.
+    std::vector<char*> arg_pointers;
+    for (std::string& arg : options.benchmark_args) {
+        arg_pointers.push_back(arg.data());
+    }
+    arg_pointers.push_back(nullptr);
+    int arg_count = static_cast<int>(options.benchmark_args.size());
+    benchmark::Initialize(&arg_count, arg_pointers.data(), print_help);
+    if (benchmark::ReportUnrecognizedArguments(arg_count, arg_pointers.data())) {
+        return kExitUsage;
+    }
+
+    const StereoPair pair = load_pair();
+    std::cerr << "bench_stereo: input " << pair.description << ", " << pair.width() << "x"
+              << pair.height() << ", " << kDisparities << " disparities, OpenCV threads "
+              << cv::getNumThreads() << "\n";
+    StageInputCache stage_inputs(pair, stereo::MatchParams{.ndisp = kDisparities});
+    register_benchmarks(pair, stage_inputs);
+
+    // Owned by the library; it honours --benchmark_format and --benchmark_color.
+    benchmark::BenchmarkReporter* const display = benchmark::CreateDefaultDisplayReporter();
+    CollectingReporter reporter(*display);
+    benchmark::RunSpecifiedBenchmarks(&reporter);
+
+    const std::map<std::string, Measurement> results = reporter.results();
+    int status = kExitPass;
+    if (!results.empty() || reporter.any_error() || options.json_summary) {
+        // Keep stdout machine-readable when the benchmark table itself is JSON or CSV.
+        const bool console = dynamic_cast<benchmark::ConsoleReporter*>(display) != nullptr;
+        status = summarise(results, reporter.any_error(), pair, console ? std::cout : std::cerr,
+                           options.json_summary);
+    }
+    benchmark::Shutdown();
+    return status;
+}
