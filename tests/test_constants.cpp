@@ -46,7 +46,8 @@ TEST(Kernel, SumsToPowerOfTwoSymmetricAndCloseToGaussian) {
             for (int i = 0; i < window; ++i) {
                 EXPECT_GE(taps[i], 0);
                 EXPECT_EQ(taps[i], taps[window - 1 - i]) << "asymmetric";
-                const double ideal = fx::kKernelSum * std::exp(-((i - r) * (i - r)) / (2 * sigma * sigma)) / total;
+                const double ideal =
+                    fx::kKernelSum * std::exp(-((i - r) * (i - r)) / (2 * sigma * sigma)) / total;
                 // All taps are one rounded scaled Gaussian; the scale differs slightly from
                 // 2^kKernelBits / sum(g) and the centre may give back one unit.
                 EXPECT_LE(std::abs(taps[i] - ideal), 1.5)

@@ -35,8 +35,8 @@ inline Image random_image(int width, int height, int channels, std::mt19937& rng
     return image;
 }
 
-// A right image with right(x) = left(x + shift) plus noise (true disparity `shift`), so that matching has
-// a true answer and the CA rules see realistic, not only random, cost volumes.
+// A right image with right(x) = left(x + shift) plus noise (true disparity `shift`), so that
+// matching has a true answer and the CA rules see realistic, not only random, cost volumes.
 inline Image shifted_copy(const Image& left, int shift, int noise, std::mt19937& rng) {
     Image right(left.width, left.height, left.channels);
     std::uniform_int_distribution<int> jitter(-noise, noise);

@@ -25,7 +25,8 @@ std::vector<std::int32_t> gaussian_kernel(int window, double sigma) {
                                     std::to_string(window));
     }
     if (!std::isfinite(sigma) || sigma <= 0.0) {
-        throw std::invalid_argument("sigma must be a positive number, got " + std::to_string(sigma));
+        throw std::invalid_argument("sigma must be a positive number, got " +
+                                    std::to_string(sigma));
     }
     const int radius = window / 2;
     std::vector<double> half(static_cast<std::size_t>(radius + 1));  // g(0) .. g(radius)
@@ -45,8 +46,8 @@ std::vector<std::int32_t> gaussian_kernel(int window, double sigma) {
     }
     std::vector<std::int32_t> taps(static_cast<std::size_t>(window));
     for (int i = -radius; i <= radius; ++i) {
-        taps[static_cast<std::size_t>(i + radius)] =
-            static_cast<std::int32_t>(std::llround(high * half[static_cast<std::size_t>(std::abs(i))]));
+        taps[static_cast<std::size_t>(i + radius)] = static_cast<std::int32_t>(
+            std::llround(high * half[static_cast<std::size_t>(std::abs(i))]));
     }
     const std::int64_t excess = rounded_sum(half, high) - fx::kKernelSum;
     taps[static_cast<std::size_t>(radius)] -= static_cast<std::int32_t>(excess);

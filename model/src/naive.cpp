@@ -56,7 +56,8 @@ Dsi aggregate(const Dsi& cost, const std::vector<std::int32_t>& kernel) {
                 std::int64_t sum = 0;
                 for (int j = -radius; j <= radius; ++j) {
                     for (int i = -radius; i <= radius; ++i) {
-                        const std::int64_t weight = std::int64_t{kernel[i + radius]} * kernel[j + radius];
+                        const std::int64_t weight =
+                            std::int64_t{kernel[i + radius]} * kernel[j + radius];
                         sum += weight * sample(cost, x + i, y + j, d);
                     }
                 }

@@ -1,6 +1,9 @@
 #include "stereo/pipeline.hpp"
 
+#include "plane_kernels.hpp"
+
 #include <algorithm>
+#include <array>
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
@@ -27,10 +30,6 @@ void check_kernel(const std::vector<std::int32_t>& kernel) {
                                     std::to_string(fx::kKernelSum));
     }
 }
-
-// 2 * |a - b| < c : "differs from the centre by less than half of the centre's value",
-// exact in integers.
-bool close_to(int neighbour, int centre) { return 2 * std::abs(neighbour - centre) < centre; }
 
 }  // namespace
 
@@ -79,172 +78,55 @@ Dsi cost(const Image& left, const Image& right, int ndisp) {
     if (ndisp < 1 || ndisp > fx::kMaxDisparities) {
         throw std::invalid_argument("ndisp out of range: " + std::to_string(ndisp));
     }
-    const int width = left.width;
-    const int height = left.height;
-    const int channels = left.channels;
-    // A grey pixel counts as (g, g, g): three equal channel differences.
-    const int weight = fx::kChannels / channels;
-    Dsi dsi(width, height, ndisp);
+    const detail::PlanarImage left_planes(left);
+    const detail::PlanarImage right_planes(right);
+    Dsi dsi(left.width, left.height, ndisp);
     for (int d = 0; d < ndisp; ++d) {
-        for (int y = 0; y < height; ++y) {
-            std::fill_n(&dsi.at(0, y, d), std::min(d, width), static_cast<Value>(fx::kCostOutside));
-        }
-        for (int y = 0; y < height; ++y) {
-            const std::uint8_t* left_row = &left.pixels[static_cast<std::size_t>(y) * width * channels];
-            const std::uint8_t* right_row =
-                &right.pixels[static_cast<std::size_t>(y) * width * channels];
-            Value* out = &dsi.at(0, y, d);
-            for (int x = d; x < width; ++x) {
-                int sum = 0;
-                for (int c = 0; c < channels; ++c) {
-                    sum += std::abs(left_row[x * channels + c] - right_row[(x - d) * channels + c]);
-                }
-                out[x] = static_cast<Value>(weight * sum);
-            }
-        }
+        detail::cost_plane(left_planes, right_planes, d, dsi.plane(d).data());
     }
     return dsi;
 }
 
 Dsi aggregate(const Dsi& cost, const std::vector<std::int32_t>& kernel) {
     check_kernel(kernel);
-    const int width = cost.width();
-    const int height = cost.height();
-    const int radius = static_cast<int>(kernel.size()) / 2;
-    const std::int32_t round_half = 1 << (fx::kAggShift - 1);
-    Dsi out(width, height, cost.ndisp());
-
-    // Separable form: vertical pass then horizontal pass, both in full precision, then one
-    // rounding shift. Equal to the direct 2-D sum because the 2-D kernel is the outer product.
-    std::vector<std::int32_t> vertical(cost.plane_size());
-    std::vector<std::int32_t> padded_row(static_cast<std::size_t>(width + 2 * radius), 0);
+    Dsi out(cost.width(), cost.height(), cost.ndisp());
+    detail::PlaneAggregator aggregator(kernel, cost.width(), cost.height());
     for (int d = 0; d < cost.ndisp(); ++d) {
-        const auto in = cost.plane(d);
-        std::fill(vertical.begin(), vertical.end(), 0);
-        for (int y = 0; y < height; ++y) {
-            std::int32_t* acc = &vertical[static_cast<std::size_t>(y) * width];
-            for (int j = -radius; j <= radius; ++j) {
-                const int source_y = y + j;
-                if (source_y < 0 || source_y >= height) {
-                    continue;  // zero padding
-                }
-                const std::int32_t tap = kernel[static_cast<std::size_t>(j + radius)];
-                const Value* src = &in[static_cast<std::size_t>(source_y) * width];
-                for (int x = 0; x < width; ++x) {
-                    acc[x] += tap * src[x];
-                }
-            }
-        }
-        auto result = out.plane(d);
-        for (int y = 0; y < height; ++y) {
-            std::copy_n(&vertical[static_cast<std::size_t>(y) * width], width,
-                        padded_row.begin() + radius);
-            Value* dst = &result[static_cast<std::size_t>(y) * width];
-            for (int x = 0; x < width; ++x) {
-                std::int32_t sum = 0;
-                for (int i = 0; i <= 2 * radius; ++i) {
-                    sum += kernel[static_cast<std::size_t>(i)] * padded_row[x + i];
-                }
-                dst[x] = static_cast<Value>((sum + round_half) >> fx::kAggShift);
-            }
-        }
+        aggregator.run(cost.plane(d).data(), out.plane(d).data());
     }
     return out;
 }
 
 Dsi ca_rule1(const Dsi& dsi) {
-    const int width = dsi.width();
-    const int height = dsi.height();
-    const int ndisp = dsi.ndisp();
-    Dsi out = dsi;
-    std::vector<std::int32_t> column_sum(dsi.plane_size());
-    for (int d = 0; d < ndisp; ++d) {
-        const auto in = dsi.plane(d);
-        // 3-row sums with zero padding; the 3-column sum is taken below where needed.
-        for (int y = 0; y < height; ++y) {
-            for (int x = 0; x < width; ++x) {
-                std::int32_t sum = 0;
-                for (int j = std::max(0, y - 1); j <= std::min(height - 1, y + 1); ++j) {
-                    sum += in[static_cast<std::size_t>(j) * width + x];
-                }
-                column_sum[static_cast<std::size_t>(y) * width + x] = sum;
-            }
-        }
-        auto result = out.plane(d);
-        for (int y = 0; y < height; ++y) {
-            for (int x = 0; x < width; ++x) {
-                const int centre = dsi.at(x, y, d);
-                const bool agree_below = d > 0 && close_to(dsi.at(x, y, d - 1), centre);
-                const bool agree_above = d + 1 < ndisp && close_to(dsi.at(x, y, d + 1), centre);
-                if (!agree_below && !agree_above) {
-                    continue;
-                }
-                const std::int32_t* row = &column_sum[static_cast<std::size_t>(y) * width];
-                std::int32_t sum9 = row[x];
-                if (x > 0) {
-                    sum9 += row[x - 1];
-                }
-                if (x + 1 < width) {
-                    sum9 += row[x + 1];
-                }
-                result[static_cast<std::size_t>(y) * width + x] =
-                    static_cast<Value>(fx::mean9(static_cast<std::uint32_t>(sum9)));
-            }
-        }
+    Dsi out(dsi.width(), dsi.height(), dsi.ndisp());
+    detail::PlaneRule1 rule(dsi.width(), dsi.height());
+    for (int d = 0; d < dsi.ndisp(); ++d) {
+        const Value* below = d > 0 ? dsi.plane(d - 1).data() : nullptr;
+        const Value* above = d + 1 < dsi.ndisp() ? dsi.plane(d + 1).data() : nullptr;
+        rule.run(below, dsi.plane(d).data(), above, out.plane(d).data());
     }
     return out;
 }
 
 Dsi ca_rule2(const Dsi& dsi) {
-    const int width = dsi.width();
-    const int height = dsi.height();
-    Dsi out = dsi;
+    Dsi out(dsi.width(), dsi.height(), dsi.ndisp());
     for (int d = 0; d < dsi.ndisp(); ++d) {
-        const auto in = dsi.plane(d);
-        auto result = out.plane(d);
-        for (int y = 0; y < height; ++y) {
-            for (int x = 0; x < width; ++x) {
-                const int centre = in[static_cast<std::size_t>(y) * width + x];
-                int count = 0;
-                for (int j = std::max(0, y - 1); j <= std::min(height - 1, y + 1); ++j) {
-                    for (int i = std::max(0, x - 1); i <= std::min(width - 1, x + 1); ++i) {
-                        if ((i != x || j != y) &&
-                            close_to(in[static_cast<std::size_t>(j) * width + i], centre)) {
-                            ++count;
-                        }
-                    }
-                }
-                // Outside the image the DSI is zero-padded; a zero never counts (2*c < c is false).
-                if (count >= fx::kRule2MinCount) {
-                    result[static_cast<std::size_t>(y) * width + x] =
-                        static_cast<Value>(fx::div13(static_cast<std::uint32_t>(centre)));
-                }
-            }
-        }
+        detail::ca_rule2_plane(dsi.plane(d).data(), dsi.width(), dsi.height(), out.plane(d).data());
     }
     return out;
 }
 
-DisparityMap wta(const Dsi& dsi, const InvalidBorder& border) {
-    const int width = dsi.width();
-    const int height = dsi.height();
-    std::vector<Value> best_value(dsi.plane(0).begin(), dsi.plane(0).end());
-    std::vector<std::uint8_t> best_label(dsi.plane_size(), 0);
-    for (int d = 1; d < dsi.ndisp(); ++d) {
-        const auto plane = dsi.plane(d);
-        for (std::size_t i = 0; i < plane.size(); ++i) {
-            if (plane[i] < best_value[i]) {  // strict: ties keep the smaller d
-                best_value[i] = plane[i];
-                best_label[i] = static_cast<std::uint8_t>(d);
-            }
-        }
-    }
+namespace {
+
+// The last step of wta: labels become disparities where the border rule allows.
+DisparityMap finish_wta(const std::vector<std::uint8_t>& label, int width, int height,
+                        const InvalidBorder& border) {
     DisparityMap map(width, height);
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
             const std::size_t i = map.index(x, y);
-            if (border.valid(x, y, best_label[i], width, height)) {
-                map.disparity[i] = best_label[i];
+            if (border.valid(x, y, label[i], width, height)) {
+                map.disparity[i] = label[i];
                 map.valid[i] = 1;
             }
         }
@@ -252,14 +134,68 @@ DisparityMap wta(const Dsi& dsi, const InvalidBorder& border) {
     return map;
 }
 
+}  // namespace
+
+DisparityMap wta(const Dsi& dsi, const InvalidBorder& border) {
+    std::vector<Value> best(dsi.plane(0).begin(), dsi.plane(0).end());
+    std::vector<std::uint8_t> label(dsi.plane_size(), 0);
+    for (int d = 1; d < dsi.ndisp(); ++d) {
+        detail::wta_update(dsi.plane(d).data(), d, dsi.plane_size(), best.data(), label.data());
+    }
+    return finish_wta(label, dsi.width(), dsi.height(), border);
+}
+
 DisparityMap match(const Image& left, const Image& right, const MatchParams& params) {
     check_pair(left, right);
     validate(params, left.width, left.height);
-    Dsi dsi = aggregate(cost(left, right, params.ndisp), gaussian_kernel(params.window, params.sigma));
-    if (params.use_ca) {
-        dsi = ca_rule2(ca_rule1(dsi));
+    const int width = left.width;
+    const int height = left.height;
+    const int ndisp = params.ndisp;
+    const std::size_t plane_size = static_cast<std::size_t>(width) * height;
+
+    // The same kernels as the volume stages, streamed over d: plane d of the CA output needs
+    // aggregated planes d-1, d and d+1 only, so three aggregated planes rotate in a ring and
+    // the whole working set stays in cache. tests/test_model.cpp checks match() against the
+    // composition of the volume stages and against the naive reference.
+    const detail::PlanarImage left_planes(left);
+    const detail::PlanarImage right_planes(right);
+    detail::PlaneAggregator aggregator(gaussian_kernel(params.window, params.sigma), width, height);
+    detail::PlaneRule1 rule1(width, height);
+    std::vector<Value> cost_plane(plane_size);
+    std::array<std::vector<Value>, 3> aggregated;  // ring: plane d lives in slot d % 3
+    for (auto& slot : aggregated) {
+        slot.resize(plane_size);
     }
-    return wta(dsi, invalid_border(params));
+    std::vector<Value> rule1_plane(plane_size);
+    std::vector<Value> rule2_plane(plane_size);
+    std::vector<Value> best(plane_size);
+    std::vector<std::uint8_t> label(plane_size, 0);
+
+    auto aggregate_into_ring = [&](int d) {
+        detail::cost_plane(left_planes, right_planes, d, cost_plane.data());
+        aggregator.run(cost_plane.data(), aggregated[static_cast<std::size_t>(d % 3)].data());
+    };
+    auto ring = [&](int d) { return aggregated[static_cast<std::size_t>(d % 3)].data(); };
+
+    aggregate_into_ring(0);
+    for (int d = 0; d < ndisp; ++d) {
+        if (d + 1 < ndisp) {
+            aggregate_into_ring(d + 1);
+        }
+        const Value* final_plane = ring(d);
+        if (params.use_ca) {
+            rule1.run(d > 0 ? ring(d - 1) : nullptr, ring(d), d + 1 < ndisp ? ring(d + 1) : nullptr,
+                      rule1_plane.data());
+            detail::ca_rule2_plane(rule1_plane.data(), width, height, rule2_plane.data());
+            final_plane = rule2_plane.data();
+        }
+        if (d == 0) {
+            std::copy_n(final_plane, plane_size, best.begin());
+        } else {
+            detail::wta_update(final_plane, d, plane_size, best.data(), label.data());
+        }
+    }
+    return finish_wta(label, width, height, invalid_border(params));
 }
 
 }  // namespace stereo

@@ -35,9 +35,10 @@ inline constexpr int kAggMax = kCostMax << kAggFracBits;  // 12240
 inline constexpr int kAggBits = 14;
 static_assert(kAggMax < (1 << kAggBits));
 // Widths of the separable sums (vertical pass first, then horizontal), full precision.
-inline constexpr int kVerticalSumBits = kCostBits + kKernelBits;          // 18
-inline constexpr int kWindowSumBits = kCostBits + 2 * kKernelBits;        // 26
-static_assert(static_cast<std::int64_t>(kCostMax) * kKernelSum * kKernelSum < (1LL << kWindowSumBits));
+inline constexpr int kVerticalSumBits = kCostBits + kKernelBits;    // 18
+inline constexpr int kWindowSumBits = kCostBits + 2 * kKernelBits;  // 26
+static_assert(static_cast<std::int64_t>(kCostMax) * kKernelSum * kKernelSum <
+              (1LL << kWindowSumBits));
 static_assert(kWindowSumBits < 31, "window sum must fit a signed 32-bit accumulator");
 
 inline constexpr int kMinWindow = 1;
@@ -59,12 +60,12 @@ inline constexpr std::uint32_t kMean9Mul = 29127;  // round(2^18 / 9)
 // exact for every value in [0, kAggMax].
 inline constexpr int kDiv13Shift = 17;
 inline constexpr std::uint32_t kDiv13Mul = 100825;  // round(2^17 * 10 / 13)
-inline constexpr int kRule2MinCount = 7;  // of the 8 in-plane neighbours
+inline constexpr int kRule2MinCount = 7;            // of the 8 in-plane neighbours
 
 // ---- Stage 5: winner takes all ----------------------------------------------------------
 inline constexpr int kDisparityBits = 8;
 inline constexpr int kMaxDisparities = 1 << kDisparityBits;  // labels 0..255
-inline constexpr int kInvalidDisparity = 0;  // written where the valid flag is 0
+inline constexpr int kInvalidDisparity = 0;                  // written where the valid flag is 0
 inline constexpr int kDefaultDisparities = 64;
 
 // ---- Exactness proofs (compile time) ----------------------------------------------------

@@ -12,7 +12,7 @@ namespace stereo {
 // Layout is plane-major, [d][y][x], so every stage that works inside a constant-disparity
 // plane (aggregation, the 3x3 CA neighbourhoods) walks contiguous memory.
 class Dsi {
-public:
+  public:
     using Value = std::uint16_t;  // wide enough for every stage (checked below)
 
     Dsi() = default;
@@ -40,7 +40,7 @@ public:
 
     bool operator==(const Dsi&) const = default;
 
-private:
+  private:
     std::size_t index(int x, int y, int d) const {
         return (static_cast<std::size_t>(d) * height_ + y) * width_ + x;
     }

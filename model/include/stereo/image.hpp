@@ -27,7 +27,7 @@ struct Image {
     }
     bool empty() const { return pixels.empty(); }
 
-private:
+  private:
     static std::size_t checked_size(int w, int h, int c) {
         if (w <= 0 || h <= 0 || (c != 1 && c != 3)) {
             throw std::invalid_argument("image must be non-empty with 1 or 3 channels, got " +

@@ -1,0 +1,58 @@
+// Image and disparity-map files for the host tools.
+//
+// Error convention: a file that is missing, unreadable or of an unsupported format raises
+// std::runtime_error; inputs that are readable but do not fit together (sizes, scales) raise
+// std::invalid_argument. Every message is one line and names the file.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include <opencv2/core/mat.hpp>
+
+#include "stereo/image.hpp"
+
+namespace stereo::app {
+
+struct ImagePair {
+    Image left;
+    Image right;
+};
+
+// Reads an 8-bit image with 1, 3 or 4 channels into RGB (or grey) order; alpha is dropped.
+// `downscale` (>= 1) shrinks both sides by that integer factor with area averaging.
+Image load_image(const std::filesystem::path& path, int downscale = 1);
+
+// Loads both images and checks that they have the same size before any downscale.
+ImagePair load_pair(const std::filesystem::path& left, const std::filesystem::path& right,
+                    int downscale = 1);
+
+// Converts an 8-bit OpenCV matrix (grey, BGR or BGRA) into an Image; `name` is for messages.
+Image to_image(const cv::Mat& mat, const std::string& name);
+
+// Throws std::invalid_argument unless disparities 0..ndisp-1 times `scale` fit a 16-bit PNG.
+void check_disparity_scale(int ndisp, int scale);
+
+// The stored form of a disparity map: disparity * scale, 0 where invalid. The matrix is 8-bit
+// when (ndisp - 1) * scale <= 255, else 16-bit.
+cv::Mat disparity_to_mat(const DisparityMap& map, int ndisp, int scale);
+
+// A colour view for people: disparity spread over 0..255 by ndisp - 1, colour-mapped (turbo),
+// invalid pixels black. Returned in OpenCV's BGR order, ready for write_png.
+cv::Mat disparity_to_colour(const DisparityMap& map, int ndisp);
+
+// Reads a disparity or ground-truth PNG (8 or 16 bit, grey or 3 equal channels) as float
+// disparity = value / scale; 0 stays 0 and means invalid (ours) or unknown (ground truth).
+cv::Mat load_disparity(const std::filesystem::path& path, double scale);
+
+// Reads an 8-bit evaluation mask (grey or 3 equal channels) as CV_8UC1.
+cv::Mat load_mask(const std::filesystem::path& path);
+
+// Encodes `mat` as PNG in memory first, so that a failure never leaves a partial file behind.
+void write_png(const std::filesystem::path& path, const cv::Mat& mat);
+
+// Throws std::runtime_error when `path` could not be created because its folder is missing;
+// used to fail before a long computation rather than after it.
+void check_writable_location(const std::filesystem::path& path);
+
+}  // namespace stereo::app

@@ -1,0 +1,20 @@
+// The subcommands of the `stereo` tool. Each file cli_<name>.cpp adds one subcommand to the
+// application; its callback does the work and reports problems by throwing. main() turns every
+// exception into a single "stereo: error: ..." line and one of the exit codes below.
+#pragma once
+
+namespace CLI {
+class App;
+}
+
+namespace stereo::cli {
+
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitIoError = 1;     // missing, unreadable or unwritable files
+inline constexpr int kExitUsageError = 2;  // bad options, parameters or mismatched inputs
+
+void add_match_command(CLI::App& app);
+void add_eval_command(CLI::App& app);
+void add_middlebury_command(CLI::App& app);
+
+}  // namespace stereo::cli

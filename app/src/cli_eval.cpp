@@ -1,0 +1,144 @@
+// `stereo eval DISP.png GT.png [options]`: Middlebury-style scores (see stereo_app/metrics.hpp).
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "cli.hpp"
+#include "stereo_app/io.hpp"
+#include "stereo_app/metrics.hpp"
+
+namespace stereo::cli {
+
+namespace {
+
+struct EvalOptions {
+    std::string disparity;
+    std::string ground_truth;
+    double scale = 1.0;
+    double gt_scale = 1.0;
+    std::string nonocc;  // empty: no mask
+    std::string all;
+    std::string disc;
+    double threshold = 1.0;
+    std::string error_map;  // empty: not written
+    bool json = false;
+};
+
+std::string quoted(const std::string& path) {
+    return "'" + path + "'";
+}
+
+// CLI11's own range validators print the full double range; these messages stay short.
+void require_positive(double value, const std::string& option) {
+    if (!(value > 0.0) || !std::isfinite(value)) {
+        std::ostringstream message;
+        message << option << " must be a positive number, got " << value;
+        throw std::invalid_argument(message.str());
+    }
+}
+
+std::optional<app::NamedMat> load_optional_mask(const std::string& path, const std::string& role) {
+    if (path.empty()) {
+        return std::nullopt;
+    }
+    return app::NamedMat{app::load_mask(path), role + " mask " + quoted(path)};
+}
+
+void print_region(const char* label, const std::optional<app::RegionScore>& score,
+                  const char* missing_option) {
+    if (!score.has_value()) {
+        std::printf("%-11s n/a (no %s mask)\n", label, missing_option);
+    } else if (const auto percent = score->percent(); percent.has_value()) {
+        std::printf("%-11s %.2f %%  (%lld of %lld pixels)\n", label, *percent,
+                    static_cast<long long>(score->bad), static_cast<long long>(score->evaluated));
+    } else {
+        std::printf("%-11s n/a (no pixel with known ground truth in the mask)\n", label);
+    }
+}
+
+void print_text(const app::EvalResult& result) {
+    std::printf("threshold   %g\n", result.threshold);
+    print_region("bad_nonocc", result.nonocc, "--nonocc");
+    print_region("bad_all", result.all, "--all");
+    print_region("bad_disc", result.disc, "--disc");
+    if (result.nmse.has_value()) {
+        std::printf("nmse        %.6g  (%lld pixels)\n", *result.nmse,
+                    static_cast<long long>(result.nmse_pixels));
+    } else {
+        std::printf("nmse        n/a (no valid pixel with known ground truth)\n");
+    }
+    if (result.coverage.has_value()) {
+        std::printf("coverage    %.2f %%  (%lld of %lld known pixels)\n", 100.0 * *result.coverage,
+                    static_cast<long long>(result.known_and_valid),
+                    static_cast<long long>(result.known));
+    } else {
+        std::printf("coverage    n/a (ground truth has no known pixel)\n");
+    }
+}
+
+void run_eval(const EvalOptions& options) {
+    require_positive(options.scale, "--scale");
+    require_positive(options.gt_scale, "--gt-scale");
+    if (!(options.threshold >= 0.0) || !std::isfinite(options.threshold)) {
+        std::ostringstream message;
+        message << "--threshold must be a non-negative number, got " << options.threshold;
+        throw std::invalid_argument(message.str());
+    }
+    if (!options.error_map.empty()) {
+        app::check_writable_location(options.error_map);
+    }
+    app::EvalInput input{
+        .disparity = {app::load_disparity(options.disparity, options.scale),
+                      "disparity " + quoted(options.disparity)},
+        .ground_truth = {app::load_disparity(options.ground_truth, options.gt_scale),
+                         "ground truth " + quoted(options.ground_truth)},
+        .nonocc = load_optional_mask(options.nonocc, "nonocc"),
+        .all = load_optional_mask(options.all, "all"),
+        .disc = load_optional_mask(options.disc, "disc"),
+        .threshold = options.threshold,
+    };
+    const app::EvalResult result = app::evaluate(input);  // checks every size first
+    if (!options.error_map.empty()) {
+        app::write_png(options.error_map, app::error_map(input));
+    }
+    if (options.json) {
+        const nlohmann::json json = result;
+        std::cout << json.dump() << '\n';
+    } else {
+        print_text(result);
+    }
+}
+
+}  // namespace
+
+void add_eval_command(CLI::App& app) {
+    auto options = std::make_shared<EvalOptions>();  // shared with the callback
+    CLI::App* command = app.add_subcommand(
+        "eval", "Score a disparity PNG against ground truth (Middlebury bad-pixel %, NMSE).");
+    command->add_option("DISP", options->disparity, "Our disparity PNG, 0 = invalid")->required();
+    command->add_option("GT", options->ground_truth, "Ground-truth PNG, 0 = unknown")->required();
+    command->add_option("--scale", options->scale, "DISP holds disparity * K")
+        ->capture_default_str();
+    command->add_option("--gt-scale", options->gt_scale, "GT holds disparity * G")
+        ->capture_default_str();
+    command->add_option("--nonocc", options->nonocc, "Mask of non-occluded pixels (255 = scored)");
+    command->add_option("--all", options->all,
+                        "Mask of scored pixels (255); default: every known GT pixel");
+    command->add_option("--disc", options->disc, "Mask of pixels near discontinuities (255)");
+    command->add_option("--threshold", options->threshold, "Bad when |d - gt| > T")
+        ->capture_default_str();
+    command->add_option("--error-map", options->error_map,
+                        "Write an RGB PNG: grey correct, red bad, blue invalid, black unscored");
+    command->add_flag("--json", options->json, "Print the scores as one JSON object");
+    command->callback([options] { run_eval(*options); });
+}
+
+}  // namespace stereo::cli

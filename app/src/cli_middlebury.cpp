@@ -1,0 +1,293 @@
+// `stereo middlebury`: the evaluation behind docs/results.md and docs/sigma-sweep.md. Runs the
+// model (with and without CA), its float reference and OpenCV's StereoBM / StereoSGBM on the
+// Middlebury 2003 pairs, prints a Markdown table and optionally writes JSON and figures.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "cli.hpp"
+#include "stereo/reference.hpp"
+#include "stereo_app/middlebury.hpp"
+
+namespace stereo::cli {
+namespace {
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+#ifdef STEREO_DATA_DIR
+constexpr const char* kDefaultDataDir = STEREO_DATA_DIR;
+#else
+constexpr const char* kDefaultDataDir = "../shared/data";
+#endif
+
+struct Options {
+    std::string data_dir = kDefaultDataDir;
+    std::string figures;
+    std::string markdown;
+    std::string json;
+    int window = fx::kDefaultWindow;
+    double sigma = fx::kDefaultSigma;
+    std::vector<double> sweep;
+};
+
+// The thesis' own figures (Tables 3.1 and 3.2), quoted, for the table's last rows.
+struct ThesisFigures {
+    const char* scene;
+    double nonocc, all, disc, nmse_no_ca, nmse_ca;
+};
+constexpr ThesisFigures kThesis[] = {{"tsukuba", 10.3, 12.3, 23.5, 0.0627, 0.0593},
+                                     {"venus", 8.86, 10.2, 35.8, 0.0545, 0.0447},
+                                     {"teddy", 24.5, 31.5, 35.2, 0.1149, 0.1108},
+                                     {"cones", 20.6, 28.8, 31.1, 0.0809, 0.0768}};
+
+std::string percent(const std::optional<app::RegionScore>& score) {
+    if (!score || !score->percent()) {
+        return "-";
+    }
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2f", *score->percent());
+    return text;
+}
+
+std::string number(std::optional<double> value, const char* format) {
+    if (!value) {
+        return "-";
+    }
+    char text[32];
+    std::snprintf(text, sizeof text, format, *value);
+    return text;
+}
+
+template <typename Function>
+auto timed(Function&& function, double& milliseconds) {
+    const auto start = Clock::now();
+    auto result = function();
+    milliseconds = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    return result;
+}
+
+// Colour view of a float disparity map (0 = none), spread over 0..ndisp-1, black where none.
+cv::Mat colourise(const cv::Mat& disparity, int ndisp) {
+    cv::Mat spread;
+    disparity.convertTo(spread, CV_8UC1, 255.0 / std::max(1, ndisp - 1));
+    cv::Mat colour;
+    cv::applyColorMap(spread, colour, cv::COLORMAP_TURBO);
+    colour.setTo(cv::Scalar::all(0), disparity <= 0);
+    return colour;
+}
+
+// One strip per scene: left, ground truth, ours, signed error, bad pixels; half size so the
+// figure stays small (the source images are not redistributed at full size).
+void write_figure(const app::SceneData& data, const cv::Mat& ours, const fs::path& path) {
+    const int ndisp = data.scene.ndisp;
+    app::EvalInput input{{ours, "ours"}, data.ground_truth};
+    input.all = data.all;
+    const cv::Mat signed_grey = app::signed_error_image({ours, "ours"}, data.ground_truth);
+    cv::Mat signed_bgr;
+    cv::cvtColor(signed_grey, signed_bgr, cv::COLOR_GRAY2BGR);
+    const std::vector<cv::Mat> panels = {data.left_bgr, colourise(data.ground_truth.mat, ndisp),
+                                         colourise(ours, ndisp), signed_bgr, app::error_map(input)};
+    std::vector<cv::Mat> halves;
+    for (const cv::Mat& panel : panels) {
+        cv::Mat half;
+        cv::resize(panel, half, cv::Size(), 0.5, 0.5, cv::INTER_AREA);
+        halves.push_back(half);
+    }
+    cv::Mat strip;
+    cv::hconcat(halves, strip);
+    app::write_png(path, strip);
+}
+
+struct MethodRow {
+    std::string method;
+    app::EvalResult result;
+    double ms;
+};
+
+nlohmann::json row_json(const MethodRow& row) {
+    nlohmann::json json = row.result;
+    json["method"] = row.method;
+    json["ms"] = row.ms;
+    return json;
+}
+
+void run_report(const Options& options) {
+    const fs::path data_dir = options.data_dir;
+    if (!options.figures.empty()) {
+        fs::create_directories(options.figures);
+    }
+    std::ostringstream md;
+    md << "| pair | method | bad nonocc % | bad all % | bad disc % | NMSE | coverage | ms |\n"
+       << "|---|---|---|---|---|---|---|---|\n";
+    std::ostringstream float_md;
+    float_md << "| pair | pixels differing, CA on | pixels differing, CA off |\n|---|---|---|\n";
+    nlohmann::json json = nlohmann::json::array();
+    int scenes_found = 0;
+
+    for (const auto& scene : app::middlebury2003_scenes()) {
+        const auto data = app::load_scene(data_dir, scene);
+        if (!data) {
+            std::cerr << "stereo middlebury: " << scene.name << " not found under "
+                      << app::scene_dir(data_dir, scene) << ", skipped\n";
+            continue;
+        }
+        ++scenes_found;
+        const MatchParams with_ca{scene.ndisp, options.window, options.sigma, true};
+        MatchParams without_ca = with_ca;
+        without_ca.use_ca = false;
+
+        std::vector<MethodRow> rows;
+        double ms = 0.0;
+        const DisparityMap model_ca =
+            timed([&] { return match(data->pair.left, data->pair.right, with_ca); }, ms);
+        const cv::Mat model_ca_f = app::to_float_disparity(model_ca);
+        rows.push_back({"model, CA", app::evaluate_scene(*data, model_ca_f), ms});
+        const DisparityMap model_no_ca =
+            timed([&] { return match(data->pair.left, data->pair.right, without_ca); }, ms);
+        rows.push_back(
+            {"model, no CA", app::evaluate_scene(*data, app::to_float_disparity(model_no_ca)), ms});
+        const cv::Mat bm = timed([&] { return app::run_stereo_bm(*data, options.window); }, ms);
+        rows.push_back({"OpenCV StereoBM", app::evaluate_scene(*data, bm), ms});
+        const cv::Mat sgbm = timed([&] { return app::run_stereo_sgbm(*data); }, ms);
+        rows.push_back({"OpenCV StereoSGBM", app::evaluate_scene(*data, sgbm), ms});
+
+        const DisparityMap float_ca = floating::match(data->pair.left, data->pair.right, with_ca);
+        const DisparityMap float_no_ca =
+            floating::match(data->pair.left, data->pair.right, without_ca);
+        const double differ_ca = app::disagreement(model_ca, float_ca);
+        const double differ_no_ca = app::disagreement(model_no_ca, float_no_ca);
+        char line[160];
+        std::snprintf(line, sizeof line, "| %s | %.2f %% | %.2f %% |\n", scene.name.c_str(),
+                      100.0 * differ_ca, 100.0 * differ_no_ca);
+        float_md << line;
+
+        nlohmann::json scene_json = {{"pair", scene.name},
+                                     {"ndisp", scene.ndisp},
+                                     {"float_disagreement_ca", differ_ca},
+                                     {"float_disagreement_no_ca", differ_no_ca},
+                                     {"methods", nlohmann::json::array()}};
+        for (const MethodRow& row : rows) {
+            md << "| " << scene.name << " | " << row.method << " | " << percent(row.result.nonocc)
+               << " | " << percent(row.result.all) << " | " << percent(row.result.disc) << " | "
+               << number(row.result.nmse, "%.4f") << " | " << number(row.result.coverage, "%.3f")
+               << " | " << number(row.ms, "%.0f") << " |\n";
+            scene_json["methods"].push_back(row_json(row));
+        }
+        for (const ThesisFigures& thesis : kThesis) {
+            if (scene.name == thesis.scene) {
+                std::snprintf(line, sizeof line,
+                              "| %s | thesis (quoted) | %.2f | %.2f | %.2f | %.4f (no CA %.4f) | - "
+                              "| - |\n",
+                              scene.name.c_str(), thesis.nonocc, thesis.all, thesis.disc,
+                              thesis.nmse_ca, thesis.nmse_no_ca);
+                md << line;
+            }
+        }
+        json.push_back(scene_json);
+        if (!options.figures.empty()) {
+            write_figure(*data, model_ca_f, fs::path(options.figures) / (scene.name + ".png"));
+        }
+    }
+    if (scenes_found == 0) {
+        throw std::runtime_error("no Middlebury 2003 scene found under " +
+                                 (data_dir / "middlebury2003").string());
+    }
+    const std::string report =
+        md.str() + "\nFixed point against the float reference:\n\n" + float_md.str();
+    std::cout << report;
+    if (!options.markdown.empty()) {
+        std::ofstream(options.markdown) << report;
+    }
+    if (!options.json.empty()) {
+        std::ofstream(options.json) << json.dump(2) << '\n';
+    }
+}
+
+// Bad-pixel percentages of the model (CA on) for each sigma; the default is the sigma with the
+// lowest mean of nonocc, all and disc over the pairs.
+void run_sweep(const Options& options) {
+    std::ostringstream md;
+    md << "| sigma |";
+    for (const auto& scene : app::middlebury2003_scenes()) {
+        md << ' ' << scene.name << " nonocc/all/disc |";
+    }
+    md << " mean nonocc | mean all | mean disc | mean of the three |\n|---|";
+    for (std::size_t i = 0; i < app::middlebury2003_scenes().size() + 4; ++i) {
+        md << "---|";
+    }
+    md << '\n';
+    std::vector<app::SceneData> scenes;
+    for (const auto& scene : app::middlebury2003_scenes()) {
+        if (auto data = app::load_scene(options.data_dir, scene)) {
+            scenes.push_back(std::move(*data));
+        }
+    }
+    if (scenes.empty()) {
+        throw std::runtime_error("no Middlebury 2003 scene found under " + options.data_dir);
+    }
+    for (const double sigma : options.sweep) {
+        double sums[3] = {0, 0, 0};
+        md << "| " << sigma << " |";
+        for (const auto& data : scenes) {
+            const MatchParams params{data.scene.ndisp, options.window, sigma, true};
+            const app::EvalResult r = app::evaluate_scene(
+                data, app::to_float_disparity(match(data.pair.left, data.pair.right, params)));
+            const double values[3] = {*r.nonocc->percent(), *r.all.percent(), *r.disc->percent()};
+            char cell[64];
+            std::snprintf(cell, sizeof cell, " %.2f / %.2f / %.2f |", values[0], values[1],
+                          values[2]);
+            md << cell;
+            for (int i = 0; i < 3; ++i) {
+                sums[i] += values[i] / scenes.size();
+            }
+        }
+        char tail[96];
+        std::snprintf(tail, sizeof tail, " %.2f | %.2f | %.2f | %.2f |\n", sums[0], sums[1],
+                      sums[2], (sums[0] + sums[1] + sums[2]) / 3.0);
+        md << tail;
+        std::cout << md.str() << std::flush;
+        md.str("");
+    }
+}
+
+}  // namespace
+
+void add_middlebury_command(CLI::App& app) {
+    auto options = std::make_shared<Options>();
+    CLI::App* command = app.add_subcommand(
+        "middlebury", "Evaluate the model and OpenCV baselines on the Middlebury 2003 pairs.");
+    command->add_option("--data", options->data_dir, "Folder holding middlebury2003/")
+        ->capture_default_str();
+    command->add_option("--figures", options->figures, "Write one figure strip per pair here");
+    command->add_option("--markdown", options->markdown, "Also write the tables to this file");
+    command->add_option("--json", options->json, "Write all figures as JSON to this file");
+    command->add_option("--window", options->window, "Aggregation window")->capture_default_str();
+    command->add_option("--sigma", options->sigma, "Gaussian sigma")->capture_default_str();
+    command->add_option("--sweep-sigma", options->sweep,
+                        "Instead of the report, sweep these sigmas (CA on)");
+    command->callback([options] {
+        (void)gaussian_kernel(options->window, options->sigma);  // throws on a bad window/sigma
+        for (const double sigma : options->sweep) {
+            (void)gaussian_kernel(options->window, sigma);
+        }
+        if (options->sweep.empty()) {
+            run_report(*options);
+        } else {
+            run_sweep(*options);
+        }
+    });
+}
+
+}  // namespace stereo::cli

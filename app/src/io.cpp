@@ -1,0 +1,340 @@
+#include "stereo_app/io.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+#include <vector>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+namespace stereo::app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Built by appending: `"'" + string` trips a GCC 12 -Wrestrict false positive.
+std::string quoted(const fs::path& path) {
+    std::string text = "'";
+    text += path.string();
+    text += '\'';
+    return text;
+}
+
+std::string size_text(int width, int height) {
+    return std::to_string(width) + "x" + std::to_string(height);
+}
+
+std::string format_text(const cv::Mat& mat) {
+    const int bits = mat.depth() == CV_8U ? 8 : mat.depth() == CV_16U ? 16 : 0;
+    const std::string depth = bits > 0 ? std::to_string(bits) + "-bit" : "non-integer";
+    return depth + " " + std::to_string(mat.channels()) + "-channel";
+}
+
+// Reading the bytes ourselves (instead of cv::imread) gives a precise message for a missing
+// or unreadable file and keeps OpenCV from printing its own warnings about it.
+std::vector<uchar> read_bytes(const fs::path& path) {
+    std::error_code error;
+    if (!fs::exists(path, error)) {
+        throw std::runtime_error("cannot read " + quoted(path) + ": no such file");
+    }
+    if (fs::is_directory(path, error)) {
+        throw std::runtime_error("cannot read " + quoted(path) + ": is a directory");
+    }
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        throw std::runtime_error("cannot read " + quoted(path) + ": " + std::strerror(errno));
+    }
+    std::vector<uchar> bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    if (in.bad()) {
+        throw std::runtime_error("cannot read " + quoted(path) + ": read error");
+    }
+    return bytes;
+}
+
+// libpng and libjpeg print their own diagnostics for a corrupt file straight to stderr (file
+// descriptor 2, out of OpenCV's control). The caller reports the failure itself, in one line, so
+// descriptor 2 points at /dev/null while a file is decoded.
+class SilencedStderr {
+  public:
+    SilencedStderr() {
+        std::fflush(stderr);
+        saved_ = ::dup(STDERR_FILENO);
+        const int null_fd = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+        if (saved_ >= 0 && null_fd >= 0) {
+            ::dup2(null_fd, STDERR_FILENO);
+        }
+        if (null_fd >= 0) {
+            ::close(null_fd);
+        }
+    }
+    ~SilencedStderr() {
+        std::fflush(stderr);
+        if (saved_ >= 0) {
+            ::dup2(saved_, STDERR_FILENO);
+            ::close(saved_);
+        }
+    }
+    SilencedStderr(const SilencedStderr&) = delete;
+    SilencedStderr& operator=(const SilencedStderr&) = delete;
+
+  private:
+    int saved_ = -1;
+};
+
+cv::Mat decode(const fs::path& path) {
+    const std::vector<uchar> bytes = read_bytes(path);
+    cv::Mat mat;
+    try {
+        const SilencedStderr quiet;
+        if (!bytes.empty()) {
+            mat = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
+        }
+    } catch (const cv::Exception&) {
+        mat.release();  // reported below, with the file name, as one line
+    }
+    if (mat.empty()) {
+        throw std::runtime_error("cannot read " + quoted(path) +
+                                 ": not an image or a corrupt/unsupported format");
+    }
+    return mat;
+}
+
+// An 8-bit grey or BGR matrix of the file (alpha dropped).
+cv::Mat read_colour_or_grey(const fs::path& path) {
+    const cv::Mat mat = decode(path);
+    const int channels = mat.channels();
+    if (mat.depth() != CV_8U || (channels != 1 && channels != 3 && channels != 4)) {
+        throw std::runtime_error("cannot use " + quoted(path) + ": it is " + format_text(mat) +
+                                 ", expected an 8-bit grey, RGB or RGBA image");
+    }
+    if (channels == 4) {
+        cv::Mat bgr;
+        cv::cvtColor(mat, bgr, cv::COLOR_BGRA2BGR);
+        return bgr;
+    }
+    return mat;
+}
+
+cv::Mat shrink(const cv::Mat& mat, int downscale, const fs::path& path) {
+    if (downscale == 1) {
+        return mat;
+    }
+    const int width = mat.cols / downscale;
+    const int height = mat.rows / downscale;
+    if (width < 1 || height < 1) {
+        throw std::invalid_argument("image " + quoted(path) + " (" + size_text(mat.cols, mat.rows) +
+                                    ") is too small for downscale factor " +
+                                    std::to_string(downscale));
+    }
+    cv::Mat small;
+    cv::resize(mat, small, cv::Size(width, height), 0.0, 0.0, cv::INTER_AREA);
+    return small;
+}
+
+void check_downscale(int downscale) {
+    if (downscale < 1) {
+        throw std::invalid_argument("downscale factor must be >= 1, got " +
+                                    std::to_string(downscale));
+    }
+}
+
+// One channel of a grey file; a 3-channel file is accepted only when it is grey in fact, so that
+// a colour view passed by mistake is refused rather than evaluated.
+cv::Mat single_channel(const cv::Mat& mat, const fs::path& path) {
+    if (mat.channels() == 1) {
+        return mat;
+    }
+    if (mat.channels() == 3) {
+        std::vector<cv::Mat> planes;
+        cv::split(mat, planes);
+        if (cv::countNonZero(planes[0] != planes[1]) == 0 &&
+            cv::countNonZero(planes[0] != planes[2]) == 0) {
+            return planes[0];
+        }
+    }
+    throw std::runtime_error("cannot use " + quoted(path) + ": it is a " +
+                             std::to_string(mat.channels()) +
+                             "-channel colour image, expected a grey image");
+}
+
+}  // namespace
+
+Image to_image(const cv::Mat& mat, const std::string& name) {
+    if (mat.empty() || mat.depth() != CV_8U || (mat.channels() != 1 && mat.channels() != 3)) {
+        throw std::invalid_argument(
+            "image " + name + " must be 8-bit grey or BGR, got " +
+            (mat.empty() ? std::string("an empty matrix") : format_text(mat)));
+    }
+    cv::Mat ordered;  // RGB for colour: the model's channel order
+    if (mat.channels() == 3) {
+        cv::cvtColor(mat, ordered, cv::COLOR_BGR2RGB);
+    } else {
+        ordered = mat;
+    }
+    Image image(ordered.cols, ordered.rows, ordered.channels());
+    const std::size_t row_bytes = static_cast<std::size_t>(image.width) * image.channels;
+    for (int y = 0; y < image.height; ++y) {
+        std::copy_n(ordered.ptr<std::uint8_t>(y), row_bytes,
+                    image.pixels.begin() + static_cast<std::ptrdiff_t>(y * row_bytes));
+    }
+    return image;
+}
+
+Image load_image(const fs::path& path, int downscale) {
+    check_downscale(downscale);
+    return to_image(shrink(read_colour_or_grey(path), downscale, path), quoted(path));
+}
+
+ImagePair load_pair(const fs::path& left, const fs::path& right, int downscale) {
+    check_downscale(downscale);
+    cv::Mat left_mat = read_colour_or_grey(left);
+    cv::Mat right_mat = read_colour_or_grey(right);
+    if (left_mat.size() != right_mat.size()) {
+        throw std::invalid_argument(
+            "left " + quoted(left) + " is " + size_text(left_mat.cols, left_mat.rows) +
+            " but right " + quoted(right) + " is " + size_text(right_mat.cols, right_mat.rows));
+    }
+    // The model matches a grey pixel g exactly as (g, g, g), so a grey/colour mix is promoted
+    // to colour rather than refused.
+    if (left_mat.channels() != right_mat.channels()) {
+        cv::Mat& grey = left_mat.channels() == 1 ? left_mat : right_mat;
+        cv::cvtColor(grey, grey, cv::COLOR_GRAY2BGR);
+    }
+    return {to_image(shrink(left_mat, downscale, left), quoted(left)),
+            to_image(shrink(right_mat, downscale, right), quoted(right))};
+}
+
+void check_disparity_scale(int ndisp, int scale) {
+    if (ndisp < 1) {
+        throw std::invalid_argument("ndisp must be >= 1, got " + std::to_string(ndisp));
+    }
+    if (scale < 1) {
+        throw std::invalid_argument("disparity scale must be >= 1, got " + std::to_string(scale));
+    }
+    const long long largest = static_cast<long long>(ndisp - 1) * scale;
+    if (largest > 65535) {
+        throw std::invalid_argument("disparity scale " + std::to_string(scale) + " with ndisp " +
+                                    std::to_string(ndisp) + " gives values up to " +
+                                    std::to_string(largest) + ", more than a 16-bit PNG holds");
+    }
+}
+
+cv::Mat disparity_to_mat(const DisparityMap& map, int ndisp, int scale) {
+    check_disparity_scale(ndisp, scale);
+    const std::size_t count = static_cast<std::size_t>(map.width) * map.height;
+    if (map.width < 1 || map.height < 1 || map.disparity.size() != count ||
+        map.valid.size() != count) {
+        throw std::invalid_argument("disparity map is empty or inconsistent");
+    }
+    const bool fits_8bit = (ndisp - 1) * scale <= 255;
+    cv::Mat out(map.height, map.width, fits_8bit ? CV_8UC1 : CV_16UC1);
+    for (int y = 0; y < map.height; ++y) {
+        for (int x = 0; x < map.width; ++x) {
+            const std::size_t i = map.index(x, y);
+            const int d = map.disparity[i];
+            if (map.valid[i] != 0 && d >= ndisp) {
+                throw std::invalid_argument("disparity " + std::to_string(d) + " at (" +
+                                            std::to_string(x) + ", " + std::to_string(y) +
+                                            ") is not below ndisp " + std::to_string(ndisp));
+            }
+            const int value = map.valid[i] != 0 ? d * scale : 0;
+            if (fits_8bit) {
+                out.at<std::uint8_t>(y, x) = static_cast<std::uint8_t>(value);
+            } else {
+                out.at<std::uint16_t>(y, x) = static_cast<std::uint16_t>(value);
+            }
+        }
+    }
+    return out;
+}
+
+cv::Mat disparity_to_colour(const DisparityMap& map, int ndisp) {
+    const cv::Mat labels = disparity_to_mat(map, ndisp, 1);
+    cv::Mat spread;
+    const double gain = ndisp > 1 ? 255.0 / (ndisp - 1) : 0.0;
+    labels.convertTo(spread, CV_8U, gain);
+    cv::Mat colour;
+    cv::applyColorMap(spread, colour, cv::COLORMAP_TURBO);
+    for (int y = 0; y < map.height; ++y) {
+        for (int x = 0; x < map.width; ++x) {
+            if (map.valid[map.index(x, y)] == 0) {
+                colour.at<cv::Vec3b>(y, x) = cv::Vec3b(0, 0, 0);
+            }
+        }
+    }
+    return colour;
+}
+
+cv::Mat load_disparity(const fs::path& path, double scale) {
+    if (!(scale > 0.0) || !std::isfinite(scale)) {
+        throw std::invalid_argument("disparity scale for " + quoted(path) +
+                                    " must be a positive number, got " + std::to_string(scale));
+    }
+    const cv::Mat mat = decode(path);
+    if (mat.depth() != CV_8U && mat.depth() != CV_16U) {
+        throw std::runtime_error("cannot use " + quoted(path) + ": it is " + format_text(mat) +
+                                 ", expected an 8- or 16-bit disparity image");
+    }
+    cv::Mat disparity;
+    single_channel(mat, path).convertTo(disparity, CV_32F, 1.0 / scale);
+    return disparity;
+}
+
+cv::Mat load_mask(const fs::path& path) {
+    const cv::Mat mat = decode(path);
+    if (mat.depth() != CV_8U) {
+        throw std::runtime_error("cannot use " + quoted(path) + ": it is " + format_text(mat) +
+                                 ", expected an 8-bit mask");
+    }
+    return single_channel(mat, path).clone();
+}
+
+void write_png(const fs::path& path, const cv::Mat& mat) {
+    std::vector<uchar> bytes;
+    bool encoded = false;
+    try {
+        encoded = !mat.empty() && cv::imencode(".png", mat, bytes);
+    } catch (const cv::Exception&) {
+        encoded = false;
+    }
+    if (!encoded) {
+        throw std::runtime_error("cannot encode " + quoted(path) + " as PNG (" + format_text(mat) +
+                                 ")");
+    }
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    if (out) {
+        out.write(reinterpret_cast<const char*>(bytes.data()),
+                  static_cast<std::streamsize>(bytes.size()));
+        out.close();
+    }
+    if (!out) {
+        const std::string reason = std::strerror(errno);
+        std::error_code ignored;
+        fs::remove(path, ignored);  // never leave a truncated file behind
+        throw std::runtime_error("cannot write " + quoted(path) + ": " + reason);
+    }
+}
+
+void check_writable_location(const fs::path& path) {
+    const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+    std::error_code error;
+    if (!fs::is_directory(folder, error)) {
+        throw std::runtime_error("cannot write " + quoted(path) + ": folder " + quoted(folder) +
+                                 " does not exist");
+    }
+    if (fs::is_directory(path, error)) {
+        throw std::runtime_error("cannot write " + quoted(path) + ": is a directory");
+    }
+}
+
+}  // namespace stereo::app

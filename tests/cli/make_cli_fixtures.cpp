@@ -1,0 +1,89 @@
+// Writes the small images the command-line tests run `stereo` on, into the folder given as the
+// only argument. Deterministic (fixed seed), so every run sees the same files.
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kWidth = 64;
+constexpr int kHeight = 32;
+constexpr int kShift = 4;  // true disparity of the generated pair
+
+cv::Mat random_texture(int width, int height, std::mt19937& rng) {
+    cv::Mat image(height, width, CV_8UC3);
+    std::uniform_int_distribution<int> value(0, 255);
+    for (auto it = image.begin<cv::Vec3b>(); it != image.end<cv::Vec3b>(); ++it) {
+        *it = cv::Vec3b(static_cast<uchar>(value(rng)), static_cast<uchar>(value(rng)),
+                        static_cast<uchar>(value(rng)));
+    }
+    return image;
+}
+
+// right(x) = left(x + shift), so the model, which compares L(x) with R(x - d), finds d = shift.
+cv::Mat shifted(const cv::Mat& left, int shift) {
+    cv::Mat right(left.size(), left.type());
+    for (int y = 0; y < left.rows; ++y) {
+        for (int x = 0; x < left.cols; ++x) {
+            right.at<cv::Vec3b>(y, x) = left.at<cv::Vec3b>(y, std::min(left.cols - 1, x + shift));
+        }
+    }
+    return right;
+}
+
+void write(const fs::path& path, const cv::Mat& image) {
+    if (!cv::imwrite(path.string(), image)) {
+        throw std::runtime_error("cannot write " + path.string());
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc != 2) {
+        std::cerr << "usage: make_cli_fixtures OUTPUT_FOLDER\n";
+        return 2;
+    }
+    try {
+        const fs::path dir = argv[1];
+        fs::create_directories(dir);
+        std::mt19937 rng(20240611U);
+
+        const cv::Mat left = random_texture(kWidth, kHeight, rng);
+        write(dir / "left.png", left);
+        write(dir / "right.png", shifted(left, kShift));
+        write(dir / "right_wide.png", random_texture(kWidth + 8, kHeight, rng));
+        const cv::Mat tiny = random_texture(12, 8, rng);
+        write(dir / "tiny_left.png", tiny);
+        write(dir / "tiny_right.png", shifted(tiny, 1));
+        write(dir / "deep.png", cv::Mat(kHeight, kWidth, CV_16UC3, cv::Scalar(1000, 2000, 3000)));
+        std::ofstream(dir / "not_an_image.png") << "plain text, not a PNG\n";
+        // A PNG cut in half: libpng complains on stderr unless `stereo` keeps it quiet.
+        std::vector<uchar> png;
+        cv::imencode(".png", left, png);
+        std::ofstream(dir / "truncated.png", std::ios::binary)
+            .write(reinterpret_cast<const char*>(png.data()),
+                   static_cast<std::streamsize>(png.size() / 2));
+
+        // Ground truth and masks for `stereo eval`: the true shift everywhere, stored times 4.
+        write(dir / "gt.png", cv::Mat(kHeight, kWidth, CV_8UC1, cv::Scalar(kShift * 4)));
+        write(dir / "gt_narrow.png", cv::Mat(kHeight, kWidth - 4, CV_8UC1, cv::Scalar(16)));
+        write(dir / "mask.png", cv::Mat(kHeight, kWidth, CV_8UC1, cv::Scalar(255)));
+        write(dir / "mask_short.png", cv::Mat(kHeight - 2, kWidth, CV_8UC1, cv::Scalar(255)));
+        return EXIT_SUCCESS;
+    } catch (const std::exception& error) {
+        std::cerr << "make_cli_fixtures: " << error.what() << '\n';
+        return EXIT_FAILURE;
+    }
+}

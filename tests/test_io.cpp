@@ -1,0 +1,309 @@
+// Image and disparity-map files of the host tools (app/include/stereo_app/io.hpp).
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <stdexcept>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "stereo_app/io.hpp"
+
+namespace stereo::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A fresh folder per test, removed at the end (tests may run in parallel processes).
+class TempDir {
+  public:
+    TempDir() {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        const std::string name = std::string("stereo_io_") + info->test_suite_name() + "_" +
+                                 info->name() + "_" + std::to_string(std::random_device{}());
+        path_ = fs::path(::testing::TempDir()) / name;
+        fs::create_directories(path_);
+    }
+    ~TempDir() {
+        std::error_code ignored;
+        fs::remove_all(path_, ignored);
+    }
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+
+    fs::path file(const std::string& name) const { return path_ / name; }
+
+  private:
+    fs::path path_;
+};
+
+// Expects `call` to throw `Exception` with a one-line message containing `part`.
+template <typename Exception, typename Call>
+void expect_error(Call&& call, const std::string& part) {
+    try {
+        call();
+        FAIL() << "no exception, expected one mentioning: " << part;
+    } catch (const Exception& error) {
+        const std::string message = error.what();
+        EXPECT_NE(message.find(part), std::string::npos) << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+    std::ofstream(path) << text;
+}
+
+DisparityMap sample_map(int ndisp) {
+    // 4x3, one invalid pixel, and both the lowest and the highest label present.
+    DisparityMap map(4, 3);
+    for (int y = 0; y < 3; ++y) {
+        for (int x = 0; x < 4; ++x) {
+            const std::size_t i = map.index(x, y);
+            map.disparity[i] = static_cast<std::uint8_t>((x + 4 * y) % ndisp);
+            map.valid[i] = 1;
+        }
+    }
+    map.disparity[map.index(3, 2)] = static_cast<std::uint8_t>(ndisp - 1);
+    map.disparity[map.index(1, 1)] = 0;
+    map.valid[map.index(1, 1)] = 0;
+    return map;
+}
+
+void expect_round_trip(const DisparityMap& map, const cv::Mat& loaded) {
+    ASSERT_EQ(loaded.type(), CV_32FC1);
+    ASSERT_EQ(loaded.cols, map.width);
+    ASSERT_EQ(loaded.rows, map.height);
+    for (int y = 0; y < map.height; ++y) {
+        for (int x = 0; x < map.width; ++x) {
+            const std::size_t i = map.index(x, y);
+            const float expected = map.valid[i] != 0 ? map.disparity[i] : 0.0F;
+            EXPECT_FLOAT_EQ(loaded.at<float>(y, x), expected) << "at " << x << "," << y;
+        }
+    }
+}
+
+TEST(LoadImage, ConvertsBgrFileToRgbOrder) {
+    const TempDir dir;
+    cv::Mat bgr(1, 2, CV_8UC3);
+    bgr.at<cv::Vec3b>(0, 0) = cv::Vec3b(10, 20, 30);  // B, G, R
+    bgr.at<cv::Vec3b>(0, 1) = cv::Vec3b(200, 100, 0);
+    ASSERT_TRUE(cv::imwrite(dir.file("rgb.png").string(), bgr));
+
+    const Image image = load_image(dir.file("rgb.png"));
+    ASSERT_EQ(image.width, 2);
+    ASSERT_EQ(image.height, 1);
+    ASSERT_EQ(image.channels, 3);
+    EXPECT_EQ(image.at(0, 0, 0), 30);  // R
+    EXPECT_EQ(image.at(0, 0, 1), 20);  // G
+    EXPECT_EQ(image.at(0, 0, 2), 10);  // B
+    EXPECT_EQ(image.at(1, 0, 0), 0);
+    EXPECT_EQ(image.at(1, 0, 2), 200);
+}
+
+TEST(LoadImage, DropsAlpha) {
+    const TempDir dir;
+    const cv::Mat bgra(2, 2, CV_8UC4, cv::Scalar(1, 2, 3, 77));
+    ASSERT_TRUE(cv::imwrite(dir.file("rgba.png").string(), bgra));
+
+    const Image image = load_image(dir.file("rgba.png"));
+    ASSERT_EQ(image.channels, 3);
+    EXPECT_EQ(image.at(1, 1, 0), 3);
+    EXPECT_EQ(image.at(1, 1, 1), 2);
+    EXPECT_EQ(image.at(1, 1, 2), 1);
+}
+
+TEST(LoadImage, KeepsGreyAsOneChannel) {
+    const TempDir dir;
+    const cv::Mat grey(3, 5, CV_8UC1, cv::Scalar(42));
+    ASSERT_TRUE(cv::imwrite(dir.file("grey.png").string(), grey));
+
+    const Image image = load_image(dir.file("grey.png"));
+    EXPECT_EQ(image.channels, 1);
+    EXPECT_EQ(image.width, 5);
+    EXPECT_EQ(image.height, 3);
+    EXPECT_EQ(image.at(4, 2, 0), 42);
+}
+
+TEST(LoadImage, Refuses16BitColour) {
+    const TempDir dir;
+    const cv::Mat deep(2, 2, CV_16UC3, cv::Scalar(1000, 2000, 3000));
+    ASSERT_TRUE(cv::imwrite(dir.file("deep.png").string(), deep));
+    expect_error<std::runtime_error>([&] { (void)load_image(dir.file("deep.png")); },
+                                     "deep.png': it is 16-bit 3-channel");
+}
+
+TEST(LoadImage, MissingFileNamesTheFile) {
+    const TempDir dir;
+    expect_error<std::runtime_error>([&] { (void)load_image(dir.file("nope.png")); },
+                                     "nope.png': no such file");
+}
+
+TEST(LoadImage, NotAnImageNamesTheFile) {
+    const TempDir dir;
+    write_text(dir.file("text.png"), "this is not a PNG\n");
+    expect_error<std::runtime_error>([&] { (void)load_image(dir.file("text.png")); },
+                                     "text.png': not an image");
+    write_text(dir.file("empty.png"), "");
+    expect_error<std::runtime_error>([&] { (void)load_image(dir.file("empty.png")); },
+                                     "empty.png': not an image");
+}
+
+TEST(LoadImage, DownscaleAveragesBlocks) {
+    const TempDir dir;
+    // 4x2 grey: two 2x2 blocks with means 25 and 100.
+    const cv::Mat grey = (cv::Mat_<std::uint8_t>(2, 4) << 10, 20, 100, 100,  //
+                          30, 40, 100, 100);
+    ASSERT_TRUE(cv::imwrite(dir.file("blocks.png").string(), grey));
+
+    const Image image = load_image(dir.file("blocks.png"), 2);
+    ASSERT_EQ(image.width, 2);
+    ASSERT_EQ(image.height, 1);
+    EXPECT_EQ(image.at(0, 0, 0), 25);
+    EXPECT_EQ(image.at(1, 0, 0), 100);
+}
+
+TEST(LoadImage, RejectsBadDownscale) {
+    const TempDir dir;
+    ASSERT_TRUE(cv::imwrite(dir.file("small.png").string(), cv::Mat(3, 3, CV_8UC1)));
+    expect_error<std::invalid_argument>([&] { (void)load_image(dir.file("small.png"), 0); },
+                                        "downscale factor must be >= 1, got 0");
+    expect_error<std::invalid_argument>([&] { (void)load_image(dir.file("small.png"), 4); },
+                                        "(3x3) is too small for downscale factor 4");
+}
+
+TEST(LoadPair, SizeMismatchNamesBothSizes) {
+    const TempDir dir;
+    ASSERT_TRUE(cv::imwrite(dir.file("l.png").string(), cv::Mat(3, 4, CV_8UC3)));
+    ASSERT_TRUE(cv::imwrite(dir.file("r.png").string(), cv::Mat(3, 5, CV_8UC3)));
+    expect_error<std::invalid_argument>(
+        [&] { (void)load_pair(dir.file("l.png"), dir.file("r.png")); },
+        "l.png' is 4x3 but right '" + dir.file("r.png").string() + "' is 5x3");
+}
+
+TEST(LoadPair, UnreadableRightNamesTheFile) {
+    const TempDir dir;
+    ASSERT_TRUE(cv::imwrite(dir.file("l.png").string(), cv::Mat(3, 4, CV_8UC3)));
+    expect_error<std::runtime_error>(
+        [&] { (void)load_pair(dir.file("l.png"), dir.file("missing.png")); }, "missing.png'");
+}
+
+TEST(LoadPair, PromotesGreyToColourWhenMixed) {
+    const TempDir dir;
+    ASSERT_TRUE(cv::imwrite(dir.file("l.png").string(), cv::Mat(2, 2, CV_8UC1, cv::Scalar(9))));
+    ASSERT_TRUE(cv::imwrite(dir.file("r.png").string(), cv::Mat(2, 2, CV_8UC3)));
+    const ImagePair pair = load_pair(dir.file("l.png"), dir.file("r.png"));
+    EXPECT_EQ(pair.left.channels, 3);
+    EXPECT_EQ(pair.right.channels, 3);
+    EXPECT_EQ(pair.left.at(1, 1, 2), 9);
+}
+
+TEST(DisparityPng, RoundTrip8Bit) {
+    const TempDir dir;
+    const int ndisp = 16;
+    const int scale = 4;  // (16 - 1) * 4 = 60 fits 8 bits
+    const DisparityMap map = sample_map(ndisp);
+    write_png(dir.file("d8.png"), disparity_to_mat(map, ndisp, scale));
+
+    const cv::Mat raw = cv::imread(dir.file("d8.png").string(), cv::IMREAD_UNCHANGED);
+    ASSERT_EQ(raw.type(), CV_8UC1);
+    EXPECT_EQ(raw.at<std::uint8_t>(2, 3), (ndisp - 1) * scale);
+    EXPECT_EQ(raw.at<std::uint8_t>(1, 1), 0);  // invalid
+    expect_round_trip(map, load_disparity(dir.file("d8.png"), scale));
+}
+
+TEST(DisparityPng, RoundTrip16Bit) {
+    const TempDir dir;
+    const int ndisp = 64;
+    const int scale = 16;  // 63 * 16 = 1008 needs 16 bits
+    const DisparityMap map = sample_map(ndisp);
+    write_png(dir.file("d16.png"), disparity_to_mat(map, ndisp, scale));
+
+    const cv::Mat raw = cv::imread(dir.file("d16.png").string(), cv::IMREAD_UNCHANGED);
+    ASSERT_EQ(raw.type(), CV_16UC1);
+    EXPECT_EQ(raw.at<std::uint16_t>(2, 3), 1008);
+    expect_round_trip(map, load_disparity(dir.file("d16.png"), scale));
+}
+
+TEST(DisparityPng, DepthFollowsLargestPossibleValue) {
+    const DisparityMap map = sample_map(2);
+    EXPECT_EQ(disparity_to_mat(sample_map(256), 256, 1).type(), CV_8UC1);  // 255
+    EXPECT_EQ(disparity_to_mat(map, 2, 255).type(), CV_8UC1);              // 255
+    EXPECT_EQ(disparity_to_mat(map, 2, 256).type(), CV_16UC1);             // 256
+    EXPECT_EQ(disparity_to_mat(map, 2, 65535).type(), CV_16UC1);
+}
+
+TEST(DisparityPng, RejectsImpossibleScales) {
+    const DisparityMap map = sample_map(16);
+    expect_error<std::invalid_argument>([&] { (void)disparity_to_mat(map, 16, 0); },
+                                        "scale must be >= 1, got 0");
+    expect_error<std::invalid_argument>([&] { (void)disparity_to_mat(map, 0, 1); },
+                                        "ndisp must be >= 1");
+    expect_error<std::invalid_argument>([&] { check_disparity_scale(256, 258); },
+                                        "values up to 65790");
+    EXPECT_NO_THROW(check_disparity_scale(256, 257));  // 255 * 257 = 65535
+}
+
+TEST(DisparityPng, RejectsLabelsAboveNdisp) {
+    const DisparityMap map = sample_map(16);
+    expect_error<std::invalid_argument>([&] { (void)disparity_to_mat(map, 8, 1); },
+                                        "is not below ndisp 8");
+}
+
+TEST(DisparityPng, ColourViewBlacksOutInvalidPixels) {
+    const int ndisp = 16;
+    const DisparityMap map = sample_map(ndisp);
+    const cv::Mat colour = disparity_to_colour(map, ndisp);
+    ASSERT_EQ(colour.type(), CV_8UC3);
+    EXPECT_EQ(colour.at<cv::Vec3b>(1, 1), cv::Vec3b(0, 0, 0));
+
+    // The highest label takes the top of the colour map, label 0 its bottom.
+    const cv::Mat ends = (cv::Mat_<std::uint8_t>(1, 2) << 0, 255);
+    cv::Mat expected;
+    cv::applyColorMap(ends, expected, cv::COLORMAP_TURBO);
+    EXPECT_EQ(colour.at<cv::Vec3b>(0, 0), expected.at<cv::Vec3b>(0, 0));
+    EXPECT_EQ(colour.at<cv::Vec3b>(2, 3), expected.at<cv::Vec3b>(0, 1));
+    EXPECT_NE(expected.at<cv::Vec3b>(0, 0), cv::Vec3b(0, 0, 0));  // valid 0 is not black
+}
+
+TEST(LoadDisparity, AppliesScaleAndTakesOneChannelOfGrey) {
+    const TempDir dir;
+    const cv::Mat grey3(1, 2, CV_8UC3, cv::Scalar(40, 40, 40));
+    ASSERT_TRUE(cv::imwrite(dir.file("g3.png").string(), grey3));
+    const cv::Mat loaded = load_disparity(dir.file("g3.png"), 8.0);
+    ASSERT_EQ(loaded.type(), CV_32FC1);
+    EXPECT_FLOAT_EQ(loaded.at<float>(0, 1), 5.0F);
+}
+
+TEST(LoadDisparity, RefusesColourAndBadScale) {
+    const TempDir dir;
+    ASSERT_TRUE(
+        cv::imwrite(dir.file("c.png").string(), cv::Mat(1, 2, CV_8UC3, cv::Scalar(1, 2, 3))));
+    expect_error<std::runtime_error>([&] { (void)load_disparity(dir.file("c.png"), 1.0); },
+                                     "expected a grey image");
+    expect_error<std::invalid_argument>([&] { (void)load_disparity(dir.file("c.png"), 0.0); },
+                                        "must be a positive number");
+}
+
+TEST(LoadMask, Refuses16Bit) {
+    const TempDir dir;
+    ASSERT_TRUE(cv::imwrite(dir.file("m16.png").string(), cv::Mat(2, 2, CV_16UC1)));
+    expect_error<std::runtime_error>([&] { (void)load_mask(dir.file("m16.png")); },
+                                     "expected an 8-bit mask");
+}
+
+TEST(WritePng, MissingFolderFailsWithoutCreatingAFile) {
+    const TempDir dir;
+    const fs::path target = dir.file("no_such_folder") / "out.png";
+    expect_error<std::runtime_error>([&] { check_writable_location(target); },
+                                     "no_such_folder' does not exist");
+    expect_error<std::runtime_error>(
+        [&] { write_png(target, cv::Mat(2, 2, CV_8UC1, cv::Scalar(0))); }, "cannot write");
+    EXPECT_FALSE(fs::exists(target));
+    EXPECT_NO_THROW(check_writable_location(dir.file("fine.png")));
+}
+
+}  // namespace
+}  // namespace stereo::app
