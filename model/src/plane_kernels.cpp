@@ -47,32 +47,37 @@ PlaneAggregator::PlaneAggregator(const std::vector<std::int32_t>& kernel, int wi
       row_sum_(static_cast<std::size_t>(width), 0) {}
 
 void PlaneAggregator::run(const Value* in, Value* out) {
+    // Locals, not members: stores through the row pointers could otherwise alias the members,
+    // and the compiler would not vectorise the loops.
+    const int width = width_;
+    const int height = height_;
+    const int radius = radius_;
     const std::int32_t round_half = 1 << (fx::kAggShift - 1);
-    std::int32_t* __restrict vertical = padded_vertical_.data() + radius_;
+    std::int32_t* __restrict vertical = padded_vertical_.data() + radius;
     std::int32_t* __restrict sum = row_sum_.data();
-    for (int y = 0; y < height_; ++y) {
+    for (int y = 0; y < height; ++y) {
         // Vertical pass for this row, full precision, zero padding above and below.
-        std::fill_n(vertical, width_, 0);
-        const int first = std::max(-radius_, -y);
-        const int last = std::min(radius_, height_ - 1 - y);
+        std::fill_n(vertical, width, 0);
+        const int first = std::max(-radius, -y);
+        const int last = std::min(radius, height - 1 - y);
         for (int j = first; j <= last; ++j) {
-            const std::int32_t tap = kernel_[static_cast<std::size_t>(j + radius_)];
-            const Value* __restrict src = in + static_cast<std::size_t>(y + j) * width_;
-            for (int x = 0; x < width_; ++x) {
+            const std::int32_t tap = kernel_[static_cast<std::size_t>(j + radius)];
+            const Value* __restrict src = in + static_cast<std::size_t>(y + j) * width;
+            for (int x = 0; x < width; ++x) {
                 vertical[x] += tap * src[x];
             }
         }
         // Horizontal pass over the zero-padded row, then the single rounding shift.
-        std::fill_n(sum, width_, 0);
-        for (int i = 0; i <= 2 * radius_; ++i) {
+        std::fill_n(sum, width, 0);
+        for (int i = 0; i <= 2 * radius; ++i) {
             const std::int32_t tap = kernel_[static_cast<std::size_t>(i)];
             const std::int32_t* __restrict src = padded_vertical_.data() + i;
-            for (int x = 0; x < width_; ++x) {
+            for (int x = 0; x < width; ++x) {
                 sum[x] += tap * src[x];
             }
         }
-        Value* __restrict dst = out + static_cast<std::size_t>(y) * width_;
-        for (int x = 0; x < width_; ++x) {
+        Value* __restrict dst = out + static_cast<std::size_t>(y) * width;
+        for (int x = 0; x < width; ++x) {
             dst[x] = static_cast<Value>((sum[x] + round_half) >> fx::kAggShift);
         }
     }
@@ -82,22 +87,24 @@ PlaneRule1::PlaneRule1(int width, int height)
     : width_(width), height_(height), column_sum_(static_cast<std::size_t>(width + 2), 0) {}
 
 void PlaneRule1::run(const Value* below, const Value* centre, const Value* above, Value* out) {
+    const int width = width_;  // locals, for vectorisation (see PlaneAggregator::run)
+    const int height = height_;
     std::int32_t* __restrict columns = column_sum_.data() + 1;  // columns[-1], columns[width] = 0
-    for (int y = 0; y < height_; ++y) {
-        const std::size_t offset = static_cast<std::size_t>(y) * width_;
+    for (int y = 0; y < height; ++y) {
+        const std::size_t offset = static_cast<std::size_t>(y) * width;
         const Value* __restrict c = centre + offset;
-        for (int x = 0; x < width_; ++x) {
+        for (int x = 0; x < width; ++x) {
             columns[x] = c[x];
         }
         if (y > 0) {
-            const Value* __restrict up = c - width_;
-            for (int x = 0; x < width_; ++x) {
+            const Value* __restrict up = c - width;
+            for (int x = 0; x < width; ++x) {
                 columns[x] += up[x];
             }
         }
-        if (y + 1 < height_) {
-            const Value* __restrict down = c + width_;
-            for (int x = 0; x < width_; ++x) {
+        if (y + 1 < height) {
+            const Value* __restrict down = c + width;
+            for (int x = 0; x < width; ++x) {
                 columns[x] += down[x];
             }
         }
@@ -105,7 +112,7 @@ void PlaneRule1::run(const Value* below, const Value* centre, const Value* above
         const Value* __restrict b = below != nullptr ? below + offset : nullptr;
         const Value* __restrict a = above != nullptr ? above + offset : nullptr;
         Value* __restrict dst = out + offset;
-        for (int x = 0; x < width_; ++x) {
+        for (int x = 0; x < width; ++x) {
             const int value = c[x];
             const int diff_below = b != nullptr ? b[x] - value : 2 * value;
             const int diff_above = a != nullptr ? a[x] - value : 2 * value;
