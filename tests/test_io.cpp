@@ -305,5 +305,32 @@ TEST(WritePng, MissingFolderFailsWithoutCreatingAFile) {
     EXPECT_NO_THROW(check_writable_location(dir.file("fine.png")));
 }
 
+TEST(Downscale, GroundTruthAndMasksSampleBlockCentres) {
+    // 5x4 GT, factor 2: the small grid is 2x2 and samples (1,1), (3,1), (1,3), (3,3); the odd
+    // last column and row are dropped as in the image downscale. Disparities halve.
+    cv::Mat gt(4, 5, CV_32FC1, cv::Scalar(0));
+    gt.at<float>(1, 1) = 10.0f;
+    gt.at<float>(1, 3) = 7.0f;
+    gt.at<float>(3, 1) = 0.0f;  // unknown stays unknown
+    gt.at<float>(3, 3) = 3.0f;
+    gt.at<float>(0, 0) = 99.0f;  // not a block centre: ignored
+    const cv::Mat small = downscale_ground_truth(gt, 2);
+    ASSERT_EQ(small.size(), cv::Size(2, 2));
+    EXPECT_FLOAT_EQ(small.at<float>(0, 0), 5.0f);
+    EXPECT_FLOAT_EQ(small.at<float>(0, 1), 3.5f);
+    EXPECT_FLOAT_EQ(small.at<float>(1, 0), 0.0f);
+    EXPECT_FLOAT_EQ(small.at<float>(1, 1), 1.5f);
+    cv::Mat mask(4, 5, CV_8UC1, cv::Scalar(0));
+    mask.at<std::uint8_t>(1, 3) = 255;
+    mask.at<std::uint8_t>(3, 3) = 128;
+    const cv::Mat small_mask = downscale_mask(mask, 2);
+    EXPECT_EQ(small_mask.at<std::uint8_t>(0, 1), 255);
+    EXPECT_EQ(small_mask.at<std::uint8_t>(1, 1), 128);
+    EXPECT_EQ(small_mask.at<std::uint8_t>(0, 0), 0);
+    EXPECT_EQ(downscale_ground_truth(gt, 1).size(), gt.size());
+    EXPECT_THROW(downscale_ground_truth(gt, 0), std::invalid_argument);
+    EXPECT_THROW(downscale_ground_truth(gt, 5), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace stereo::app

@@ -24,7 +24,8 @@ struct EvalOptions {
     std::string ground_truth;
     double scale = 1.0;
     double gt_scale = 1.0;
-    std::string nonocc;  // empty: no mask
+    int gt_downscale = 1;  // GT and masks are at F times the disparity's size
+    std::string nonocc;    // empty: no mask
     std::string all;
     std::string disc;
     double threshold = 1.0;
@@ -45,11 +46,13 @@ void require_positive(double value, const std::string& option) {
     }
 }
 
-std::optional<app::NamedMat> load_optional_mask(const std::string& path, const std::string& role) {
+std::optional<app::NamedMat> load_optional_mask(const std::string& path, const std::string& role,
+                                                int downscale) {
     if (path.empty()) {
         return std::nullopt;
     }
-    return app::NamedMat{app::load_mask(path), role + " mask " + quoted(path)};
+    return app::NamedMat{app::downscale_mask(app::load_mask(path), downscale),
+                         role + " mask " + quoted(path)};
 }
 
 void print_region(const char* label, const std::optional<app::RegionScore>& score,
@@ -92,17 +95,23 @@ void run_eval(const EvalOptions& options) {
         message << "--threshold must be a non-negative number, got " << options.threshold;
         throw std::invalid_argument(message.str());
     }
+    if (options.gt_downscale < 1) {
+        throw std::invalid_argument("--gt-downscale must be >= 1, got " +
+                                    std::to_string(options.gt_downscale));
+    }
     if (!options.error_map.empty()) {
         app::check_writable_location(options.error_map);
     }
     app::EvalInput input{
         .disparity = {app::load_disparity(options.disparity, options.scale),
                       "disparity " + quoted(options.disparity)},
-        .ground_truth = {app::load_disparity(options.ground_truth, options.gt_scale),
+        .ground_truth = {app::downscale_ground_truth(
+                             app::load_disparity(options.ground_truth, options.gt_scale),
+                             options.gt_downscale),
                          "ground truth " + quoted(options.ground_truth)},
-        .nonocc = load_optional_mask(options.nonocc, "nonocc"),
-        .all = load_optional_mask(options.all, "all"),
-        .disc = load_optional_mask(options.disc, "disc"),
+        .nonocc = load_optional_mask(options.nonocc, "nonocc", options.gt_downscale),
+        .all = load_optional_mask(options.all, "all", options.gt_downscale),
+        .disc = load_optional_mask(options.disc, "disc", options.gt_downscale),
         .threshold = options.threshold,
     };
     const app::EvalResult result = app::evaluate(input);  // checks every size first
@@ -128,6 +137,10 @@ void add_eval_command(CLI::App& app) {
     command->add_option("--scale", options->scale, "DISP holds disparity * K")
         ->capture_default_str();
     command->add_option("--gt-scale", options->gt_scale, "GT holds disparity * G")
+        ->capture_default_str();
+    command
+        ->add_option("--gt-downscale", options->gt_downscale,
+                     "GT and masks are F times larger than DISP (match --downscale F)")
         ->capture_default_str();
     command->add_option("--nonocc", options->nonocc, "Mask of non-occluded pixels (255 = scored)");
     command->add_option("--all", options->all,

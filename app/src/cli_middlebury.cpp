@@ -278,6 +278,10 @@ void add_middlebury_command(CLI::App& app) {
     command->add_option("--sweep-sigma", options->sweep,
                         "Instead of the report, sweep these sigmas (CA on)");
     command->callback([options] {
+        const fs::path folder = fs::path(options->data_dir) / "middlebury2003";
+        if (!fs::is_directory(folder)) {
+            throw std::runtime_error("cannot read '" + folder.string() + "': no such folder");
+        }
         (void)gaussian_kernel(options->window, options->sigma);  // throws on a bad window/sigma
         for (const double sigma : options->sweep) {
             (void)gaussian_kernel(options->window, sigma);

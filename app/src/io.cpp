@@ -290,6 +290,39 @@ cv::Mat load_disparity(const fs::path& path, double scale) {
     return disparity;
 }
 
+namespace {
+
+template <typename T>
+cv::Mat sample_block_centres(const cv::Mat& full, int downscale, double divide_by) {
+    check_downscale(downscale);
+    const int width = full.cols / downscale;
+    const int height = full.rows / downscale;
+    if (width < 1 || height < 1) {
+        throw std::invalid_argument("ground truth (" + size_text(full.cols, full.rows) +
+                                    ") is too small for downscale factor " +
+                                    std::to_string(downscale));
+    }
+    cv::Mat small(height, width, full.type());
+    const int offset = downscale / 2;
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const T value = full.at<T>(y * downscale + offset, x * downscale + offset);
+            small.at<T>(y, x) = static_cast<T>(value / divide_by);
+        }
+    }
+    return small;
+}
+
+}  // namespace
+
+cv::Mat downscale_ground_truth(const cv::Mat& ground_truth, int downscale) {
+    return sample_block_centres<float>(ground_truth, downscale, downscale);
+}
+
+cv::Mat downscale_mask(const cv::Mat& mask, int downscale) {
+    return sample_block_centres<std::uint8_t>(mask, downscale, 1.0);
+}
+
 cv::Mat load_mask(const fs::path& path) {
     const cv::Mat mat = decode(path);
     if (mat.depth() != CV_8U) {

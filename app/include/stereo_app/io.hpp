@@ -45,6 +45,14 @@ cv::Mat disparity_to_colour(const DisparityMap& map, int ndisp);
 // disparity = value / scale; 0 stays 0 and means invalid (ours) or unknown (ground truth).
 cv::Mat load_disparity(const std::filesystem::path& path, double scale);
 
+// Brings a full-size ground truth (CV_32FC1) or mask (CV_8UC1) to the grid of an image loaded
+// with `downscale` F: floor(W/F) x floor(H/F), each pixel sampled at the centre of its F x F
+// block, (F*x + F/2, F*y + F/2). Ground-truth disparities are divided by F (unknown stays 0);
+// mask values are kept. Sampling, not averaging, so that unknown pixels and mask labels never
+// blend with their neighbours.
+cv::Mat downscale_ground_truth(const cv::Mat& ground_truth, int downscale);
+cv::Mat downscale_mask(const cv::Mat& mask, int downscale);
+
 // Reads an 8-bit evaluation mask (grey or 3 equal channels) as CV_8UC1.
 cv::Mat load_mask(const std::filesystem::path& path);
 
