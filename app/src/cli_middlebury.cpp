@@ -78,16 +78,6 @@ auto timed(Function&& function, double& milliseconds) {
     return result;
 }
 
-// Colour view of a float disparity map (0 = none), spread over 0..ndisp-1, black where none.
-cv::Mat colourise(const cv::Mat& disparity, int ndisp) {
-    cv::Mat spread;
-    disparity.convertTo(spread, CV_8UC1, 255.0 / std::max(1, ndisp - 1));
-    cv::Mat colour;
-    cv::applyColorMap(spread, colour, cv::COLORMAP_TURBO);
-    colour.setTo(cv::Scalar::all(0), disparity <= 0);
-    return colour;
-}
-
 // One strip per scene: left, ground truth, ours, signed error, bad pixels; half size so the
 // figure stays small (the source images are not redistributed at full size).
 void write_figure(const app::SceneData& data, const cv::Mat& ours, const fs::path& path) {
@@ -97,8 +87,9 @@ void write_figure(const app::SceneData& data, const cv::Mat& ours, const fs::pat
     const cv::Mat signed_grey = app::signed_error_image({ours, "ours"}, data.ground_truth);
     cv::Mat signed_bgr;
     cv::cvtColor(signed_grey, signed_bgr, cv::COLOR_GRAY2BGR);
-    const std::vector<cv::Mat> panels = {data.left_bgr, colourise(data.ground_truth.mat, ndisp),
-                                         colourise(ours, ndisp), signed_bgr, app::error_map(input)};
+    const std::vector<cv::Mat> panels = {
+        data.left_bgr, app::float_disparity_to_colour(data.ground_truth.mat, ndisp),
+        app::float_disparity_to_colour(ours, ndisp), signed_bgr, app::error_map(input)};
     std::vector<cv::Mat> halves;
     for (const cv::Mat& panel : panels) {
         cv::Mat half;

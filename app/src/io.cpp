@@ -258,13 +258,21 @@ cv::Mat disparity_to_mat(const DisparityMap& map, int ndisp, int scale) {
     return out;
 }
 
-cv::Mat disparity_to_colour(const DisparityMap& map, int ndisp) {
-    const cv::Mat labels = disparity_to_mat(map, ndisp, 1);
+namespace {
+
+// Disparities 0..ndisp-1 spread over the TURBO colour map.
+cv::Mat turbo(const cv::Mat& disparity, int ndisp) {
     cv::Mat spread;
-    const double gain = ndisp > 1 ? 255.0 / (ndisp - 1) : 0.0;
-    labels.convertTo(spread, CV_8U, gain);
+    disparity.convertTo(spread, CV_8U, ndisp > 1 ? 255.0 / (ndisp - 1) : 0.0);
     cv::Mat colour;
     cv::applyColorMap(spread, colour, cv::COLORMAP_TURBO);
+    return colour;
+}
+
+}  // namespace
+
+cv::Mat disparity_to_colour(const DisparityMap& map, int ndisp) {
+    cv::Mat colour = turbo(disparity_to_mat(map, ndisp, 1), ndisp);
     for (int y = 0; y < map.height; ++y) {
         for (int x = 0; x < map.width; ++x) {
             if (map.valid[map.index(x, y)] == 0) {
@@ -273,6 +281,23 @@ cv::Mat disparity_to_colour(const DisparityMap& map, int ndisp) {
         }
     }
     return colour;
+}
+
+cv::Mat float_disparity_to_colour(const cv::Mat& disparity, int ndisp) {
+    cv::Mat colour = turbo(disparity, ndisp);
+    colour.setTo(cv::Scalar::all(0), disparity <= 0);
+    return colour;
+}
+
+cv::Mat to_float_disparity(const DisparityMap& map) {
+    cv::Mat out(map.height, map.width, CV_32FC1, cv::Scalar(0));
+    for (int y = 0; y < map.height; ++y) {
+        for (int x = 0; x < map.width; ++x) {
+            const auto i = map.index(x, y);
+            out.at<float>(y, x) = map.valid[i] != 0 ? static_cast<float>(map.disparity[i]) : 0.0f;
+        }
+    }
+    return out;
 }
 
 cv::Mat load_disparity(const fs::path& path, double scale) {

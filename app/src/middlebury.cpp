@@ -36,17 +36,6 @@ std::optional<SceneData> load_scene(const fs::path& data_dir, const MiddleburySc
     return data;
 }
 
-cv::Mat to_float_disparity(const DisparityMap& map) {
-    cv::Mat out(map.height, map.width, CV_32FC1, cv::Scalar(0));
-    for (int y = 0; y < map.height; ++y) {
-        for (int x = 0; x < map.width; ++x) {
-            const auto i = map.index(x, y);
-            out.at<float>(y, x) = map.valid[i] != 0 ? static_cast<float>(map.disparity[i]) : 0.0f;
-        }
-    }
-    return out;
-}
-
 EvalResult evaluate_scene(const SceneData& data, const cv::Mat& disparity) {
     EvalInput input{{disparity, "disparity of " + data.scene.name}, data.ground_truth};
     input.nonocc = data.nonocc;

@@ -41,6 +41,12 @@ cv::Mat disparity_to_mat(const DisparityMap& map, int ndisp, int scale);
 // invalid pixels black. Returned in OpenCV's BGR order, ready for write_png.
 cv::Mat disparity_to_colour(const DisparityMap& map, int ndisp);
 
+// The same view of a float disparity map (ground truth, OpenCV output) where 0 means none.
+cv::Mat float_disparity_to_colour(const cv::Mat& disparity, int ndisp);
+
+// Our map as float disparities, 0 where invalid: the form evaluate() and the figures take.
+cv::Mat to_float_disparity(const DisparityMap& map);
+
 // Reads a disparity or ground-truth PNG (8 or 16 bit, grey or 3 equal channels) as float
 // disparity = value / scale; 0 stays 0 and means invalid (ours) or unknown (ground truth).
 cv::Mat load_disparity(const std::filesystem::path& path, double scale);

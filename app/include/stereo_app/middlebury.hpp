@@ -43,9 +43,6 @@ std::filesystem::path scene_dir(const std::filesystem::path& data_dir,
 std::optional<SceneData> load_scene(const std::filesystem::path& data_dir,
                                     const MiddleburyScene& scene);
 
-// Our map as float disparities, 0 where invalid: the form evaluate() takes.
-cv::Mat to_float_disparity(const DisparityMap& map);
-
 EvalResult evaluate_scene(const SceneData& data, const cv::Mat& disparity);
 
 // OpenCV baselines on the same pair, as float disparities with 0 = invalid. Parameters are
