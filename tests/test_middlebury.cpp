@@ -27,6 +27,13 @@ const std::map<std::string, Limits> kMeasured = {
 };
 constexpr double kMargin = 0.3;
 
+}  // namespace
+
+// Readable test parameters in gtest's output.
+void PrintTo(const MiddleburyScene& scene, std::ostream* out) { *out << scene.name; }
+
+namespace {
+
 class MiddleburyPair : public ::testing::TestWithParam<MiddleburyScene> {
   protected:
     std::optional<SceneData> load() const { return load_scene(STEREO_DATA_DIR, GetParam()); }

@@ -269,13 +269,14 @@ void add_middlebury_command(CLI::App& app) {
     command->add_option("--sweep-sigma", options->sweep,
                         "Instead of the report, sweep these sigmas (CA on)");
     command->callback([options] {
-        const fs::path folder = fs::path(options->data_dir) / "middlebury2003";
-        if (!fs::is_directory(folder)) {
-            throw std::runtime_error("cannot read '" + folder.string() + "': no such folder");
-        }
+        // Parameters first (exit 2), then files (exit 1), whatever is wrong with both.
         (void)gaussian_kernel(options->window, options->sigma);  // throws on a bad window/sigma
         for (const double sigma : options->sweep) {
             (void)gaussian_kernel(options->window, sigma);
+        }
+        const fs::path folder = fs::path(options->data_dir) / "middlebury2003";
+        if (!fs::is_directory(folder)) {
+            throw std::runtime_error("cannot read '" + folder.string() + "': no such folder");
         }
         if (options->sweep.empty()) {
             run_report(*options);

@@ -1,0 +1,31 @@
+#!/bin/sh
+# Usage: aloe_end_to_end.sh STEREO ALOE_DIR WORKDIR
+#
+# The README's main job at quarter size: match Debian opencv-doc's Aloe pair, write the colour
+# view, and score it against aloeGT.png. Fails if the bad-pixel rate or the coverage drifts from
+# what was measured when the model landed (bad_all 26.96 %, coverage 0.899), so a regression on
+# real input is caught. Exit 77 (skipped) when the package's data is not installed.
+set -eu
+stereo=$1
+aloe=$2
+work=$3
+if [ ! -f "$aloe/aloeL.jpg" ] || [ ! -f "$aloe/aloeR.jpg" ] || [ ! -f "$aloe/aloeGT.png" ]; then
+    echo "SKIP: Aloe not found in $aloe (Debian package opencv-doc)"
+    exit 77
+fi
+mkdir -p "$work"
+rm -f "$work/aloe.png" "$work/aloe_colour.png"
+"$stereo" match "$aloe/aloeL.jpg" "$aloe/aloeR.jpg" --downscale 4 --ndisp 64 --scale 4 \
+    -o "$work/aloe.png" --color "$work/aloe_colour.png"
+[ -s "$work/aloe.png" ] && [ -s "$work/aloe_colour.png" ] || { echo "FAIL: outputs missing"; exit 1; }
+scores=$("$stereo" eval "$work/aloe.png" "$aloe/aloeGT.png" --scale 4 --gt-downscale 4 --json)
+echo "$scores"
+# Pull two numbers out of the one-line JSON with sed (no jq on a fresh machine).
+bad=$(printf '%s' "$scores" | sed -n 's/.*"bad_all":\([0-9.]*\).*/\1/p')
+coverage=$(printf '%s' "$scores" | sed -n 's/.*"coverage":\([0-9.]*\).*/\1/p')
+awk -v bad="$bad" -v cov="$coverage" 'BEGIN {
+    if (bad == "" || cov == "") { print "FAIL: scores missing"; exit 1 }
+    if (bad > 27.3) { print "FAIL: bad_all " bad " % > 27.3 %"; exit 1 }
+    if (cov < 0.88) { print "FAIL: coverage " cov " < 0.88"; exit 1 }
+    print "OK: bad_all " bad " %, coverage " cov
+}'
