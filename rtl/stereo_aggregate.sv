@@ -1,0 +1,157 @@
+// stereo_aggregate: Gaussian-weighted window sum of every disparity plane
+// (model: stereo::aggregate, docs/fixed-point.md stage 2).
+//
+// Separable and exact: a vertical pass over WINDOW rows (line buffer of WINDOW-1 rows) gives
+// V = sum_j k[j] C, full precision (VSUM_BITS); a horizontal pass over WINDOW consecutive V
+// gives T = sum_i k[i] V (WSUM_BITS); one rounding shift gives A = (T + 2^(AGG_SHIFT-1)) >>
+// AGG_SHIFT. Taps whose row or column lies outside the frame read 0 (zero padding).
+// Output pixel = input pixel moved back R rows and R columns, R = WINDOW/2.
+// Latency: R*W + R + 2 pixel steps. Throughput: one pixel per ce.
+`default_nettype none
+
+module stereo_aggregate #(
+    parameter int WIDTH  = 64,  // longest row
+    parameter int NDISP  = 16,  // disparities in parallel
+    parameter int WINDOW = 5    // odd window side (largest runtime window)
+) (
+    input  wire logic                                           clk,
+    input  wire logic                                           rst,  // clears coordinates only
+    input  wire logic                                           ce,
+    input  wire logic signed [15:0]                             in_x,
+    input  wire logic signed [15:0]                             in_y,
+    input  wire logic        [NDISP*fx_pkg::COST_BITS-1:0]  in_data,
+    input  wire logic        [15:0]                             cfg_width,
+    input  wire logic        [15:0]                             cfg_height,
+    input  wire logic        [WINDOW*fx_pkg::TAP_BITS-1:0]  cfg_kernel,
+    output      logic signed [15:0]                             out_x,
+    output      logic signed [15:0]                             out_y,
+    output      logic        [NDISP*fx_pkg::AGG_BITS-1:0]   out_data
+);
+  localparam int COST_BITS = fx_pkg::COST_BITS;
+  localparam int TAP_BITS = fx_pkg::TAP_BITS;
+  localparam int VSUM_BITS = fx_pkg::VSUM_BITS;
+  localparam int WSUM_BITS = fx_pkg::WSUM_BITS;
+  localparam int AGG_BITS = fx_pkg::AGG_BITS;
+  localparam int AGG_SHIFT = fx_pkg::AGG_SHIFT;
+  localparam int R = WINDOW / 2;
+  localparam int COLUMN_BITS = NDISP * COST_BITS;  // one pixel's costs
+  localparam int V_BITS = NDISP * VSUM_BITS;       // one pixel's vertical sums
+  localparam logic signed [15:0] NO_PIXEL = -16'sd32768;
+
+  // ---- vertical pass -------------------------------------------------------------------
+  logic [((R > 0) ? 2 * R : 1)*COLUMN_BITS-1:0] rows_above;  // row in_y-1-k at slot k
+  generate
+    if (R > 0) begin : g_line_buffer
+      stereo_line_buffer #(
+          .WIDTH(WIDTH),
+          .DATA_BITS(COLUMN_BITS),
+          .ROWS(2 * R)
+      ) line_buffer (
+          .clk(clk),
+          .ce(ce),
+          .in_x(in_x),
+          .cfg_width(cfg_width),
+          .in_data(in_data),
+          .rows_above(rows_above)
+      );
+    end else begin : g_no_line_buffer
+      assign rows_above = '0;
+    end
+  endgenerate
+
+  logic [V_BITS-1:0] vertical_d;
+  always_comb begin
+    for (int d = 0; d < NDISP; d++) begin
+      logic [VSUM_BITS-1:0] sum;
+      sum = '0;
+      for (int j = 0; j < WINDOW; j++) begin
+        // Tap j covers row in_y - 2R + j, i.e. the row 2R - j above the incoming one.
+        int row;
+        logic [COST_BITS-1:0] cost;
+        row = 32'(in_y) - 2 * R + j;
+        if (j == 2 * R) cost = in_data[d*COST_BITS +: COST_BITS];
+        else cost = rows_above[(2*R-1-j)*COLUMN_BITS + d*COST_BITS +: COST_BITS];
+        if (row >= 0 && row < $signed(32'(cfg_height))) begin
+          sum = sum + VSUM_BITS'(cost) * VSUM_BITS'(cfg_kernel[j*TAP_BITS +: TAP_BITS]);
+        end
+      end
+      vertical_d[d*VSUM_BITS +: VSUM_BITS] = sum;
+    end
+  end
+
+  // Vertical sums of the incoming column, for centre row in_y - R.
+  logic [V_BITS-1:0] vertical_q;
+  logic signed [15:0] vertical_x, vertical_y;
+  always_ff @(posedge clk) begin
+    if (ce) vertical_q <= vertical_d;
+  end
+  always_ff @(posedge clk) begin
+    if (rst) begin
+      vertical_x <= '0;
+      vertical_y <= NO_PIXEL;
+    end else if (ce) begin
+      vertical_x <= in_x;
+      vertical_y <= in_y - 16'(R);
+    end
+  end
+
+  // ---- horizontal pass -----------------------------------------------------------------
+  // history[k] = vertical sums of column vertical_x - 1 - k (same row, or masked below).
+  logic [((R > 0) ? 2 * R : 1)*V_BITS-1:0] history;
+  generate
+    if (R > 0) begin : g_history_shift
+      always_ff @(posedge clk) begin
+        if (ce) history <= {history[(2*R-1)*V_BITS-1:0], vertical_q};
+      end
+    end else begin : g_no_history
+      assign history = '0;
+    end
+  endgenerate
+
+  // Centre of the horizontal window: R columns behind, wrapping to the previous row.
+  int centre_x, centre_y;
+  always_comb begin
+    centre_x = 32'(vertical_x) - R;
+    centre_y = 32'(vertical_y);
+    if (centre_x < 0) begin
+      centre_x = centre_x + $signed(32'(cfg_width));
+      centre_y = centre_y - 1;
+    end
+  end
+
+  logic [NDISP*AGG_BITS-1:0] aggregate_d;
+  always_comb begin
+    for (int d = 0; d < NDISP; d++) begin
+      logic [WSUM_BITS-1:0] sum;
+      sum = '0;
+      for (int i = 0; i < WINDOW; i++) begin
+        // Tap i covers column centre_x - R + i, i.e. 2R - i columns behind the newest.
+        int column;
+        logic [VSUM_BITS-1:0] v;
+        column = centre_x - R + i;
+        if (i == 2 * R) v = vertical_q[d*VSUM_BITS +: VSUM_BITS];
+        else v = history[(2*R-1-i)*V_BITS + d*VSUM_BITS +: VSUM_BITS];
+        if (column >= 0 && column < $signed(32'(cfg_width))) begin
+          sum = sum + WSUM_BITS'(v) * WSUM_BITS'(cfg_kernel[i*TAP_BITS +: TAP_BITS]);
+        end
+      end
+      sum = sum + WSUM_BITS'(1 << (AGG_SHIFT - 1));
+      aggregate_d[d*AGG_BITS +: AGG_BITS] = AGG_BITS'(sum >> AGG_SHIFT);
+    end
+  end
+
+  always_ff @(posedge clk) begin
+    if (ce) out_data <= aggregate_d;
+  end
+  always_ff @(posedge clk) begin
+    if (rst) begin
+      out_x <= '0;
+      out_y <= NO_PIXEL;
+    end else if (ce) begin
+      out_x <= 16'(centre_x);
+      out_y <= 16'(centre_y);
+    end
+  end
+endmodule
+
+`default_nettype wire

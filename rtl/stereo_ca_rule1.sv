@@ -1,0 +1,99 @@
+// stereo_ca_rule1: CA rule 1 (model: stereo::ca_rule1, docs/fixed-point.md stage 3).
+//
+// A cell whose d-1 or d+1 neighbour (d+1 < cfg_ndisp) differs from it by less than half its
+// value, 2|n - c| < c, becomes round(sum of its 3x3 in-plane neighbourhood / 9), with zero
+// padding outside the frame and the division done as (sum * MEAN9_MUL + 2^(MEAN9_SHIFT-1)) >>
+// MEAN9_SHIFT. With cfg_use_ca low every cell passes unchanged.
+// Output pixel = input pixel moved back one row and one column. Latency: W + 2 pixel steps.
+`default_nettype none
+
+module stereo_ca_rule1 #(
+    parameter int WIDTH = 64,  // longest row
+    parameter int NDISP = 16   // disparities in parallel
+) (
+    input  wire logic                                          clk,
+    input  wire logic                                          rst,  // clears coordinates only
+    input  wire logic                                          ce,
+    input  wire logic signed [15:0]                            in_x,
+    input  wire logic signed [15:0]                            in_y,
+    input  wire logic        [NDISP*fx_pkg::AGG_BITS-1:0]  in_data,
+    input  wire logic        [15:0]                            cfg_width,
+    input  wire logic        [15:0]                            cfg_height,
+    input  wire logic        [8:0]                             cfg_ndisp,
+    input  wire logic                                          cfg_use_ca,
+    output      logic signed [15:0]                            out_x,
+    output      logic signed [15:0]                            out_y,
+    output      logic        [NDISP*fx_pkg::AGG_BITS-1:0]  out_data
+);
+  localparam int BITS = fx_pkg::AGG_BITS;
+  localparam int SUM_BITS = fx_pkg::CA_SUM_BITS;
+  localparam int COLUMN = NDISP * BITS;
+  localparam int CENTRE = 4;  // slot of (0, 0)
+  localparam logic signed [15:0] NO_PIXEL = -16'sd32768;
+
+  logic signed [15:0] centre_x, centre_y;
+  logic [9*COLUMN-1:0] window;
+  logic [8:0] in_frame;
+  stereo_window3x3 #(
+      .WIDTH(WIDTH),
+      .BITS (BITS),
+      .NDISP(NDISP)
+  ) neighbourhood (
+      .clk(clk),
+      .ce(ce),
+      .in_x(in_x),
+      .in_y(in_y),
+      .in_data(in_data),
+      .cfg_width(cfg_width),
+      .cfg_height(cfg_height),
+      .centre_x(centre_x),
+      .centre_y(centre_y),
+      .window_data(window),
+      .in_frame(in_frame)
+  );
+
+  // 2|n - c| < c, exact.
+  function automatic logic agrees(input logic [BITS-1:0] neighbour, input logic [BITS-1:0] centre);
+    logic [BITS:0] difference;
+    difference = (neighbour >= centre) ? {1'b0, neighbour - centre} : {1'b0, centre - neighbour};
+    agrees = {difference, 1'b0} < {2'b0, centre};
+  endfunction
+
+  logic [COLUMN-1:0] result;
+  always_comb begin
+    for (int d = 0; d < NDISP; d++) begin
+      logic [BITS-1:0] centre;
+      logic fire;
+      logic [SUM_BITS-1:0] sum;
+      logic [31:0] product;
+      centre = window[CENTRE*COLUMN + d*BITS +: BITS];
+      fire = 1'b0;
+      if (d > 0) fire = fire | agrees(window[CENTRE*COLUMN + (d-1)*BITS +: BITS], centre);
+      if (d + 1 < NDISP && d + 1 < $signed(32'(cfg_ndisp))) begin
+        fire = fire | agrees(window[CENTRE*COLUMN + (d+1)*BITS +: BITS], centre);
+      end
+      sum = '0;
+      for (int slot = 0; slot < 9; slot++) begin
+        if (in_frame[slot]) sum = sum + SUM_BITS'(window[slot*COLUMN + d*BITS +: BITS]);
+      end
+      product = 32'(sum) * 32'(fx_pkg::MEAN9_MUL) + 32'(1 << (fx_pkg::MEAN9_SHIFT - 1));
+      result[d*BITS +: BITS] = (cfg_use_ca && fire) ? BITS'(product >> fx_pkg::MEAN9_SHIFT)
+                                                    : centre;
+    end
+  end
+
+  always_ff @(posedge clk) begin
+    if (ce) out_data <= result;
+  end
+  always_ff @(posedge clk) begin
+    if (rst) begin
+      out_x <= '0;
+      out_y <= NO_PIXEL;
+    end else if (ce) begin
+      out_x <= centre_x;
+      out_y <= centre_y;
+    end
+  end
+endmodule
+
+`default_nettype wire

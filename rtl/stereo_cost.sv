@@ -1,0 +1,78 @@
+// stereo_cost: absolute-difference matching cost over RGB for all disparities at once
+// (model: stereo::cost, docs/fixed-point.md stage 1).
+//
+// The right pixels of the current row pass through a delay line, so that at the step of left
+// pixel x the line holds R(x-1) .. R(x-NDISP+1). Cost of disparity d:
+//   |Lr - Rr(x-d)| + |Lg - Rg(x-d)| + |Lb - Rb(x-d)|,  or COST_OUTSIDE where x - d < 0.
+// Latency: 1 pixel step. Throughput: one pixel per ce.
+`default_nettype none
+
+module stereo_cost #(
+    parameter int NDISP = 16  // disparities evaluated in parallel
+) (
+    input  wire logic                                      clk,
+    input  wire logic                                      rst,       // clears coordinates only
+    input  wire logic                                      ce,        // advance one pixel step
+    input  wire logic signed [15:0]                        in_x,
+    input  wire logic signed [15:0]                        in_y,
+    input  wire logic        [23:0]                        in_left,   // {R, G, B}
+    input  wire logic        [23:0]                        in_right,  // {R, G, B}
+    output      logic signed [15:0]                        out_x,
+    output      logic signed [15:0]                        out_y,
+    output      logic        [NDISP*fx_pkg::COST_BITS-1:0] out_data
+);
+  localparam int COST_BITS = fx_pkg::COST_BITS;
+  localparam int HISTORY = (NDISP > 1) ? NDISP - 1 : 1;  // right pixels kept besides the current
+
+  // right_history[i*24 +: 24] = R(x - 1 - i) during the step of pixel x (same row or masked).
+  logic [HISTORY*24-1:0] right_history;
+  logic [NDISP*COST_BITS-1:0] cost_d;
+
+  function automatic logic [COST_BITS-1:0] abs_diff_rgb(input logic [23:0] a, input logic [23:0] b);
+    logic [8:0] dr, dg, db;
+    dr = (a[23:16] >= b[23:16]) ? {1'b0, a[23:16] - b[23:16]} : {1'b0, b[23:16] - a[23:16]};
+    dg = (a[15:8] >= b[15:8]) ? {1'b0, a[15:8] - b[15:8]} : {1'b0, b[15:8] - a[15:8]};
+    db = (a[7:0] >= b[7:0]) ? {1'b0, a[7:0] - b[7:0]} : {1'b0, b[7:0] - a[7:0]};
+    abs_diff_rgb = COST_BITS'(dr) + COST_BITS'(dg) + COST_BITS'(db);
+  endfunction
+
+  always_comb begin
+    for (int d = 0; d < NDISP; d++) begin
+      logic [23:0] right_pixel;
+      right_pixel = (d == 0) ? in_right : right_history[(d-1)*24 +: 24];
+      if (32'(in_x) - d < 0) begin
+        cost_d[d*COST_BITS +: COST_BITS] = COST_BITS'(fx_pkg::COST_OUTSIDE);
+      end else begin
+        cost_d[d*COST_BITS +: COST_BITS] = abs_diff_rgb(in_left, right_pixel);
+      end
+    end
+  end
+
+  generate
+    if (HISTORY > 1) begin : g_shift
+      always_ff @(posedge clk) begin
+        if (ce) right_history <= {right_history[(HISTORY-1)*24-1:0], in_right};
+      end
+    end else begin : g_single
+      always_ff @(posedge clk) begin
+        if (ce) right_history <= in_right;
+      end
+    end
+  endgenerate
+
+  always_ff @(posedge clk) begin
+    if (ce) out_data <= cost_d;
+  end
+
+  always_ff @(posedge clk) begin
+    if (rst) begin
+      out_x <= '0;
+      out_y <= -16'sd32768;
+    end else if (ce) begin
+      out_x <= in_x;
+      out_y <= in_y;
+    end
+  end
+endmodule
+
+`default_nettype wire

@@ -1,0 +1,324 @@
+// stereo_top: the enhanced-disparity stereo pipeline (thesis Sec. 3.1) as an AXI4-Stream core.
+//
+//   s_axis: tdata = {right RGB, left RGB} (R in the high byte of each half), tuser = start of
+//           frame, tlast = end of line; one pixel pair per beat, raster order.
+//   m_axis: tdata = {7'b0, valid, disparity[7:0]}, tuser on the first pixel, tlast at each row
+//           end; exactly one output beat per input pixel, bit-exact with stereo::match.
+//
+// All stages advance together on one clock enable (a "pixel step", docs/rtl.md): a step happens
+// when there is something to push (an input pixel, or a flush step after the frame's last
+// pixel) and the output register is free or being read. A stalled m_axis_tready therefore stalls
+// everything without losing or duplicating a pixel. After the last input pixel of a frame the
+// core steps on its own (s_axis_tready low) until the frame's last output has left the WTA, so
+// a frame never waits for the next one. Cycles per frame without stalls:
+//   W*H + (R + 2)*W + R + 8, R = WINDOW/2 (docs/rtl.md).
+// Input before the first start of frame is dropped. Status bits (sticky until reset):
+//   [0] tlast not at the row end, [1] tuser inside a frame, [2] configuration out of range
+//   (clamped). Reset is synchronous, active high, and clears control state only.
+`default_nettype none
+
+module stereo_top #(
+    parameter int WIDTH  = 64,  // largest frame width
+    parameter int HEIGHT = 48,  // largest frame height
+    parameter int NDISP  = 16,  // disparities evaluated in parallel (largest cfg_ndisp)
+    parameter int WINDOW = 5    // largest aggregation window (odd)
+) (
+    input  wire logic                                          clk,
+    input  wire logic                                          rst,
+    // Configuration, sampled with the start-of-frame beat.
+    input  wire logic [15:0]                                   cfg_width,
+    input  wire logic [15:0]                                   cfg_height,
+    input  wire logic [8:0]                                    cfg_ndisp,
+    input  wire logic [4:0]                                    cfg_radius,
+    input  wire logic [WINDOW*fx_pkg::TAP_BITS-1:0]        cfg_kernel,
+    input  wire logic                                          cfg_use_ca,
+    // Input stream.
+    input  wire logic [47:0]                                   s_axis_tdata,
+    input  wire logic                                          s_axis_tvalid,
+    output      logic                                          s_axis_tready,
+    input  wire logic                                          s_axis_tlast,
+    input  wire logic                                          s_axis_tuser,
+    // Output stream.
+    output      logic [15:0]                                   m_axis_tdata,
+    output      logic                                          m_axis_tvalid,
+    input  wire logic                                          m_axis_tready,
+    output      logic                                          m_axis_tlast,
+    output      logic                                          m_axis_tuser,
+    output      logic [2:0]                                    status
+);
+  localparam int R = WINDOW / 2;
+  localparam int COST_BITS = fx_pkg::COST_BITS;
+  localparam int AGG_BITS = fx_pkg::AGG_BITS;
+  localparam int DISP_BITS = fx_pkg::DISP_BITS;
+
+  initial begin
+    assert (WINDOW % 2 == 1 && WINDOW <= fx_pkg::MAX_WINDOW);
+    assert (NDISP >= 1 && NDISP <= 256);
+    assert (WIDTH >= 1 && WIDTH < 16384 && HEIGHT >= 1 && HEIGHT < 16384);
+  end
+
+  // ---- configuration: sanitised ports, latched at the start of a frame ----------------------
+  typedef enum logic [1:0] {
+    IDLE,  // waiting for a start of frame
+    RUN,   // taking the frame's pixels
+    FLUSH  // stepping until the frame's last output has left the WTA
+  } state_t;
+  state_t state;
+
+  logic [15:0] port_width, port_height;
+  logic [8:0] port_ndisp;
+  logic [4:0] port_radius;
+  logic port_cfg_error;
+  always_comb begin
+    port_width = cfg_width;
+    port_height = cfg_height;
+    port_ndisp = cfg_ndisp;
+    port_radius = cfg_radius;
+    port_cfg_error = 1'b0;
+    if (cfg_width == 0 || $signed(32'(cfg_width)) > WIDTH) begin
+      port_width = 16'(WIDTH);
+      port_cfg_error = 1'b1;
+    end
+    if (cfg_height == 0 || $signed(32'(cfg_height)) > HEIGHT) begin
+      port_height = 16'(HEIGHT);
+      port_cfg_error = 1'b1;
+    end
+    if (cfg_ndisp == 0 || $signed(32'(cfg_ndisp)) > NDISP) begin
+      port_ndisp = 9'(NDISP);
+      port_cfg_error = 1'b1;
+    end
+    if ($signed(32'(cfg_radius)) > R) begin
+      port_radius = 5'(R);
+      port_cfg_error = 1'b1;
+    end
+  end
+
+  logic [15:0] frame_width, frame_height;
+  logic [8:0] frame_ndisp;
+  logic [4:0] frame_radius;
+  logic [WINDOW*fx_pkg::TAP_BITS-1:0] frame_kernel;
+  logic frame_use_ca;
+  // What the stages see: the ports while idle (the start-of-frame step uses them), the latched
+  // values during the frame and its flush.
+  logic [15:0] use_width, use_height;
+  logic [8:0] use_ndisp;
+  logic [4:0] use_radius;
+  logic [WINDOW*fx_pkg::TAP_BITS-1:0] use_kernel;
+  logic use_ca;
+  always_comb begin
+    if (state == IDLE) begin
+      use_width = port_width;
+      use_height = port_height;
+      use_ndisp = port_ndisp;
+      use_radius = port_radius;
+      use_kernel = cfg_kernel;
+      use_ca = cfg_use_ca;
+    end else begin
+      use_width = frame_width;
+      use_height = frame_height;
+      use_ndisp = frame_ndisp;
+      use_radius = frame_radius;
+      use_kernel = frame_kernel;
+      use_ca = frame_use_ca;
+    end
+  end
+
+  // ---- stepping ----------------------------------------------------------------------------
+  logic output_pending;  // m_axis holds a beat not yet taken
+  logic can_step, step, start_of_frame;
+  logic signed [15:0] x_in, y_in;  // raster position of the next step
+  logic signed [15:0] wta_in_x, wta_in_y;
+  logic last_output_entering;  // this step moves pixel (W-1, H-1) into the output register
+
+  always_comb begin
+    can_step = !output_pending || m_axis_tready;
+    start_of_frame = state == IDLE && s_axis_tvalid && s_axis_tuser;
+    unique case (state)
+      IDLE: begin
+        s_axis_tready = can_step;  // beats before a start of frame are dropped
+        step = can_step && start_of_frame;
+      end
+      RUN: begin
+        s_axis_tready = can_step;
+        step = can_step && s_axis_tvalid;
+      end
+      default: begin  // FLUSH
+        s_axis_tready = 1'b0;
+        step = can_step;
+      end
+    endcase
+    last_output_entering = step && wta_in_x == 16'($signed(32'(use_width)) - 1) &&
+                           wta_in_y == 16'($signed(32'(use_height)) - 1);
+  end
+
+  logic last_input;
+  assign last_input = x_in == 16'($signed(32'(use_width)) - 1) && y_in == 16'($signed(32'(use_height)) - 1);
+
+  always_ff @(posedge clk) begin
+    if (rst) begin
+      state <= IDLE;
+      x_in <= '0;
+      y_in <= '0;
+      status <= '0;
+    end else begin
+      if (state == IDLE && s_axis_tvalid && s_axis_tready && !s_axis_tuser) begin
+        // dropped: not part of a frame
+      end
+      if (step) begin
+        if (state == IDLE) begin
+          frame_width <= port_width;
+          frame_height <= port_height;
+          frame_ndisp <= port_ndisp;
+          frame_radius <= port_radius;
+          frame_kernel <= cfg_kernel;
+          frame_use_ca <= cfg_use_ca;
+          status[2] <= status[2] | port_cfg_error;
+        end
+        if (state != FLUSH) begin
+          if (s_axis_tlast != (x_in == 16'($signed(32'(use_width)) - 1))) status[0] <= 1'b1;
+          if (state == RUN && s_axis_tuser) status[1] <= 1'b1;
+        end
+        if (x_in == 16'($signed(32'(use_width)) - 1)) begin
+          x_in <= '0;
+          y_in <= y_in + 16'sd1;
+        end else begin
+          x_in <= x_in + 16'sd1;
+        end
+        unique case (state)
+          IDLE: state <= last_input ? FLUSH : RUN;
+          RUN: if (last_input) state <= FLUSH;
+          default: ;
+        endcase
+      end
+      if (state == FLUSH && last_output_entering) begin
+        state <= IDLE;
+        x_in <= '0;
+        y_in <= '0;
+      end
+    end
+  end
+
+  // ---- the pipeline ------------------------------------------------------------------------
+  logic [23:0] left_pixel, right_pixel;
+  assign left_pixel = (state == FLUSH) ? 24'd0 : s_axis_tdata[23:0];
+  assign right_pixel = (state == FLUSH) ? 24'd0 : s_axis_tdata[47:24];
+
+  logic signed [15:0] cost_x, cost_y, agg_x, agg_y, rule1_x, rule1_y;
+  logic [NDISP*COST_BITS-1:0] cost_data;
+  logic [NDISP*AGG_BITS-1:0] agg_data, rule1_data, rule2_data;
+
+  stereo_cost #(
+      .NDISP(NDISP)
+  ) cost (
+      .clk(clk),
+      .rst(rst),
+      .ce(step),
+      .in_x(x_in),
+      .in_y(y_in),
+      .in_left(left_pixel),
+      .in_right(right_pixel),
+      .out_x(cost_x),
+      .out_y(cost_y),
+      .out_data(cost_data)
+  );
+
+  stereo_aggregate #(
+      .WIDTH (WIDTH),
+      .NDISP (NDISP),
+      .WINDOW(WINDOW)
+  ) aggregate (
+      .clk(clk),
+      .rst(rst),
+      .ce(step),
+      .in_x(cost_x),
+      .in_y(cost_y),
+      .in_data(cost_data),
+      .cfg_width(use_width),
+      .cfg_height(use_height),
+      .cfg_kernel(use_kernel),
+      .out_x(agg_x),
+      .out_y(agg_y),
+      .out_data(agg_data)
+  );
+
+  stereo_ca_rule1 #(
+      .WIDTH(WIDTH),
+      .NDISP(NDISP)
+  ) ca_rule1 (
+      .clk(clk),
+      .rst(rst),
+      .ce(step),
+      .in_x(agg_x),
+      .in_y(agg_y),
+      .in_data(agg_data),
+      .cfg_width(use_width),
+      .cfg_height(use_height),
+      .cfg_ndisp(use_ndisp),
+      .cfg_use_ca(use_ca),
+      .out_x(rule1_x),
+      .out_y(rule1_y),
+      .out_data(rule1_data)
+  );
+
+  stereo_ca_rule2 #(
+      .WIDTH(WIDTH),
+      .NDISP(NDISP)
+  ) ca_rule2 (
+      .clk(clk),
+      .rst(rst),
+      .ce(step),
+      .in_x(rule1_x),
+      .in_y(rule1_y),
+      .in_data(rule1_data),
+      .cfg_width(use_width),
+      .cfg_height(use_height),
+      .cfg_use_ca(use_ca),
+      .out_x(wta_in_x),
+      .out_y(wta_in_y),
+      .out_data(rule2_data)
+  );
+
+  logic signed [15:0] out_x, out_y;
+  logic [DISP_BITS-1:0] out_disparity;
+  logic out_valid;
+  stereo_wta #(
+      .NDISP(NDISP)
+  ) wta (
+      .clk(clk),
+      .rst(rst),
+      .ce(step),
+      .in_x(wta_in_x),
+      .in_y(wta_in_y),
+      .in_data(rule2_data),
+      .cfg_width(use_width),
+      .cfg_height(use_height),
+      .cfg_ndisp(use_ndisp),
+      .cfg_radius(use_radius),
+      .cfg_use_ca(use_ca),
+      .out_x(out_x),
+      .out_y(out_y),
+      .out_disparity(out_disparity),
+      .out_valid(out_valid)
+  );
+
+  // ---- output: the WTA register is the output register -------------------------------------
+  logic entering_in_frame;
+  assign entering_in_frame = wta_in_x >= 0 && 32'(wta_in_x) < $signed(32'(use_width)) &&
+                             wta_in_y >= 0 && 32'(wta_in_y) < $signed(32'(use_height));
+  always_ff @(posedge clk) begin
+    if (rst) begin
+      output_pending <= 1'b0;
+    end else if (step) begin
+      output_pending <= entering_in_frame;
+    end else if (m_axis_tready) begin
+      output_pending <= 1'b0;
+    end
+  end
+
+  assign m_axis_tvalid = output_pending;
+  assign m_axis_tdata = {7'b0, out_valid, out_disparity};
+  assign m_axis_tuser = out_x == 0 && out_y == 0;
+  assign m_axis_tlast = 32'(out_x) == $signed(32'(frame_width)) - 1;
+endmodule
+
+`default_nettype wire

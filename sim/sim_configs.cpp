@@ -1,0 +1,273 @@
+// The Verilated stereo_top configurations behind the TopSim interface.
+#include <algorithm>
+#include <stdexcept>
+
+#include <verilated.h>
+#include <verilated_fst_c.h>
+
+#include "Vstereo_top_small.h"
+#include "stereo_top_sim.hpp"
+#ifdef STEREO_COSIM_FULL
+#include "Vstereo_top_full.h"
+#endif
+
+namespace stereo::sim {
+namespace {
+
+constexpr int kTapBits = fx::kKernelBits + 1;
+
+// Writes `bits` bits of `value` at `offset` into a port of any Verilator width.
+template <typename Port>
+void put_bits(Port& port, int offset, int bits, std::uint64_t value) {
+    for (int b = 0; b < bits; ++b) {
+        const int position = offset + b;
+        const bool bit = ((value >> b) & 1U) != 0;
+        if constexpr (std::is_integral_v<Port>) {
+            const Port mask = static_cast<Port>(Port{1} << position);
+            port = bit ? static_cast<Port>(port | mask) : static_cast<Port>(port & ~mask);
+        } else {  // VlWide: 32-bit words
+            auto& word = port[static_cast<std::size_t>(position / 32)];
+            const std::uint32_t mask = 1U << (position % 32);
+            word = bit ? (word | mask) : (word & ~mask);
+        }
+    }
+}
+
+template <typename Model>
+class VerilatedTop final : public TopSim {
+  public:
+    explicit VerilatedTop(TopConfig config)
+        : config_(std::move(config)), context_(std::make_unique<VerilatedContext>()) {
+        context_->traceEverOn(true);
+        model_ = std::make_unique<Model>(context_.get(), "stereo_top");
+        idle_inputs();
+        model_->clk = 0;
+        model_->eval();
+    }
+    ~VerilatedTop() override {
+        if (trace_) {
+            trace_->close();
+        }
+        model_->final();
+    }
+
+    const TopConfig& config() const override { return config_; }
+
+    void reset() override {
+        idle_inputs();
+        model_->rst = 1;
+        tick();
+        tick();
+        model_->rst = 0;
+    }
+
+    void set_params(const CoreParams& params) override {
+        model_->cfg_width = static_cast<std::uint16_t>(params.width);
+        model_->cfg_height = static_cast<std::uint16_t>(params.height);
+        model_->cfg_ndisp = static_cast<std::uint16_t>(params.match.ndisp);
+        model_->cfg_radius = static_cast<std::uint8_t>(params.match.window / 2);
+        model_->cfg_use_ca = params.match.use_ca ? 1 : 0;
+        const auto taps = centred_kernel(params.match, config_.window);
+        for (int i = 0; i < config_.window; ++i) {
+            put_bits(model_->cfg_kernel, i * kTapBits, kTapBits,
+                     static_cast<std::uint64_t>(taps[static_cast<std::size_t>(i)]));
+        }
+    }
+
+    StreamResult stream(const std::vector<InputBeat>& beats, std::size_t expected_outputs,
+                        const Traffic& traffic, std::uint64_t max_cycles) override {
+        StreamResult result;
+        std::mt19937 rng(traffic.seed);
+        std::bernoulli_distribution gap(traffic.input_gap);
+        std::bernoulli_distribution stall(traffic.output_stall);
+        std::size_t next = 0;
+        bool offering = false;     // s_axis_tvalid is up and must stay up until taken
+        bool held_output = false;  // m_axis_tvalid was up without tready last cycle
+        std::uint16_t held_data = 0;
+        bool held_last = false;
+        bool held_user = false;
+        std::uint64_t cycle = 0;
+        bool started = false;
+        for (; cycle < max_cycles && result.outputs.size() < expected_outputs; ++cycle) {
+            if (!offering && next < beats.size() && !gap(rng)) {
+                offering = true;
+            }
+            model_->s_axis_tvalid = offering ? 1 : 0;
+            if (offering) {
+                model_->s_axis_tdata = beats[next].data;
+                model_->s_axis_tlast = beats[next].last ? 1 : 0;
+                model_->s_axis_tuser = beats[next].user ? 1 : 0;
+            }
+            model_->m_axis_tready = stall(rng) ? 0 : 1;
+            model_->clk = 0;
+            model_->eval();  // combinational outputs for this cycle's inputs
+            dump();
+
+            // AXI4-Stream: data and framing stay stable while valid waits for ready.
+            if (held_output && result.protocol_error.empty()) {
+                if (!model_->m_axis_tvalid) {
+                    result.protocol_error = "m_axis_tvalid dropped before the beat was taken";
+                } else if (model_->m_axis_tdata != held_data || model_->m_axis_tlast != held_last ||
+                           model_->m_axis_tuser != held_user) {
+                    result.protocol_error = "m_axis data changed while waiting for tready";
+                }
+            }
+            const bool input_taken = offering && model_->s_axis_tready;
+            const bool output_taken = model_->m_axis_tvalid && model_->m_axis_tready;
+            held_output = model_->m_axis_tvalid && !model_->m_axis_tready;
+            held_data = model_->m_axis_tdata;
+            held_last = model_->m_axis_tlast != 0;
+            held_user = model_->m_axis_tuser != 0;
+            if (output_taken) {
+                result.outputs.push_back(
+                    {model_->m_axis_tdata, model_->m_axis_tlast != 0, model_->m_axis_tuser != 0});
+            }
+            if (input_taken) {
+                started = true;
+                ++result.input_beats;
+                ++next;
+                offering = false;
+            }
+            model_->clk = 1;
+            model_->eval();
+            dump();
+            if (!started) {
+                --cycle;  // count from the first accepted beat
+            }
+        }
+        idle_inputs();
+        result.cycles = cycle;
+        result.status = model_->status;
+        result.completed = result.outputs.size() == expected_outputs;
+        return result;
+    }
+
+    void trace_to(const std::string& path) override {
+        trace_ = std::make_unique<VerilatedFstC>();
+        model_->trace(trace_.get(), 99);
+        trace_->open(path.c_str());
+        if (!trace_->isOpen()) {
+            throw std::runtime_error("cannot write waveform '" + path + "'");
+        }
+    }
+
+  private:
+    void idle_inputs() {
+        model_->s_axis_tvalid = 0;
+        model_->s_axis_tdata = 0;
+        model_->s_axis_tlast = 0;
+        model_->s_axis_tuser = 0;
+        model_->m_axis_tready = 0;
+    }
+    void tick() {
+        model_->clk = 0;
+        model_->eval();
+        dump();
+        model_->clk = 1;
+        model_->eval();
+        dump();
+    }
+    void dump() {
+        if (trace_) {
+            trace_->dump(time_);
+        }
+        ++time_;
+    }
+
+    TopConfig config_;
+    std::unique_ptr<VerilatedContext> context_;
+    std::unique_ptr<Model> model_;
+    std::unique_ptr<VerilatedFstC> trace_;
+    std::uint64_t time_ = 0;
+};
+
+}  // namespace
+
+const std::vector<TopConfig>& built_top_configs() {
+    static const std::vector<TopConfig> configs = {
+        {"small", 64, 48, 16, 5},
+#ifdef STEREO_COSIM_FULL
+        {"full", 640, 480, 64, 11},
+#endif
+    };
+    return configs;
+}
+
+const TopConfig* covering_config(int width, int height, int ndisp, int window) {
+    for (const TopConfig& config : built_top_configs()) {
+        if (width <= config.width && height <= config.height && ndisp <= config.ndisp &&
+            window <= config.window) {
+            return &config;
+        }
+    }
+    return nullptr;
+}
+
+std::unique_ptr<TopSim> make_top_sim(const TopConfig& config) {
+    if (config.name == "small") {
+        return std::make_unique<VerilatedTop<Vstereo_top_small>>(config);
+    }
+#ifdef STEREO_COSIM_FULL
+    if (config.name == "full") {
+        return std::make_unique<VerilatedTop<Vstereo_top_full>>(config);
+    }
+#endif
+    throw std::invalid_argument("no co-simulation model named '" + config.name + "' was built");
+}
+
+std::vector<InputBeat> frame_beats(const Image& left, const Image& right) {
+    check_pair(left, right);
+    std::vector<InputBeat> beats;
+    beats.reserve(static_cast<std::size_t>(left.width) * left.height);
+    auto rgb = [](const Image& image, int x, int y) -> std::uint64_t {
+        if (image.channels == 1) {  // grey g is matched as (g, g, g)
+            const std::uint64_t g = image.at(x, y, 0);
+            return (g << 16) | (g << 8) | g;
+        }
+        return (std::uint64_t{image.at(x, y, 0)} << 16) | (std::uint64_t{image.at(x, y, 1)} << 8) |
+               image.at(x, y, 2);
+    };
+    for (int y = 0; y < left.height; ++y) {
+        for (int x = 0; x < left.width; ++x) {
+            beats.push_back({(rgb(right, x, y) << 24) | rgb(left, x, y), x == left.width - 1,
+                             x == 0 && y == 0});
+        }
+    }
+    return beats;
+}
+
+DisparityMap assemble_frame(const std::vector<OutputBeat>& beats, std::size_t first, int width,
+                            int height) {
+    DisparityMap map(width, height);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const std::size_t n = first + static_cast<std::size_t>(y) * width + x;
+            if (n >= beats.size()) {
+                throw std::runtime_error("output ended early at pixel (" + std::to_string(x) +
+                                         ", " + std::to_string(y) + ")");
+            }
+            const OutputBeat& beat = beats[n];
+            if (beat.user != (x == 0 && y == 0) || beat.last != (x == width - 1)) {
+                throw std::runtime_error("wrong tuser/tlast framing at output pixel (" +
+                                         std::to_string(x) + ", " + std::to_string(y) + ")");
+            }
+            map.disparity[map.index(x, y)] = static_cast<std::uint8_t>(beat.data & 0xFF);
+            map.valid[map.index(x, y)] = static_cast<std::uint8_t>((beat.data >> 8) & 1);
+        }
+    }
+    return map;
+}
+
+std::vector<std::int32_t> centred_kernel(const MatchParams& params, int window) {
+    if (params.window > window) {
+        throw std::invalid_argument("window " + std::to_string(params.window) +
+                                    " exceeds the core's " + std::to_string(window));
+    }
+    const auto taps = gaussian_kernel(params.window, params.sigma);
+    std::vector<std::int32_t> centred(static_cast<std::size_t>(window), 0);
+    const int offset = (window - params.window) / 2;
+    std::copy(taps.begin(), taps.end(), centred.begin() + offset);
+    return centred;
+}
+
+}  // namespace stereo::sim

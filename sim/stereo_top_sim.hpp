@@ -1,0 +1,96 @@
+// Co-simulation of the Verilated stereo_top: AXI4-Stream drivers with seeded random input gaps
+// and output stalls, frame assembly, and the checks of the output protocol. Used by the
+// testbenches (testbench/) and by `stereo cosim`.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "stereo/image.hpp"
+#include "stereo/pipeline.hpp"
+
+namespace stereo::sim {
+
+// A Verilated configuration of stereo_top: the synthesis parameters it was built with.
+struct TopConfig {
+    std::string name;
+    int width;   // largest frame width
+    int height;  // largest frame height
+    int ndisp;   // largest cfg_ndisp
+    int window;  // largest window
+};
+
+// The configurations built into this binary, smallest first.
+const std::vector<TopConfig>& built_top_configs();
+
+// The smallest built configuration that covers a request; nullptr when none does.
+const TopConfig* covering_config(int width, int height, int ndisp, int window);
+
+// Traffic shaping: each cycle the input is withheld with probability `input_gap` and the
+// output is not ready with probability `output_stall`, from a generator seeded with `seed`.
+struct Traffic {
+    double input_gap = 0.0;
+    double output_stall = 0.0;
+    std::uint32_t seed = 1;
+};
+
+struct InputBeat {
+    std::uint64_t data;  // {right RGB, left RGB}
+    bool last;
+    bool user;
+};
+
+struct OutputBeat {
+    std::uint16_t data;  // {valid, disparity}
+    bool last;
+    bool user;
+};
+
+// The beats of one frame: raster order, tuser on the first, tlast at each row end.
+std::vector<InputBeat> frame_beats(const Image& left, const Image& right);
+
+struct StreamResult {
+    std::vector<OutputBeat> outputs;
+    std::uint64_t cycles = 0;       // clock cycles from the first input beat to the last output
+    std::uint64_t input_beats = 0;  // accepted
+    unsigned status = 0;            // the core's sticky status bits at the end
+    bool completed = false;         // all expected outputs arrived within the cycle limit
+    std::string protocol_error;     // empty, or the first AXI4-Stream rule the core broke
+};
+
+// Frame and pipeline configuration, applied to the cfg_* ports.
+struct CoreParams {
+    int width = 0;
+    int height = 0;
+    MatchParams match;
+};
+
+class TopSim {
+  public:
+    virtual ~TopSim() = default;
+    virtual const TopConfig& config() const = 0;
+    // Holds reset for two cycles (inputs idle).
+    virtual void reset() = 0;
+    virtual void set_params(const CoreParams& params) = 0;
+    // Streams `beats` (possibly several frames back to back) and collects `expected_outputs`
+    // output beats, or stops after `max_cycles`.
+    virtual StreamResult stream(const std::vector<InputBeat>& beats, std::size_t expected_outputs,
+                                const Traffic& traffic, std::uint64_t max_cycles) = 0;
+    // Starts writing an FST waveform of everything that follows.
+    virtual void trace_to(const std::string& path) = 0;
+};
+
+std::unique_ptr<TopSim> make_top_sim(const TopConfig& config);
+
+// Output beats of one frame back into a map; throws std::runtime_error naming the first beat
+// whose tuser/tlast framing is wrong.
+DisparityMap assemble_frame(const std::vector<OutputBeat>& beats, std::size_t first, int width,
+                            int height);
+
+// The cfg_kernel taps for `params` in a core of `window` taps: the model's kernel, centred.
+std::vector<std::int32_t> centred_kernel(const MatchParams& params, int window);
+
+}  // namespace stereo::sim

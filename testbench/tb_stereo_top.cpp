@@ -1,0 +1,332 @@
+// stereo_top against the golden model, pixel for pixel, through its AXI4-Stream ports, with
+// random input gaps and output stalls, resets in the middle of a frame, back-to-back frames,
+// real and synthetic images, and malformed streams.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <optional>
+#include <random>
+
+#include "stereo/pipeline.hpp"
+#include "stereo_app/io.hpp"
+#include "stereo_top_sim.hpp"
+#include "tb_options.hpp"
+#include "test_support.hpp"
+
+namespace stereo::sim {
+namespace {
+
+const TopConfig& small() {
+    return built_top_configs().front();
+}
+
+// Pipeline delay in pixel steps (docs/rtl.md): cost 1, aggregate R*W + R + 2, each CA rule
+// W + 2, WTA 1, plus the cycle in which the last beat is taken.
+std::uint64_t documented_latency(int width, int window) {
+    const int r = window / 2;
+    return static_cast<std::uint64_t>((r + 2) * width + r + 8);
+}
+
+::testing::AssertionResult same_map(const DisparityMap& model, const DisparityMap& rtl) {
+    std::size_t mismatches = 0;
+    std::string first;
+    for (int y = 0; y < model.height; ++y) {
+        for (int x = 0; x < model.width; ++x) {
+            const auto i = model.index(x, y);
+            if (model.disparity[i] != rtl.disparity[i] || model.valid[i] != rtl.valid[i]) {
+                if (mismatches++ < 5) {
+                    first += " (" + std::to_string(x) + "," + std::to_string(y) +
+                             "): model d=" + std::to_string(model.disparity[i]) +
+                             " valid=" + std::to_string(model.valid[i]) +
+                             ", rtl d=" + std::to_string(rtl.disparity[i]) +
+                             " valid=" + std::to_string(rtl.valid[i]) + ";";
+                }
+            }
+        }
+    }
+    if (mismatches == 0) {
+        return ::testing::AssertionSuccess();
+    }
+    return ::testing::AssertionFailure() << mismatches << " mismatching pixels, first:" << first;
+}
+
+class Cosim {
+  public:
+    Cosim() : sim_(make_top_sim(small())) {
+        if (const std::string path = tb::trace_path(); !path.empty()) {
+            sim_->trace_to(path);
+        }
+        sim_->reset();
+    }
+    TopSim& sim() { return *sim_; }
+
+    // Streams one frame and returns the RTL's map, checking completion and protocol.
+    DisparityMap run(const Image& left, const Image& right, const MatchParams& params,
+                     const Traffic& traffic, StreamResult* result_out = nullptr) {
+        sim_->set_params({left.width, left.height, params});
+        const auto beats = frame_beats(left, right);
+        StreamResult result = sim_->stream(beats, beats.size(), traffic, 50 * beats.size() + 10000);
+        EXPECT_TRUE(result.completed) << "the core stalled: " << result.outputs.size() << " of "
+                                      << beats.size() << " outputs";
+        EXPECT_EQ(result.protocol_error, "");
+        EXPECT_EQ(result.status, 0U) << "status bits";
+        const DisparityMap map = assemble_frame(result.outputs, 0, left.width, left.height);
+        if (result_out != nullptr) {
+            *result_out = std::move(result);
+        }
+        return map;
+    }
+
+  private:
+    std::unique_ptr<TopSim> sim_;
+};
+
+struct RandomCase {
+    int width, height, ndisp, window;
+    bool use_ca;
+    double gap, stall;
+};
+
+class RandomPairs : public ::testing::TestWithParam<RandomCase> {};
+
+TEST_P(RandomPairs, EveryPixelEqualsTheModel) {
+    const RandomCase c = GetParam();
+    const std::uint32_t seed = tb::test_seed();
+    std::mt19937 rng(seed);
+    const Image left = test::random_image(c.width, c.height, 3, rng);
+    const Image right = test::shifted_copy(left, 3, 25, rng);
+    const MatchParams params{c.ndisp, c.window, fx::kDefaultSigma, c.use_ca};
+    Cosim cosim;
+    const DisparityMap rtl = cosim.run(left, right, params, {c.gap, c.stall, seed});
+    EXPECT_TRUE(same_map(match(left, right, params), rtl));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Stereo, RandomPairs,
+    ::testing::Values(RandomCase{64, 48, 16, 5, true, 0.0, 0.0},
+                      RandomCase{64, 48, 16, 5, true, 0.3, 0.3},
+                      RandomCase{64, 48, 16, 5, false, 0.2, 0.5},
+                      RandomCase{37, 23, 9, 5, true, 0.1, 0.1},   // odd size, fewer labels
+                      RandomCase{41, 29, 16, 3, true, 0.2, 0.2},  // smaller runtime window
+                      RandomCase{23, 17, 4, 1, false, 0.0, 0.3},  // 1x1 window
+                      RandomCase{63, 47, 16, 5, true, 0.5, 0.0}));
+
+TEST(Extremes, ConstantImages) {
+    Cosim cosim;
+    const std::uint32_t seed = tb::test_seed();
+    for (const auto& [l, r] :
+         {std::pair{0, 0}, std::pair{255, 255}, std::pair{0, 255}, std::pair{255, 0}}) {
+        Image left(64, 48, 3);
+        Image right(64, 48, 3);
+        std::fill(left.pixels.begin(), left.pixels.end(), static_cast<std::uint8_t>(l));
+        std::fill(right.pixels.begin(), right.pixels.end(), static_cast<std::uint8_t>(r));
+        const MatchParams params{16, 5, fx::kDefaultSigma, true};
+        EXPECT_TRUE(
+            same_map(match(left, right, params), cosim.run(left, right, params, {0.2, 0.2, seed})))
+            << "left " << l << " right " << r;
+    }
+}
+
+TEST(Extremes, GreyInputIsMatchedAsRgb) {
+    std::mt19937 rng(tb::test_seed());
+    const Image left = test::random_image(48, 32, 1, rng);
+    const Image right = test::shifted_copy(left, 2, 10, rng);
+    const MatchParams params{12, 5, fx::kDefaultSigma, true};
+    Cosim cosim;
+    EXPECT_TRUE(same_map(match(left, right, params), cosim.run(left, right, params, {})));
+}
+
+// A crop of a real pair, at the small configuration's size.
+std::optional<std::pair<Image, Image>> real_crop(const std::filesystem::path& left_path,
+                                                 const std::filesystem::path& right_path,
+                                                 int downscale, int x0, int y0) {
+    if (!std::filesystem::exists(left_path) || !std::filesystem::exists(right_path)) {
+        return std::nullopt;
+    }
+    const auto pair = app::load_pair(left_path, right_path, downscale);
+    auto crop = [&](const Image& image) {
+        Image out(64, 48, image.channels);
+        for (int y = 0; y < 48; ++y) {
+            for (int x = 0; x < 64; ++x) {
+                for (int c = 0; c < image.channels; ++c) {
+                    out.at(x, y, c) = image.at(x0 + x, y0 + y, c);
+                }
+            }
+        }
+        return out;
+    };
+    return std::pair{crop(pair.left), crop(pair.right)};
+}
+
+struct RealCase {
+    const char* name;
+    std::filesystem::path left, right;
+    int downscale, x0, y0, ndisp;
+};
+
+class RealPairs : public ::testing::TestWithParam<RealCase> {};
+
+TEST_P(RealPairs, EveryPixelEqualsTheModel) {
+    const RealCase c = GetParam();
+    const auto pair = real_crop(c.left, c.right, c.downscale, c.x0, c.y0);
+    if (!pair) {
+        GTEST_SKIP() << c.name << " not found";
+    }
+    const std::uint32_t seed = tb::test_seed();
+    Cosim cosim;
+    for (const bool use_ca : {true, false}) {
+        const MatchParams params{c.ndisp, 5, fx::kDefaultSigma, use_ca};
+        EXPECT_TRUE(same_map(match(pair->first, pair->second, params),
+                             cosim.run(pair->first, pair->second, params, {0.1, 0.1, seed})))
+            << c.name << " CA " << use_ca;
+    }
+}
+
+std::filesystem::path middlebury(const char* scene, const char* file) {
+    return test::data_dir() / "middlebury2003" / scene / file;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Stereo, RealPairs,
+    ::testing::Values(RealCase{"tsukuba", middlebury("tsukuba", "left.png"),
+                               middlebury("tsukuba", "right.png"), 1, 150, 100, 16},
+                      RealCase{"cones", middlebury("cones", "left.png"),
+                               middlebury("cones", "right.png"), 2, 60, 60, 16},
+                      RealCase{"aloe", std::filesystem::path(STEREO_ALOE_DIR) / "aloeL.jpg",
+                               std::filesystem::path(STEREO_ALOE_DIR) / "aloeR.jpg", 8, 50, 40,
+                               16}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+TEST(Throughput, CyclesPerFrameWithoutStallsMatchTheDocumentedLatency) {
+    std::mt19937 rng(tb::test_seed());
+    const Image left = test::random_image(64, 48, 3, rng);
+    const Image right = test::shifted_copy(left, 4, 10, rng);
+    Cosim cosim;
+    StreamResult result;
+    (void)cosim.run(left, right, {16, 5, fx::kDefaultSigma, true}, {}, &result);
+    const std::uint64_t pixels = 64 * 48;
+    const std::uint64_t expected = pixels + documented_latency(64, 5);
+    std::cout << "[cycles] 64x48: " << result.cycles << " cycles, expected " << expected
+              << " (pixels " << pixels << " + latency " << documented_latency(64, 5) << ")\n";
+    EXPECT_LE(result.cycles, expected * 102 / 100);
+    EXPECT_GE(result.cycles, pixels);
+    EXPECT_NEAR(static_cast<double>(result.cycles), static_cast<double>(expected), 1.0);
+}
+
+TEST(Framing, BackToBackFramesWithoutIdle) {
+    const std::uint32_t seed = tb::test_seed();
+    std::mt19937 rng(seed);
+    const MatchParams params{16, 5, fx::kDefaultSigma, true};
+    std::vector<std::pair<Image, Image>> frames;
+    std::vector<InputBeat> beats;
+    for (int f = 0; f < 3; ++f) {
+        const Image left = test::random_image(64, 48, 3, rng);
+        frames.emplace_back(left, test::shifted_copy(left, 2 + f, 15, rng));
+        const auto frame = frame_beats(frames.back().first, frames.back().second);
+        beats.insert(beats.end(), frame.begin(), frame.end());
+    }
+    Cosim cosim;
+    cosim.sim().set_params({64, 48, params});
+    const StreamResult result =
+        cosim.sim().stream(beats, beats.size(), {0.1, 0.2, seed}, 50 * beats.size());
+    ASSERT_TRUE(result.completed);
+    EXPECT_EQ(result.protocol_error, "");
+    EXPECT_EQ(result.status, 0U);
+    for (int f = 0; f < 3; ++f) {
+        const DisparityMap rtl =
+            assemble_frame(result.outputs, static_cast<std::size_t>(f) * 64 * 48, 64, 48);
+        EXPECT_TRUE(same_map(match(frames[f].first, frames[f].second, params), rtl))
+            << "frame " << f;
+    }
+}
+
+TEST(Framing, ResetInTheMiddleOfAFrameThenACleanFrame) {
+    const std::uint32_t seed = tb::test_seed();
+    std::mt19937 rng(seed);
+    const Image left = test::random_image(64, 48, 3, rng);
+    const Image right = test::shifted_copy(left, 5, 15, rng);
+    const MatchParams params{16, 5, fx::kDefaultSigma, true};
+    Cosim cosim;
+    cosim.sim().set_params({64, 48, params});
+    // Half a frame, with a few of its outputs already out, then reset.
+    const auto beats = frame_beats(left, right);
+    const std::vector<InputBeat> half(beats.begin(), beats.begin() + beats.size() / 2);
+    const StreamResult partial = cosim.sim().stream(half, 100, {0.2, 0.2, seed}, 100000);
+    EXPECT_GT(partial.input_beats, 0U);
+    cosim.sim().reset();
+    // A second frame with different content must come out exactly right.
+    const Image left2 = test::random_image(64, 48, 3, rng);
+    const Image right2 = test::shifted_copy(left2, 7, 15, rng);
+    EXPECT_TRUE(
+        same_map(match(left2, right2, params), cosim.run(left2, right2, params, {0.2, 0.2, seed})));
+}
+
+TEST(BadInput, BeatsBeforeTheFirstStartOfFrameAreDropped) {
+    std::mt19937 rng(tb::test_seed());
+    const Image left = test::random_image(32, 24, 3, rng);
+    const Image right = test::shifted_copy(left, 3, 5, rng);
+    const MatchParams params{8, 5, fx::kDefaultSigma, true};
+    Cosim cosim;
+    cosim.sim().set_params({32, 24, params});
+    auto beats = frame_beats(left, right);
+    std::vector<InputBeat> stream(5, InputBeat{0x123456789ABCULL, false, false});  // no tuser
+    stream.insert(stream.end(), beats.begin(), beats.end());
+    const StreamResult result = cosim.sim().stream(stream, beats.size(), {}, 100000);
+    ASSERT_TRUE(result.completed);
+    EXPECT_EQ(result.status, 0U);
+    EXPECT_TRUE(same_map(match(left, right, params), assemble_frame(result.outputs, 0, 32, 24)));
+}
+
+TEST(BadInput, MisplacedTlastAndTuserSetStatusBitsAndTheFrameStillCompletes) {
+    std::mt19937 rng(tb::test_seed());
+    const Image left = test::random_image(32, 24, 3, rng);
+    const Image right = test::shifted_copy(left, 3, 5, rng);
+    Cosim cosim;
+    cosim.sim().set_params({32, 24, {8, 5, fx::kDefaultSigma, true}});
+    auto beats = frame_beats(left, right);
+    beats[40].last = true;   // not a row end
+    beats[100].user = true;  // start of frame inside a frame
+    const StreamResult result = cosim.sim().stream(beats, beats.size(), {}, 100000);
+    EXPECT_TRUE(result.completed);  // one output per input pixel regardless
+    EXPECT_EQ(result.status & 3U, 3U);
+}
+
+TEST(BadInput, AStreamThatEndsEarlyNeverProducesAPartialFrameAndResetRecovers) {
+    std::mt19937 rng(tb::test_seed());
+    const Image left = test::random_image(32, 24, 3, rng);
+    const Image right = test::shifted_copy(left, 3, 5, rng);
+    const MatchParams params{8, 5, fx::kDefaultSigma, true};
+    Cosim cosim;
+    cosim.sim().set_params({32, 24, params});
+    const auto beats = frame_beats(left, right);
+    const std::vector<InputBeat> cut(beats.begin(), beats.end() - 50);
+    const StreamResult stalled = cosim.sim().stream(cut, beats.size(), {}, 20000);
+    EXPECT_FALSE(stalled.completed);
+    EXPECT_LT(stalled.outputs.size(), beats.size());
+    cosim.sim().reset();
+    EXPECT_TRUE(same_map(match(left, right, params), cosim.run(left, right, params, {})));
+}
+
+TEST(BadInput, OutOfRangeConfigurationIsFlaggedAndClamped) {
+    std::mt19937 rng(tb::test_seed());
+    const Image left = test::random_image(64, 48, 3, rng);
+    const Image right = test::shifted_copy(left, 3, 5, rng);
+    Cosim cosim;
+    MatchParams params{16, 5, fx::kDefaultSigma, true};
+    cosim.sim().set_params({64, 48, params});
+    // cfg_ndisp beyond NDISP: the core clamps to 16 and raises status bit 2.
+    CoreParams wide{64, 48, params};
+    wide.match.ndisp = 40;
+    wide.match.window = 5;
+    cosim.sim().set_params(wide);
+    const auto beats = frame_beats(left, right);
+    const StreamResult result = cosim.sim().stream(beats, beats.size(), {}, 100000);
+    ASSERT_TRUE(result.completed);
+    EXPECT_EQ(result.status & 4U, 4U);
+    EXPECT_TRUE(same_map(match(left, right, params), assemble_frame(result.outputs, 0, 64, 48)));
+}
+
+}  // namespace
+}  // namespace stereo::sim
