@@ -59,25 +59,34 @@ module stereo_aggregate #(
     end
   endgenerate
 
-  logic [V_BITS-1:0] vertical_d;
+  // Which of the WINDOW rows of the incoming column lie inside the frame (shared by all d).
+  logic [WINDOW-1:0] row_inside;
   always_comb begin
-    for (int d = 0; d < NDISP; d++) begin
-      logic [VSUM_BITS-1:0] sum;
-      sum = '0;
-      for (int j = 0; j < WINDOW; j++) begin
-        // Tap j covers row in_y - 2R + j, i.e. the row 2R - j above the incoming one.
-        int row;
-        logic [COST_BITS-1:0] cost;
-        row = 32'(in_y) - 2 * R + j;
-        if (j == 2 * R) cost = in_data[d*COST_BITS +: COST_BITS];
-        else cost = rows_above[(2*R-1-j)*COLUMN_BITS + d*COST_BITS +: COST_BITS];
-        if (row >= 0 && row < $signed(32'(cfg_height))) begin
-          sum = sum + VSUM_BITS'(cost) * VSUM_BITS'(cfg_kernel[j*TAP_BITS +: TAP_BITS]);
-        end
-      end
-      vertical_d[d*VSUM_BITS +: VSUM_BITS] = sum;
+    for (int j = 0; j < WINDOW; j++) begin
+      row_inside[j] = 32'(in_y) - 2 * R + j >= 0 &&
+                      32'(in_y) - 2 * R + j < $signed(32'(cfg_height));
     end
   end
+
+  logic [V_BITS-1:0] vertical_d;
+  generate
+    for (genvar d = 0; d < NDISP; d++) begin : g_vertical
+      always_comb begin
+        logic [VSUM_BITS-1:0] sum;
+        sum = '0;
+        for (int j = 0; j < WINDOW; j++) begin
+          // Tap j covers row in_y - 2R + j, i.e. the row 2R - j above the incoming one.
+          logic [COST_BITS-1:0] cost;
+          if (j == 2 * R) cost = in_data[d*COST_BITS +: COST_BITS];
+          else cost = rows_above[(2*R-1-j)*COLUMN_BITS + d*COST_BITS +: COST_BITS];
+          if (row_inside[j]) begin
+            sum = sum + VSUM_BITS'(cost) * VSUM_BITS'(cfg_kernel[j*TAP_BITS +: TAP_BITS]);
+          end
+        end
+        vertical_d[d*VSUM_BITS +: VSUM_BITS] = sum;
+      end
+    end
+  endgenerate
 
   // Vertical sums of the incoming column, for centre row in_y - R.
   logic [V_BITS-1:0] vertical_q;
@@ -119,26 +128,34 @@ module stereo_aggregate #(
     end
   end
 
-  logic [NDISP*AGG_BITS-1:0] aggregate_d;
+  // Which of the WINDOW columns around the centre lie inside the frame (shared by all d).
+  logic [WINDOW-1:0] column_inside;
   always_comb begin
-    for (int d = 0; d < NDISP; d++) begin
-      logic [WSUM_BITS-1:0] sum;
-      sum = '0;
-      for (int i = 0; i < WINDOW; i++) begin
-        // Tap i covers column centre_x - R + i, i.e. 2R - i columns behind the newest.
-        int column;
-        logic [VSUM_BITS-1:0] v;
-        column = centre_x - R + i;
-        if (i == 2 * R) v = vertical_q[d*VSUM_BITS +: VSUM_BITS];
-        else v = history[(2*R-1-i)*V_BITS + d*VSUM_BITS +: VSUM_BITS];
-        if (column >= 0 && column < $signed(32'(cfg_width))) begin
-          sum = sum + WSUM_BITS'(v) * WSUM_BITS'(cfg_kernel[i*TAP_BITS +: TAP_BITS]);
-        end
-      end
-      sum = sum + WSUM_BITS'(1 << (AGG_SHIFT - 1));
-      aggregate_d[d*AGG_BITS +: AGG_BITS] = AGG_BITS'(sum >> AGG_SHIFT);
+    for (int i = 0; i < WINDOW; i++) begin
+      column_inside[i] = centre_x - R + i >= 0 && centre_x - R + i < $signed(32'(cfg_width));
     end
   end
+
+  logic [NDISP*AGG_BITS-1:0] aggregate_d;
+  generate
+    for (genvar d = 0; d < NDISP; d++) begin : g_horizontal
+      always_comb begin
+        logic [WSUM_BITS-1:0] sum;
+        sum = '0;
+        for (int i = 0; i < WINDOW; i++) begin
+          // Tap i covers column centre_x - R + i, i.e. 2R - i columns behind the newest.
+          logic [VSUM_BITS-1:0] v;
+          if (i == 2 * R) v = vertical_q[d*VSUM_BITS +: VSUM_BITS];
+          else v = history[(2*R-1-i)*V_BITS + d*VSUM_BITS +: VSUM_BITS];
+          if (column_inside[i]) begin
+            sum = sum + WSUM_BITS'(v) * WSUM_BITS'(cfg_kernel[i*TAP_BITS +: TAP_BITS]);
+          end
+        end
+        sum = sum + WSUM_BITS'(1 << (AGG_SHIFT - 1));
+        aggregate_d[d*AGG_BITS +: AGG_BITS] = AGG_BITS'(sum >> AGG_SHIFT);
+      end
+    end
+  endgenerate
 
   always_ff @(posedge clk) begin
     if (ce) out_data <= aggregate_d;

@@ -60,27 +60,35 @@ module stereo_ca_rule1 #(
   endfunction
 
   logic [COLUMN-1:0] result;
-  always_comb begin
-    for (int d = 0; d < NDISP; d++) begin
+  generate
+    for (genvar d = 0; d < NDISP; d++) begin : g_disparity
       logic [BITS-1:0] centre;
-      logic fire;
-      logic [SUM_BITS-1:0] sum;
-      logic [31:0] product;
-      centre = window[CENTRE*COLUMN + d*BITS +: BITS];
-      fire = 1'b0;
-      if (d > 0) fire = fire | agrees(window[CENTRE*COLUMN + (d-1)*BITS +: BITS], centre);
-      if (d + 1 < NDISP && d + 1 < $signed(32'(cfg_ndisp))) begin
-        fire = fire | agrees(window[CENTRE*COLUMN + (d+1)*BITS +: BITS], centre);
+      logic below_agrees, above_agrees;
+      assign centre = window[CENTRE*COLUMN + d*BITS +: BITS];
+      if (d > 0) begin : g_below
+        assign below_agrees = agrees(window[CENTRE*COLUMN + (d-1)*BITS +: BITS], centre);
+      end else begin : g_no_below
+        assign below_agrees = 1'b0;
       end
-      sum = '0;
-      for (int slot = 0; slot < 9; slot++) begin
-        if (in_frame[slot]) sum = sum + SUM_BITS'(window[slot*COLUMN + d*BITS +: BITS]);
+      if (d + 1 < NDISP) begin : g_above
+        assign above_agrees = d + 1 < $signed(32'(cfg_ndisp)) &&
+                              agrees(window[CENTRE*COLUMN + (d+1)*BITS +: BITS], centre);
+      end else begin : g_no_above
+        assign above_agrees = 1'b0;
       end
-      product = 32'(sum) * 32'(fx_pkg::MEAN9_MUL) + 32'(1 << (fx_pkg::MEAN9_SHIFT - 1));
-      result[d*BITS +: BITS] = (cfg_use_ca && fire) ? BITS'(product >> fx_pkg::MEAN9_SHIFT)
-                                                    : centre;
+      always_comb begin
+        logic [SUM_BITS-1:0] sum;
+        logic [31:0] product;
+        sum = '0;
+        for (int slot = 0; slot < 9; slot++) begin
+          if (in_frame[slot]) sum = sum + SUM_BITS'(window[slot*COLUMN + d*BITS +: BITS]);
+        end
+        product = 32'(sum) * 32'(fx_pkg::MEAN9_MUL) + 32'(1 << (fx_pkg::MEAN9_SHIFT - 1));
+        result[d*BITS +: BITS] = (cfg_use_ca && (below_agrees || above_agrees))
+                                     ? BITS'(product >> fx_pkg::MEAN9_SHIFT) : centre;
+      end
     end
-  end
+  endgenerate
 
   always_ff @(posedge clk) begin
     if (ce) out_data <= result;

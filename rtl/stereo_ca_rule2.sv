@@ -57,24 +57,27 @@ module stereo_ca_rule2 #(
   endfunction
 
   logic [COLUMN-1:0] result;
-  always_comb begin
-    for (int d = 0; d < NDISP; d++) begin
-      logic [BITS-1:0] centre;
-      logic [3:0] count;
-      logic [31:0] product;
-      centre = window[CENTRE*COLUMN + d*BITS +: BITS];
-      count = '0;
-      for (int slot = 0; slot < 9; slot++) begin
-        // A neighbour outside the frame is zero padding, and zero never agrees.
-        if (slot != CENTRE && in_frame[slot] && agrees(window[slot*COLUMN + d*BITS +: BITS], centre)) begin
-          count = count + 4'd1;
+  generate
+    for (genvar d = 0; d < NDISP; d++) begin : g_disparity
+      always_comb begin
+        logic [BITS-1:0] centre;
+        logic [3:0] count;
+        logic [31:0] product;
+        centre = window[CENTRE*COLUMN + d*BITS +: BITS];
+        count = '0;
+        for (int slot = 0; slot < 9; slot++) begin
+          // A neighbour outside the frame is zero padding, and zero never agrees.
+          if (slot != CENTRE && in_frame[slot] &&
+              agrees(window[slot*COLUMN + d*BITS +: BITS], centre)) begin
+            count = count + 4'd1;
+          end
         end
+        product = 32'(centre) * 32'(fx_pkg::DIV13_MUL) + 32'(1 << (fx_pkg::DIV13_SHIFT - 1));
+        result[d*BITS +: BITS] = (cfg_use_ca && $signed(32'(count)) >= fx_pkg::RULE2_MIN_COUNT)
+                                     ? BITS'(product >> fx_pkg::DIV13_SHIFT) : centre;
       end
-      product = 32'(centre) * 32'(fx_pkg::DIV13_MUL) + 32'(1 << (fx_pkg::DIV13_SHIFT - 1));
-      result[d*BITS +: BITS] = (cfg_use_ca && $signed(32'(count)) >= fx_pkg::RULE2_MIN_COUNT)
-                                   ? BITS'(product >> fx_pkg::DIV13_SHIFT) : centre;
     end
-  end
+  endgenerate
 
   always_ff @(posedge clk) begin
     if (ce) out_data <= result;

@@ -36,17 +36,18 @@ module stereo_cost #(
     abs_diff_rgb = COST_BITS'(dr) + COST_BITS'(dg) + COST_BITS'(db);
   endfunction
 
-  always_comb begin
-    for (int d = 0; d < NDISP; d++) begin
+  generate
+    for (genvar d = 0; d < NDISP; d++) begin : g_disparity
       logic [23:0] right_pixel;
-      right_pixel = (d == 0) ? in_right : right_history[(d-1)*24 +: 24];
-      if (32'(in_x) - d < 0) begin
-        cost_d[d*COST_BITS +: COST_BITS] = COST_BITS'(fx_pkg::COST_OUTSIDE);
-      end else begin
-        cost_d[d*COST_BITS +: COST_BITS] = abs_diff_rgb(in_left, right_pixel);
+      if (d == 0) begin : g_current
+        assign right_pixel = in_right;
+      end else begin : g_delayed
+        assign right_pixel = right_history[(d-1)*24 +: 24];
       end
+      assign cost_d[d*COST_BITS +: COST_BITS] =
+          (32'(in_x) - d < 0) ? COST_BITS'(fx_pkg::COST_OUTSIDE) : abs_diff_rgb(in_left, right_pixel);
     end
-  end
+  endgenerate
 
   generate
     if (HISTORY > 1) begin : g_shift

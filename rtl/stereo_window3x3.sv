@@ -60,21 +60,26 @@ module stereo_window3x3 #(
       cx = cx + $signed(32'(cfg_width));
       cy = cy - 1;
     end
-    centre_x = 16'(cx);
-    centre_y = 16'(cy);
-    for (int dy = -1; dy <= 1; dy++) begin
-      for (int dx = -1; dx <= 1; dx++) begin
-        int slot;
-        logic [3*COLUMN-1:0] column;
-        slot = (dy + 1) * 3 + (dx + 1);
-        column = (dx == -1) ? column_2 : (dx == 0) ? column_1 : column_new;
-        window_data[slot*COLUMN +: COLUMN] = column[(dy+1)*COLUMN +: COLUMN];
-        in_frame[slot] = (cx + dx >= 0) && (cx + dx < $signed(32'(cfg_width))) &&
-                       (cy + dy >= 0) && (cy + dy < $signed(32'(cfg_height)));
+  end
+  assign centre_x = 16'(cx);
+  assign centre_y = 16'(cy);
+
+  generate
+    for (genvar dy = -1; dy <= 1; dy++) begin : g_row
+      for (genvar dx = -1; dx <= 1; dx++) begin : g_column
+        localparam int SLOT = (dy + 1) * 3 + (dx + 1);
+        if (dx == -1) begin : g_left
+          assign window_data[SLOT*COLUMN +: COLUMN] = column_2[(dy+1)*COLUMN +: COLUMN];
+        end else if (dx == 0) begin : g_middle
+          assign window_data[SLOT*COLUMN +: COLUMN] = column_1[(dy+1)*COLUMN +: COLUMN];
+        end else begin : g_right
+          assign window_data[SLOT*COLUMN +: COLUMN] = column_new[(dy+1)*COLUMN +: COLUMN];
+        end
+        assign in_frame[SLOT] = (cx + dx >= 0) && (cx + dx < $signed(32'(cfg_width))) &&
+                                (cy + dy >= 0) && (cy + dy < $signed(32'(cfg_height)));
       end
     end
-  end
-
+  endgenerate
 endmodule
 
 `default_nettype wire

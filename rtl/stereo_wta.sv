@@ -34,30 +34,37 @@ module stereo_wta #(
   localparam int LEAVES = 1 << LEVELS;
   localparam logic signed [15:0] NO_PIXEL = -16'sd32768;
 
-  // Heap-ordered tree: node n has children 2n and 2n+1; leaves LEAVES .. 2*LEAVES-1 hold d.
-  logic [2*LEAVES*BITS-1:0] node_value;
-  logic [2*LEAVES*DISP_BITS-1:0] node_label;
+  // Heap-ordered tree: node n has children 2n+1 and 2n+2; leaf LEAVES-1+d holds label d.
+  // split_var lets Verilator schedule the nodes one by one (the vector is a tree, not a loop).
+  localparam int NODES = 2 * LEAVES - 1;
+  // The root's value (the minimum cost itself) is not needed, only its label.
+  /* verilator lint_off UNUSEDSIGNAL */
+  logic [NODES*BITS-1:0] node_value  /*verilator split_var*/;
+  /* verilator lint_on UNUSEDSIGNAL */
+  logic [NODES*DISP_BITS-1:0] node_label  /*verilator split_var*/;
   logic [DISP_BITS-1:0] winner;
-  always_comb begin
-    node_value = '0;
-    node_label = '0;
-    for (int d = 0; d < LEAVES; d++) begin
+  generate
+    for (genvar d = 0; d < LEAVES; d++) begin : g_leaf
       // Absent labels carry the largest code, above any aggregated cost: they never win.
-      node_value[(LEAVES+d)*BITS +: BITS] = (d < NDISP && d < $signed(32'(cfg_ndisp)))
-                                                ? in_data[(d < NDISP ? d : 0)*BITS +: BITS]
-                                                : {BITS{1'b1}};
-      node_label[(LEAVES+d)*DISP_BITS +: DISP_BITS] = DISP_BITS'(d);
+      if (d < NDISP) begin : g_label
+        assign node_value[(LEAVES-1+d)*BITS +: BITS] =
+            (d < $signed(32'(cfg_ndisp))) ? in_data[d*BITS +: BITS] : {BITS{1'b1}};
+      end else begin : g_padding
+        assign node_value[(LEAVES-1+d)*BITS +: BITS] = {BITS{1'b1}};
+      end
+      assign node_label[(LEAVES-1+d)*DISP_BITS +: DISP_BITS] = DISP_BITS'(d);
     end
-    for (int n = LEAVES - 1; n >= 1; n--) begin
-      logic take_left;
-      take_left = node_value[(2*n)*BITS +: BITS] <= node_value[(2*n+1)*BITS +: BITS];
-      node_value[n*BITS +: BITS] = take_left ? node_value[(2*n)*BITS +: BITS]
-                                             : node_value[(2*n+1)*BITS +: BITS];
-      node_label[n*DISP_BITS +: DISP_BITS] = take_left ? node_label[(2*n)*DISP_BITS +: DISP_BITS]
-                                                       : node_label[(2*n+1)*DISP_BITS +: DISP_BITS];
+    for (genvar n = 0; n < LEAVES - 1; n++) begin : g_node
+      logic take_left;  // on equal values the left child, which holds the smaller labels
+      assign take_left = node_value[(2*n+1)*BITS +: BITS] <= node_value[(2*n+2)*BITS +: BITS];
+      assign node_value[n*BITS +: BITS] = take_left ? node_value[(2*n+1)*BITS +: BITS]
+                                                    : node_value[(2*n+2)*BITS +: BITS];
+      assign node_label[n*DISP_BITS +: DISP_BITS] =
+          take_left ? node_label[(2*n+1)*DISP_BITS +: DISP_BITS]
+                    : node_label[(2*n+2)*DISP_BITS +: DISP_BITS];
     end
-    winner = node_label[DISP_BITS +: DISP_BITS];
-  end
+  endgenerate
+  assign winner = node_label[0 +: DISP_BITS];
 
   logic valid_d;
   always_comb begin
