@@ -89,6 +89,11 @@ struct RandomCase {
     double gap, stall;
 };
 
+void PrintTo(const RandomCase& c, std::ostream* out) {
+    *out << c.width << "x" << c.height << " ndisp " << c.ndisp << " window " << c.window
+         << (c.use_ca ? " CA" : " no CA") << " gap " << c.gap << " stall " << c.stall;
+}
+
 class RandomPairs : public ::testing::TestWithParam<RandomCase> {};
 
 TEST_P(RandomPairs, EveryPixelEqualsTheModel) {
@@ -165,6 +170,10 @@ struct RealCase {
     std::filesystem::path left, right;
     int downscale, x0, y0, ndisp;
 };
+
+void PrintTo(const RealCase& c, std::ostream* out) {
+    *out << c.name;
+}
 
 class RealPairs : public ::testing::TestWithParam<RealCase> {};
 

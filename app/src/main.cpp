@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
     stereo::cli::add_match_command(app);
     stereo::cli::add_eval_command(app);
     stereo::cli::add_middlebury_command(app);
+    stereo::cli::add_cosim_command(app);
 
     try {
         app.parse(argc, argv);  // runs the chosen subcommand's callback
@@ -45,6 +46,8 @@ int main(int argc, char** argv) {
     } catch (const CLI::ParseError& error) {
         return fail(std::string(error.what()) + " (run with --help for usage)",
                     stereo::cli::kExitUsageError);
+    } catch (const stereo::cli::MismatchError& error) {
+        return fail(error.what(), stereo::cli::kExitMismatch);
     } catch (const std::invalid_argument& error) {
         return fail(error.what(), stereo::cli::kExitUsageError);
     } catch (const std::exception& error) {

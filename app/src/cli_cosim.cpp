@@ -1,0 +1,228 @@
+// `stereo cosim LEFT RIGHT [options]`: stream a pair through the Verilated stereo_top and compare
+// every output pixel with the golden model. Exit 0 when they agree, 3 when any pixel differs.
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <regex>
+#include <stdexcept>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "cli.hpp"
+#include "stereo/pipeline.hpp"
+#include "stereo_app/io.hpp"
+#include "stereo_top_sim.hpp"
+
+namespace stereo::cli {
+namespace {
+
+struct CosimOptions {
+    std::string left;
+    std::string right;
+    MatchParams params;
+    bool no_ca = false;
+    int downscale = 1;
+    std::string crop;  // WxH+X+Y
+    std::uint32_t seed = 1;
+    double stall = 0.0;  // probability that m_axis_tready is low in a cycle
+    double gap = 0.0;    // probability that s_axis_tvalid is withheld in a cycle
+    std::string output;  // the RTL's disparity PNG
+    std::string trace;   // FST waveform
+    bool json = false;
+};
+
+Image crop_image(const Image& image, int x0, int y0, int width, int height) {
+    Image out(width, height, image.channels);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            for (int c = 0; c < image.channels; ++c) {
+                out.at(x, y, c) = image.at(x0 + x, y0 + y, c);
+            }
+        }
+    }
+    return out;
+}
+
+app::ImagePair apply_crop(app::ImagePair pair, const std::string& geometry) {
+    if (geometry.empty()) {
+        return pair;
+    }
+    static const std::regex pattern(R"((\d+)x(\d+)\+(\d+)\+(\d+))");
+    std::smatch parts;
+    if (!std::regex_match(geometry, parts, pattern)) {
+        throw std::invalid_argument("--crop must be WxH+X+Y, got '" + geometry + "'");
+    }
+    const int width = std::stoi(parts[1]);
+    const int height = std::stoi(parts[2]);
+    const int x0 = std::stoi(parts[3]);
+    const int y0 = std::stoi(parts[4]);
+    if (width < 1 || height < 1 || x0 + width > pair.left.width || y0 + height > pair.left.height) {
+        throw std::invalid_argument("--crop " + geometry + " does not fit the " +
+                                    std::to_string(pair.left.width) + "x" +
+                                    std::to_string(pair.left.height) + " image");
+    }
+    return {crop_image(pair.left, x0, y0, width, height),
+            crop_image(pair.right, x0, y0, width, height)};
+}
+
+std::string config_text(const sim::TopConfig& config) {
+    return std::to_string(config.width) + "x" + std::to_string(config.height) + ", " +
+           std::to_string(config.ndisp) + " disparities, window " + std::to_string(config.window);
+}
+
+void run_cosim(const CosimOptions& options) {
+    MatchParams params = options.params;
+    params.use_ca = !options.no_ca;
+    for (const double probability : {options.stall, options.gap}) {
+        if (!(probability >= 0.0 && probability < 1.0)) {
+            throw std::invalid_argument("--stall and --gap must be in [0, 1), got " +
+                                        std::to_string(probability));
+        }
+    }
+    if (options.downscale < 1) {
+        throw std::invalid_argument("--downscale must be >= 1, got " +
+                                    std::to_string(options.downscale));
+    }
+    if (!options.output.empty()) {
+        app::check_writable_location(options.output);
+    }
+    const app::ImagePair pair =
+        apply_crop(app::load_pair(options.left, options.right, options.downscale), options.crop);
+    const int width = pair.left.width;
+    const int height = pair.left.height;
+    validate(params, width, height);
+    const sim::TopConfig* config = sim::covering_config(width, height, params.ndisp, params.window);
+    if (config == nullptr) {
+        const sim::TopConfig& largest = sim::built_top_configs().back();
+        throw std::invalid_argument(
+            "no co-simulation model covers " + std::to_string(width) + "x" +
+            std::to_string(height) + " with ndisp " + std::to_string(params.ndisp) +
+            " and window " + std::to_string(params.window) + "; the largest built is " +
+            config_text(largest) +
+            " (use --downscale or --crop, or build with -DSTEREO_COSIM_FULL=ON)");
+    }
+
+    const DisparityMap expected = match(pair.left, pair.right, params);
+
+    const auto sim = sim::make_top_sim(*config);
+    if (!options.trace.empty()) {
+        app::check_writable_location(options.trace);
+        sim->trace_to(options.trace);
+    }
+    sim->reset();
+    sim->set_params({width, height, params});
+    const auto beats = sim::frame_beats(pair.left, pair.right);
+    const auto start = std::chrono::steady_clock::now();
+    const sim::StreamResult result =
+        sim->stream(beats, beats.size(), {options.gap, options.stall, options.seed},
+                    100 * beats.size() + 100000);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!result.completed) {
+        throw std::runtime_error("the core stalled: " + std::to_string(result.outputs.size()) +
+                                 " of " + std::to_string(beats.size()) + " outputs arrived");
+    }
+    if (!result.protocol_error.empty()) {
+        throw std::runtime_error("AXI4-Stream protocol error: " + result.protocol_error);
+    }
+    const DisparityMap rtl = sim::assemble_frame(result.outputs, 0, width, height);
+
+    std::size_t mismatches = 0;
+    nlohmann::json first = nlohmann::json::array();
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const auto i = rtl.index(x, y);
+            if (rtl.disparity[i] != expected.disparity[i] || rtl.valid[i] != expected.valid[i]) {
+                if (mismatches++ < 10) {
+                    first.push_back({{"x", x},
+                                     {"y", y},
+                                     {"model", expected.valid[i] ? expected.disparity[i] : -1},
+                                     {"rtl", rtl.valid[i] ? rtl.disparity[i] : -1}});
+                }
+            }
+        }
+    }
+    if (!options.output.empty()) {
+        app::write_png(options.output, app::disparity_to_mat(rtl, params.ndisp, 1));
+    }
+
+    const std::size_t pixels = beats.size();
+    const double per_pixel = static_cast<double>(result.cycles) / pixels;
+    if (options.json) {
+        const nlohmann::json summary = {
+            {"mismatches", mismatches},
+            {"cycles", result.cycles},
+            {"pixels", pixels},
+            {"cycles_per_pixel", per_pixel},
+            {"first_mismatches", first},
+            {"config", config->name},
+            {"width", width},
+            {"height", height},
+            {"ndisp", params.ndisp},
+            {"window", params.window},
+            {"ca", params.use_ca},
+            {"seed", options.seed},
+            {"stall", options.stall},
+            {"gap", options.gap},
+            {"status", result.status},
+            {"sim_seconds", seconds},
+            {"sim_cycles_per_second", result.cycles / seconds},
+        };
+        std::cout << summary.dump() << '\n';
+    } else {
+        std::printf(
+            "%dx%d ndisp %d window %d ca %s on the '%s' model (%s), seed %u, stall %.2f, gap "
+            "%.2f\n%zu mismatching pixels of %zu; %llu cycles, %.3f cycles/pixel; simulated at "
+            "%.0f cycles/s\n",
+            width, height, params.ndisp, params.window, params.use_ca ? "on" : "off",
+            config->name.c_str(), config_text(*config).c_str(), options.seed, options.stall,
+            options.gap, mismatches, pixels, static_cast<unsigned long long>(result.cycles),
+            per_pixel, result.cycles / seconds);
+        for (const auto& m : first) {
+            std::printf("  mismatch at (%d, %d): model %d, rtl %d (-1 = invalid)\n",
+                        m["x"].get<int>(), m["y"].get<int>(), m["model"].get<int>(),
+                        m["rtl"].get<int>());
+        }
+    }
+    if (mismatches != 0) {
+        throw MismatchError(std::to_string(mismatches) + " pixels differ from the golden model");
+    }
+}
+
+}  // namespace
+
+void add_cosim_command(CLI::App& app) {
+    auto options = std::make_shared<CosimOptions>();
+    CLI::App* command = app.add_subcommand(
+        "cosim", "Stream a pair through the Verilated RTL and compare it with the golden model.");
+    command->add_option("LEFT", options->left, "Left image")->required();
+    command->add_option("RIGHT", options->right, "Right image, same size as LEFT")->required();
+    options->params.ndisp = 16;
+    options->params.window = 5;
+    command->add_option("--ndisp", options->params.ndisp, "Disparity labels 0..N-1")
+        ->capture_default_str();
+    command->add_option("--window", options->params.window, "Odd aggregation window side")
+        ->capture_default_str();
+    command->add_option("--sigma", options->params.sigma, "Gaussian sigma in pixels")
+        ->capture_default_str();
+    command->add_flag("--no-ca", options->no_ca, "Skip the cellular-automata rules");
+    command->add_option("--downscale", options->downscale, "Shrink both images by integer F")
+        ->capture_default_str();
+    command->add_option("--crop", options->crop, "Use the region WxH+X+Y (after --downscale)");
+    command->add_option("--seed", options->seed, "Seed of the stall/gap generator")
+        ->capture_default_str();
+    command->add_option("--stall", options->stall, "Probability of m_axis_tready low per cycle")
+        ->capture_default_str();
+    command->add_option("--gap", options->gap, "Probability of s_axis_tvalid withheld per cycle")
+        ->capture_default_str();
+    command->add_option("-o,--output", options->output, "Write the RTL's disparity PNG");
+    command->add_option("--trace", options->trace, "Write an FST waveform of the run");
+    command->add_flag("--json", options->json,
+                      "Print one JSON object (mismatches, cycles, pixels, ...)");
+    command->callback([options] { run_cosim(*options); });
+}
+
+}  // namespace stereo::cli

@@ -1,0 +1,9 @@
+fx_pkg.sv
+stereo_line_buffer.sv
+stereo_window3x3.sv
+stereo_cost.sv
+stereo_aggregate.sv
+stereo_ca_rule1.sv
+stereo_ca_rule2.sv
+stereo_wta.sv
+stereo_top.sv
