@@ -117,14 +117,17 @@ module stereo_aggregate #(
     end
   endgenerate
 
-  // Centre of the horizontal window: R columns behind, wrapping to the previous row.
+  // Centre of the horizontal window: R pixels behind in raster order, wrapping to earlier rows
+  // (more than one when the frame is narrower than R).
   int centre_x, centre_y;
   always_comb begin
     centre_x = 32'(vertical_x) - R;
     centre_y = 32'(vertical_y);
-    if (centre_x < 0) begin
-      centre_x = centre_x + $signed(32'(cfg_width));
-      centre_y = centre_y - 1;
+    for (int wrap = 0; wrap < ((R > 0) ? R : 1); wrap++) begin
+      if (centre_x < 0) begin
+        centre_x = centre_x + $signed(32'(cfg_width));
+        centre_y = centre_y - 1;
+      end
     end
   end
 

@@ -4,8 +4,9 @@
 // buffer shows rows_above = {row y-ROWS, ..., row y-2, row y-1} at column x (row y-1 in the
 // low bits), and stores {rows_above minus its oldest row, in_data}. The RAM is read one step
 // ahead (address of the next column), so its registered output is ready when that column
-// arrives; read and write addresses differ whenever the width exceeds 1, and a read-first RAM
-// covers width 1. Rows above the image hold stale data: the stages mask them by coordinates.
+// arrives. Read and write addresses differ whenever the width exceeds 1; at width 1 the next
+// column is the one being written, so the word being stored is passed straight through.
+// Rows above the image hold stale data: the stages mask them by coordinates.
 `default_nettype none
 
 module stereo_line_buffer #(
@@ -43,7 +44,7 @@ module stereo_line_buffer #(
   always_ff @(posedge clk) begin
     if (ce) begin
       memory[write_address] <= stored;
-      rows_above <= memory[read_address];
+      rows_above <= (cfg_width == 16'd1) ? stored : memory[read_address];
     end
   end
 endmodule

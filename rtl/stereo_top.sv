@@ -199,6 +199,13 @@ module stereo_top #(
   end
 
   // ---- the pipeline ------------------------------------------------------------------------
+  // When a frame's last output enters the WTA, everything still in the stages is flush filler
+  // whose coordinates (y >= H) would read as real pixels if a taller frame came next: the stage
+  // coordinate registers are cleared to "no pixel" then, as by a reset. The WTA keeps its
+  // register: it holds the frame's last output beat.
+  logic clear_coordinates;
+  assign clear_coordinates = rst || (state == FLUSH && last_output_entering);
+
   logic [23:0] left_pixel, right_pixel;
   assign left_pixel = (state == FLUSH) ? 24'd0 : s_axis_tdata[23:0];
   assign right_pixel = (state == FLUSH) ? 24'd0 : s_axis_tdata[47:24];
@@ -211,7 +218,7 @@ module stereo_top #(
       .NDISP(NDISP)
   ) cost (
       .clk(clk),
-      .rst(rst),
+      .rst(clear_coordinates),
       .ce(step),
       .in_x(x_in),
       .in_y(y_in),
@@ -228,7 +235,7 @@ module stereo_top #(
       .WINDOW(WINDOW)
   ) aggregate (
       .clk(clk),
-      .rst(rst),
+      .rst(clear_coordinates),
       .ce(step),
       .in_x(cost_x),
       .in_y(cost_y),
@@ -246,7 +253,7 @@ module stereo_top #(
       .NDISP(NDISP)
   ) ca_rule1 (
       .clk(clk),
-      .rst(rst),
+      .rst(clear_coordinates),
       .ce(step),
       .in_x(agg_x),
       .in_y(agg_y),
@@ -265,7 +272,7 @@ module stereo_top #(
       .NDISP(NDISP)
   ) ca_rule2 (
       .clk(clk),
-      .rst(rst),
+      .rst(clear_coordinates),
       .ce(step),
       .in_x(rule1_x),
       .in_y(rule1_y),

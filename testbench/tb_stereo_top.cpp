@@ -251,6 +251,23 @@ TEST(Framing, BackToBackFramesWithoutIdle) {
     }
 }
 
+// Frames of different sizes back to back, without reset: a taller frame after a shorter one
+// must not mistake the previous frame's flush filler (rows >= its height) for its own pixels.
+TEST(Framing, BackToBackFramesOfDifferentSizes) {
+    const std::uint32_t seed = tb::test_seed();
+    std::mt19937 rng(seed);
+    const MatchParams params{8, 5, fx::kDefaultSigma, true};
+    Cosim cosim;
+    for (const auto& [width, height] : {std::pair{32, 12}, std::pair{32, 24}, std::pair{20, 30},
+                                        std::pair{64, 48}, std::pair{13, 9}}) {
+        const Image left = test::random_image(width, height, 3, rng);
+        const Image right = test::shifted_copy(left, 3, 10, rng);
+        EXPECT_TRUE(
+            same_map(match(left, right, params), cosim.run(left, right, params, {0.1, 0.1, seed})))
+            << width << "x" << height;
+    }
+}
+
 TEST(Framing, ResetInTheMiddleOfAFrameThenACleanFrame) {
     const std::uint32_t seed = tb::test_seed();
     std::mt19937 rng(seed);
