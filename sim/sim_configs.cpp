@@ -6,6 +6,7 @@
 #include <verilated_fst_c.h>
 
 #include "Vstereo_top_small.h"
+#include "port_bits.hpp"
 #include "stereo_top_sim.hpp"
 #ifdef STEREO_COSIM_FULL
 #include "Vstereo_top_full.h"
@@ -15,23 +16,6 @@ namespace stereo::sim {
 namespace {
 
 constexpr int kTapBits = fx::kKernelBits + 1;
-
-// Writes `bits` bits of `value` at `offset` into a port of any Verilator width.
-template <typename Port>
-void put_bits(Port& port, int offset, int bits, std::uint64_t value) {
-    for (int b = 0; b < bits; ++b) {
-        const int position = offset + b;
-        const bool bit = ((value >> b) & 1U) != 0;
-        if constexpr (std::is_integral_v<Port>) {
-            const Port mask = static_cast<Port>(Port{1} << position);
-            port = bit ? static_cast<Port>(port | mask) : static_cast<Port>(port & ~mask);
-        } else {  // VlWide: 32-bit words
-            auto& word = port[static_cast<std::size_t>(position / 32)];
-            const std::uint32_t mask = 1U << (position % 32);
-            word = bit ? (word | mask) : (word & ~mask);
-        }
-    }
-}
 
 template <typename Model>
 class VerilatedTop final : public TopSim {

@@ -30,7 +30,9 @@ constexpr double kMargin = 0.3;
 }  // namespace
 
 // Readable test parameters in gtest's output.
-void PrintTo(const MiddleburyScene& scene, std::ostream* out) { *out << scene.name; }
+void PrintTo(const MiddleburyScene& scene, std::ostream* out) {
+    *out << scene.name;
+}
 
 namespace {
 
