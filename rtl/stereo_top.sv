@@ -161,9 +161,6 @@ module stereo_top #(
       y_in <= '0;
       status <= '0;
     end else begin
-      if (state == IDLE && s_axis_tvalid && s_axis_tready && !s_axis_tuser) begin
-        // dropped: not part of a frame
-      end
       if (step) begin
         if (state == IDLE) begin
           frame_width <= port_width;
