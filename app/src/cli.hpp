@@ -26,5 +26,7 @@ void add_match_command(CLI::App& app);
 void add_eval_command(CLI::App& app);
 void add_middlebury_command(CLI::App& app);
 void add_cosim_command(CLI::App& app);
+void add_fis_command(CLI::App& app);
+void add_avoid_command(CLI::App& app);
 
 }  // namespace stereo::cli

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli.hpp"
+#include "stereo/edge_frontend.hpp"
 #include "stereo/pipeline.hpp"
 #include "stereo/reference.hpp"
 #include "stereo_app/io.hpp"
@@ -29,6 +30,7 @@ struct MatchOptions {
     int downscale = 1;
     std::string engine = "model";
     bool json = false;
+    std::string frontend = "model";  // or "edges": the Sec. 4.1.1 variant
 };
 
 DisparityMap run_engine(const std::string& engine, const app::ImagePair& pair,
@@ -53,6 +55,12 @@ double valid_fraction(const DisparityMap& map) {
 void run_match(const MatchOptions& options) {
     MatchParams params = options.params;
     params.use_ca = !options.no_ca;
+    if (options.frontend == "edges") {  // LoG edges + truncated AD, never CA (thesis Sec. 4.1.1)
+        if (options.engine != "model") {
+            throw std::invalid_argument("--frontend edges runs only with --engine model");
+        }
+        params.use_ca = false;
+    }
 
     if (options.scale < 1) {
         throw std::invalid_argument("--scale must be >= 1, got " + std::to_string(options.scale));
@@ -72,7 +80,9 @@ void run_match(const MatchOptions& options) {
     validate(params, pair.left.width, pair.left.height);
 
     const auto start = std::chrono::steady_clock::now();
-    const DisparityMap map = run_engine(options.engine, pair, params);
+    const DisparityMap map = options.frontend == "edges"
+                                 ? edge_frontend::match(pair.left, pair.right, params)
+                                 : run_engine(options.engine, pair, params);
     const std::chrono::duration<double, std::milli> elapsed =
         std::chrono::steady_clock::now() - start;
 
@@ -131,6 +141,9 @@ void add_match_command(CLI::App& app) {
         ->check(CLI::IsMember({"model", "naive", "float"}))
         ->capture_default_str();
     command->add_flag("--json", options->json, "Print the summary as one JSON object");
+    command->add_option("--frontend", options->frontend, "model, or edges (LoG + truncated AD)")
+        ->check(CLI::IsMember({"model", "edges"}))
+        ->capture_default_str();
     command->callback([options] { run_match(*options); });
 }
 

@@ -37,6 +37,8 @@ int main(int argc, char** argv) {
     stereo::cli::add_eval_command(app);
     stereo::cli::add_middlebury_command(app);
     stereo::cli::add_cosim_command(app);
+    stereo::cli::add_fis_command(app);
+    stereo::cli::add_avoid_command(app);
 
     try {
         app.parse(argc, argv);  // runs the chosen subcommand's callback

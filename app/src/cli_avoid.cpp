@@ -1,0 +1,276 @@
+// `stereo avoid LEFT RIGHT [options]`: the obstacle-avoidance chain of thesis Sec. 4.1 on one
+// pair, or on a sequence (two folders, or one list file) with one JSON line per frame.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "cli.hpp"
+#include "stereo/edge_frontend.hpp"
+#include "stereo_app/io.hpp"
+#include "stereo_robot/calibration.hpp"
+#include "stereo_robot/decision.hpp"
+#include "stereo_robot/overlay.hpp"
+
+namespace stereo::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// The threshold method has no angle; its overlay arrow points half-way into the chosen window.
+constexpr double kThresholdArrowDeg = 20.0;
+
+struct AvoidOptions {
+    std::string left;
+    std::string right;  // empty: LEFT is a list file
+    std::string method = "fuzzy";
+    std::string calib;
+    std::optional<double> focal;
+    std::optional<double> baseline;
+    std::optional<double> safe_distance;
+    std::optional<double> threshold;
+    std::string overlay;
+    bool json = false;
+    int downscale = 1;
+    MatchParams params;
+    edge_frontend::EdgeParams edges;
+    robot::ThresholdParams threshold_params;
+    robot::FisParams fis;
+};
+
+// The disparity threshold in pixels of the matched (possibly downscaled) images.
+double pixel_threshold(const AvoidOptions& o) {
+    if (o.threshold) {
+        if (!(*o.threshold >= 0.0)) {
+            throw std::invalid_argument("--threshold must be >= 0");
+        }
+        return *o.threshold;
+    }
+    if (!o.safe_distance) {
+        throw std::invalid_argument("give --safe-distance Z (with a calibration) or --threshold T");
+    }
+    robot::StereoGeometry geometry;
+    if (!o.calib.empty()) {
+        geometry = robot::load_calibration(o.calib);
+    } else if (o.focal && o.baseline) {
+        geometry = {*o.focal, *o.baseline};
+    } else {
+        throw std::invalid_argument(
+            "missing calibration: --safe-distance needs --calib FILE or --focal F --baseline B");
+    }
+    return robot::disparity_threshold(geometry, *o.safe_distance, o.downscale);
+}
+
+std::vector<robot::FramePair> frames(const AvoidOptions& o, bool& sequence) {
+    if (o.right.empty()) {
+        sequence = true;
+        return robot::pairs_from_list(o.left);
+    }
+    const bool left_dir = fs::is_directory(o.left);
+    const bool right_dir = fs::is_directory(o.right);
+    if (left_dir != right_dir) {
+        throw std::invalid_argument("LEFT and RIGHT must both be images or both be folders");
+    }
+    sequence = left_dir;
+    if (sequence) {
+        return robot::pairs_from_folders(o.left, o.right);
+    }
+    return {{o.left, o.right}};
+}
+
+cv::Mat to_bgr(const Image& image) {
+    const int type = image.channels == 1 ? CV_8UC1 : CV_8UC3;
+    const cv::Mat wrapped(image.height, image.width, type,
+                          const_cast<std::uint8_t*>(image.pixels.data()));
+    cv::Mat bgr;
+    if (image.channels == 1) {
+        cv::cvtColor(wrapped, bgr, cv::COLOR_GRAY2BGR);
+    } else {
+        cv::cvtColor(wrapped, bgr, cv::COLOR_RGB2BGR);
+    }
+    return bgr;
+}
+
+nlohmann::json occupancy_json(const std::array<robot::WindowStats, 3>& stats) {
+    return {stats[0].occupancy(), stats[1].occupancy(), stats[2].occupancy()};
+}
+
+struct FrameResult {
+    nlohmann::json json;
+    robot::OverlayInfo overlay;
+};
+
+FrameResult decide(const AvoidOptions& o, const DisparityMap& map, double threshold) {
+    FrameResult out;
+    const bool want_threshold = o.method == "threshold" || o.method == "both";
+    const bool want_fuzzy = o.method == "fuzzy" || o.method == "both";
+    if (want_threshold) {
+        const auto d = robot::decide_threshold(map, threshold, o.params.ndisp, o.threshold_params);
+        const double arrow = d.direction == robot::Direction::left    ? -kThresholdArrowDeg
+                             : d.direction == robot::Direction::right ? kThresholdArrowDeg
+                                                                      : 0.0;
+        out.json["threshold"] = {{"decision", robot::to_string(d.direction)},
+                                 {"certainty", d.certainty},
+                                 {"occupancy", occupancy_json(d.stats)},
+                                 {"mean_disparity", {d.mean[0], d.mean[1], d.mean[2]}}};
+        out.overlay = {{d.stats[0].occupancy(), d.stats[1].occupancy(), d.stats[2].occupancy()},
+                       d.direction,
+                       arrow,
+                       "threshold"};
+    }
+    if (want_fuzzy) {
+        const auto d = robot::decide_fuzzy(map, threshold, o.fis, o.threshold_params.border);
+        out.json["fuzzy"] = {{"decision", robot::to_string(d.fis.decision)},
+                             {"angle_deg", d.fis.angle_deg},
+                             {"backwards", d.fis.backwards},
+                             {"occupancy", occupancy_json(d.stats)}};
+        char caption[64];
+        std::snprintf(caption, sizeof caption, "fuzzy %+.1f deg", d.fis.angle_deg);
+        out.overlay = {{d.stats[0].occupancy(), d.stats[1].occupancy(), d.stats[2].occupancy()},
+                       d.fis.decision,
+                       d.fis.angle_deg,
+                       caption};
+    }
+    // The chosen method's decision at the top level (fuzzy when both are run).
+    const auto& main = out.json.contains("fuzzy") ? out.json["fuzzy"] : out.json["threshold"];
+    out.json["decision"] = main["decision"];
+    return out;
+}
+
+void print_text(const std::string& name, const nlohmann::json& frame) {
+    std::printf("%s: %s", name.c_str(), frame["decision"].get<std::string>().c_str());
+    if (frame.contains("fuzzy")) {
+        std::printf(" (fuzzy: angle %.2f deg, backwards %.3f)",
+                    frame["fuzzy"]["angle_deg"].get<double>(),
+                    frame["fuzzy"]["backwards"].get<double>());
+    }
+    if (frame.contains("threshold")) {
+        std::printf(" (threshold: %s, certainty %.3f)",
+                    frame["threshold"]["decision"].get<std::string>().c_str(),
+                    frame["threshold"]["certainty"].get<double>());
+    }
+    std::printf(", occupancy %s, %.1f ms\n", frame["occupancy"].dump().c_str(),
+                frame["ms"].get<double>());
+}
+
+void run_avoid(const AvoidOptions& o) {
+    if (o.downscale < 1) {
+        throw std::invalid_argument("--downscale must be >= 1, got " + std::to_string(o.downscale));
+    }
+    robot::check_fraction(o.threshold_params.rate, "--rate");
+    robot::check_fraction(o.fis.backwards_threshold, "--backwards-threshold");
+    edge_frontend::validate(o.edges);
+    const double threshold = pixel_threshold(o);
+    bool sequence = false;
+    const auto pairs = frames(o, sequence);
+    if (!o.overlay.empty()) {
+        app::check_writable_location(o.overlay);
+    }
+    std::optional<robot::SequenceWriter> writer;
+    if (sequence && !o.overlay.empty()) {
+        writer.emplace(o.overlay, 10.0);
+    }
+
+    for (const auto& [left_path, right_path] : pairs) {
+        const auto start = std::chrono::steady_clock::now();
+        const app::ImagePair pair = app::load_pair(left_path, right_path, o.downscale);
+        const DisparityMap map = edge_frontend::match(pair.left, pair.right, o.params, o.edges);
+        FrameResult result = decide(o, map, threshold);
+        const std::chrono::duration<double, std::milli> elapsed =
+            std::chrono::steady_clock::now() - start;
+
+        nlohmann::json& frame = result.json;
+        frame["frame"] = left_path.filename().string();
+        frame["threshold_px"] = threshold;
+        frame["occupancy"] = result.overlay.occupancy;
+        frame["ms"] = elapsed.count();
+        if (sequence || o.json) {
+            std::cout << frame.dump() << std::endl;
+        } else {
+            print_text(left_path.filename().string(), frame);
+        }
+        if (!o.overlay.empty()) {
+            result.overlay.caption = left_path.filename().string() + " " + result.overlay.caption;
+            const cv::Mat picture = robot::draw_overlay(to_bgr(pair.left), map, threshold,
+                                                        o.threshold_params.border, result.overlay);
+            if (writer) {
+                writer->add(picture);
+            } else {
+                app::write_png(o.overlay, picture);
+            }
+        }
+    }
+    if (writer) {
+        writer->finish();
+    }
+}
+
+}  // namespace
+
+void add_avoid_command(CLI::App& app) {
+    auto o = std::make_shared<AvoidOptions>();
+    CLI::App* command = app.add_subcommand(
+        "avoid", "Obstacle avoidance (thesis Sec. 4.1): direction decision on a pair or sequence.");
+    command->add_option("LEFT", o->left, "Left image, folder of left images, or a list file")
+        ->required();
+    command->add_option("RIGHT", o->right,
+                        "Right image or folder (files paired by name); omit for a list file");
+    command->add_option("--method", o->method, "threshold, fuzzy, or both")
+        ->check(CLI::IsMember({"threshold", "fuzzy", "both"}))
+        ->capture_default_str();
+    auto* calib = command->add_option("--calib", o->calib,
+                                      "Calibration file with P0/P1 projection matrices (KITTI)");
+    auto* focal = command->add_option("--focal", o->focal, "Focal length in pixels (full size)");
+    auto* baseline = command->add_option("--baseline", o->baseline, "Baseline, metres");
+    calib->excludes(focal)->excludes(baseline);
+    auto* safe = command->add_option("--safe-distance", o->safe_distance,
+                                     "Safety distance Z, metres: T = f B / Z");
+    auto* threshold =
+        command->add_option("--threshold", o->threshold, "Disparity threshold T in pixels");
+    safe->excludes(threshold);
+    command->add_option("--overlay", o->overlay,
+                        "Overlay PNG; for a sequence a PNG contact sheet or an MJPG .avi");
+    command->add_flag("--json", o->json, "One JSON object per frame (always for sequences)");
+    command->add_option("--downscale", o->downscale, "Shrink both images by integer F first")
+        ->capture_default_str();
+    command->add_option("--ndisp", o->params.ndisp, "Disparity labels 0..N-1")
+        ->capture_default_str();
+    command->add_option("--window", o->params.window, "Odd aggregation window side")
+        ->capture_default_str();
+    command->add_option("--sigma", o->params.sigma, "Aggregation Gaussian sigma")
+        ->capture_default_str();
+    command->add_option("--log-window", o->edges.log_window, "Odd LoG smoothing kernel side")
+        ->capture_default_str();
+    command->add_option("--log-sigma", o->edges.log_sigma, "LoG Gaussian sigma")
+        ->capture_default_str();
+    command->add_option("--edge-value", o->edges.edge_value, "Intensity of superimposed edges")
+        ->capture_default_str();
+    command->add_option("--truncation", o->edges.truncation, "Truncated-AD limit, of 765")
+        ->capture_default_str();
+    command
+        ->add_option("--rate", o->threshold_params.rate,
+                     "Threshold method: centre fraction below which it goes straight")
+        ->capture_default_str();
+    command->add_option("--border", o->threshold_params.border, "Excluded border, pixels")
+        ->capture_default_str();
+    command
+        ->add_option("--backwards-threshold", o->fis.backwards_threshold,
+                     "Fuzzy: back off when 'move backwards' exceeds this")
+        ->capture_default_str();
+    command
+        ->add_option("--forward-band", o->fis.forward_band,
+                     "Fuzzy: |angle| up to this (deg) is reported as forward")
+        ->capture_default_str();
+    command->callback([o] { run_avoid(*o); });
+}
+
+}  // namespace stereo::cli

@@ -1,0 +1,55 @@
+// `stereo fis --left L --center C --right R [--json]`: the fuzzy direction decision alone.
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "cli.hpp"
+#include "stereo_robot/decision.hpp"
+
+namespace stereo::cli {
+
+namespace {
+
+struct FisOptions {
+    double left = 0.0;
+    double centre = 0.0;
+    double right = 0.0;
+    bool json = false;
+};
+
+void run_fis(const FisOptions& options) {
+    const robot::FisResult result =
+        robot::evaluate_fis(options.left, options.centre, options.right);
+    if (options.json) {
+        const nlohmann::json out = {{"angle_deg", result.angle_deg},
+                                    {"backwards", result.backwards},
+                                    {"decision", robot::to_string(result.decision)}};
+        std::cout << out.dump() << '\n';
+    } else {
+        std::printf("angle_deg %.3f backwards %.4f decision %s\n", result.angle_deg,
+                    result.backwards, robot::to_string(result.decision).c_str());
+    }
+}
+
+}  // namespace
+
+void add_fis_command(CLI::App& app) {
+    auto options = std::make_shared<FisOptions>();
+    CLI::App* command = app.add_subcommand(
+        "fis", "Evaluate the fuzzy obstacle-avoidance system on three window occupancies.");
+    command->add_option("--left", options->left, "Occupied fraction of the left window, [0, 1]")
+        ->required();
+    command
+        ->add_option("--center,--centre", options->centre,
+                     "Occupied fraction of the centre window, [0, 1]")
+        ->required();
+    command->add_option("--right", options->right, "Occupied fraction of the right window, [0, 1]")
+        ->required();
+    command->add_flag("--json", options->json, "Print one JSON object");
+    command->callback([options] { run_fis(*options); });
+}
+
+}  // namespace stereo::cli

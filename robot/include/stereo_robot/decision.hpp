@@ -1,0 +1,79 @@
+// The direction decisions of thesis Sec. 4.1: the threshold algorithm and the fuzzy one.
+#pragma once
+
+#include <array>
+#include <string>
+
+#include "stereo/image.hpp"
+#include "stereo_robot/windows.hpp"
+
+namespace stereo::robot {
+
+enum class Direction { forward, left, right, backwards };
+
+std::string to_string(Direction direction);
+
+// ---- threshold algorithm (Sec. 4.1.1) --------------------------------------------------------
+struct ThresholdParams {
+    double rate =
+        0.20;  // r: largest occupied fraction of the centre window that still goes straight
+    int border = kDefaultBorder;
+};
+
+struct ThresholdDecision {
+    Direction direction = Direction::forward;
+    double certainty = 0.0;  // (avD2 - avD1) / avD2 for a turn; 0 when going straight
+    std::array<WindowStats, 3> stats{};
+    std::array<double, 3> mean{};  // mean valid disparity per window (ndisp when none is valid)
+};
+
+// Centre occupancy below `rate` -> forward; otherwise the side with the smaller mean disparity
+// (ties go left). `ndisp` stands in for the mean of a window with no valid pixel.
+ThresholdDecision decide_threshold(const DisparityMap& map, double threshold, int ndisp,
+                                   const ThresholdParams& params = {});
+
+// ---- fuzzy algorithm (Sec. 4.1.3) ------------------------------------------------------------
+struct Gaussian {
+    double centre = 0.0;
+    double sigma = 1.0;
+    double operator()(double x) const;  // exp(-(x - c)^2 / (2 s^2))
+};
+
+struct FisParams {
+    Gaussian free{0.0, 0.065};     // input MF, all three windows
+    Gaussian occupied{1.0, 0.25};  // input MF, all three windows
+    Gaussian left{-19.0, 5.5};     // output angle MF (degrees, negative = left)
+    Gaussian forward{0.0, 12.5};
+    Gaussian right{19.0, 5.5};
+    Gaussian backwards_yes{0.85, 0.23};  // output "move backwards" MF on [0, 1]
+    double angle_min = -30.0;            // the camera's 60 degree field of view
+    double angle_max = 30.0;
+    double angle_step = 0.01;  // centroid grid
+    double backwards_step = 0.001;
+    double backwards_threshold = 0.65;  // back off above this
+    double forward_band = 10.0;         // |angle| <= this is reported as "forward"
+};
+
+struct FisResult {
+    double angle_deg = 0.0;
+    double backwards = 0.0;
+    Direction decision = Direction::forward;
+    std::array<double, 4> firing{};  // rule strengths: forward, left, right, backwards
+};
+
+// Throws std::invalid_argument unless every input is a number in [0, 1].
+void check_fraction(double value, const std::string& name);
+
+// Mamdani FIS: min for AND and implication, max aggregation, centroid over the grids; an empty
+// aggregated set defuzzifies to the midpoint of its range.
+FisResult evaluate_fis(double left, double centre, double right, const FisParams& params = {});
+
+// The fuzzy decision on a disparity map: window occupancies at `threshold`, then evaluate_fis.
+struct FuzzyDecision {
+    FisResult fis;
+    std::array<WindowStats, 3> stats{};
+};
+FuzzyDecision decide_fuzzy(const DisparityMap& map, double threshold, const FisParams& params = {},
+                           int border = kDefaultBorder);
+
+}  // namespace stereo::robot

@@ -1,0 +1,135 @@
+#include "stereo_robot/decision.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace stereo::robot {
+namespace {
+
+constexpr int kLeft = static_cast<int>(Side::left);
+constexpr int kCentre = static_cast<int>(Side::centre);
+constexpr int kRight = static_cast<int>(Side::right);
+
+// Centroid of `membership` sampled on lo, lo + step, ..., hi (the last point is hi itself);
+// the midpoint when the set is empty (all memberships zero).
+template <typename Membership>
+double centroid(double lo, double hi, double step, Membership membership) {
+    const long long steps = std::llround((hi - lo) / step);
+    double weighted = 0.0;
+    double total = 0.0;
+    for (long long i = 0; i <= steps; ++i) {
+        const double x = i == steps ? hi : lo + static_cast<double>(i) * step;
+        const double mu = membership(x);
+        weighted += mu * x;
+        total += mu;
+    }
+    return total > 0.0 ? weighted / total : 0.5 * (lo + hi);
+}
+
+void check_params(const FisParams& params) {
+    if (!(params.angle_min < params.angle_max) || !(params.angle_step > 0.0) ||
+        !(params.backwards_step > 0.0)) {
+        throw std::invalid_argument("FIS output ranges and grid steps must be positive");
+    }
+}
+
+}  // namespace
+
+std::string to_string(Direction direction) {
+    switch (direction) {
+        case Direction::forward:
+            return "forward";
+        case Direction::left:
+            return "left";
+        case Direction::right:
+            return "right";
+        case Direction::backwards:
+            return "backwards";
+    }
+    return "forward";
+}
+
+ThresholdDecision decide_threshold(const DisparityMap& map, double threshold, int ndisp,
+                                   const ThresholdParams& params) {
+    if (!(params.rate >= 0.0 && params.rate <= 1.0)) {
+        throw std::invalid_argument("rate r must be in [0, 1], got " + std::to_string(params.rate));
+    }
+    ThresholdDecision decision;
+    decision.stats = all_window_stats(map, threshold, params.border);
+    for (int i = 0; i < 3; ++i) {
+        decision.mean[i] = decision.stats[i].mean_disparity(ndisp);
+    }
+    if (decision.stats[kCentre].occupancy() < params.rate) {
+        decision.direction = Direction::forward;
+        return decision;
+    }
+    const double av_left = decision.mean[kLeft];
+    const double av_right = decision.mean[kRight];
+    decision.direction = av_left <= av_right ? Direction::left : Direction::right;
+    const double av1 = std::min(av_left, av_right);  // chosen side
+    const double av2 = std::max(av_left, av_right);
+    decision.certainty = av2 > 0.0 ? (av2 - av1) / av2 : 0.0;
+    return decision;
+}
+
+double Gaussian::operator()(double x) const {
+    const double z = (x - centre) / sigma;
+    return std::exp(-0.5 * z * z);
+}
+
+void check_fraction(double value, const std::string& name) {
+    if (!(value >= 0.0 && value <= 1.0)) {  // also rejects NaN
+        throw std::invalid_argument(name + " must be a fraction in [0, 1], got " +
+                                    std::to_string(value));
+    }
+}
+
+FisResult evaluate_fis(double left, double centre, double right, const FisParams& params) {
+    check_fraction(left, "left");
+    check_fraction(centre, "centre");
+    check_fraction(right, "right");
+    check_params(params);
+
+    // Rule strengths (min for AND).
+    const double w_forward = params.free(centre);
+    const double w_left = std::min(params.occupied(centre), params.free(left));
+    const double w_right = std::min(params.occupied(centre), params.free(right));
+    const double w_back =
+        std::min({params.occupied(left), params.occupied(centre), params.occupied(right)});
+
+    FisResult result;
+    result.firing = {w_forward, w_left, w_right, w_back};
+    // Min implication, max aggregation.
+    result.angle_deg =
+        centroid(params.angle_min, params.angle_max, params.angle_step, [&](double a) {
+            return std::max({std::min(w_forward, params.forward(a)),
+                             std::min(w_left, params.left(a)), std::min(w_right, params.right(a))});
+        });
+    result.backwards = centroid(0.0, 1.0, params.backwards_step, [&](double b) {
+        return std::min(w_back, params.backwards_yes(b));
+    });
+
+    if (result.backwards > params.backwards_threshold) {
+        result.decision = Direction::backwards;
+    } else if (result.angle_deg < -params.forward_band) {
+        result.decision = Direction::left;
+    } else if (result.angle_deg > params.forward_band) {
+        result.decision = Direction::right;
+    } else {
+        result.decision = Direction::forward;
+    }
+    return result;
+}
+
+FuzzyDecision decide_fuzzy(const DisparityMap& map, double threshold, const FisParams& params,
+                           int border) {
+    FuzzyDecision decision;
+    decision.stats = all_window_stats(map, threshold, border);
+    decision.fis =
+        evaluate_fis(decision.stats[kLeft].occupancy(), decision.stats[kCentre].occupancy(),
+                     decision.stats[kRight].occupancy(), params);
+    return decision;
+}
+
+}  // namespace stereo::robot

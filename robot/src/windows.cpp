@@ -1,0 +1,50 @@
+#include "stereo_robot/windows.hpp"
+
+#include <stdexcept>
+#include <string>
+
+namespace stereo::robot {
+
+std::array<Rect, 3> split_windows(int width, int height, int border) {
+    if (border < 0) {
+        throw std::invalid_argument("window border must be >= 0, got " + std::to_string(border));
+    }
+    const int inner_width = width - 2 * border;
+    const int inner_height = height - 2 * border;
+    if (inner_width < 3 || inner_height < 1) {
+        throw std::invalid_argument("a " + std::to_string(width) + "x" + std::to_string(height) +
+                                    " map leaves no room for three windows inside a " +
+                                    std::to_string(border) + "-pixel border");
+    }
+    std::array<Rect, 3> windows{};
+    for (int i = 0; i < 3; ++i) {
+        windows[i] = {border + i * inner_width / 3, border, border + (i + 1) * inner_width / 3,
+                      height - border};
+    }
+    return windows;
+}
+
+WindowStats window_stats(const DisparityMap& map, const Rect& window, double threshold) {
+    WindowStats stats;
+    for (int y = window.y0; y < window.y1; ++y) {
+        for (int x = window.x0; x < window.x1; ++x) {
+            const std::size_t i = map.index(x, y);
+            if (map.valid[i] == 0) {
+                continue;
+            }
+            const int d = map.disparity[i];
+            ++stats.valid;
+            stats.above += d > threshold ? 1 : 0;
+            stats.disparity_sum += d;
+        }
+    }
+    return stats;
+}
+
+std::array<WindowStats, 3> all_window_stats(const DisparityMap& map, double threshold, int border) {
+    const auto windows = split_windows(map.width, map.height, border);
+    return {window_stats(map, windows[0], threshold), window_stats(map, windows[1], threshold),
+            window_stats(map, windows[2], threshold)};
+}
+
+}  // namespace stereo::robot

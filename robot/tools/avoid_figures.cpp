@@ -1,0 +1,186 @@
+// Draws the figures of docs/avoidance.md with OpenCV: the membership functions of the fuzzy
+// system and its control surface. Usage: avoid_figures OUTPUT_FOLDER
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "stereo_robot/decision.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using stereo::robot::FisParams;
+using stereo::robot::Gaussian;
+
+constexpr int kWidth = 560;
+constexpr int kHeight = 300;
+constexpr int kMargin = 50;
+const cv::Scalar kBlack{0, 0, 0};
+const cv::Scalar kGrey{190, 190, 190};
+
+struct Curve {
+    std::string name;
+    std::function<double(double)> f;
+    cv::Scalar colour;
+};
+
+// Plot area [kMargin, kWidth - 20] x [20, kHeight - kMargin], y from 0 to 1.
+cv::Mat line_plot(const std::string& title, double lo, double hi, double tick,
+                  const std::vector<Curve>& curves, double vertical_line = NAN) {
+    cv::Mat img(kHeight, kWidth, CV_8UC3, cv::Scalar(255, 255, 255));
+    const int x0 = kMargin;
+    const int x1 = kWidth - 20;
+    const int y0 = 30;
+    const int y1 = kHeight - kMargin;
+    const auto px = [&](double x) {
+        return x0 + static_cast<int>((x - lo) / (hi - lo) * (x1 - x0));
+    };
+    const auto py = [&](double y) { return y1 - static_cast<int>(y * (y1 - y0)); };
+    for (double t = lo; t <= hi + 1e-9; t += tick) {
+        cv::line(img, {px(t), y0}, {px(t), y1}, kGrey, 1);
+        char label[16];
+        std::snprintf(label, sizeof label, "%g", std::abs(t) < 1e-12 ? 0.0 : t);
+        cv::putText(img, label, {px(t) - 10, y1 + 18}, cv::FONT_HERSHEY_SIMPLEX, 0.4, kBlack, 1,
+                    cv::LINE_AA);
+    }
+    for (double v = 0; v <= 1.0001; v += 0.25) {
+        cv::line(img, {x0, py(v)}, {x1, py(v)}, kGrey, 1);
+        char label[16];
+        std::snprintf(label, sizeof label, "%.2f", v);
+        cv::putText(img, label, {4, py(v) + 4}, cv::FONT_HERSHEY_SIMPLEX, 0.4, kBlack, 1,
+                    cv::LINE_AA);
+    }
+    cv::rectangle(img, {x0, y0}, {x1, y1}, kBlack, 1);
+    if (!std::isnan(vertical_line)) {
+        cv::line(img, {px(vertical_line), y0}, {px(vertical_line), y1}, {0, 0, 200}, 1,
+                 cv::LINE_AA);
+    }
+    int legend_y = y0 + 16;
+    for (const auto& curve : curves) {
+        std::vector<cv::Point> points;
+        for (int i = 0; i <= 600; ++i) {
+            const double x = lo + (hi - lo) * i / 600.0;
+            points.emplace_back(px(x), py(curve.f(x)));
+        }
+        cv::polylines(img, points, false, curve.colour, 2, cv::LINE_AA);
+        cv::putText(img, curve.name, {x1 - 120, legend_y}, cv::FONT_HERSHEY_SIMPLEX, 0.45,
+                    curve.colour, 1, cv::LINE_AA);
+        legend_y += 18;
+    }
+    cv::putText(img, title, {x0, 20}, cv::FONT_HERSHEY_SIMPLEX, 0.5, kBlack, 1, cv::LINE_AA);
+    return img;
+}
+
+std::function<double(double)> mf(const Gaussian& g) {
+    return [g](double x) { return g(x); };
+}
+
+// Angle over centre occupancy (x) and left occupancy (y), right occupancy fixed; cells where
+// the robot backs off are hatched black.
+cv::Mat surface(double right, const FisParams& params) {
+    constexpr int kCells = 101;
+    constexpr int kCell = 4;
+    constexpr int kLeftPad = 50;
+    constexpr int kTop = 30;
+    cv::Mat img(kTop + kCells * kCell + 45, kLeftPad + kCells * kCell + 90, CV_8UC3,
+                cv::Scalar(255, 255, 255));
+    cv::Mat value(kCells, kCells, CV_8UC1);
+    cv::Mat back(kCells, kCells, CV_8UC1);
+    for (int i = 0; i < kCells; ++i) {      // centre
+        for (int j = 0; j < kCells; ++j) {  // left
+            const auto r = stereo::robot::evaluate_fis(j / 100.0, i / 100.0, right, params);
+            value.at<std::uint8_t>(kCells - 1 - j, i) =
+                static_cast<std::uint8_t>(std::lround((r.angle_deg + 30.0) / 60.0 * 255.0));
+            back.at<std::uint8_t>(kCells - 1 - j, i) = r.backwards > params.backwards_threshold;
+        }
+    }
+    cv::Mat colour;
+    cv::applyColorMap(value, colour, cv::COLORMAP_JET);
+    for (int r = 0; r < kCells; ++r) {
+        for (int c = 0; c < kCells; ++c) {
+            if (back.at<std::uint8_t>(r, c) != 0 && (r + c) % 4 == 0) {
+                colour.at<cv::Vec3b>(r, c) = cv::Vec3b(0, 0, 0);
+            }
+        }
+    }
+    cv::Mat big;
+    cv::resize(colour, big, cv::Size(kCells * kCell, kCells * kCell), 0, 0, cv::INTER_NEAREST);
+    big.copyTo(img(cv::Rect(kLeftPad, kTop, big.cols, big.rows)));
+    char title[96];
+    std::snprintf(title, sizeof title, "angle (deg); x: centre, y: left occupancy; right = %.1f",
+                  right);
+    cv::putText(img, title, {kLeftPad, 20}, cv::FONT_HERSHEY_SIMPLEX, 0.5, kBlack, 1, cv::LINE_AA);
+    for (int k = 0; k <= 4; ++k) {
+        char label[8];
+        std::snprintf(label, sizeof label, "%.2f", k / 4.0);
+        const int pos = k * (kCells - 1) * kCell / 4;
+        cv::putText(img, label, {kLeftPad + pos - 12, kTop + kCells * kCell + 16},
+                    cv::FONT_HERSHEY_SIMPLEX, 0.4, kBlack, 1, cv::LINE_AA);
+        cv::putText(img, label, {8, kTop + kCells * kCell - pos + 4}, cv::FONT_HERSHEY_SIMPLEX, 0.4,
+                    kBlack, 1, cv::LINE_AA);
+    }
+    cv::putText(img, "centre occupancy (y: left occupancy)",
+                {kLeftPad + 130, kTop + kCells * kCell + 36}, cv::FONT_HERSHEY_SIMPLEX, 0.45,
+                kBlack, 1, cv::LINE_AA);
+    // Colour bar.
+    const int bar_x = kLeftPad + kCells * kCell + 15;
+    for (int y = 0; y < kCells * kCell; ++y) {
+        cv::Mat one(1, 1, CV_8UC1,
+                    cv::Scalar(255 - static_cast<int>(y * 255.0 / (kCells * kCell - 1))));
+        cv::Mat c;
+        cv::applyColorMap(one, c, cv::COLORMAP_JET);
+        cv::line(img, {bar_x, kTop + y}, {bar_x + 15, kTop + y}, c.at<cv::Vec3b>(0, 0), 1);
+    }
+    for (const int deg : {30, 0, -30}) {
+        const int y = kTop + static_cast<int>((30 - deg) / 60.0 * (kCells * kCell - 1));
+        cv::putText(img, std::to_string(deg), {bar_x + 20, y + 4}, cv::FONT_HERSHEY_SIMPLEX, 0.4,
+                    kBlack, 1, cv::LINE_AA);
+    }
+    return img;
+}
+
+void save(const fs::path& path, const cv::Mat& img) {
+    if (!cv::imwrite(path.string(), img)) {
+        throw std::runtime_error("cannot write " + path.string());
+    }
+    std::cout << path.string() << '\n';
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc != 2) {
+        std::cerr << "usage: avoid_figures OUTPUT_FOLDER\n";
+        return 2;
+    }
+    try {
+        const fs::path out = argv[1];
+        const FisParams p;
+        save(out / "mf_input.png",
+             line_plot(
+                 "input MF (every window): fraction of pixels nearer than Z_safe", 0, 1, 0.1,
+                 {{"free", mf(p.free), {200, 80, 0}}, {"occupied", mf(p.occupied), {0, 0, 200}}}));
+        save(out / "mf_angle.png",
+             line_plot("output MF: direction angle (deg), negative = left", -30, 30, 10,
+                       {{"left", mf(p.left), {200, 80, 0}},
+                        {"forward", mf(p.forward), {0, 150, 0}},
+                        {"right", mf(p.right), {0, 0, 200}}}));
+        save(out / "mf_backwards.png",
+             line_plot("output MF: move backwards (red line: 0.65 threshold)", 0, 1, 0.1,
+                       {{"yes", mf(p.backwards_yes), {0, 0, 200}}}, p.backwards_threshold));
+        cv::Mat surfaces;
+        cv::hconcat(surface(0.0, p), surface(1.0, p), surfaces);
+        save(out / "control_surface.png", surfaces);
+    } catch (const std::exception& error) {
+        std::cerr << "avoid_figures: error: " << error.what() << '\n';
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,328 @@
+// Obstacle-avoidance decisions (thesis Sec. 4.1): the fuzzy system against hand calculations and
+// an independent brute-force evaluation, the threshold algorithm on synthetic disparity maps,
+// calibration files and sequences.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <numbers>
+#include <random>
+#include <stdexcept>
+
+#include "stereo_robot/calibration.hpp"
+#include "stereo_robot/decision.hpp"
+#include "stereo_robot/windows.hpp"
+#include "test_support.hpp"
+
+namespace stereo::robot {
+namespace {
+
+namespace fs = std::filesystem;
+
+// ---- independent evaluation of the FIS, written from the text ----------------------
+
+double g(double x, double c, double s) {
+    return std::exp(-(x - c) * (x - c) / (2 * s * s));
+}
+
+// Mean of a normal N(mu, s) truncated to [lo, hi]: the centroid of one unclipped Gaussian set.
+double truncated_normal_mean(double mu, double s, double lo, double hi) {
+    const auto phi = [](double z) {
+        return std::exp(-z * z / 2) / std::sqrt(2 * std::numbers::pi);
+    };
+    const auto cdf = [](double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); };
+    const double a = (lo - mu) / s;
+    const double b = (hi - mu) / s;
+    return mu + s * (phi(a) - phi(b)) / (cdf(b) - cdf(a));
+}
+
+struct Brute {
+    double angle;
+    double backwards;
+};
+
+// Trapezoidal centroid on a grid unlike the implementation's (n intervals, n odd).
+Brute brute_force(double l, double c, double r) {
+    const double free_c = g(c, 0, 0.065);
+    const double occ_c = g(c, 1, 0.25);
+    const double w1 = free_c;
+    const double w2 = std::min(occ_c, g(l, 0, 0.065));
+    const double w3 = std::min(occ_c, g(r, 0, 0.065));
+    const double w4 = std::min(std::min(g(l, 1, 0.25), occ_c), g(r, 1, 0.25));
+    const auto trapezoid = [](double lo, double hi, int n, auto mu) {
+        double num = 0;
+        double den = 0;
+        for (int i = 0; i <= n; ++i) {
+            const double x = lo + (hi - lo) * i / n;
+            const double weight = i == 0 || i == n ? 0.5 : 1.0;
+            num += weight * x * mu(x);
+            den += weight * mu(x);
+        }
+        return den > 0 ? num / den : (lo + hi) / 2;
+    };
+    const double angle = trapezoid(-30, 30, 12347, [&](double a) {
+        return std::max({std::min(w1, g(a, 0, 12.5)), std::min(w2, g(a, -19, 5.5)),
+                         std::min(w3, g(a, 19, 5.5))});
+    });
+    const double back =
+        trapezoid(0, 1, 3331, [&](double b) { return std::min(w4, g(b, 0.85, 0.23)); });
+    return {angle, back};
+}
+
+TEST(Fis, SymmetricInputGoesStraight) {
+    for (const double side : {0.0, 0.3, 1.0}) {
+        for (const double centre : {0.0, 0.1, 0.5, 0.9, 1.0}) {
+            const FisResult result = evaluate_fis(side, centre, side);
+            EXPECT_NEAR(result.angle_deg, 0.0, 1e-9) << side << " " << centre;
+        }
+    }
+    EXPECT_EQ(evaluate_fis(0, 0, 0).decision, Direction::forward);
+}
+
+TEST(Fis, MirrorSymmetry) {
+    std::mt19937 rng(test::test_seed());
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (int i = 0; i < 50; ++i) {
+        const double l = u(rng);
+        const double c = u(rng);
+        const double r = u(rng);
+        const FisResult a = evaluate_fis(l, c, r);
+        const FisResult b = evaluate_fis(r, c, l);
+        EXPECT_NEAR(a.angle_deg, -b.angle_deg, 1e-9);
+        EXPECT_NEAR(a.backwards, b.backwards, 1e-12);
+    }
+}
+
+TEST(Fis, TurnGrowsMonotonicallyAsTheCentreFills) {
+    double previous = evaluate_fis(0.0, 0.0, 1.0).angle_deg;
+    EXPECT_NEAR(previous, 0.0, 0.05);
+    for (int i = 1; i <= 40; ++i) {
+        const double angle = evaluate_fis(0.0, i / 40.0, 1.0).angle_deg;
+        EXPECT_LE(angle, previous + 1e-9) << "centre " << i / 40.0;
+        previous = angle;
+    }
+    EXPECT_LT(previous, -15.0);
+    EXPECT_EQ(evaluate_fis(0.0, 1.0, 1.0).decision, Direction::left);
+    EXPECT_EQ(evaluate_fis(1.0, 1.0, 0.0).decision, Direction::right);
+}
+
+TEST(Fis, HandComputedTurnLeft) {
+    // L free, C and R occupied: only the "left" rule fires (strength 1); the others are below
+    // 1e-51 or, for backwards, exp(-8) = 3.35e-4. The angle is the centroid of the whole left
+    // MF on [-30, 30], i.e. the mean of N(-19, 5.5) truncated there; the backwards set is
+    // clipped at 3.35e-4, below the MF's minimum exp(-6.83) on [0, 1], so it is flat: 0.5.
+    const FisResult result = evaluate_fis(0.0, 1.0, 1.0);
+    EXPECT_NEAR(result.angle_deg, truncated_normal_mean(-19, 5.5, -30, 30), 0.005);
+    EXPECT_NEAR(result.angle_deg, -18.696, 0.005);
+    EXPECT_NEAR(result.backwards, 0.5, 1e-9);
+    EXPECT_EQ(result.decision, Direction::left);
+}
+
+TEST(Fis, BacksOffWhenEverythingIsOccupied) {
+    // Only the backwards rule fires fully; its centroid is the mean of N(0.85, 0.23) on [0, 1].
+    // The sampled centroid (step 0.001, both end points) differs from the integral by ~2e-4,
+    // mostly from the end point b = 1 where the MF is still 0.81.
+    const FisResult result = evaluate_fis(1.0, 1.0, 1.0);
+    EXPECT_NEAR(result.backwards, truncated_normal_mean(0.85, 0.23, 0, 1), 5e-4);
+    EXPECT_NEAR(result.backwards, 0.750, 1e-3);
+    EXPECT_NEAR(result.angle_deg, 0.0, 1e-9);
+    EXPECT_EQ(result.decision, Direction::backwards);
+    // A free side keeps the robot turning instead.
+    EXPECT_NE(evaluate_fis(0.0, 1.0, 1.0).decision, Direction::backwards);
+}
+
+TEST(Fis, AgreesWithABruteForceEvaluation) {
+    std::mt19937 rng(test::test_seed() + 1);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (int i = 0; i < 40; ++i) {
+        const double l = u(rng);
+        const double c = u(rng);
+        const double r = u(rng);
+        const FisResult result = evaluate_fis(l, c, r);
+        const Brute expected = brute_force(l, c, r);
+        EXPECT_NEAR(result.angle_deg, expected.angle, 0.01) << l << " " << c << " " << r;
+        EXPECT_NEAR(result.backwards, expected.backwards, 1e-3) << l << " " << c << " " << r;
+    }
+}
+
+TEST(Fis, EmptyAggregateDefuzzifiesToTheMidpoint) {
+    FisParams params;
+    params.occupied = {1.0, 1e-3};  // exp(-5e5) underflows to exactly 0 at x = 0
+    const FisResult result = evaluate_fis(0.0, 0.0, 0.0, params);
+    EXPECT_EQ(result.firing[3], 0.0);
+    EXPECT_DOUBLE_EQ(result.backwards, 0.5);
+}
+
+TEST(Fis, RejectsFractionsOutsideTheUnitInterval) {
+    EXPECT_THROW(evaluate_fis(-0.01, 0, 0), std::invalid_argument);
+    EXPECT_THROW(evaluate_fis(0, 1.01, 0), std::invalid_argument);
+    EXPECT_THROW(evaluate_fis(0, 0, std::numeric_limits<double>::quiet_NaN()),
+                 std::invalid_argument);
+}
+
+// ---- windows and the threshold algorithm ----------------------------------------------------
+
+// A 200 x 100 map, all valid, background disparity `background`.
+DisparityMap flat_map(int background) {
+    DisparityMap map(200, 100);
+    std::fill(map.disparity.begin(), map.disparity.end(), background);
+    std::fill(map.valid.begin(), map.valid.end(), 1);
+    return map;
+}
+
+void paint(DisparityMap& map, int x0, int x1, int y0, int y1, int d) {
+    for (int y = y0; y < y1; ++y) {
+        for (int x = x0; x < x1; ++x) {
+            map.disparity[map.index(x, y)] = static_cast<std::uint8_t>(d);
+        }
+    }
+}
+
+TEST(Windows, SplitIntoThreeInsideTheBorder) {
+    const auto w = split_windows(100, 60, 20);
+    EXPECT_EQ(w[0].x0, 20);
+    EXPECT_EQ(w[0].x1, 40);
+    EXPECT_EQ(w[1].x1, 60);
+    EXPECT_EQ(w[2].x1, 80);
+    EXPECT_EQ(w[2].y0, 20);
+    EXPECT_EQ(w[2].y1, 40);
+    EXPECT_THROW(split_windows(42, 60, 20), std::invalid_argument);
+    EXPECT_THROW(split_windows(100, 40, 20), std::invalid_argument);
+}
+
+TEST(Windows, InvalidPixelsAreNotCountedAndAnEmptyWindowIsOccupied) {
+    DisparityMap map = flat_map(40);
+    const auto windows = split_windows(200, 100, 20);  // 53, 53, 54 wide, 60 high
+    for (int y = 0; y < 100; ++y) {
+        for (int x = 0; x < 100; ++x) {
+            map.valid[map.index(x, y)] = 0;  // left window and part of the centre invalid
+        }
+    }
+    const WindowStats left = window_stats(map, windows[0], 10);
+    EXPECT_EQ(left.valid, 0);
+    EXPECT_DOUBLE_EQ(left.occupancy(), 1.0);
+    const WindowStats centre = window_stats(map, windows[1], 10);
+    EXPECT_EQ(centre.valid, (windows[1].x1 - 100) * 60);
+    EXPECT_DOUBLE_EQ(centre.occupancy(), 1.0);
+    EXPECT_DOUBLE_EQ(centre.mean_disparity(0), 40.0);
+}
+
+TEST(Threshold, FreeCentreGoesStraight) {
+    DisparityMap map = flat_map(5);
+    paint(map, 20, 73, 20, 80, 50);  // the whole left window is near: irrelevant
+    const auto d = decide_threshold(map, 10, 64);
+    EXPECT_EQ(d.direction, Direction::forward);
+    EXPECT_DOUBLE_EQ(d.certainty, 0.0);
+}
+
+TEST(Threshold, CentreObstacleTurnsToTheFreerSide) {
+    // Windows: x in [20, 73), [73, 126), [126, 180); y in [20, 80).
+    DisparityMap map = flat_map(5);
+    paint(map, 73, 126, 20, 80, 40);   // centre fully near
+    paint(map, 126, 180, 20, 50, 25);  // right half-filled with a mid-range obstacle
+    auto d = decide_threshold(map, 10, 64);
+    EXPECT_EQ(d.direction, Direction::left);
+    // avL = 5, avR = (25 + 5) / 2 = 15: certainty (15 - 5) / 15.
+    EXPECT_NEAR(d.certainty, 2.0 / 3.0, 1e-12);
+
+    map = flat_map(5);
+    paint(map, 73, 126, 20, 80, 40);
+    paint(map, 20, 73, 20, 80, 20);  // left all at 20
+    d = decide_threshold(map, 10, 64);
+    EXPECT_EQ(d.direction, Direction::right);
+    EXPECT_NEAR(d.certainty, (20.0 - 5.0) / 20.0, 1e-12);
+}
+
+TEST(Threshold, RateDecidesAtTheBoundary) {
+    // 20 % of the centre window's 60 rows is 12 rows: below -> forward, at or above -> turn.
+    DisparityMap map = flat_map(5);
+    paint(map, 73, 126, 20, 31, 40);  // 11 rows
+    EXPECT_EQ(decide_threshold(map, 10, 64).direction, Direction::forward);
+    paint(map, 73, 126, 31, 32, 40);  // 12 rows
+    EXPECT_NE(decide_threshold(map, 10, 64).direction, Direction::forward);
+    EXPECT_THROW(decide_threshold(map, 10, 64, {1.5, 20}), std::invalid_argument);
+}
+
+TEST(Fuzzy, ObstaclesLeftCentreRight) {
+    DisparityMap map = flat_map(5);
+    paint(map, 73, 126, 20, 80, 40);
+    paint(map, 126, 180, 20, 80, 40);
+    EXPECT_EQ(decide_fuzzy(map, 10).fis.decision, Direction::left);
+    paint(map, 20, 73, 20, 80, 40);
+    EXPECT_EQ(decide_fuzzy(map, 10).fis.decision, Direction::backwards);
+    map = flat_map(5);
+    paint(map, 20, 73, 20, 80, 40);
+    EXPECT_EQ(decide_fuzzy(map, 10).fis.decision, Direction::forward);
+}
+
+// ---- calibration and sequences ---------------------------------------------------------------
+
+class TempDir : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() /
+               ("stereo_robot_test_" + std::to_string(std::random_device{}()));
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    fs::path write(const std::string& name, const std::string& text) {
+        const fs::path path = dir_ / name;
+        fs::create_directories(path.parent_path());
+        std::ofstream(path) << text;
+        return path;
+    }
+    fs::path dir_;
+};
+
+TEST_F(TempDir, KittiCalibration) {
+    const fs::path plain = write("calib.txt",
+                                 "707.0912 0 601.8873 0 0 707.0912 183.1104 0 0 0 1 0\n"
+                                 "707.0912 0 601.8873 -379.8145 0 707.0912 183.1104 0 0 0 1 0\n");
+    const StereoGeometry g = load_calibration(plain);
+    EXPECT_DOUBLE_EQ(g.focal_px, 707.0912);
+    EXPECT_NEAR(g.baseline, 0.5372, 1e-4);
+    EXPECT_NEAR(disparity_threshold(g, 10.0), 37.98145, 1e-5);
+    EXPECT_NEAR(disparity_threshold(g, 10.0, 2), 18.990725, 1e-5);
+
+    const fs::path labelled = write("labelled.txt",
+                                    "P2: 700 0 600 45 0 700 180 0 0 0 1 0\n"
+                                    "P0: 700 0 600 0 0 700 180 0 0 0 1 0\n"
+                                    "P1: 700 0 600 -350 0 700 180 0 0 0 1 0\n");
+    EXPECT_NEAR(load_calibration(labelled).baseline, 0.5, 1e-12);
+
+    EXPECT_THROW(load_calibration(dir_ / "nope.txt"), std::runtime_error);
+    EXPECT_THROW(load_calibration(write("bad.txt", "hello\n1 2 3\n")), std::invalid_argument);
+    EXPECT_THROW(disparity_threshold(g, 0.0), std::invalid_argument);
+    EXPECT_THROW(disparity_threshold({0.0, 0.5}, 5.0), std::invalid_argument);
+}
+
+TEST_F(TempDir, SequencesFromFoldersAndLists) {
+    write("l/000001.png", "x");
+    write("l/000000.png", "x");
+    write("l/notes.txt", "x");
+    write("r/000000.png", "x");
+    write("r/000001.png", "x");
+    write("r/000002.png", "x");
+    const auto pairs = pairs_from_folders(dir_ / "l", dir_ / "r");
+    ASSERT_EQ(pairs.size(), 2U);
+    EXPECT_EQ(pairs[0].first, dir_ / "l" / "000000.png");
+    EXPECT_EQ(pairs[1].second, dir_ / "r" / "000001.png");
+
+    fs::create_directories(dir_ / "empty");
+    EXPECT_THROW(pairs_from_folders(dir_ / "empty", dir_ / "r"), std::runtime_error);
+    EXPECT_THROW(pairs_from_folders(dir_ / "missing", dir_ / "r"), std::runtime_error);
+
+    const auto listed =
+        pairs_from_list(write("list.txt", "# frames\na.png b.png\n\n/x/c.png d.png\n"));
+    ASSERT_EQ(listed.size(), 2U);
+    EXPECT_EQ(listed[0].first, dir_ / "a.png");
+    EXPECT_EQ(listed[1].first, fs::path("/x/c.png"));
+    EXPECT_THROW(pairs_from_list(write("one.txt", "a.png\n")), std::invalid_argument);
+    EXPECT_THROW(pairs_from_list(write("none.txt", "# nothing\n")), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace stereo::robot
