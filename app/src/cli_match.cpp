@@ -11,6 +11,7 @@
 
 #include "cli.hpp"
 #include "stereo/edge_frontend.hpp"
+#include "stereo/hls/match.hpp"
 #include "stereo/pipeline.hpp"
 #include "stereo/reference.hpp"
 #include "stereo_app/io.hpp"
@@ -40,6 +41,9 @@ DisparityMap run_engine(const std::string& engine, const app::ImagePair& pair,
     }
     if (engine == "float") {
         return floating::match(pair.left, pair.right, params);
+    }
+    if (engine == "hls") {  // the HLS kernels in C simulation, bit-exact with the model
+        return hls::match(pair.left, pair.right, params);
     }
     return match(pair.left, pair.right, params);
 }
@@ -137,8 +141,10 @@ void add_match_command(CLI::App& app) {
     command->add_option("--color", options->colour, "Also write a colour-mapped view");
     command->add_option("--downscale", options->downscale, "Shrink both images by integer F first")
         ->capture_default_str();
-    command->add_option("--engine", options->engine, "model (bit-exact), naive or float")
-        ->check(CLI::IsMember({"model", "naive", "float"}))
+    command
+        ->add_option("--engine", options->engine,
+                     "model (bit-exact), naive, float or hls (C-simulated HLS kernels, bit-exact)")
+        ->check(CLI::IsMember({"model", "naive", "float", "hls"}))
         ->capture_default_str();
     command->add_flag("--json", options->json, "Print the summary as one JSON object");
     command->add_option("--frontend", options->frontend, "model, or edges (LoG + truncated AD)")

@@ -1,0 +1,71 @@
+// cost: absolute-difference matching cost over RGB, all NDISP disparities of one pixel per step
+// (model: stereo::cost, docs/fixed-point.md stage 1; RTL: rtl/stereo_cost.sv).
+//
+// The right pixels of the row pass through a delay line, so that at the step of left pixel x it
+// holds R(x-1) .. R(x-NDISP+1). Lane d is
+//   |Lr - Rr(x-d)| + |Lg - Rg(x-d)| + |Lb - Rb(x-d)|,  or fx::kCostOutside where x - d < 0,
+// decided from the coordinate alone, so the delay line is never cleared between rows or frames.
+// Latency: 1 pixel step (the output register).
+#pragma once
+
+#include "stereo/hls/types.hpp"
+
+namespace stereo::hls {
+
+template <int NDISP>
+class cost {
+    static_assert(NDISP >= 1 && NDISP <= fx::kMaxDisparities);
+
+  public:
+    using value_type = cost_t;
+    static constexpr int kLanes = NDISP;
+    using Lanes = cost_t[NDISP];
+
+    // Clears the coordinates only ("no pixel"), like the RTL's reset; data stays.
+    void reset() {
+        out_x_ = 0;
+        out_y_ = kNoPixel;
+    }
+
+    void step(coord_t in_x, coord_t in_y, const Rgb& left, const Rgb& right) {
+#pragma HLS INLINE
+#pragma HLS ARRAY_PARTITION variable = history_ complete
+#pragma HLS ARRAY_PARTITION variable = out_data_ complete
+        for (int d = 0; d < NDISP; ++d) {
+            const Rgb& match = d == 0 ? right : history_[d - 1];
+            out_data_[d] =
+                in_x - d < 0 ? static_cast<cost_t>(fx::kCostOutside) : rgb_cost(left, match);
+        }
+        for (int i = kHistory - 1; i > 0; --i) {
+            history_[i] = history_[i - 1];
+        }
+        history_[0] = right;
+        out_x_ = in_x;
+        out_y_ = in_y;
+    }
+
+    coord_t out_x() const {
+        return out_x_;
+    }
+    coord_t out_y() const {
+        return out_y_;
+    }
+    const Lanes& out_data() const {
+        return out_data_;
+    }
+
+  private:
+    static constexpr int kHistory = NDISP > 1 ? NDISP - 1 : 1;  // right pixels besides this one
+
+    static cost_t rgb_cost(const Rgb& a, const Rgb& b) {
+        const auto diff = [](int p, int q) { return p >= q ? p - q : q - p; };
+        return static_cast<cost_t>(diff(a.r, b.r) + diff(a.g, b.g) + diff(a.b, b.b));
+    }
+
+    Rgb history_[kHistory] = {};  // history_[i] = R(x-1-i) at the step of pixel x
+    Lanes out_data_ = {};
+    coord_t out_x_ = 0;
+    coord_t out_y_ = kNoPixel;
+};
+
+}  // namespace stereo::hls

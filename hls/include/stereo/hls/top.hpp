@@ -1,0 +1,180 @@
+// stereo_hls_top: the whole pipeline as one streaming loop, one pixel step per iteration
+// (RTL: rtl/stereo_top.sv; architecture in docs/rtl.md).
+//
+// `pipeline` holds the five stages, each a small object with its line buffers and registers;
+// stereo_hls_top runs one frame through them: W*H iterations that read one input beat each,
+// then flush iterations that push zero pixels whose coordinates continue the raster, until the
+// frame's last result has entered the WTA's register. Every iteration that leaves a frame pixel
+// in that register writes one output beat, so exactly W*H beats come out, in raster order.
+//
+// As in the RTL, every stage carries the coordinates of its data and decides zero padding from
+// them, so nothing is cleared between frames: the stage objects keep their RAM contents, only
+// their coordinate registers are set to "no pixel" at the start of a frame.
+#pragma once
+
+#include "stereo/hls/aggregate.hpp"
+#include "stereo/hls/ca_rule1.hpp"
+#include "stereo/hls/ca_rule2.hpp"
+#include "stereo/hls/cost.hpp"
+#include "stereo/hls/stream.hpp"
+#include "stereo/hls/types.hpp"
+#include "stereo/hls/wta.hpp"
+
+namespace stereo::hls {
+
+// Status bits returned by stereo_hls_top, as the RTL's sticky status port.
+inline constexpr status_t kStatusEolMisplaced = 1U << 0;   // eol not exactly at the row ends
+inline constexpr status_t kStatusSofMisplaced = 1U << 1;   // sof not exactly on the first beat
+inline constexpr status_t kStatusConfigClamped = 1U << 2;  // configuration out of range
+
+// Pixel steps from a pixel entering the cost stage to its result leaving the WTA register, R =
+// WINDOW/2 of the synthesised window (docs/rtl.md): cost 1, aggregate R*W + R + 2, each CA rule
+// W + 2, WTA 1.
+template <int WINDOW>
+constexpr int pipeline_delay(int width) {
+    constexpr int R = WINDOW / 2;
+    return (R + 2) * width + R + 8;
+}
+
+// Iterations of one frame: the pixels, then the flush. The result of the last pixel is in the
+// WTA register after its own step plus pipeline_delay - 1 more (the RTL's D counts the output
+// beat's cycle too).
+template <int WINDOW>
+constexpr int frame_steps(int width, int height) {
+    return width * height + pipeline_delay<WINDOW>(width) - 1;
+}
+
+// The state of stereo_hls_top: the stages of rtl/stereo_top.sv. Large (the line buffers are
+// WIDTH columns of whole disparity columns): a static object in a synthesis top, a heap object
+// in C-simulation hosts.
+template <int WIDTH, int HEIGHT, int NDISP, int WINDOW>
+class pipeline {
+    static_assert(WIDTH >= 1 && WIDTH <= kMaxFrameSide && HEIGHT >= 1 && HEIGHT <= kMaxFrameSide);
+
+  public:
+    static constexpr int kWidth = WIDTH;
+    static constexpr int kHeight = HEIGHT;
+    static constexpr int kNdisp = NDISP;
+    static constexpr int kWindow = WINDOW;
+
+    // Every stage's coordinate registers to "no pixel"; data registers and RAMs keep their
+    // contents (stale data is masked by coordinates).
+    void reset() {
+        cost_.reset();
+        aggregate_.reset();
+        rule1_.reset();
+        rule2_.reset();
+        wta_.reset();
+    }
+
+    // One pixel step of every stage with the pixel pair of raster position (x, y). The stages
+    // are stepped from the last to the first, so that each reads the output register of the
+    // one before it as it was before this step: the registers between the RTL's modules.
+    void step(coord_t x, coord_t y, const Rgb& left, const Rgb& right,
+              const FrameConfig<WINDOW>& cfg) {
+#pragma HLS INLINE
+        wta_.step(rule2_.out_x(), rule2_.out_y(), rule2_.out_data(), cfg.width, cfg.height,
+                  cfg.ndisp, cfg.radius, cfg.use_ca);
+        rule2_.step(rule1_.out_x(), rule1_.out_y(), rule1_.out_data(), cfg.width, cfg.height,
+                    cfg.use_ca);
+        rule1_.step(aggregate_.out_x(), aggregate_.out_y(), aggregate_.out_data(), cfg.width,
+                    cfg.height, cfg.ndisp, cfg.use_ca);
+        aggregate_.step(cost_.out_x(), cost_.out_y(), cost_.out_data(), cfg.width, cfg.height,
+                        cfg.kernel);
+        cost_.step(x, y, left, right);
+    }
+
+    // The WTA register, which is the output register.
+    coord_t out_x() const {
+        return wta_.out_x();
+    }
+    coord_t out_y() const {
+        return wta_.out_y();
+    }
+    disparity_t out_disparity() const {
+        return wta_.out_disparity();
+    }
+    bool out_valid() const {
+        return wta_.out_valid();
+    }
+
+  private:
+    cost<NDISP> cost_;
+    aggregate<WIDTH, NDISP, WINDOW> aggregate_;
+    ca_rule1<WIDTH, NDISP> rule1_;
+    ca_rule2<WIDTH, NDISP> rule2_;
+    wta<NDISP> wta_;
+};
+
+// The configuration as the stages will use it: out-of-range values clamped as the RTL does
+// (size 0 or above the maximum becomes the maximum), with kStatusConfigClamped set.
+template <int WIDTH, int HEIGHT, int NDISP, int WINDOW>
+FrameConfig<WINDOW> sanitise(const FrameConfig<WINDOW>& requested, status_t& status) {
+#pragma HLS INLINE
+    FrameConfig<WINDOW> cfg = requested;
+    const auto clamp = [&status](int& value, int low, int high) {
+        if (value < low || value > high) {
+            value = high;
+            status |= kStatusConfigClamped;
+        }
+    };
+    clamp(cfg.width, 1, WIDTH);
+    clamp(cfg.height, 1, HEIGHT);
+    clamp(cfg.ndisp, 1, NDISP);
+    clamp(cfg.radius, 0, WINDOW / 2);
+    return cfg;
+}
+
+// One frame: cfg.width * cfg.height beats from `in`, as many to `out`. Returns the status bits.
+// Unlike the RTL, which drops beats until a start of frame, a call reads exactly one frame's
+// beats; misplaced sof/eol flags are reported, not resynchronised on.
+template <int WIDTH, int HEIGHT, int NDISP, int WINDOW>
+status_t stereo_hls_top(stream<InputBeat>& in, stream<OutputBeat>& out,
+                        const FrameConfig<WINDOW>& requested,
+                        pipeline<WIDTH, HEIGHT, NDISP, WINDOW>& state) {
+#pragma HLS INLINE
+    constexpr int kMaxSteps = frame_steps<WINDOW>(WIDTH, HEIGHT);
+    status_t status = 0;
+    const FrameConfig<WINDOW> cfg = sanitise<WIDTH, HEIGHT, NDISP>(requested, status);
+    state.reset();
+    const int pixels = cfg.width * cfg.height;
+    const int steps = frame_steps<WINDOW>(cfg.width, cfg.height);
+    int x = 0;  // raster position of this step's input; y >= height while flushing
+    int y = 0;
+frame_loop:
+    for (int step = 0; step < steps; ++step) {
+#pragma HLS PIPELINE II = 1
+#pragma HLS LOOP_TRIPCOUNT min = 1 max = kMaxSteps
+        // Loops inside the stages have constant bounds and are unrolled by the pipelining: all
+        // NDISP lanes and all window taps of one pixel in one iteration.
+        InputBeat beat;  // flush steps push zero pixels
+        if (step < pixels) {
+            beat = in.read();
+            if (beat.eol != (x == cfg.width - 1)) {
+                status |= kStatusEolMisplaced;
+            }
+            if (beat.sof != (step == 0)) {
+                status |= kStatusSofMisplaced;
+            }
+        }
+        state.step(to_coord(x), to_coord(y), beat.left, beat.right, cfg);
+        const int out_x = state.out_x();
+        const int out_y = state.out_y();
+        if (inside(out_x, out_y, cfg.width, cfg.height)) {
+            OutputBeat result;
+            result.disparity = state.out_disparity();
+            result.valid = state.out_valid();
+            result.sof = out_x == 0 && out_y == 0;
+            result.eol = out_x == cfg.width - 1;
+            out.write(result);
+        }
+        if (++x == cfg.width) {
+            x = 0;
+            ++y;
+        }
+    }
+    (void)kMaxSteps;  // used by the trip-count pragma only
+    return status;
+}
+
+}  // namespace stereo::hls

@@ -1,0 +1,76 @@
+#include "stereo/hls/match.hpp"
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "stereo/hls/host.hpp"
+#include "stereo/hls/stream.hpp"
+#include "stereo/hls/top.hpp"
+
+namespace stereo::hls {
+namespace {
+
+template <int NDISP, int WINDOW>
+DisparityMap run_variant(const Image& left, const Image& right, const MatchParams& params) {
+    using Pipeline = pipeline<kHostMaxWidth, kHostMaxHeight, NDISP, WINDOW>;
+    // Megabytes of line buffers: on the heap, never on the stack.
+    const auto state = std::make_unique<Pipeline>();
+    const FrameConfig<WINDOW> cfg = frame_config<WINDOW>(params, left.width, left.height);
+    stream<InputBeat> in("match.in");
+    stream<OutputBeat> out("match.out");
+    push_frame(left, right, in);
+    const status_t status =
+        stereo_hls_top<kHostMaxWidth, kHostMaxHeight, NDISP, WINDOW>(in, out, cfg, *state);
+    if (status != 0 || !in.empty()) {
+        throw std::logic_error("HLS top reported status " + std::to_string(status) + " with " +
+                               std::to_string(in.size()) + " input beats left");
+    }
+    DisparityMap map = collect_frame(out, left.width, left.height);
+    if (!out.empty()) {
+        throw std::logic_error("HLS top wrote " + std::to_string(out.size()) +
+                               " output beats too many");
+    }
+    return map;
+}
+
+template <int NDISP>
+DisparityMap run_window(const Image& left, const Image& right, const MatchParams& params,
+                        const Variant& variant) {
+    return variant.window == 11 ? run_variant<NDISP, 11>(left, right, params)
+                                : run_variant<NDISP, 31>(left, right, params);
+}
+
+}  // namespace
+
+Variant variant_for(const MatchParams& params) {
+    if (params.ndisp < 1 || params.ndisp > 256 || params.window < 1 || params.window > 31) {
+        throw std::invalid_argument("no HLS variant for ndisp " + std::to_string(params.ndisp) +
+                                    " and window " + std::to_string(params.window));
+    }
+    const int ndisp = params.ndisp <= 16 ? 16 : params.ndisp <= 64 ? 64 : 256;
+    const int window = params.window <= 11 ? 11 : 31;
+    return {kHostMaxWidth, kHostMaxHeight, ndisp, window};
+}
+
+DisparityMap match(const Image& left, const Image& right, const MatchParams& params) {
+    check_pair(left, right);
+    validate(params, left.width, left.height);
+    if (left.width > kHostMaxWidth || left.height > kHostMaxHeight) {
+        throw std::invalid_argument(
+            "image " + std::to_string(left.width) + "x" + std::to_string(left.height) +
+            " is larger than the HLS variants' " + std::to_string(kHostMaxWidth) + "x" +
+            std::to_string(kHostMaxHeight));
+    }
+    const Variant variant = variant_for(params);
+    switch (variant.ndisp) {
+        case 16:
+            return run_window<16>(left, right, params, variant);
+        case 64:
+            return run_window<64>(left, right, params, variant);
+        default:
+            return run_window<256>(left, right, params, variant);
+    }
+}
+
+}  // namespace stereo::hls

@@ -1,0 +1,792 @@
+// The HLS kernels (hls/) against the golden model, bit for bit: every stage object streamed one
+// pixel step at a time against the model's stage function, and the streaming top against
+// stereo::match on random, odd-sized, grey, constant and extreme images and the Middlebury pairs.
+// Random tests print their seed; STEREO_SEED=<n> replays it.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <iostream>
+#include <memory>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "stereo/hls/aggregate.hpp"
+#include "stereo/hls/ca_rule1.hpp"
+#include "stereo/hls/ca_rule2.hpp"
+#include "stereo/hls/cost.hpp"
+#include "stereo/hls/host.hpp"
+#include "stereo/hls/match.hpp"
+#include "stereo/hls/stream.hpp"
+#include "stereo/hls/top.hpp"
+#include "stereo/hls/wta.hpp"
+#include "stereo/pipeline.hpp"
+#include "stereo_app/middlebury.hpp"
+#include "stereo_hls_synth_top.hpp"
+#include "test_support.hpp"
+
+namespace stereo {
+namespace {
+
+using Value = Dsi::Value;
+
+std::mt19937 seeded(std::uint32_t salt) {
+    return std::mt19937(test::test_seed() ^ salt);
+}
+
+// ---- comparison with messages ------------------------------------------------------------
+
+testing::AssertionResult same_volume(const Dsi& expected, const Dsi& actual, int ndisp) {
+    if (expected.width() != actual.width() || expected.height() != actual.height()) {
+        return testing::AssertionFailure() << "size differs";
+    }
+    std::ostringstream first;
+    long mismatches = 0;
+    for (int d = 0; d < ndisp; ++d) {
+        for (int y = 0; y < expected.height(); ++y) {
+            for (int x = 0; x < expected.width(); ++x) {
+                if (expected.at(x, y, d) != actual.at(x, y, d) && ++mismatches <= 10) {
+                    first << "\n  (x " << x << ", y " << y << ", d " << d << "): hls "
+                          << actual.at(x, y, d) << ", model " << expected.at(x, y, d);
+                }
+            }
+        }
+    }
+    if (mismatches == 0) {
+        return testing::AssertionSuccess();
+    }
+    return testing::AssertionFailure() << mismatches << " cells differ" << first.str();
+}
+
+testing::AssertionResult same_map(const DisparityMap& expected, const DisparityMap& actual) {
+    if (expected.width != actual.width || expected.height != actual.height) {
+        return testing::AssertionFailure() << "size differs";
+    }
+    std::ostringstream first;
+    long mismatches = 0;
+    for (int y = 0; y < expected.height; ++y) {
+        for (int x = 0; x < expected.width; ++x) {
+            const std::size_t i = expected.index(x, y);
+            if ((expected.disparity[i] != actual.disparity[i] ||
+                 expected.valid[i] != actual.valid[i]) &&
+                ++mismatches <= 10) {
+                first << "\n  (x " << x << ", y " << y << "): hls " << int{actual.disparity[i]}
+                      << (actual.valid[i] ? "" : " (invalid)") << ", model "
+                      << int{expected.disparity[i]} << (expected.valid[i] ? "" : " (invalid)");
+            }
+        }
+    }
+    if (mismatches == 0) {
+        return testing::AssertionSuccess();
+    }
+    return testing::AssertionFailure()
+           << mismatches << " of " << expected.disparity.size() << " pixels differ" << first.str();
+}
+
+// ---- streaming one stage ----------------------------------------------------------------
+
+// Steps `stage` over a width x height frame in raster order, then over flush steps whose
+// coordinates continue the raster, exactly as stereo_hls_top does. feed(x, y) performs one step
+// (y >= height while flushing); take(x, y) reads the output register whenever it holds a frame
+// pixel. Checks that every frame pixel leaves exactly once and in raster order, and returns the
+// number of flush steps it took: the stage's latency minus one.
+template <typename Stage, typename Feed, typename Take>
+int stream_frame(Stage& stage, int width, int height, Feed feed, Take take) {
+    stage.reset();
+    const int pixels = width * height;
+    int emitted = 0;
+    int step = 0;
+    for (; emitted < pixels; ++step) {
+        if (step > pixels + 40 * (width + 40)) {
+            ADD_FAILURE() << "only " << emitted << " of " << pixels << " pixels left the stage";
+            break;
+        }
+        feed(step % width, step / width);
+        const int x = stage.out_x();
+        const int y = stage.out_y();
+        if (x >= 0 && x < width && y >= 0 && y < height) {
+            EXPECT_EQ(y * width + x, emitted) << "output out of raster order at step " << step;
+            take(x, y);
+            ++emitted;
+        }
+    }
+    return step - pixels;
+}
+
+hls::Rgb rgb_at(const Image& image, int x, int y) {
+    const int c1 = image.channels == 3 ? 1 : 0;
+    const int c2 = image.channels == 3 ? 2 : 0;
+    return hls::Rgb{image.at(x, y, 0), image.at(x, y, c1), image.at(x, y, c2)};
+}
+
+// A volume whose planes sit around their own level with small noise (so that the CA rules' 2|n
+// - c| < c tests often agree) and 10 % outliers anywhere in [0, max] (so that they often fail).
+Dsi banded_volume(int width, int height, int ndisp, int max, std::mt19937& rng) {
+    Dsi volume(width, height, ndisp);
+    std::uniform_int_distribution<int> level(max / 8, max / 2);
+    std::uniform_int_distribution<int> noise(-max / 20, max / 20);
+    std::uniform_int_distribution<int> any(0, max);
+    std::bernoulli_distribution outlier(0.1);
+    for (int d = 0; d < ndisp; ++d) {
+        const int base = level(rng);
+        for (auto& cell : volume.plane(d)) {
+            const int v = outlier(rng) ? any(rng) : base + noise(rng);
+            cell = static_cast<Value>(std::clamp(v, 0, max));
+        }
+    }
+    return volume;
+}
+
+Dsi random_volume(int width, int height, int ndisp, int low, int high, std::mt19937& rng) {
+    Dsi volume(width, height, ndisp);
+    std::uniform_int_distribution<int> value(low, high);
+    for (int d = 0; d < ndisp; ++d) {
+        for (auto& cell : volume.plane(d)) {
+            cell = static_cast<Value>(value(rng));
+        }
+    }
+    return volume;
+}
+
+// Streams `volume` through a volume stage and returns its output volume with `out_planes`
+// planes. Lanes d >= volume.ndisp() and the flush steps carry random garbage in [0, max], the
+// range of real data, which the stage must never use. step(x, y, in) performs one step.
+template <int LANES, typename In, typename Stage, typename Step>
+Dsi stream_volume(Stage& stage, const Dsi& volume, int out_planes, Step step, int max,
+                  std::mt19937& rng, int* flush_steps) {
+    const int width = volume.width();
+    const int height = volume.height();
+    Dsi out(width, height, out_planes);
+    std::uniform_int_distribution<int> garbage(0, max);
+    In in[LANES];
+    const int flushes = stream_frame(
+        stage, width, height,
+        [&](int x, int y) {
+            for (int d = 0; d < LANES; ++d) {
+                in[d] = y < height && d < volume.ndisp() ? static_cast<In>(volume.at(x, y, d))
+                                                         : static_cast<In>(garbage(rng));
+            }
+            step(static_cast<hls::coord_t>(x), static_cast<hls::coord_t>(y), in);
+        },
+        [&](int x, int y) {
+            for (int d = 0; d < out_planes; ++d) {
+                out.at(x, y, d) = stage.out_data()[d];
+            }
+        });
+    if (flush_steps != nullptr) {
+        *flush_steps = flushes;
+    }
+    return out;
+}
+
+template <int WINDOW>
+void centred_kernel(int window, double sigma, hls::tap_t (&kernel)[WINDOW]) {
+    const std::vector<std::int32_t> taps = gaussian_kernel(window, sigma);
+    std::fill(std::begin(kernel), std::end(kernel), hls::tap_t{0});
+    for (int i = 0; i < window; ++i) {
+        kernel[(WINDOW - window) / 2 + i] = static_cast<hls::tap_t>(taps[i]);
+    }
+}
+
+// ---- stage: cost --------------------------------------------------------------------------
+
+template <int NDISP>
+void check_cost(const Image& left, const Image& right, std::mt19937& rng) {
+    const auto stage = std::make_unique<hls::cost<NDISP>>();
+    std::uniform_int_distribution<int> garbage(0, 255);
+    const auto noise = [&] {
+        return hls::Rgb{static_cast<hls::pixel_t>(garbage(rng)),
+                        static_cast<hls::pixel_t>(garbage(rng)),
+                        static_cast<hls::pixel_t>(garbage(rng))};
+    };
+    // Two frames back to back through one object: the delay line is never cleared.
+    for (int frame = 0; frame < 2; ++frame) {
+        Dsi out(left.width, left.height, NDISP);
+        const int flushes = stream_frame(
+            *stage, left.width, left.height,
+            [&](int x, int y) {
+                const bool in_frame = y < left.height;
+                stage->step(static_cast<hls::coord_t>(x), static_cast<hls::coord_t>(y),
+                            in_frame ? rgb_at(left, x, y) : noise(),
+                            in_frame ? rgb_at(right, x, y) : noise());
+            },
+            [&](int x, int y) {
+                for (int d = 0; d < NDISP; ++d) {
+                    out.at(x, y, d) = stage->out_data()[d];
+                }
+            });
+        EXPECT_EQ(flushes + 1, 1) << "latency";
+        EXPECT_TRUE(same_volume(cost(left, right, NDISP), out, NDISP))
+            << left.width << "x" << left.height << "x" << left.channels << ", NDISP " << NDISP;
+    }
+}
+
+TEST(HlsCost, EqualsModelColourAndGrey) {
+    auto rng = seeded(1);
+    for (const auto& [width, height, channels] :
+         {std::tuple{37, 23, 3}, std::tuple{37, 23, 1}, std::tuple{5, 3, 3}, std::tuple{1, 1, 3},
+          std::tuple{70, 9, 3}}) {
+        const Image left = test::random_image(width, height, channels, rng);
+        const Image right = test::random_image(width, height, channels, rng);
+        check_cost<1>(left, right, rng);
+        check_cost<16>(left, right, rng);
+        check_cost<64>(left, right, rng);  // more lanes than columns in most frames
+    }
+}
+
+// ---- stage: aggregate ----------------------------------------------------------------------
+
+template <int WIDTH, int NDISP, int WINDOW>
+void check_aggregate(std::mt19937& rng, const std::vector<int>& windows) {
+    // One object for all frames: sizes change, the line buffers are never cleared.
+    const auto stage = std::make_unique<hls::aggregate<WIDTH, NDISP, WINDOW>>();
+    constexpr int R = WINDOW / 2;
+    const std::vector<std::pair<int, int>> sizes = {{37, 23}, {4, 3}, {1, 5}, {5, 1}, {30, 40}};
+    for (const int window : windows) {
+        for (const auto& [width, height] : sizes) {
+            for (const bool extreme : {false, true}) {
+                const Dsi costs =
+                    extreme ? random_volume(width, height, NDISP, fx::kCostMax, fx::kCostMax, rng)
+                            : random_volume(width, height, NDISP, 0, fx::kCostMax, rng);
+                const double sigma = window <= 3 ? 1.0 : fx::kDefaultSigma;
+                hls::tap_t kernel[WINDOW];
+                centred_kernel<WINDOW>(window, sigma, kernel);
+                int flushes = 0;
+                const Dsi out = stream_volume<NDISP, hls::cost_t>(
+                    *stage, costs, NDISP,
+                    [&](hls::coord_t x, hls::coord_t y, const hls::cost_t(&in)[NDISP]) {
+                        stage->step(x, y, in, width, height, kernel);
+                    },
+                    fx::kCostMax, rng, &flushes);
+                EXPECT_TRUE(
+                    same_volume(aggregate(costs, gaussian_kernel(window, sigma)), out, NDISP))
+                    << width << "x" << height << ", NDISP " << NDISP << ", WINDOW " << WINDOW
+                    << ", window " << window << (extreme ? ", all costs maximal" : "");
+                EXPECT_EQ(flushes + 1, R * width + R + 2) << "latency R*W + R + 2";
+            }
+        }
+    }
+}
+
+TEST(HlsAggregate, EqualsModelForFullAndCentredWindows) {
+    auto rng = seeded(2);
+    check_aggregate<64, 8, 5>(rng, {5, 3, 1});
+    check_aggregate<64, 4, 11>(rng, {11, 7});  // frames narrower than the radius too
+    check_aggregate<64, 3, 1>(rng, {1});
+    check_aggregate<64, 2, 31>(rng, {31, 13});
+}
+
+// ---- stages: ca_rule1, ca_rule2 ----------------------------------------------------------
+
+const std::vector<std::pair<int, int>>& rule_sizes() {
+    static const std::vector<std::pair<int, int>> sizes = {{37, 23}, {2, 2}, {1, 1},  {1, 7},
+                                                           {7, 1},   {3, 3}, {40, 30}};
+    return sizes;
+}
+
+// Aggregated volumes of a real match (shifted random images) besides the synthetic ones.
+Dsi realistic_volume(int width, int height, int ndisp, std::mt19937& rng) {
+    const Image left = test::random_image(width, height, 3, rng);
+    const Image right = test::shifted_copy(left, 2, 10, rng);
+    return aggregate(cost(left, right, ndisp), gaussian_kernel(5, 2.0));
+}
+
+template <int WIDTH, int NDISP, typename Stage, typename Model, typename Step>
+void check_rule(Stage& stage, Model model, Step step, std::mt19937& rng, const char* name) {
+    for (const auto& [width, height] : rule_sizes()) {
+        for (int ndisp : {NDISP, std::max(1, NDISP - 3)}) {  // lanes >= ndisp hold garbage
+            for (int kind = 0; kind < 2; ++kind) {
+                const Dsi volume = kind == 0 ? banded_volume(width, height, ndisp, fx::kAggMax, rng)
+                                             : realistic_volume(width, height, ndisp, rng);
+                for (const bool use_ca : {true, false}) {
+                    int flushes = 0;
+                    const Dsi out = stream_volume<NDISP, hls::agg_t>(
+                        stage, volume, ndisp,
+                        [&](hls::coord_t x, hls::coord_t y, const hls::agg_t(&in)[NDISP]) {
+                            step(x, y, in, width, height, ndisp, use_ca);
+                        },
+                        fx::kAggMax, rng, &flushes);
+                    EXPECT_TRUE(same_volume(use_ca ? model(volume) : volume, out, ndisp))
+                        << name << " " << width << "x" << height << ", NDISP " << NDISP
+                        << ", ndisp " << ndisp << (kind == 0 ? ", banded" : ", realistic")
+                        << (use_ca ? "" : ", CA off");
+                    EXPECT_EQ(flushes + 1, width + 2) << name << " latency W + 2";
+                }
+            }
+        }
+    }
+}
+
+TEST(HlsCaRule1, EqualsModel) {
+    auto rng = seeded(3);
+    const auto eight = std::make_unique<hls::ca_rule1<64, 8>>();
+    check_rule<64, 8>(
+        *eight, [](const Dsi& v) { return ca_rule1(v); },
+        [&](hls::coord_t x, hls::coord_t y, const hls::agg_t(&in)[8], int w, int h, int n,
+            bool ca) { eight->step(x, y, in, w, h, n, ca); },
+        rng, "ca_rule1");
+    const auto one = std::make_unique<hls::ca_rule1<64, 1>>();  // no d-neighbour at all
+    check_rule<64, 1>(
+        *one, [](const Dsi& v) { return ca_rule1(v); },
+        [&](hls::coord_t x, hls::coord_t y, const hls::agg_t(&in)[1], int w, int h, int n,
+            bool ca) { one->step(x, y, in, w, h, n, ca); },
+        rng, "ca_rule1");
+}
+
+TEST(HlsCaRule2, EqualsModel) {
+    auto rng = seeded(4);
+    const auto eight = std::make_unique<hls::ca_rule2<64, 8>>();
+    check_rule<64, 8>(
+        *eight, [](const Dsi& v) { return ca_rule2(v); },
+        [&](hls::coord_t x, hls::coord_t y, const hls::agg_t(&in)[8], int w, int h, int, bool ca) {
+            eight->step(x, y, in, w, h, ca);
+        },
+        rng, "ca_rule2");
+}
+
+// ---- stage: wta -------------------------------------------------------------------------
+
+template <int NDISP>
+void check_wta(std::mt19937& rng) {
+    const auto stage = std::make_unique<hls::wta<NDISP>>();
+    for (const auto& [width, height] : {std::pair{37, 23}, std::pair{12, 12}, std::pair{3, 3}}) {
+        for (int ndisp : {NDISP, std::max(1, NDISP - 3)}) {
+            // Few distinct values, so ties are common; lanes >= ndisp carry 0, which would win.
+            const Dsi volume = random_volume(width, height, ndisp, 0, 12, rng);
+            for (int radius = 0; radius <= 3; ++radius) {
+                for (const bool use_ca : {true, false}) {
+                    DisparityMap out(width, height);
+                    hls::agg_t in[NDISP];
+                    const int flushes = stream_frame(
+                        *stage, width, height,
+                        [&](int x, int y) {
+                            for (int d = 0; d < NDISP; ++d) {
+                                in[d] = y < height && d < ndisp
+                                            ? static_cast<hls::agg_t>(volume.at(x, y, d))
+                                            : hls::agg_t{0};
+                            }
+                            stage->step(static_cast<hls::coord_t>(x), static_cast<hls::coord_t>(y),
+                                        in, width, height, ndisp, radius, use_ca);
+                        },
+                        [&](int x, int y) {
+                            out.disparity[out.index(x, y)] = stage->out_disparity();
+                            out.valid[out.index(x, y)] = stage->out_valid() ? 1 : 0;
+                        });
+                    EXPECT_TRUE(
+                        same_map(wta(volume, InvalidBorder{radius + (use_ca ? 1 : 0)}), out))
+                        << width << "x" << height << ", NDISP " << NDISP << ", ndisp " << ndisp
+                        << ", radius " << radius << (use_ca ? ", CA" : "");
+                    EXPECT_EQ(flushes + 1, 1) << "latency";
+                }
+            }
+        }
+    }
+}
+
+TEST(HlsWta, EqualsModelWithTiesAndBorders) {
+    auto rng = seeded(5);
+    check_wta<1>(rng);
+    check_wta<5>(rng);  // not a power of two: padded leaves
+    check_wta<16>(rng);
+}
+
+// ---- all stages on a real pair ----------------------------------------------------------
+
+// Each stage fed the model's output of the stage before it, on Tsukuba: volumes with real
+// structure (and the Middlebury ndisp and default window) rather than random ones.
+TEST(HlsStages, EachStageEqualsModelOnTsukuba) {
+    const auto& scene = app::middlebury2003_scenes().front();
+    const auto data = app::load_scene(test::data_dir(), scene);
+    if (!data) {
+        GTEST_SKIP() << "Middlebury " << scene.name << " not found under " << test::data_dir();
+    }
+    constexpr int kWidth = 512;
+    constexpr int kNdisp = 16;
+    constexpr int kWindow = fx::kDefaultWindow;
+    ASSERT_EQ(scene.ndisp, kNdisp);
+    const Image& left = data->pair.left;
+    const Image& right = data->pair.right;
+    const int width = left.width;
+    const int height = left.height;
+    ASSERT_LE(width, kWidth);
+    auto rng = seeded(15);
+
+    check_cost<kNdisp>(left, right, rng);
+    const Dsi costs = cost(left, right, kNdisp);
+
+    const auto aggregator = std::make_unique<hls::aggregate<kWidth, kNdisp, kWindow>>();
+    hls::tap_t kernel[kWindow];
+    centred_kernel<kWindow>(kWindow, fx::kDefaultSigma, kernel);
+    int flushes = 0;
+    const Dsi aggregated = aggregate(costs, gaussian_kernel(kWindow, fx::kDefaultSigma));
+    EXPECT_TRUE(
+        same_volume(aggregated,
+                    stream_volume<kNdisp, hls::cost_t>(
+                        *aggregator, costs, kNdisp,
+                        [&](hls::coord_t x, hls::coord_t y, const hls::cost_t(&in)[kNdisp]) {
+                            aggregator->step(x, y, in, width, height, kernel);
+                        },
+                        fx::kCostMax, rng, &flushes),
+                    kNdisp))
+        << "aggregate";
+
+    const auto rule1 = std::make_unique<hls::ca_rule1<kWidth, kNdisp>>();
+    const Dsi after_rule1 = ca_rule1(aggregated);
+    EXPECT_TRUE(same_volume(after_rule1,
+                            stream_volume<kNdisp, hls::agg_t>(
+                                *rule1, aggregated, kNdisp,
+                                [&](hls::coord_t x, hls::coord_t y, const hls::agg_t(&in)[kNdisp]) {
+                                    rule1->step(x, y, in, width, height, kNdisp, true);
+                                },
+                                fx::kAggMax, rng, &flushes),
+                            kNdisp))
+        << "ca_rule1";
+
+    const auto rule2 = std::make_unique<hls::ca_rule2<kWidth, kNdisp>>();
+    const Dsi after_rule2 = ca_rule2(after_rule1);
+    EXPECT_TRUE(same_volume(after_rule2,
+                            stream_volume<kNdisp, hls::agg_t>(
+                                *rule2, after_rule1, kNdisp,
+                                [&](hls::coord_t x, hls::coord_t y, const hls::agg_t(&in)[kNdisp]) {
+                                    rule2->step(x, y, in, width, height, true);
+                                },
+                                fx::kAggMax, rng, &flushes),
+                            kNdisp))
+        << "ca_rule2";
+
+    const auto winner = std::make_unique<hls::wta<kNdisp>>();
+    const MatchParams params{kNdisp, kWindow, fx::kDefaultSigma, true};
+    DisparityMap out(width, height);
+    stream_frame(
+        *winner, width, height,
+        [&](int x, int y) {
+            hls::agg_t in[kNdisp];
+            for (int d = 0; d < kNdisp; ++d) {
+                in[d] = y < height ? static_cast<hls::agg_t>(after_rule2.at(x, y, d)) : 0;
+            }
+            winner->step(static_cast<hls::coord_t>(x), static_cast<hls::coord_t>(y), in, width,
+                         height, kNdisp, kWindow / 2, true);
+        },
+        [&](int x, int y) {
+            out.disparity[out.index(x, y)] = winner->out_disparity();
+            out.valid[out.index(x, y)] = winner->out_valid() ? 1 : 0;
+        });
+    const DisparityMap expected = wta(after_rule2, invalid_border(params));
+    EXPECT_TRUE(same_map(expected, out)) << "wta";
+    EXPECT_TRUE(same_map(match(left, right, params), out)) << "the stages compose to match()";
+}
+
+// ---- the streaming top ---------------------------------------------------------------------
+
+template <int WIDTH, int HEIGHT, int NDISP, int WINDOW>
+DisparityMap run_top(hls::pipeline<WIDTH, HEIGHT, NDISP, WINDOW>& state, const Image& left,
+                     const Image& right, const MatchParams& params,
+                     hls::status_t expected_status = 0) {
+    hls::stream<hls::InputBeat> in("test.in");
+    hls::stream<hls::OutputBeat> out("test.out");
+    hls::push_frame(left, right, in);
+    const hls::status_t status = hls::stereo_hls_top<WIDTH, HEIGHT, NDISP, WINDOW>(
+        in, out, hls::frame_config<WINDOW>(params, left.width, left.height), state);
+    EXPECT_EQ(status, expected_status);
+    EXPECT_TRUE(in.empty());
+    EXPECT_EQ(out.size(), static_cast<std::size_t>(left.width) * left.height)
+        << "one output beat per input pixel";
+    return hls::collect_frame(out, left.width, left.height);
+}
+
+TEST(HlsTop, LastResultLeavesAfterTheDocumentedLatency) {
+    // docs/rtl.md: D = (R + 2) * W + R + 8 pixel steps, the sum of the stage latencies
+    // 1 + (R*W + R + 2) + 2 (W + 2) + 1 measured one by one above.
+    constexpr int kWindow = 5;
+    constexpr int R = kWindow / 2;
+    const int width = 20;
+    const int height = 10;
+    EXPECT_EQ(hls::pipeline_delay<kWindow>(width), 1 + (R * width + R + 2) + 2 * (width + 2) + 1);
+    auto rng = seeded(6);
+    const Image left = test::random_image(width, height, 3, rng);
+    const Image right = test::shifted_copy(left, 2, 5, rng);
+    const MatchParams params{8, kWindow, 2.0, true};
+    const auto cfg = hls::frame_config<kWindow>(params, width, height);
+    const auto state = std::make_unique<hls::pipeline<64, 64, 8, kWindow>>();
+    state->reset();
+    int last_step = -1;
+    for (int step = 0; step < width * height + 3 * hls::pipeline_delay<kWindow>(width); ++step) {
+        const int x = step % width;
+        const int y = step / width;
+        const bool in_frame = y < height;
+        state->step(static_cast<hls::coord_t>(x), static_cast<hls::coord_t>(y),
+                    in_frame ? rgb_at(left, x, y) : hls::Rgb{},
+                    in_frame ? rgb_at(right, x, y) : hls::Rgb{}, cfg);
+        if (state->out_x() == width - 1 && state->out_y() == height - 1) {
+            last_step = step;
+        }
+    }
+    EXPECT_EQ(last_step + 1, hls::frame_steps<kWindow>(width, height));
+}
+
+TEST(HlsTop, BackToBackFramesOfDifferentSizesAndConfigurations) {
+    auto rng = seeded(7);
+    // One state for every frame, as the static object of a synthesised top: a taller frame
+    // after a shorter one, a narrower after a wider, CA on and off, smaller windows.
+    const auto state = std::make_unique<hls::pipeline<64, 64, 16, 11>>();
+    const std::vector<std::tuple<int, int, MatchParams>> frames = {
+        {40, 30, MatchParams{16, 11, fx::kDefaultSigma, true}},
+        {25, 45, MatchParams{9, 5, 1.5, true}},
+        {64, 14, MatchParams{16, 3, 1.0, false}},
+        {40, 30, MatchParams{1, 1, 1.0, true}},
+        {40, 30, MatchParams{16, 11, fx::kDefaultSigma, true}},
+    };
+    for (const auto& [width, height, params] : frames) {
+        const Image left = test::random_image(width, height, 3, rng);
+        const Image right = test::shifted_copy(left, 3, 12, rng);
+        EXPECT_TRUE(same_map(match(left, right, params), run_top(*state, left, right, params)))
+            << width << "x" << height << " ndisp " << params.ndisp << " window " << params.window;
+    }
+}
+
+TEST(HlsTop, ReportsMisplacedFramingAndClampsTheConfiguration) {
+    auto rng = seeded(8);
+    const int width = 12;
+    const int height = 8;
+    const Image left = test::random_image(width, height, 3, rng);
+    const Image right = test::shifted_copy(left, 1, 5, rng);
+    const auto state = std::make_unique<hls::pipeline<32, 32, 4, 3>>();
+    const MatchParams params{4, 3, 1.0, true};
+    auto cfg = hls::frame_config<3>(params, width, height);
+
+    // Framing flags are checked and reported; the data is still processed.
+    hls::stream<hls::InputBeat> in;
+    hls::stream<hls::OutputBeat> out;
+    hls::push_frame(left, right, in);
+    std::vector<hls::InputBeat> beats;
+    while (!in.empty()) {
+        beats.push_back(in.read());
+    }
+    beats[0].sof = false;
+    beats[5].eol = true;
+    for (const auto& beat : beats) {
+        in.write(beat);
+    }
+    EXPECT_EQ(hls::stereo_hls_top(in, out, cfg, *state),
+              hls::kStatusEolMisplaced | hls::kStatusSofMisplaced);
+    ASSERT_EQ(out.size(), static_cast<std::size_t>(width * height));
+    // The output framing comes from the coordinates, not from the input flags.
+    EXPECT_TRUE(out.read().sof);
+    EXPECT_FALSE(out.read().sof);
+
+    // Out-of-range ndisp and radius are clamped to the synthesised maximum, as in the RTL.
+    cfg.ndisp = 9;
+    cfg.radius = 4;
+    hls::stream<hls::OutputBeat> clamped;
+    hls::push_frame(left, right, in);
+    EXPECT_EQ(hls::stereo_hls_top(in, clamped, cfg, *state), hls::kStatusConfigClamped);
+    EXPECT_TRUE(same_map(match(left, right, MatchParams{4, 3, 1.0, true}),
+                         hls::collect_frame(clamped, width, height)));
+}
+
+// ---- stereo::hls::match against stereo::match ---------------------------------------------
+
+void expect_match(const Image& left, const Image& right, const MatchParams& params,
+                  const std::string& what) {
+    EXPECT_TRUE(same_map(match(left, right, params), hls::match(left, right, params)))
+        << what << ": " << left.width << "x" << left.height << "x" << left.channels << " ndisp "
+        << params.ndisp << " window " << params.window << " sigma " << params.sigma
+        << (params.use_ca ? " CA" : " no CA");
+}
+
+Image crop(const Image& image, int x0, int y0, int width, int height) {
+    Image out(width, height, image.channels);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            for (int c = 0; c < image.channels; ++c) {
+                out.at(x, y, c) = image.at(x0 + x, y0 + y, c);
+            }
+        }
+    }
+    return out;
+}
+
+TEST(HlsMatch, SmallRandomImagesOverTheParameters) {
+    auto rng = seeded(9);
+    const Image left = test::random_image(37, 23, 3, rng);
+    const Image right = test::shifted_copy(left, 3, 8, rng);
+    for (const int ndisp : {1, 7, 16, 17, 36}) {
+        for (const int window : {1, 3, 5, 11, 13}) {
+            for (const bool use_ca : {true, false}) {
+                const double sigma = window == 3 ? 0.8 : fx::kDefaultSigma;
+                expect_match(left, right, MatchParams{ndisp, window, sigma, use_ca}, "random");
+            }
+        }
+    }
+}
+
+TEST(HlsMatch, OddSizedRandomCrop631x479) {
+    auto rng = seeded(10);
+    const Image full = test::random_image(640, 480, 3, rng);
+    const Image shifted = test::shifted_copy(full, 5, 6, rng);
+    const Image left = crop(full, 7, 1, 631, 479);
+    const Image right = crop(shifted, 7, 1, 631, 479);
+    expect_match(left, right, MatchParams{16, 11, fx::kDefaultSigma, true}, "631x479");
+    expect_match(left, right, MatchParams{12, 7, 2.0, false}, "631x479");
+}
+
+TEST(HlsMatch, GreyImages) {
+    auto rng = seeded(11);
+    for (const auto& [width, height, ndisp, window] :
+         {std::tuple{53, 41, 12, 5}, std::tuple{101, 77, 24, 11}}) {
+        const Image left = test::random_image(width, height, 1, rng);
+        const Image right = test::shifted_copy(left, 4, 10, rng);
+        expect_match(left, right, MatchParams{ndisp, window, fx::kDefaultSigma, true}, "grey");
+        expect_match(left, right, MatchParams{ndisp, window, fx::kDefaultSigma, false}, "grey");
+    }
+}
+
+TEST(HlsMatch, ConstantAndExtremeImages) {
+    for (const auto& [l, r] :
+         {std::pair{0, 0}, std::pair{255, 255}, std::pair{0, 255}, std::pair{255, 0}}) {
+        Image left(40, 30, 3);
+        Image right(40, 30, 3);
+        std::fill(left.pixels.begin(), left.pixels.end(), static_cast<std::uint8_t>(l));
+        std::fill(right.pixels.begin(), right.pixels.end(), static_cast<std::uint8_t>(r));
+        expect_match(left, right, MatchParams{8, 5, 2.0, true}, "constant");
+        expect_match(left, right, MatchParams{8, 11, fx::kDefaultSigma, false}, "constant");
+    }
+    // A 0/255 checkerboard against its inverse: every cost is 0 or the maximum, 765.
+    Image left(45, 33, 3);
+    Image right(45, 33, 3);
+    for (int y = 0; y < left.height; ++y) {
+        for (int x = 0; x < left.width; ++x) {
+            for (int c = 0; c < 3; ++c) {
+                left.at(x, y, c) = (x + y) % 2 == 0 ? 255 : 0;
+                right.at(x, y, c) = (x + y) % 2 == 0 ? 0 : 255;
+            }
+        }
+    }
+    expect_match(left, right, MatchParams{9, 3, 1.0, true}, "checkerboard");
+    expect_match(left, right, MatchParams{16, 11, fx::kDefaultSigma, true}, "checkerboard");
+}
+
+TEST(HlsMatch, LargestWindowAndMostLanes) {
+    auto rng = seeded(12);
+    const Image left = test::random_image(90, 70, 3, rng);
+    const Image right = test::shifted_copy(left, 6, 8, rng);
+    expect_match(left, right, MatchParams{20, 31, 6.0, true}, "window 31");
+    expect_match(left, right, MatchParams{20, 13, fx::kDefaultSigma, true}, "window 13 of 31");
+    const Image wide_left = test::random_image(300, 40, 3, rng);
+    const Image wide_right = test::shifted_copy(wide_left, 40, 8, rng);
+    expect_match(wide_left, wide_right, MatchParams{256, 5, 2.0, true}, "256 lanes");
+    expect_match(wide_left, wide_right, MatchParams{200, 31, 6.0, false}, "256 lanes, window 31");
+}
+
+TEST(HlsMatch, MiddleburyPairs) {
+    int found = 0;
+    for (const auto& scene : app::middlebury2003_scenes()) {
+        const auto data = app::load_scene(test::data_dir(), scene);
+        if (!data) {
+            continue;
+        }
+        ++found;
+        const app::ImagePair& pair = data->pair;
+        std::cout << "[ hls ] " << scene.name << " " << pair.left.width << "x" << pair.left.height
+                  << " ndisp " << scene.ndisp << "\n";
+        expect_match(pair.left, pair.right,
+                     MatchParams{scene.ndisp, fx::kDefaultWindow, fx::kDefaultSigma, true},
+                     scene.name);
+        if (scene.name == "tsukuba") {
+            expect_match(pair.left, pair.right,
+                         MatchParams{scene.ndisp, fx::kDefaultWindow, fx::kDefaultSigma, false},
+                         scene.name);
+        }
+    }
+    if (found == 0) {
+        GTEST_SKIP() << "no Middlebury 2003 pair under " << test::data_dir();
+    }
+}
+
+TEST(HlsMatch, RejectsWhatTheModelRejects) {
+    auto rng = seeded(13);
+    const Image left = test::random_image(30, 20, 3, rng);
+    const Image right = test::random_image(30, 20, 3, rng);
+    for (const auto& params : {MatchParams{8, 4, 2.0, true}, MatchParams{30, 5, 2.0, true},
+                               MatchParams{0, 5, 2.0, true}, MatchParams{8, 33, 2.0, true},
+                               MatchParams{8, 19, 3.0, true}, MatchParams{8, 5, -1.0, true}}) {
+        EXPECT_THROW((void)match(left, right, params), std::invalid_argument);
+        EXPECT_THROW((void)hls::match(left, right, params), std::invalid_argument);
+    }
+    const Image grey = test::random_image(30, 20, 1, rng);
+    const Image smaller = test::random_image(29, 20, 3, rng);
+    EXPECT_THROW((void)hls::match(left, grey, MatchParams{}), std::invalid_argument);
+    EXPECT_THROW((void)hls::match(left, smaller, MatchParams{}), std::invalid_argument);
+    // Wider than the compiled variants: the model takes it, the host wrapper refuses.
+    const Image wide(hls::kHostMaxWidth + 1, 8, 1);
+    EXPECT_THROW((void)hls::match(wide, wide, MatchParams{4, 3, 1.0, false}),
+                 std::invalid_argument);
+}
+
+TEST(HlsMatch, PicksTheSmallestCoveringVariant) {
+    const auto variant = [](int ndisp, int window) {
+        const hls::Variant v = hls::variant_for(MatchParams{ndisp, window, 2.0, true});
+        return std::pair{v.ndisp, v.window};
+    };
+    EXPECT_EQ(variant(1, 1), std::pair(16, 11));
+    EXPECT_EQ(variant(16, 11), std::pair(16, 11));
+    EXPECT_EQ(variant(17, 13), std::pair(64, 31));
+    EXPECT_EQ(variant(64, 31), std::pair(64, 31));
+    EXPECT_EQ(variant(65, 5), std::pair(256, 11));
+    EXPECT_EQ(variant(256, 11), std::pair(256, 11));
+}
+
+// ---- the synthesisable top and the stream -------------------------------------------------
+
+TEST(HlsSynthTop, FramesBackToBackEqualModel) {
+    namespace synth = hls::synth;
+    auto rng = seeded(14);
+    const Image full_left = test::random_image(synth::kWidth, synth::kHeight, 3, rng);
+    const Image full_right = test::shifted_copy(full_left, 9, 4, rng);
+    const std::vector<std::tuple<Image, Image, MatchParams>> frames = {
+        {full_left, full_right,
+         MatchParams{synth::kNdisp, synth::kWindow, fx::kDefaultSigma, true}},
+        {crop(full_left, 3, 5, 100, 60), crop(full_right, 3, 5, 100, 60),
+         MatchParams{16, 5, 2.0, false}},
+    };
+    for (const auto& [left, right, params] : frames) {
+        const auto cfg = hls::frame_config<synth::kWindow>(params, left.width, left.height);
+        hls::stream<hls::InputBeat> in;
+        hls::stream<hls::OutputBeat> out;
+        hls::push_frame(left, right, in);
+        EXPECT_EQ(stereo_hls_synth_top(
+                      in, out, static_cast<std::uint16_t>(cfg.width),
+                      static_cast<std::uint16_t>(cfg.height), static_cast<std::uint16_t>(cfg.ndisp),
+                      static_cast<std::uint8_t>(cfg.radius), cfg.kernel, cfg.use_ca),
+                  0);
+        EXPECT_TRUE(
+            same_map(match(left, right, params), hls::collect_frame(out, left.width, left.height)))
+            << left.width << "x" << left.height;
+    }
+}
+
+TEST(HlsStream, IsAFifo) {
+    hls::stream<int> fifo("fifo");
+    EXPECT_TRUE(fifo.empty());
+    EXPECT_FALSE(fifo.full());
+    for (int i = 0; i < 5; ++i) {
+        fifo.write(i);
+    }
+    EXPECT_EQ(fifo.size(), 5U);
+    int value = -1;
+    fifo.read(value);
+    EXPECT_EQ(value, 0);
+    EXPECT_EQ(fifo.read(), 1);
+    EXPECT_TRUE(fifo.read_nb(value));
+    EXPECT_EQ(value, 2);
+    (void)fifo.read();
+    (void)fifo.read();
+    EXPECT_TRUE(fifo.empty());
+    EXPECT_FALSE(fifo.read_nb(value));
+    EXPECT_THROW((void)fifo.read(), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace stereo
