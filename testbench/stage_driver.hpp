@@ -40,11 +40,11 @@ namespace stereo::tb {
 
 // ---- Ports -----------------------------------------------------------------------------------
 
-using sim::WidePort;  // port bit fields: sim/port_bits.hpp
 using sim::get_bit;
 using sim::get_bits;
 using sim::put_bits;
 using sim::set_bit;
+using sim::WidePort;  // port bit fields: sim/port_bits.hpp
 
 // Random values on the low `bits` bits.
 template <typename Port>
