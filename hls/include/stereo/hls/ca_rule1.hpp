@@ -56,10 +56,9 @@ class ca_rule1 {
                     sum += window[slot][d];
                 }
             }
-            const product_t product = static_cast<product_t>(sum) * fx::kMean9Mul +
-                                      (product_t{1} << (fx::kMean9Shift - 1));
+            // round(sum / 9) by the constants header's own multiply-and-shift.
             out_data_[d] = use_ca && (below || above)
-                               ? static_cast<agg_t>(product >> fx::kMean9Shift)
+                               ? static_cast<agg_t>(fx::mean9(static_cast<product_t>(sum)))
                                : centre;
         }
         out_x_ = centre_x;

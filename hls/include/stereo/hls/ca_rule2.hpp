@@ -47,10 +47,9 @@ class ca_rule2 {
                     ++count;
                 }
             }
-            const product_t product = static_cast<product_t>(centre) * fx::kDiv13Mul +
-                                      (product_t{1} << (fx::kDiv13Shift - 1));
+            // round(centre / 1.3) by the constants header's own multiply-and-shift.
             out_data_[d] = use_ca && count >= fx::kRule2MinCount
-                               ? static_cast<agg_t>(product >> fx::kDiv13Shift)
+                               ? static_cast<agg_t>(fx::div13(static_cast<product_t>(centre)))
                                : centre;
         }
         out_x_ = centre_x;
