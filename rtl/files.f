@@ -7,3 +7,4 @@ stereo_ca_rule1.sv
 stereo_ca_rule2.sv
 stereo_wta.sv
 stereo_top.sv
+stereo_synth_top.sv

@@ -12,7 +12,11 @@
 module stereo_aggregate #(
     parameter int WIDTH  = 64,  // longest row
     parameter int NDISP  = 16,  // disparities in parallel
-    parameter int WINDOW = 5    // odd window side (largest runtime window)
+    parameter int WINDOW = 5,   // odd window side (largest runtime window)
+    // 1: the taps come from cfg_kernel at run time (generic multipliers). 0: the taps are the
+    // model's default kernel for WINDOW (fx_pkg::default_tap), constants that synthesis turns
+    // into shifts and adds; cfg_kernel is then ignored.
+    parameter bit RUNTIME_KERNEL = 1'b1
 ) (
     input  wire logic                                           clk,
     input  wire logic                                           rst,  // clears coordinates only
@@ -22,7 +26,9 @@ module stereo_aggregate #(
     input  wire logic        [NDISP*fx_pkg::COST_BITS-1:0]  in_data,
     input  wire logic        [15:0]                             cfg_width,
     input  wire logic        [15:0]                             cfg_height,
+    /* verilator lint_off UNUSEDSIGNAL */  // ignored with RUNTIME_KERNEL = 0
     input  wire logic        [WINDOW*fx_pkg::TAP_BITS-1:0]  cfg_kernel,
+    /* verilator lint_on UNUSEDSIGNAL */
     output      logic signed [15:0]                             out_x,
     output      logic signed [15:0]                             out_y,
     output      logic        [NDISP*fx_pkg::AGG_BITS-1:0]   out_data
@@ -37,6 +43,17 @@ module stereo_aggregate #(
   localparam int COLUMN_BITS = NDISP * COST_BITS;  // one pixel's costs
   localparam int V_BITS = NDISP * VSUM_BITS;       // one pixel's vertical sums
   localparam logic signed [15:0] NO_PIXEL = -16'sd32768;
+
+  logic [WINDOW*TAP_BITS-1:0] kernel;
+  generate
+    if (RUNTIME_KERNEL) begin : g_runtime_kernel
+      assign kernel = cfg_kernel;
+    end else begin : g_constant_kernel
+      for (genvar i = 0; i < WINDOW; i++) begin : g_tap
+        assign kernel[i*TAP_BITS+:TAP_BITS] = TAP_BITS'(fx_pkg::default_tap(WINDOW, i));
+      end
+    end
+  endgenerate
 
   // ---- vertical pass -------------------------------------------------------------------
   logic [((R > 0) ? 2 * R : 1)*COLUMN_BITS-1:0] rows_above;  // row in_y-1-k at slot k
@@ -63,8 +80,8 @@ module stereo_aggregate #(
   logic [WINDOW-1:0] row_inside;
   always_comb begin
     for (int j = 0; j < WINDOW; j++) begin
-      row_inside[j] = 32'(in_y) - 2 * R + j >= 0 &&
-                      32'(in_y) - 2 * R + j < $signed(32'(cfg_height));
+      row_inside[j] = 18'(in_y) + 18'(j - 2 * R) >= 18'sd0 &&
+                      18'(in_y) + 18'(j - 2 * R) < $signed(18'(cfg_height));
     end
   end
 
@@ -80,7 +97,7 @@ module stereo_aggregate #(
           if (j == 2 * R) cost = in_data[d*COST_BITS +: COST_BITS];
           else cost = rows_above[(2*R-1-j)*COLUMN_BITS + d*COST_BITS +: COST_BITS];
           if (row_inside[j]) begin
-            sum = sum + VSUM_BITS'(cost) * VSUM_BITS'(cfg_kernel[j*TAP_BITS +: TAP_BITS]);
+            sum = sum + VSUM_BITS'(cost) * VSUM_BITS'(kernel[j*TAP_BITS +: TAP_BITS]);
           end
         end
         vertical_d[d*VSUM_BITS +: VSUM_BITS] = sum;
@@ -90,22 +107,12 @@ module stereo_aggregate #(
 
   // Vertical sums of the incoming column, for centre row in_y - R.
   logic [V_BITS-1:0] vertical_q;
-  logic signed [15:0] vertical_x, vertical_y;
   always_ff @(posedge clk) begin
     if (ce) vertical_q <= vertical_d;
   end
-  always_ff @(posedge clk) begin
-    if (rst) begin
-      vertical_x <= '0;
-      vertical_y <= NO_PIXEL;
-    end else if (ce) begin
-      vertical_x <= in_x;
-      vertical_y <= in_y - 16'(R);
-    end
-  end
 
   // ---- horizontal pass -----------------------------------------------------------------
-  // history[k] = vertical sums of column vertical_x - 1 - k (same row, or masked below).
+  // history[k] = vertical sums of the k+1-th column before the newest (same row, or masked).
   logic [((R > 0) ? 2 * R : 1)*V_BITS-1:0] history;
   generate
     if (R > 0) begin : g_history_shift
@@ -117,25 +124,40 @@ module stereo_aggregate #(
     end
   endgenerate
 
-  // Centre of the horizontal window: R pixels behind in raster order, wrapping to earlier rows
-  // (more than one when the frame is narrower than R).
-  int centre_x, centre_y;
+  // Geometry of the horizontal window whose newest column enters vertical_q at this step:
+  // its centre is R pixels behind (in_x, in_y - R) in raster order, wrapping to earlier rows
+  // (more than one when the frame is narrower than R), and column_inside says which of its
+  // WINDOW columns lie inside the frame. It is computed from this step's coordinates and
+  // registered with vertical_q, so that the coordinate arithmetic runs beside the vertical sums
+  // instead of in front of the horizontal ones (the critical path before, docs/synthesis.md).
+  logic signed [17:0] next_centre_x, next_centre_y;  // 18 bits: positions, no-pixel code, wrap
+  logic [WINDOW-1:0] next_column_inside;
   always_comb begin
-    centre_x = 32'(vertical_x) - R;
-    centre_y = 32'(vertical_y);
+    next_centre_x = 18'(in_x) - 18'(R);
+    next_centre_y = 18'(in_y) - 18'(R);
     for (int wrap = 0; wrap < ((R > 0) ? R : 1); wrap++) begin
-      if (centre_x < 0) begin
-        centre_x = centre_x + $signed(32'(cfg_width));
-        centre_y = centre_y - 1;
+      if (next_centre_x < 18'sd0) begin
+        next_centre_x = next_centre_x + $signed(18'(cfg_width));
+        next_centre_y = next_centre_y - 18'sd1;
       end
+    end
+    for (int i = 0; i < WINDOW; i++) begin
+      next_column_inside[i] = next_centre_x + 18'(i - R) >= 18'sd0 &&
+                              next_centre_x + 18'(i - R) < $signed(18'(cfg_width));
     end
   end
 
-  // Which of the WINDOW columns around the centre lie inside the frame (shared by all d).
+  logic signed [15:0] centre_x, centre_y;
   logic [WINDOW-1:0] column_inside;
-  always_comb begin
-    for (int i = 0; i < WINDOW; i++) begin
-      column_inside[i] = centre_x - R + i >= 0 && centre_x - R + i < $signed(32'(cfg_width));
+  always_ff @(posedge clk) begin
+    if (rst) begin
+      centre_x <= '0;
+      centre_y <= NO_PIXEL;
+      column_inside <= '0;
+    end else if (ce) begin
+      centre_x <= 16'(next_centre_x);
+      centre_y <= 16'(next_centre_y);
+      column_inside <= next_column_inside;
     end
   end
 
@@ -151,7 +173,7 @@ module stereo_aggregate #(
           if (i == 2 * R) v = vertical_q[d*VSUM_BITS +: VSUM_BITS];
           else v = history[(2*R-1-i)*V_BITS + d*VSUM_BITS +: VSUM_BITS];
           if (column_inside[i]) begin
-            sum = sum + WSUM_BITS'(v) * WSUM_BITS'(cfg_kernel[i*TAP_BITS +: TAP_BITS]);
+            sum = sum + WSUM_BITS'(v) * WSUM_BITS'(kernel[i*TAP_BITS +: TAP_BITS]);
           end
         end
         sum = sum + WSUM_BITS'(1 << (AGG_SHIFT - 1));
@@ -168,8 +190,8 @@ module stereo_aggregate #(
       out_x <= '0;
       out_y <= NO_PIXEL;
     end else if (ce) begin
-      out_x <= 16'(centre_x);
-      out_y <= 16'(centre_y);
+      out_x <= centre_x;
+      out_y <= centre_y;
     end
   end
 endmodule

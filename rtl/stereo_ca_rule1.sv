@@ -52,11 +52,13 @@ module stereo_ca_rule1 #(
       .in_frame(in_frame)
   );
 
-  // 2|n - c| < c, exact.
+  // 2|n - c| < c  <=>  c < 2n < 3c, exactly in integers: two comparisons instead of a
+  // subtraction, an absolute value and a comparison (3c is shared by all neighbours).
   function automatic logic agrees(input logic [BITS-1:0] neighbour, input logic [BITS-1:0] centre);
-    logic [BITS:0] difference;
-    difference = (neighbour >= centre) ? {1'b0, neighbour - centre} : {1'b0, centre - neighbour};
-    agrees = {difference, 1'b0} < {2'b0, centre};
+    logic [BITS+1:0] twice_neighbour, centre_wide;
+    twice_neighbour = {1'b0, neighbour, 1'b0};
+    centre_wide = {2'b0, centre};
+    agrees = centre_wide < twice_neighbour && twice_neighbour < centre_wide + {1'b0, centre, 1'b0};
   endfunction
 
   logic [COLUMN-1:0] result;

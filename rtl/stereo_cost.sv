@@ -45,7 +45,7 @@ module stereo_cost #(
         assign right_pixel = right_history[(d-1)*24 +: 24];
       end
       assign cost_d[d*COST_BITS +: COST_BITS] =
-          (32'(in_x) - d < 0) ? COST_BITS'(fx_pkg::COST_OUTSIDE) : abs_diff_rgb(in_left, right_pixel);
+          (18'(in_x) < 18'sd0 + 18'(d)) ? COST_BITS'(fx_pkg::COST_OUTSIDE) : abs_diff_rgb(in_left, right_pixel);
     end
   endgenerate
 

@@ -4,8 +4,11 @@
 // buffer shows rows_above = {row y-ROWS, ..., row y-2, row y-1} at column x (row y-1 in the
 // low bits), and stores {rows_above minus its oldest row, in_data}. The RAM is read one step
 // ahead (address of the next column), so its registered output is ready when that column
-// arrives. Read and write addresses differ whenever the width exceeds 1; at width 1 the next
-// column is the one being written, so the word being stored is passed straight through.
+// arrives. The RAM has one write port and one registered read port with a clock enable and no
+// logic between the RAM and its output register, so synthesis maps it to block RAM (checked
+// in the synthesis reports, docs/synthesis.md). Read and write addresses differ whenever the
+// width exceeds 1; at width 1 the next column is the one being written, so the word being
+// stored is taken from a bypass register instead of the RAM.
 // Rows above the image hold stale data: the stages mask them by coordinates.
 `default_nettype none
 
@@ -22,9 +25,13 @@ module stereo_line_buffer #(
     output      logic   [ROWS*DATA_BITS-1:0] rows_above  // row y-1-k at [k*DATA_BITS +: DATA_BITS]
 );
   localparam int ADDR_BITS = (WIDTH > 1) ? $clog2(WIDTH) : 1;
+  localparam int WORD_BITS = ROWS * DATA_BITS;
 
-  logic [ROWS*DATA_BITS-1:0] memory[WIDTH];
-  logic [ROWS*DATA_BITS-1:0] stored;
+  logic [WORD_BITS-1:0] memory[WIDTH];
+  logic [WORD_BITS-1:0] stored;
+  logic [WORD_BITS-1:0] memory_q;  // the RAM's output register
+  logic [WORD_BITS-1:0] bypass_q;  // the word stored at the previous step (width 1)
+  logic width_is_one;
   logic [ADDR_BITS-1:0] write_address;
   logic [ADDR_BITS-1:0] read_address;
 
@@ -44,9 +51,17 @@ module stereo_line_buffer #(
   always_ff @(posedge clk) begin
     if (ce) begin
       memory[write_address] <= stored;
-      rows_above <= (cfg_width == 16'd1) ? stored : memory[read_address];
+      memory_q <= memory[read_address];
     end
   end
+
+  always_ff @(posedge clk) begin
+    if (ce) begin
+      bypass_q <= stored;
+      width_is_one <= cfg_width == 16'd1;
+    end
+  end
+  assign rows_above = width_is_one ? bypass_q : memory_q;
 endmodule
 
 `default_nettype wire

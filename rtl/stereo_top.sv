@@ -21,7 +21,11 @@ module stereo_top #(
     parameter int WIDTH  = 64,  // largest frame width
     parameter int HEIGHT = 48,  // largest frame height
     parameter int NDISP  = 16,  // disparities evaluated in parallel (largest cfg_ndisp)
-    parameter int WINDOW = 5    // largest aggregation window (odd)
+    parameter int WINDOW = 5,   // largest aggregation window (odd)
+    // 1: cfg_kernel and cfg_radius set the window at run time. 0: the model's default kernel
+    // for WINDOW as constants (cheaper multipliers); cfg_kernel is ignored and cfg_radius must
+    // be WINDOW/2 (a smaller radius with the full-size constant kernel would not be the model).
+    parameter bit RUNTIME_KERNEL = 1'b1
 ) (
     input  wire logic                                          clk,
     input  wire logic                                          rst,
@@ -227,9 +231,10 @@ module stereo_top #(
   );
 
   stereo_aggregate #(
-      .WIDTH (WIDTH),
-      .NDISP (NDISP),
-      .WINDOW(WINDOW)
+      .WIDTH(WIDTH),
+      .NDISP(NDISP),
+      .WINDOW(WINDOW),
+      .RUNTIME_KERNEL(RUNTIME_KERNEL)
   ) aggregate (
       .clk(clk),
       .rst(clear_coordinates),

@@ -52,17 +52,27 @@ module stereo_window3x3 #(
   end
 
   // Centre = the column one step ago, one row up: (x-1, y-1).
-  int cx, cy;
+  // Coordinates are 18-bit signed: 16-bit positions, the no-pixel code and the wrap fit.
+  logic signed [17:0] cx, cy;
   always_comb begin
-    cx = 32'(in_x) - 1;
-    cy = 32'(in_y) - 1;
-    if (cx < 0) begin
-      cx = cx + $signed(32'(cfg_width));
-      cy = cy - 1;
+    cx = 18'(in_x) - 18'sd1;
+    cy = 18'(in_y) - 18'sd1;
+    if (cx < 18'sd0) begin
+      cx = cx + $signed(18'(cfg_width));
+      cy = cy - 18'sd1;
     end
   end
   assign centre_x = 16'(cx);
   assign centre_y = 16'(cy);
+
+  // Which rows and columns of the window lie inside the frame; a slot is inside when both are.
+  logic [2:0] row_inside, column_inside;
+  always_comb begin
+    for (int k = 0; k < 3; k++) begin
+      column_inside[k] = cx + 18'(k - 1) >= 18'sd0 && cx + 18'(k - 1) < $signed(18'(cfg_width));
+      row_inside[k] = cy + 18'(k - 1) >= 18'sd0 && cy + 18'(k - 1) < $signed(18'(cfg_height));
+    end
+  end
 
   generate
     for (genvar dy = -1; dy <= 1; dy++) begin : g_row
@@ -75,8 +85,7 @@ module stereo_window3x3 #(
         end else begin : g_right
           assign window_data[SLOT*COLUMN +: COLUMN] = column_new[(dy+1)*COLUMN +: COLUMN];
         end
-        assign in_frame[SLOT] = (cx + dx >= 0) && (cx + dx < $signed(32'(cfg_width))) &&
-                                (cy + dy >= 0) && (cy + dy < $signed(32'(cfg_height)));
+        assign in_frame[SLOT] = row_inside[dy+1] && column_inside[dx+1];
       end
     end
   endgenerate

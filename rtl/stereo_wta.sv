@@ -68,11 +68,11 @@ module stereo_wta #(
 
   logic valid_d;
   always_comb begin
-    int reach;
-    reach = $signed(32'(cfg_radius)) + (cfg_use_ca ? 1 : 0);
-    valid_d = 32'(in_x) >= reach && 32'(in_x) < $signed(32'(cfg_width)) - reach &&
-              32'(in_y) >= reach && 32'(in_y) < $signed(32'(cfg_height)) - reach &&
-              32'(in_x) - $signed(32'(winner)) >= reach;
+    logic signed [17:0] reach;  // 18-bit signed coordinate arithmetic
+    reach = $signed(18'(cfg_radius)) + (cfg_use_ca ? 18'sd1 : 18'sd0);
+    valid_d = 18'(in_x) >= reach && 18'(in_x) < $signed(18'(cfg_width)) - reach &&
+              18'(in_y) >= reach && 18'(in_y) < $signed(18'(cfg_height)) - reach &&
+              18'(in_x) - $signed(18'(winner)) >= reach;
   end
 
   always_ff @(posedge clk) begin

@@ -1,0 +1,63 @@
+// stereo_synth_top: stereo_top as it is built for an FPGA (docs/synthesis.md).
+//
+// The aggregation kernel is the model's default for WINDOW (fx_pkg::default_tap, sigma 3) and is
+// a constant here (stereo_top RUNTIME_KERNEL = 0), so every tap multiplier reduces to shifts and
+// adds; the radius is WINDOW/2.
+// Frame size, label count and the CA switch stay run-time inputs. Everything else, including
+// the AXI4-Stream ports and the latency, is stereo_top's.
+`default_nettype none
+
+module stereo_synth_top #(
+    parameter int WIDTH  = 64,  // largest frame width
+    parameter int HEIGHT = 48,  // largest frame height
+    parameter int NDISP  = 16,  // disparities evaluated in parallel (largest cfg_ndisp)
+    parameter int WINDOW = 5    // aggregation window (odd), fixed by the constant kernel
+) (
+    input  wire logic        clk,
+    input  wire logic        rst,
+    input  wire logic [15:0] cfg_width,
+    input  wire logic [15:0] cfg_height,
+    input  wire logic [ 8:0] cfg_ndisp,
+    input  wire logic        cfg_use_ca,
+    input  wire logic [47:0] s_axis_tdata,
+    input  wire logic        s_axis_tvalid,
+    output      logic        s_axis_tready,
+    input  wire logic        s_axis_tlast,
+    input  wire logic        s_axis_tuser,
+    output      logic [15:0] m_axis_tdata,
+    output      logic        m_axis_tvalid,
+    input  wire logic        m_axis_tready,
+    output      logic        m_axis_tlast,
+    output      logic        m_axis_tuser,
+    output      logic [ 2:0] status
+);
+  stereo_top #(
+      .WIDTH(WIDTH),
+      .HEIGHT(HEIGHT),
+      .NDISP(NDISP),
+      .WINDOW(WINDOW),
+      .RUNTIME_KERNEL(1'b0)
+  ) core (
+      .clk(clk),
+      .rst(rst),
+      .cfg_width(cfg_width),
+      .cfg_height(cfg_height),
+      .cfg_ndisp(cfg_ndisp),
+      .cfg_radius(5'(WINDOW / 2)),
+      .cfg_kernel('0),  // unused: the kernel is constant
+      .cfg_use_ca(cfg_use_ca),
+      .s_axis_tdata(s_axis_tdata),
+      .s_axis_tvalid(s_axis_tvalid),
+      .s_axis_tready(s_axis_tready),
+      .s_axis_tlast(s_axis_tlast),
+      .s_axis_tuser(s_axis_tuser),
+      .m_axis_tdata(m_axis_tdata),
+      .m_axis_tvalid(m_axis_tvalid),
+      .m_axis_tready(m_axis_tready),
+      .m_axis_tlast(m_axis_tlast),
+      .m_axis_tuser(m_axis_tuser),
+      .status(status)
+  );
+endmodule
+
+`default_nettype wire

@@ -1,0 +1,316 @@
+#!/usr/bin/env python3
+"""Synthesis reports for stereo_synth_top (docs/synthesis.md).
+
+Subcommands (each writes one JSON report; run with -h for the options):
+  ice40     Yosys synth_ice40 + nextpnr-ice40 place and route: resources and Fmax.
+  estimate  Yosys synth_xilinx (7-series) or synth_ecp5 resource estimate, no place and route.
+  fit       the largest configuration that places and routes on an iCE40 device.
+  sweep     estimates over a list of configurations, one JSON with every point.
+  plot      SVG plots of a sweep (resources against each parameter).
+  check     validates a report's fields (used by the ctest of label `synth`).
+
+Only the Python standard library is used. Tools: yosys, nextpnr-ice40 (Debian packages).
+"""
+import argparse
+import json
+import math
+import os
+import re
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[2]
+RTL = REPO / "rtl"
+TOP = "stereo_synth_top"
+
+# Device capacities (vendor data sheets): logic cells, 4 Kib block RAMs, DSPs.
+ICE40_DEVICES = {
+    "up5k": {"package": "sg48", "luts": 5280, "brams": 30, "dsps": 8},
+    "hx8k": {"package": "ct256", "luts": 7680, "brams": 32, "dsps": 0},
+}
+
+
+class ReportError(Exception):
+    pass
+
+
+def rtl_sources():
+    return [str(RTL / name) for name in (RTL / "files.f").read_text().split()]
+
+
+def tool_version(command):
+    try:
+        out = subprocess.run(command, capture_output=True, text=True, check=False)
+        return (out.stdout or out.stderr).strip().splitlines()[0]
+    except (OSError, IndexError):
+        return "unknown"
+
+
+def config_from_args(args):
+    config = {"width": args.width, "height": args.height, "ndisp": args.ndisp,
+              "window": args.window}
+    if config["window"] % 2 != 1 or not 1 <= config["window"] <= 31:
+        raise ReportError(f"window must be odd and in 1..31, got {config['window']}")
+    if not 1 <= config["ndisp"] <= 256:
+        raise ReportError(f"ndisp must be in 1..256, got {config['ndisp']}")
+    if config["width"] < 1 or config["height"] < 1:
+        raise ReportError("width and height must be positive")
+    return config
+
+
+def chparam(config):
+    return (f"chparam -set WIDTH {config['width']} -set HEIGHT {config['height']} "
+            f"-set NDISP {config['ndisp']} -set WINDOW {config['window']} {TOP}")
+
+
+def run_yosys(script, log_path):
+    start = time.monotonic()
+    result = subprocess.run(["yosys", "-q", "-l", str(log_path), "-p", script],
+                            capture_output=True, text=True)
+    if result.returncode != 0:
+        tail = "\n".join(Path(log_path).read_text().splitlines()[-15:]) if Path(
+            log_path).exists() else result.stderr
+        raise ReportError(f"yosys failed (log {log_path}):\n{tail}")
+    return time.monotonic() - start
+
+
+def read_stat_json(path):
+    """Cell counts of the whole design from `stat -json` (hierarchy totals when present)."""
+    text = Path(path).read_text()
+    data = json.loads(text[text.index("{"):])
+    if "design" in data:
+        return data["design"].get("num_cells_by_type", {})
+    modules = data["modules"]
+    if len(modules) != 1:
+        raise ReportError("stat -json: expected one flattened module or a design total")
+    return next(iter(modules.values())).get("num_cells_by_type", {})
+
+
+def count(cells, *patterns):
+    return sum(n for name, n in cells.items() if any(re.fullmatch(p, name) for p in patterns))
+
+
+def resources_ice40(cells):
+    return {
+        "luts": count(cells, r"SB_LUT4"),
+        "ffs": count(cells, r"SB_DFF\w*"),
+        "carries": count(cells, r"SB_CARRY"),
+        "brams": count(cells, r"SB_RAM40_4K\w*"),
+        "dsps": count(cells, r"SB_MAC16"),
+    }
+
+
+def resources_xilinx(cells):
+    return {
+        "luts": count(cells, r"LUT[1-6]"),
+        "ffs": count(cells, r"FD[CPRSE]+"),
+        "carries": count(cells, r"CARRY4"),
+        "lutrams": count(cells, r"RAM\d+[SDM]\w*"),
+        # RAMB36E1 = 36 Kib, RAMB18E1 = 18 Kib; brams counts 36 Kib equivalents.
+        "ramb36": count(cells, r"RAMB36E1"),
+        "ramb18": count(cells, r"RAMB18E1"),
+        "brams": count(cells, r"RAMB36E1") + 0.5 * count(cells, r"RAMB18E1"),
+        "dsps": count(cells, r"DSP48E1"),
+        "srls": count(cells, r"SRL\w+"),
+    }
+
+
+def resources_ecp5(cells):
+    return {
+        "luts": count(cells, r"LUT4"),
+        "ffs": count(cells, r"TRELLIS_FF"),
+        "carries": count(cells, r"CCU2C"),
+        "lutrams": count(cells, r"TRELLIS_DPR16X4"),
+        "brams": count(cells, r"DP16KD"),  # 18 Kib each
+        "dsps": count(cells, r"MULT18X18D", r"ALU54B"),
+    }
+
+
+def throughput(config, fmax_mhz):
+    """Frames per second and million disparity evaluations per second at Fmax (no stalls)."""
+    if fmax_mhz is None:
+        return None, None
+    r = config["window"] // 2
+    cycles = config["width"] * config["height"] + (r + 2) * config["width"] + r + 8
+    fps = fmax_mhz * 1e6 / cycles
+    mdes = fps * config["width"] * config["height"] * config["ndisp"] / 1e6
+    return round(fps, 2), round(mdes, 1)
+
+
+def parse_nextpnr_log(text):
+    fmax = None
+    for match in re.finditer(r"Max frequency for clock\s+'([^']+)':\s+([\d.]+) MHz", text):
+        fmax = float(match.group(2))  # the last one is after routing
+    critical = []
+    section = text.rfind("Critical path report for clock")
+    if section >= 0:
+        for line in text[section:].splitlines()[1:]:
+            if not line.startswith("Info:") or "Max frequency" in line:
+                break
+            critical.append(line[5:].rstrip())
+    return fmax, critical
+
+
+def command_ice40(args):
+    config = config_from_args(args)
+    device = ICE40_DEVICES[args.device]
+    work = Path(args.work or tempfile.mkdtemp(prefix="stereo_ice40_"))
+    work.mkdir(parents=True, exist_ok=True)
+    netlist, stat = work / "netlist.json", work / "stat.json"
+    script = (f"read_verilog -sv {' '.join(rtl_sources())}; {chparam(config)}; "
+              f"synth_ice40 {'-dsp ' if args.dsp else ''}-top {TOP}; "
+              f"chformal -remove; opt_clean; write_json {netlist}; tee -q -o {stat} stat -json")
+    yosys_seconds = run_yosys(script, work / "yosys.log")
+    cells = read_stat_json(stat)
+    report = {
+        "target": "ice40", "device": args.device, "package": device["package"],
+        "top": TOP, "config": config, "resources": resources_ice40(cells),
+        "capacity": {k: device[k] for k in ("luts", "brams", "dsps")},
+        "yosys_seconds": round(yosys_seconds, 1),
+        "tools": {"yosys": tool_version(["yosys", "-V"]),
+                  "nextpnr": tool_version(["nextpnr-ice40", "--version"])},
+    }
+    fits = (report["resources"]["luts"] <= device["luts"] and
+            report["resources"]["brams"] <= device["brams"] and
+            report["resources"]["dsps"] <= device["dsps"])
+    report["fits_after_synthesis"] = fits
+    report["placed"] = False
+    report["fmax_mhz"] = None
+    if fits and not args.no_pnr:
+        start = time.monotonic()
+        pnr_json = work / "nextpnr.json"
+        result = subprocess.run(
+            ["nextpnr-ice40", f"--{args.device}", "--package", device["package"],
+             "--json", str(netlist), "--freq", str(args.freq), "--timing-allow-fail",
+             "--seed", str(args.seed), "--report", str(pnr_json), "--quiet",
+             "--log", str(work / "nextpnr.log")],
+            capture_output=True, text=True)
+        report["nextpnr_seconds"] = round(time.monotonic() - start, 1)
+        log = (work / "nextpnr.log").read_text() if (work / "nextpnr.log").exists() else ""
+        if result.returncode != 0:
+            report["pnr_error"] = (result.stderr.strip().splitlines() or ["failed"])[-1]
+        else:
+            report["placed"] = True
+            fmax, critical = parse_nextpnr_log(log)
+            report["fmax_mhz"] = fmax
+            report["critical_path"] = critical
+            pnr = json.loads(pnr_json.read_text())
+            report["utilisation"] = pnr.get("utilization", {})
+    fps, mdes = throughput(config, report["fmax_mhz"])
+    report["frames_per_second"] = fps
+    report["mde_per_second"] = mdes
+    write_report(report, args.out)
+    return report
+
+
+def command_estimate(args):
+    config = config_from_args(args)
+    report = estimate(config, args.target, args.work)
+    write_report(report, args.out)
+    return report
+
+
+def estimate(config, target, work=None):
+    work = Path(work or tempfile.mkdtemp(prefix=f"stereo_{target}_"))
+    work.mkdir(parents=True, exist_ok=True)
+    stat = work / "stat.json"
+    synth = {"xilinx": f"synth_xilinx -family xc7 -top {TOP}",
+             "ecp5": f"synth_ecp5 -noflatten -top {TOP}"}[target]
+    script = (f"read_verilog -sv {' '.join(rtl_sources())}; {chparam(config)}; "
+              f"{synth}; chformal -remove; opt_clean; tee -q -o {stat} stat -json -top {TOP}")
+    seconds = run_yosys(script, work / "yosys.log")
+    cells = read_stat_json(stat)
+    resources = resources_xilinx(cells) if target == "xilinx" else resources_ecp5(cells)
+    return {"target": target, "top": TOP, "config": config, "resources": resources,
+            "yosys_seconds": round(seconds, 1), "tools": {"yosys": tool_version(["yosys", "-V"])},
+            "note": "Yosys resource estimate before place and route; no Fmax"}
+
+
+def write_report(report, out):
+    text = json.dumps(report, indent=2) + "\n"
+    if out:
+        Path(out).write_text(text)
+    else:
+        sys.stdout.write(text)
+
+
+REQUIRED = {
+    "ice40": ["target", "device", "config", "resources", "fits_after_synthesis", "placed",
+              "fmax_mhz", "frames_per_second", "mde_per_second", "tools"],
+    "xilinx": ["target", "config", "resources", "tools"],
+    "ecp5": ["target", "config", "resources", "tools"],
+}
+
+
+def command_check(args):
+    report = json.loads(Path(args.report).read_text())
+    target = report.get("target")
+    if target not in REQUIRED:
+        raise ReportError(f"unknown target {target!r}")
+    missing = [key for key in REQUIRED[target] if key not in report]
+    if missing:
+        raise ReportError(f"report lacks {', '.join(missing)}")
+    for key in ("width", "height", "ndisp", "window"):
+        if not isinstance(report["config"].get(key), int):
+            raise ReportError(f"config.{key} is not an integer")
+    resources = report["resources"]
+    for key in ("luts", "ffs", "brams", "dsps"):
+        if not isinstance(resources.get(key), (int, float)) or resources[key] < 0:
+            raise ReportError(f"resources.{key} missing or negative")
+    if resources["luts"] == 0 or resources["ffs"] == 0:
+        raise ReportError("no logic was synthesized")
+    if args.expect_bram and resources["brams"] == 0:
+        raise ReportError("the line buffers were not mapped to block RAM")
+    if args.expect_placed:
+        if not report.get("placed") or not isinstance(report.get("fmax_mhz"), (int, float)):
+            raise ReportError("the design was not placed and routed, or has no Fmax")
+        fps, _ = throughput(report["config"], report["fmax_mhz"])
+        if abs(fps - report["frames_per_second"]) > 0.01:
+            raise ReportError("frames_per_second does not follow from fmax and the config")
+    print(f"report ok: {args.report}")
+
+
+def add_config_arguments(parser, width=64, height=48, ndisp=4, window=5):
+    parser.add_argument("--width", type=int, default=width)
+    parser.add_argument("--height", type=int, default=height)
+    parser.add_argument("--ndisp", type=int, default=ndisp)
+    parser.add_argument("--window", type=int, default=window)
+    parser.add_argument("--work", help="folder for netlists and logs (default: a temp folder)")
+    parser.add_argument("--out", help="JSON report file (default: stdout)")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = parser.add_subparsers(dest="command", required=True)
+    ice40 = sub.add_parser("ice40", help="synth_ice40 + nextpnr-ice40")
+    add_config_arguments(ice40)
+    ice40.add_argument("--device", choices=sorted(ICE40_DEVICES), default="up5k")
+    ice40.add_argument("--freq", type=float, default=30.0, help="target MHz for nextpnr")
+    ice40.add_argument("--seed", type=int, default=1)
+    ice40.add_argument("--dsp", action="store_true", help="map multipliers to SB_MAC16")
+    ice40.add_argument("--no-pnr", action="store_true", help="synthesis only")
+    ice40.set_defaults(handler=command_ice40)
+    est = sub.add_parser("estimate", help="synth_xilinx / synth_ecp5 resource estimate")
+    add_config_arguments(est)
+    est.add_argument("--target", choices=["xilinx", "ecp5"], required=True)
+    est.set_defaults(handler=command_estimate)
+    check = sub.add_parser("check", help="validate a JSON report")
+    check.add_argument("report")
+    check.add_argument("--expect-bram", action="store_true")
+    check.add_argument("--expect-placed", action="store_true")
+    check.set_defaults(handler=command_check)
+    args = parser.parse_args()
+    try:
+        args.handler(args)
+    except (ReportError, OSError, json.JSONDecodeError) as error:
+        print(f"synth.py: error: {error}", file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
