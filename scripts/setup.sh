@@ -9,6 +9,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libeigen3-dev
   verilator zlib1g-dev yosys       # RTL co-simulation (FST traces need zlib), synthesis check
+  nextpnr-ice40 python3            # place and route, synthesis reports (scripts/synth/synth.py)
   clang-format
 )
 

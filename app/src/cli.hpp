@@ -28,5 +28,8 @@ void add_middlebury_command(CLI::App& app);
 void add_cosim_command(CLI::App& app);
 void add_fis_command(CLI::App& app);
 void add_avoid_command(CLI::App& app);
+void add_distort_command(CLI::App& app);
+void add_hierarchical_eval_command(CLI::App& app);
+void add_slam_command(CLI::App& app);
 
 }  // namespace stereo::cli

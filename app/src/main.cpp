@@ -39,6 +39,9 @@ int main(int argc, char** argv) {
     stereo::cli::add_cosim_command(app);
     stereo::cli::add_fis_command(app);
     stereo::cli::add_avoid_command(app);
+    stereo::cli::add_distort_command(app);
+    stereo::cli::add_hierarchical_eval_command(app);
+    stereo::cli::add_slam_command(app);
 
     try {
         app.parse(argc, argv);  // runs the chosen subcommand's callback

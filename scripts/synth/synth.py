@@ -23,7 +23,7 @@ import time
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[2]
-RTL = REPO / "rtl"
+RTL = Path(os.environ.get("STEREO_RTL_DIR", REPO / "rtl"))  # override: a snapshot
 TOP = "stereo_synth_top"
 
 # Device capacities (vendor data sheets): logic cells, 4 Kib block RAMs, DSPs.
@@ -229,6 +229,35 @@ def estimate(config, target, work=None):
             "note": "Yosys resource estimate before place and route; no Fmax"}
 
 
+# The sweep of docs/synthesis.md: one parameter at a time around 640x480 / 16 labels / 11x11,
+# up to the full configuration 640x480 / 64 / 11x11.
+SWEEP = ([{"width": 640, "height": 480, "ndisp": n, "window": 11} for n in (8, 16, 32, 64)] +
+         [{"width": 640, "height": 480, "ndisp": 16, "window": w} for w in (3, 5, 7, 9)] +
+         [{"width": w, "height": w * 3 // 4, "ndisp": 16, "window": 11} for w in (160, 320)])
+
+
+def command_sweep(args):
+    configs = SWEEP
+    if args.only:
+        configs = [c for c in SWEEP if c["ndisp"] <= args.max_ndisp]
+    points = []
+    out = Path(args.out)
+    if out.exists():  # resume: keep the points already measured
+        points = json.loads(out.read_text()).get("points", [])
+    done = {(p["target"], tuple(sorted(p["config"].items()))) for p in points}
+    for target in args.targets.split(","):
+        for config in configs:
+            if config["ndisp"] > args.max_ndisp:
+                continue
+            key = (target, tuple(sorted(config.items())))
+            if key in done:
+                continue
+            print(f"{target} {config}", flush=True)
+            points.append(estimate(config, target))
+            out.write_text(json.dumps({"points": points}, indent=2) + "\n")
+    return points
+
+
 def write_report(report, out):
     text = json.dumps(report, indent=2) + "\n"
     if out:
@@ -298,6 +327,12 @@ def main():
     add_config_arguments(est)
     est.add_argument("--target", choices=["xilinx", "ecp5"], required=True)
     est.set_defaults(handler=command_estimate)
+    sweep = sub.add_parser("sweep", help="estimates over the docs' configurations")
+    sweep.add_argument("--targets", default="xilinx,ecp5")
+    sweep.add_argument("--max-ndisp", type=int, default=64)
+    sweep.add_argument("--only", action="store_true", help="skip points above --max-ndisp")
+    sweep.add_argument("--out", required=True, help="sweep JSON (points are appended; resumes)")
+    sweep.set_defaults(handler=command_sweep)
     check = sub.add_parser("check", help="validate a JSON report")
     check.add_argument("report")
     check.add_argument("--expect-bram", action="store_true")

@@ -1,0 +1,139 @@
+// `stereo distort SCENE OUT [options]`: write a decalibrated copy of a stereo scene folder
+// (radial lens distortion of both images, vertical shift / rotation of the right image) for the
+// evaluation of the hierarchical search (docs/results-hierarchical.md).
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "cli.hpp"
+#include "stereo_app/distortion.hpp"
+#include "stereo_app/io.hpp"
+
+namespace stereo::cli {
+
+namespace {
+namespace fs = std::filesystem;
+
+struct DistortOptions {
+    std::string scene;
+    std::string output;
+    app::PairWarp warp{10.0, 0.0, 0.0};
+    double gt_scale = 1.0;
+    std::string gt_mode = "warped";  // or "exact"
+};
+
+cv::Mat read_colour(const fs::path& path) {
+    const cv::Mat image = cv::imread(path.string(), cv::IMREAD_COLOR);
+    if (image.empty()) {
+        throw std::runtime_error("cannot read image \"" + path.string() + "\"");
+    }
+    return image;
+}
+
+void check_size(const cv::Mat& mat, const cv::Mat& left, const fs::path& path) {
+    if (mat.size() != left.size()) {
+        throw std::invalid_argument("\"" + path.string() + "\" is " + std::to_string(mat.cols) +
+                                    "x" + std::to_string(mat.rows) + " but the left image is " +
+                                    std::to_string(left.cols) + "x" + std::to_string(left.rows));
+    }
+}
+
+void run_distort(const DistortOptions& options) {
+    if (!(options.gt_scale > 0)) {
+        throw std::invalid_argument("--gt-scale must be > 0");
+    }
+    const fs::path scene(options.scene);
+    const fs::path out(options.output);
+    std::error_code error;
+    if (!fs::is_directory(scene, error)) {
+        throw std::runtime_error("scene folder \"" + options.scene + "\" does not exist");
+    }
+    const fs::path out_parent = out.parent_path().empty() ? fs::path(".") : out.parent_path();
+    if (fs::exists(out, error) ? !fs::is_directory(out, error)
+                               : !fs::is_directory(out_parent, error)) {
+        throw std::runtime_error("cannot write into \"" + options.output +
+                                 "\": not a folder, and its parent folder does not exist");
+    }
+    const cv::Mat left = read_colour(scene / "left.png");
+    const cv::Mat right = read_colour(scene / "right.png");
+    check_size(right, left, scene / "right.png");
+    const app::PairTransform transform(left.cols, left.rows, options.warp);  // checks the warp
+
+    // Everything is computed and encoded in memory before the first file is written.
+    std::vector<std::pair<std::string, cv::Mat>> files = {
+        {"left.png", app::warp_left(left, transform, cv::INTER_LINEAR)},
+        {"right.png", app::warp_right(right, transform, cv::INTER_LINEAR)}};
+    if (fs::exists(scene / "gt.png")) {
+        const cv::Mat gt = app::load_disparity(scene / "gt.png", options.gt_scale);
+        check_size(gt, left, scene / "gt.png");
+        const cv::Mat warped = options.gt_mode == "exact" ? app::exact_ground_truth(gt, transform)
+                                                          : app::warp_ground_truth(gt, transform);
+        cv::Mat stored;
+        warped.convertTo(stored, CV_16UC1, options.gt_scale);  // rounds to 1/scale
+        double max = 0;
+        cv::minMaxLoc(stored, nullptr, &max);
+        if (max <= 255) {  // 8-bit like the input whenever the values allow it
+            stored.convertTo(stored, CV_8UC1);
+        }
+        files.emplace_back("gt.png", stored);
+    }
+    for (const char* mask : {"nonocc.png", "all.png", "disc.png"}) {
+        if (fs::exists(scene / mask)) {
+            const cv::Mat loaded = app::load_mask(scene / mask);
+            check_size(loaded, left, scene / mask);
+            files.emplace_back(mask, app::warp_left(loaded, transform, cv::INTER_NEAREST));
+        }
+    }
+    fs::create_directories(out);
+    for (const auto& [name, mat] : files) {
+        app::write_png(out / name, mat);
+    }
+    std::cout << "wrote " << files.size() << " files to " << options.output << " (distortion "
+              << options.warp.distortion_percent << " %, right shift " << options.warp.right_shift_y
+              << " px, right rotation " << options.warp.right_rotation_deg << " deg, gt "
+              << options.gt_mode << ")\n";
+}
+
+}  // namespace
+
+void add_distort_command(CLI::App& app) {
+    auto options = std::make_shared<DistortOptions>();
+    CLI::App* command = app.add_subcommand(
+        "distort",
+        "Write a decalibrated copy of a scene folder (lens distortion, shift, rotation).");
+    command->add_option("SCENE", options->scene, "Folder with left.png, right.png [gt.png, masks]")
+        ->required();
+    command->add_option("OUT", options->output, "Output folder (created if its parent exists)")
+        ->required();
+    command
+        ->add_option("--distortion", options->warp.distortion_percent,
+                     "Radial distortion P % of both images (> 0 barrel, < 0 pincushion)")
+        ->capture_default_str();
+    command
+        ->add_option("--shift-y", options->warp.right_shift_y,
+                     "Move the right image down by S pixels")
+        ->capture_default_str();
+    command
+        ->add_option("--rotate", options->warp.right_rotation_deg,
+                     "Rotate the right image by DEG degrees (counter-clockwise) about its centre")
+        ->capture_default_str();
+    command->add_option("--gt-scale", options->gt_scale, "gt.png holds disparity * G")
+        ->capture_default_str();
+    command
+        ->add_option("--gt", options->gt_mode,
+                     "warped: distort the GT like the left image (the thesis); exact: follow "
+                     "every pixel through the warp")
+        ->check(CLI::IsMember({"warped", "exact"}))
+        ->capture_default_str();
+    command->callback([options] { run_distort(*options); });
+}
+
+}  // namespace stereo::cli

@@ -1,0 +1,383 @@
+// `stereo slam SEQ_DIR [options]`: stereo-vision SLAM of thesis Sec. 4.2 on a KITTI-layout or
+// EuRoC-layout sequence: trajectory, occupancy map and, with ground-truth poses, its errors.
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "cli.hpp"
+#include "stereo_app/io.hpp"
+#include "stereo_robot/slam/dataset.hpp"
+#include "stereo_robot/slam/evaluation.hpp"
+#include "stereo_robot/slam/pipeline.hpp"
+
+namespace stereo::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace slam = robot::slam;
+
+constexpr int kRpeGap = 10;  // frames: the "per 10 frames"
+
+struct SlamOptions {
+    std::string sequence;
+    std::string layout = "auto";
+    std::string calib;
+    std::string frames;
+    std::string map;
+    std::string trajectory;
+    std::string vdisparity;
+    int vdisparity_frame = 0;
+    bool json = false;
+    int downscale = 1;
+    int ca_passes = 1;
+    slam::SlamParams params;
+};
+
+// A one-line bar on stderr, only when stderr is a terminal; cleared when done or on error.
+class ProgressBar {
+  public:
+    explicit ProgressBar(int total) : total_(total), enabled_(isatty(STDERR_FILENO) != 0) {}
+    ~ProgressBar() {
+        if (enabled_) {
+            std::fprintf(stderr, "\r%60s\r", "");
+        }
+    }
+    ProgressBar(const ProgressBar&) = delete;
+    ProgressBar& operator=(const ProgressBar&) = delete;
+
+    void update(int done) const {
+        if (!enabled_) {
+            return;
+        }
+        constexpr int kWidth = 30;
+        const int filled = total_ > 0 ? done * kWidth / total_ : kWidth;
+        std::fprintf(stderr, "\rslam [%s%s] %d/%d", std::string(filled, '#').c_str(),
+                     std::string(kWidth - filled, ' ').c_str(), done, total_);
+        std::fflush(stderr);
+    }
+
+  private:
+    int total_;
+    bool enabled_;
+};
+
+nlohmann::json errors_json(const slam::TrajectoryErrors& e) {
+    return {{"ate_rmse_m", e.ate_rmse_m},
+            {"ate_percent", e.ate_percent},
+            {"rpe_translation_percent", e.rpe_translation_percent},
+            {"rpe_rotation_deg", e.rpe_rotation_deg},
+            {"rpe_gap_frames", e.gap},
+            {"rpe_pairs", e.rpe_pairs}};
+}
+
+nlohmann::json drift_json(const slam::Drift& d) {
+    return {{"final_translation_m", d.final_translation_m},
+            {"max_translation_m", d.max_translation_m},
+            {"final_rotation_deg", d.final_rotation_deg},
+            {"max_rotation_deg", d.max_rotation_deg}};
+}
+
+struct Totals {
+    double load_ms = 0.0;
+    slam::StageTimes stages;
+    int fallbacks = 0;
+    int merges_applied = 0;
+    int ground_found = 0;
+    double inliers = 0.0;
+    double lifted = 0.0;
+    double matches = 0.0;
+    double valid_fraction = 0.0;
+};
+
+void add_times(slam::StageTimes& sum, const slam::StageTimes& t) {
+    sum.frontend_ms += t.frontend_ms;
+    sum.motion_ms += t.motion_ms;
+    sum.local_map_ms += t.local_map_ms;
+    sum.global_map_ms += t.global_map_ms;
+}
+
+double fps(int frames, double ms) {
+    return ms > 0.0 ? 1000.0 * frames / ms : 0.0;
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+    std::ofstream out(path, std::ios::binary);
+    out << text;
+    out.close();
+    if (!out) {
+        throw std::runtime_error("cannot write " + path.string());
+    }
+}
+
+void run_slam(const SlamOptions& o) {
+    if (o.downscale < 1) {
+        throw std::invalid_argument("--downscale must be >= 1, got " + std::to_string(o.downscale));
+    }
+    if (o.ca_passes < 0) {
+        throw std::invalid_argument("--ca-passes must be >= 0");
+    }
+    const slam::Layout layout = slam::parse_layout(o.layout, o.sequence);
+    const std::optional<fs::path> calib =
+        o.calib.empty() ? std::nullopt : std::optional<fs::path>(o.calib);
+    const slam::Sequence sequence = slam::open_sequence(o.sequence, layout, calib);
+    const int count = static_cast<int>(sequence.frames.size());
+    const slam::FrameRange range = slam::parse_frames(o.frames, count);
+    const int frames = range.end - range.begin;
+    const int width = sequence.size.width / o.downscale;
+    const int height = sequence.size.height / o.downscale;
+    if (width < 1 || height < 1) {
+        throw std::invalid_argument("--downscale " + std::to_string(o.downscale) +
+                                    " is larger than the images");
+    }
+    slam::validate(o.params, width, height);
+    if (o.vdisparity_frame < 0 || o.vdisparity_frame >= frames) {
+        throw std::invalid_argument("--vdisparity-frame must be in 0.." +
+                                    std::to_string(frames - 1));
+    }
+    for (const std::string& output : {o.map, o.trajectory, o.vdisparity}) {
+        if (!output.empty()) {
+            app::check_writable_location(output);
+        }
+    }
+
+    const slam::Camera camera = sequence.camera.downscaled(o.downscale);
+    slam::Slam slam(camera, o.params);
+    Totals totals;
+    cv::Mat vdisparity_picture;
+    const ProgressBar progress(frames);
+    const auto start = std::chrono::steady_clock::now();
+    for (int i = 0; i < frames; ++i) {
+        const auto load_start = std::chrono::steady_clock::now();
+        const slam::StereoFrame frame = slam::load_frame(sequence, range.begin + i, o.downscale);
+        totals.load_ms +=
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - load_start)
+                .count();
+        const slam::FrameReport report = slam.process(frame.left, frame.right);
+        add_times(totals.stages, report.ms);
+        totals.valid_fraction += report.valid_fraction;
+        totals.ground_found += report.ground_found ? 1 : 0;
+        if (i > 0) {
+            totals.fallbacks += report.motion.fallback ? 1 : 0;
+            totals.merges_applied += report.merge.applied ? 1 : 0;
+            totals.inliers += report.motion.inliers;
+            totals.lifted += report.motion.lifted;
+            totals.matches += report.motion.matches;
+        }
+        if (i == o.vdisparity_frame && !o.vdisparity.empty()) {
+            vdisparity_picture = slam::draw_v_disparity(slam.last_v_disparity(), report.ground,
+                                                        o.params.local.tolerance, 3);
+        }
+        progress.update(i + 1);
+    }
+    const double total_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+
+    std::optional<slam::Trajectory> truth;
+    if (sequence.truth) {
+        truth = slam::relative_to_first(slam::Trajectory(sequence.truth->begin() + range.begin,
+                                                         sequence.truth->begin() + range.end));
+    }
+
+    nlohmann::json summary;
+    summary["sequence"] = o.sequence;
+    summary["layout"] = layout == slam::Layout::kitti ? "kitti" : "euroc";
+    summary["frames"] = frames;
+    summary["first_frame"] = range.begin;
+    summary["width"] = width;
+    summary["height"] = height;
+    summary["downscale"] = o.downscale;
+    summary["merge"] = o.params.merge_enabled;
+    const double per_pair = frames > 1 ? frames - 1 : 1;
+    summary["fps"] = {{"total", fps(frames, total_ms)},
+                      {"load", fps(frames, totals.load_ms)},
+                      {"frontend", fps(frames, totals.stages.frontend_ms)},
+                      {"motion", fps(frames, totals.stages.motion_ms)},
+                      {"local_map", fps(frames, totals.stages.local_map_ms)},
+                      {"global_map", fps(frames, totals.stages.global_map_ms)}};
+    summary["valid_fraction"] = totals.valid_fraction / frames;
+    summary["motion"] = {{"fallbacks", totals.fallbacks},
+                         {"mean_matches", totals.matches / per_pair},
+                         {"mean_lifted", totals.lifted / per_pair},
+                         {"mean_inliers", totals.inliers / per_pair}};
+    summary["ground_line_frames"] = totals.ground_found;
+    summary["merges_applied"] = totals.merges_applied;
+
+    const slam::Trajectory& estimate = slam.trajectory();
+    const slam::Trajectory& odometry = slam.odometry();
+    summary["drift"] = {{"odometry", drift_json(slam::drift(odometry))},
+                        {"merged", drift_json(slam::drift(estimate))}};
+    if (truth && frames >= 3) {
+        summary["poses"] = "present";
+        summary["path_length_m"] = slam::trajectory_errors(odometry, *truth, kRpeGap).path_length_m;
+        summary["errors"] = {
+            {"odometry", errors_json(slam::trajectory_errors(odometry, *truth, kRpeGap))},
+            {"merged", errors_json(slam::trajectory_errors(estimate, *truth, kRpeGap))}};
+    } else {
+        summary["poses"] = truth ? "too few frames" : "absent";
+        summary["errors"] = nullptr;
+    }
+
+    // The map: bounding box of the evidence and of both paths, CA-cleaned.
+    std::vector<slam::CellIndex> path_cells;
+    const auto estimate_path = slam::plane_path(estimate);
+    std::vector<Eigen::Vector2d> truth_path;
+    if (truth) {
+        truth_path = slam::plane_path(*truth);
+    }
+    for (const auto& path : {estimate_path, truth_path}) {
+        for (const auto& p : path) {
+            path_cells.push_back(slam::cell_of(p, o.params.cell_size));
+        }
+    }
+    const slam::DenseGrid raw = slam.map().to_dense(path_cells);
+    slam::DenseGrid cleaned = raw;
+    for (int pass = 0; pass < o.ca_passes; ++pass) {
+        cleaned = slam::ca_clean(cleaned);
+    }
+    summary["map"] = {{"cell_size_m", o.params.cell_size},
+                      {"width_cells", raw.width},
+                      {"height_cells", raw.height},
+                      {"occupied", raw.count(slam::Cell::occupied)},
+                      {"free", raw.count(slam::Cell::free)},
+                      {"ca_passes", o.ca_passes},
+                      {"occupied_after_ca", cleaned.count(slam::Cell::occupied)},
+                      {"free_after_ca", cleaned.count(slam::Cell::free)}};
+
+    if (!o.map.empty()) {
+        std::vector<slam::Polyline> paths;
+        if (truth) {
+            paths.push_back({truth_path, cv::Scalar(0, 170, 0)});
+        }
+        paths.push_back({estimate_path, cv::Scalar(0, 0, 255)});
+        app::write_png(o.map, slam::render_map(cleaned, o.params.cell_size, paths));
+    }
+    if (!o.vdisparity.empty()) {
+        app::write_png(o.vdisparity, vdisparity_picture);
+    }
+    if (!o.trajectory.empty()) {
+        write_text(o.trajectory, slam::format_kitti_poses(estimate));
+    }
+
+    if (o.json) {
+        std::cout << summary.dump() << std::endl;
+        return;
+    }
+    std::printf(
+        "%d frames %dx%d: %.2f fps (front end %.2f, motion %.2f, local map %.1f, global "
+        "map %.1f), %d motion fallbacks, %d merges applied\n",
+        frames, width, height, summary["fps"]["total"].get<double>(),
+        summary["fps"]["frontend"].get<double>(), summary["fps"]["motion"].get<double>(),
+        summary["fps"]["local_map"].get<double>(), summary["fps"]["global_map"].get<double>(),
+        totals.fallbacks, totals.merges_applied);
+    if (summary["errors"].is_null()) {
+        const auto& d = summary["drift"]["merged"];
+        std::printf("no ground-truth poses; drift %.3f m, %.2f deg at the last frame\n",
+                    d["final_translation_m"].get<double>(), d["final_rotation_deg"].get<double>());
+    } else {
+        for (const char* name : {"odometry", "merged"}) {
+            const auto& e = summary["errors"][name];
+            std::printf("%-8s ATE %.3f m (%.2f %% of %.1f m), RPE/%d frames %.2f %% %.3f deg\n",
+                        name, e["ate_rmse_m"].get<double>(), e["ate_percent"].get<double>(),
+                        summary["path_length_m"].get<double>(), kRpeGap,
+                        e["rpe_translation_percent"].get<double>(),
+                        e["rpe_rotation_deg"].get<double>());
+        }
+    }
+}
+
+}  // namespace
+
+void add_slam_command(CLI::App& app) {
+    auto o = std::make_shared<SlamOptions>();
+    auto& p = o->params;
+    CLI::App* command = app.add_subcommand(
+        "slam", "Stereo SLAM (thesis Sec. 4.2): trajectory and occupancy map of a sequence.");
+    command
+        ->add_option("SEQ_DIR", o->sequence,
+                     "Sequence folder: image_l/ image_r/ calib.txt [poses.txt] (KITTI) or "
+                     "cam0/ cam1/ (EuRoC)")
+        ->required();
+    command->add_option("--layout", o->layout, "auto, kitti or euroc")->capture_default_str();
+    command->add_option("--calib", o->calib,
+                        "Calibration (KITTI calib.txt, or the EuRoC rectification YAML)");
+    command->add_option("--frames", o->frames, "Frame range A:B (0-based, half-open)");
+    command->add_option("--map", o->map, "Occupancy map PNG with the trajectories");
+    command->add_option("--trajectory", o->trajectory, "Estimated poses, KITTI format");
+    command->add_option("--vdisparity", o->vdisparity, "v-disparity PNG with the ground line");
+    command
+        ->add_option("--vdisparity-frame", o->vdisparity_frame,
+                     "Which frame of the range --vdisparity shows")
+        ->capture_default_str();
+    command->add_flag("--json", o->json, "Print a JSON summary");
+    command->add_option("--downscale", o->downscale, "Shrink the images by integer F first")
+        ->capture_default_str();
+    command->add_option("--ndisp", p.frontend.ndisp, "Disparity labels 0..N-1")
+        ->capture_default_str();
+    command->add_option("--window", p.frontend.window, "Odd aggregation window side")
+        ->capture_default_str();
+    command->add_option("--sigma", p.frontend.sigma, "Aggregation Gaussian sigma")
+        ->capture_default_str();
+    command->add_option("--certainty", p.frontend.certainty, "Minimum (C2 - C1) / C1")
+        ->capture_default_str();
+    command->add_option("--lr-tolerance", p.frontend.lr_tolerance, "Maximum |dL - dR|")
+        ->capture_default_str();
+    command->add_option("--features", p.motion.features, "ORB features per image")
+        ->capture_default_str();
+    command->add_option("--max-hamming", p.motion.max_hamming, "Worst accepted ORB match")
+        ->capture_default_str();
+    command->add_option("--max-depth", p.motion.max_depth, "Farthest feature used, metres")
+        ->capture_default_str();
+    command->add_option("--ransac-iterations", p.motion.ransac.iterations, "RANSAC samples")
+        ->capture_default_str();
+    command
+        ->add_option("--inlier-px", p.motion.ransac.threshold,
+                     "Inlier residual in (u, v, d), pixels")
+        ->capture_default_str();
+    command
+        ->add_option("--min-inliers", p.motion.ransac.min_inliers,
+                     "Fewer inliers: constant-velocity fallback")
+        ->capture_default_str();
+    command->add_option("--seed", p.motion.ransac.seed, "RANSAC seed")->capture_default_str();
+    command->add_option("--cell", p.cell_size, "Grid cell size, metres")->capture_default_str();
+    command->add_option("--max-range", p.local.max_range, "Farthest mapped point, metres")
+        ->capture_default_str();
+    command
+        ->add_option("--max-height", p.local.max_height,
+                     "Highest obstacle point above the ground, metres")
+        ->capture_default_str();
+    command
+        ->add_option("--ground-tolerance", p.local.tolerance,
+                     "Ground band either side of the v-disparity line, pixels")
+        ->capture_default_str();
+    command->add_option("--stride", p.local.stride, "Map every stride-th pixel")
+        ->capture_default_str();
+    command->add_flag("!--no-merge", p.merge_enabled, "Place local maps with the odometry alone");
+    command->add_option("--merge-shift", p.merge.max_shift, "Merge search: +- cells in x and z")
+        ->capture_default_str();
+    command->add_option("--merge-angle-steps", p.merge.angle_steps, "Merge search: +- steps")
+        ->capture_default_str();
+    command->add_option("--merge-angle-step", p.merge.angle_step_deg, "Merge step, degrees")
+        ->capture_default_str();
+    command
+        ->add_option("--merge-min-gain", p.merge.min_gain,
+                     "Cells a correction must gain to be applied")
+        ->capture_default_str();
+    command->add_option("--ca-passes", o->ca_passes, "Clean-up passes over the final map")
+        ->capture_default_str();
+    command->callback([o] { run_slam(*o); });
+}
+
+}  // namespace stereo::cli

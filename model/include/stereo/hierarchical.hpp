@@ -1,0 +1,143 @@
+// Hierarchical 2-D correspondence search for uncalibrated, non-rectified pairs (thesis Sec. 3.3),
+// bit-exact like the 1-D pipeline whose stages it reuses. Specified in docs/hierarchical.md.
+//
+// Three levels (quarter, half, full size). Each level matches a grid of 2-D candidates per pixel:
+// candidate (i, j) of pixel (x, y) is the displacement (base_d + i, base_v + j), i.e. the left
+// pixel (x, y) against the right pixel (x - d, y + v). The costs of all candidates form a DSI
+// over the flattened index k = j * cols + i, aggregated, refined by the CA rules and reduced by
+// WTA exactly as in the 1-D pipeline (docs/fixed-point.md).
+//   quarter: every displacement of the level's range (a full 2-D search of (D/4) x (V/4));
+//   half, full: the 3x3 displacements around the up-scaled (x2) match of the level below.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "stereo/constants.hpp"
+#include "stereo/image.hpp"
+
+namespace stereo::hierarchical {
+
+// Which candidates are the "d-1 / d+1" neighbours of CA rule 1 (docs/hierarchical.md).
+enum class CaNeighbours {
+    horizontal,               // (i-1, j) and (i+1, j): the 1-D rule, row by row (default)
+    horizontal_and_vertical,  // also (i, j-1) and (i, j+1)
+};
+
+struct LevelParams {
+    int window = 0;    // odd side of the Gaussian aggregation window
+    double sigma = 0;  // Gaussian sigma in the level's pixels
+};
+
+// The thesis' windows (9, 15, 23); sigma keeps the ratio of the 1-D default (3 for 11 taps).
+constexpr LevelParams default_level(int window) {
+    return {window, fx::kDefaultSigma * window / fx::kDefaultWindow};
+}
+
+inline constexpr int kLevels = 3;  // quarter, half, full
+inline constexpr std::array<int, kLevels> kLevelFactor = {4, 2, 1};
+inline constexpr int kMaxVerticalRange = 252;  // offsets fit an int8 and 128 + v a PNG byte
+
+struct Params {
+    int ndisp = fx::kDefaultDisparities;  // D: horizontal labels 0..D-1 at full size
+    int vrange = 0;                       // V: vertical labels at full size; 0 = same as D
+    std::array<LevelParams, kLevels> levels = {default_level(9), default_level(15),
+                                               default_level(23)};
+    bool use_ca = true;
+    CaNeighbours neighbours = CaNeighbours::horizontal;
+
+    int vertical_range() const { return vrange == 0 ? ndisp : vrange; }
+};
+
+// Displacements a level may use, in its own pixels: d in [d_min, d_max], v in [v_min, v_max].
+struct SearchRange {
+    int d_min = 0;
+    int d_max = 0;
+    int v_min = 0;
+    int v_max = 0;
+};
+
+// Range of the level with down-scaling `factor`: D/f horizontal labels 0..D/f-1 and V/f vertical
+// labels centred on 0, -(V/f)/2 .. V/f-1-(V/f)/2 (at full size -V/2 .. V/2-1).
+SearchRange level_range(const Params& params, int factor);
+
+// The per-pixel candidate grid of one level.
+struct CandidateGrid {
+    int width = 0;  // level image size
+    int height = 0;
+    int cols = 0;  // candidates per pixel: cols x rows
+    int rows = 0;
+    std::vector<std::int16_t> base_d;  // per pixel: displacement of candidate (0, 0)
+    std::vector<std::int16_t> base_v;
+    std::vector<std::int16_t> prefer_d;  // per pixel: the displacement ties are resolved towards
+    std::vector<std::int16_t> prefer_v;
+};
+
+// Candidates of the quarter level and of the full D x V reference: the whole range for every
+// pixel; ties prefer v = 0, then the smallest d.
+CandidateGrid full_grid(int width, int height, const SearchRange& range);
+
+// One level's winners. `disparity` / `vertical` hold the WTA winner of every pixel, valid or
+// not (the next level is predicted from them); `valid` is the border rule of the level.
+struct LevelMap {
+    int width = 0;
+    int height = 0;
+    std::vector<std::int16_t> disparity;
+    std::vector<std::int16_t> vertical;
+    std::vector<std::uint8_t> valid;
+
+    std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * width + x; }
+    bool operator==(const LevelMap&) const = default;
+};
+
+// Candidates of a refinement level (half or full) of `width` x `height`: the 3x3 displacements
+// around the coarse match, up-scaled x2 from the parent pixel (min(x/2, Wc-1), min(y/2, Hc-1)) and
+// clamped per axis into [min+1, max-1] of `range`, so that all nine lie in the range. Ties prefer
+// the centre.
+CandidateGrid refine_grid(const LevelMap& coarse, int width, int height, const SearchRange& range);
+
+// A pixel is valid when its window and CA neighbourhood (reach = window/2 + 1 with CA) lie inside
+// both images at its winning displacement: reach <= x < W - reach, reach <= y < H - reach,
+// x - d >= reach and reach <= y + v < H - reach.
+bool level_valid(int x, int y, int d, int v, int width, int height, int reach);
+
+// Cost evaluations (DSI cells: one AD of a pixel and a candidate) computed per level.
+struct CostCount {
+    std::array<std::int64_t, kLevels> level{};  // quarter, half, full (full search: in [2])
+    std::int64_t total() const { return level[0] + level[1] + level[2]; }
+};
+
+// One level: cost (AD over RGB, fx::kCostOutside outside the right image), Gaussian aggregation,
+// [CA rule 1 with `neighbours`, CA rule 2], WTA over the grid with the tie preference, validity.
+// Adds the DSI cells it computes to `count`. Streams over candidate rows, so a large full grid
+// never holds more than three rows of planes.
+LevelMap match_level(const Image& left, const Image& right, const CandidateGrid& grid,
+                     const LevelParams& level, bool use_ca, CaNeighbours neighbours,
+                     std::int64_t& count);
+
+// Area averaging by an integer factor: floor(W/f) x floor(H/f), each channel the mean of its
+// f x f block rounded half up, (sum + f*f/2) / (f*f).
+Image downscale_area(const Image& image, int factor);
+
+// Throws std::invalid_argument (one line) unless D and V are multiples of 4 in [8, 256] and
+// [8, kMaxVerticalRange], every level's window and sigma are valid and every level image is
+// larger than its border and than its horizontal range.
+void validate(const Params& params, int width, int height);
+
+struct Result {
+    DisparityMap disparity;  // full size, horizontal disparity with the valid flag
+    std::vector<std::int8_t>
+        vertical;  // full size, vertical offset v (right row = y + v), 0 where invalid
+    std::array<LevelMap, kLevels> levels;  // quarter, half, full (full search: only [2])
+    CostCount cost_evaluations;
+};
+
+// The hierarchical search.
+Result match(const Image& left, const Image& right, const Params& params);
+
+// Reference for the evaluation: the same cost, aggregation (full-level window), CA and WTA over
+// every displacement of the full-size range (D x V candidates per pixel).
+Result full_search(const Image& left, const Image& right, const Params& params);
+
+}  // namespace stereo::hierarchical

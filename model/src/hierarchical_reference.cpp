@@ -1,0 +1,271 @@
+// The naive hierarchical search: written again from docs/hierarchical.md, loop by loop, so
+// that tests/test_hierarchical.cpp can hold the streaming model against it bit for bit.
+#include <algorithm>
+#include <cstdlib>
+#include <tuple>
+#include <vector>
+
+#include "stereo/hierarchical_reference.hpp"
+#include "stereo/pipeline.hpp"
+
+namespace stereo::hierarchical::naive {
+namespace {
+
+// A whole volume, [k][y][x], as plain integers.
+struct Volume {
+    int width;
+    int height;
+    int planes;
+    std::vector<std::int64_t> cells;
+
+    Volume(int w, int h, int n)
+        : width(w), height(h), planes(n), cells(static_cast<std::size_t>(w) * h * n, 0) {}
+    std::int64_t& at(int x, int y, int k) {
+        return cells[(static_cast<std::size_t>(k) * height + y) * width + x];
+    }
+    std::int64_t at(int x, int y, int k) const {
+        return cells[(static_cast<std::size_t>(k) * height + y) * width + x];
+    }
+    bool inside(int x, int y) const { return x >= 0 && x < width && y >= 0 && y < height; }
+};
+
+bool agree(std::int64_t neighbour, std::int64_t centre) {
+    return 2 * std::abs(neighbour - centre) < centre;
+}
+
+// The AD cost of left pixel (x, y) against right pixel (x - d, y + v).
+std::int64_t pixel_cost(const Image& left, const Image& right, int x, int y, int d, int v) {
+    const int xr = x - d;
+    const int yr = y + v;
+    if (xr < 0 || xr >= right.width || yr < 0 || yr >= right.height) {
+        return fx::kCostOutside;
+    }
+    std::int64_t sum = 0;
+    for (int c = 0; c < fx::kChannels; ++c) {
+        const int lc = left.channels == 1 ? 0 : c;  // grey is matched as (g, g, g)
+        sum += std::abs(left.at(x, y, lc) - right.at(xr, yr, lc));
+    }
+    return sum;
+}
+
+}  // namespace
+
+Image downscale_area(const Image& image, int factor) {
+    Image out(image.width / factor, image.height / factor, image.channels);
+    for (int y = 0; y < out.height; ++y) {
+        for (int x = 0; x < out.width; ++x) {
+            for (int c = 0; c < image.channels; ++c) {
+                int sum = 0;
+                for (int j = 0; j < factor; ++j) {
+                    for (int i = 0; i < factor; ++i) {
+                        sum += image.at(x * factor + i, y * factor + j, c);
+                    }
+                }
+                // Round half up: floor(sum / f^2 + 1/2).
+                out.at(x, y, c) =
+                    static_cast<std::uint8_t>((2 * sum + factor * factor) / (2 * factor * factor));
+            }
+        }
+    }
+    return out;
+}
+
+LevelMap match_level(const Image& left, const Image& right, const CandidateGrid& grid,
+                     const LevelParams& level, bool use_ca, CaNeighbours neighbours) {
+    const int width = left.width;
+    const int height = left.height;
+    const int planes = grid.cols * grid.rows;
+    const auto kernel = gaussian_kernel(level.window, level.sigma);
+    const int r = static_cast<int>(kernel.size()) / 2;
+    auto displacement = [&](int x, int y, int k) {
+        const std::size_t p = static_cast<std::size_t>(y) * width + x;
+        return std::pair{grid.base_d[p] + k % grid.cols, grid.base_v[p] + k / grid.cols};
+    };
+
+    // Aggregation: direct 2-D weighted sum, zero outside the image, one rounding shift.
+    Volume aggregated(width, height, planes);
+    for (int k = 0; k < planes; ++k) {
+        for (int y = 0; y < height; ++y) {
+            for (int x = 0; x < width; ++x) {
+                std::int64_t sum = 0;
+                for (int j = -r; j <= r; ++j) {
+                    for (int i = -r; i <= r; ++i) {
+                        if (!aggregated.inside(x + i, y + j)) {
+                            continue;
+                        }
+                        const auto [d, v] = displacement(x + i, y + j, k);
+                        sum += static_cast<std::int64_t>(kernel[i + r]) * kernel[j + r] *
+                               pixel_cost(left, right, x + i, y + j, d, v);
+                    }
+                }
+                aggregated.at(x, y, k) = (sum + (1 << (fx::kAggShift - 1))) >> fx::kAggShift;
+            }
+        }
+    }
+
+    Volume final_volume = aggregated;
+    if (use_ca) {
+        // Rule 1: a candidate neighbour that agrees replaces the cell by its rounded 3x3 mean.
+        Volume rule1 = aggregated;
+        for (int k = 0; k < planes; ++k) {
+            const int i = k % grid.cols;
+            const int j = k / grid.cols;
+            std::vector<int> neighbour_planes;
+            if (i > 0) {
+                neighbour_planes.push_back(k - 1);
+            }
+            if (i + 1 < grid.cols) {
+                neighbour_planes.push_back(k + 1);
+            }
+            if (neighbours == CaNeighbours::horizontal_and_vertical) {
+                if (j > 0) {
+                    neighbour_planes.push_back(k - grid.cols);
+                }
+                if (j + 1 < grid.rows) {
+                    neighbour_planes.push_back(k + grid.cols);
+                }
+            }
+            for (int y = 0; y < height; ++y) {
+                for (int x = 0; x < width; ++x) {
+                    const std::int64_t c = aggregated.at(x, y, k);
+                    bool fire = false;
+                    for (const int n : neighbour_planes) {
+                        fire = fire || agree(aggregated.at(x, y, n), c);
+                    }
+                    if (!fire) {
+                        continue;
+                    }
+                    std::int64_t sum = 0;
+                    for (int dy = -1; dy <= 1; ++dy) {
+                        for (int dx = -1; dx <= 1; ++dx) {
+                            if (aggregated.inside(x + dx, y + dy)) {
+                                sum += aggregated.at(x + dx, y + dy, k);
+                            }
+                        }
+                    }
+                    rule1.at(x, y, k) = (2 * sum + 9) / 18;  // round(sum / 9)
+                }
+            }
+        }
+        // Rule 2: at least 7 of 8 agreeing in-plane neighbours divide the cell by 1.3.
+        for (int k = 0; k < planes; ++k) {
+            for (int y = 0; y < height; ++y) {
+                for (int x = 0; x < width; ++x) {
+                    const std::int64_t c = rule1.at(x, y, k);
+                    int count = 0;
+                    for (int dy = -1; dy <= 1; ++dy) {
+                        for (int dx = -1; dx <= 1; ++dx) {
+                            if ((dx != 0 || dy != 0) && rule1.inside(x + dx, y + dy) &&
+                                agree(rule1.at(x + dx, y + dy, k), c)) {
+                                ++count;
+                            }
+                        }
+                    }
+                    final_volume.at(x, y, k) =
+                        count >= fx::kRule2MinCount ? (20 * c + 13) / 26 : c;  // round(c / 1.3)
+                }
+            }
+        }
+    }
+
+    // WTA: the smallest cost; among equal costs the smallest (|v - pv|, |d - pd|, v, d).
+    LevelMap map{width, height, std::vector<std::int16_t>(static_cast<std::size_t>(width) * height),
+                 std::vector<std::int16_t>(static_cast<std::size_t>(width) * height),
+                 std::vector<std::uint8_t>(static_cast<std::size_t>(width) * height)};
+    const int reach = r + (use_ca ? 1 : 0);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const std::size_t p = map.index(x, y);
+            const int pd = grid.prefer_d[p];
+            const int pv = grid.prefer_v[p];
+            std::tuple<std::int64_t, int, int, int, int> best{};
+            for (int k = 0; k < planes; ++k) {
+                const auto [d, v] = displacement(x, y, k);
+                const std::tuple candidate{final_volume.at(x, y, k), std::abs(v - pv),
+                                           std::abs(d - pd), v, d};
+                if (k == 0 || candidate < best) {
+                    best = candidate;
+                }
+            }
+            const int d = std::get<4>(best);
+            const int v = std::get<3>(best);
+            map.disparity[p] = static_cast<std::int16_t>(d);
+            map.vertical[p] = static_cast<std::int16_t>(v);
+            const bool inside = x >= reach && x < width - reach && y >= reach && y < height - reach;
+            const bool right_inside = x - d >= reach && y + v >= reach && y + v < height - reach;
+            map.valid[p] = inside && right_inside ? 1 : 0;
+        }
+    }
+    return map;
+}
+
+Result match(const Image& left, const Image& right, const Params& params) {
+    check_pair(left, right);
+    hierarchical::validate(params, left.width, left.height);
+    const int ndisp = params.ndisp;
+    const int vrange = params.vrange == 0 ? params.ndisp : params.vrange;
+    Result result;
+    const LevelMap* coarse = nullptr;
+    for (int level = 0; level < kLevels; ++level) {
+        const int f = level == 0 ? 4 : level == 1 ? 2 : 1;
+        const Image l = f == 1 ? left : downscale_area(left, f);
+        const Image rt = f == 1 ? right : downscale_area(right, f);
+        // The level's range: D/f labels from 0, V/f labels centred on 0.
+        const int d_max = ndisp / f - 1;
+        const int v_min = -((vrange / f) / 2);
+        const int v_max = v_min + vrange / f - 1;
+        const std::size_t size = static_cast<std::size_t>(l.width) * l.height;
+        CandidateGrid grid{l.width, l.height, 0, 0, {}, {}, {}, {}};
+        grid.base_d.resize(size);
+        grid.base_v.resize(size);
+        grid.prefer_d.resize(size);
+        grid.prefer_v.resize(size);
+        for (int y = 0; y < l.height; ++y) {
+            for (int x = 0; x < l.width; ++x) {
+                const std::size_t p = static_cast<std::size_t>(y) * l.width + x;
+                if (coarse == nullptr) {  // the whole range, ties towards (0, 0)
+                    grid.cols = d_max + 1;
+                    grid.rows = v_max - v_min + 1;
+                    grid.base_d[p] = 0;
+                    grid.base_v[p] = static_cast<std::int16_t>(v_min);
+                    grid.prefer_d[p] = 0;
+                    grid.prefer_v[p] = 0;
+                    continue;
+                }
+                // 3x3 around twice the parent's winner, the centre moved inside the range.
+                const int px = std::min(x / 2, coarse->width - 1);
+                const int py = std::min(y / 2, coarse->height - 1);
+                const std::size_t parent = static_cast<std::size_t>(py) * coarse->width + px;
+                int cd = 2 * coarse->disparity[parent];
+                int cv = 2 * coarse->vertical[parent];
+                cd = cd < 1 ? 1 : cd > d_max - 1 ? d_max - 1 : cd;
+                cv = cv < v_min + 1 ? v_min + 1 : cv > v_max - 1 ? v_max - 1 : cv;
+                grid.cols = 3;
+                grid.rows = 3;
+                grid.base_d[p] = static_cast<std::int16_t>(cd - 1);
+                grid.base_v[p] = static_cast<std::int16_t>(cv - 1);
+                grid.prefer_d[p] = static_cast<std::int16_t>(cd);
+                grid.prefer_v[p] = static_cast<std::int16_t>(cv);
+            }
+        }
+        const auto l_index = static_cast<std::size_t>(level);
+        result.levels[l_index] =
+            match_level(l, rt, grid, params.levels[l_index], params.use_ca, params.neighbours);
+        result.cost_evaluations.level[l_index] =
+            static_cast<std::int64_t>(size) * grid.cols * grid.rows;
+        coarse = &result.levels[l_index];
+    }
+    const LevelMap& full = result.levels[kLevels - 1];
+    result.disparity = DisparityMap(full.width, full.height);
+    result.vertical.assign(full.valid.size(), 0);
+    for (std::size_t p = 0; p < full.valid.size(); ++p) {
+        if (full.valid[p] != 0) {
+            result.disparity.disparity[p] = static_cast<std::uint8_t>(full.disparity[p]);
+            result.disparity.valid[p] = 1;
+            result.vertical[p] = static_cast<std::int8_t>(full.vertical[p]);
+        }
+    }
+    return result;
+}
+
+}  // namespace stereo::hierarchical::naive

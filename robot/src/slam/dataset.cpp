@@ -1,0 +1,279 @@
+#include "stereo_robot/slam/dataset.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core/persistence.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+namespace stereo::robot::slam {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The same image extensions as pairs_from_folders, so that the counts agree with its pairing.
+bool is_image_file(const fs::path& path) {
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".ppm" || ext == ".pgm" ||
+           ext == ".bmp" || ext == ".tif" || ext == ".tiff";
+}
+
+std::vector<std::string> image_names(const fs::path& folder) {
+    if (!fs::is_directory(folder)) {
+        throw std::runtime_error("cannot read image folder " + folder.string());
+    }
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(folder)) {
+        if (entry.is_regular_file() && is_image_file(entry.path())) {
+            names.push_back(entry.path().filename().string());
+        }
+    }
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+std::vector<FramePair> list_frames(const fs::path& left, const fs::path& right) {
+    const auto left_names = image_names(left);
+    const auto right_names = image_names(right);
+    if (left_names.empty()) {
+        throw std::runtime_error("no images in " + left.string());
+    }
+    if (left_names != right_names) {
+        std::vector<std::string> only_left;
+        std::vector<std::string> only_right;
+        std::set_difference(left_names.begin(), left_names.end(), right_names.begin(),
+                            right_names.end(), std::back_inserter(only_left));
+        std::set_difference(right_names.begin(), right_names.end(), left_names.begin(),
+                            left_names.end(), std::back_inserter(only_right));
+        const std::string example =
+            !only_left.empty() ? only_left.front() + " has no partner in " + right.string()
+                               : only_right.front() + " has no partner in " + left.string();
+        throw std::invalid_argument("unequal frame counts: " + left.string() + " has " +
+                                    std::to_string(left_names.size()) + " images, " +
+                                    right.string() + " has " + std::to_string(right_names.size()) +
+                                    " (" + example + ")");
+    }
+    return pairs_from_folders(left, right);
+}
+
+int parse_index(const std::string& text, const std::string& whole) {
+    int value = 0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (error != std::errc() || end != text.data() + text.size()) {
+        throw std::invalid_argument("--frames must be A:B with integers, got \"" + whole + "\"");
+    }
+    return value;
+}
+
+cv::Mat read_matrix(const cv::FileStorage& storage, const std::string& name, int rows, int cols,
+                    const fs::path& path) {
+    cv::Mat m;
+    storage[name] >> m;
+    if (m.rows != rows || m.cols != cols) {
+        throw std::invalid_argument("rectification file " + path.string() + " has no " +
+                                    std::to_string(rows) + "x" + std::to_string(cols) + " matrix " +
+                                    name);
+    }
+    m.convertTo(m, CV_64F);
+    return m;
+}
+
+void load_euroc_rectification(const fs::path& path, Sequence& sequence) {
+    if (!fs::is_regular_file(path)) {
+        throw std::runtime_error("cannot read rectification file " + path.string());
+    }
+    cv::FileStorage storage;
+    try {
+        storage.open(path.string(), cv::FileStorage::READ);
+    } catch (const cv::Exception&) {
+        throw std::invalid_argument("rectification file " + path.string() +
+                                    " is not an OpenCV YAML/XML file");
+    }
+    if (!storage.isOpened()) {
+        throw std::invalid_argument("rectification file " + path.string() +
+                                    " is not an OpenCV YAML/XML file");
+    }
+    const cv::Mat k0 = read_matrix(storage, "K0", 3, 3, path);
+    const cv::Mat k1 = read_matrix(storage, "K1", 3, 3, path);
+    const cv::Mat d0 = read_matrix(storage, "D0", 1, 4, path);
+    const cv::Mat d1 = read_matrix(storage, "D1", 1, 4, path);
+    const cv::Mat r1 = read_matrix(storage, "R1", 3, 3, path);
+    const cv::Mat r2 = read_matrix(storage, "R2", 3, 3, path);
+    const cv::Mat p1 = read_matrix(storage, "P1", 3, 4, path);
+    const cv::Mat p2 = read_matrix(storage, "P2", 3, 4, path);
+    int width = 0;
+    int height = 0;
+    storage["image_width"] >> width;
+    storage["image_height"] >> height;
+    const double focal = p1.at<double>(0, 0);
+    const double baseline = focal > 0.0 ? -p2.at<double>(0, 3) / p2.at<double>(0, 0) : 0.0;
+    if (width <= 0 || height <= 0 || !(focal > 0.0) || !(baseline > 0.0)) {
+        throw std::invalid_argument("rectification file " + path.string() +
+                                    " gives no image size, positive focal length and baseline");
+    }
+    sequence.camera = {focal, p1.at<double>(0, 2), p1.at<double>(1, 2), baseline};
+    sequence.size = cv::Size(width, height);
+    cv::initUndistortRectifyMap(k0, d0, r1, p1, sequence.size, CV_32FC1, sequence.left_map_x,
+                                sequence.left_map_y);
+    cv::initUndistortRectifyMap(k1, d1, r2, p2, sequence.size, CV_32FC1, sequence.right_map_x,
+                                sequence.right_map_y);
+}
+
+}  // namespace
+
+Layout parse_layout(const std::string& text, const fs::path& sequence) {
+    if (text == "kitti") {
+        return Layout::kitti;
+    }
+    if (text == "euroc") {
+        return Layout::euroc;
+    }
+    if (text == "auto") {
+        return fs::is_directory(sequence / "cam0") ? Layout::euroc : Layout::kitti;
+    }
+    throw std::invalid_argument("--layout must be auto, kitti or euroc, got " + text);
+}
+
+FrameRange parse_frames(const std::string& text, int count) {
+    FrameRange range{0, count};
+    if (!text.empty()) {
+        const auto colon = text.find(':');
+        if (colon == std::string::npos) {
+            throw std::invalid_argument("--frames must be A:B (half-open, 0-based), got \"" + text +
+                                        "\"");
+        }
+        const std::string a = text.substr(0, colon);
+        const std::string b = text.substr(colon + 1);
+        if (!a.empty()) {
+            range.begin = parse_index(a, text);
+        }
+        if (!b.empty()) {
+            range.end = parse_index(b, text);
+        }
+    }
+    if (range.begin < 0 || range.end > count || range.begin >= range.end) {
+        throw std::invalid_argument("--frames " + text + " is not a non-empty range of the " +
+                                    std::to_string(count) + " frames (0-based, half-open A:B)");
+    }
+    return range;
+}
+
+Camera load_kitti_camera(const fs::path& path) {
+    const StereoGeometry geometry = load_calibration(path);  // f, B and every format check
+    // The principal point, from the same matrix load_calibration took as the left one.
+    std::ifstream in(path);
+    std::vector<std::pair<std::string, std::vector<double>>> matrices;
+    std::string line;
+    while (std::getline(in, line)) {
+        std::istringstream tokens(line);
+        std::string first;
+        if (!(tokens >> first)) {
+            continue;
+        }
+        std::string label;
+        if (first.back() == ':') {
+            label = first.substr(0, first.size() - 1);
+        } else {
+            tokens.clear();
+            tokens.str(line);
+        }
+        std::vector<double> values;
+        double value = 0.0;
+        while (values.size() < 12 && tokens >> value) {
+            values.push_back(value);
+        }
+        std::string rest;
+        if (values.size() == 12 && !(tokens >> rest)) {
+            matrices.emplace_back(label, values);
+        }
+    }
+    const auto labelled = std::find_if(matrices.begin(), matrices.end(),
+                                       [](const auto& m) { return m.first == "P0"; });
+    const bool has_right = std::any_of(matrices.begin(), matrices.end(),
+                                       [](const auto& m) { return m.first == "P1"; });
+    const std::vector<double>& left =
+        labelled != matrices.end() && has_right ? labelled->second : matrices.front().second;
+    return {geometry.focal_px, left[2], left[6], geometry.baseline};
+}
+
+Sequence open_sequence(const fs::path& dir, Layout layout, const std::optional<fs::path>& calib) {
+    if (!fs::is_directory(dir)) {
+        throw std::runtime_error("cannot read sequence folder " + dir.string());
+    }
+    Sequence sequence;
+    sequence.layout = layout;
+    if (layout == Layout::kitti) {
+        sequence.frames = list_frames(dir / "image_l", dir / "image_r");
+        sequence.camera = load_kitti_camera(calib.value_or(dir / "calib.txt"));
+        const fs::path first = sequence.frames.front().first;
+        const cv::Mat image = cv::imread(first.string(), cv::IMREAD_GRAYSCALE);
+        if (image.empty()) {
+            throw std::runtime_error("cannot read image " + first.string());
+        }
+        sequence.size = image.size();
+        const fs::path poses = dir / "poses.txt";
+        if (fs::exists(poses)) {
+            Trajectory truth = load_kitti_poses(poses);
+            if (truth.size() != sequence.frames.size()) {
+                throw std::invalid_argument("pose file " + poses.string() + " has " +
+                                            std::to_string(truth.size()) + " poses for " +
+                                            std::to_string(sequence.frames.size()) + " frames");
+            }
+            sequence.truth = std::move(truth);
+        }
+    } else {
+        sequence.frames = list_frames(dir / "cam0" / "data", dir / "cam1" / "data");
+        load_euroc_rectification(calib.value_or(dir / "stereo_rectification_opencv.yaml"),
+                                 sequence);
+    }
+    return sequence;
+}
+
+StereoFrame load_frame(const Sequence& sequence, int index, int downscale) {
+    const auto& [left_path, right_path] = sequence.frames.at(static_cast<std::size_t>(index));
+    StereoFrame frame;
+    cv::Mat* const targets[] = {&frame.left, &frame.right};
+    const fs::path* const paths[] = {&left_path, &right_path};
+    for (int side = 0; side < 2; ++side) {
+        cv::Mat image = cv::imread(paths[side]->string(), cv::IMREAD_GRAYSCALE);
+        if (image.empty()) {
+            throw std::runtime_error("cannot read image " + paths[side]->string());
+        }
+        if (image.size() != sequence.size) {
+            throw std::invalid_argument(
+                "image " + paths[side]->string() + " is " + std::to_string(image.cols) + "x" +
+                std::to_string(image.rows) + ", the sequence's frames are " +
+                std::to_string(sequence.size.width) + "x" + std::to_string(sequence.size.height));
+        }
+        if (!sequence.left_map_x.empty()) {
+            cv::Mat rectified;
+            if (side == 0) {
+                cv::remap(image, rectified, sequence.left_map_x, sequence.left_map_y,
+                          cv::INTER_LINEAR);
+            } else {
+                cv::remap(image, rectified, sequence.right_map_x, sequence.right_map_y,
+                          cv::INTER_LINEAR);
+            }
+            image = rectified;
+        }
+        if (downscale > 1) {
+            cv::Mat small;
+            cv::resize(image, small, cv::Size(image.cols / downscale, image.rows / downscale), 0, 0,
+                       cv::INTER_AREA);
+            image = small;
+        }
+        *targets[side] = image;
+    }
+    return frame;
+}
+
+}  // namespace stereo::robot::slam

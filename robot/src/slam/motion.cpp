@@ -1,0 +1,316 @@
+#include "stereo_robot/slam/motion.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <random>
+#include <stdexcept>
+
+#include <Eigen/SVD>
+#include <opencv2/features2d.hpp>
+
+namespace stereo::robot::slam {
+
+Camera Camera::downscaled(int factor) const {
+    const double f = factor;
+    const double shift = (f - 1.0) / 2.0;
+    return {focal / f, (cx - shift) / f, (cy - shift) / f, baseline};
+}
+
+Eigen::Vector3d Camera::lift(double u, double v, double d) const {
+    const double z = focal * baseline / d;
+    return {(u - cx) * z / focal, (v - cy) * z / focal, z};
+}
+
+Eigen::Vector3d Camera::project(const Eigen::Vector3d& p) const {
+    return {focal * p.x() / p.z() + cx, focal * p.y() / p.z() + cy, focal * baseline / p.z()};
+}
+
+Eigen::Isometry3d fit_rigid(const std::vector<Eigen::Vector3d>& src,
+                            const std::vector<Eigen::Vector3d>& dst,
+                            const std::vector<double>& weights) {
+    if (src.size() != dst.size() || src.size() < 3) {
+        throw std::invalid_argument("fit_rigid needs at least 3 point pairs of equal count");
+    }
+    if (!weights.empty() && weights.size() != src.size()) {
+        throw std::invalid_argument("fit_rigid: one weight per pair");
+    }
+    const auto weight = [&](std::size_t i) { return weights.empty() ? 1.0 : weights[i]; };
+    double total = 0.0;
+    Eigen::Vector3d src_mean = Eigen::Vector3d::Zero();
+    Eigen::Vector3d dst_mean = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i < src.size(); ++i) {
+        total += weight(i);
+        src_mean += weight(i) * src[i];
+        dst_mean += weight(i) * dst[i];
+    }
+    if (!(total > 0.0)) {
+        throw std::invalid_argument("fit_rigid: weights must sum to a positive value");
+    }
+    src_mean /= total;
+    dst_mean /= total;
+    Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+    for (std::size_t i = 0; i < src.size(); ++i) {
+        covariance += weight(i) * (dst[i] - dst_mean) * (src[i] - src_mean).transpose();
+    }
+    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(covariance,
+                                                Eigen::ComputeFullU | Eigen::ComputeFullV);
+    // A reflection (det -1) is the best orthogonal fit of degenerate or noisy data; flip the
+    // axis of the smallest singular value to get the best proper rotation instead.
+    Eigen::Matrix3d fix = Eigen::Matrix3d::Identity();
+    fix(2, 2) = (svd.matrixU() * svd.matrixV().transpose()).determinant() < 0.0 ? -1.0 : 1.0;
+    const Eigen::Matrix3d rotation = svd.matrixU() * fix * svd.matrixV().transpose();
+    Eigen::Isometry3d result = Eigen::Isometry3d::Identity();
+    result.linear() = rotation;
+    result.translation() = dst_mean - rotation * src_mean;
+    return result;
+}
+
+Residual euclidean_residual(const std::vector<Eigen::Vector3d>& src,
+                            const std::vector<Eigen::Vector3d>& dst) {
+    return [&src, &dst](const Eigen::Isometry3d& t, std::size_t i) {
+        return (t * src[i] - dst[i]).norm();
+    };
+}
+
+namespace {
+
+std::vector<int> consensus(const Eigen::Isometry3d& motion, std::size_t count,
+                           const Residual& residual, double threshold) {
+    std::vector<int> inliers;
+    for (std::size_t i = 0; i < count; ++i) {
+        if (residual(motion, i) <= threshold) {
+            inliers.push_back(static_cast<int>(i));
+        }
+    }
+    return inliers;
+}
+
+Eigen::Isometry3d fit_subset(const std::vector<Eigen::Vector3d>& src,
+                             const std::vector<Eigen::Vector3d>& dst,
+                             const std::vector<double>& weights, const std::vector<int>& subset) {
+    std::vector<Eigen::Vector3d> a;
+    std::vector<Eigen::Vector3d> b;
+    std::vector<double> w;
+    for (const int i : subset) {
+        a.push_back(src[i]);
+        b.push_back(dst[i]);
+        if (!weights.empty()) {
+            w.push_back(weights[i]);
+        }
+    }
+    return fit_rigid(a, b, w);
+}
+
+}  // namespace
+
+RansacResult ransac_rigid(const std::vector<Eigen::Vector3d>& src,
+                          const std::vector<Eigen::Vector3d>& dst, const Residual& residual,
+                          const RansacParams& params, const std::vector<double>& weights) {
+    if (src.size() != dst.size()) {
+        throw std::invalid_argument("ransac_rigid: point sets of different sizes");
+    }
+    RansacResult result;
+    const std::size_t n = src.size();
+    if (n < 3) {
+        return result;
+    }
+    std::mt19937 rng(params.seed);
+    std::uniform_int_distribution<std::size_t> pick(0, n - 1);
+    std::vector<int> best;
+    for (int iteration = 0; iteration < params.iterations; ++iteration) {
+        const std::size_t i = pick(rng);
+        const std::size_t j = pick(rng);
+        const std::size_t k = pick(rng);
+        // Collinear (or repeated) samples do not fix a rotation.
+        const double area = (src[j] - src[i]).cross(src[k] - src[i]).norm();
+        if (i == j || j == k || i == k || !(area > 1e-9)) {
+            continue;
+        }
+        const Eigen::Isometry3d candidate =
+            fit_rigid({src[i], src[j], src[k]}, {dst[i], dst[j], dst[k]});
+        std::vector<int> inliers = consensus(candidate, n, residual, params.threshold);
+        if (inliers.size() > best.size()) {
+            best = std::move(inliers);
+        }
+    }
+    if (best.size() < 3) {
+        return result;
+    }
+    for (int round = 0; round < 2; ++round) {
+        result.motion = fit_subset(src, dst, weights, best);
+        std::vector<int> inliers = consensus(result.motion, n, residual, params.threshold);
+        if (inliers.size() < 3) {
+            break;
+        }
+        best = std::move(inliers);
+    }
+    result.motion = fit_subset(src, dst, weights, best);
+    result.inliers = best;
+    result.ok = static_cast<int>(best.size()) >= params.min_inliers;
+    return result;
+}
+
+Features detect_features(const cv::Mat& grey, const MotionParams& params) {
+    Features features;
+    const auto orb = cv::ORB::create(params.features);
+    orb->detectAndCompute(grey, cv::noArray(), features.keypoints, features.descriptors);
+    return features;
+}
+
+double rotation_deg(const Eigen::Isometry3d& transform) {
+    const Eigen::AngleAxisd angle_axis(transform.rotation());
+    return std::abs(angle_axis.angle()) * 180.0 / std::numbers::pi;
+}
+
+namespace {
+
+Eigen::Isometry3d increment(const Eigen::Matrix<double, 6, 1>& delta) {
+    Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
+    const Eigen::Vector3d omega = delta.head<3>();
+    if (omega.norm() > 0.0) {
+        step.linear() = Eigen::AngleAxisd(omega.norm(), omega.normalized()).matrix();
+    }
+    step.translation() = delta.tail<3>();
+    return step;
+}
+
+}  // namespace
+
+Eigen::Isometry3d refine_reprojection(const Eigen::Isometry3d& start,
+                                      const std::vector<Eigen::Vector3d>& src,
+                                      const std::vector<Eigen::Vector3d>& observed,
+                                      const std::vector<int>& subset, const Camera& camera,
+                                      int iterations) {
+    Eigen::Isometry3d t = start;
+    const auto residuals = [&](const Eigen::Isometry3d& motion, Eigen::VectorXd& r) {
+        r.resize(static_cast<Eigen::Index>(3 * subset.size()));
+        for (std::size_t k = 0; k < subset.size(); ++k) {
+            const Eigen::Vector3d moved = motion * src[subset[k]];
+            r.segment<3>(static_cast<Eigen::Index>(3 * k)) =
+                moved.z() > 0.0 ? Eigen::Vector3d(camera.project(moved) - observed[subset[k]])
+                                : Eigen::Vector3d::Zero();
+        }
+    };
+    constexpr double kStep = 1e-6;
+    Eigen::VectorXd r;
+    Eigen::VectorXd shifted;
+    for (int iteration = 0; iteration < iterations && subset.size() >= 3; ++iteration) {
+        residuals(t, r);
+        Eigen::MatrixXd jacobian(r.size(), 6);
+        for (int j = 0; j < 6; ++j) {
+            Eigen::Matrix<double, 6, 1> delta = Eigen::Matrix<double, 6, 1>::Zero();
+            delta(j) = kStep;
+            residuals(increment(delta) * t, shifted);
+            jacobian.col(j) = (shifted - r) / kStep;
+        }
+        const Eigen::Matrix<double, 6, 1> delta =
+            (jacobian.transpose() * jacobian).ldlt().solve(-jacobian.transpose() * r);
+        if (!delta.allFinite()) {
+            break;
+        }
+        t = increment(delta) * t;
+        if (delta.norm() < 1e-10) {
+            break;
+        }
+    }
+    return t;
+}
+
+namespace {
+
+// The validated disparity at a keypoint's pixel, or a negative value.
+double disparity_at(const SparseDisparity& map, const cv::Point2f& point) {
+    const int x = static_cast<int>(std::lround(point.x));
+    const int y = static_cast<int>(std::lround(point.y));
+    if (x < 0 || y < 0 || x >= map.width || y >= map.height) {
+        return -1.0;
+    }
+    return map.at(x, y);
+}
+
+}  // namespace
+
+MotionEstimate estimate_motion(const Features& previous, const SparseDisparity& previous_disparity,
+                               const Features& current, const SparseDisparity& current_disparity,
+                               const Camera& camera, const MotionParams& params,
+                               const Eigen::Isometry3d& fallback) {
+    MotionEstimate estimate;
+    const auto refuse = [&](std::string reason) {
+        estimate.motion = fallback;
+        estimate.fallback = true;
+        estimate.reason = std::move(reason);
+        return estimate;
+    };
+    if (previous.descriptors.empty() || current.descriptors.empty()) {
+        return refuse("no features");
+    }
+    std::vector<cv::DMatch> matches;
+    cv::BFMatcher(cv::NORM_HAMMING, true).match(previous.descriptors, current.descriptors, matches);
+    estimate.matches = static_cast<int>(matches.size());
+
+    const double min_disparity = camera.focal * camera.baseline / params.max_depth;
+    std::vector<Eigen::Vector3d> src;
+    std::vector<Eigen::Vector3d> dst;
+    std::vector<Eigen::Vector3d> observed;  // (u, v, d) in the current frame
+    std::vector<double> weights;
+    for (const cv::DMatch& match : matches) {
+        if (match.distance > params.max_hamming) {
+            continue;
+        }
+        const cv::Point2f& a = previous.keypoints[match.queryIdx].pt;
+        const cv::Point2f& b = current.keypoints[match.trainIdx].pt;
+        const double da = disparity_at(previous_disparity, a);
+        const double db = disparity_at(current_disparity, b);
+        if (!(da >= min_disparity) || !(db >= min_disparity)) {
+            continue;
+        }
+        src.push_back(camera.lift(a.x, a.y, da));
+        dst.push_back(camera.lift(b.x, b.y, db));
+        observed.emplace_back(b.x, b.y, db);
+        // Depth variance grows with Z^4; 1/Z^2 still lets far points fix the rotation.
+        weights.push_back(1.0 / (src.back().z() * dst.back().z()));
+    }
+    estimate.lifted = static_cast<int>(src.size());
+    const Residual reprojection = [&](const Eigen::Isometry3d& t, std::size_t i) {
+        const Eigen::Vector3d moved = t * src[i];
+        if (!(moved.z() > 0.0)) {
+            return std::numeric_limits<double>::infinity();
+        }
+        return (camera.project(moved) - observed[i]).norm();
+    };
+    const RansacResult ransac = ransac_rigid(src, dst, reprojection, params.ransac, weights);
+    estimate.inliers = static_cast<int>(ransac.inliers.size());
+    if (!ransac.ok) {
+        return refuse("too few inliers (" + std::to_string(estimate.inliers) + " of " +
+                      std::to_string(estimate.lifted) + ")");
+    }
+    Eigen::Isometry3d motion = ransac.motion;
+    if (params.refine_iterations > 0) {
+        std::vector<int> inliers = ransac.inliers;
+        for (int round = 0; round < 2; ++round) {
+            motion = refine_reprojection(motion, src, observed, inliers, camera,
+                                         params.refine_iterations);
+            std::vector<int> recount;
+            for (std::size_t i = 0; i < src.size(); ++i) {
+                if (reprojection(motion, i) <= params.ransac.threshold) {
+                    recount.push_back(static_cast<int>(i));
+                }
+            }
+            if (static_cast<int>(recount.size()) < params.ransac.min_inliers) {
+                break;
+            }
+            inliers = std::move(recount);
+        }
+        estimate.inliers = static_cast<int>(inliers.size());
+    }
+    if (motion.translation().norm() > params.max_step_m ||
+        rotation_deg(motion) > params.max_step_deg) {
+        return refuse("implausible step");
+    }
+    estimate.motion = motion;
+    return estimate;
+}
+
+}  // namespace stereo::robot::slam

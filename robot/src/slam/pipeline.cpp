@@ -1,0 +1,157 @@
+#include "stereo_robot/slam/pipeline.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+namespace stereo::robot::slam {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+Image to_grey_image(const cv::Mat& mat) {
+    if (mat.type() != CV_8UC1 || mat.empty()) {
+        throw std::invalid_argument("SLAM frames must be non-empty 8-bit grey images");
+    }
+    Image image(mat.cols, mat.rows, 1);
+    for (int y = 0; y < mat.rows; ++y) {
+        std::memcpy(&image.at(0, y, 0), mat.ptr<std::uint8_t>(y),
+                    static_cast<std::size_t>(mat.cols));
+    }
+    return image;
+}
+
+Eigen::Vector2d plane(const Eigen::Vector3d& p) {
+    return {p.x(), p.z()};
+}
+
+void require(bool condition, const char* message) {
+    if (!condition) {
+        throw std::invalid_argument(message);
+    }
+}
+
+}  // namespace
+
+void validate(const SlamParams& params, int width, int height) {
+    validate_frontend(params.frontend, width, height);
+    const auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
+    require(params.motion.features >= 10, "--features must be >= 10");
+    require(params.motion.max_hamming >= 0 && params.motion.max_hamming <= 256,
+            "--max-hamming must be in 0..256");
+    require(positive(params.motion.max_depth), "--max-depth must be > 0");
+    require(params.motion.ransac.iterations >= 1, "--ransac-iterations must be >= 1");
+    require(positive(params.motion.ransac.threshold), "--inlier-px must be > 0");
+    require(params.motion.ransac.min_inliers >= 3, "--min-inliers must be >= 3");
+    require(positive(params.cell_size), "--cell must be > 0 metres");
+    require(positive(params.local.max_range), "--max-range must be > 0");
+    require(positive(params.local.max_height), "--max-height must be > 0");
+    require(params.local.tolerance >= 0.0 && std::isfinite(params.local.tolerance),
+            "--ground-tolerance must be >= 0");
+    require(params.local.stride >= 1, "--stride must be >= 1");
+    require(params.merge.max_shift >= 0 && params.merge.max_shift <= 20,
+            "--merge-shift must be in 0..20 cells");
+    require(params.merge.angle_steps >= 0 && params.merge.angle_steps <= 20,
+            "--merge-angle-steps must be in 0..20");
+    require(positive(params.merge.angle_step_deg), "--merge-angle-step must be > 0 degrees");
+    require(positive(params.ray_bin_deg), "ray bins must be > 0 degrees");
+}
+
+Slam::Slam(const Camera& camera, const SlamParams& params)
+    : camera_(camera), params_(params), map_(params.cell_size) {}
+
+FrameReport Slam::process(const cv::Mat& left, const cv::Mat& right) {
+    FrameReport report;
+
+    auto start = Clock::now();
+    SparseDisparity disparity =
+        sparse_disparity(to_grey_image(left), to_grey_image(right), params_.frontend);
+    report.valid_fraction = disparity.valid_fraction();
+    report.ms.frontend_ms = ms_since(start);
+
+    start = Clock::now();
+    Features features = detect_features(left, params_.motion);
+    if (odometry_.empty()) {
+        odometry_.push_back(Eigen::Isometry3d::Identity());
+        trajectory_.push_back(Eigen::Isometry3d::Identity());
+    } else {
+        // Constant velocity is the fallback: the last accepted motion again.
+        report.motion = estimate_motion(features_, disparity_, features, disparity, camera_,
+                                        params_.motion, last_motion_);
+        if (!report.motion.fallback) {
+            last_motion_ = report.motion.motion;
+        }
+        const Eigen::Isometry3d step = report.motion.motion.inverse();  // current -> previous
+        odometry_.push_back(odometry_.back() * step);
+        trajectory_.push_back(trajectory_.back() * step);
+    }
+    features_ = std::move(features);
+    disparity_ = std::move(disparity);
+    report.ms.motion_ms = ms_since(start);
+
+    start = Clock::now();
+    vdisp_ = v_disparity(disparity_, params_.frontend.ndisp);
+    GroundParams ground_params = params_.ground;
+    ground_params.tolerance = params_.local.tolerance;
+    const auto line = fit_ground_line(vdisp_, camera_, ground_params);
+    report.ground_found = line.has_value();
+    if (line) {
+        ground_ = line;  // else the previous frame's line is kept
+    }
+    report.ground = ground_;
+    LocalMap local;
+    if (ground_) {
+        local = local_map(disparity_, *ground_, camera_, params_.local);
+    }
+    report.obstacle_points = static_cast<int>(local.obstacles.size());
+    report.ms.local_map_ms = ms_since(start);
+
+    start = Clock::now();
+    Eigen::Isometry3d& pose = trajectory_.back();
+    std::vector<Eigen::Vector2d> obstacles;
+    obstacles.reserve(local.obstacles.size());
+    for (const auto& p : local.obstacles) {
+        obstacles.push_back(plane(pose * p));
+    }
+    if (params_.merge_enabled && !map_.empty() && !obstacles.empty()) {
+        const Eigen::Vector2d pivot = plane(pose.translation());
+        report.merge = best_placement(map_, obstacles, pivot, params_.merge);
+        const Eigen::Isometry3d correction =
+            merge_correction(report.merge, pivot, params_.cell_size, params_.merge);
+        pose = correction * pose;
+        for (auto& p : obstacles) {
+            p = plane(correction * Eigen::Vector3d(p.x(), 0.0, p.y()));
+        }
+    }
+    std::vector<Eigen::Vector2d> ground;
+    ground.reserve(local.ground.size());
+    for (const auto& p : local.ground) {
+        ground.push_back(plane(pose * p));
+    }
+    const Eigen::Vector2d origin = plane(pose.translation());
+    std::vector<CellIndex> cells;
+    cells.reserve(obstacles.size());
+    for (const auto& p : obstacles) {
+        cells.push_back(cell_of(p, params_.cell_size));
+    }
+    map_.add_frame(cell_of(origin, params_.cell_size), cells,
+                   bearing_rays(origin, obstacles, ground, params_.cell_size, params_.ray_bin_deg));
+    report.ms.global_map_ms = ms_since(start);
+    return report;
+}
+
+std::vector<Eigen::Vector2d> plane_path(const Trajectory& poses) {
+    std::vector<Eigen::Vector2d> path;
+    for (const auto& pose : poses) {
+        path.push_back(plane(pose.translation()));
+    }
+    return path;
+}
+
+}  // namespace stereo::robot::slam

@@ -1,0 +1,658 @@
+// Stereo SLAM (thesis Sec. 4.2): every expected value below is written down by hand or built
+// into the input by construction, never taken from a run of the code under test.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <random>
+#include <stdexcept>
+#include <string>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "stereo/pipeline.hpp"
+#include "stereo_robot/slam/dataset.hpp"
+#include "stereo_robot/slam/evaluation.hpp"
+#include "stereo_robot/slam/frontend.hpp"
+#include "stereo_robot/slam/maps.hpp"
+#include "stereo_robot/slam/motion.hpp"
+#include "stereo_robot/slam/pipeline.hpp"
+#include "test_support.hpp"
+
+namespace stereo::robot::slam {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kExact = 1e-9;  // "exactly", for floating-point fits on noise-free data
+
+// ---- front end ------------------------------------------------------------------------------
+
+TEST(Parabola, HandComputedVertices) {
+    // (c- - c+) / (2 (c- - 2 c0 + c+)):
+    EXPECT_DOUBLE_EQ(parabola_offset(10, 4, 6), 0.25);      // 4 / 16
+    EXPECT_DOUBLE_EQ(parabola_offset(6, 4, 10), -0.25);     // mirror image
+    EXPECT_DOUBLE_EQ(parabola_offset(4, 4, 8), -0.5);       // -4 / 8: the minimum between samples
+    EXPECT_DOUBLE_EQ(parabola_offset(40, 10, 12), 0.4375);  // 28 / 64
+    EXPECT_DOUBLE_EQ(parabola_offset(5, 1, 5), 0.0);        // symmetric
+    EXPECT_DOUBLE_EQ(parabola_offset(3, 3, 3), 0.0);        // flat: no vertex
+}
+
+// A 8x1 DSI with 4 labels, every cost 50 except the cells set by hand. With window 1 (reach 0)
+// pixel x has labels 0 .. min(3, x).
+Dsi flat_dsi() {
+    Dsi dsi(8, 1, 4);
+    for (int d = 0; d < 4; ++d) {
+        for (int x = 0; x < 8; ++x) {
+            dsi.at(x, 0, d) = 50;
+        }
+    }
+    // Pixel 5: costs 40, 10, 12, 30 -> d1 = 1, C2 = 30 (d = 3), certainty 2.
+    dsi.at(5, 0, 0) = 40;
+    dsi.at(5, 0, 1) = 10;
+    dsi.at(5, 0, 2) = 12;
+    dsi.at(5, 0, 3) = 30;
+    return dsi;
+}
+
+FrontendParams window_one() {
+    FrontendParams p;
+    p.ndisp = 4;
+    p.window = 1;
+    return p;
+}
+
+TEST(Validation, HandMadeCurveGivesItsSubPixelMinimum) {
+    const SparseDisparity map = validate_dsi(flat_dsi(), window_one(), 0);
+    for (int x = 0; x < 8; ++x) {
+        if (x == 5) {
+            // Right pixel 4 sees C(4,0)=50, C(5,1)=10, C(6,2)=50, C(7,3)=50: dR = 1 = dL.
+            EXPECT_FLOAT_EQ(map.at(x, 0), 1.4375f);  // 1 + 28 / 64
+        } else {
+            EXPECT_FALSE(map.valid(x, 0)) << x;  // flat curves are never certain
+        }
+    }
+}
+
+TEST(Validation, CertaintyTestRejectsASecondMinimum) {
+    Dsi dsi = flat_dsi();
+    dsi.at(5, 0, 3) = 11;  // C2 = 11: (11 - 10) / 10 = 0.1, not above 0.1
+    EXPECT_FALSE(validate_dsi(dsi, window_one(), 0).valid(5, 0));
+    FrontendParams lenient = window_one();
+    lenient.certainty = 0.09;
+    EXPECT_TRUE(validate_dsi(dsi, lenient, 0).valid(5, 0));
+}
+
+TEST(Validation, LeftRightCheckRejectsAnInconsistentPixel) {
+    Dsi dsi = flat_dsi();
+    // Right pixel 4 now prefers d = 3 (left pixel 7): |3 - 1| = 2 > 1, so pixel 5 fails; pixel 7
+    // (costs 50, 50, 50, 5: d1 = 3, C2 = 50) is consistent and has no right neighbour label.
+    dsi.at(7, 0, 3) = 5;
+    const SparseDisparity map = validate_dsi(dsi, window_one(), 0);
+    EXPECT_FALSE(map.valid(5, 0));
+    EXPECT_FLOAT_EQ(map.at(7, 0), 3.0f);
+    // A right disparity one away is within the tolerance: C(6, 2) = 9 makes dR(4) = 2.
+    Dsi near = flat_dsi();
+    near.at(6, 0, 2) = 9;
+    EXPECT_TRUE(validate_dsi(near, window_one(), 0).valid(5, 0));
+}
+
+TEST(Frontend, ShiftedTextureGivesItsShift) {
+    std::mt19937 rng(test::test_seed());
+    const Image left = test::random_image(96, 40, 1, rng);
+    const Image right = test::shifted_copy(left, 5, 0, rng);
+    FrontendParams params;
+    params.ndisp = 16;
+    params.window = 5;
+    const SparseDisparity map = sparse_disparity(left, right, params);
+    // Checked where every label has its window inside both images (x >= ndisp + reach) and the
+    // true match exists (x < width - 5 - reach). The true cost at d = 5 is 0, so the integer
+    // winner must be 5; the parabola through uneven neighbours moves it by less than 0.5.
+    int valid = 0;
+    int checked = 0;
+    for (int y = 2; y < map.height - 2; ++y) {
+        for (int x = 18; x < map.width - 7; ++x) {
+            ++checked;
+            if (map.valid(x, y)) {
+                ++valid;
+                EXPECT_LT(std::abs(map.at(x, y) - 5.0), 0.5) << x << "," << y;
+            }
+        }
+    }
+    EXPECT_GT(valid, checked * 9 / 10);
+}
+
+TEST(Frontend, RejectsImpossibleParameters) {
+    std::mt19937 rng(1);
+    const Image image = test::random_image(32, 16, 1, rng);
+    FrontendParams even = window_one();
+    even.window = 4;
+    EXPECT_THROW(sparse_disparity(image, image, even), std::invalid_argument);
+    FrontendParams negative = window_one();
+    negative.certainty = -0.1;
+    EXPECT_THROW(sparse_disparity(image, image, negative), std::invalid_argument);
+    FrontendParams two = window_one();
+    two.ndisp = 2;
+    EXPECT_THROW(sparse_disparity(image, image, two), std::invalid_argument);
+}
+
+// ---- motion ---------------------------------------------------------------------------------
+
+Eigen::Isometry3d known_motion() {
+    Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+    t.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, -2, 0.5).normalized()).matrix();
+    t.translation() = Eigen::Vector3d(0.4, -1.25, 2.0);
+    return t;
+}
+
+std::vector<Eigen::Vector3d> random_points(int n, std::mt19937& rng) {
+    std::uniform_real_distribution<double> lateral(-5.0, 5.0);
+    std::uniform_real_distribution<double> depth(4.0, 30.0);
+    std::vector<Eigen::Vector3d> points;
+    for (int i = 0; i < n; ++i) {
+        points.emplace_back(lateral(rng), lateral(rng) / 3.0, depth(rng));
+    }
+    return points;
+}
+
+void expect_same(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, double tolerance) {
+    EXPECT_LT((a.linear() - b.linear()).norm(), tolerance);
+    EXPECT_LT((a.translation() - b.translation()).norm(), tolerance);
+}
+
+TEST(RigidFit, RecoversAKnownTransformExactly) {
+    std::mt19937 rng(test::test_seed());
+    const auto src = random_points(20, rng);
+    std::vector<Eigen::Vector3d> dst;
+    for (const auto& p : src) {
+        dst.push_back(known_motion() * p);
+    }
+    expect_same(fit_rigid(src, dst), known_motion(), kExact);
+    // Weights do not move an exact solution; three points are enough.
+    std::vector<double> weights(src.size());
+    for (std::size_t i = 0; i < weights.size(); ++i) {
+        weights[i] = 1.0 + static_cast<double>(i);
+    }
+    expect_same(fit_rigid(src, dst, weights), known_motion(), kExact);
+    expect_same(fit_rigid({src[0], src[1], src[2]}, {dst[0], dst[1], dst[2]}), known_motion(),
+                kExact);
+}
+
+TEST(RigidFit, NeverReturnsAReflection) {
+    // A mirrored set: the best orthogonal map is a reflection; the fit must stay a rotation.
+    const std::vector<Eigen::Vector3d> src{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
+    std::vector<Eigen::Vector3d> dst;
+    for (const auto& p : src) {
+        dst.emplace_back(-p.x(), p.y(), p.z());
+    }
+    EXPECT_NEAR(fit_rigid(src, dst).linear().determinant(), 1.0, kExact);
+}
+
+TEST(RigidFit, RefusesTooFewPairs) {
+    EXPECT_THROW(fit_rigid({{0, 0, 1}, {1, 0, 1}}, {{0, 0, 1}, {1, 0, 1}}), std::invalid_argument);
+    EXPECT_THROW(fit_rigid({{0, 0, 1}, {1, 0, 1}, {0, 1, 1}}, {{0, 0, 1}}), std::invalid_argument);
+}
+
+TEST(Ransac, RecoversTheTransformAndTheInliersAmongOutliers) {
+    std::mt19937 rng(test::test_seed());
+    auto src = random_points(90, rng);
+    std::vector<Eigen::Vector3d> dst;
+    std::vector<int> expected_inliers;
+    std::uniform_real_distribution<double> junk(-3.0, 3.0);
+    for (std::size_t i = 0; i < src.size(); ++i) {
+        Eigen::Vector3d moved = known_motion() * src[i];
+        if (i % 3 == 2) {  // a third are outliers, moved by at least 1 m
+            moved += Eigen::Vector3d(1.0 + std::abs(junk(rng)), junk(rng), junk(rng));
+        } else {
+            expected_inliers.push_back(static_cast<int>(i));
+        }
+        dst.push_back(moved);
+    }
+    RansacParams params;
+    params.threshold = 1e-6;
+    params.min_inliers = 10;
+    const RansacResult result = ransac_rigid(src, dst, euclidean_residual(src, dst), params);
+    ASSERT_TRUE(result.ok);
+    EXPECT_EQ(result.inliers, expected_inliers);
+    expect_same(result.motion, known_motion(), kExact);
+}
+
+TEST(Ransac, MinimumInlierRuleRefusesAWeakConsensus) {
+    std::mt19937 rng(test::test_seed());
+    const auto src = random_points(12, rng);
+    std::vector<Eigen::Vector3d> dst;
+    for (const auto& p : src) {
+        dst.push_back(known_motion() * p);
+    }
+    RansacParams params;
+    params.min_inliers = 13;  // one more than there are pairs
+    EXPECT_FALSE(ransac_rigid(src, dst, euclidean_residual(src, dst), params).ok);
+    params.min_inliers = 12;
+    EXPECT_TRUE(ransac_rigid(src, dst, euclidean_residual(src, dst), params).ok);
+}
+
+TEST(Camera, DownscaleAndLiftByHand) {
+    const Camera full{700.0, 600.5, 180.0, 0.5};
+    const Camera half = full.downscaled(2);
+    EXPECT_DOUBLE_EQ(half.focal, 350.0);
+    EXPECT_DOUBLE_EQ(half.cx, 300.0);  // (600.5 - 0.5) / 2
+    EXPECT_DOUBLE_EQ(half.cy, 89.75);  // (180 - 0.5) / 2
+    // d = 35 px -> Z = 350 * 0.5 / 35 = 5 m; u = 370 -> X = 70 * 5 / 350 = 1 m.
+    const Eigen::Vector3d p = half.lift(370.0, 89.75, 35.0);
+    EXPECT_NEAR((p - Eigen::Vector3d(1.0, 0.0, 5.0)).norm(), 0.0, 1e-12);
+    EXPECT_NEAR((half.project(p) - Eigen::Vector3d(370.0, 89.75, 35.0)).norm(), 0.0, 1e-9);
+}
+
+TEST(Refinement, ReprojectionRefinementConvergesToTheTrueMotion) {
+    std::mt19937 rng(test::test_seed());
+    const Camera camera{350.0, 300.0, 90.0, 0.5};
+    const auto src = random_points(30, rng);
+    std::vector<Eigen::Vector3d> observed;
+    std::vector<int> all;
+    for (std::size_t i = 0; i < src.size(); ++i) {
+        observed.push_back(camera.project(known_motion() * src[i]));
+        all.push_back(static_cast<int>(i));
+    }
+    Eigen::Isometry3d start = known_motion();
+    start.translation() += Eigen::Vector3d(0.05, -0.03, 0.1);
+    start.linear() = Eigen::AngleAxisd(0.01, Eigen::Vector3d::UnitY()).matrix() * start.linear();
+    expect_same(refine_reprojection(start, src, observed, all, camera, 20), known_motion(), 1e-7);
+}
+
+// ---- v-disparity and local map --------------------------------------------------------------
+
+TEST(GroundLine, FitsTheGroundAndIgnoresAWall) {
+    // Ground d = v - 40 (slope 1 = B / h with B = 1 m, h = 1 m; horizon at row 40 = cy) with 20
+    // votes per row; a wall at d = 30 in rows 0..50 with 30 votes wins rows 41..50.
+    VDisparity vdisp{100, 64, std::vector<int>(100 * 64, 0)};
+    for (int v = 41; v < 100; ++v) {
+        vdisp.counts[static_cast<std::size_t>(v) * 64 + (v - 40)] = 20;
+    }
+    for (int v = 0; v <= 50; ++v) {
+        vdisp.counts[static_cast<std::size_t>(v) * 64 + 30] = 30;
+    }
+    const Camera camera{100.0, 50.0, 40.0, 1.0};
+    const auto line = fit_ground_line(vdisp, camera, GroundParams{});
+    ASSERT_TRUE(line.has_value());
+    EXPECT_NEAR(line->slope, 1.0, kExact);
+    EXPECT_NEAR(line->intercept, -40.0, kExact);
+    // The same data for a camera whose horizon would be far from row 40: no plausible line.
+    const Camera pitched{100.0, 50.0, 90.0, 1.0};  // |40 - 90| > 100 tan 15 deg = 26.8
+    EXPECT_FALSE(fit_ground_line(vdisp, pitched, GroundParams{}).has_value());
+}
+
+TEST(VDisparity, CountsRoundedDisparitiesPerRow) {
+    SparseDisparity map(4, 2);
+    map.at(0, 0) = 2.4f;  // -> 2
+    map.at(1, 0) = 1.6f;  // -> 2
+    map.at(2, 0) = 3.0f;
+    map.at(3, 1) = 0.2f;  // -> 0
+    const VDisparity vdisp = v_disparity(map, 4);
+    EXPECT_EQ(vdisp.at(0, 2), 2);
+    EXPECT_EQ(vdisp.at(0, 3), 1);
+    EXPECT_EQ(vdisp.at(1, 0), 1);
+    EXPECT_EQ(vdisp.at(1, 2), 0);
+}
+
+TEST(LocalMap, SplitsGroundObstaclesAndTheRest) {
+    const Camera camera{100.0, 50.0, 40.0, 1.0};
+    const GroundLine line{1.0, -40.0};  // d = v - 40
+    SparseDisparity map(100, 100);
+    map.at(70, 60) = 20.0f;  // on the line: ground, Z = 5
+    map.at(60, 60) = 25.0f;  // 5 above it: height 1 * (65 - 60) / 25 = 0.2 m, an obstacle
+    map.at(10, 10) = 5.0f;   // height (45 - 10) / 5 = 7 m: above max_height, dropped
+    map.at(20, 60) = 15.0f;  // beyond the ground: dropped
+    map.at(30, 41) = 2.0f;   // ground at 50 m: beyond max_range, dropped
+    const LocalMap local = local_map(map, line, camera, LocalMapParams{});
+    ASSERT_EQ(local.ground.size(), 1U);
+    ASSERT_EQ(local.obstacles.size(), 1U);
+    // Z = 100 / 25 = 4; X = (60 - 50) * 4 / 100 = 0.4; Y = (60 - 40) * 4 / 100 = 0.8.
+    EXPECT_NEAR((local.obstacles[0] - Eigen::Vector3d(0.4, 0.8, 4.0)).norm(), 0.0, 1e-12);
+    EXPECT_NEAR((local.ground[0] - Eigen::Vector3d(1.0, 1.0, 5.0)).norm(), 0.0, 1e-12);
+}
+
+// ---- grids ----------------------------------------------------------------------------------
+
+// Rows top to bottom as written; '#' occupied, '.' free, '?' unknown.
+DenseGrid grid_from(const std::vector<std::string>& rows) {
+    DenseGrid grid(0, 0, static_cast<int>(rows[0].size()), static_cast<int>(rows.size()));
+    for (int r = 0; r < grid.height; ++r) {
+        for (int c = 0; c < grid.width; ++c) {
+            const char ch = rows[r][c];
+            grid.at(c, r) = ch == '#' ? Cell::occupied : ch == '.' ? Cell::free : Cell::unknown;
+        }
+    }
+    return grid;
+}
+
+TEST(CellularAutomaton, ClearsIsolatedCells) {
+    EXPECT_EQ(ca_clean(grid_from({"...", ".#.", "..."})), grid_from({"...", "...", "..."}));
+    EXPECT_EQ(ca_clean(grid_from({"???", "?#?", "???"})), grid_from({"???", "???", "???"}));
+    EXPECT_EQ(ca_clean(grid_from({"??.", "?#?", "???"})), grid_from({"??.", "?.?", "???"}));
+    // Two touching cells support each other, diagonally too.
+    EXPECT_EQ(ca_clean(grid_from({"....", ".#..", "..#.", "...."})),
+              grid_from({"....", ".#..", "..#.", "...."}));
+}
+
+TEST(CellularAutomaton, FillsGapsInWalls) {
+    EXPECT_EQ(ca_clean(grid_from({".....", "##.##", "....."})),
+              grid_from({".....", "#####", "....."}));
+    EXPECT_EQ(ca_clean(grid_from({".#.", ".#.", "?.?", ".#.", ".#."})),
+              grid_from({".#.", ".#.", "?#?", ".#.", ".#."}));
+    // Synchronous: single cells on both sides of a gap are isolated in the input, so they are
+    // cleared while the gap between them is filled.
+    EXPECT_EQ(ca_clean(grid_from({".#.", "?.?", ".#."})), grid_from({"...", "?#?", "..."}));
+    EXPECT_EQ(ca_clean(grid_from({"#..", "...", "..#"})),  // diagonal gap; both ends isolated
+              grid_from({"...", ".#.", "..."}));
+    // A two-cell gap stays open, and the pass is synchronous: cells filled in this pass do not
+    // count as occupied for their neighbours.
+    EXPECT_EQ(ca_clean(grid_from({"......", "##..##", "......"})),
+              grid_from({"......", "##..##", "......"}));
+}
+
+TEST(EvidenceGrid, RaysFreeTheCellsBeforeAnObstacle) {
+    EvidenceGrid grid(1.0);
+    grid.add_frame({0, 0}, {{3, 0}}, {Ray{{3, 0}, false}, Ray{{0, 2}, true}});
+    EXPECT_EQ(grid.state({0, 0}), Cell::free);
+    EXPECT_EQ(grid.state({2, 0}), Cell::free);
+    EXPECT_EQ(grid.state({3, 0}), Cell::occupied);
+    EXPECT_EQ(grid.state({0, 2}), Cell::free);  // a free end is included
+    EXPECT_EQ(grid.state({4, 0}), Cell::unknown);
+    // Two later frames see through (3, 0): two misses beat one hit.
+    grid.add_frame({0, 0}, {}, {Ray{{5, 0}, true}});
+    EXPECT_EQ(grid.state({3, 0}), Cell::occupied);  // 1 hit, 1 miss: a tie stays occupied
+    grid.add_frame({0, 0}, {}, {Ray{{5, 0}, true}});
+    EXPECT_EQ(grid.state({3, 0}), Cell::free);
+}
+
+TEST(EvidenceGrid, BresenhamLineByHand) {
+    const std::vector<CellIndex> expected{{0, 0}, {1, 0}, {2, 1}, {3, 1}};
+    EXPECT_EQ(line_cells({0, 0}, {3, 1}), expected);
+    const std::vector<CellIndex> vertical{{2, 3}, {2, 2}, {2, 1}};
+    EXPECT_EQ(line_cells({2, 3}, {2, 1}), vertical);
+}
+
+TEST(MapMerge, RecoversAKnownOffsetAndRotation) {
+    constexpr double kCell = 0.25;
+    // An irregular wall pattern: an L and a few scattered cells, in cell indices.
+    std::vector<CellIndex> walls;
+    for (int i = 0; i < 30; ++i) {
+        walls.push_back({i, 40});
+    }
+    for (int j = 10; j < 40; ++j) {
+        walls.push_back({0, j});
+    }
+    for (const CellIndex c : {CellIndex{12, 22}, {20, 15}, {25, 30}, {7, 33}, {18, 5}}) {
+        walls.push_back(c);
+    }
+    EvidenceGrid global(kCell);
+    global.add_frame({0, 0}, walls, {});
+
+    MergeParams params;
+    params.max_shift = 3;
+    params.angle_steps = 3;
+    params.angle_step_deg = 2.0;
+    const int true_dx = 2;
+    const int true_dz = -1;
+    const int true_steps = 1;
+    const Eigen::Vector2d pivot(3.0, 2.0);
+    // Local points: the cell centres moved back by the inverse of the correction to find.
+    const double angle = -true_steps * params.angle_step_deg * std::numbers::pi / 180.0;
+    std::vector<Eigen::Vector2d> local;
+    std::vector<Eigen::Vector2d> centres;
+    for (const CellIndex& c : walls) {
+        const Eigen::Vector2d centre((c.x + 0.5) * kCell, (c.z + 0.5) * kCell);
+        centres.push_back(centre);
+        const Eigen::Vector2d r = centre - Eigen::Vector2d(true_dx, true_dz) * kCell - pivot;
+        local.push_back(pivot +
+                        Eigen::Vector2d(std::cos(angle) * r.x() + std::sin(angle) * r.y(),
+                                        -std::sin(angle) * r.x() + std::cos(angle) * r.y()));
+    }
+    const MergeResult result = best_placement(global, local, pivot, params);
+    EXPECT_EQ(result.dx, true_dx);
+    EXPECT_EQ(result.dz, true_dz);
+    EXPECT_EQ(result.dtheta, true_steps);
+    EXPECT_EQ(result.score, static_cast<int>(walls.size()));
+    EXPECT_LT(result.base_score, result.score);
+    EXPECT_TRUE(result.applied);
+    // The 3-D correction moves every local point back onto its wall cell centre.
+    const Eigen::Isometry3d correction = merge_correction(result, pivot, kCell, params);
+    for (std::size_t i = 0; i < local.size(); ++i) {
+        const Eigen::Vector3d moved = correction * Eigen::Vector3d(local[i].x(), 7.0, local[i].y());
+        EXPECT_NEAR(moved.x(), centres[i].x(), kExact);
+        EXPECT_NEAR(moved.y(), 7.0, kExact);
+        EXPECT_NEAR(moved.z(), centres[i].y(), kExact);
+    }
+}
+
+TEST(MapMerge, KeepsThePlacementWhenNothingIsGained) {
+    EvidenceGrid global(1.0);
+    global.add_frame({0, 0}, {{5, 5}, {6, 5}}, {});
+    const std::vector<Eigen::Vector2d> points{{5.5, 5.5}, {6.5, 5.5}};  // already in place
+    const MergeResult result = best_placement(global, points, {0.0, 0.0}, MergeParams{});
+    EXPECT_EQ(result.dx, 0);
+    EXPECT_EQ(result.dz, 0);
+    EXPECT_EQ(result.dtheta, 0);
+    EXPECT_EQ(result.score, 2);
+    EXPECT_FALSE(result.applied);
+}
+
+// ---- evaluation -----------------------------------------------------------------------------
+
+Trajectory straight_line(double step, int n) {
+    Trajectory poses;
+    for (int i = 0; i < n; ++i) {
+        Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+        pose.translation() = Eigen::Vector3d(0.0, 0.0, step * i);
+        poses.push_back(pose);
+    }
+    return poses;
+}
+
+TEST(Evaluation, ScaleErrorOnAStraightLineByHand) {
+    const Trajectory truth = straight_line(1.0, 11);
+    const Trajectory estimate = straight_line(1.1, 11);
+    const TrajectoryErrors e = trajectory_errors(estimate, truth, 10);
+    // Centred errors 0.1 (i - 5): RMSE = 0.1 sqrt(110 / 11) = 0.1 sqrt(10).
+    EXPECT_NEAR(e.ate_rmse_m, 0.1 * std::sqrt(10.0), kExact);
+    EXPECT_NEAR(e.path_length_m, 10.0, kExact);
+    EXPECT_NEAR(e.ate_percent, 10.0 * std::sqrt(10.0) / 10.0, kExact);
+    EXPECT_EQ(e.rpe_pairs, 1);
+    EXPECT_NEAR(e.rpe_translation_percent, 10.0, kExact);  // 1 m of 10 m
+    EXPECT_NEAR(e.rpe_rotation_deg, 0.0, kExact);
+}
+
+TEST(Evaluation, ARigidlyMovedCopyHasNoAbsoluteError) {
+    Trajectory truth;
+    for (int i = 0; i < 12; ++i) {
+        Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+        pose.linear() = Eigen::AngleAxisd(0.1 * i, Eigen::Vector3d::UnitY()).matrix();
+        pose.translation() = Eigen::Vector3d(std::sin(0.1 * i) * 5, 0.01 * i, i);
+        truth.push_back(pose);
+    }
+    Trajectory moved;
+    for (const auto& pose : truth) {
+        moved.push_back(known_motion() * pose);
+    }
+    const TrajectoryErrors e = trajectory_errors(moved, truth, 10);
+    EXPECT_NEAR(e.ate_rmse_m, 0.0, kExact);
+    EXPECT_NEAR(e.rpe_translation_percent, 0.0, kExact);
+    EXPECT_NEAR(e.rpe_rotation_deg, 0.0, 1e-6);  // acos near 1 loses half the digits
+    EXPECT_EQ(e.rpe_pairs, 2);
+}
+
+TEST(Evaluation, DriftOfAWanderingEstimate) {
+    Trajectory poses = straight_line(0.0, 3);
+    poses[1].translation() = Eigen::Vector3d(0.03, 0.04, 0.0);  // 5 cm
+    poses[2].translation() = Eigen::Vector3d(0.0, 0.0, 0.02);
+    const Drift d = drift(poses);
+    EXPECT_NEAR(d.max_translation_m, 0.05, kExact);
+    EXPECT_NEAR(d.final_translation_m, 0.02, kExact);
+}
+
+// ---- files and bad input --------------------------------------------------------------------
+
+class TempDir {
+  public:
+    TempDir()
+        : path_(fs::temp_directory_path() /
+                ("stereo_slam_" + std::to_string(::getpid()) + "_" + std::to_string(counter_++))) {
+        fs::remove_all(path_);
+        fs::create_directories(path_);
+    }
+    ~TempDir() { fs::remove_all(path_); }
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+    const fs::path& path() const { return path_; }
+
+  private:
+    static inline int counter_ = 0;
+    fs::path path_;
+};
+
+void write_file(const fs::path& path, const std::string& text) {
+    std::ofstream(path) << text;
+}
+
+const char* kCalib = "P0: 100 0 32 0 0 100 16 0 0 0 1 0\nP1: 100 0 32 -50 0 100 16 0 0 0 1 0\n";
+
+// A KITTI-layout folder with `left` and `right` grey 64x32 frames (named 000000.png, ...).
+void make_sequence(const fs::path& dir, int left, int right) {
+    fs::create_directories(dir / "image_l");
+    fs::create_directories(dir / "image_r");
+    const cv::Mat image(32, 64, CV_8UC1, cv::Scalar(90));
+    for (int i = 0; i < std::max(left, right); ++i) {
+        char name[16];
+        std::snprintf(name, sizeof name, "%06d.png", i);
+        if (i < left) {
+            cv::imwrite((dir / "image_l" / name).string(), image);
+        }
+        if (i < right) {
+            cv::imwrite((dir / "image_r" / name).string(), image);
+        }
+    }
+    write_file(dir / "calib.txt", kCalib);
+}
+
+TEST(Sequence, ReadsTheLayoutAndTheCamera) {
+    const TempDir dir;
+    make_sequence(dir.path(), 3, 3);
+    const Sequence sequence = open_sequence(dir.path(), Layout::kitti, std::nullopt);
+    EXPECT_EQ(sequence.frames.size(), 3U);
+    EXPECT_DOUBLE_EQ(sequence.camera.focal, 100.0);
+    EXPECT_DOUBLE_EQ(sequence.camera.cx, 32.0);
+    EXPECT_DOUBLE_EQ(sequence.camera.cy, 16.0);
+    EXPECT_DOUBLE_EQ(sequence.camera.baseline, 0.5);
+    EXPECT_FALSE(sequence.truth.has_value());  // no poses.txt: no error, no ground truth
+    EXPECT_EQ(sequence.size, cv::Size(64, 32));
+    EXPECT_EQ(load_frame(sequence, 2, 2).left.size(), cv::Size(32, 16));
+}
+
+TEST(Sequence, UnequalFrameCountsAreRefused) {
+    const TempDir dir;
+    make_sequence(dir.path(), 3, 2);  // image_r lacks 000002.png
+    try {
+        open_sequence(dir.path(), Layout::kitti, std::nullopt);
+        FAIL() << "no exception";
+    } catch (const std::invalid_argument& error) {
+        EXPECT_NE(std::string(error.what()).find("unequal frame counts"), std::string::npos);
+        EXPECT_NE(std::string(error.what()).find("000002.png"), std::string::npos);
+    }
+}
+
+TEST(Sequence, MissingFoldersAndFilesAreIoErrors) {
+    const TempDir dir;
+    EXPECT_THROW(open_sequence(dir.path() / "nope", Layout::kitti, std::nullopt),
+                 std::runtime_error);
+    make_sequence(dir.path(), 2, 2);
+    fs::remove_all(dir.path() / "image_r");
+    EXPECT_THROW(open_sequence(dir.path(), Layout::kitti, std::nullopt), std::runtime_error);
+    make_sequence(dir.path(), 2, 2);
+    fs::remove(dir.path() / "calib.txt");
+    EXPECT_THROW(open_sequence(dir.path(), Layout::kitti, std::nullopt), std::runtime_error);
+    EXPECT_THROW(open_sequence(dir.path(), Layout::euroc, std::nullopt), std::runtime_error);
+}
+
+TEST(Sequence, MalformedCalibrationAndPosesAreRefused) {
+    const TempDir dir;
+    make_sequence(dir.path(), 2, 2);
+    write_file(dir.path() / "calib.txt", "P0: 1 2 3\nhello\n");
+    EXPECT_THROW(open_sequence(dir.path(), Layout::kitti, std::nullopt), std::invalid_argument);
+    write_file(dir.path() / "calib.txt", kCalib);
+    write_file(dir.path() / "poses.txt", "1 0 0 0 0 1 0 0 0 0 1 0\n");  // 1 pose, 2 frames
+    EXPECT_THROW(open_sequence(dir.path(), Layout::kitti, std::nullopt), std::invalid_argument);
+    write_file(dir.path() / "poses.txt", "1 0 0 0 0 1 0 0 0 0 1 0\n1 0 0 0 0 1 0 0 0 0 1\n");
+    EXPECT_THROW(open_sequence(dir.path(), Layout::kitti, std::nullopt), std::invalid_argument);
+    write_file(dir.path() / "poses.txt", "1 0 0 0 0 1 0 0 0 0 1 0\n2 0 0 0 0 1 0 0 0 0 1 0\n");
+    EXPECT_THROW(open_sequence(dir.path(), Layout::kitti, std::nullopt), std::invalid_argument);
+    fs::create_directories(dir.path() / "cam0" / "data");
+    fs::create_directories(dir.path() / "cam1" / "data");
+    cv::imwrite((dir.path() / "cam0" / "data" / "1.png").string(), cv::Mat(8, 8, CV_8UC1));
+    cv::imwrite((dir.path() / "cam1" / "data" / "1.png").string(), cv::Mat(8, 8, CV_8UC1));
+    write_file(dir.path() / "rect.yaml", "%YAML:1.0\n---\nK0: [1, 2\n");
+    EXPECT_THROW(open_sequence(dir.path(), Layout::euroc, dir.path() / "rect.yaml"),
+                 std::invalid_argument);
+}
+
+TEST(Sequence, UnreadableOrMismatchedImagesFailWhenLoaded) {
+    const TempDir dir;
+    make_sequence(dir.path(), 2, 2);
+    write_file(dir.path() / "image_r" / "000001.png", "not a PNG");
+    const Sequence sequence = open_sequence(dir.path(), Layout::kitti, std::nullopt);
+    EXPECT_THROW(load_frame(sequence, 1, 1), std::runtime_error);
+    cv::imwrite((dir.path() / "image_r" / "000001.png").string(), cv::Mat(16, 64, CV_8UC1));
+    EXPECT_THROW(load_frame(sequence, 1, 1), std::invalid_argument);
+}
+
+TEST(Poses, RoundTripThroughTheKittiFormat) {
+    const TempDir dir;
+    const Trajectory poses{Eigen::Isometry3d::Identity(), known_motion()};
+    write_file(dir.path() / "poses.txt", format_kitti_poses(poses));
+    const Trajectory back = load_kitti_poses(dir.path() / "poses.txt");
+    ASSERT_EQ(back.size(), 2U);
+    expect_same(back[1], known_motion(), 1e-8);  // 10 significant digits are written
+}
+
+TEST(Frames, RangeSyntax) {
+    EXPECT_EQ(parse_frames("2:5", 10).begin, 2);
+    EXPECT_EQ(parse_frames("2:5", 10).end, 5);
+    EXPECT_EQ(parse_frames("", 10).end, 10);
+    EXPECT_EQ(parse_frames("3:", 10).end, 10);
+    EXPECT_EQ(parse_frames(":4", 10).begin, 0);
+    for (const char* bad : {"5:2", "3:3", "0:11", "-1:4", "a:b", "4", "1:2:3", "1.5:3"}) {
+        EXPECT_THROW(parse_frames(bad, 10), std::invalid_argument) << bad;
+    }
+}
+
+// ---- real data (skipped without ../shared/data) -------------------------------------------
+
+TEST(RealData, KittiOdometryOnAShortClip) {
+    const fs::path dir = test::data_dir() / "sequence" / "kitti_sequence_1";
+    if (!fs::is_directory(dir)) {
+        GTEST_SKIP() << "no KITTI data at " << dir;
+    }
+    const Sequence sequence = open_sequence(dir, Layout::kitti, std::nullopt);
+    ASSERT_TRUE(sequence.truth.has_value());
+    SlamParams params;
+    params.frontend.ndisp = 48;
+    Slam slam(sequence.camera.downscaled(2), params);
+    constexpr int kFrames = 6;
+    for (int i = 0; i < kFrames; ++i) {
+        const StereoFrame frame = load_frame(sequence, i, 2);
+        const FrameReport report = slam.process(frame.left, frame.right);
+        EXPECT_FALSE(report.motion.fallback) << i;
+    }
+    const Trajectory truth =
+        relative_to_first(Trajectory(sequence.truth->begin(), sequence.truth->begin() + kFrames));
+    // The car drives about 6 m straight on; a working estimate ends within a few per cent.
+    const double travelled = truth.back().translation().norm();
+    const double error = (slam.odometry().back().translation() - truth.back().translation()).norm();
+    EXPECT_LT(error, 0.05 * travelled);
+    EXPECT_LT(rotation_deg(truth.back().inverse() * slam.odometry().back()), 1.0);
+}
+
+}  // namespace
+}  // namespace stereo::robot::slam
