@@ -18,11 +18,13 @@ lint() {  # lint TOP [-Gparam=value ...]
     fi
 }
 for module in stereo_line_buffer stereo_window3x3 stereo_cost stereo_aggregate stereo_ca_rule1 \
-              stereo_ca_rule2 stereo_wta stereo_top; do
+              stereo_ca_rule2 stereo_wta stereo_top stereo_synth_top; do
     lint "$module"
 done
 # The top at other shapes: a 3x3 window, odd label counts, and the full-size configuration.
 lint stereo_top -GNDISP=5 -GWINDOW=3
 lint stereo_top -GNDISP=33 -GWINDOW=7 -GWIDTH=100 -GHEIGHT=75
 lint stereo_top -GNDISP=64 -GWINDOW=11 -GWIDTH=640 -GHEIGHT=480
+# The FPGA build (constant kernel) at the full-size configuration.
+lint stereo_synth_top -GNDISP=64 -GWINDOW=11 -GWIDTH=640 -GHEIGHT=480
 exit $status
