@@ -2,7 +2,8 @@
 // for cost volumes of random pairs (765 where x - d < 0) and uniformly random volumes, the 5x5
 // window and the runtime windows 3x3 and 1x1 (centred in the 5 taps), other sigmas, asymmetric
 // kernels (tap orientation), extreme volumes (widest sums), odd and tiny frames, random clock
-// enables, and frames back to back.
+// enables, and frames back to back; and the constant-kernel variant (RUNTIME_KERNEL = 0) that the
+// FPGA top synthesizes, against the model's default kernel whatever cfg_kernel holds.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 #include "stage_driver.hpp"  // first: it includes the Verilator runtime headers quietly
 
 #include "Vstereo_aggregate.h"
+#include "Vstereo_aggregate_const.h"
 #include "stereo/pipeline.hpp"
 #include "tb_options.hpp"
 
@@ -23,8 +25,9 @@ constexpr int kDisparities = 16;  // NDISP of Vstereo_aggregate
 constexpr int kWindow = 5;        // WINDOW of Vstereo_aggregate
 constexpr int kTapBits = fx::kKernelBits + 1;
 
-struct AggregateStage {
-    using Model = Vstereo_aggregate;
+template <typename VerilatedModel>
+struct AggregatePorts {
+    using Model = VerilatedModel;
     static constexpr const char* kName = "stereo_aggregate";
     static void scramble(Model& model, std::mt19937& rng) {
         randomize_bits(model.in_data, kDisparities * fx::kCostBits, rng);
@@ -34,7 +37,8 @@ struct AggregateStage {
     }
 };
 
-using AggregateDriver = StageDriver<AggregateStage>;
+using AggregateDriver = StageDriver<AggregatePorts<Vstereo_aggregate>>;
+using ConstantKernelDriver = StageDriver<AggregatePorts<Vstereo_aggregate_const>>;
 
 // A kernel of `taps.size()` taps centred in the core's kWindow-tap field, zeros around it.
 std::vector<std::int32_t> centred(const std::vector<std::int32_t>& taps) {
@@ -43,9 +47,10 @@ std::vector<std::int32_t> centred(const std::vector<std::int32_t>& taps) {
     return field;
 }
 
-// Runs one frame of `costs` with `kernel` (the model's taps, any odd count up to kWindow).
-Dsi run_aggregate(AggregateDriver& driver, const Dsi& costs,
-                  const std::vector<std::int32_t>& kernel) {
+// Runs one frame of `costs` with `kernel` (the model's taps, any odd count up to kWindow) on
+// cfg_kernel.
+template <typename Driver>
+Dsi run_aggregate(Driver& driver, const Dsi& costs, const std::vector<std::int32_t>& kernel) {
     auto& model = driver.model();
     model.cfg_width = static_cast<std::uint16_t>(costs.width());
     model.cfg_height = static_cast<std::uint16_t>(costs.height());
@@ -57,10 +62,8 @@ Dsi run_aggregate(AggregateDriver& driver, const Dsi& costs,
     Dsi rtl(costs.width(), costs.height(), kDisparities);
     driver.run_frame(
         costs.width(), costs.height(),
-        [&](Vstereo_aggregate& m, int x, int y) {
-            put_column(m.in_data, costs, x, y, fx::kCostBits);
-        },
-        [&](const Vstereo_aggregate& m, int x, int y) {
+        [&](auto& m, int x, int y) { put_column(m.in_data, costs, x, y, fx::kCostBits); },
+        [&](const auto& m, int x, int y) {
             get_column(m.out_data, rtl, x, y, fx::kAggBits);
         });
     return rtl;
@@ -235,6 +238,28 @@ TEST(AggregateSizes, WidthOne) {
     std::mt19937 rng(seed);
     AggregateDriver driver(seed, 0.0);
     expect_frames(driver, {{1, 7, 5}}, true, rng);
+}
+
+// RUNTIME_KERNEL = 0 (the FPGA build): the taps are the model's default kernel for WINDOW,
+// whatever cfg_kernel says; here cfg_kernel carries other kernels, which must have no effect.
+TEST(AggregateConstantKernel, DefaultKernelWhateverCfgKernelHolds) {
+    const std::uint32_t seed = test_seed();
+    std::mt19937 rng(seed);
+    ConstantKernelDriver driver(seed, 0.2);
+    const auto default_kernel = gaussian_kernel(kWindow, fx::kDefaultSigma);
+    const std::vector<std::vector<std::int32_t>> ignored = {
+        {256, 0, 0, 0, 0}, {0, 256, 0}, gaussian_kernel(3, 1.0), default_kernel};
+    const std::vector<std::pair<int, int>> sizes = {{64, 48}, {37, 23}, {5, 4}, {64, 48}};
+    for (std::size_t i = 0; i < sizes.size(); ++i) {
+        const auto [width, height] = sizes[i];
+        driver.reset();  // a taller frame follows a shorter one (see AnySizeAfterReset)
+        const Dsi costs = i % 2 == 0 ? pair_cost(width, height, kDisparities, 3, rng)
+                                     : uniform_volume(width, height, kDisparities, 0,
+                                                      fx::kCostMax, rng);
+        EXPECT_TRUE(same_volume(aggregate(costs, default_kernel),
+                                run_aggregate(driver, costs, ignored[i]), kDisparities))
+            << width << "x" << height << " frame " << i;
+    }
 }
 
 }  // namespace

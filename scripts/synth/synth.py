@@ -77,16 +77,45 @@ def run_yosys(script, log_path):
     return time.monotonic() - start
 
 
+def load_stat_json(path):
+    """The JSON object of a `stat -json` file. Yosys 0.23 interleaves the text listing of the
+    hierarchy into the JSON of a hierarchical design: lines that cannot be JSON are dropped."""
+    lines = Path(path).read_text().splitlines()
+    json_lines = [line for line in lines if line.strip()[:1] in ('"', "{", "}", "[", "]")]
+    return json.loads("\n".join(json_lines))
+
+
+def hierarchy_totals(modules):
+    """Leaf cell counts of every module including its submodules (times their instances)."""
+    own = {name: data.get("num_cells_by_type", {}) for name, data in modules.items()}
+    totals = {}
+
+    def total(name):
+        if name not in totals:
+            result = {}
+            for cell, n in own[name].items():
+                for leaf, m in (total(cell).items() if cell in own else [(cell, 1)]):
+                    result[leaf] = result.get(leaf, 0) + n * m
+            totals[name] = result
+        return totals[name]
+
+    for name in own:
+        total(name)
+    return totals
+
+
 def read_stat_json(path):
-    """Cell counts of the whole design from `stat -json` (hierarchy totals when present)."""
-    text = Path(path).read_text()
-    data = json.loads(text[text.index("{"):])
+    """Cell counts of the whole design: the one flattened module, or the top's hierarchy total."""
+    data = load_stat_json(path)
     if "design" in data:
         return data["design"].get("num_cells_by_type", {})
     modules = data["modules"]
-    if len(modules) != 1:
-        raise ReportError("stat -json: expected one flattened module or a design total")
-    return next(iter(modules.values())).get("num_cells_by_type", {})
+    if len(modules) == 1:
+        return next(iter(modules.values())).get("num_cells_by_type", {})
+    for key in (TOP, "\\" + TOP):
+        if key in modules:
+            return hierarchy_totals(modules)[key]
+    raise ReportError(f"stat -json: no module {TOP} in {path}")
 
 
 def count(cells, *patterns):
@@ -208,25 +237,60 @@ def command_ice40(args):
 
 def command_estimate(args):
     config = config_from_args(args)
-    report = estimate(config, args.target, args.work)
+    report = estimate(config, args.target, args.work, use_dsp=not args.no_dsp)
     write_report(report, args.out)
     return report
 
 
-def estimate(config, target, work=None):
+def estimate(config, target, work=None, use_dsp=True):
+    """Resource estimate of one configuration; the hierarchy is kept (no flattening), so that
+    every stage is synthesized once and reported on its own (`stages`)."""
     work = Path(work or tempfile.mkdtemp(prefix=f"stereo_{target}_"))
     work.mkdir(parents=True, exist_ok=True)
     stat = work / "stat.json"
-    synth = {"xilinx": f"synth_xilinx -family xc7 -top {TOP}",
-             "ecp5": f"synth_ecp5 -noflatten -top {TOP}"}[target]
+    nodsp = "" if use_dsp else " -nodsp"
+    synth = {"xilinx": f"synth_xilinx -family xc7{nodsp} -top {TOP}",
+             "ecp5": f"synth_ecp5 -noflatten{nodsp} -top {TOP}"}[target]
+    # chparam leaves the top as a derived "$paramod...stereo_synth_top": name it back for stat.
     script = (f"read_verilog -sv {' '.join(rtl_sources())}; {chparam(config)}; "
-              f"{synth}; chformal -remove; opt_clean; tee -q -o {stat} stat -json -top {TOP}")
+              f"{synth}; chformal -remove; opt_clean; rename -top {TOP}; "
+              f"tee -q -o {stat} stat -json")
     seconds = run_yosys(script, work / "yosys.log")
+    resources_of = resources_xilinx if target == "xilinx" else resources_ecp5
     cells = read_stat_json(stat)
-    resources = resources_xilinx(cells) if target == "xilinx" else resources_ecp5(cells)
-    return {"target": target, "top": TOP, "config": config, "resources": resources,
+    stages = {name: resources_of(stage_cells) for name, stage_cells in
+              stage_breakdown(stat).items()}
+    return {"target": target, "top": TOP, "config": config, "use_dsp": use_dsp,
+            "resources": resources_of(cells), "stages": stages,
             "yosys_seconds": round(seconds, 1), "tools": {"yosys": tool_version(["yosys", "-V"])},
             "note": "Yosys resource estimate before place and route; no Fmax"}
+
+
+STAGES = ("stereo_cost", "stereo_aggregate", "stereo_ca_rule1", "stereo_ca_rule2", "stereo_wta")
+
+
+def module_kind(name):
+    """'stereo_aggregate' from a derived module name such as '$paramod$3f..\\stereo_aggregate'."""
+    match = re.search(r"(stereo_[a-z0-9_]+)", name)
+    return match.group(1) if match else name
+
+
+def stage_breakdown(stat_path):
+    """Cells of each pipeline stage including its line buffers, and of the glue around them
+    (stereo_top's own logic and the AXI wrapper), from a hierarchical `stat -json`."""
+    modules = load_stat_json(stat_path)["modules"]
+    totals = hierarchy_totals(modules)
+    stages = {}
+    for name, data in modules.items():
+        kind = module_kind(name)
+        cells = (totals[name] if kind in STAGES else
+                 {cell: n for cell, n in data.get("num_cells_by_type", {}).items()
+                  if cell not in modules} if kind in ("stereo_top", TOP) else {})
+        key = kind if kind in STAGES else "glue"
+        for cell, n in cells.items():
+            stages.setdefault(key, {})
+            stages[key][cell] = stages[key].get(cell, 0) + n
+    return stages
 
 
 # The sweep of docs/synthesis.md: one parameter at a time around 640x480 / 16 labels / 11x11,
@@ -237,23 +301,23 @@ SWEEP = ([{"width": 640, "height": 480, "ndisp": n, "window": 11} for n in (8, 1
 
 
 def command_sweep(args):
-    configs = SWEEP
-    if args.only:
-        configs = [c for c in SWEEP if c["ndisp"] <= args.max_ndisp]
-    points = []
+    """Estimates of every SWEEP point not yet in the output file (it resumes after a stop)."""
     out = Path(args.out)
-    if out.exists():  # resume: keep the points already measured
-        points = json.loads(out.read_text()).get("points", [])
-    done = {(p["target"], tuple(sorted(p["config"].items()))) for p in points}
+    points = json.loads(out.read_text()).get("points", []) if out.exists() else []
+
+    def key(target, config, use_dsp):
+        return (target, tuple(sorted(config.items())), use_dsp)
+
+    done = {key(p["target"], p["config"], p.get("use_dsp", True)) for p in points}
+    use_dsp = not args.no_dsp
     for target in args.targets.split(","):
-        for config in configs:
-            if config["ndisp"] > args.max_ndisp:
+        if target not in ("xilinx", "ecp5"):
+            raise ReportError(f"unknown target {target!r} (xilinx or ecp5)")
+        for config in sorted(SWEEP, key=lambda c: (c["ndisp"], c["window"], c["width"])):
+            if config["ndisp"] > args.max_ndisp or key(target, config, use_dsp) in done:
                 continue
-            key = (target, tuple(sorted(config.items())))
-            if key in done:
-                continue
-            print(f"{target} {config}", flush=True)
-            points.append(estimate(config, target))
+            print(f"{target} {config}{'' if use_dsp else ' no DSP'}", flush=True)
+            points.append(estimate(config, target, use_dsp=use_dsp))
             out.write_text(json.dumps({"points": points}, indent=2) + "\n")
     return points
 
@@ -326,11 +390,12 @@ def main():
     est = sub.add_parser("estimate", help="synth_xilinx / synth_ecp5 resource estimate")
     add_config_arguments(est)
     est.add_argument("--target", choices=["xilinx", "ecp5"], required=True)
+    est.add_argument("--no-dsp", action="store_true", help="multipliers in LUTs, not DSPs")
     est.set_defaults(handler=command_estimate)
     sweep = sub.add_parser("sweep", help="estimates over the docs' configurations")
     sweep.add_argument("--targets", default="xilinx,ecp5")
     sweep.add_argument("--max-ndisp", type=int, default=64)
-    sweep.add_argument("--only", action="store_true", help="skip points above --max-ndisp")
+    sweep.add_argument("--no-dsp", action="store_true", help="multipliers in LUTs, not DSPs")
     sweep.add_argument("--out", required=True, help="sweep JSON (points are appended; resumes)")
     sweep.set_defaults(handler=command_sweep)
     check = sub.add_parser("check", help="validate a JSON report")
