@@ -63,9 +63,7 @@ Dsi run_aggregate(Driver& driver, const Dsi& costs, const std::vector<std::int32
     driver.run_frame(
         costs.width(), costs.height(),
         [&](auto& m, int x, int y) { put_column(m.in_data, costs, x, y, fx::kCostBits); },
-        [&](const auto& m, int x, int y) {
-            get_column(m.out_data, rtl, x, y, fx::kAggBits);
-        });
+        [&](const auto& m, int x, int y) { get_column(m.out_data, rtl, x, y, fx::kAggBits); });
     return rtl;
 }
 
@@ -253,9 +251,9 @@ TEST(AggregateConstantKernel, DefaultKernelWhateverCfgKernelHolds) {
     for (std::size_t i = 0; i < sizes.size(); ++i) {
         const auto [width, height] = sizes[i];
         driver.reset();  // a taller frame follows a shorter one (see AnySizeAfterReset)
-        const Dsi costs = i % 2 == 0 ? pair_cost(width, height, kDisparities, 3, rng)
-                                     : uniform_volume(width, height, kDisparities, 0,
-                                                      fx::kCostMax, rng);
+        const Dsi costs = i % 2 == 0
+                              ? pair_cost(width, height, kDisparities, 3, rng)
+                              : uniform_volume(width, height, kDisparities, 0, fx::kCostMax, rng);
         EXPECT_TRUE(same_volume(aggregate(costs, default_kernel),
                                 run_aggregate(driver, costs, ignored[i]), kDisparities))
             << width << "x" << height << " frame " << i;
