@@ -128,6 +128,7 @@ def resources_ice40(cells):
         "ffs": count(cells, r"SB_DFF\w*"),
         "carries": count(cells, r"SB_CARRY"),
         "brams": count(cells, r"SB_RAM40_4K\w*"),
+        "bram_kbits": 4 * count(cells, r"SB_RAM40_4K\w*"),
         "dsps": count(cells, r"SB_MAC16"),
     }
 
@@ -142,6 +143,7 @@ def resources_xilinx(cells):
         "ramb36": count(cells, r"RAMB36E1"),
         "ramb18": count(cells, r"RAMB18E1"),
         "brams": count(cells, r"RAMB36E1") + 0.5 * count(cells, r"RAMB18E1"),
+        "bram_kbits": 36 * count(cells, r"RAMB36E1") + 18 * count(cells, r"RAMB18E1"),
         "dsps": count(cells, r"DSP48E1"),
         "srls": count(cells, r"SRL\w+"),
     }
@@ -154,6 +156,7 @@ def resources_ecp5(cells):
         "carries": count(cells, r"CCU2C"),
         "lutrams": count(cells, r"TRELLIS_DPR16X4"),
         "brams": count(cells, r"DP16KD"),  # 18 Kib each
+        "bram_kbits": 18 * count(cells, r"DP16KD"),
         "dsps": count(cells, r"MULT18X18D", r"ALU54B"),
     }
 
@@ -184,9 +187,15 @@ def parse_nextpnr_log(text):
 
 
 def command_ice40(args):
-    config = config_from_args(args)
+    report = ice40_report(config_from_args(args), args, args.work)
+    write_report(report, args.out)
+    return report
+
+
+def ice40_report(config, args, work):
+    """synth_ice40 + nextpnr-ice40 of one configuration (args: device, freq, seed, dsp, no_pnr)."""
     device = ICE40_DEVICES[args.device]
-    work = Path(args.work or tempfile.mkdtemp(prefix="stereo_ice40_"))
+    work = Path(work or tempfile.mkdtemp(prefix="stereo_ice40_"))
     work.mkdir(parents=True, exist_ok=True)
     netlist, stat = work / "netlist.json", work / "stat.json"
     script = (f"read_verilog -sv {' '.join(rtl_sources())}; {chparam(config)}; "
@@ -231,8 +240,34 @@ def command_ice40(args):
     fps, mdes = throughput(config, report["fmax_mhz"])
     report["frames_per_second"] = fps
     report["mde_per_second"] = mdes
-    write_report(report, args.out)
     return report
+
+
+def command_fit(args):
+    """The most disparities that place and route on the device at the given image and window:
+    one more label at a time until nextpnr (or the synthesized size) says no."""
+    base = config_from_args(args)
+    work = Path(args.work or tempfile.mkdtemp(prefix="stereo_fit_"))
+    attempts, largest = [], None
+    for ndisp in range(1, args.max_ndisp + 1):
+        config = dict(base, ndisp=ndisp)
+        print(f"ice40 {args.device} {config}", file=sys.stderr, flush=True)
+        report = ice40_report(config, args, work / f"ndisp{ndisp}")
+        attempts.append({"ndisp": ndisp, "placed": report["placed"],
+                         "luts": report["resources"]["luts"],
+                         "fits_after_synthesis": report["fits_after_synthesis"],
+                         "fmax_mhz": report["fmax_mhz"],
+                         "pnr_error": report.get("pnr_error")})
+        if not report["placed"]:
+            break
+        largest = report
+    result = {"target": "ice40", "device": args.device, "search": "ndisp",
+              "image": {"width": base["width"], "height": base["height"]},
+              "window": base["window"], "largest": largest, "attempts": attempts}
+    write_report(result, args.out)
+    if largest is None:
+        raise ReportError(f"not even one disparity fits the {args.device} at {base}")
+    return result
 
 
 def command_estimate(args):
@@ -322,6 +357,179 @@ def command_sweep(args):
     return points
 
 
+# ---- plots (SVG, standard library only) -------------------------------------------------------
+PLOT_METRICS = [("luts", "LUTs"), ("ffs", "flip-flops"), ("bram_kbits", "block RAM (Kib)"),
+                ("dsps", "DSPs")]
+PLOT_PARAMETERS = [("ndisp", "disparities (640x480, 11x11)"),
+                   ("window", "window side (640x480, 16 disparities)"),
+                   ("width", "image width (4:3, 16 disparities, 11x11)")]
+TARGET_STYLE = {("xilinx", True): ("#1f77b4", "7-series"),
+                ("xilinx", False): ("#17becf", "7-series, no DSP"),
+                ("ecp5", True): ("#d62728", "ECP5"), ("ecp5", False): ("#ff9896", "ECP5, no DSP")}
+STAGE_COLOURS = {"stereo_cost": "#8c564b", "stereo_aggregate": "#1f77b4",
+                 "stereo_ca_rule1": "#2ca02c", "stereo_ca_rule2": "#98df8a",
+                 "stereo_wta": "#9467bd", "glue": "#7f7f7f"}
+
+
+def sweep_series(points, parameter):
+    """{(target, use_dsp): [(x, point)]} of the points on the axis of `parameter`."""
+    base = {"ndisp": lambda c: c["width"] == 640 and c["window"] == 11,
+            "window": lambda c: c["width"] == 640 and c["ndisp"] == 16,
+            "width": lambda c: c["ndisp"] == 16 and c["window"] == 11}[parameter]
+    series = {}
+    for point in points:
+        if base(point["config"]):
+            key = (point["target"], point.get("use_dsp", True))
+            series.setdefault(key, []).append((point["config"][parameter], point))
+    return {key: sorted(values, key=lambda v: v[0]) for key, values in series.items()}
+
+
+def nice_ceiling(value):
+    """The smallest 1, 2 or 5 times a power of ten not below value (axis maximum)."""
+    if value <= 0:
+        return 1
+    power = 10 ** math.floor(math.log10(value))
+    return next(m * power for m in (1, 2, 5, 10) if m * power >= value)
+
+
+def svg_text(x, y, text, size=11, anchor="middle", rotate=None):
+    transform = f' transform="rotate({rotate} {x} {y})"' if rotate else ""
+    return (f'<text x="{x:.1f}" y="{y:.1f}" font-size="{size}" text-anchor="{anchor}"'
+            f'{transform}>{text}</text>')
+
+
+def line_panel(left, top, width, height, title, x_label, series):
+    """One line chart: series = [(colour, [(x, y)])]; x on a log2 axis (the sweeps double)."""
+    parts = [f'<rect x="{left}" y="{top}" width="{width}" height="{height}" fill="none" '
+             f'stroke="#444"/>', svg_text(left + width / 2, top - 6, title, 12)]
+    xs = sorted({x for _, values in series for x, _ in values})
+    ys = [y for _, values in series for _, y in values]
+    if not xs:
+        return parts
+    y_max = nice_ceiling(max(ys) if ys else 1)
+    lo, hi = math.log2(xs[0]), math.log2(xs[-1])
+    span = (hi - lo) or 1
+
+    def px(x):
+        return left + 10 + (math.log2(x) - lo) / span * (width - 20)
+
+    def py(y):
+        return top + height - y / y_max * height
+
+    for k in range(5):
+        y = y_max * k / 4
+        parts.append(f'<line x1="{left}" y1="{py(y):.1f}" x2="{left + width}" y2="{py(y):.1f}" '
+                     f'stroke="#ddd"/>')
+        parts.append(svg_text(left - 4, py(y) + 4, f"{y:,.0f}" if y_max >= 10 else f"{y:g}", 9,
+                              "end"))
+    for x in xs:
+        parts.append(svg_text(px(x), top + height + 13, str(x), 9))
+    parts.append(svg_text(left + width / 2, top + height + 28, x_label, 10))
+    for colour, values in series:
+        path = " ".join(f"{px(x):.1f},{py(y):.1f}" for x, y in values)
+        parts.append(f'<polyline points="{path}" fill="none" stroke="{colour}" '
+                     f'stroke-width="2"/>')
+        parts += [f'<circle cx="{px(x):.1f}" cy="{py(y):.1f}" r="3" fill="{colour}"/>'
+                  for x, y in values]
+    return parts
+
+
+def plot_scaling(points):
+    """Resources (rows) against each swept parameter (columns), one line per target."""
+    panel_w, panel_h, margin_l, margin_t, gap_x, gap_y = 250, 150, 70, 60, 60, 70
+    columns, rows = len(PLOT_PARAMETERS), len(PLOT_METRICS)
+    width = margin_l + columns * (panel_w + gap_x)
+    height = margin_t + rows * (panel_h + gap_y) + 20
+    parts = [svg_text(width / 2, 22, "Yosys resource estimates of stereo_synth_top", 15)]
+    legend_x = margin_l
+    for key, (colour, name) in TARGET_STYLE.items():
+        if any((p["target"], p.get("use_dsp", True)) == key for p in points):
+            parts.append(f'<rect x="{legend_x}" y="32" width="14" height="4" fill="{colour}"/>')
+            parts.append(svg_text(legend_x + 18, 38, name, 11, "start"))
+            legend_x += 130
+    for column, (parameter, x_label) in enumerate(PLOT_PARAMETERS):
+        series = sweep_series(points, parameter)
+        for row, (metric, metric_name) in enumerate(PLOT_METRICS):
+            lines = [(TARGET_STYLE[key][0], [(x, p["resources"][metric]) for x, p in values])
+                     for key, values in sorted(series.items())]
+            parts += line_panel(margin_l + column * (panel_w + gap_x),
+                                margin_t + row * (panel_h + gap_y), panel_w, panel_h,
+                                metric_name, x_label, lines)
+    return svg_document(width, height, parts)
+
+
+def plot_stages(points, target, metric="luts"):
+    """Stacked bars: each stage's share of `metric` at every disparity count of the sweep."""
+    series = sweep_series(points, "ndisp").get((target, True), [])
+    bar_w, gap, left, top, plot_h = 60, 40, 80, 60, 300
+    width = left + max(1, len(series)) * (bar_w + gap) + 170
+    height = top + plot_h + 60
+    totals = [sum(p["stages"][s][metric] for s in STAGE_COLOURS if s in p.get("stages", {}))
+              for _, p in series]
+    y_max = nice_ceiling(max(totals) if totals else 1)
+    metric_name = dict(PLOT_METRICS)[metric]
+    parts = [svg_text(width / 2, 24, f"{TARGET_STYLE[(target, True)][1]}: {metric_name} by "
+                      f"stage, 640x480, 11x11", 14)]
+    for k in range(5):
+        y = top + plot_h - plot_h * k / 4
+        parts.append(f'<line x1="{left}" y1="{y:.1f}" x2="{width - 170}" y2="{y:.1f}" '
+                     f'stroke="#ddd"/>')
+        parts.append(svg_text(left - 4, y + 4, f"{y_max * k / 4:,.0f}", 9, "end"))
+    for i, (ndisp, point) in enumerate(series):
+        x = left + gap / 2 + i * (bar_w + gap)
+        y = top + plot_h
+        for stage, colour in STAGE_COLOURS.items():
+            value = point.get("stages", {}).get(stage, {}).get(metric, 0)
+            h = value / y_max * plot_h
+            y -= h
+            parts.append(f'<rect x="{x:.1f}" y="{y:.1f}" width="{bar_w}" height="{h:.1f}" '
+                         f'fill="{colour}"/>')
+        parts.append(svg_text(x + bar_w / 2, top + plot_h + 14, str(ndisp), 10))
+    parts.append(svg_text(left + (width - 170 - left) / 2, top + plot_h + 34, "disparities", 11))
+    for k, (stage, colour) in enumerate(reversed(list(STAGE_COLOURS.items()))):
+        parts.append(f'<rect x="{width - 160}" y="{top + 10 + 20 * k}" width="12" height="12" '
+                     f'fill="{colour}"/>')
+        parts.append(svg_text(width - 142, top + 20 + 20 * k,
+                              stage.replace("stereo_", ""), 11, "start"))
+    return svg_document(width, height, parts)
+
+
+def svg_document(width, height, parts):
+    body = "\n".join(parts)
+    return (f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" '
+            f'viewBox="0 0 {width} {height}" font-family="sans-serif">\n'
+            f'<rect width="100%" height="100%" fill="white"/>\n{body}\n</svg>\n')
+
+
+def with_bram_kbits(resources, target):
+    """Adds bram_kbits to reports written before it existed."""
+    if "bram_kbits" not in resources:
+        resources["bram_kbits"] = (36 * resources.get("ramb36", 0) + 18 * resources.get("ramb18", 0)
+                                   if target == "xilinx" else 18 * resources.get("brams", 0))
+    return resources
+
+
+def command_plot(args):
+    points = json.loads(Path(args.sweep).read_text()).get("points", [])
+    if not points:
+        raise ReportError(f"{args.sweep} holds no sweep points")
+    for point in points:
+        with_bram_kbits(point["resources"], point["target"])
+        for stage in point.get("stages", {}).values():
+            with_bram_kbits(stage, point["target"])
+    out = Path(args.out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    written = [out / "synth_scaling.svg"]
+    written[0].write_text(plot_scaling(points))
+    for target in sorted({p["target"] for p in points if "stages" in p}):
+        for metric in ("luts", "ffs"):
+            path = out / f"synth_stages_{target}_{metric}.svg"
+            path.write_text(plot_stages(points, target, metric))
+            written.append(path)
+    for path in written:
+        print(path)
+
+
 def write_report(report, out):
     text = json.dumps(report, indent=2) + "\n"
     if out:
@@ -357,6 +565,7 @@ def command_check(args):
         raise ReportError("no logic was synthesized")
     if args.expect_bram and resources["brams"] == 0:
         raise ReportError("the line buffers were not mapped to block RAM")
+    check_stages(report)
     if args.expect_placed:
         if not report.get("placed") or not isinstance(report.get("fmax_mhz"), (int, float)):
             raise ReportError("the design was not placed and routed, or has no Fmax")
@@ -364,6 +573,21 @@ def command_check(args):
         if abs(fps - report["frames_per_second"]) > 0.01:
             raise ReportError("frames_per_second does not follow from fmax and the config")
     print(f"report ok: {args.report}")
+
+
+def check_stages(report):
+    """A hierarchical estimate's stages must add up to its totals, and every stage be there."""
+    stages = report.get("stages")
+    if stages is None:
+        return
+    missing = [name for name in STAGES if name not in stages]
+    if missing:
+        raise ReportError(f"stages lack {', '.join(missing)}")
+    for key in ("luts", "ffs", "brams", "dsps"):
+        total = sum(stage.get(key, 0) for stage in stages.values())
+        if abs(total - report["resources"][key]) > 1e-9:
+            raise ReportError(f"stages add up to {total} {key}, the design has "
+                              f"{report['resources'][key]}")
 
 
 def add_config_arguments(parser, width=64, height=48, ndisp=4, window=5):
@@ -387,6 +611,14 @@ def main():
     ice40.add_argument("--dsp", action="store_true", help="map multipliers to SB_MAC16")
     ice40.add_argument("--no-pnr", action="store_true", help="synthesis only")
     ice40.set_defaults(handler=command_ice40)
+    fit = sub.add_parser("fit", help="most disparities that place and route on an iCE40")
+    add_config_arguments(fit, ndisp=1)
+    fit.add_argument("--device", choices=sorted(ICE40_DEVICES), default="hx8k")
+    fit.add_argument("--freq", type=float, default=30.0, help="target MHz for nextpnr")
+    fit.add_argument("--seed", type=int, default=1)
+    fit.add_argument("--dsp", action="store_true", help="map multipliers to SB_MAC16")
+    fit.add_argument("--max-ndisp", type=int, default=16)
+    fit.set_defaults(handler=command_fit, no_pnr=False)
     est = sub.add_parser("estimate", help="synth_xilinx / synth_ecp5 resource estimate")
     add_config_arguments(est)
     est.add_argument("--target", choices=["xilinx", "ecp5"], required=True)
@@ -398,6 +630,10 @@ def main():
     sweep.add_argument("--no-dsp", action="store_true", help="multipliers in LUTs, not DSPs")
     sweep.add_argument("--out", required=True, help="sweep JSON (points are appended; resumes)")
     sweep.set_defaults(handler=command_sweep)
+    plot = sub.add_parser("plot", help="SVG plots of sweep JSON files")
+    plot.add_argument("sweep", help="sweep JSON (merge targets with `sweep --out` on one file)")
+    plot.add_argument("--out-dir", required=True)
+    plot.set_defaults(handler=command_plot)
     check = sub.add_parser("check", help="validate a JSON report")
     check.add_argument("report")
     check.add_argument("--expect-bram", action="store_true")

@@ -1,0 +1,183 @@
+#!/usr/bin/env python3
+"""Unit tests of synth.py's report arithmetic, without Yosys (ctest synth.report_arithmetic).
+
+Every expected value is worked out by hand in the test from the fabricated input."""
+import json
+import sys
+import tempfile
+import unittest
+import xml.etree.ElementTree as ElementTree
+from pathlib import Path
+from types import SimpleNamespace
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import synth  # noqa: E402
+
+# A hierarchical `stat -json` as Yosys 0.23 writes it: the text listing of the hierarchy lands in
+# the middle of the JSON. stereo_top holds one aggregate (which holds two line buffers) and one
+# cost stage; the other stages are empty modules.
+STAT_WITH_LISTING = """
+{
+   "creator": "Yosys 0.23",
+   "modules": {
+      "\\\\stereo_synth_top": {
+         "num_cells_by_type": {
+            "$paramod$aa\\\\stereo_top": 1,
+            "IBUF": 5,
+            "LUT2": 3
+         }
+      },
+      "$paramod$aa\\\\stereo_top": {
+         "num_cells_by_type": {
+            "$paramod$bb\\\\stereo_aggregate": 1,
+            "$paramod\\\\stereo_cost\\\\NDISP=s32'00000000000000000000000000000100": 1,
+            "$paramod$dd\\\\stereo_ca_rule1": 1,
+            "$paramod$dd\\\\stereo_ca_rule2": 1,
+            "$paramod$ee\\\\stereo_wta": 1,
+            "FDRE": 7
+         }
+      },
+      "$paramod$bb\\\\stereo_aggregate": {
+         "num_cells_by_type": {
+            "$paramod$cc\\\\stereo_line_buffer": 2,
+            "LUT6": 10,
+            "DSP48E1": 4
+         }
+      },
+      "$paramod$cc\\\\stereo_line_buffer": {
+         "num_cells_by_type": {"RAMB18E1": 3, "LUT3": 1}
+      },
+      "$paramod\\\\stereo_cost\\\\NDISP=s32'00000000000000000000000000000100": {
+         "num_cells_by_type": {"LUT4": 20, "FDRE": 2}
+      },
+      "$paramod$dd\\\\stereo_ca_rule1": {"num_cells_by_type": {"LUT1": 1}},
+      "$paramod$dd\\\\stereo_ca_rule2": {"num_cells_by_type": {"LUT1": 1}},
+      "$paramod$ee\\\\stereo_wta": {"num_cells_by_type": {"FDRE": 1}}
+   },
+       \\stereo_synth_top      1
+         $paramod$aa\\stereo_top      1
+      "design": {
+         "num_cells": 71,
+         "num_cells_by_type": {"LUT2": 3, "LUT6": 10, "LUT3": 2, "LUT4": 20, "LUT1": 2,
+                               "FDRE": 10, "DSP48E1": 4, "RAMB18E1": 6, "IBUF": 5}
+      }
+}
+"""
+
+
+class StatParsing(unittest.TestCase):
+    def setUp(self):
+        self.folder = tempfile.TemporaryDirectory()
+        self.stat = Path(self.folder.name) / "stat.json"
+        self.stat.write_text(STAT_WITH_LISTING)
+
+    def tearDown(self):
+        self.folder.cleanup()
+
+    def test_interleaved_listing_is_dropped(self):
+        data = synth.load_stat_json(self.stat)
+        self.assertIn("design", data)
+        self.assertEqual(len(data["modules"]), 8)
+
+    def test_hierarchy_totals_multiply_instances(self):
+        modules = synth.load_stat_json(self.stat)["modules"]
+        totals = synth.hierarchy_totals(modules)
+        # aggregate: 10 LUT6 + 4 DSP + 2 line buffers x (3 RAMB18 + 1 LUT3)
+        self.assertEqual(totals["$paramod$bb\\stereo_aggregate"],
+                         {"LUT6": 10, "DSP48E1": 4, "RAMB18E1": 6, "LUT3": 2})
+        # the top: its own 5 IBUF + 3 LUT2 and everything below
+        top = totals["\\stereo_synth_top"]
+        self.assertEqual(top, synth.load_stat_json(self.stat)["design"]["num_cells_by_type"])
+
+    def test_stage_breakdown_adds_up(self):
+        stages = synth.stage_breakdown(self.stat)
+        xilinx = {name: synth.resources_xilinx(cells) for name, cells in stages.items()}
+        self.assertEqual(xilinx["stereo_aggregate"]["luts"], 12)
+        self.assertEqual(xilinx["stereo_aggregate"]["ramb18"], 6)
+        self.assertEqual(xilinx["stereo_aggregate"]["brams"], 3.0)  # 36 Kib equivalents
+        self.assertEqual(xilinx["stereo_aggregate"]["bram_kbits"], 108)
+        self.assertEqual(xilinx["stereo_cost"]["luts"], 20)
+        # glue = the two tops' own cells: 3 LUT2 + 5 IBUF + 7 FDRE
+        self.assertEqual(xilinx["glue"]["luts"], 3)
+        self.assertEqual(xilinx["glue"]["ffs"], 7)
+        report = {"resources": synth.resources_xilinx(synth.read_stat_json(self.stat)),
+                  "stages": xilinx}
+        synth.check_stages(report)  # 3 + 12 + 20 + 1 + 1 + 0 = 37 LUTs both ways
+        self.assertEqual(report["resources"]["luts"], 37)
+        report["stages"]["stereo_wta"]["luts"] += 1
+        with self.assertRaises(synth.ReportError):
+            synth.check_stages(report)
+
+
+class Throughput(unittest.TestCase):
+    def test_cycles_per_frame(self):
+        # 640x480, R = 5: 307200 + 7 * 640 + 5 + 8 = 311693 cycles; at 100 MHz 320.83 fps, and
+        # 320.83 * 640 * 480 * 64 / 1e6 = 6307.7 million disparity evaluations per second.
+        fps, mdes = synth.throughput({"width": 640, "height": 480, "ndisp": 64, "window": 11},
+                                     100.0)
+        self.assertEqual(fps, round(100e6 / 311693, 2))
+        self.assertEqual(mdes, round(100e6 / 311693 * 640 * 480 * 64 / 1e6, 1))
+        self.assertEqual(synth.throughput({"width": 1, "height": 1, "ndisp": 1, "window": 1},
+                                          None), (None, None))
+
+    def test_nextpnr_log(self):
+        log = ("Info: Max frequency for clock 'clk$SB_IO_IN_$glb_clk': 20.00 MHz (PASS at 12 MHz)\n"
+               "Info: Critical path report for clock 'clk$SB_IO_IN_$glb_clk' (posedge -> posedge):\n"
+               "Info: curr total\n"
+               "Info:  1.0  1.0  Source a.q\n"
+               "Info: Max frequency for clock 'clk$SB_IO_IN_$glb_clk': 23.40 MHz (PASS at 12 MHz)\n")
+        fmax, critical = synth.parse_nextpnr_log(log)
+        self.assertEqual(fmax, 23.40)
+        self.assertEqual(critical, [" curr total", "  1.0  1.0  Source a.q"])
+
+
+class Plots(unittest.TestCase):
+    def sweep_point(self, target, ndisp, window, width, luts):
+        stages = {name: {"luts": luts / 6, "ffs": 1, "bram_kbits": 18, "dsps": 0}
+                  for name in synth.STAGE_COLOURS}
+        return {"target": target, "use_dsp": True,
+                "config": {"width": width, "height": width * 3 // 4, "ndisp": ndisp,
+                           "window": window},
+                "resources": {"luts": luts, "ffs": 6, "brams": 6, "dsps": 0}, "stages": stages}
+
+    def test_svg_files(self):
+        points = [self.sweep_point(t, n, 11, 640, 1000 * n) for t in ("xilinx", "ecp5")
+                  for n in (8, 16)]
+        points.append(self.sweep_point("xilinx", 16, 3, 640, 500))
+        with tempfile.TemporaryDirectory() as folder:
+            sweep = Path(folder) / "sweep.json"
+            sweep.write_text(json.dumps({"points": points}))
+            synth.command_plot(SimpleNamespace(sweep=str(sweep), out_dir=folder))
+            scaling = ElementTree.parse(Path(folder) / "synth_scaling.svg").getroot()
+            lines = scaling.findall("{http://www.w3.org/2000/svg}polyline")
+            # One line per target and metric on each axis, all three axes holding both targets
+            # (the window axis: xilinx at 3 and 11, ecp5 at 11 only): 3 x 2 x 4 lines.
+            self.assertEqual(len(lines), 24)
+            bars = ElementTree.parse(Path(folder) / "synth_stages_xilinx_luts.svg").getroot()
+            rects = [r for r in bars.iter("{http://www.w3.org/2000/svg}rect")
+                     if r.get("width") == "60"]
+            self.assertEqual(len(rects), 2 * len(synth.STAGE_COLOURS))
+            # every target with per-stage figures gets its stage plots
+            self.assertTrue((Path(folder) / "synth_stages_ecp5_ffs.svg").exists())
+            # bram_kbits is filled in for reports written before it existed (18 Kib per ECP5 BRAM)
+            self.assertEqual(synth.with_bram_kbits({"brams": 6}, "ecp5")["bram_kbits"], 108)
+
+    def test_empty_sweep_is_an_error(self):
+        with tempfile.TemporaryDirectory() as folder:
+            sweep = Path(folder) / "sweep.json"
+            sweep.write_text(json.dumps({"points": []}))
+            with self.assertRaises(synth.ReportError):
+                synth.command_plot(SimpleNamespace(sweep=str(sweep), out_dir=folder))
+
+
+class Configs(unittest.TestCase):
+    def test_impossible_configurations(self):
+        for bad in ({"window": 4}, {"window": 33}, {"ndisp": 0}, {"ndisp": 257}, {"width": 0}):
+            args = SimpleNamespace(**dict({"width": 64, "height": 48, "ndisp": 4, "window": 5},
+                                          **bad))
+            with self.assertRaises(synth.ReportError, msg=str(bad)):
+                synth.config_from_args(args)
+
+
+if __name__ == "__main__":
+    unittest.main()
