@@ -4,7 +4,8 @@
 // value, 2|n - c| < c, becomes round(sum of its 3x3 in-plane neighbourhood / 9), with zero
 // padding outside the frame and the division done as (sum * MEAN9_MUL + 2^(MEAN9_SHIFT-1)) >>
 // MEAN9_SHIFT. With cfg_use_ca low every cell passes unchanged.
-// Output pixel = input pixel moved back one row and one column. Latency: W + 2 pixel steps.
+// Output pixel = input pixel moved back one row and one column. Latency: W + 3 pixel steps
+// (the window's input register, the centre one row and one column back, the result register).
 `default_nettype none
 
 module stereo_ca_rule1 #(
@@ -40,6 +41,7 @@ module stereo_ca_rule1 #(
       .NDISP(NDISP)
   ) neighbourhood (
       .clk(clk),
+      .rst(rst),
       .ce(ce),
       .in_x(in_x),
       .in_y(in_y),

@@ -3,7 +3,8 @@
 // A cell with at least RULE2_MIN_COUNT of its 8 in-plane neighbours in_frame the frame that
 // differ from it by less than half its value, 2|n - c| < c, becomes round(c / 1.3) =
 // (c * DIV13_MUL + 2^(DIV13_SHIFT-1)) >> DIV13_SHIFT. With cfg_use_ca low every cell passes.
-// Output pixel = input pixel moved back one row and one column. Latency: W + 2 pixel steps.
+// Output pixel = input pixel moved back one row and one column. Latency: W + 3 pixel steps
+// (the window's input register, the centre one row and one column back, the result register).
 `default_nettype none
 
 module stereo_ca_rule2 #(
@@ -37,6 +38,7 @@ module stereo_ca_rule2 #(
       .NDISP(NDISP)
   ) neighbourhood (
       .clk(clk),
+      .rst(rst),
       .ce(ce),
       .in_x(in_x),
       .in_y(in_y),

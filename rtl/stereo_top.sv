@@ -11,7 +11,7 @@
 // everything without losing or duplicating a pixel. After the last input pixel of a frame the
 // core steps on its own (s_axis_tready low) until the frame's last output has left the WTA, so
 // a frame never waits for the next one. Cycles per frame without stalls:
-//   W*H + (R + 2)*W + R + 8, R = WINDOW/2 (docs/rtl.md).
+//   W*H + (R + 2)*W + R + 10, R = WINDOW/2 (docs/rtl.md).
 // Input before the first start of frame is dropped. Status bits (sticky until reset):
 //   [0] tlast not at the row end, [1] tuser inside a frame, [2] configuration out of range
 //   (clamped). Reset is synchronous, active high, and clears control state only.

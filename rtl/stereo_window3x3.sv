@@ -1,10 +1,11 @@
 // stereo_window3x3: the 3x3 neighbourhood of every disparity plane, for the CA rules.
 //
-// A two-row line buffer and two column registers hold, at the step of input pixel (x, y), the
-// window centred on (x-1, y-1) (wrapping to the previous row at x = 0). window_data holds
-// position (dx, dy) in {-1, 0, 1}^2 at slot (dy+1)*3 + (dx+1), each slot NDISP*BITS wide;
-// in_frame[slot] says whether that position lies in the frame (outside positions must be read as
-// zero padding). Combinational outputs; the rule modules register their results.
+// An input register, a two-row line buffer and two column registers hold, one step after input
+// pixel (x, y) arrives, the window centred on (x-1, y-1) (wrapping to the previous row at x = 0).
+// window_data holds position (dx, dy) in {-1, 0, 1}^2 at slot (dy+1)*3 + (dx+1), each slot
+// NDISP*BITS wide; in_frame[slot] says whether that position lies in the frame (outside positions
+// must be read as zero padding). Every output comes from a register (window_data partly through
+// the line buffer's RAM output register); the rule modules register their results.
 `default_nettype none
 
 module stereo_window3x3 #(
@@ -13,6 +14,7 @@ module stereo_window3x3 #(
     parameter int NDISP = 16   // disparities in parallel
 ) (
     input  wire logic                          clk,
+    input  wire logic                          rst,  // clears coordinates only
     input  wire logic                          ce,
     input  wire logic signed [15:0]            in_x,
     input  wire logic signed [15:0]            in_y,
@@ -25,8 +27,24 @@ module stereo_window3x3 #(
     output      logic        [8:0]             in_frame
 );
   localparam int COLUMN = NDISP * BITS;
+  localparam logic signed [15:0] NO_PIXEL = -16'sd32768;
 
-  logic [2*COLUMN-1:0] rows_above;  // row y-1 at slot 0, row y-2 at slot 1
+  // ---- input register --------------------------------------------------------------------
+  // The incoming pixel is registered first, and the geometry of the window it completes (its
+  // centre and which of its positions lie in the frame) is computed from the incoming
+  // coordinates and registered beside it. The rules then start from registers: the coordinate
+  // arithmetic no longer runs in front of their comparisons and sums (the critical path before,
+  // docs/synthesis.md). Cost: one pixel step of latency.
+  logic signed [15:0] x_q;  // addresses the line buffer; the geometry is registered below
+  logic [COLUMN-1:0] data_q;
+  always_ff @(posedge clk) begin
+    if (ce) begin
+      x_q <= in_x;
+      data_q <= in_data;
+    end
+  end
+
+  logic [2*COLUMN-1:0] rows_above;  // rows y-1 (slot 0) and y-2 (slot 1) of the registered pixel
   stereo_line_buffer #(
       .WIDTH(WIDTH),
       .DATA_BITS(COLUMN),
@@ -34,15 +52,15 @@ module stereo_window3x3 #(
   ) line_buffer (
       .clk(clk),
       .ce(ce),
-      .in_x(in_x),
+      .in_x(x_q),
       .cfg_width(cfg_width),
-      .in_data(in_data),
+      .in_data(data_q),
       .rows_above(rows_above)
   );
 
-  // The incoming column, rows y-2 (top) .. y (bottom), and the two columns before it.
+  // The registered column, rows y-2 (top) .. y (bottom), and the two columns before it.
   logic [3*COLUMN-1:0] column_new, column_1, column_2;  // slot 0 = top row
-  assign column_new = {in_data, rows_above[0 +: COLUMN], rows_above[COLUMN +: COLUMN]};
+  assign column_new = {data_q, rows_above[0 +: COLUMN], rows_above[COLUMN +: COLUMN]};
 
   always_ff @(posedge clk) begin
     if (ce) begin
@@ -51,9 +69,10 @@ module stereo_window3x3 #(
     end
   end
 
-  // Centre = the column one step ago, one row up: (x-1, y-1).
+  // Centre of the window the incoming pixel completes: (x-1, y-1), wrapping to the previous row.
   // Coordinates are 18-bit signed: 16-bit positions, the no-pixel code and the wrap fit.
   logic signed [17:0] cx, cy;
+  logic [2:0] row_inside, column_inside;
   always_comb begin
     cx = 18'(in_x) - 18'sd1;
     cy = 18'(in_y) - 18'sd1;
@@ -61,16 +80,25 @@ module stereo_window3x3 #(
       cx = cx + $signed(18'(cfg_width));
       cy = cy - 18'sd1;
     end
-  end
-  assign centre_x = 16'(cx);
-  assign centre_y = 16'(cy);
-
-  // Which rows and columns of the window lie inside the frame; a slot is inside when both are.
-  logic [2:0] row_inside, column_inside;
-  always_comb begin
+    // Which rows and columns of that window lie inside the frame.
     for (int k = 0; k < 3; k++) begin
       column_inside[k] = cx + 18'(k - 1) >= 18'sd0 && cx + 18'(k - 1) < $signed(18'(cfg_width));
       row_inside[k] = cy + 18'(k - 1) >= 18'sd0 && cy + 18'(k - 1) < $signed(18'(cfg_height));
+    end
+  end
+
+  logic [2:0] row_inside_q, column_inside_q;
+  always_ff @(posedge clk) begin
+    if (rst) begin
+      centre_x <= '0;
+      centre_y <= NO_PIXEL;
+      row_inside_q <= '0;
+      column_inside_q <= '0;
+    end else if (ce) begin
+      centre_x <= 16'(cx);
+      centre_y <= 16'(cy);
+      row_inside_q <= row_inside;
+      column_inside_q <= column_inside;
     end
   end
 
@@ -85,7 +113,7 @@ module stereo_window3x3 #(
         end else begin : g_right
           assign window_data[SLOT*COLUMN +: COLUMN] = column_new[(dy+1)*COLUMN +: COLUMN];
         end
-        assign in_frame[SLOT] = row_inside[dy+1] && column_inside[dx+1];
+        assign in_frame[SLOT] = row_inside_q[dy+1] && column_inside_q[dx+1];
       end
     end
   endgenerate

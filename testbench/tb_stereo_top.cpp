@@ -23,10 +23,10 @@ const TopConfig& small() {
 }
 
 // Pipeline delay in pixel steps (docs/rtl.md): cost 1, aggregate R*W + R + 2, each CA rule
-// W + 2, WTA 1, plus the cycle in which the last beat is taken.
+// W + 3, WTA 1, plus the cycle in which the last beat is taken.
 std::uint64_t documented_latency(int width, int window) {
     const int r = window / 2;
-    return static_cast<std::uint64_t>((r + 2) * width + r + 8);
+    return static_cast<std::uint64_t>((r + 2) * width + r + 10);
 }
 
 ::testing::AssertionResult same_map(const DisparityMap& model, const DisparityMap& rtl) {

@@ -166,7 +166,7 @@ def throughput(config, fmax_mhz):
     if fmax_mhz is None:
         return None, None
     r = config["window"] // 2
-    cycles = config["width"] * config["height"] + (r + 2) * config["width"] + r + 8
+    cycles = config["width"] * config["height"] + (r + 2) * config["width"] + r + 10
     fps = fmax_mhz * 1e6 / cycles
     mdes = fps * config["width"] * config["height"] * config["ndisp"] / 1e6
     return round(fps, 2), round(mdes, 1)

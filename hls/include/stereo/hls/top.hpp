@@ -28,8 +28,8 @@ inline constexpr status_t kStatusSofMisplaced = 1U << 1;   // sof not exactly on
 inline constexpr status_t kStatusConfigClamped = 1U << 2;  // configuration out of range
 
 // Pixel steps from a pixel entering the cost stage to its result leaving the WTA register, R =
-// WINDOW/2 of the synthesised window (docs/rtl.md): cost 1, aggregate R*W + R + 2, each CA rule
-// W + 2, WTA 1.
+// WINDOW/2 of the synthesised window: cost 1, aggregate R*W + R + 2, each CA rule W + 2, WTA 1.
+// (The RTL's CA rules take W + 3: their windows have an input register for Fmax, hls/README.md.)
 template <int WINDOW>
 constexpr int pipeline_delay(int width) {
     constexpr int R = WINDOW / 2;
