@@ -497,8 +497,8 @@ DisparityMap run_top(hls::pipeline<WIDTH, HEIGHT, NDISP, WINDOW>& state, const I
 }
 
 TEST(HlsTop, LastResultLeavesAfterTheDocumentedLatency) {
-    // docs/rtl.md: D = (R + 2) * W + R + 8 pixel steps, the sum of the stage latencies
-    // 1 + (R*W + R + 2) + 2 (W + 2) + 1 measured one by one above.
+    // hls/README.md: D = (R + 2) * W + R + 8 pixel steps (the RTL takes 2 more), the sum of the
+    // stage latencies 1 + (R*W + R + 2) + 2 (W + 2) + 1 measured one by one above.
     constexpr int kWindow = 5;
     constexpr int R = kWindow / 2;
     const int width = 20;
