@@ -229,7 +229,8 @@ def ice40_report(config, args, work):
         report["nextpnr_seconds"] = round(time.monotonic() - start, 1)
         log = (work / "nextpnr.log").read_text() if (work / "nextpnr.log").exists() else ""
         if result.returncode != 0:
-            report["pnr_error"] = (result.stderr.strip().splitlines() or ["failed"])[-1]
+            errors = [line for line in (log + result.stderr).splitlines() if "ERROR" in line]
+            report["pnr_error"] = (errors or result.stderr.strip().splitlines() or ["failed"])[0]
         else:
             report["placed"] = True
             fmax, critical = parse_nextpnr_log(log)
