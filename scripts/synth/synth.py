@@ -6,7 +6,8 @@ Subcommands (each writes one JSON report; run with -h for the options):
   estimate  Yosys synth_xilinx (7-series) or synth_ecp5 resource estimate, no place and route.
   fit       the largest configuration that places and routes on an iCE40 device.
   sweep     estimates over a list of configurations, one JSON with every point.
-  plot      SVG plots of a sweep (resources against each parameter).
+  plot      SVG plots of a sweep (resources against each parameter, and per stage).
+  table     markdown tables of sweeps (docs/synthesis.md).
   check     validates a report's fields (used by the ctest of label `synth`).
 
 Only the Python standard library is used. Tools: yosys, nextpnr-ice40 (Debian packages).
@@ -180,9 +181,12 @@ def parse_nextpnr_log(text):
     section = text.rfind("Critical path report for clock")
     if section >= 0:
         for line in text[section:].splitlines()[1:]:
-            if not line.startswith("Info:") or "Max frequency" in line:
+            if (not line.startswith("Info:") or "Max frequency" in line or
+                    "Critical path report" in line):
                 break
             critical.append(line[5:].rstrip())
+            if " ns logic, " in line:  # the path's summary closes it
+                break
     return fmax, critical
 
 
@@ -510,6 +514,55 @@ def with_bram_kbits(resources, target):
     return resources
 
 
+def command_table(args):
+    """Markdown tables of sweep points: one per target, then each stage's share at the largest
+    configuration. fps and M disparity evaluations/s at --clock MHz (an assumed clock: Yosys
+    gives no Fmax for these targets)."""
+    points = []
+    for path in args.sweeps:
+        points += json.loads(Path(path).read_text()).get("points", [])
+    if not points:
+        raise ReportError("no sweep points")
+    lines = []
+    for target in sorted({p["target"] for p in points}):
+        rows = sorted((p for p in points if p["target"] == target),
+                      key=lambda p: (not p.get("use_dsp", True), p["config"]["width"],
+                                     p["config"]["ndisp"], p["config"]["window"]))
+        lines += [f"| {target} | W x H | labels | window | LUT | FF | carry | BRAM (Kib) | DSP | "
+                  f"fps at {args.clock:g} MHz | M disp. eval./s |",
+                  "|---|---|---|---|---|---|---|---|---|---|---|"]
+        for p in rows:
+            c, r = p["config"], with_bram_kbits(p["resources"], target)
+            fps, mdes = throughput(c, args.clock)
+            dsp = "" if p.get("use_dsp", True) else " (no DSP)"
+            lines.append(f"| {target}{dsp} | {c['width']} x {c['height']} | {c['ndisp']} | "
+                         f"{c['window']}x{c['window']} | {r['luts']:,} | {r['ffs']:,} | "
+                         f"{r['carries']:,} | {r['bram_kbits']:,} | {r['dsps']:,} | {fps:,.0f} | "
+                         f"{mdes:,.0f} |")
+        lines.append("")
+        largest = max((p for p in rows if "stages" in p),
+                      key=lambda p: (p["config"]["ndisp"] * p["config"]["window"] ** 2
+                                     * p["config"]["width"]), default=None)
+        if largest:
+            c = largest["config"]
+            lines += [f"| {target} {c['width']}x{c['height']} / {c['ndisp']} / "
+                      f"{c['window']}x{c['window']}: stage | LUT | FF | BRAM (Kib) | DSP |",
+                      "|---|---|---|---|---|"]
+            for name in STAGE_COLOURS:
+                r = with_bram_kbits(dict(largest["stages"].get(name, {})), target)
+                total = largest["resources"]
+                share = 100 * r.get("luts", 0) / total["luts"] if total["luts"] else 0
+                lines.append(f"| {name.replace('stereo_', '')} | {r.get('luts', 0):,} "
+                             f"({share:.0f} %) | {r.get('ffs', 0):,} | {r.get('bram_kbits', 0):,}"
+                             f" | {r.get('dsps', 0):,} |")
+            lines.append("")
+    text = "\n".join(lines)
+    if args.out:
+        Path(args.out).write_text(text)
+    else:
+        print(text)
+
+
 def command_plot(args):
     points = json.loads(Path(args.sweep).read_text()).get("points", [])
     if not points:
@@ -635,6 +688,11 @@ def main():
     plot.add_argument("sweep", help="sweep JSON (merge targets with `sweep --out` on one file)")
     plot.add_argument("--out-dir", required=True)
     plot.set_defaults(handler=command_plot)
+    table = sub.add_parser("table", help="markdown tables of sweep JSON files")
+    table.add_argument("sweeps", nargs="+")
+    table.add_argument("--clock", type=float, default=100.0, help="assumed clock in MHz")
+    table.add_argument("--out")
+    table.set_defaults(handler=command_table)
     check = sub.add_parser("check", help="validate a JSON report")
     check.add_argument("report")
     check.add_argument("--expect-bram", action="store_true")

@@ -125,10 +125,14 @@ class Throughput(unittest.TestCase):
                "Info: Critical path report for clock 'clk$SB_IO_IN_$glb_clk' (posedge -> posedge):\n"
                "Info: curr total\n"
                "Info:  1.0  1.0  Source a.q\n"
+               "Info: 0.5 ns logic, 0.5 ns routing\n"
+               "Info: Critical path report for cross-domain path '<async>' -> '<async>':\n"
+               "Info:  0.4  0.4  Source b.q\n"
                "Info: Max frequency for clock 'clk$SB_IO_IN_$glb_clk': 23.40 MHz (PASS at 12 MHz)\n")
         fmax, critical = synth.parse_nextpnr_log(log)
         self.assertEqual(fmax, 23.40)
-        self.assertEqual(critical, [" curr total", "  1.0  1.0  Source a.q"])
+        self.assertEqual(critical, [" curr total", "  1.0  1.0  Source a.q",
+                                    " 0.5 ns logic, 0.5 ns routing"])
 
 
 class Plots(unittest.TestCase):
