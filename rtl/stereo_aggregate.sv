@@ -51,6 +51,11 @@ module stereo_aggregate #(
     end else begin : g_constant_kernel
       for (genvar i = 0; i < WINDOW; i++) begin : g_tap
         assign kernel[i*TAP_BITS+:TAP_BITS] = TAP_BITS'(fx_pkg::default_tap(WINDOW, i));
+        // The paired taps below need a symmetric kernel: stop elaboration if it is not.
+        if (fx_pkg::default_tap(WINDOW, i) != fx_pkg::default_tap(WINDOW, WINDOW - 1 - i))
+        begin : g_asymmetric
+          stereo_aggregate_default_kernel_is_not_symmetric asymmetric_kernel ();
+        end
       end
     end
   endgenerate
@@ -88,19 +93,40 @@ module stereo_aggregate #(
   logic [V_BITS-1:0] vertical_d;
   generate
     for (genvar d = 0; d < NDISP; d++) begin : g_vertical
+      // Tap j covers row in_y - 2R + j, i.e. the row 2R - j above the incoming one.
+      logic [WINDOW*COST_BITS-1:0] tap_cost;  // cost of tap j, 0 when its row is outside
       always_comb begin
-        logic [VSUM_BITS-1:0] sum;
-        sum = '0;
         for (int j = 0; j < WINDOW; j++) begin
-          // Tap j covers row in_y - 2R + j, i.e. the row 2R - j above the incoming one.
           logic [COST_BITS-1:0] cost;
           if (j == 2 * R) cost = in_data[d*COST_BITS +: COST_BITS];
           else cost = rows_above[(2*R-1-j)*COLUMN_BITS + d*COST_BITS +: COST_BITS];
-          if (row_inside[j]) begin
-            sum = sum + VSUM_BITS'(cost) * VSUM_BITS'(kernel[j*TAP_BITS +: TAP_BITS]);
-          end
+          tap_cost[j*COST_BITS +: COST_BITS] = row_inside[j] ? cost : '0;
         end
-        vertical_d[d*VSUM_BITS +: VSUM_BITS] = sum;
+      end
+      if (RUNTIME_KERNEL) begin : g_runtime_taps
+        always_comb begin
+          logic [VSUM_BITS-1:0] sum;
+          sum = '0;
+          for (int j = 0; j < WINDOW; j++) begin
+            sum = sum + VSUM_BITS'(tap_cost[j*COST_BITS +: COST_BITS]) *
+                        VSUM_BITS'(kernel[j*TAP_BITS +: TAP_BITS]);
+          end
+          vertical_d[d*VSUM_BITS +: VSUM_BITS] = sum;
+        end
+      end else begin : g_symmetric_taps
+        // The default kernel is symmetric (k[j] = k[2R-j], checked below): mirrored taps are
+        // added before the one multiplication they share, R+1 constant products instead of
+        // 2R+1. Exact: integer sums in full precision.
+        always_comb begin
+          logic [VSUM_BITS-1:0] sum;
+          sum = VSUM_BITS'(tap_cost[R*COST_BITS +: COST_BITS]) * VSUM_BITS'(fx_pkg::default_tap(WINDOW, R));
+          for (int j = 0; j < R; j++) begin
+            sum = sum + (VSUM_BITS'(tap_cost[j*COST_BITS +: COST_BITS]) +
+                         VSUM_BITS'(tap_cost[(2*R-j)*COST_BITS +: COST_BITS])) *
+                        VSUM_BITS'(fx_pkg::default_tap(WINDOW, j));
+          end
+          vertical_d[d*VSUM_BITS +: VSUM_BITS] = sum;
+        end
       end
     end
   endgenerate
@@ -164,16 +190,30 @@ module stereo_aggregate #(
   logic [NDISP*AGG_BITS-1:0] aggregate_d;
   generate
     for (genvar d = 0; d < NDISP; d++) begin : g_horizontal
+      // Tap i covers column centre_x - R + i, i.e. 2R - i columns behind the newest.
+      logic [WINDOW*VSUM_BITS-1:0] tap_sum;  // vertical sum of tap i, 0 when outside
       always_comb begin
-        logic [WSUM_BITS-1:0] sum;
-        sum = '0;
         for (int i = 0; i < WINDOW; i++) begin
-          // Tap i covers column centre_x - R + i, i.e. 2R - i columns behind the newest.
           logic [VSUM_BITS-1:0] v;
           if (i == 2 * R) v = vertical_q[d*VSUM_BITS +: VSUM_BITS];
           else v = history[(2*R-1-i)*V_BITS + d*VSUM_BITS +: VSUM_BITS];
-          if (column_inside[i]) begin
-            sum = sum + WSUM_BITS'(v) * WSUM_BITS'(kernel[i*TAP_BITS +: TAP_BITS]);
+          tap_sum[i*VSUM_BITS +: VSUM_BITS] = column_inside[i] ? v : '0;
+        end
+      end
+      always_comb begin
+        logic [WSUM_BITS-1:0] sum;
+        if (RUNTIME_KERNEL) begin
+          sum = '0;
+          for (int i = 0; i < WINDOW; i++) begin
+            sum = sum + WSUM_BITS'(tap_sum[i*VSUM_BITS +: VSUM_BITS]) *
+                        WSUM_BITS'(kernel[i*TAP_BITS +: TAP_BITS]);
+          end
+        end else begin  // symmetric constant kernel, as in the vertical pass
+          sum = WSUM_BITS'(tap_sum[R*VSUM_BITS +: VSUM_BITS]) * WSUM_BITS'(fx_pkg::default_tap(WINDOW, R));
+          for (int i = 0; i < R; i++) begin
+            sum = sum + (WSUM_BITS'(tap_sum[i*VSUM_BITS +: VSUM_BITS]) +
+                         WSUM_BITS'(tap_sum[(2*R-i)*VSUM_BITS +: VSUM_BITS])) *
+                        WSUM_BITS'(fx_pkg::default_tap(WINDOW, i));
           end
         end
         sum = sum + WSUM_BITS'(1 << (AGG_SHIFT - 1));
