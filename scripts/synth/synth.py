@@ -34,6 +34,27 @@ ICE40_DEVICES = {
 }
 
 
+# Larger parts for the estimates (vendor data sheets: AMD DS180 7-series overview, Lattice ECP5
+# family data sheet): LUTs, flip-flops, block RAM in Kib, DSP multipliers (DSP48E1 / 18x18).
+ESTIMATE_DEVICES = {
+    "xilinx": [("XC7A35T", 20800, 41600, 1800, 90), ("XC7A100T", 63400, 126800, 4860, 240),
+               ("XC7A200T", 134600, 269200, 13140, 740), ("XC7K325T", 203800, 407600, 16020, 840),
+               ("XC7K410T", 254200, 508400, 28620, 1540)],
+    "ecp5": [("LFE5U-25F", 24288, 24288, 1008, 28), ("LFE5U-45F", 43848, 43848, 1944, 72),
+             ("LFE5U-85F", 83640, 83640, 3744, 156)],
+}
+
+
+def smallest_device(target, resources):
+    """The smallest listed part whose LUTs, FFs, block RAM and DSPs all hold the estimate (no
+    allowance for packing or routing), or None."""
+    for name, luts, ffs, kbits, dsps in ESTIMATE_DEVICES.get(target, []):
+        if (resources["luts"] <= luts and resources["ffs"] <= ffs and
+                resources.get("bram_kbits", 0) <= kbits and resources["dsps"] <= dsps):
+            return name
+    return None
+
+
 class ReportError(Exception):
     pass
 
@@ -529,15 +550,16 @@ def command_table(args):
                       key=lambda p: (not p.get("use_dsp", True), p["config"]["width"],
                                      p["config"]["ndisp"], p["config"]["window"]))
         lines += [f"| {target} | W x H | labels | window | LUT | FF | carry | BRAM (Kib) | DSP | "
-                  f"fps at {args.clock:g} MHz | M disp. eval./s |",
-                  "|---|---|---|---|---|---|---|---|---|---|---|"]
+                  f"smallest listed part | fps at {args.clock:g} MHz | M disp. eval./s |",
+                  "|---|---|---|---|---|---|---|---|---|---|---|---|"]
         for p in rows:
             c, r = p["config"], with_bram_kbits(p["resources"], target)
             fps, mdes = throughput(c, args.clock)
             dsp = "" if p.get("use_dsp", True) else " (no DSP)"
             lines.append(f"| {target}{dsp} | {c['width']} x {c['height']} | {c['ndisp']} | "
                          f"{c['window']}x{c['window']} | {r['luts']:,} | {r['ffs']:,} | "
-                         f"{r['carries']:,} | {r['bram_kbits']:,} | {r['dsps']:,} | {fps:,.0f} | "
+                         f"{r['carries']:,} | {r['bram_kbits']:,} | {r['dsps']:,} | "
+                         f"{smallest_device(target, r) or 'none listed'} | {fps:,.0f} | "
                          f"{mdes:,.0f} |")
         lines.append("")
         largest = max((p for p in rows if "stages" in p),

@@ -174,6 +174,15 @@ class Plots(unittest.TestCase):
                 synth.command_plot(SimpleNamespace(sweep=str(sweep), out_dir=folder))
 
 
+class Devices(unittest.TestCase):
+    def test_smallest_device(self):
+        fits_a35 = {"luts": 20800, "ffs": 100, "bram_kbits": 1800, "dsps": 90}
+        self.assertEqual(synth.smallest_device("xilinx", fits_a35), "XC7A35T")
+        # one DSP too many for the 35T and the 100T's 240: the 200T
+        self.assertEqual(synth.smallest_device("xilinx", dict(fits_a35, dsps=241)), "XC7A200T")
+        self.assertEqual(synth.smallest_device("ecp5", dict(fits_a35, bram_kbits=3745)), None)
+
+
 class Configs(unittest.TestCase):
     def test_impossible_configurations(self):
         for bad in ({"window": 4}, {"window": 33}, {"ndisp": 0}, {"ndisp": 257}, {"width": 0}):
