@@ -598,7 +598,7 @@ def command_plot(args):
     written = [out / "synth_scaling.svg"]
     written[0].write_text(plot_scaling(points))
     for target in sorted({p["target"] for p in points if "stages" in p}):
-        for metric in ("luts", "ffs"):
+        for metric in ("luts", "ffs", "bram_kbits", "dsps"):
             path = out / f"synth_stages_{target}_{metric}.svg"
             path.write_text(plot_stages(points, target, metric))
             written.append(path)

@@ -162,7 +162,8 @@ class Plots(unittest.TestCase):
                      if r.get("width") == "60"]
             self.assertEqual(len(rects), 2 * len(synth.STAGE_COLOURS))
             # every target with per-stage figures gets its stage plots
-            self.assertTrue((Path(folder) / "synth_stages_ecp5_ffs.svg").exists())
+            for metric in ("luts", "ffs", "bram_kbits", "dsps"):
+                self.assertTrue((Path(folder) / f"synth_stages_ecp5_{metric}.svg").exists())
             # bram_kbits is filled in for reports written before it existed (18 Kib per ECP5 BRAM)
             self.assertEqual(synth.with_bram_kbits({"brams": 6}, "ecp5")["bram_kbits"], 108)
 
