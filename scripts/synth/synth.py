@@ -7,7 +7,7 @@ Subcommands (each writes one JSON report; run with -h for the options):
   fit       the largest configuration that places and routes on an iCE40 device.
   sweep     estimates over a list of configurations, one JSON with every point.
   plot      SVG plots of a sweep (resources against each parameter, and per stage).
-  table     markdown tables of sweeps (docs/synthesis.md).
+  table     markdown tables of sweeps and estimate reports (docs/synthesis.md).
   check     validates a report's fields (used by the ctest of label `synth`).
 
 Only the Python standard library is used. Tools: yosys, nextpnr-ice40 (Debian packages).
@@ -535,13 +535,21 @@ def with_bram_kbits(resources, target):
     return resources
 
 
+def estimate_points(path):
+    """The estimate points a file holds: a sweep's `points`, or one `estimate` report."""
+    data = json.loads(Path(path).read_text())
+    if "points" in data:
+        return data["points"]
+    if data.get("target") in ("xilinx", "ecp5") and "resources" in data:
+        return [data]
+    raise ReportError(f"{path} is neither a sweep nor a 7-series / ECP5 estimate report")
+
+
 def command_table(args):
     """Markdown tables of sweep points: one per target, then each stage's share at the largest
     configuration. fps and M disparity evaluations/s at --clock MHz (an assumed clock: Yosys
     gives no Fmax for these targets)."""
-    points = []
-    for path in args.sweeps:
-        points += json.loads(Path(path).read_text()).get("points", [])
+    points = [point for path in args.sweeps for point in estimate_points(path)]
     if not points:
         raise ReportError("no sweep points")
     lines = []
@@ -564,7 +572,8 @@ def command_table(args):
         lines.append("")
         largest = max((p for p in rows if "stages" in p),
                       key=lambda p: (p["config"]["ndisp"] * p["config"]["window"] ** 2
-                                     * p["config"]["width"]), default=None)
+                                     * p["config"]["width"], p.get("use_dsp", True)),
+                      default=None)
         if largest:
             c = largest["config"]
             lines += [f"| {target} {c['width']}x{c['height']} / {c['ndisp']} / "

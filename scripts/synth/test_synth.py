@@ -175,6 +175,42 @@ class Plots(unittest.TestCase):
                 synth.command_plot(SimpleNamespace(sweep=str(sweep), out_dir=folder))
 
 
+class Tables(unittest.TestCase):
+    @staticmethod
+    def point(ndisp, luts, dsps, use_dsp):
+        resources = {"luts": luts, "ffs": 1000, "carries": 10, "bram_kbits": 10008, "dsps": dsps}
+        return {"target": "xilinx", "use_dsp": use_dsp,
+                "config": {"width": 640, "height": 480, "ndisp": ndisp, "window": 11},
+                "resources": resources,
+                "stages": {"stereo_aggregate": dict(resources)}}
+
+    def test_sweep_and_single_estimate_report(self):
+        with tempfile.TemporaryDirectory() as folder:
+            sweep, single, out = (Path(folder) / n for n in ("s.json", "e.json", "t.md"))
+            sweep.write_text(json.dumps({"points": [self.point(16, 23000, 224, True)]}))
+            single.write_text(json.dumps(self.point(64, 182680, 0, False)))
+            synth.command_table(SimpleNamespace(sweeps=[str(sweep), str(single)], clock=100,
+                                                out=str(out)))
+            rows = [line for line in out.read_text().splitlines()
+                    if line.startswith("| xilinx ") and "stage" not in line and "W x H" not in line]
+            self.assertEqual(len(rows), 2)
+            # DSP points first; 182,680 LUTs and no DSP fit the XC7K325T (203,800 LUTs).
+            self.assertTrue(rows[0].startswith("| xilinx | 640 x 480 | 16 |"))
+            self.assertIn("| xilinx (no DSP) | 640 x 480 | 64 |", rows[1])
+            self.assertIn("| XC7K325T |", rows[1])
+            # By hand: 640*480 + 7*640 + 15 = 311,695 cycles; 1e8 / 311,695 = 320.8 fps;
+            # 320.8 * 640 * 480 * 64 / 1e6 = 6,307.9 M disparity evaluations/s.
+            self.assertTrue(rows[1].endswith("| 321 | 6,308 |"))
+            self.assertIn("| xilinx 640x480 / 64 / 11x11: stage |", out.read_text())
+
+    def test_other_json_is_an_error(self):
+        with tempfile.TemporaryDirectory() as folder:
+            report = Path(folder) / "ice40.json"
+            report.write_text(json.dumps({"target": "ice40", "resources": {}}))
+            with self.assertRaises(synth.ReportError):
+                synth.estimate_points(str(report))
+
+
 class Devices(unittest.TestCase):
     def test_smallest_device(self):
         fits_a35 = {"luts": 20800, "ffs": 100, "bram_kbits": 1800, "dsps": 90}
