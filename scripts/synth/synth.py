@@ -570,10 +570,11 @@ def command_table(args):
                          f"{smallest_device(target, r) or 'none listed'} | {fps:,.0f} | "
                          f"{mdes:,.0f} |")
         lines.append("")
+        # rows list DSP points first and max keeps the first of equals, so where a configuration
+        # has both variants the stage split is the DSP one's.
         largest = max((p for p in rows if "stages" in p),
                       key=lambda p: (p["config"]["ndisp"] * p["config"]["window"] ** 2
-                                     * p["config"]["width"], p.get("use_dsp", True)),
-                      default=None)
+                                     * p["config"]["width"]), default=None)
         if largest:
             c = largest["config"]
             lines += [f"| {target} {c['width']}x{c['height']} / {c['ndisp']} / "

@@ -187,21 +187,25 @@ class Tables(unittest.TestCase):
     def test_sweep_and_single_estimate_report(self):
         with tempfile.TemporaryDirectory() as folder:
             sweep, single, out = (Path(folder) / n for n in ("s.json", "e.json", "t.md"))
-            sweep.write_text(json.dumps({"points": [self.point(16, 23000, 224, True)]}))
+            sweep.write_text(json.dumps({"points": [self.point(16, 23000, 224, True),
+                                                     self.point(64, 88948, 896, True)]}))
             single.write_text(json.dumps(self.point(64, 182680, 0, False)))
             synth.command_table(SimpleNamespace(sweeps=[str(sweep), str(single)], clock=100,
                                                 out=str(out)))
-            rows = [line for line in out.read_text().splitlines()
-                    if line.startswith("| xilinx ") and "stage" not in line and "W x H" not in line]
-            self.assertEqual(len(rows), 2)
+            text = out.read_text()
+            rows = [line for line in text.splitlines() if line.startswith("| xilinx ")
+                    and "stage" not in line and "W x H" not in line]
+            self.assertEqual(len(rows), 3)
             # DSP points first; 182,680 LUTs and no DSP fit the XC7K325T (203,800 LUTs).
             self.assertTrue(rows[0].startswith("| xilinx | 640 x 480 | 16 |"))
-            self.assertIn("| xilinx (no DSP) | 640 x 480 | 64 |", rows[1])
-            self.assertIn("| XC7K325T |", rows[1])
+            self.assertIn("| xilinx (no DSP) | 640 x 480 | 64 |", rows[2])
+            self.assertIn("| XC7K325T |", rows[2])
             # By hand: 640*480 + 7*640 + 15 = 311,695 cycles; 1e8 / 311,695 = 320.8 fps;
             # 320.8 * 640 * 480 * 64 / 1e6 = 6,307.9 M disparity evaluations/s.
-            self.assertTrue(rows[1].endswith("| 321 | 6,308 |"))
-            self.assertIn("| xilinx 640x480 / 64 / 11x11: stage |", out.read_text())
+            self.assertTrue(rows[2].endswith("| 321 | 6,308 |"))
+            # The stage split is the DSP point's where both variants of a configuration exist.
+            self.assertIn("| xilinx 640x480 / 64 / 11x11: stage |", text)
+            self.assertIn("| aggregate | 88,948 (100 %) |", text)
 
     def test_other_json_is_an_error(self):
         with tempfile.TemporaryDirectory() as folder:
