@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "stereo/image.hpp"
+#include "stereo/matcher.hpp"
 #include "stereo/pipeline.hpp"
 
 namespace stereo::sim {
@@ -92,5 +93,8 @@ DisparityMap assemble_frame(const std::vector<OutputBeat>& beats, std::size_t fi
 
 // The cfg_kernel taps for `params` in a core of `window` taps: the model's kernel, centred.
 std::vector<std::int32_t> centred_kernel(const MatchParams& params, int window);
+
+// Registers method "pipeline", engine "rtl" (rtl_matcher.cpp).
+void register_matchers(MatcherRegistry& registry);
 
 }  // namespace stereo::sim

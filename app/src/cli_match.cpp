@@ -1,4 +1,5 @@
-// `stereo match LEFT RIGHT -o DISP.png [options]`: run one engine on a rectified pair.
+// `stereo match LEFT RIGHT -o DISP.png [options]`: run any registered matcher on a pair.
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -11,12 +12,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli.hpp"
-#include "stereo/edge_frontend.hpp"
+#include "cli_matcher_options.hpp"
 #include "stereo/hierarchical.hpp"
-#include "stereo/hierarchical_reference.hpp"
-#include "stereo/hls/match.hpp"
-#include "stereo/pipeline.hpp"
-#include "stereo/reference.hpp"
 #include "stereo_app/io.hpp"
 
 namespace stereo::cli {
@@ -28,22 +25,13 @@ struct MatchOptions {
     std::string right;
     std::string output;
     std::string colour;  // empty: no colour view
-    MatchParams params;
-    bool no_ca = false;
+    MatcherOptions matcher;
     int scale = 1;
     int downscale = 1;
-    std::string engine = "model";
     bool json = false;
-    std::string frontend = "model";  // or "edges": the Sec. 4.1.1 variant
-    // --method hierarchical: the Sec. 3.3 2-D search (docs/hierarchical.md)
-    std::string method = "pipeline";
-    int vrange = 0;             // 0 = ndisp
-    std::string vertical;       // vertical offset PNG, empty: none
-    std::string dump_levels;    // folder for the per-level maps, empty: none
-    bool window_given = false;  // --window / --sigma do not apply to the hierarchical levels
+    std::string vertical;     // 2-D methods: vertical offset PNG, empty: none
+    std::string dump_levels;  // hierarchical: folder for the per-level maps, empty: none
 };
-
-double valid_fraction(const DisparityMap& map);
 
 // The vertical offset map as a PNG byte: 128 + v where valid, 0 where invalid.
 cv::Mat vertical_to_mat(const std::vector<std::int16_t>& vertical,
@@ -57,14 +45,70 @@ cv::Mat vertical_to_mat(const std::vector<std::int16_t>& vertical,
     return out;
 }
 
-void run_hierarchical(const MatchOptions& options, bool use_ca) {
-    if (options.engine != "model" && options.engine != "naive") {
-        throw std::invalid_argument("--method hierarchical runs with --engine model or naive");
+double valid_fraction(const DisparityMap& map) {
+    std::size_t valid = 0;
+    for (const auto flag : map.valid) {
+        valid += flag != 0 ? 1 : 0;
     }
-    if (options.frontend != "model") {
-        throw std::invalid_argument("--method hierarchical runs only with --frontend model");
+    return map.valid.empty() ? 0.0 : static_cast<double>(valid) / map.valid.size();
+}
+
+std::int64_t count_of(const MatchResult& result, const std::string& name) {
+    for (const auto& [key, value] : result.counts) {
+        if (key == name) {
+            return value;
+        }
     }
-    if (options.window_given) {
+    return 0;
+}
+
+void check_dump_folder(const std::string& folder) {
+    const std::filesystem::path dump(folder);
+    std::error_code error;
+    const std::filesystem::path parent =
+        dump.parent_path().empty() ? std::filesystem::path(".") : dump.parent_path();
+    if (std::filesystem::exists(dump, error) ? !std::filesystem::is_directory(dump, error)
+                                             : !std::filesystem::is_directory(parent, error)) {
+        throw std::runtime_error("cannot write level maps into \"" + folder +
+                                 "\": not a folder, and its parent folder does not exist");
+    }
+}
+
+// Per-level disparity, colour and vertical maps of a hierarchical result.
+std::vector<std::pair<std::string, cv::Mat>> level_files(const MatchResult& result, int ndisp,
+                                                         int scale) {
+    constexpr std::array<const char*, hierarchical::kLevels> kNames = {"quarter", "half", "full"};
+    std::vector<std::pair<std::string, cv::Mat>> files;
+    for (std::size_t l = 0; l < result.levels.size() && l < kNames.size(); ++l) {
+        const Winners& level = result.levels[l];
+        const int level_ndisp = ndisp / hierarchical::kLevelFactor[l];
+        DisparityMap level_map(level.width, level.height);
+        for (std::size_t p = 0; p < level.valid.size(); ++p) {
+            level_map.valid[p] = level.valid[p];
+            level_map.disparity[p] =
+                level.valid[p] != 0 ? static_cast<std::uint8_t>(level.disparity[p]) : 0;
+        }
+        const std::string name = kNames[l];
+        files.emplace_back(name + "_disparity.png",
+                           app::disparity_to_mat(level_map, level_ndisp, scale));
+        files.emplace_back(name + "_color.png", app::disparity_to_colour(level_map, level_ndisp));
+        files.emplace_back(name + "_vertical.png", vertical_to_mat(level.vertical, level.valid,
+                                                                   level.width, level.height));
+    }
+    return files;
+}
+
+void run_match(const MatchOptions& options) {
+    const std::string method = options.matcher.resolved_method();
+    const std::string& engine = options.matcher.engine;
+    const bool two_d = method == "hierarchical";
+    if (!two_d &&
+        (options.matcher.config.vrange != 0 || !options.vertical.empty() ||
+         !options.dump_levels.empty())) {
+        throw std::invalid_argument(
+            "--vrange, --vertical and --dump-levels need --method hierarchical");
+    }
+    if (two_d && options.matcher.window_given()) {
         throw std::invalid_argument(
             "--window and --sigma apply to --method pipeline; the hierarchical levels use "
             "9, 15 and 23 (docs/hierarchical.md)");
@@ -76,201 +120,99 @@ void run_hierarchical(const MatchOptions& options, bool use_ca) {
         throw std::invalid_argument("--downscale must be >= 1, got " +
                                     std::to_string(options.downscale));
     }
-    hierarchical::Params params;
-    params.ndisp = options.params.ndisp;
-    params.vrange = options.vrange;
-    params.use_ca = use_ca;
-    app::check_disparity_scale(params.ndisp, options.scale);
-    app::check_writable_location(options.output);
-    if (!options.colour.empty()) {
-        app::check_writable_location(options.colour);
-    }
-    if (!options.vertical.empty()) {
-        app::check_writable_location(options.vertical);
-    }
-    const std::filesystem::path dump(options.dump_levels);
-    if (!options.dump_levels.empty()) {
-        std::error_code error;
-        const std::filesystem::path parent =
-            dump.parent_path().empty() ? std::filesystem::path(".") : dump.parent_path();
-        if (std::filesystem::exists(dump, error) ? !std::filesystem::is_directory(dump, error)
-                                                 : !std::filesystem::is_directory(parent, error)) {
-            throw std::runtime_error("cannot write level maps into \"" + options.dump_levels +
-                                     "\": not a folder, and its parent folder does not exist");
-        }
-    }
-    const app::ImagePair pair = app::load_pair(options.left, options.right, options.downscale);
-    hierarchical::validate(params, pair.left.width, pair.left.height);
+    const MatchConfig config = options.matcher.resolved();
+    const auto matcher = matchers().create(method, engine, config);
+    const int ndisp = config.pipeline.ndisp;
 
-    const auto start = std::chrono::steady_clock::now();
-    const hierarchical::Result result =
-        options.engine == "naive" ? hierarchical::naive::match(pair.left, pair.right, params)
-                                  : hierarchical::match(pair.left, pair.right, params);
-    const std::chrono::duration<double, std::milli> elapsed =
-        std::chrono::steady_clock::now() - start;
-
-    // Every output is encoded before the first one is written.
-    const DisparityMap& map = result.disparity;
-    const cv::Mat stored = app::disparity_to_mat(map, params.ndisp, options.scale);
-    const cv::Mat colour =
-        options.colour.empty() ? cv::Mat() : app::disparity_to_colour(map, params.ndisp);
-    const hierarchical::LevelMap& full = result.levels[hierarchical::kLevels - 1];
-    const cv::Mat vertical = vertical_to_mat(full.vertical, full.valid, map.width, map.height);
-    std::vector<std::pair<std::string, cv::Mat>> level_files;
-    if (!options.dump_levels.empty()) {
-        constexpr std::array<const char*, hierarchical::kLevels> kNames = {"quarter", "half",
-                                                                           "full"};
-        for (int l = 0; l < hierarchical::kLevels; ++l) {
-            const auto& level = result.levels[static_cast<std::size_t>(l)];
-            const int ndisp =
-                params.ndisp / hierarchical::kLevelFactor[static_cast<std::size_t>(l)];
-            DisparityMap level_map(level.width, level.height);
-            for (std::size_t p = 0; p < level.valid.size(); ++p) {
-                level_map.valid[p] = level.valid[p];
-                level_map.disparity[p] =
-                    level.valid[p] != 0 ? static_cast<std::uint8_t>(level.disparity[p]) : 0;
-            }
-            const std::string name = kNames[static_cast<std::size_t>(l)];
-            level_files.emplace_back(name + "_disparity.png",
-                                     app::disparity_to_mat(level_map, ndisp, options.scale));
-            level_files.emplace_back(name + "_color.png",
-                                     app::disparity_to_colour(level_map, ndisp));
-            level_files.emplace_back(
-                name + "_vertical.png",
-                vertical_to_mat(level.vertical, level.valid, level.width, level.height));
-        }
-    }
-    app::write_png(options.output, stored);
-    if (!colour.empty()) {
-        app::write_png(options.colour, colour);
-    }
-    if (!options.vertical.empty()) {
-        app::write_png(options.vertical, vertical);
-    }
-    if (!level_files.empty()) {
-        std::filesystem::create_directories(dump);
-        for (const auto& [name, mat] : level_files) {
-            app::write_png(dump / name, mat);
-        }
-    }
-
-    const double valid = valid_fraction(map);
-    const auto& count = result.cost_evaluations.level;
-    const double per_pixel =
-        static_cast<double>(result.cost_evaluations.total()) / (map.width * map.height);
-    if (options.json) {
-        const nlohmann::json summary = {
-            {"width", map.width},
-            {"height", map.height},
-            {"method", "hierarchical"},
-            {"ndisp", params.ndisp},
-            {"vrange", params.vertical_range()},
-            {"windows",
-             {params.levels[0].window, params.levels[1].window, params.levels[2].window}},
-            {"ca", params.use_ca},
-            {"engine", options.engine},
-            {"valid_fraction", valid},
-            {"cost_evaluations", {{"quarter", count[0]}, {"half", count[1]}, {"full", count[2]}}},
-            {"cost_evaluations_per_pixel", per_pixel},
-            {"ms", elapsed.count()},
-        };
-        std::cout << summary.dump() << '\n';
-    } else {
-        std::printf(
-            "%dx%d ndisp %d vrange %d windows %d/%d/%d ca %s method hierarchical engine %s: "
-            "%.1f%% valid, %.1f ms, %.2f cost evaluations per pixel\n",
-            map.width, map.height, params.ndisp, params.vertical_range(), params.levels[0].window,
-            params.levels[1].window, params.levels[2].window, params.use_ca ? "on" : "off",
-            options.engine.c_str(), 100.0 * valid, elapsed.count(), per_pixel);
-    }
-}
-
-DisparityMap run_engine(const std::string& engine, const app::ImagePair& pair,
-                        const MatchParams& params) {
-    if (engine == "naive") {
-        return naive::match(pair.left, pair.right, params);
-    }
-    if (engine == "float") {
-        return floating::match(pair.left, pair.right, params);
-    }
-    if (engine == "hls") {  // the HLS kernels in C simulation, bit-exact with the model
-        return hls::match(pair.left, pair.right, params);
-    }
-    return match(pair.left, pair.right, params);
-}
-
-double valid_fraction(const DisparityMap& map) {
-    std::size_t valid = 0;
-    for (const auto flag : map.valid) {
-        valid += flag != 0 ? 1 : 0;
-    }
-    return map.valid.empty() ? 0.0 : static_cast<double>(valid) / map.valid.size();
-}
-
-void run_match(const MatchOptions& options) {
-    if (options.method == "hierarchical") {
-        run_hierarchical(options, !options.no_ca);
-        return;
-    }
-    if (options.vrange != 0 || !options.vertical.empty() || !options.dump_levels.empty()) {
-        throw std::invalid_argument(
-            "--vrange, --vertical and --dump-levels need --method hierarchical");
-    }
-    MatchParams params = options.params;
-    params.use_ca = !options.no_ca;
-    if (options.frontend == "edges") {  // LoG edges + truncated AD, never CA (thesis Sec. 4.1.1)
-        if (options.engine != "model") {
-            throw std::invalid_argument("--frontend edges runs only with --engine model");
-        }
-        params.use_ca = false;
-    }
-
-    if (options.scale < 1) {
-        throw std::invalid_argument("--scale must be >= 1, got " + std::to_string(options.scale));
-    }
-    if (options.downscale < 1) {
-        throw std::invalid_argument("--downscale must be >= 1, got " +
-                                    std::to_string(options.downscale));
-    }
     // Everything that can be checked cheaply is checked before loading and matching, and all
     // outputs are encoded before the first file is written.
-    app::check_disparity_scale(params.ndisp, options.scale);
+    app::check_disparity_scale(ndisp, options.scale);
     app::check_writable_location(options.output);
-    if (!options.colour.empty()) {
-        app::check_writable_location(options.colour);
+    for (const std::string& extra : {options.colour, options.vertical}) {
+        if (!extra.empty()) {
+            app::check_writable_location(extra);
+        }
+    }
+    if (!options.dump_levels.empty()) {
+        check_dump_folder(options.dump_levels);
     }
     const app::ImagePair pair = app::load_pair(options.left, options.right, options.downscale);
-    validate(params, pair.left.width, pair.left.height);
+    matcher->validate(pair.left.width, pair.left.height);
 
     const auto start = std::chrono::steady_clock::now();
-    const DisparityMap map = options.frontend == "edges"
-                                 ? edge_frontend::match(pair.left, pair.right, params)
-                                 : run_engine(options.engine, pair, params);
+    const MatchResult result = matcher->compute(pair.left, pair.right);
     const std::chrono::duration<double, std::milli> elapsed =
         std::chrono::steady_clock::now() - start;
 
-    const cv::Mat stored = app::disparity_to_mat(map, params.ndisp, options.scale);
+    const DisparityMap& map = result.disparity;
+    const cv::Mat stored = app::disparity_to_mat(map, ndisp, options.scale);
     const cv::Mat colour =
-        options.colour.empty() ? cv::Mat() : app::disparity_to_colour(map, params.ndisp);
+        options.colour.empty() ? cv::Mat() : app::disparity_to_colour(map, ndisp);
+    cv::Mat vertical;
+    if (!options.vertical.empty() && !result.levels.empty()) {
+        const Winners& full = result.levels.back();
+        vertical = vertical_to_mat(full.vertical, full.valid, map.width, map.height);
+    }
+    const auto levels = options.dump_levels.empty()
+                            ? std::vector<std::pair<std::string, cv::Mat>>{}
+                            : level_files(result, ndisp, options.scale);
     app::write_png(options.output, stored);
     if (!colour.empty()) {
         app::write_png(options.colour, colour);
     }
+    if (!vertical.empty()) {
+        app::write_png(options.vertical, vertical);
+    }
+    if (!levels.empty()) {
+        std::filesystem::create_directories(options.dump_levels);
+        for (const auto& [name, mat] : levels) {
+            app::write_png(std::filesystem::path(options.dump_levels) / name, mat);
+        }
+    }
 
     const double valid = valid_fraction(map);
-    if (options.json) {
-        const nlohmann::json summary = {
-            {"width", map.width},       {"height", map.height},    {"ndisp", params.ndisp},
-            {"window", params.window},  {"sigma", params.sigma},   {"ca", params.use_ca},
-            {"engine", options.engine}, {"valid_fraction", valid}, {"ms", elapsed.count()},
-        };
-        std::cout << summary.dump() << '\n';
+    const MatchParams& params = config.pipeline;
+    const bool ca = params.use_ca && method != "edges" && method != "sparse";
+    nlohmann::json summary = {{"width", map.width}, {"height", map.height}, {"method", method},
+                              {"ndisp", ndisp},     {"ca", ca},             {"engine", engine},
+                              {"valid_fraction", valid}};
+    // The text line: "<W>x<H> ndisp <N> <settings>: <valid>% valid, <ms> ms<extra>".
+    char settings[200];
+    char extra[80] = "";
+    if (two_d) {
+        const hierarchical::Params levels_params;
+        const std::array<const char*, 3> names = {"quarter", "half", "full"};
+        std::int64_t total = 0;
+        for (const char* name : names) {
+            const std::int64_t count = count_of(result, std::string("cost_evaluations.") + name);
+            summary["cost_evaluations"][name] = count;
+            total += count;
+        }
+        const double per_pixel = static_cast<double>(total) / (map.width * map.height);
+        const int vrange = config.vrange == 0 ? ndisp : config.vrange;
+        const auto& windows = levels_params.levels;
+        summary["vrange"] = vrange;
+        summary["windows"] = {windows[0].window, windows[1].window, windows[2].window};
+        summary["cost_evaluations_per_pixel"] = per_pixel;
+        std::snprintf(settings, sizeof settings, "vrange %d windows %d/%d/%d ca %s method %s engine %s",
+                      vrange, windows[0].window, windows[1].window, windows[2].window,
+                      ca ? "on" : "off", method.c_str(), engine.c_str());
+        std::snprintf(extra, sizeof extra, ", %.2f cost evaluations per pixel", per_pixel);
     } else {
-        std::printf("%dx%d ndisp %d window %d sigma %g ca %s engine %s: %.1f%% valid, %.1f ms\n",
-                    map.width, map.height, params.ndisp, params.window, params.sigma,
-                    params.use_ca ? "on" : "off", options.engine.c_str(), 100.0 * valid,
-                    elapsed.count());
+        summary["window"] = params.window;
+        summary["sigma"] = params.sigma;
+        summary["cost"] = params.cost;
+        std::snprintf(settings, sizeof settings, "window %d sigma %g cost %s ca %s method %s engine %s",
+                      params.window, params.sigma, params.cost.c_str(), ca ? "on" : "off",
+                      method.c_str(), engine.c_str());
     }
+    summary["ms"] = elapsed.count();
+    if (options.json) {
+        std::cout << summary.dump() << '\n';
+        return;
+    }
+    std::printf("%dx%d ndisp %d %s: %.1f%% valid, %.1f ms%s\n", map.width, map.height, ndisp,
+                settings, 100.0 * valid, elapsed.count(), extra);
 }
 
 }  // namespace
@@ -279,35 +221,22 @@ void add_match_command(CLI::App& app) {
     // Shared with the callback, which outlives this function.
     auto options = std::make_shared<MatchOptions>();
     CLI::App* command =
-        app.add_subcommand("match", "Compute a disparity map from a rectified left/right pair.");
+        app.add_subcommand("match", "Compute a disparity map from a stereo pair with any matcher.");
     command->add_option("LEFT", options->left, "Left image (8-bit grey, RGB or RGBA)")->required();
     command->add_option("RIGHT", options->right, "Right image, same size as LEFT")->required();
     command
         ->add_option("-o,--output", options->output,
                      "Disparity PNG: disparity * scale, 0 = invalid")
         ->required();
-    command->add_option("--ndisp", options->params.ndisp, "Number of disparity labels 0..N-1")
-        ->capture_default_str();
-    CLI::Option* window =
-        command->add_option("--window", options->params.window, "Odd aggregation window side")
-            ->capture_default_str();
-    CLI::Option* sigma =
-        command->add_option("--sigma", options->params.sigma, "Gaussian sigma in pixels")
-            ->capture_default_str();
+    add_matcher_options(*command, options->matcher, MatcherChoice::selectable);
     command
-        ->add_option("--method", options->method,
-                     "pipeline (1-D, rectified pairs) or hierarchical (2-D, uncalibrated pairs)")
-        ->check(CLI::IsMember({"pipeline", "hierarchical"}))
-        ->capture_default_str();
-    command
-        ->add_option("--vrange", options->vrange,
+        ->add_option("--vrange", options->matcher.config.vrange,
                      "hierarchical: vertical labels V (offsets -V/2..V/2-1), 0 = ndisp")
         ->capture_default_str();
     command->add_option("--vertical", options->vertical,
                         "hierarchical: write the vertical offsets (128 + v, 0 = invalid)");
     command->add_option("--dump-levels", options->dump_levels,
                         "hierarchical: write each level's maps into this folder");
-    command->add_flag("--no-ca", options->no_ca, "Skip the cellular-automata rules");
     command
         ->add_option("--scale", options->scale,
                      "Multiply disparities by K in the PNG (16-bit when (N-1)*K > 255)")
@@ -315,19 +244,8 @@ void add_match_command(CLI::App& app) {
     command->add_option("--color", options->colour, "Also write a colour-mapped view");
     command->add_option("--downscale", options->downscale, "Shrink both images by integer F first")
         ->capture_default_str();
-    command
-        ->add_option("--engine", options->engine,
-                     "model (bit-exact), naive, float or hls (C-simulated HLS kernels, bit-exact)")
-        ->check(CLI::IsMember({"model", "naive", "float", "hls"}))
-        ->capture_default_str();
     command->add_flag("--json", options->json, "Print the summary as one JSON object");
-    command->add_option("--frontend", options->frontend, "model, or edges (LoG + truncated AD)")
-        ->check(CLI::IsMember({"model", "edges"}))
-        ->capture_default_str();
-    command->callback([options, window, sigma] {
-        options->window_given = window->count() > 0 || sigma->count() > 0;
-        run_match(*options);
-    });
+    command->callback([options] { run_match(*options); });
 }
 
 }  // namespace stereo::cli

@@ -62,6 +62,9 @@ DisparityMap match(const Image& left, const Image& right, const MatchParams& par
             " is larger than the HLS variants' " + std::to_string(kHostMaxWidth) + "x" +
             std::to_string(kHostMaxHeight));
     }
+    if (params.cost != "ad") {
+        throw std::invalid_argument("the HLS kernels have only the AD cost");
+    }
     const Variant variant = variant_for(params);
     switch (variant.ndisp) {
         case 16:
@@ -71,6 +74,11 @@ DisparityMap match(const Image& left, const Image& right, const MatchParams& par
         default:
             return run_window<256>(left, right, params, variant);
     }
+}
+
+void register_matchers(MatcherRegistry& registry) {
+    registry.add({"pipeline", "hls", "Sec. 3.1 pipeline, the HLS kernels in C simulation",
+                  pipeline_factory(&match)});
 }
 
 }  // namespace stereo::hls

@@ -5,50 +5,14 @@
 #include <stdexcept>
 #include <string>
 
-#include "plane_kernels.hpp"
 #include "stereo/pipeline.hpp"
+#include "stereo/search.hpp"
+#include "stereo/stages.hpp"
 
 namespace stereo::hierarchical {
 namespace {
 
-using Value = Dsi::Value;
-
 constexpr std::array<const char*, kLevels> kLevelName = {"quarter", "half", "full"};
-
-// Lexicographic tie key (|v - pv|, |d - pd|, v, d) packed into one integer: among equal costs
-// the candidate closest to the preferred displacement wins, vertically first.
-std::int64_t tie_key(int d, int v, int prefer_d, int prefer_v) {
-    return ((static_cast<std::int64_t>(std::abs(v - prefer_v)) * 512 + std::abs(d - prefer_d)) *
-                256 +
-            (v + 128)) *
-               512 +
-           d;
-}
-
-// Stage 1 for candidate (i, j): every pixel against its own displacement (base + (i, j)).
-void cost_plane(const detail::PlanarImage& left, const detail::PlanarImage& right,
-                const CandidateGrid& grid, int i, int j, Value* out) {
-    const int width = left.width;
-    const int height = left.height;
-    const int weight = 3 / left.channels;  // a grey pixel counts as (g, g, g)
-    for (int y = 0; y < height; ++y) {
-        for (int x = 0; x < width; ++x) {
-            const std::size_t p = static_cast<std::size_t>(y) * width + x;
-            const int xr = x - (grid.base_d[p] + i);
-            const int yr = y + grid.base_v[p] + j;
-            if (xr < 0 || xr >= width || yr < 0 || yr >= height) {
-                out[p] = static_cast<Value>(fx::kCostOutside);
-                continue;
-            }
-            int sum = 0;
-            for (int c = 0; c < left.channels; ++c) {
-                const int diff = left.row(c, y)[x] - right.row(c, yr)[xr];
-                sum += diff < 0 ? -diff : diff;
-            }
-            out[p] = static_cast<Value>(weight * sum);
-        }
-    }
-}
 
 std::string level_message(int level, int width, int height, const std::string& what) {
     return std::string(kLevelName[static_cast<std::size_t>(level)]) + " level (" +
@@ -105,8 +69,7 @@ CandidateGrid refine_grid(const LevelMap& coarse, int width, int height, const S
 }
 
 bool level_valid(int x, int y, int d, int v, int width, int height, int reach) {
-    return x >= reach && x < width - reach && y >= reach && y < height - reach && x - d >= reach &&
-           y + v >= reach && y + v < height - reach;
+    return window_valid(x, y, d, v, width, height, reach);
 }
 
 LevelMap match_level(const Image& left, const Image& right, const CandidateGrid& grid,
@@ -118,94 +81,22 @@ LevelMap match_level(const Image& left, const Image& right, const CandidateGrid&
     }
     const int width = left.width;
     const int height = left.height;
-    const std::size_t plane_size = static_cast<std::size_t>(width) * height;
-    const int cols = grid.cols;
-    const int rows = grid.rows;
-    const bool vertical_rule = use_ca && neighbours == CaNeighbours::horizontal_and_vertical;
+    const auto cost = make_ad_cost();
+    const auto aggregator =
+        make_gaussian_aggregator(gaussian_kernel(level.window, level.sigma), width, height);
+    const auto rule1 = make_ca_rule1(width, height);
+    const auto rule2 = make_ca_rule2(width, height);
+    const std::array<Refiner*, 2> ca = {rule1.get(), rule2.get()};
+    WinnerTakesAll selector(grid);
+    count += search(cost->prepare(left), cost->prepare(right), grid,
+                    {*cost, *aggregator, std::span(ca.data(), use_ca ? ca.size() : 0), selector,
+                     neighbours});
 
-    const detail::PlanarImage left_planes(left);
-    const detail::PlanarImage right_planes(right);
-    detail::PlaneAggregator aggregator(gaussian_kernel(level.window, level.sigma), width, height);
-    detail::PlaneRule1 rule1(width, height);
-
-    // Aggregated planes of candidate rows j-1, j, j+1 in a ring (row j lives in slot j % 3): the
-    // CA rules of row j need no other row, so a D x V search never holds the whole volume.
-    std::array<std::vector<std::vector<Value>>, 3> ring;
-    for (auto& slot : ring) {
-        slot.assign(static_cast<std::size_t>(cols), std::vector<Value>(plane_size));
-    }
-    std::vector<Value> cost(plane_size);
-    auto aggregate_row = [&](int j) {
-        auto& slot = ring[static_cast<std::size_t>(j % 3)];
-        for (int i = 0; i < cols; ++i) {
-            cost_plane(left_planes, right_planes, grid, i, j, cost.data());
-            aggregator.run(cost.data(), slot[static_cast<std::size_t>(i)].data());
-            count += static_cast<std::int64_t>(plane_size);
-        }
-    };
-    auto plane = [&](int i, int j) -> const Value* {
-        if (i < 0 || i >= cols || j < 0 || j >= rows) {
-            return nullptr;
-        }
-        return ring[static_cast<std::size_t>(j % 3)][static_cast<std::size_t>(i)].data();
-    };
-
-    std::vector<Value> rule1_plane(plane_size);
-    std::vector<Value> rule1_vertical(plane_size);
-    std::vector<Value> rule2_plane(plane_size);
-    std::vector<Value> best(plane_size);
-    std::vector<std::int64_t> best_key(plane_size);
-    std::vector<std::int16_t> best_i(plane_size, 0);
-    std::vector<std::int16_t> best_j(plane_size, 0);
-
-    aggregate_row(0);
-    for (int j = 0; j < rows; ++j) {
-        if (vertical_rule && j + 1 < rows) {
-            aggregate_row(j + 1);  // rule 1 of row j reads row j + 1
-        } else if (!vertical_rule && j > 0) {
-            aggregate_row(j);
-        }
-        for (int i = 0; i < cols; ++i) {
-            const Value* final_plane = plane(i, j);
-            if (use_ca) {
-                rule1.run(plane(i - 1, j), plane(i, j), plane(i + 1, j), rule1_plane.data());
-                if (vertical_rule) {
-                    // Fired by either pair: the horizontal result where it changed the cell,
-                    // else the vertical one (equal to the centre unless that pair fired; a fired
-                    // cell whose mean equals the centre is the same either way).
-                    rule1.run(plane(i, j - 1), plane(i, j), plane(i, j + 1), rule1_vertical.data());
-                    const Value* centre = plane(i, j);
-                    for (std::size_t p = 0; p < plane_size; ++p) {
-                        if (rule1_plane[p] == centre[p]) {
-                            rule1_plane[p] = rule1_vertical[p];
-                        }
-                    }
-                }
-                detail::ca_rule2_plane(rule1_plane.data(), width, height, rule2_plane.data());
-                final_plane = rule2_plane.data();
-            }
-            for (std::size_t p = 0; p < plane_size; ++p) {
-                const std::int64_t key = tie_key(grid.base_d[p] + i, grid.base_v[p] + j,
-                                                 grid.prefer_d[p], grid.prefer_v[p]);
-                if ((i == 0 && j == 0) || final_plane[p] < best[p] ||
-                    (final_plane[p] == best[p] && key < best_key[p])) {
-                    best[p] = final_plane[p];
-                    best_key[p] = key;
-                    best_i[p] = static_cast<std::int16_t>(i);
-                    best_j[p] = static_cast<std::int16_t>(j);
-                }
-            }
-        }
-    }
-
-    LevelMap map{width, height, std::vector<std::int16_t>(plane_size),
-                 std::vector<std::int16_t>(plane_size), std::vector<std::uint8_t>(plane_size)};
+    LevelMap map = selector.winners();
     const int reach = level.window / 2 + (use_ca ? 1 : 0);
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
             const std::size_t p = map.index(x, y);
-            map.disparity[p] = static_cast<std::int16_t>(grid.base_d[p] + best_i[p]);
-            map.vertical[p] = static_cast<std::int16_t>(grid.base_v[p] + best_j[p]);
             map.valid[p] =
                 level_valid(x, y, map.disparity[p], map.vertical[p], width, height, reach) ? 1 : 0;
         }
@@ -271,8 +162,6 @@ void validate(const Params& params, int width, int height) {
     }
 }
 
-namespace {
-
 Result finish(std::array<LevelMap, kLevels> levels, const CostCount& count) {
     Result result{{}, {}, std::move(levels), count};
     const LevelMap& full = result.levels[kLevels - 1];
@@ -288,7 +177,6 @@ Result finish(std::array<LevelMap, kLevels> levels, const CostCount& count) {
     return result;
 }
 
-}  // namespace
 
 Result match(const Image& left, const Image& right, const Params& params) {
     check_pair(left, right);

@@ -1,17 +1,15 @@
 #include "stereo/pipeline.hpp"
 
-#include "plane_kernels.hpp"
-
 #include <algorithm>
 #include <array>
-#include <cstdlib>
 #include <stdexcept>
 #include <string>
 
+#include "stereo/search.hpp"
+#include "stereo/stages.hpp"
+
 namespace stereo {
 namespace {
-
-using Value = Dsi::Value;
 
 std::string size_text(int width, int height) {
     return std::to_string(width) + "x" + std::to_string(height);
@@ -29,6 +27,22 @@ void check_kernel(const std::vector<std::int32_t>& kernel) {
         throw std::invalid_argument("kernel must have an odd number of taps summing to " +
                                     std::to_string(fx::kKernelSum));
     }
+}
+
+// Winners of a 1-D search become disparities where the border rule allows.
+DisparityMap to_disparity_map(const Winners& winners, const InvalidBorder& border) {
+    DisparityMap map(winners.width, winners.height);
+    for (int y = 0; y < map.height; ++y) {
+        for (int x = 0; x < map.width; ++x) {
+            const std::size_t i = map.index(x, y);
+            const int d = winners.disparity[i];
+            if (border.valid(x, y, d, map.width, map.height)) {
+                map.disparity[i] = static_cast<std::uint8_t>(d);
+                map.valid[i] = 1;
+            }
+        }
+    }
+    return map;
 }
 
 }  // namespace
@@ -64,6 +78,7 @@ void validate(const MatchParams& params, int width, int height) {
                                     std::to_string(width));
     }
     (void)gaussian_kernel(params.window, params.sigma);  // throws on a bad window or sigma
+    (void)make_cost(params.cost);                        // throws on an unknown cost
     const InvalidBorder border = invalid_border(params);
     if (width <= 2 * border.reach || height <= 2 * border.reach) {
         throw std::invalid_argument("image " + size_text(width, height) +
@@ -73,16 +88,20 @@ void validate(const MatchParams& params, int width, int height) {
     }
 }
 
+// ---- The stages over whole volumes (the RTL and HLS stage tests compare against these) -------
+
 Dsi cost(const Image& left, const Image& right, int ndisp) {
     check_pair(left, right);
     if (ndisp < 1 || ndisp > fx::kMaxDisparities) {
         throw std::invalid_argument("ndisp out of range: " + std::to_string(ndisp));
     }
-    const detail::PlanarImage left_planes(left);
-    const detail::PlanarImage right_planes(right);
+    const auto ad = make_ad_cost();
+    const PlanarImage left_planes = ad->prepare(left);
+    const PlanarImage right_planes = ad->prepare(right);
+    const auto grid = CandidateGrid::horizontal(left.width, left.height, ndisp);
     Dsi dsi(left.width, left.height, ndisp);
     for (int d = 0; d < ndisp; ++d) {
-        detail::cost_plane(left_planes, right_planes, d, dsi.plane(d).data());
+        cost_plane(*ad, left_planes, right_planes, grid, d, 0, dsi.plane(d).data());
     }
     return dsi;
 }
@@ -90,112 +109,70 @@ Dsi cost(const Image& left, const Image& right, int ndisp) {
 Dsi aggregate(const Dsi& cost, const std::vector<std::int32_t>& kernel) {
     check_kernel(kernel);
     Dsi out(cost.width(), cost.height(), cost.ndisp());
-    detail::PlaneAggregator aggregator(kernel, cost.width(), cost.height());
+    const auto aggregator = make_gaussian_aggregator(kernel, cost.width(), cost.height());
     for (int d = 0; d < cost.ndisp(); ++d) {
-        aggregator.run(cost.plane(d).data(), out.plane(d).data());
+        aggregator->plane(cost.plane(d).data(), out.plane(d).data());
     }
     return out;
 }
 
 Dsi ca_rule1(const Dsi& dsi) {
     Dsi out(dsi.width(), dsi.height(), dsi.ndisp());
-    detail::PlaneRule1 rule(dsi.width(), dsi.height());
+    const auto rule = make_ca_rule1(dsi.width(), dsi.height());
     for (int d = 0; d < dsi.ndisp(); ++d) {
-        const Value* below = d > 0 ? dsi.plane(d - 1).data() : nullptr;
-        const Value* above = d + 1 < dsi.ndisp() ? dsi.plane(d + 1).data() : nullptr;
-        rule.run(below, dsi.plane(d).data(), above, out.plane(d).data());
+        const NeighbourPlanes axis{d > 0 ? dsi.plane(d - 1).data() : nullptr,
+                                   d + 1 < dsi.ndisp() ? dsi.plane(d + 1).data() : nullptr};
+        rule->plane(dsi.plane(d).data(), std::span(&axis, 1), out.plane(d).data());
     }
     return out;
 }
 
 Dsi ca_rule2(const Dsi& dsi) {
     Dsi out(dsi.width(), dsi.height(), dsi.ndisp());
+    const auto rule = make_ca_rule2(dsi.width(), dsi.height());
     for (int d = 0; d < dsi.ndisp(); ++d) {
-        detail::ca_rule2_plane(dsi.plane(d).data(), dsi.width(), dsi.height(), out.plane(d).data());
+        rule->plane(dsi.plane(d).data(), {}, out.plane(d).data());
     }
     return out;
 }
 
-namespace {
-
-// The last step of wta: labels become disparities where the border rule allows.
-DisparityMap finish_wta(const std::vector<std::uint8_t>& label, int width, int height,
-                        const InvalidBorder& border) {
-    DisparityMap map(width, height);
-    for (int y = 0; y < height; ++y) {
-        for (int x = 0; x < width; ++x) {
-            const std::size_t i = map.index(x, y);
-            if (border.valid(x, y, label[i], width, height)) {
-                map.disparity[i] = label[i];
-                map.valid[i] = 1;
-            }
-        }
-    }
-    return map;
-}
-
-}  // namespace
-
 DisparityMap wta(const Dsi& dsi, const InvalidBorder& border) {
-    std::vector<Value> best(dsi.plane(0).begin(), dsi.plane(0).end());
-    std::vector<std::uint8_t> label(dsi.plane_size(), 0);
-    for (int d = 1; d < dsi.ndisp(); ++d) {
-        detail::wta_update(dsi.plane(d).data(), d, dsi.plane_size(), best.data(), label.data());
+    const auto grid = CandidateGrid::horizontal(dsi.width(), dsi.height(), dsi.ndisp());
+    WinnerTakesAll selector(grid);
+    for (int d = 0; d < dsi.ndisp(); ++d) {
+        selector.update(dsi.plane(d).data(), d, 0);
     }
-    return finish_wta(label, dsi.width(), dsi.height(), border);
+    return to_disparity_map(selector.winners(), border);
 }
+
+// ---- The pipeline: the same stages streamed over d by the plane scheduler -------------------
 
 DisparityMap match(const Image& left, const Image& right, const MatchParams& params) {
     check_pair(left, right);
     validate(params, left.width, left.height);
+    return match_with(*make_cost(params.cost), left, right, params);
+}
+
+DisparityMap match_with(const CostFunction& cost, const Image& left, const Image& right,
+                        const MatchParams& params) {
+    check_pair(left, right);
+    MatchParams checked = params;
+    checked.cost = "ad";  // the given cost replaces the named one
+    validate(checked, left.width, left.height);
     const int width = left.width;
     const int height = left.height;
-    const int ndisp = params.ndisp;
-    const std::size_t plane_size = static_cast<std::size_t>(width) * height;
-
-    // The same kernels as the volume stages, streamed over d: plane d of the CA output needs
-    // aggregated planes d-1, d and d+1 only, so three aggregated planes rotate in a ring and
-    // the whole working set stays in cache. tests/test_model.cpp checks match() against the
-    // composition of the volume stages and against the naive reference.
-    const detail::PlanarImage left_planes(left);
-    const detail::PlanarImage right_planes(right);
-    detail::PlaneAggregator aggregator(gaussian_kernel(params.window, params.sigma), width, height);
-    detail::PlaneRule1 rule1(width, height);
-    std::vector<Value> cost_plane(plane_size);
-    std::array<std::vector<Value>, 3> aggregated;  // ring: plane d lives in slot d % 3
-    for (auto& slot : aggregated) {
-        slot.resize(plane_size);
-    }
-    std::vector<Value> rule1_plane(plane_size);
-    std::vector<Value> rule2_plane(plane_size);
-    std::vector<Value> best(plane_size);
-    std::vector<std::uint8_t> label(plane_size, 0);
-
-    auto aggregate_into_ring = [&](int d) {
-        detail::cost_plane(left_planes, right_planes, d, cost_plane.data());
-        aggregator.run(cost_plane.data(), aggregated[static_cast<std::size_t>(d % 3)].data());
-    };
-    auto ring = [&](int d) { return aggregated[static_cast<std::size_t>(d % 3)].data(); };
-
-    aggregate_into_ring(0);
-    for (int d = 0; d < ndisp; ++d) {
-        if (d + 1 < ndisp) {
-            aggregate_into_ring(d + 1);
-        }
-        const Value* final_plane = ring(d);
-        if (params.use_ca) {
-            rule1.run(d > 0 ? ring(d - 1) : nullptr, ring(d), d + 1 < ndisp ? ring(d + 1) : nullptr,
-                      rule1_plane.data());
-            detail::ca_rule2_plane(rule1_plane.data(), width, height, rule2_plane.data());
-            final_plane = rule2_plane.data();
-        }
-        if (d == 0) {
-            std::copy_n(final_plane, plane_size, best.begin());
-        } else {
-            detail::wta_update(final_plane, d, plane_size, best.data(), label.data());
-        }
-    }
-    return finish_wta(label, width, height, invalid_border(params));
+    const PlanarImage left_planes = cost.prepare(left);
+    const PlanarImage right_planes = cost.prepare(right);
+    const auto grid = CandidateGrid::horizontal(width, height, params.ndisp);
+    const auto aggregator =
+        make_gaussian_aggregator(gaussian_kernel(params.window, params.sigma), width, height);
+    const auto rule1 = make_ca_rule1(width, height);
+    const auto rule2 = make_ca_rule2(width, height);
+    const std::array<Refiner*, 2> ca = {rule1.get(), rule2.get()};
+    WinnerTakesAll selector(grid);
+    search(left_planes, right_planes, grid,
+           {cost, *aggregator, std::span(ca.data(), params.use_ca ? ca.size() : 0), selector});
+    return to_disparity_map(selector.winners(), invalid_border(params));
 }
 
 }  // namespace stereo

@@ -16,14 +16,15 @@
 
 #include "stereo/constants.hpp"
 #include "stereo/image.hpp"
+#include "stereo/search.hpp"
 
 namespace stereo::hierarchical {
 
-// Which candidates are the "d-1 / d+1" neighbours of CA rule 1 (docs/hierarchical.md).
-enum class CaNeighbours {
-    horizontal,               // (i-1, j) and (i+1, j): the 1-D rule, row by row (default)
-    horizontal_and_vertical,  // also (i, j-1) and (i, j+1)
-};
+// The candidate grid, the CA neighbourhood choice and the per-level winners are the plane
+// scheduler's (stereo/search.hpp).
+using stereo::CaNeighbours;
+using stereo::CandidateGrid;
+using LevelMap = stereo::Winners;
 
 struct LevelParams {
     int window = 0;    // odd side of the Gaussian aggregation window
@@ -62,34 +63,9 @@ struct SearchRange {
 // labels centred on 0, -(V/f)/2 .. V/f-1-(V/f)/2 (at full size -V/2 .. V/2-1).
 SearchRange level_range(const Params& params, int factor);
 
-// The per-pixel candidate grid of one level.
-struct CandidateGrid {
-    int width = 0;  // level image size
-    int height = 0;
-    int cols = 0;  // candidates per pixel: cols x rows
-    int rows = 0;
-    std::vector<std::int16_t> base_d;  // per pixel: displacement of candidate (0, 0)
-    std::vector<std::int16_t> base_v;
-    std::vector<std::int16_t> prefer_d;  // per pixel: the displacement ties are resolved towards
-    std::vector<std::int16_t> prefer_v;
-};
-
 // Candidates of the quarter level and of the full D x V reference: the whole range for every
 // pixel; ties prefer v = 0, then the smallest d.
 CandidateGrid full_grid(int width, int height, const SearchRange& range);
-
-// One level's winners. `disparity` / `vertical` hold the WTA winner of every pixel, valid or
-// not (the next level is predicted from them); `valid` is the border rule of the level.
-struct LevelMap {
-    int width = 0;
-    int height = 0;
-    std::vector<std::int16_t> disparity;
-    std::vector<std::int16_t> vertical;
-    std::vector<std::uint8_t> valid;
-
-    std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * width + x; }
-    bool operator==(const LevelMap&) const = default;
-};
 
 // Candidates of a refinement level (half or full) of `width` x `height`: the 3x3 displacements
 // around the coarse match, up-scaled x2 from the parent pixel (min(x/2, Wc-1), min(y/2, Hc-1)) and
@@ -132,6 +108,10 @@ struct Result {
     std::array<LevelMap, kLevels> levels;  // quarter, half, full (full search: only [2])
     CostCount cost_evaluations;
 };
+
+// The result of finished levels: the full level's valid winners as the disparity map and the
+// vertical offsets.
+Result finish(std::array<LevelMap, kLevels> levels, const CostCount& count);
 
 // The hierarchical search.
 Result match(const Image& left, const Image& right, const Params& params);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "stereo/constants.hpp"
@@ -17,6 +18,7 @@ struct MatchParams {
     int window = fx::kDefaultWindow;      // odd side of the square aggregation window
     double sigma = fx::kDefaultSigma;     // Gaussian sigma in pixels
     bool use_ca = true;                   // apply CA rules 1 and 2
+    std::string cost = "ad";              // a name of stereo::cost_names(): "ad", "census"
 };
 
 // Which outputs are valid. `reach` is how far a result looks from its pixel: the aggregation
@@ -43,7 +45,7 @@ std::vector<std::int32_t> gaussian_kernel(int window, double sigma);
 
 InvalidBorder invalid_border(const MatchParams& params);
 
-// Stage 1. C(x,y,d) = sum over channels |L(x,y) - R(x-d,y)|; fx::kCostMax where x-d < 0 (a
+// Stage 1 (the AD cost plug-in over a whole volume). C(x,y,d) = sum over channels |L(x,y) - R(x-d,y)|; fx::kCostMax where x-d < 0 (a
 // match outside the right image costs the most, so it never wins).
 // Grey images are matched as if every channel held the grey value (3 * |L - R|).
 Dsi cost(const Image& left, const Image& right, int ndisp);
@@ -63,8 +65,15 @@ Dsi ca_rule2(const Dsi& dsi);
 // disparity fx::kInvalidDisparity and valid flag 0.
 DisparityMap wta(const Dsi& dsi, const InvalidBorder& border);
 
-// The whole pipeline: validate, cost, aggregate, [ca_rule1, ca_rule2], wta.
+// The whole pipeline: validate, cost (params.cost), aggregate, [ca_rule1, ca_rule2], wta, run
+// by the plane scheduler (stereo/search.hpp).
 DisparityMap match(const Image& left, const Image& right, const MatchParams& params);
+
+class CostFunction;
+// The pipeline with a cost function of the caller's (params.cost is not read): the edge front
+// end's truncated AD, a cost under test.
+DisparityMap match_with(const CostFunction& cost, const Image& left, const Image& right,
+                        const MatchParams& params);
 
 // Throws std::invalid_argument unless the two images have the same size and channel count.
 void check_pair(const Image& left, const Image& right);

@@ -1,6 +1,8 @@
 // Independent implementations of the pipeline used only to check the golden model.
 #pragma once
 
+#include <string>
+
 #include "stereo/pipeline.hpp"
 
 namespace stereo::naive {
@@ -13,9 +15,19 @@ Dsi aggregate(const Dsi& cost, const std::vector<std::int32_t>& kernel);
 Dsi ca_rule1(const Dsi& dsi);
 Dsi ca_rule2(const Dsi& dsi);
 DisparityMap wta(const Dsi& dsi, const InvalidBorder& border);
+// The naive volume of the cost named `name` (stereo::cost_names()).
+Dsi cost_volume(const std::string& name, const Image& left, const Image& right, int ndisp);
 DisparityMap match(const Image& left, const Image& right, const MatchParams& params);
 
 }  // namespace stereo::naive
+
+namespace stereo::census::naive {
+
+// Census cost by its definition: codes recomputed for every pixel pair from the naive luma,
+// bits counted one by one.
+Dsi cost(const Image& left, const Image& right, int ndisp);
+
+}  // namespace stereo::census::naive
 
 namespace stereo::floating {
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "stereo/image.hpp"
+#include "stereo/matcher.hpp"
 #include "stereo/pipeline.hpp"
 
 namespace stereo::hls {
@@ -27,5 +28,8 @@ Variant variant_for(const MatchParams& params);
 // Validates like stereo::match (same exceptions), then streams the pair through the variant's
 // stereo_hls_top and returns its output. The stage objects live on the heap for the call.
 DisparityMap match(const Image& left, const Image& right, const MatchParams& params);
+
+// Registers method "pipeline", engine "hls".
+void register_matchers(MatcherRegistry& registry);
 
 }  // namespace stereo::hls

@@ -2,6 +2,7 @@
 // integer kernel, the rounding shift or the multiply-and-shift reciprocals.
 #include <cmath>
 #include <cstdlib>
+#include <stdexcept>
 #include <vector>
 
 #include "stereo/reference.hpp"
@@ -121,6 +122,9 @@ Volume ca_rule2(const Volume& in) {
 DisparityMap match(const Image& left, const Image& right, const MatchParams& params) {
     check_pair(left, right);
     validate(params, left.width, left.height);
+    if (params.cost != "ad") {
+        throw std::invalid_argument("the floating-point reference has only the AD cost");
+    }
     Volume dsi = aggregate(stereo::cost(left, right, params.ndisp), params.window, params.sigma);
     if (params.use_ca) {
         dsi = ca_rule2(ca_rule1(dsi));

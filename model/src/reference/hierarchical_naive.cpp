@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "stereo/hierarchical_reference.hpp"
@@ -255,17 +256,7 @@ Result match(const Image& left, const Image& right, const Params& params) {
             static_cast<std::int64_t>(size) * grid.cols * grid.rows;
         coarse = &result.levels[l_index];
     }
-    const LevelMap& full = result.levels[kLevels - 1];
-    result.disparity = DisparityMap(full.width, full.height);
-    result.vertical.assign(full.valid.size(), 0);
-    for (std::size_t p = 0; p < full.valid.size(); ++p) {
-        if (full.valid[p] != 0) {
-            result.disparity.disparity[p] = static_cast<std::uint8_t>(full.disparity[p]);
-            result.disparity.valid[p] = 1;
-            result.vertical[p] = static_cast<std::int8_t>(full.vertical[p]);
-        }
-    }
-    return result;
+    return finish(std::move(result.levels), result.cost_evaluations);
 }
 
 }  // namespace stereo::hierarchical::naive

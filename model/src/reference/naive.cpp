@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "stereo/reference.hpp"
+#include "stereo/stages.hpp"
 
 namespace stereo::naive {
 namespace {
@@ -146,11 +147,19 @@ DisparityMap wta(const Dsi& dsi, const InvalidBorder& border) {
     return map;
 }
 
+Dsi cost_volume(const std::string& name, const Image& left, const Image& right, int ndisp) {
+    if (name == "census") {
+        return census::naive::cost(left, right, ndisp);
+    }
+    (void)make_cost(name);  // throws on an unknown name
+    return naive::cost(left, right, ndisp);
+}
+
 DisparityMap match(const Image& left, const Image& right, const MatchParams& params) {
     check_pair(left, right);
     validate(params, left.width, left.height);
     // Qualified calls: argument-dependent lookup would also find the optimised stereo:: stages.
-    Dsi dsi = naive::aggregate(naive::cost(left, right, params.ndisp),
+    Dsi dsi = naive::aggregate(naive::cost_volume(params.cost, left, right, params.ndisp),
                                gaussian_kernel(params.window, params.sigma));
     if (params.use_ca) {
         dsi = naive::ca_rule2(naive::ca_rule1(dsi));

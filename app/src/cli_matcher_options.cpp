@@ -1,0 +1,78 @@
+#include "cli_matcher_options.hpp"
+
+#include <stdexcept>
+
+#include <CLI/CLI.hpp>
+
+#include "stereo/hls/match.hpp"
+#include "stereo_top_sim.hpp"
+
+namespace stereo::cli {
+
+const MatcherRegistry& matchers() {
+    static const MatcherRegistry registry = [] {
+        MatcherRegistry r;
+        register_model_matchers(r);
+        hls::register_matchers(r);
+        sim::register_matchers(r);
+        return r;
+    }();
+    return registry;
+}
+
+bool MatcherOptions::window_given() const {
+    return (window != nullptr && window->count() > 0) || (sigma != nullptr && sigma->count() > 0);
+}
+
+std::string MatcherOptions::resolved_method() const {
+    if (frontend == "model") {
+        return method;
+    }
+    if (method != "pipeline") {
+        throw std::invalid_argument("--frontend " + frontend + " runs only with --method pipeline");
+    }
+    return frontend;  // "edges"
+}
+
+MatchConfig MatcherOptions::resolved() const {
+    MatchConfig resolved_config = config;
+    resolved_config.pipeline.use_ca = !no_ca;
+    return resolved_config;
+}
+
+void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoice choice) {
+    MatchParams& params = options.config.pipeline;
+    command.add_option("--ndisp", params.ndisp, "Number of disparity labels 0..N-1")
+        ->capture_default_str();
+    options.window =
+        command.add_option("--window", params.window, "Odd aggregation window side")
+            ->capture_default_str();
+    options.sigma = command.add_option("--sigma", params.sigma, "Gaussian sigma in pixels")
+                        ->capture_default_str();
+    command.add_flag("--no-ca", options.no_ca, "Skip the cellular-automata rules");
+    if (choice == MatcherChoice::fixed) {
+        return;
+    }
+    command
+        .add_option("--cost", params.cost,
+                    "Matching cost: ad (absolute differences over RGB) or census (5x5, Hamming)")
+        ->check(CLI::IsMember(cost_names()))
+        ->capture_default_str();
+    command
+        .add_option("--method", options.method,
+                    "pipeline (1-D, rectified pairs), edges (LoG front end), hierarchical (2-D, "
+                    "uncalibrated pairs) or sparse (validated sub-pixel)")
+        ->check(CLI::IsMember(matchers().methods()))
+        ->capture_default_str();
+    command
+        .add_option("--engine", options.engine,
+                    "model (bit-exact), naive, float, hls (C-simulated HLS kernels), rtl "
+                    "(Verilated RTL) or full-search; not every method has every engine")
+        ->check(CLI::IsMember(matchers().engines()))
+        ->capture_default_str();
+    command.add_option("--frontend", options.frontend, "model, or edges (the same as --method edges)")
+        ->check(CLI::IsMember({"model", "edges"}))
+        ->capture_default_str();
+}
+
+}  // namespace stereo::cli

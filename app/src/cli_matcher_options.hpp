@@ -1,0 +1,44 @@
+// The matcher options every subcommand that matches shares (--ndisp, --window, --sigma, --no-ca,
+// --cost, and where the subcommand chooses the matcher, --method / --engine / --frontend), with
+// one help text each, registered by one helper and resolved into a stereo::MatchConfig once.
+#pragma once
+
+#include <string>
+
+#include "stereo/matcher.hpp"
+
+namespace CLI {
+class App;
+class Option;
+}  // namespace CLI
+
+namespace stereo::cli {
+
+// The registry of every engine the tool has: the model's, the HLS kernels', the Verilated RTL's.
+const MatcherRegistry& matchers();
+
+struct MatcherOptions {
+    MatchConfig config;
+    bool no_ca = false;
+    std::string method = "pipeline";
+    std::string engine = "model";
+    std::string frontend = "model";  // "edges": the same as --method edges (kept for scripts)
+    CLI::Option* window = nullptr;
+    CLI::Option* sigma = nullptr;
+
+    // --window or --sigma was given on the command line.
+    bool window_given() const;
+    // The method after --frontend; throws std::invalid_argument when the two contradict.
+    std::string resolved_method() const;
+    // The configuration with --no-ca applied.
+    MatchConfig resolved() const;
+};
+
+enum class MatcherChoice {
+    fixed,     // the subcommand runs one matcher: only the pipeline parameters
+    selectable // also --method, --engine, --frontend, --cost
+};
+
+void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoice choice);
+
+}  // namespace stereo::cli

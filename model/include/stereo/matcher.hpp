@@ -1,0 +1,103 @@
+// One interface for every matcher, in the spirit of OpenCV's StereoMatcher: a Matcher is built
+// from a configuration by a registry entry (method x engine) and turns a stereo pair into a
+// result. The CLI, the robot layers, the benchmarks and the tests all go through it;
+// docs/architecture.md lists what is registered and how to add an engine.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "stereo/edge_frontend.hpp"
+#include "stereo/image.hpp"
+#include "stereo/pipeline.hpp"
+#include "stereo/search.hpp"
+#include "stereo/sparse.hpp"
+
+namespace stereo {
+
+// Everything a matcher may be asked. A method reads the fields it documents and ignores the rest.
+struct MatchConfig {
+    MatchParams pipeline;               // ndisp, window, sigma, CA on/off, cost (every method)
+    int vrange = 0;                     // hierarchical: vertical labels, 0 = ndisp
+    CaNeighbours neighbours = CaNeighbours::horizontal;  // hierarchical: CA rule 1 axes
+    edge_frontend::EdgeParams edges;    // edges: LoG and truncation
+    sparse::Params sparse;              // sparse: certainty and left-right tolerance
+};
+
+struct MatchResult {
+    DisparityMap disparity;  // labels with the valid flag, every method
+    // Sub-pixel disparities, sparse::kNoDisparity where invalid (sparse method); else empty.
+    std::vector<float> subpixel;
+    // 2-D methods: the vertical offset v of every valid pixel (right row y + v), 0 elsewhere.
+    std::vector<std::int8_t> vertical;
+    // Hierarchical: the winners of each level, quarter to full (full search: one level).
+    std::vector<Winners> levels;
+    // Named counts for reports: DSI cells per level, validation outcomes, ...
+    std::vector<std::pair<std::string, std::int64_t>> counts;
+};
+
+class Matcher {
+  public:
+    virtual ~Matcher() = default;
+    // Throws std::invalid_argument (one line) when the configuration cannot run on a pair of
+    // this size; cheap, so callers check before loading or computing anything big.
+    virtual void validate(int width, int height) const = 0;
+    // Throws std::invalid_argument for a pair that does not fit (sizes, channels, parameters).
+    virtual MatchResult compute(const Image& left, const Image& right) const = 0;
+};
+
+using MatcherFactory = std::function<std::unique_ptr<Matcher>(const MatchConfig&)>;
+
+struct MatcherEntry {
+    std::string method;  // the algorithm: pipeline, edges, hierarchical, sparse, ...
+    std::string engine;  // how it runs: model (bit-exact), naive, float, hls, rtl, ...
+    std::string description;
+    MatcherFactory create;
+};
+
+class MatcherRegistry {
+  public:
+    // Throws std::logic_error when (method, engine) is registered already.
+    void add(MatcherEntry entry);
+    // Throws std::invalid_argument naming what exists when (method, engine) does not.
+    std::unique_ptr<Matcher> create(std::string_view method, std::string_view engine,
+                                    const MatchConfig& config) const;
+    const std::vector<MatcherEntry>& entries() const { return entries_; }
+    std::vector<std::string> methods() const;
+    std::vector<std::string> engines() const;  // of every method
+
+  private:
+    std::vector<MatcherEntry> entries_;
+};
+
+// A Matcher from a function; validate() runs `check`.
+class FunctionMatcher final : public Matcher {
+  public:
+    using Check = std::function<void(int, int)>;
+    using Compute = std::function<MatchResult(const Image&, const Image&)>;
+    FunctionMatcher(Check check, Compute compute)
+        : check_(std::move(check)), compute_(std::move(compute)) {}
+    void validate(int width, int height) const override { check_(width, height); }
+    MatchResult compute(const Image& left, const Image& right) const override {
+        return compute_(left, right);
+    }
+
+  private:
+    Check check_;
+    Compute compute_;
+};
+
+// A factory for a pipeline engine: validates with stereo::validate, then runs `run`.
+using PipelineFunction = DisparityMap (*)(const Image&, const Image&, const MatchParams&);
+MatcherFactory pipeline_factory(PipelineFunction run);
+
+// The model's matchers: pipeline (model, naive, float), edges (model, naive), hierarchical
+// (model, naive, full-search), sparse (model).
+void register_model_matchers(MatcherRegistry& registry);
+
+}  // namespace stereo

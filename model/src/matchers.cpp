@@ -1,0 +1,197 @@
+// The matcher registry and the model's registrations (stereo/matcher.hpp).
+#include <algorithm>
+#include <stdexcept>
+
+#include "stereo/hierarchical.hpp"
+#include "stereo/hierarchical_reference.hpp"
+#include "stereo/matcher.hpp"
+#include "stereo/reference.hpp"
+
+namespace stereo {
+namespace {
+
+std::string joined(const std::vector<std::string>& names) {
+    std::string text;
+    for (const auto& name : names) {
+        text += (text.empty() ? "" : ", ") + name;
+    }
+    return text;
+}
+
+void add_unique(std::vector<std::string>& names, const std::string& name) {
+    if (std::find(names.begin(), names.end(), name) == names.end()) {
+        names.push_back(name);
+    }
+}
+
+// ---- pipeline: the 1-D Sec. 3.1 matcher ------------------------------------------------------
+
+// ---- edges: the obstacle-avoidance front end (Sec. 4.1.1) --------------------------------
+
+using EdgeFunction = DisparityMap (*)(const Image&, const Image&, const MatchParams&,
+                                      const edge_frontend::EdgeParams&);
+
+MatcherFactory edges_factory(EdgeFunction run) {
+    return [run](const MatchConfig& config) -> std::unique_ptr<Matcher> {
+        MatchParams params = config.pipeline;
+        params.use_ca = false;  // the front end has no CA stage
+        const edge_frontend::EdgeParams edges = config.edges;
+        if (params.cost != "ad") {
+            throw std::invalid_argument("the edge front end has its own cost (truncated AD)");
+        }
+        return std::make_unique<FunctionMatcher>(
+            [params, edges](int width, int height) {
+                validate(params, width, height);
+                edge_frontend::validate(edges);
+            },
+            [params, edges, run](const Image& left, const Image& right) {
+                return MatchResult{run(left, right, params, edges), {}, {}, {}, {}};
+            });
+    };
+}
+
+// ---- hierarchical: the 2-D search for uncalibrated pairs (Sec. 3.3) ---------------------
+
+using HierarchicalFunction = hierarchical::Result (*)(const Image&, const Image&,
+                                                      const hierarchical::Params&);
+
+MatchResult to_match_result(hierarchical::Result result) {
+    MatchResult out{std::move(result.disparity), {}, std::move(result.vertical), {}, {}};
+    constexpr std::array<const char*, hierarchical::kLevels> kNames = {"quarter", "half", "full"};
+    for (std::size_t l = 0; l < result.levels.size(); ++l) {
+        if (!result.levels[l].valid.empty()) {
+            out.levels.push_back(std::move(result.levels[l]));
+        }
+        out.counts.emplace_back(std::string("cost_evaluations.") + kNames[l],
+                                result.cost_evaluations.level[l]);
+    }
+    return out;
+}
+
+MatcherFactory hierarchical_factory(HierarchicalFunction run) {
+    return [run](const MatchConfig& config) -> std::unique_ptr<Matcher> {
+        if (config.pipeline.cost != "ad") {
+            throw std::invalid_argument("the hierarchical search has only the AD cost");
+        }
+        hierarchical::Params params;
+        params.ndisp = config.pipeline.ndisp;
+        params.vrange = config.vrange;
+        params.use_ca = config.pipeline.use_ca;
+        params.neighbours = config.neighbours;
+        return std::make_unique<FunctionMatcher>(
+            [params](int width, int height) { hierarchical::validate(params, width, height); },
+            [params, run](const Image& left, const Image& right) {
+                return to_match_result(run(left, right, params));
+            });
+    };
+}
+
+// ---- sparse: validated sub-pixel disparities (the SLAM front end, Sec. 4.2.1) ---------------
+
+std::unique_ptr<Matcher> make_sparse(const MatchConfig& config) {
+    const MatchParams params = config.pipeline;
+    const sparse::Params checks = config.sparse;
+    return std::make_unique<FunctionMatcher>(
+        [params, checks](int width, int height) {
+            sparse::validate(params, checks, width, height);
+        },
+        [params, checks](const Image& left, const Image& right) {
+            sparse::ValidationCounts counts;
+            const sparse::SparseDisparity map = sparse::match(left, right, params, checks, &counts);
+            MatchResult result{DisparityMap(map.width, map.height), map.disparity, {}, {}, {}};
+            for (std::size_t p = 0; p < map.disparity.size(); ++p) {
+                if (map.disparity[p] >= 0.0F) {
+                    result.disparity.valid[p] = 1;
+                    result.disparity.disparity[p] =
+                        static_cast<std::uint8_t>(static_cast<int>(map.disparity[p] + 0.5F));
+                }
+            }
+            result.counts = {{"candidates", static_cast<std::int64_t>(counts.candidates)},
+                             {"uncertain", static_cast<std::int64_t>(counts.uncertain)},
+                             {"inconsistent", static_cast<std::int64_t>(counts.inconsistent)},
+                             {"valid", static_cast<std::int64_t>(counts.valid)}};
+            return result;
+        });
+}
+
+}  // namespace
+
+MatcherFactory pipeline_factory(PipelineFunction run) {
+    return [run](const MatchConfig& config) -> std::unique_ptr<Matcher> {
+        const MatchParams params = config.pipeline;
+        return std::make_unique<FunctionMatcher>(
+            [params](int width, int height) { validate(params, width, height); },
+            [params, run](const Image& left, const Image& right) {
+                return MatchResult{run(left, right, params), {}, {}, {}, {}};
+            });
+    };
+}
+
+void MatcherRegistry::add(MatcherEntry entry) {
+    for (const auto& existing : entries_) {
+        if (existing.method == entry.method && existing.engine == entry.engine) {
+            throw std::logic_error("matcher " + entry.method + "/" + entry.engine +
+                                   " registered twice");
+        }
+    }
+    entries_.push_back(std::move(entry));
+}
+
+std::unique_ptr<Matcher> MatcherRegistry::create(std::string_view method, std::string_view engine,
+                                                 const MatchConfig& config) const {
+    std::vector<std::string> engines_of_method;
+    for (const auto& entry : entries_) {
+        if (entry.method == method) {
+            if (entry.engine == engine) {
+                return entry.create(config);
+            }
+            engines_of_method.push_back(entry.engine);
+        }
+    }
+    if (engines_of_method.empty()) {
+        throw std::invalid_argument("unknown method \"" + std::string(method) +
+                                    "\" (methods: " + joined(methods()) + ")");
+    }
+    throw std::invalid_argument("method " + std::string(method) + " has no engine \"" +
+                                std::string(engine) + "\" (engines: " + joined(engines_of_method) +
+                                ")");
+}
+
+std::vector<std::string> MatcherRegistry::methods() const {
+    std::vector<std::string> names;
+    for (const auto& entry : entries_) {
+        add_unique(names, entry.method);
+    }
+    return names;
+}
+
+std::vector<std::string> MatcherRegistry::engines() const {
+    std::vector<std::string> names;
+    for (const auto& entry : entries_) {
+        add_unique(names, entry.engine);
+    }
+    return names;
+}
+
+void register_model_matchers(MatcherRegistry& registry) {
+    registry.add({"pipeline", "model", "Sec. 3.1 pipeline, the bit-exact golden model",
+                  pipeline_factory(&match)});
+    registry.add({"pipeline", "naive", "Sec. 3.1 pipeline, naive reference (direct sums)",
+                  pipeline_factory(&naive::match)});
+    registry.add({"pipeline", "float", "Sec. 3.1 pipeline in double precision",
+                  pipeline_factory(&floating::match)});
+    registry.add({"edges", "model", "LoG edge front end with truncated AD, no CA (Sec. 4.1.1)",
+                  edges_factory(&edge_frontend::match)});
+    registry.add({"edges", "naive", "edge front end, naive reference",
+                  edges_factory(&edge_frontend::naive::match)});
+    registry.add({"hierarchical", "model", "three-level 2-D search (Sec. 3.3)",
+                  hierarchical_factory(&hierarchical::match)});
+    registry.add({"hierarchical", "naive", "2-D search, naive reference",
+                  hierarchical_factory(&hierarchical::naive::match)});
+    registry.add({"hierarchical", "full-search", "every D x V displacement at full size",
+                  hierarchical_factory(&hierarchical::full_search)});
+    registry.add({"sparse", "model", "validated sub-pixel disparities (SLAM front end)",
+                  &make_sparse});
+}
+
+}  // namespace stereo

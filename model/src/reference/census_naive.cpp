@@ -1,0 +1,46 @@
+// Naive reference of the census cost (stereo/stages/census.hpp): the code of each pixel is
+// rebuilt for every comparison and the differing bits are counted one at a time.
+#include "stereo/edge_frontend.hpp"
+#include "stereo/reference.hpp"
+#include "stereo/stages/census.hpp"
+
+namespace stereo::census::naive {
+namespace {
+
+// Bit n of the code of (x, y): the n-th neighbour in raster order (centre skipped) is darker.
+bool bit(const Image& grey, int x, int y, int n) {
+    const int k = n < kBits / 2 ? n : n + 1;  // skip the centre
+    const int nx = x + k % (2 * kRadius + 1) - kRadius;
+    const int ny = y + k / (2 * kRadius + 1) - kRadius;
+    if (nx < 0 || ny < 0 || nx >= grey.width || ny >= grey.height) {
+        return false;
+    }
+    return grey.at(nx, ny, 0) < grey.at(x, y, 0);
+}
+
+}  // namespace
+
+Dsi cost(const Image& left, const Image& right, int ndisp) {
+    check_pair(left, right);
+    const Image l = edge_frontend::naive::luma(left);
+    const Image r = edge_frontend::naive::luma(right);
+    Dsi dsi(left.width, left.height, ndisp);
+    for (int d = 0; d < ndisp; ++d) {
+        for (int y = 0; y < left.height; ++y) {
+            for (int x = 0; x < left.width; ++x) {
+                if (x - d < 0) {
+                    dsi.at(x, y, d) = fx::kCostOutside;
+                    continue;
+                }
+                int distance = 0;
+                for (int n = 0; n < kBits; ++n) {
+                    distance += bit(l, x, y, n) != bit(r, x - d, y, n) ? 1 : 0;
+                }
+                dsi.at(x, y, d) = static_cast<Dsi::Value>(distance * kWeight);
+            }
+        }
+    }
+    return dsi;
+}
+
+}  // namespace stereo::census::naive
