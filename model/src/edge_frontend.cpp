@@ -126,15 +126,7 @@ Image enhance(const Image& image, const EdgeParams& params) {
 
 Dsi truncated_cost(const Image& left, const Image& right, int ndisp, int truncation) {
     check_cost_inputs(left, right, ndisp, truncation);
-    const auto cost = make_truncated_ad_cost(truncation);
-    const PlanarImage left_planes = cost->prepare(left);
-    const PlanarImage right_planes = cost->prepare(right);
-    const auto grid = CandidateGrid::horizontal(left.width, left.height, ndisp);
-    Dsi dsi(left.width, left.height, ndisp);
-    for (int d = 0; d < ndisp; ++d) {
-        cost_plane(*cost, left_planes, right_planes, grid, d, 0, dsi.plane(d).data());
-    }
-    return dsi;
+    return cost_volume(*make_truncated_ad_cost(truncation), left, right, ndisp);
 }
 
 DisparityMap match(const Image& left, const Image& right, const MatchParams& params,

@@ -95,15 +95,7 @@ Dsi cost(const Image& left, const Image& right, int ndisp) {
     if (ndisp < 1 || ndisp > fx::kMaxDisparities) {
         throw std::invalid_argument("ndisp out of range: " + std::to_string(ndisp));
     }
-    const auto ad = make_ad_cost();
-    const PlanarImage left_planes = ad->prepare(left);
-    const PlanarImage right_planes = ad->prepare(right);
-    const auto grid = CandidateGrid::horizontal(left.width, left.height, ndisp);
-    Dsi dsi(left.width, left.height, ndisp);
-    for (int d = 0; d < ndisp; ++d) {
-        cost_plane(*ad, left_planes, right_planes, grid, d, 0, dsi.plane(d).data());
-    }
-    return dsi;
+    return cost_volume(*make_ad_cost(), left, right, ndisp);
 }
 
 Dsi aggregate(const Dsi& cost, const std::vector<std::int32_t>& kernel) {

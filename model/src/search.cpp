@@ -60,6 +60,17 @@ void cost_plane(const CostFunction& cost, const PlanarImage& left, const PlanarI
     }
 }
 
+Dsi cost_volume(const CostFunction& cost, const Image& left, const Image& right, int ndisp) {
+    const PlanarImage left_planes = cost.prepare(left);
+    const PlanarImage right_planes = cost.prepare(right);
+    const auto grid = CandidateGrid::horizontal(left.width, left.height, ndisp);
+    Dsi dsi(left.width, left.height, ndisp);
+    for (int d = 0; d < ndisp; ++d) {
+        cost_plane(cost, left_planes, right_planes, grid, d, 0, dsi.plane(d).data());
+    }
+    return dsi;
+}
+
 std::int64_t search(const PlanarImage& left, const PlanarImage& right, const CandidateGrid& grid,
                     const SearchStages& stages) {
     if (grid.width != left.width || grid.height != left.height || grid.cols < 1 || grid.rows < 1) {

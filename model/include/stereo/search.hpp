@@ -87,6 +87,9 @@ std::int64_t search(const PlanarImage& left, const PlanarImage& right, const Can
 void cost_plane(const CostFunction& cost, const PlanarImage& left, const PlanarImage& right,
                 const CandidateGrid& grid, int i, int j, CostValue* out);
 
+// Stage 1 over a whole 1-D volume (d = 0..ndisp-1), for the stage-by-stage tests.
+Dsi cost_volume(const CostFunction& cost, const Image& left, const Image& right, int ndisp);
+
 // A pixel is valid when its window and CA neighbourhood (`reach`) lie inside both images at its
 // displacement: reach <= x < W - reach, reach <= y < H - reach, x - d >= reach and
 // reach <= y + v < H - reach.
