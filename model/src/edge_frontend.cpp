@@ -135,7 +135,8 @@ DisparityMap match(const Image& left, const Image& right, const MatchParams& par
     const MatchParams plain = without_ca(params);
     stereo::validate(plain, left.width, left.height);
     validate(edge_params);
-    return match_with(*make_truncated_ad_cost(edge_params.truncation), enhance(left, edge_params),
+    return match_with(*make_truncated_ad_cost(edge_params.truncation),
+                      gaussian_kernel(plain.window, plain.sigma), enhance(left, edge_params),
                       enhance(right, edge_params), plain);
 }
 

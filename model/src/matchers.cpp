@@ -26,6 +26,31 @@ void add_unique(std::vector<std::string>& names, const std::string& name) {
 
 // ---- pipeline: the 1-D Sec. 3.1 matcher ------------------------------------------------------
 
+// The model's pipeline: kernel and cost built once, when the matcher is made (a bad window,
+// sigma or cost fails there, before any image is read).
+class ModelPipeline final : public Matcher {
+  public:
+    explicit ModelPipeline(const MatchParams& params)
+        : params_(params),
+          kernel_(gaussian_kernel(params.window, params.sigma)),
+          cost_(make_cost(params.cost)) {
+        if (params.ndisp < 1 || params.ndisp > fx::kMaxDisparities) {
+            throw std::invalid_argument("ndisp must be in [1, " +
+                                        std::to_string(fx::kMaxDisparities) + "], got " +
+                                        std::to_string(params.ndisp));
+        }
+    }
+    void validate(int width, int height) const override { validate_size(params_, width, height); }
+    MatchResult compute(const Image& left, const Image& right) const override {
+        return {match_with(*cost_, kernel_, left, right, params_), {}, {}, {}, {}};
+    }
+
+  private:
+    MatchParams params_;
+    std::vector<std::int32_t> kernel_;
+    std::unique_ptr<CostFunction> cost_;
+};
+
 // ---- edges: the obstacle-avoidance front end (Sec. 4.1.1) --------------------------------
 
 using EdgeFunction = DisparityMap (*)(const Image&, const Image&, const MatchParams&,
@@ -175,7 +200,9 @@ std::vector<std::string> MatcherRegistry::engines() const {
 
 void register_model_matchers(MatcherRegistry& registry) {
     registry.add({"pipeline", "model", "Sec. 3.1 pipeline, the bit-exact golden model",
-                  pipeline_factory(&match)});
+                  [](const MatchConfig& config) -> std::unique_ptr<Matcher> {
+                      return std::make_unique<ModelPipeline>(config.pipeline);
+                  }});
     registry.add({"pipeline", "naive", "Sec. 3.1 pipeline, naive reference (direct sums)",
                   pipeline_factory(&naive::match)});
     registry.add({"pipeline", "float", "Sec. 3.1 pipeline in double precision",

@@ -72,13 +72,17 @@ void validate(const MatchParams& params, int width, int height) {
         throw std::invalid_argument("ndisp must be in [1, " + std::to_string(fx::kMaxDisparities) +
                                     "], got " + std::to_string(params.ndisp));
     }
+    (void)gaussian_kernel(params.window, params.sigma);  // throws on a bad window or sigma
+    (void)make_cost(params.cost);                        // throws on an unknown cost
+    validate_size(params, width, height);
+}
+
+void validate_size(const MatchParams& params, int width, int height) {
     if (params.ndisp >= width) {
         throw std::invalid_argument("ndisp " + std::to_string(params.ndisp) +
                                     " must be smaller than the image width " +
                                     std::to_string(width));
     }
-    (void)gaussian_kernel(params.window, params.sigma);  // throws on a bad window or sigma
-    (void)make_cost(params.cost);                        // throws on an unknown cost
     const InvalidBorder border = invalid_border(params);
     if (width <= 2 * border.reach || height <= 2 * border.reach) {
         throw std::invalid_argument("image " + size_text(width, height) +
@@ -142,22 +146,23 @@ DisparityMap wta(const Dsi& dsi, const InvalidBorder& border) {
 DisparityMap match(const Image& left, const Image& right, const MatchParams& params) {
     check_pair(left, right);
     validate(params, left.width, left.height);
-    return match_with(*make_cost(params.cost), left, right, params);
+    return match_with(*make_cost(params.cost), gaussian_kernel(params.window, params.sigma), left,
+                      right, params);
 }
 
-DisparityMap match_with(const CostFunction& cost, const Image& left, const Image& right,
-                        const MatchParams& params) {
+DisparityMap match_with(const CostFunction& cost, const std::vector<std::int32_t>& kernel,
+                        const Image& left, const Image& right, const MatchParams& params) {
     check_pair(left, right);
-    MatchParams checked = params;
-    checked.cost = "ad";  // the given cost replaces the named one
-    validate(checked, left.width, left.height);
+    validate_size(params, left.width, left.height);
+    if (kernel.size() != static_cast<std::size_t>(params.window)) {
+        throw std::invalid_argument("the kernel must have params.window taps");
+    }
     const int width = left.width;
     const int height = left.height;
     const PlanarImage left_planes = cost.prepare(left);
     const PlanarImage right_planes = cost.prepare(right);
     const auto grid = CandidateGrid::horizontal(width, height, params.ndisp);
-    const auto aggregator =
-        make_gaussian_aggregator(gaussian_kernel(params.window, params.sigma), width, height);
+    const auto aggregator = make_gaussian_aggregator(kernel, width, height);
     const auto rule1 = make_ca_rule1(width, height);
     const auto rule2 = make_ca_rule2(width, height);
     const std::array<Refiner*, 2> ca = {rule1.get(), rule2.get()};

@@ -69,11 +69,16 @@ DisparityMap wta(const Dsi& dsi, const InvalidBorder& border);
 // by the plane scheduler (stereo/search.hpp).
 DisparityMap match(const Image& left, const Image& right, const MatchParams& params);
 
+// The checks of validate() that depend on the image size (ndisp against the width, the invalid
+// border against the size), for callers that built the kernel and the cost already.
+void validate_size(const MatchParams& params, int width, int height);
+
 class CostFunction;
-// The pipeline with a cost function of the caller's (params.cost is not read): the edge front
-// end's truncated AD, a cost under test.
-DisparityMap match_with(const CostFunction& cost, const Image& left, const Image& right,
-                        const MatchParams& params);
+// The pipeline with a cost function and kernel of the caller's (params.cost, params.sigma are
+// not read; the kernel must have params.window taps): the edge front end's truncated AD, a
+// matcher that builds its stages once.
+DisparityMap match_with(const CostFunction& cost, const std::vector<std::int32_t>& kernel,
+                        const Image& left, const Image& right, const MatchParams& params);
 
 // Throws std::invalid_argument unless the two images have the same size and channel count.
 void check_pair(const Image& left, const Image& right);
