@@ -34,7 +34,7 @@
 #include "stereo/image.hpp"
 #include "stereo/pipeline.hpp"
 #include "tb_options.hpp"
-#include "test_support.hpp"
+#include "stereo_io/test_support.hpp"
 
 namespace stereo::tb {
 

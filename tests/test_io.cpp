@@ -1,4 +1,4 @@
-// Image and disparity-map files of the host tools (app/include/stereo_app/io.hpp).
+// Image and disparity-map files of the host tools (app/include/stereo_io/io.hpp).
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -9,9 +9,9 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "stereo_app/io.hpp"
+#include "stereo_io/io.hpp"
 
-namespace stereo::app {
+namespace stereo::io {
 namespace {
 
 namespace fs = std::filesystem;
@@ -333,4 +333,4 @@ TEST(Downscale, GroundTruthAndMasksSampleBlockCentres) {
 }
 
 }  // namespace
-}  // namespace stereo::app
+}  // namespace stereo::io

@@ -8,7 +8,8 @@
 
 #include "stereo/pipeline.hpp"
 #include "stereo/reference.hpp"
-#include "test_support.hpp"
+#include "stereo_io/data_dir.hpp"
+#include "stereo_io/test_support.hpp"
 
 namespace stereo {
 namespace {
@@ -114,7 +115,7 @@ TEST(StagesEqualNaive, ConstantAndExtremeImages) {
 }
 
 TEST(StagesEqualNaive, RealPairCrop) {
-    const auto dir = test::data_dir() / "middlebury2003" / "cones";
+    const auto dir = io::data_dir() / "middlebury2003" / "cones";
     const cv::Mat left_bgr = cv::imread((dir / "left.png").string(), cv::IMREAD_COLOR);
     const cv::Mat right_bgr = cv::imread((dir / "right.png").string(), cv::IMREAD_COLOR);
     if (left_bgr.empty() || right_bgr.empty()) {

@@ -17,7 +17,7 @@
 #include "stereo/hls/match.hpp"
 #include "stereo/pipeline.hpp"
 #include "stereo/reference.hpp"
-#include "stereo_app/io.hpp"
+#include "stereo_io/io.hpp"
 
 namespace stereo::cli {
 
@@ -80,13 +80,13 @@ void run_hierarchical(const MatchOptions& options, bool use_ca) {
     params.ndisp = options.params.ndisp;
     params.vrange = options.vrange;
     params.use_ca = use_ca;
-    app::check_disparity_scale(params.ndisp, options.scale);
-    app::check_writable_location(options.output);
+    io::check_disparity_scale(params.ndisp, options.scale);
+    io::check_writable_location(options.output);
     if (!options.colour.empty()) {
-        app::check_writable_location(options.colour);
+        io::check_writable_location(options.colour);
     }
     if (!options.vertical.empty()) {
-        app::check_writable_location(options.vertical);
+        io::check_writable_location(options.vertical);
     }
     const std::filesystem::path dump(options.dump_levels);
     if (!options.dump_levels.empty()) {
@@ -99,7 +99,7 @@ void run_hierarchical(const MatchOptions& options, bool use_ca) {
                                      "\": not a folder, and its parent folder does not exist");
         }
     }
-    const app::ImagePair pair = app::load_pair(options.left, options.right, options.downscale);
+    const io::ImagePair pair = io::load_pair(options.left, options.right, options.downscale);
     hierarchical::validate(params, pair.left.width, pair.left.height);
 
     const auto start = std::chrono::steady_clock::now();
@@ -111,9 +111,9 @@ void run_hierarchical(const MatchOptions& options, bool use_ca) {
 
     // Every output is encoded before the first one is written.
     const DisparityMap& map = result.disparity;
-    const cv::Mat stored = app::disparity_to_mat(map, params.ndisp, options.scale);
+    const cv::Mat stored = io::disparity_to_mat(map, params.ndisp, options.scale);
     const cv::Mat colour =
-        options.colour.empty() ? cv::Mat() : app::disparity_to_colour(map, params.ndisp);
+        options.colour.empty() ? cv::Mat() : io::disparity_to_colour(map, params.ndisp);
     const hierarchical::LevelMap& full = result.levels[hierarchical::kLevels - 1];
     const cv::Mat vertical = vertical_to_mat(full.vertical, full.valid, map.width, map.height);
     std::vector<std::pair<std::string, cv::Mat>> level_files;
@@ -132,25 +132,25 @@ void run_hierarchical(const MatchOptions& options, bool use_ca) {
             }
             const std::string name = kNames[static_cast<std::size_t>(l)];
             level_files.emplace_back(name + "_disparity.png",
-                                     app::disparity_to_mat(level_map, ndisp, options.scale));
+                                     io::disparity_to_mat(level_map, ndisp, options.scale));
             level_files.emplace_back(name + "_color.png",
-                                     app::disparity_to_colour(level_map, ndisp));
+                                     io::disparity_to_colour(level_map, ndisp));
             level_files.emplace_back(
                 name + "_vertical.png",
                 vertical_to_mat(level.vertical, level.valid, level.width, level.height));
         }
     }
-    app::write_png(options.output, stored);
+    io::write_png(options.output, stored);
     if (!colour.empty()) {
-        app::write_png(options.colour, colour);
+        io::write_png(options.colour, colour);
     }
     if (!options.vertical.empty()) {
-        app::write_png(options.vertical, vertical);
+        io::write_png(options.vertical, vertical);
     }
     if (!level_files.empty()) {
         std::filesystem::create_directories(dump);
         for (const auto& [name, mat] : level_files) {
-            app::write_png(dump / name, mat);
+            io::write_png(dump / name, mat);
         }
     }
 
@@ -185,7 +185,7 @@ void run_hierarchical(const MatchOptions& options, bool use_ca) {
     }
 }
 
-DisparityMap run_engine(const std::string& engine, const app::ImagePair& pair,
+DisparityMap run_engine(const std::string& engine, const io::ImagePair& pair,
                         const MatchParams& params) {
     if (engine == "naive") {
         return naive::match(pair.left, pair.right, params);
@@ -234,12 +234,12 @@ void run_match(const MatchOptions& options) {
     }
     // Everything that can be checked cheaply is checked before loading and matching, and all
     // outputs are encoded before the first file is written.
-    app::check_disparity_scale(params.ndisp, options.scale);
-    app::check_writable_location(options.output);
+    io::check_disparity_scale(params.ndisp, options.scale);
+    io::check_writable_location(options.output);
     if (!options.colour.empty()) {
-        app::check_writable_location(options.colour);
+        io::check_writable_location(options.colour);
     }
-    const app::ImagePair pair = app::load_pair(options.left, options.right, options.downscale);
+    const io::ImagePair pair = io::load_pair(options.left, options.right, options.downscale);
     validate(params, pair.left.width, pair.left.height);
 
     const auto start = std::chrono::steady_clock::now();
@@ -249,12 +249,12 @@ void run_match(const MatchOptions& options) {
     const std::chrono::duration<double, std::milli> elapsed =
         std::chrono::steady_clock::now() - start;
 
-    const cv::Mat stored = app::disparity_to_mat(map, params.ndisp, options.scale);
+    const cv::Mat stored = io::disparity_to_mat(map, params.ndisp, options.scale);
     const cv::Mat colour =
-        options.colour.empty() ? cv::Mat() : app::disparity_to_colour(map, params.ndisp);
-    app::write_png(options.output, stored);
+        options.colour.empty() ? cv::Mat() : io::disparity_to_colour(map, params.ndisp);
+    io::write_png(options.output, stored);
     if (!colour.empty()) {
-        app::write_png(options.colour, colour);
+        io::write_png(options.colour, colour);
     }
 
     const double valid = valid_fraction(map);
