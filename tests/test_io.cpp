@@ -1,5 +1,8 @@
-// Image and disparity-map files of the host tools (app/include/stereo_io/io.hpp).
+// Image and disparity-map files of the host tools (io/include/stereo_io/io.hpp), and the
+// data-folder rule (stereo_io/data_dir.hpp).
+#include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <fstream>
 #include <random>
 #include <stdexcept>
@@ -9,6 +12,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "stereo_io/data_dir.hpp"
 #include "stereo_io/io.hpp"
 
 namespace stereo::io {
@@ -330,6 +334,46 @@ TEST(Downscale, GroundTruthAndMasksSampleBlockCentres) {
     EXPECT_EQ(downscale_ground_truth(gt, 1).size(), gt.size());
     EXPECT_THROW(downscale_ground_truth(gt, 0), std::invalid_argument);
     EXPECT_THROW(downscale_ground_truth(gt, 5), std::invalid_argument);
+}
+
+// Sets an environment variable for one scope and restores the previous value (or absence).
+class ScopedEnv {
+  public:
+    ScopedEnv(const char* name, const char* value) : name_(name) {
+        if (const char* old = std::getenv(name)) {
+            old_ = old;
+        }
+        ::setenv(name, value, 1);
+    }
+    ~ScopedEnv() {
+        if (old_) {
+            ::setenv(name_, old_->c_str(), 1);
+        } else {
+            ::unsetenv(name_);
+        }
+    }
+    ScopedEnv(const ScopedEnv&) = delete;
+    ScopedEnv& operator=(const ScopedEnv&) = delete;
+
+  private:
+    const char* name_;
+    std::optional<std::string> old_;
+};
+
+TEST(DataDir, EnvironmentOverridesTheBuiltInFolder) {
+    {
+        const ScopedEnv unset("STEREO_DATA_DIR", "");  // empty counts as unset
+        const fs::path built_in = data_dir();
+        EXPECT_TRUE(built_in.is_absolute()) << built_in;
+        const ScopedEnv env("STEREO_DATA_DIR", "/tmp/stereo_data_override");
+        EXPECT_EQ(data_dir(), fs::path("/tmp/stereo_data_override"));
+    }
+    {
+        const ScopedEnv unset("STEREO_ALOE_DIR", "");
+        EXPECT_TRUE(aloe_dir().is_absolute()) << aloe_dir();
+        const ScopedEnv env("STEREO_ALOE_DIR", "/tmp/stereo_aloe_override");
+        EXPECT_EQ(aloe_dir(), fs::path("/tmp/stereo_aloe_override"));
+    }
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// Middlebury-style metrics (app/include/stereo_io/metrics.hpp) on a 4x3 example worked out by
+// Middlebury-style metrics (io/include/stereo_io/metrics.hpp) on a 4x3 example worked out by
 // hand. Every expected value below is derived in the comment next to it.
 #include <stdexcept>
 #include <string>
