@@ -13,10 +13,10 @@
 
 #include "Vstereo_cost.h"
 #include "stereo/pipeline.hpp"
-#include "stereo_io/io.hpp"
-#include "tb_options.hpp"
 #include "stereo_io/data_dir.hpp"
+#include "stereo_io/io.hpp"
 #include "stereo_io/test_support.hpp"
+#include "tb_options.hpp"
 
 namespace stereo::tb {
 namespace {

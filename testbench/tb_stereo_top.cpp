@@ -10,11 +10,11 @@
 #include <random>
 
 #include "stereo/pipeline.hpp"
+#include "stereo_io/data_dir.hpp"
 #include "stereo_io/io.hpp"
+#include "stereo_io/test_support.hpp"
 #include "stereo_top_sim.hpp"
 #include "tb_options.hpp"
-#include "stereo_io/data_dir.hpp"
-#include "stereo_io/test_support.hpp"
 
 namespace stereo::sim {
 namespace {
@@ -204,9 +204,8 @@ INSTANTIATE_TEST_SUITE_P(
                                middlebury("tsukuba", "right.png"), 1, 150, 100, 16},
                       RealCase{"cones", middlebury("cones", "left.png"),
                                middlebury("cones", "right.png"), 2, 60, 60, 16},
-                      RealCase{"aloe", io::aloe_dir() / "aloeL.jpg",
-                               io::aloe_dir() / "aloeR.jpg", 8, 50, 40,
-                               16}),
+                      RealCase{"aloe", io::aloe_dir() / "aloeL.jpg", io::aloe_dir() / "aloeR.jpg",
+                               8, 50, 40, 16}),
     [](const auto& info) { return std::string(info.param.name); });
 
 TEST(Throughput, CyclesPerFrameWithoutStallsMatchTheDocumentedLatency) {

@@ -12,9 +12,9 @@
 #include "stereo/hierarchical.hpp"
 #include "stereo/hierarchical_reference.hpp"
 #include "stereo/pipeline.hpp"
+#include "stereo_io/data_dir.hpp"
 #include "stereo_io/distortion.hpp"
 #include "stereo_io/io.hpp"
-#include "stereo_io/data_dir.hpp"
 #include "stereo_io/test_support.hpp"
 
 namespace stereo::hierarchical {

@@ -23,9 +23,9 @@
 #include "stereo/hls/top.hpp"
 #include "stereo/hls/wta.hpp"
 #include "stereo/pipeline.hpp"
-#include "stereo_io/middlebury.hpp"
 #include "stereo_hls_synth_top.hpp"
 #include "stereo_io/data_dir.hpp"
+#include "stereo_io/middlebury.hpp"
 #include "stereo_io/test_support.hpp"
 
 namespace stereo {

@@ -2,8 +2,8 @@
 // data-folder rule (stereo_io/data_dir.hpp).
 #include <cstdlib>
 #include <filesystem>
-#include <optional>
 #include <fstream>
+#include <optional>
 #include <random>
 #include <stdexcept>
 #include <string>

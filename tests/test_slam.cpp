@@ -14,14 +14,14 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "stereo/pipeline.hpp"
+#include "stereo_io/data_dir.hpp"
+#include "stereo_io/test_support.hpp"
 #include "stereo_robot/slam/dataset.hpp"
 #include "stereo_robot/slam/evaluation.hpp"
 #include "stereo_robot/slam/frontend.hpp"
 #include "stereo_robot/slam/maps.hpp"
 #include "stereo_robot/slam/motion.hpp"
 #include "stereo_robot/slam/pipeline.hpp"
-#include "stereo_io/data_dir.hpp"
-#include "stereo_io/test_support.hpp"
 
 namespace stereo::robot::slam {
 namespace {

@@ -47,12 +47,12 @@ void require_positive(double value, const std::string& option) {
 }
 
 std::optional<io::NamedMat> load_optional_mask(const std::string& path, const std::string& role,
-                                                int downscale) {
+                                               int downscale) {
     if (path.empty()) {
         return std::nullopt;
     }
     return io::NamedMat{io::downscale_mask(io::load_mask(path), downscale),
-                         role + " mask " + quoted(path)};
+                        role + " mask " + quoted(path)};
 }
 
 void print_region(const char* label, const std::optional<io::RegionScore>& score,

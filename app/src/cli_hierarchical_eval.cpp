@@ -158,8 +158,7 @@ json count_row(const std::string& name, const Image& left, const Image& right, i
         const hierarchical::Result full = hierarchical::full_search(left, right, params);
         row["full_ms"] = milliseconds_since(start);
         row["full_per_pixel"] = full.cost_evaluations.total() / pixels;
-        row["full_vs_hierarchical_disagreement"] =
-            io::disagreement(full.disparity, fast.disparity);
+        row["full_vs_hierarchical_disagreement"] = io::disagreement(full.disparity, fast.disparity);
     }
     std::cerr << name << " D=" << d << ": " << row.dump() << '\n';
     return row;
@@ -427,7 +426,7 @@ void run_eval(const EvalOptions& options) {
         const fs::path dir(options.figures);
         io::write_png(dir / "nmse_vs_distortion.png", plot_sweep(report["sweep"]));
         io::write_png(dir / "tsukuba_distorted_10_maps.png",
-                       maps_figure(figure_left, figure_disparity, figure_vertical, 16));
+                      maps_figure(figure_left, figure_disparity, figure_vertical, 16));
     }
 }
 

@@ -20,7 +20,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-
 std::vector<FramePair> list_frames(const fs::path& left, const fs::path& right) {
     const auto left_names = io::image_file_names(left);
     const auto right_names = io::image_file_names(right);
