@@ -37,10 +37,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include "stereo/pipeline.hpp"
-
-#ifndef STEREO_DATA_DIR
-#define STEREO_DATA_DIR ""
-#endif
+#include "stereo_io/data_dir.hpp"
+#include "stereo_io/io.hpp"
 
 namespace {
 
@@ -97,33 +95,12 @@ struct StereoPair {
     double evaluations() const { return static_cast<double>(width()) * height() * kDisparities; }
 };
 
-std::filesystem::path data_dir() {
-    // The run-time override wins so one binary can be pointed at another copy of the data.
-    if (const char* from_env = std::getenv("STEREO_DATA_DIR");
-        from_env != nullptr && *from_env != '\0') {
-        return from_env;
-    }
-    return STEREO_DATA_DIR;
-}
-
-stereo::Image to_model_image(const cv::Mat& bgr) {
-    cv::Mat rgb;
-    cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
-    stereo::Image image(rgb.cols, rgb.rows, 3);
-    const auto row_bytes = static_cast<std::size_t>(rgb.cols) * 3;
-    for (int y = 0; y < rgb.rows; ++y) {  // row by row: a cv::Mat need not be continuous
-        std::copy_n(rgb.ptr<std::uint8_t>(y), row_bytes,
-                    image.pixels.begin() + static_cast<std::ptrdiff_t>(y * row_bytes));
-    }
-    return image;
-}
-
 StereoPair make_pair(cv::Mat left_bgr, cv::Mat right_bgr, std::string description, bool synthetic) {
     StereoPair pair;
     pair.description = std::move(description);
     pair.synthetic = synthetic;
-    pair.left_rgb = to_model_image(left_bgr);
-    pair.right_rgb = to_model_image(right_bgr);
+    pair.left_rgb = stereo::io::to_image(left_bgr, "left");
+    pair.right_rgb = stereo::io::to_image(right_bgr, "right");
     cv::cvtColor(left_bgr, pair.left_grey, cv::COLOR_BGR2GRAY);
     cv::cvtColor(right_bgr, pair.right_grey, cv::COLOR_BGR2GRAY);
     pair.left_bgr = std::move(left_bgr);
@@ -163,16 +140,20 @@ std::pair<cv::Mat, cv::Mat> synthetic_pair() {
 }
 
 StereoPair load_pair() {
-    const std::filesystem::path folder = data_dir() / "middlebury2003" / "teddy";
+    const std::filesystem::path folder = stereo::io::data_dir() / "middlebury2003" / "teddy";
     const std::filesystem::path left_path = folder / "left.png";
     const std::filesystem::path right_path = folder / "right.png";
     if (std::filesystem::is_regular_file(left_path) &&
         std::filesystem::is_regular_file(right_path)) {
-        cv::Mat left = cv::imread(left_path.string(), cv::IMREAD_COLOR);
-        cv::Mat right = cv::imread(right_path.string(), cv::IMREAD_COLOR);
-        if (!left.empty() && !right.empty() && left.size() == right.size()) {
-            return make_pair(std::move(left), std::move(right),
-                             "Middlebury 2003 Teddy (" + folder.string() + ")", false);
+        try {
+            cv::Mat left = stereo::io::load_bgr(left_path);
+            cv::Mat right = stereo::io::load_bgr(right_path);
+            if (left.size() == right.size()) {
+                return make_pair(std::move(left), std::move(right),
+                                 "Middlebury 2003 Teddy (" + folder.string() + ")", false);
+            }
+        } catch (const std::exception& error) {
+            std::cerr << "bench_stereo: " << error.what() << "\n";
         }
         std::cerr << "bench_stereo: could not read a same-size pair from " << folder << "\n";
     }

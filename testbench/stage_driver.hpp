@@ -33,8 +33,8 @@
 #include "stereo/dsi.hpp"
 #include "stereo/image.hpp"
 #include "stereo/pipeline.hpp"
+#include "stereo_io/test_support.hpp"
 #include "tb_options.hpp"
-#include "test_support.hpp"
 
 namespace stereo::tb {
 

@@ -13,9 +13,10 @@
 
 #include "Vstereo_cost.h"
 #include "stereo/pipeline.hpp"
-#include "stereo_app/io.hpp"
+#include "stereo_io/data_dir.hpp"
+#include "stereo_io/io.hpp"
+#include "stereo_io/test_support.hpp"
 #include "tb_options.hpp"
-#include "test_support.hpp"
 
 namespace stereo::tb {
 namespace {
@@ -149,11 +150,11 @@ TEST(CostFraming, BackToBackFramesOfDifferentSizes) {
 }
 
 TEST(CostRealImages, TsukubaCrop) {
-    const auto dir = test::data_dir() / "middlebury2003" / "tsukuba";
+    const auto dir = io::data_dir() / "middlebury2003" / "tsukuba";
     if (!std::filesystem::exists(dir / "left.png") || !std::filesystem::exists(dir / "right.png")) {
         GTEST_SKIP() << "tsukuba not found in " << dir;
     }
-    const auto pair = app::load_pair(dir / "left.png", dir / "right.png");
+    const auto pair = io::load_pair(dir / "left.png", dir / "right.png");
     auto crop = [](const Image& image) {
         Image out(64, 48, image.channels);
         for (int y = 0; y < out.height; ++y) {

@@ -10,10 +10,11 @@
 #include <random>
 
 #include "stereo/pipeline.hpp"
-#include "stereo_app/io.hpp"
+#include "stereo_io/data_dir.hpp"
+#include "stereo_io/io.hpp"
+#include "stereo_io/test_support.hpp"
 #include "stereo_top_sim.hpp"
 #include "tb_options.hpp"
-#include "test_support.hpp"
 
 namespace stereo::sim {
 namespace {
@@ -150,7 +151,7 @@ std::optional<std::pair<Image, Image>> real_crop(const std::filesystem::path& le
     if (!std::filesystem::exists(left_path) || !std::filesystem::exists(right_path)) {
         return std::nullopt;
     }
-    const auto pair = app::load_pair(left_path, right_path, downscale);
+    const auto pair = io::load_pair(left_path, right_path, downscale);
     auto crop = [&](const Image& image) {
         Image out(64, 48, image.channels);
         for (int y = 0; y < 48; ++y) {
@@ -194,7 +195,7 @@ TEST_P(RealPairs, EveryPixelEqualsTheModel) {
 }
 
 std::filesystem::path middlebury(const char* scene, const char* file) {
-    return test::data_dir() / "middlebury2003" / scene / file;
+    return io::data_dir() / "middlebury2003" / scene / file;
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -203,9 +204,8 @@ INSTANTIATE_TEST_SUITE_P(
                                middlebury("tsukuba", "right.png"), 1, 150, 100, 16},
                       RealCase{"cones", middlebury("cones", "left.png"),
                                middlebury("cones", "right.png"), 2, 60, 60, 16},
-                      RealCase{"aloe", std::filesystem::path(STEREO_ALOE_DIR) / "aloeL.jpg",
-                               std::filesystem::path(STEREO_ALOE_DIR) / "aloeR.jpg", 8, 50, 40,
-                               16}),
+                      RealCase{"aloe", io::aloe_dir() / "aloeL.jpg", io::aloe_dir() / "aloeR.jpg",
+                               8, 50, 40, 16}),
     [](const auto& info) { return std::string(info.param.name); });
 
 TEST(Throughput, CyclesPerFrameWithoutStallsMatchTheDocumentedLatency) {

@@ -8,7 +8,7 @@
 
 #include "stereo/edge_frontend.hpp"
 #include "stereo/pipeline.hpp"
-#include "test_support.hpp"
+#include "stereo_io/test_support.hpp"
 
 namespace stereo {
 namespace {

@@ -4,17 +4,18 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <functional>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <random>
 
 #include "stereo/hierarchical.hpp"
 #include "stereo/hierarchical_reference.hpp"
 #include "stereo/pipeline.hpp"
-#include "stereo_app/distortion.hpp"
-#include "stereo_app/io.hpp"
-#include "test_support.hpp"
+#include "stereo_io/data_dir.hpp"
+#include "stereo_io/distortion.hpp"
+#include "stereo_io/io.hpp"
+#include "stereo_io/test_support.hpp"
 
 namespace stereo::hierarchical {
 namespace {
@@ -250,15 +251,15 @@ TEST(MatchEqualsNaive, RandomPair) {
 }
 
 TEST(MatchEqualsNaive, MiddleburyCrop) {
-    const auto dir = test::data_dir() / "middlebury2003" / "tsukuba";
-    const cv::Mat left_bgr = cv::imread((dir / "left.png").string(), cv::IMREAD_COLOR);
-    const cv::Mat right_bgr = cv::imread((dir / "right.png").string(), cv::IMREAD_COLOR);
-    if (left_bgr.empty() || right_bgr.empty()) {
+    const auto dir = io::data_dir() / "middlebury2003" / "tsukuba";
+    if (!std::filesystem::exists(dir / "left.png") || !std::filesystem::exists(dir / "right.png")) {
         GTEST_SKIP() << "Middlebury tsukuba not found under " << dir;
     }
+    const cv::Mat left_bgr = io::load_bgr(dir / "left.png");
+    const cv::Mat right_bgr = io::load_bgr(dir / "right.png");
     const cv::Rect crop(150, 100, 104, 84);
-    const Image left = app::to_image(left_bgr(crop).clone(), "left");
-    const Image right = app::to_image(right_bgr(crop).clone(), "right");
+    const Image left = io::to_image(left_bgr(crop).clone(), "left");
+    const Image right = io::to_image(right_bgr(crop).clone(), "right");
     Params params;
     params.ndisp = 16;
     const Result model = match(left, right, params);
@@ -443,7 +444,7 @@ TEST(FullSearch, EqualsNaiveLevelOverTheWholeRange) {
 
 // ---- the lens-distortion model of the evaluation (app/, OpenCV) ----------------------------
 
-namespace stereo::app {
+namespace stereo::io {
 namespace {
 
 TEST(Distortion, DefinitionOfPercentHandChecked) {
@@ -491,4 +492,4 @@ TEST(Distortion, RemapMovesAPointWhereTheModelSays) {
 }
 
 }  // namespace
-}  // namespace stereo::app
+}  // namespace stereo::io

@@ -23,9 +23,10 @@
 #include "stereo/hls/top.hpp"
 #include "stereo/hls/wta.hpp"
 #include "stereo/pipeline.hpp"
-#include "stereo_app/middlebury.hpp"
 #include "stereo_hls_synth_top.hpp"
-#include "test_support.hpp"
+#include "stereo_io/data_dir.hpp"
+#include "stereo_io/middlebury.hpp"
+#include "stereo_io/test_support.hpp"
 
 namespace stereo {
 namespace {
@@ -397,10 +398,10 @@ TEST(HlsWta, EqualsModelWithTiesAndBorders) {
 // Each stage fed the model's output of the stage before it, on Tsukuba: volumes with real
 // structure (and the Middlebury ndisp and default window) rather than random ones.
 TEST(HlsStages, EachStageEqualsModelOnTsukuba) {
-    const auto& scene = app::middlebury2003_scenes().front();
-    const auto data = app::load_scene(test::data_dir(), scene);
+    const auto& scene = io::middlebury2003_scenes().front();
+    const auto data = io::load_scene(io::data_dir(), scene);
     if (!data) {
-        GTEST_SKIP() << "Middlebury " << scene.name << " not found under " << test::data_dir();
+        GTEST_SKIP() << "Middlebury " << scene.name << " not found under " << io::data_dir();
     }
     constexpr int kWidth = 512;
     constexpr int kNdisp = 16;
@@ -682,13 +683,13 @@ TEST(HlsMatch, LargestWindowAndMostLanes) {
 
 TEST(HlsMatch, MiddleburyPairs) {
     int found = 0;
-    for (const auto& scene : app::middlebury2003_scenes()) {
-        const auto data = app::load_scene(test::data_dir(), scene);
+    for (const auto& scene : io::middlebury2003_scenes()) {
+        const auto data = io::load_scene(io::data_dir(), scene);
         if (!data) {
             continue;
         }
         ++found;
-        const app::ImagePair& pair = data->pair;
+        const io::ImagePair& pair = data->pair;
         std::cout << "[ hls ] " << scene.name << " " << pair.left.width << "x" << pair.left.height
                   << " ndisp " << scene.ndisp << "\n";
         expect_match(pair.left, pair.right,
@@ -701,7 +702,7 @@ TEST(HlsMatch, MiddleburyPairs) {
         }
     }
     if (found == 0) {
-        GTEST_SKIP() << "no Middlebury 2003 pair under " << test::data_dir();
+        GTEST_SKIP() << "no Middlebury 2003 pair under " << io::data_dir();
     }
 }
 

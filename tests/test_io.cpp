@@ -1,17 +1,22 @@
-// Image and disparity-map files of the host tools (app/include/stereo_app/io.hpp).
+// Image and disparity-map files of the host tools (io/include/stereo_io/io.hpp), and the
+// data-folder rule (stereo_io/data_dir.hpp).
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "stereo_app/io.hpp"
+#include "stereo_io/data_dir.hpp"
+#include "stereo_io/io.hpp"
 
-namespace stereo::app {
+namespace stereo::io {
 namespace {
 
 namespace fs = std::filesystem;
@@ -332,5 +337,80 @@ TEST(Downscale, GroundTruthAndMasksSampleBlockCentres) {
     EXPECT_THROW(downscale_ground_truth(gt, 5), std::invalid_argument);
 }
 
+TEST(ShrinkArea, AveragesBlocksAndRejectsTooSmall) {
+    const cv::Mat grey = (cv::Mat_<std::uint8_t>(2, 4) << 10, 20, 100, 100,  //
+                          30, 40, 100, 100);
+    const cv::Mat small = shrink_area(grey, 2);
+    ASSERT_EQ(small.size(), cv::Size(2, 1));
+    EXPECT_EQ(small.at<std::uint8_t>(0, 0), 25);
+    EXPECT_EQ(small.at<std::uint8_t>(0, 1), 100);
+    EXPECT_EQ(shrink_area(grey, 1).data, grey.data);  // factor 1: the same matrix
+    EXPECT_THROW((void)shrink_area(grey, 3), std::invalid_argument);
+    EXPECT_THROW((void)shrink_area(grey, 0), std::invalid_argument);
+}
+
+TEST(ImageFiles, ListsImagesSortedByName) {
+    const TempDir dir;
+    const fs::path folder = dir.file("frames");
+    fs::create_directories(folder / "folder.png");  // a folder is not an image file
+    for (const char* name : {"b.PNG", "a.jpg", "notes.txt", "c.ppm"}) {
+        std::ofstream(folder / name) << "x";
+    }
+    EXPECT_EQ(image_file_names(folder), (std::vector<std::string>{"a.jpg", "b.PNG", "c.ppm"}));
+    expect_error<std::runtime_error>([&] { (void)image_file_names(dir.file("nope")); },
+                                     "cannot read image folder");
+}
+
+TEST(ToBgr, InvertsToImage) {
+    cv::Mat bgr(2, 3, CV_8UC3);
+    cv::randu(bgr, 0, 256);
+    EXPECT_EQ(cv::norm(to_bgr(to_image(bgr, "bgr")), bgr, cv::NORM_INF), 0.0);
+    const TempDir dir;
+    ASSERT_TRUE(cv::imwrite(dir.file("grey.png").string(), cv::Mat(2, 2, CV_8UC1, cv::Scalar(7))));
+    const cv::Mat loaded = load_bgr(dir.file("grey.png"));
+    ASSERT_EQ(loaded.type(), CV_8UC3);
+    EXPECT_EQ(loaded.at<cv::Vec3b>(1, 1), cv::Vec3b(7, 7, 7));
+}
+
+// Sets an environment variable for one scope and restores the previous value (or absence).
+class ScopedEnv {
+  public:
+    ScopedEnv(const char* name, const char* value) : name_(name) {
+        if (const char* old = std::getenv(name)) {
+            old_ = old;
+        }
+        ::setenv(name, value, 1);
+    }
+    ~ScopedEnv() {
+        if (old_) {
+            ::setenv(name_, old_->c_str(), 1);
+        } else {
+            ::unsetenv(name_);
+        }
+    }
+    ScopedEnv(const ScopedEnv&) = delete;
+    ScopedEnv& operator=(const ScopedEnv&) = delete;
+
+  private:
+    const char* name_;
+    std::optional<std::string> old_;
+};
+
+TEST(DataDir, EnvironmentOverridesTheBuiltInFolder) {
+    {
+        const ScopedEnv unset("STEREO_DATA_DIR", "");  // empty counts as unset
+        const fs::path built_in = data_dir();
+        EXPECT_TRUE(built_in.is_absolute()) << built_in;
+        const ScopedEnv env("STEREO_DATA_DIR", "/tmp/stereo_data_override");
+        EXPECT_EQ(data_dir(), fs::path("/tmp/stereo_data_override"));
+    }
+    {
+        const ScopedEnv unset("STEREO_ALOE_DIR", "");
+        EXPECT_TRUE(aloe_dir().is_absolute()) << aloe_dir();
+        const ScopedEnv env("STEREO_ALOE_DIR", "/tmp/stereo_aloe_override");
+        EXPECT_EQ(aloe_dir(), fs::path("/tmp/stereo_aloe_override"));
+    }
+}
+
 }  // namespace
-}  // namespace stereo::app
+}  // namespace stereo::io

@@ -9,7 +9,7 @@
 #include "stereo/reference.hpp"
 #include "stereo/stages.hpp"
 #include "stereo/stages/census.hpp"
-#include "test_support.hpp"
+#include "stereo_io/test_support.hpp"
 
 namespace stereo {
 namespace {

@@ -1,4 +1,4 @@
-// Middlebury-style metrics (app/include/stereo_app/metrics.hpp) on a 4x3 example worked out by
+// Middlebury-style metrics (io/include/stereo_io/metrics.hpp) on a 4x3 example worked out by
 // hand. Every expected value below is derived in the comment next to it.
 #include <stdexcept>
 #include <string>
@@ -6,9 +6,9 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "stereo_app/metrics.hpp"
+#include "stereo_io/metrics.hpp"
 
-namespace stereo::app {
+namespace stereo::io {
 namespace {
 
 // Ground truth, 0 = unknown:         Ours, 0 = invalid:            Per pixel (threshold 1):
@@ -211,4 +211,4 @@ TEST(SignedError, CentresOn128WithSixteenLevelsPerPixel) {
 }
 
 }  // namespace
-}  // namespace stereo::app
+}  // namespace stereo::io

@@ -9,9 +9,10 @@
 #include <string>
 
 #include "stereo/reference.hpp"
-#include "stereo_app/middlebury.hpp"
+#include "stereo_io/data_dir.hpp"
+#include "stereo_io/middlebury.hpp"
 
-namespace stereo::app {
+namespace stereo::io {
 namespace {
 
 struct Limits {
@@ -38,13 +39,13 @@ namespace {
 
 class MiddleburyPair : public ::testing::TestWithParam<MiddleburyScene> {
   protected:
-    std::optional<SceneData> load() const { return load_scene(STEREO_DATA_DIR, GetParam()); }
+    std::optional<SceneData> load() const { return load_scene(data_dir(), GetParam()); }
 };
 
 TEST_P(MiddleburyPair, BadPixelsNoWorseThanMeasured) {
     const auto data = load();
     if (!data) {
-        GTEST_SKIP() << GetParam().name << " not found under " << STEREO_DATA_DIR;
+        GTEST_SKIP() << GetParam().name << " not found under " << data_dir().string();
     }
     const MatchParams params{GetParam().ndisp, fx::kDefaultWindow, fx::kDefaultSigma, true};
     const EvalResult result =
@@ -60,7 +61,7 @@ TEST_P(MiddleburyPair, BadPixelsNoWorseThanMeasured) {
 TEST_P(MiddleburyPair, FixedPointStaysCloseToFloatReference) {
     const auto data = load();
     if (!data) {
-        GTEST_SKIP() << GetParam().name << " not found under " << STEREO_DATA_DIR;
+        GTEST_SKIP() << GetParam().name << " not found under " << data_dir().string();
     }
     // Measured: 0.6-2.0 % of pixels differ with CA, 0.5-1.4 % without (docs/results.md).
     for (const bool use_ca : {true, false}) {
@@ -77,4 +78,4 @@ INSTANTIATE_TEST_SUITE_P(Middlebury2003, MiddleburyPair,
                          [](const auto& info) { return info.param.name; });
 
 }  // namespace
-}  // namespace stereo::app
+}  // namespace stereo::io

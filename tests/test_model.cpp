@@ -2,13 +2,14 @@
 // cases whose expected values are worked out in the comments.
 #include <gtest/gtest.h>
 
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
+#include <filesystem>
 #include <random>
 
 #include "stereo/pipeline.hpp"
 #include "stereo/reference.hpp"
-#include "test_support.hpp"
+#include "stereo_io/data_dir.hpp"
+#include "stereo_io/io.hpp"
+#include "stereo_io/test_support.hpp"
 
 namespace stereo {
 namespace {
@@ -114,22 +115,15 @@ TEST(StagesEqualNaive, ConstantAndExtremeImages) {
 }
 
 TEST(StagesEqualNaive, RealPairCrop) {
-    const auto dir = test::data_dir() / "middlebury2003" / "cones";
-    const cv::Mat left_bgr = cv::imread((dir / "left.png").string(), cv::IMREAD_COLOR);
-    const cv::Mat right_bgr = cv::imread((dir / "right.png").string(), cv::IMREAD_COLOR);
-    if (left_bgr.empty() || right_bgr.empty()) {
+    const auto dir = io::data_dir() / "middlebury2003" / "cones";
+    if (!std::filesystem::exists(dir / "left.png") || !std::filesystem::exists(dir / "right.png")) {
         GTEST_SKIP() << "Middlebury cones not found under " << dir;
     }
+    const cv::Mat left_bgr = io::load_bgr(dir / "left.png");
+    const cv::Mat right_bgr = io::load_bgr(dir / "right.png");
     const cv::Rect crop(200, 150, 120, 90);
-    auto to_image = [&](const cv::Mat& bgr) {
-        cv::Mat rgb;
-        cv::cvtColor(bgr(crop), rgb, cv::COLOR_BGR2RGB);
-        Image image(rgb.cols, rgb.rows, 3);
-        std::copy(rgb.datastart, rgb.dataend, image.pixels.begin());
-        return image;
-    };
-    const Image left = to_image(left_bgr);
-    const Image right = to_image(right_bgr);
+    const Image left = io::to_image(left_bgr(crop), "left");
+    const Image right = io::to_image(right_bgr(crop), "right");
     const MatchParams params{40, 11, fx::kDefaultSigma, true};
     EXPECT_TRUE(same_map(naive::match(left, right, params), match(left, right, params)));
 }

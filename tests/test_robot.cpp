@@ -12,10 +12,10 @@
 #include <random>
 #include <stdexcept>
 
+#include "stereo_io/test_support.hpp"
 #include "stereo_robot/calibration.hpp"
 #include "stereo_robot/decision.hpp"
 #include "stereo_robot/windows.hpp"
-#include "test_support.hpp"
 
 namespace stereo::robot {
 namespace {

@@ -14,13 +14,14 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "stereo/pipeline.hpp"
+#include "stereo_io/data_dir.hpp"
+#include "stereo_io/test_support.hpp"
 #include "stereo_robot/slam/dataset.hpp"
 #include "stereo_robot/slam/evaluation.hpp"
 #include "stereo_robot/slam/frontend.hpp"
 #include "stereo_robot/slam/maps.hpp"
 #include "stereo_robot/slam/motion.hpp"
 #include "stereo_robot/slam/pipeline.hpp"
-#include "test_support.hpp"
 
 namespace stereo::robot::slam {
 namespace {
@@ -630,7 +631,7 @@ TEST(Frames, RangeSyntax) {
 // ---- real data (skipped without ../shared/data) -------------------------------------------
 
 TEST(RealData, KittiOdometryOnAShortClip) {
-    const fs::path dir = test::data_dir() / "sequence" / "kitti_sequence_1";
+    const fs::path dir = io::data_dir() / "sequence" / "kitti_sequence_1";
     if (!fs::is_directory(dir)) {
         GTEST_SKIP() << "no KITTI data at " << dir;
     }

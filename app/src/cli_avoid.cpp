@@ -15,7 +15,7 @@
 
 #include "cli.hpp"
 #include "stereo/edge_frontend.hpp"
-#include "stereo_app/io.hpp"
+#include "stereo_io/io.hpp"
 #include "stereo_robot/calibration.hpp"
 #include "stereo_robot/decision.hpp"
 #include "stereo_robot/overlay.hpp"
@@ -85,19 +85,6 @@ std::vector<robot::FramePair> frames(const AvoidOptions& o, bool& sequence) {
         return robot::pairs_from_folders(o.left, o.right);
     }
     return {{o.left, o.right}};
-}
-
-cv::Mat to_bgr(const Image& image) {
-    const int type = image.channels == 1 ? CV_8UC1 : CV_8UC3;
-    const cv::Mat wrapped(image.height, image.width, type,
-                          const_cast<std::uint8_t*>(image.pixels.data()));
-    cv::Mat bgr;
-    if (image.channels == 1) {
-        cv::cvtColor(wrapped, bgr, cv::COLOR_GRAY2BGR);
-    } else {
-        cv::cvtColor(wrapped, bgr, cv::COLOR_RGB2BGR);
-    }
-    return bgr;
 }
 
 nlohmann::json occupancy_json(const std::array<robot::WindowStats, 3>& stats) {
@@ -173,7 +160,7 @@ void run_avoid(const AvoidOptions& o) {
     bool sequence = false;
     const auto pairs = frames(o, sequence);
     if (!o.overlay.empty()) {
-        app::check_writable_location(o.overlay);
+        io::check_writable_location(o.overlay);
     }
     std::optional<robot::SequenceWriter> writer;
     if (sequence && !o.overlay.empty()) {
@@ -182,7 +169,7 @@ void run_avoid(const AvoidOptions& o) {
 
     for (const auto& [left_path, right_path] : pairs) {
         const auto start = std::chrono::steady_clock::now();
-        const app::ImagePair pair = app::load_pair(left_path, right_path, o.downscale);
+        const io::ImagePair pair = io::load_pair(left_path, right_path, o.downscale);
         const DisparityMap map = edge_frontend::match(pair.left, pair.right, o.params, o.edges);
         FrameResult result = decide(o, map, threshold);
         const std::chrono::duration<double, std::milli> elapsed =
@@ -200,12 +187,12 @@ void run_avoid(const AvoidOptions& o) {
         }
         if (!o.overlay.empty()) {
             result.overlay.caption = left_path.filename().string() + " " + result.overlay.caption;
-            const cv::Mat picture = robot::draw_overlay(to_bgr(pair.left), map, threshold,
+            const cv::Mat picture = robot::draw_overlay(io::to_bgr(pair.left), map, threshold,
                                                         o.threshold_params.border, result.overlay);
             if (writer) {
                 writer->add(picture);
             } else {
-                app::write_png(o.overlay, picture);
+                io::write_png(o.overlay, picture);
             }
         }
     }

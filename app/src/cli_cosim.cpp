@@ -13,7 +13,7 @@
 
 #include "cli.hpp"
 #include "stereo/pipeline.hpp"
-#include "stereo_app/io.hpp"
+#include "stereo_io/io.hpp"
 #include "stereo_top_sim.hpp"
 
 namespace stereo::cli {
@@ -46,7 +46,7 @@ Image crop_image(const Image& image, int x0, int y0, int width, int height) {
     return out;
 }
 
-app::ImagePair apply_crop(app::ImagePair pair, const std::string& geometry) {
+io::ImagePair apply_crop(io::ImagePair pair, const std::string& geometry) {
     if (geometry.empty()) {
         return pair;
     }
@@ -87,10 +87,10 @@ void run_cosim(const CosimOptions& options) {
                                     std::to_string(options.downscale));
     }
     if (!options.output.empty()) {
-        app::check_writable_location(options.output);
+        io::check_writable_location(options.output);
     }
-    const app::ImagePair pair =
-        apply_crop(app::load_pair(options.left, options.right, options.downscale), options.crop);
+    const io::ImagePair pair =
+        apply_crop(io::load_pair(options.left, options.right, options.downscale), options.crop);
     const int width = pair.left.width;
     const int height = pair.left.height;
     validate(params, width, height);
@@ -109,7 +109,7 @@ void run_cosim(const CosimOptions& options) {
 
     const auto sim = sim::make_top_sim(*config);
     if (!options.trace.empty()) {
-        app::check_writable_location(options.trace);
+        io::check_writable_location(options.trace);
         sim->trace_to(options.trace);
     }
     sim->reset();
@@ -146,7 +146,7 @@ void run_cosim(const CosimOptions& options) {
         }
     }
     if (!options.output.empty()) {
-        app::write_png(options.output, app::disparity_to_mat(rtl, params.ndisp, 1));
+        io::write_png(options.output, io::disparity_to_mat(rtl, params.ndisp, 1));
     }
 
     const std::size_t pixels = beats.size();

@@ -14,8 +14,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include "cli.hpp"
-#include "stereo_app/distortion.hpp"
-#include "stereo_app/io.hpp"
+#include "stereo_io/distortion.hpp"
+#include "stereo_io/io.hpp"
 
 namespace stereo::cli {
 
@@ -25,7 +25,7 @@ namespace fs = std::filesystem;
 struct DistortOptions {
     std::string scene;
     std::string output;
-    app::PairWarp warp{10.0, 0.0, 0.0};
+    io::PairWarp warp{10.0, 0.0, 0.0};
     double gt_scale = 1.0;
     std::string gt_mode = "warped";  // or "exact"
 };
@@ -65,17 +65,17 @@ void run_distort(const DistortOptions& options) {
     const cv::Mat left = read_colour(scene / "left.png");
     const cv::Mat right = read_colour(scene / "right.png");
     check_size(right, left, scene / "right.png");
-    const app::PairTransform transform(left.cols, left.rows, options.warp);  // checks the warp
+    const io::PairTransform transform(left.cols, left.rows, options.warp);  // checks the warp
 
     // Everything is computed and encoded in memory before the first file is written.
     std::vector<std::pair<std::string, cv::Mat>> files = {
-        {"left.png", app::warp_left(left, transform, cv::INTER_LINEAR)},
-        {"right.png", app::warp_right(right, transform, cv::INTER_LINEAR)}};
+        {"left.png", io::warp_left(left, transform, cv::INTER_LINEAR)},
+        {"right.png", io::warp_right(right, transform, cv::INTER_LINEAR)}};
     if (fs::exists(scene / "gt.png")) {
-        const cv::Mat gt = app::load_disparity(scene / "gt.png", options.gt_scale);
+        const cv::Mat gt = io::load_disparity(scene / "gt.png", options.gt_scale);
         check_size(gt, left, scene / "gt.png");
-        const cv::Mat warped = options.gt_mode == "exact" ? app::exact_ground_truth(gt, transform)
-                                                          : app::warp_ground_truth(gt, transform);
+        const cv::Mat warped = options.gt_mode == "exact" ? io::exact_ground_truth(gt, transform)
+                                                          : io::warp_ground_truth(gt, transform);
         cv::Mat stored;
         warped.convertTo(stored, CV_16UC1, options.gt_scale);  // rounds to 1/scale
         double max = 0;
@@ -87,14 +87,14 @@ void run_distort(const DistortOptions& options) {
     }
     for (const char* mask : {"nonocc.png", "all.png", "disc.png"}) {
         if (fs::exists(scene / mask)) {
-            const cv::Mat loaded = app::load_mask(scene / mask);
+            const cv::Mat loaded = io::load_mask(scene / mask);
             check_size(loaded, left, scene / mask);
-            files.emplace_back(mask, app::warp_left(loaded, transform, cv::INTER_NEAREST));
+            files.emplace_back(mask, io::warp_left(loaded, transform, cv::INTER_NEAREST));
         }
     }
     fs::create_directories(out);
     for (const auto& [name, mat] : files) {
-        app::write_png(out / name, mat);
+        io::write_png(out / name, mat);
     }
     std::cout << "wrote " << files.size() << " files to " << options.output << " (distortion "
               << options.warp.distortion_percent << " %, right shift " << options.warp.right_shift_y

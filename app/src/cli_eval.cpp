@@ -1,4 +1,4 @@
-// `stereo eval DISP.png GT.png [options]`: Middlebury-style scores (see stereo_app/metrics.hpp).
+// `stereo eval DISP.png GT.png [options]`: Middlebury-style scores (see stereo_io/metrics.hpp).
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -12,8 +12,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli.hpp"
-#include "stereo_app/io.hpp"
-#include "stereo_app/metrics.hpp"
+#include "stereo_io/io.hpp"
+#include "stereo_io/metrics.hpp"
 
 namespace stereo::cli {
 
@@ -46,16 +46,16 @@ void require_positive(double value, const std::string& option) {
     }
 }
 
-std::optional<app::NamedMat> load_optional_mask(const std::string& path, const std::string& role,
-                                                int downscale) {
+std::optional<io::NamedMat> load_optional_mask(const std::string& path, const std::string& role,
+                                               int downscale) {
     if (path.empty()) {
         return std::nullopt;
     }
-    return app::NamedMat{app::downscale_mask(app::load_mask(path), downscale),
-                         role + " mask " + quoted(path)};
+    return io::NamedMat{io::downscale_mask(io::load_mask(path), downscale),
+                        role + " mask " + quoted(path)};
 }
 
-void print_region(const char* label, const std::optional<app::RegionScore>& score,
+void print_region(const char* label, const std::optional<io::RegionScore>& score,
                   const char* missing_option) {
     if (!score.has_value()) {
         std::printf("%-11s n/a (no %s mask)\n", label, missing_option);
@@ -67,7 +67,7 @@ void print_region(const char* label, const std::optional<app::RegionScore>& scor
     }
 }
 
-void print_text(const app::EvalResult& result) {
+void print_text(const io::EvalResult& result) {
     std::printf("threshold   %g\n", result.threshold);
     print_region("bad_nonocc", result.nonocc, "--nonocc");
     print_region("bad_all", result.all, "--all");
@@ -100,13 +100,13 @@ void run_eval(const EvalOptions& options) {
                                     std::to_string(options.gt_downscale));
     }
     if (!options.error_map.empty()) {
-        app::check_writable_location(options.error_map);
+        io::check_writable_location(options.error_map);
     }
-    app::EvalInput input{
-        .disparity = {app::load_disparity(options.disparity, options.scale),
+    io::EvalInput input{
+        .disparity = {io::load_disparity(options.disparity, options.scale),
                       "disparity " + quoted(options.disparity)},
-        .ground_truth = {app::downscale_ground_truth(
-                             app::load_disparity(options.ground_truth, options.gt_scale),
+        .ground_truth = {io::downscale_ground_truth(
+                             io::load_disparity(options.ground_truth, options.gt_scale),
                              options.gt_downscale),
                          "ground truth " + quoted(options.ground_truth)},
         .nonocc = load_optional_mask(options.nonocc, "nonocc", options.gt_downscale),
@@ -114,9 +114,9 @@ void run_eval(const EvalOptions& options) {
         .disc = load_optional_mask(options.disc, "disc", options.gt_downscale),
         .threshold = options.threshold,
     };
-    const app::EvalResult result = app::evaluate(input);  // checks every size first
+    const io::EvalResult result = io::evaluate(input);  // checks every size first
     if (!options.error_map.empty()) {
-        app::write_png(options.error_map, app::error_map(input));
+        io::write_png(options.error_map, io::error_map(input));
     }
     if (options.json) {
         const nlohmann::json json = result;

@@ -22,9 +22,10 @@
 #include "cli.hpp"
 #include "stereo/hierarchical.hpp"
 #include "stereo/pipeline.hpp"
-#include "stereo_app/distortion.hpp"
-#include "stereo_app/io.hpp"
-#include "stereo_app/middlebury.hpp"
+#include "stereo_io/data_dir.hpp"
+#include "stereo_io/distortion.hpp"
+#include "stereo_io/io.hpp"
+#include "stereo_io/middlebury.hpp"
 
 namespace stereo::cli {
 
@@ -33,7 +34,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 struct EvalOptions {
-    std::string data = STEREO_DATA_DIR;
+    std::string data = io::data_dir().string();
     std::string markdown;
     std::string json_path;
     std::string figures;
@@ -67,22 +68,22 @@ struct MethodOutput {
     hierarchical::Result hierarchical;
 };
 
-MethodOutput run_method(const std::string& method, const app::SceneData& data) {
+MethodOutput run_method(const std::string& method, const io::SceneData& data) {
     if (method == "hierarchical") {
         hierarchical::Result result = hierarchical::match(data.pair.left, data.pair.right,
                                                           hierarchical_params(data.scene.ndisp));
-        cv::Mat disparity = app::to_float_disparity(result.disparity);
+        cv::Mat disparity = io::to_float_disparity(result.disparity);
         return {disparity, std::move(result)};
     }
     if (method == "pipeline") {
         MatchParams params;
         params.ndisp = data.scene.ndisp;
-        return {app::to_float_disparity(match(data.pair.left, data.pair.right, params)), {}};
+        return {io::to_float_disparity(match(data.pair.left, data.pair.right, params)), {}};
     }
-    return {app::run_stereo_sgbm(data), {}};
+    return {io::run_stereo_sgbm(data), {}};
 }
 
-json score(const app::EvalResult& result) {
+json score(const io::EvalResult& result) {
     return {
         {"nmse", result.nmse ? json(*result.nmse) : json(nullptr)},
         {"bad_nonocc", result.nonocc && result.nonocc->percent() ? json(*result.nonocc->percent())
@@ -92,10 +93,10 @@ json score(const app::EvalResult& result) {
 
 // One case: all three methods on a (warped) scene, scored against the thesis-style GT and, for
 // warped scenes, against the exact GT as well.
-json run_case(const app::SceneData& original, const app::PairWarp& warp, const std::string& tag,
+json run_case(const io::SceneData& original, const io::PairWarp& warp, const std::string& tag,
               cv::Mat* hierarchical_disparity = nullptr, cv::Mat* hierarchical_vertical = nullptr,
               cv::Mat* left_view = nullptr) {
-    const app::WarpedScene warped = app::warp_scene(original, warp);
+    const io::WarpedScene warped = io::warp_scene(original, warp);
     json row = {{"scene", original.scene.name},
                 {"case", tag},
                 {"distortion", warp.distortion_percent},
@@ -105,10 +106,10 @@ json run_case(const app::SceneData& original, const app::PairWarp& warp, const s
         const auto start = std::chrono::steady_clock::now();
         const MethodOutput out = run_method(method, warped.data);
         const double ms = milliseconds_since(start);
-        json entry = score(app::evaluate_scene(warped.data, out.disparity));
-        app::SceneData exact = warped.data;
+        json entry = score(io::evaluate_scene(warped.data, out.disparity));
+        io::SceneData exact = warped.data;
         exact.ground_truth = warped.exact_ground_truth;
-        entry["exact"] = score(app::evaluate_scene(exact, out.disparity));
+        entry["exact"] = score(io::evaluate_scene(exact, out.disparity));
         entry["ms"] = ms;
         row[method] = entry;
         if (method == "hierarchical" && hierarchical_disparity != nullptr) {
@@ -157,8 +158,7 @@ json count_row(const std::string& name, const Image& left, const Image& right, i
         const hierarchical::Result full = hierarchical::full_search(left, right, params);
         row["full_ms"] = milliseconds_since(start);
         row["full_per_pixel"] = full.cost_evaluations.total() / pixels;
-        row["full_vs_hierarchical_disagreement"] =
-            app::disagreement(full.disparity, fast.disparity);
+        row["full_vs_hierarchical_disagreement"] = io::disagreement(full.disparity, fast.disparity);
     }
     std::cerr << name << " D=" << d << ": " << row.dump() << '\n';
     return row;
@@ -249,7 +249,7 @@ cv::Mat plot_sweep(const json& sweep) {
 // Left image, disparity (turbo, 0..ndisp-1) and vertical offset (turbo, -4..+4 px) side by side.
 cv::Mat maps_figure(const cv::Mat& left, const cv::Mat& disparity, const cv::Mat& vertical,
                     int ndisp) {
-    const cv::Mat disparity_view = app::float_disparity_to_colour(disparity, ndisp);
+    const cv::Mat disparity_view = io::float_disparity_to_colour(disparity, ndisp);
     cv::Mat vertical_grey(vertical.size(), CV_8UC1, cv::Scalar(0));
     cv::Mat unknown(vertical.size(), CV_8UC1, cv::Scalar(0));
     for (int y = 0; y < vertical.rows; ++y) {
@@ -361,19 +361,19 @@ std::string markdown_report(const json& report) {
 void run_eval(const EvalOptions& options) {
     for (const std::string& path : {options.markdown, options.json_path}) {
         if (!path.empty()) {
-            app::check_writable_location(path);
+            io::check_writable_location(path);
         }
     }
     if (!options.figures.empty() && !fs::is_directory(options.figures)) {
         throw std::runtime_error("figures folder \"" + options.figures + "\" does not exist");
     }
-    std::vector<app::SceneData> scenes;
-    for (const auto& scene : app::middlebury2003_scenes()) {
-        auto data = app::load_scene(options.data, scene);
+    std::vector<io::SceneData> scenes;
+    for (const auto& scene : io::middlebury2003_scenes()) {
+        auto data = io::load_scene(options.data, scene);
         if (!data) {
             throw std::runtime_error("Middlebury 2003 scene \"" + scene.name +
                                      "\" not found under " +
-                                     app::scene_dir(options.data, scene).string());
+                                     io::scene_dir(options.data, scene).string());
         }
         scenes.push_back(std::move(*data));
     }
@@ -388,7 +388,7 @@ void run_eval(const EvalOptions& options) {
         report["pairs"].push_back(run_case(scene, {0.0, 0.0, 0.0}, "original"));
         report["pairs"].push_back(run_case(scene, {10.0, 0.0, 0.0}, "distortion 10 %"));
     }
-    const app::SceneData& tsukuba = scenes.front();
+    const io::SceneData& tsukuba = scenes.front();
     for (int step = 0; step <= 6; ++step) {
         const double percent = 2.5 * step;
         if (step == 4) {
@@ -424,9 +424,9 @@ void run_eval(const EvalOptions& options) {
     }
     if (!options.figures.empty()) {
         const fs::path dir(options.figures);
-        app::write_png(dir / "nmse_vs_distortion.png", plot_sweep(report["sweep"]));
-        app::write_png(dir / "tsukuba_distorted_10_maps.png",
-                       maps_figure(figure_left, figure_disparity, figure_vertical, 16));
+        io::write_png(dir / "nmse_vs_distortion.png", plot_sweep(report["sweep"]));
+        io::write_png(dir / "tsukuba_distorted_10_maps.png",
+                      maps_figure(figure_left, figure_disparity, figure_vertical, 16));
     }
 }
 

@@ -14,7 +14,7 @@
 #include "cli.hpp"
 #include "cli_matcher_options.hpp"
 #include "stereo/hierarchical.hpp"
-#include "stereo_app/io.hpp"
+#include "stereo_io/io.hpp"
 
 namespace stereo::cli {
 
@@ -90,8 +90,8 @@ std::vector<std::pair<std::string, cv::Mat>> level_files(const MatchResult& resu
         }
         const std::string name = kNames[l];
         files.emplace_back(name + "_disparity.png",
-                           app::disparity_to_mat(level_map, level_ndisp, scale));
-        files.emplace_back(name + "_color.png", app::disparity_to_colour(level_map, level_ndisp));
+                           io::disparity_to_mat(level_map, level_ndisp, scale));
+        files.emplace_back(name + "_color.png", io::disparity_to_colour(level_map, level_ndisp));
         files.emplace_back(name + "_vertical.png", vertical_to_mat(level.vertical, level.valid,
                                                                    level.width, level.height));
     }
@@ -126,17 +126,17 @@ void run_match(const MatchOptions& options) {
 
     // Everything that can be checked cheaply is checked before loading and matching, and all
     // outputs are encoded before the first file is written.
-    app::check_disparity_scale(ndisp, options.scale);
-    app::check_writable_location(options.output);
+    io::check_disparity_scale(ndisp, options.scale);
+    io::check_writable_location(options.output);
     for (const std::string& extra : {options.colour, options.vertical}) {
         if (!extra.empty()) {
-            app::check_writable_location(extra);
+            io::check_writable_location(extra);
         }
     }
     if (!options.dump_levels.empty()) {
         check_dump_folder(options.dump_levels);
     }
-    const app::ImagePair pair = app::load_pair(options.left, options.right, options.downscale);
+    const io::ImagePair pair = io::load_pair(options.left, options.right, options.downscale);
     matcher->validate(pair.left.width, pair.left.height);
 
     const auto start = std::chrono::steady_clock::now();
@@ -145,9 +145,9 @@ void run_match(const MatchOptions& options) {
         std::chrono::steady_clock::now() - start;
 
     const DisparityMap& map = result.disparity;
-    const cv::Mat stored = app::disparity_to_mat(map, ndisp, options.scale);
+    const cv::Mat stored = io::disparity_to_mat(map, ndisp, options.scale);
     const cv::Mat colour =
-        options.colour.empty() ? cv::Mat() : app::disparity_to_colour(map, ndisp);
+        options.colour.empty() ? cv::Mat() : io::disparity_to_colour(map, ndisp);
     cv::Mat vertical;
     if (!options.vertical.empty() && !result.levels.empty()) {
         const Winners& full = result.levels.back();
@@ -156,17 +156,17 @@ void run_match(const MatchOptions& options) {
     const auto levels = options.dump_levels.empty()
                             ? std::vector<std::pair<std::string, cv::Mat>>{}
                             : level_files(result, ndisp, options.scale);
-    app::write_png(options.output, stored);
+    io::write_png(options.output, stored);
     if (!colour.empty()) {
-        app::write_png(options.colour, colour);
+        io::write_png(options.colour, colour);
     }
     if (!vertical.empty()) {
-        app::write_png(options.vertical, vertical);
+        io::write_png(options.vertical, vertical);
     }
     if (!levels.empty()) {
         std::filesystem::create_directories(options.dump_levels);
         for (const auto& [name, mat] : levels) {
-            app::write_png(std::filesystem::path(options.dump_levels) / name, mat);
+            io::write_png(std::filesystem::path(options.dump_levels) / name, mat);
         }
     }
 

@@ -19,21 +19,16 @@
 
 #include "cli.hpp"
 #include "stereo/reference.hpp"
-#include "stereo_app/middlebury.hpp"
+#include "stereo_io/data_dir.hpp"
+#include "stereo_io/middlebury.hpp"
 
 namespace stereo::cli {
 namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-#ifdef STEREO_DATA_DIR
-constexpr const char* kDefaultDataDir = STEREO_DATA_DIR;
-#else
-constexpr const char* kDefaultDataDir = "../shared/data";
-#endif
-
 struct Options {
-    std::string data_dir = kDefaultDataDir;
+    std::string data_dir = io::data_dir().string();
     std::string figures;
     std::string markdown;
     std::string json;
@@ -52,7 +47,7 @@ constexpr ThesisFigures kThesis[] = {{"tsukuba", 10.3, 12.3, 23.5, 0.0627, 0.059
                                      {"teddy", 24.5, 31.5, 35.2, 0.1149, 0.1108},
                                      {"cones", 20.6, 28.8, 31.1, 0.0809, 0.0768}};
 
-std::string percent(const std::optional<app::RegionScore>& score) {
+std::string percent(const std::optional<io::RegionScore>& score) {
     if (!score || !score->percent()) {
         return "-";
     }
@@ -80,16 +75,16 @@ auto timed(Function&& function, double& milliseconds) {
 
 // One strip per scene: left, ground truth, ours, signed error, bad pixels; half size so the
 // figure stays small (the source images are not redistributed at full size).
-void write_figure(const app::SceneData& data, const cv::Mat& ours, const fs::path& path) {
+void write_figure(const io::SceneData& data, const cv::Mat& ours, const fs::path& path) {
     const int ndisp = data.scene.ndisp;
-    app::EvalInput input{{ours, "ours"}, data.ground_truth};
+    io::EvalInput input{{ours, "ours"}, data.ground_truth};
     input.all = data.all;
-    const cv::Mat signed_grey = app::signed_error_image({ours, "ours"}, data.ground_truth);
+    const cv::Mat signed_grey = io::signed_error_image({ours, "ours"}, data.ground_truth);
     cv::Mat signed_bgr;
     cv::cvtColor(signed_grey, signed_bgr, cv::COLOR_GRAY2BGR);
     const std::vector<cv::Mat> panels = {
-        data.left_bgr, app::float_disparity_to_colour(data.ground_truth.mat, ndisp),
-        app::float_disparity_to_colour(ours, ndisp), signed_bgr, app::error_map(input)};
+        data.left_bgr, io::float_disparity_to_colour(data.ground_truth.mat, ndisp),
+        io::float_disparity_to_colour(ours, ndisp), signed_bgr, io::error_map(input)};
     std::vector<cv::Mat> halves;
     for (const cv::Mat& panel : panels) {
         cv::Mat half;
@@ -98,12 +93,12 @@ void write_figure(const app::SceneData& data, const cv::Mat& ours, const fs::pat
     }
     cv::Mat strip;
     cv::hconcat(halves, strip);
-    app::write_png(path, strip);
+    io::write_png(path, strip);
 }
 
 struct MethodRow {
     std::string method;
-    app::EvalResult result;
+    io::EvalResult result;
     double ms;
 };
 
@@ -127,11 +122,11 @@ void run_report(const Options& options) {
     nlohmann::json json = nlohmann::json::array();
     int scenes_found = 0;
 
-    for (const auto& scene : app::middlebury2003_scenes()) {
-        const auto data = app::load_scene(data_dir, scene);
+    for (const auto& scene : io::middlebury2003_scenes()) {
+        const auto data = io::load_scene(data_dir, scene);
         if (!data) {
             std::cerr << "stereo middlebury: " << scene.name << " not found under "
-                      << app::scene_dir(data_dir, scene) << ", skipped\n";
+                      << io::scene_dir(data_dir, scene) << ", skipped\n";
             continue;
         }
         ++scenes_found;
@@ -143,22 +138,22 @@ void run_report(const Options& options) {
         double ms = 0.0;
         const DisparityMap model_ca =
             timed([&] { return match(data->pair.left, data->pair.right, with_ca); }, ms);
-        const cv::Mat model_ca_f = app::to_float_disparity(model_ca);
-        rows.push_back({"model, CA", app::evaluate_scene(*data, model_ca_f), ms});
+        const cv::Mat model_ca_f = io::to_float_disparity(model_ca);
+        rows.push_back({"model, CA", io::evaluate_scene(*data, model_ca_f), ms});
         const DisparityMap model_no_ca =
             timed([&] { return match(data->pair.left, data->pair.right, without_ca); }, ms);
         rows.push_back(
-            {"model, no CA", app::evaluate_scene(*data, app::to_float_disparity(model_no_ca)), ms});
-        const cv::Mat bm = timed([&] { return app::run_stereo_bm(*data, options.window); }, ms);
-        rows.push_back({"OpenCV StereoBM", app::evaluate_scene(*data, bm), ms});
-        const cv::Mat sgbm = timed([&] { return app::run_stereo_sgbm(*data); }, ms);
-        rows.push_back({"OpenCV StereoSGBM", app::evaluate_scene(*data, sgbm), ms});
+            {"model, no CA", io::evaluate_scene(*data, io::to_float_disparity(model_no_ca)), ms});
+        const cv::Mat bm = timed([&] { return io::run_stereo_bm(*data, options.window); }, ms);
+        rows.push_back({"OpenCV StereoBM", io::evaluate_scene(*data, bm), ms});
+        const cv::Mat sgbm = timed([&] { return io::run_stereo_sgbm(*data); }, ms);
+        rows.push_back({"OpenCV StereoSGBM", io::evaluate_scene(*data, sgbm), ms});
 
         const DisparityMap float_ca = floating::match(data->pair.left, data->pair.right, with_ca);
         const DisparityMap float_no_ca =
             floating::match(data->pair.left, data->pair.right, without_ca);
-        const double differ_ca = app::disagreement(model_ca, float_ca);
-        const double differ_no_ca = app::disagreement(model_no_ca, float_no_ca);
+        const double differ_ca = io::disagreement(model_ca, float_ca);
+        const double differ_no_ca = io::disagreement(model_no_ca, float_no_ca);
         char line[160];
         std::snprintf(line, sizeof line, "| %s | %.2f %% | %.2f %% |\n", scene.name.c_str(),
                       100.0 * differ_ca, 100.0 * differ_no_ca);
@@ -211,17 +206,17 @@ void run_report(const Options& options) {
 void run_sweep(const Options& options) {
     std::ostringstream md;
     md << "| sigma |";
-    for (const auto& scene : app::middlebury2003_scenes()) {
+    for (const auto& scene : io::middlebury2003_scenes()) {
         md << ' ' << scene.name << " nonocc/all/disc |";
     }
     md << " mean nonocc | mean all | mean disc | mean of the three |\n|---|";
-    for (std::size_t i = 0; i < app::middlebury2003_scenes().size() + 4; ++i) {
+    for (std::size_t i = 0; i < io::middlebury2003_scenes().size() + 4; ++i) {
         md << "---|";
     }
     md << '\n';
-    std::vector<app::SceneData> scenes;
-    for (const auto& scene : app::middlebury2003_scenes()) {
-        if (auto data = app::load_scene(options.data_dir, scene)) {
+    std::vector<io::SceneData> scenes;
+    for (const auto& scene : io::middlebury2003_scenes()) {
+        if (auto data = io::load_scene(options.data_dir, scene)) {
             scenes.push_back(std::move(*data));
         }
     }
@@ -233,8 +228,8 @@ void run_sweep(const Options& options) {
         md << "| " << sigma << " |";
         for (const auto& data : scenes) {
             const MatchParams params{data.scene.ndisp, options.window, sigma, true};
-            const app::EvalResult r = app::evaluate_scene(
-                data, app::to_float_disparity(match(data.pair.left, data.pair.right, params)));
+            const io::EvalResult r = io::evaluate_scene(
+                data, io::to_float_disparity(match(data.pair.left, data.pair.right, params)));
             const double values[3] = {*r.nonocc->percent(), *r.all.percent(), *r.disc->percent()};
             char cell[64];
             std::snprintf(cell, sizeof cell, " %.2f / %.2f / %.2f |", values[0], values[1],

@@ -17,7 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli.hpp"
-#include "stereo_app/io.hpp"
+#include "stereo_io/io.hpp"
 #include "stereo_robot/slam/dataset.hpp"
 #include "stereo_robot/slam/evaluation.hpp"
 #include "stereo_robot/slam/pipeline.hpp"
@@ -149,7 +149,7 @@ void run_slam(const SlamOptions& o) {
     }
     for (const std::string& output : {o.map, o.trajectory, o.vdisparity}) {
         if (!output.empty()) {
-            app::check_writable_location(output);
+            io::check_writable_location(output);
         }
     }
 
@@ -262,10 +262,10 @@ void run_slam(const SlamOptions& o) {
             paths.push_back({truth_path, cv::Scalar(0, 170, 0)});
         }
         paths.push_back({estimate_path, cv::Scalar(0, 0, 255)});
-        app::write_png(o.map, slam::render_map(cleaned, o.params.cell_size, paths));
+        io::write_png(o.map, slam::render_map(cleaned, o.params.cell_size, paths));
     }
     if (!o.vdisparity.empty()) {
-        app::write_png(o.vdisparity, vdisparity_picture);
+        io::write_png(o.vdisparity, vdisparity_picture);
     }
     if (!o.trajectory.empty()) {
         write_text(o.trajectory, slam::format_kitti_poses(estimate));

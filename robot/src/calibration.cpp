@@ -8,32 +8,20 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "stereo_io/io.hpp"
+
 namespace stereo::robot {
 namespace fs = std::filesystem;
 namespace {
 
 using Projection = std::array<double, 12>;
 
-bool is_image_file(const fs::path& path) {
-    std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".ppm" || ext == ".pgm" ||
-           ext == ".bmp" || ext == ".tif" || ext == ".tiff";
-}
-
+// io::image_file_names with this function's own message for a missing folder.
 std::vector<std::string> image_names(const fs::path& folder) {
     if (!fs::is_directory(folder)) {
         throw std::runtime_error("cannot read folder " + folder.string());
     }
-    std::vector<std::string> names;
-    for (const auto& entry : fs::directory_iterator(folder)) {
-        if (entry.is_regular_file() && is_image_file(entry.path())) {
-            names.push_back(entry.path().filename().string());
-        }
-    }
-    std::sort(names.begin(), names.end());
-    return names;
+    return io::image_file_names(folder);
 }
 
 }  // namespace

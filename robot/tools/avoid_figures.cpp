@@ -8,14 +8,15 @@
 #include <string>
 #include <vector>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "stereo_io/io.hpp"
 #include "stereo_robot/decision.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
+namespace io = stereo::io;
 using stereo::robot::FisParams;
 using stereo::robot::Gaussian;
 
@@ -147,9 +148,7 @@ cv::Mat surface(double right, const FisParams& params) {
 }
 
 void save(const fs::path& path, const cv::Mat& img) {
-    if (!cv::imwrite(path.string(), img)) {
-        throw std::runtime_error("cannot write " + path.string());
-    }
+    io::write_png(path, img);
     std::cout << path.string() << '\n';
 }
 

@@ -13,9 +13,12 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "stereo_io/io.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
+namespace io = stereo::io;
 
 constexpr int kWidth = 64;
 constexpr int kHeight = 32;
@@ -42,12 +45,6 @@ cv::Mat shifted(const cv::Mat& left, int shift) {
     return right;
 }
 
-void write(const fs::path& path, const cv::Mat& image) {
-    if (!cv::imwrite(path.string(), image)) {
-        throw std::runtime_error("cannot write " + path.string());
-    }
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -61,13 +58,14 @@ int main(int argc, char** argv) {
         std::mt19937 rng(20240611U);
 
         const cv::Mat left = random_texture(kWidth, kHeight, rng);
-        write(dir / "left.png", left);
-        write(dir / "right.png", shifted(left, kShift));
-        write(dir / "right_wide.png", random_texture(kWidth + 8, kHeight, rng));
+        io::write_png(dir / "left.png", left);
+        io::write_png(dir / "right.png", shifted(left, kShift));
+        io::write_png(dir / "right_wide.png", random_texture(kWidth + 8, kHeight, rng));
         const cv::Mat tiny = random_texture(12, 8, rng);
-        write(dir / "tiny_left.png", tiny);
-        write(dir / "tiny_right.png", shifted(tiny, 1));
-        write(dir / "deep.png", cv::Mat(kHeight, kWidth, CV_16UC3, cv::Scalar(1000, 2000, 3000)));
+        io::write_png(dir / "tiny_left.png", tiny);
+        io::write_png(dir / "tiny_right.png", shifted(tiny, 1));
+        io::write_png(dir / "deep.png",
+                      cv::Mat(kHeight, kWidth, CV_16UC3, cv::Scalar(1000, 2000, 3000)));
         std::ofstream(dir / "not_an_image.png") << "plain text, not a PNG\n";
         // A PNG cut in half: libpng complains on stderr unless `stereo` keeps it quiet.
         std::vector<uchar> png;
@@ -77,10 +75,11 @@ int main(int argc, char** argv) {
                    static_cast<std::streamsize>(png.size() / 2));
 
         // Ground truth and masks for `stereo eval`: the true shift everywhere, stored times 4.
-        write(dir / "gt.png", cv::Mat(kHeight, kWidth, CV_8UC1, cv::Scalar(kShift * 4)));
-        write(dir / "gt_narrow.png", cv::Mat(kHeight, kWidth - 4, CV_8UC1, cv::Scalar(16)));
-        write(dir / "mask.png", cv::Mat(kHeight, kWidth, CV_8UC1, cv::Scalar(255)));
-        write(dir / "mask_short.png", cv::Mat(kHeight - 2, kWidth, CV_8UC1, cv::Scalar(255)));
+        io::write_png(dir / "gt.png", cv::Mat(kHeight, kWidth, CV_8UC1, cv::Scalar(kShift * 4)));
+        io::write_png(dir / "gt_narrow.png", cv::Mat(kHeight, kWidth - 4, CV_8UC1, cv::Scalar(16)));
+        io::write_png(dir / "mask.png", cv::Mat(kHeight, kWidth, CV_8UC1, cv::Scalar(255)));
+        io::write_png(dir / "mask_short.png",
+                      cv::Mat(kHeight - 2, kWidth, CV_8UC1, cv::Scalar(255)));
         return EXIT_SUCCESS;
     } catch (const std::exception& error) {
         std::cerr << "make_cli_fixtures: " << error.what() << '\n';

@@ -11,11 +11,13 @@
 #include <string>
 
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
+
+#include "stereo_io/io.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
+namespace io = stereo::io;
 
 constexpr int kWidth = 96;
 constexpr int kHeight = 48;
@@ -26,12 +28,6 @@ const char* kCalib =
     "P0: 100 0 48 0 0 100 24 0 0 0 1 0\n"
     "P1: 100 0 48 -50 0 100 24 0 0 0 1 0\n";
 const char* kIdentity = "1 0 0 0 0 1 0 0 0 0 1 0\n";
-
-void write(const fs::path& path, const cv::Mat& image) {
-    if (!cv::imwrite(path.string(), image)) {
-        throw std::runtime_error("cannot write " + path.string());
-    }
-}
 
 std::string frame_name(int i) {
     char name[16];
@@ -51,10 +47,10 @@ void make_sequence(const fs::path& dir, int left_frames, int right_frames, std::
         const cv::Mat left = world(cv::Rect(2 * i + kShift, 0, kWidth, kHeight)).clone();
         const cv::Mat right = world(cv::Rect(2 * i, 0, kWidth, kHeight)).clone();
         if (i < left_frames) {
-            write(dir / "image_l" / frame_name(i), left);
+            io::write_png(dir / "image_l" / frame_name(i), left);
         }
         if (i < right_frames) {
-            write(dir / "image_r" / frame_name(i), right);
+            io::write_png(dir / "image_r" / frame_name(i), right);
         }
     }
     std::ofstream(dir / "calib.txt") << kCalib;
@@ -90,7 +86,8 @@ int main(int argc, char** argv) {
         make_sequence(dir / "corrupt_right", kFrames, kFrames, rng);
         std::ofstream(dir / "corrupt_right" / "image_r" / frame_name(kFrames - 1)) << "not a PNG\n";
         make_sequence(dir / "odd_size", kFrames, kFrames, rng);
-        write(dir / "odd_size" / "image_r" / frame_name(1), cv::Mat(kHeight, kWidth - 8, CV_8UC1));
+        io::write_png(dir / "odd_size" / "image_r" / frame_name(1),
+                      cv::Mat(kHeight, kWidth - 8, CV_8UC1));
         return EXIT_SUCCESS;
     } catch (const std::exception& error) {
         std::cerr << "make_slam_fixtures: " << error.what() << '\n';

@@ -12,38 +12,17 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "stereo_io/io.hpp"
+
 namespace stereo::robot::slam {
 
 namespace fs = std::filesystem;
 
 namespace {
 
-// The same image extensions as pairs_from_folders, so that the counts agree with its pairing.
-bool is_image_file(const fs::path& path) {
-    std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".ppm" || ext == ".pgm" ||
-           ext == ".bmp" || ext == ".tif" || ext == ".tiff";
-}
-
-std::vector<std::string> image_names(const fs::path& folder) {
-    if (!fs::is_directory(folder)) {
-        throw std::runtime_error("cannot read image folder " + folder.string());
-    }
-    std::vector<std::string> names;
-    for (const auto& entry : fs::directory_iterator(folder)) {
-        if (entry.is_regular_file() && is_image_file(entry.path())) {
-            names.push_back(entry.path().filename().string());
-        }
-    }
-    std::sort(names.begin(), names.end());
-    return names;
-}
-
 std::vector<FramePair> list_frames(const fs::path& left, const fs::path& right) {
-    const auto left_names = image_names(left);
-    const auto right_names = image_names(right);
+    const auto left_names = io::image_file_names(left);
+    const auto right_names = io::image_file_names(right);
     if (left_names.empty()) {
         throw std::runtime_error("no images in " + left.string());
     }
@@ -266,10 +245,7 @@ StereoFrame load_frame(const Sequence& sequence, int index, int downscale) {
             image = rectified;
         }
         if (downscale > 1) {
-            cv::Mat small;
-            cv::resize(image, small, cv::Size(image.cols / downscale, image.rows / downscale), 0, 0,
-                       cv::INTER_AREA);
-            image = small;
+            image = io::shrink_area(image, downscale);
         }
         *targets[side] = image;
     }

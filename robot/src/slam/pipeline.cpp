@@ -2,8 +2,9 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <stdexcept>
+
+#include "stereo_io/io.hpp"
 
 namespace stereo::robot::slam {
 
@@ -19,12 +20,7 @@ Image to_grey_image(const cv::Mat& mat) {
     if (mat.type() != CV_8UC1 || mat.empty()) {
         throw std::invalid_argument("SLAM frames must be non-empty 8-bit grey images");
     }
-    Image image(mat.cols, mat.rows, 1);
-    for (int y = 0; y < mat.rows; ++y) {
-        std::memcpy(&image.at(0, y, 0), mat.ptr<std::uint8_t>(y),
-                    static_cast<std::size_t>(mat.cols));
-    }
-    return image;
+    return io::to_image(mat, "SLAM frame");
 }
 
 Eigen::Vector2d plane(const Eigen::Vector3d& p) {

@@ -1,10 +1,11 @@
-// Shared helpers for the tests: seeded random images and access to the shared data folder.
+// Helpers shared by tests/ and testbench/ (CMake target stereo_test_support, header-only):
+// seeded random images. The seed is printed and replayable with STEREO_SEED. The data folder
+// is io::data_dir() (stereo_io/data_dir.hpp), not a helper of its own.
 #pragma once
 
 #include <algorithm>
 #include <cstdint>
 #include <cstdlib>
-#include <filesystem>
 #include <iostream>
 #include <random>
 #include <string>
@@ -50,14 +51,6 @@ inline Image shifted_copy(const Image& left, int shift, int noise, std::mt19937&
         }
     }
     return right;
-}
-
-inline std::filesystem::path data_dir() {
-#ifdef STEREO_DATA_DIR
-    return STEREO_DATA_DIR;
-#else
-    return "../shared/data";
-#endif
 }
 
 }  // namespace stereo::test

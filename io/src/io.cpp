@@ -1,6 +1,7 @@
-#include "stereo_app/io.hpp"
+#include "stereo_io/io.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -16,7 +17,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-namespace stereo::app {
+namespace stereo::io {
 
 namespace fs = std::filesystem;
 
@@ -125,27 +126,21 @@ cv::Mat read_colour_or_grey(const fs::path& path) {
     return mat;
 }
 
-cv::Mat shrink(const cv::Mat& mat, int downscale, const fs::path& path) {
-    if (downscale == 1) {
-        return mat;
-    }
-    const int width = mat.cols / downscale;
-    const int height = mat.rows / downscale;
-    if (width < 1 || height < 1) {
-        throw std::invalid_argument("image " + quoted(path) + " (" + size_text(mat.cols, mat.rows) +
-                                    ") is too small for downscale factor " +
-                                    std::to_string(downscale));
-    }
-    cv::Mat small;
-    cv::resize(mat, small, cv::Size(width, height), 0.0, 0.0, cv::INTER_AREA);
-    return small;
-}
-
 void check_downscale(int downscale) {
     if (downscale < 1) {
         throw std::invalid_argument("downscale factor must be >= 1, got " +
                                     std::to_string(downscale));
     }
+}
+
+// shrink_area with the file named in the "too small" message.
+cv::Mat shrink(const cv::Mat& mat, int downscale, const fs::path& path) {
+    if (downscale > 1 && (mat.cols / downscale < 1 || mat.rows / downscale < 1)) {
+        throw std::invalid_argument("image " + quoted(path) + " (" + size_text(mat.cols, mat.rows) +
+                                    ") is too small for downscale factor " +
+                                    std::to_string(downscale));
+    }
+    return shrink_area(mat, downscale);
 }
 
 // One channel of a grey file; a 3-channel file is accepted only when it is grey in fact, so that
@@ -168,6 +163,69 @@ cv::Mat single_channel(const cv::Mat& mat, const fs::path& path) {
 }
 
 }  // namespace
+
+cv::Mat shrink_area(const cv::Mat& mat, int downscale) {
+    check_downscale(downscale);
+    if (downscale == 1) {
+        return mat;
+    }
+    const int width = mat.cols / downscale;
+    const int height = mat.rows / downscale;
+    if (width < 1 || height < 1) {
+        throw std::invalid_argument("image (" + size_text(mat.cols, mat.rows) +
+                                    ") is too small for downscale factor " +
+                                    std::to_string(downscale));
+    }
+    cv::Mat small;
+    cv::resize(mat, small, cv::Size(width, height), 0.0, 0.0, cv::INTER_AREA);
+    return small;
+}
+
+bool is_image_file(const fs::path& path) {
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".ppm" || ext == ".pgm" ||
+           ext == ".bmp" || ext == ".tif" || ext == ".tiff";
+}
+
+std::vector<std::string> image_file_names(const fs::path& folder) {
+    if (!fs::is_directory(folder)) {
+        throw std::runtime_error("cannot read image folder " + folder.string());
+    }
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(folder)) {
+        if (entry.is_regular_file() && is_image_file(entry.path())) {
+            names.push_back(entry.path().filename().string());
+        }
+    }
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+cv::Mat load_bgr(const fs::path& path) {
+    const cv::Mat mat = read_colour_or_grey(path);
+    if (mat.channels() == 1) {
+        cv::Mat bgr;
+        cv::cvtColor(mat, bgr, cv::COLOR_GRAY2BGR);
+        return bgr;
+    }
+    return mat;
+}
+
+cv::Mat to_bgr(const Image& image) {
+    const int type = image.channels == 1 ? CV_8UC1 : CV_8UC3;
+    // A read-only view: cvtColor below writes a new matrix and never the Image's pixels.
+    const cv::Mat wrapped(image.height, image.width, type,
+                          const_cast<std::uint8_t*>(image.pixels.data()));
+    cv::Mat bgr;
+    if (image.channels == 1) {
+        cv::cvtColor(wrapped, bgr, cv::COLOR_GRAY2BGR);
+    } else {
+        cv::cvtColor(wrapped, bgr, cv::COLOR_RGB2BGR);
+    }
+    return bgr;
+}
 
 Image to_image(const cv::Mat& mat, const std::string& name) {
     if (mat.empty() || mat.depth() != CV_8U || (mat.channels() != 1 && mat.channels() != 3)) {
@@ -395,4 +453,4 @@ void check_writable_location(const fs::path& path) {
     }
 }
 
-}  // namespace stereo::app
+}  // namespace stereo::io

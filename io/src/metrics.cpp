@@ -1,4 +1,4 @@
-#include "stereo_app/metrics.hpp"
+#include "stereo_io/metrics.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace stereo::app {
+namespace stereo::io {
 
 namespace {
 
@@ -197,4 +197,4 @@ cv::Mat signed_error_image(const NamedMat& disparity, const NamedMat& ground_tru
     return out;
 }
 
-}  // namespace stereo::app
+}  // namespace stereo::io

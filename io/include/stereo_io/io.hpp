@@ -7,12 +7,13 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <opencv2/core/mat.hpp>
 
 #include "stereo/image.hpp"
 
-namespace stereo::app {
+namespace stereo::io {
 
 struct ImagePair {
     Image left;
@@ -27,8 +28,27 @@ Image load_image(const std::filesystem::path& path, int downscale = 1);
 ImagePair load_pair(const std::filesystem::path& left, const std::filesystem::path& right,
                     int downscale = 1);
 
+// Reads an 8-bit image file as BGR, OpenCV's channel order (grey replicated, alpha dropped):
+// for figures and the OpenCV baselines. Same errors as load_image.
+cv::Mat load_bgr(const std::filesystem::path& path);
+
 // Converts an 8-bit OpenCV matrix (grey, BGR or BGRA) into an Image; `name` is for messages.
 Image to_image(const cv::Mat& mat, const std::string& name);
+
+// The inverse for drawing: an Image (grey or RGB) as an 8-bit BGR matrix.
+cv::Mat to_bgr(const Image& image);
+
+// Area averaging (OpenCV INTER_AREA) to floor(W/F) x floor(H/F); F = 1 returns `mat` itself.
+// Throws std::invalid_argument when F < 1 or the result would be empty. The host's input
+// shrink, not the model's bit-exact integer mean (stereo::hierarchical::downscale_area).
+cv::Mat shrink_area(const cv::Mat& mat, int downscale);
+
+// Whether the extension names an image file the tools read (png, jpg, ppm, ...; any case).
+bool is_image_file(const std::filesystem::path& path);
+
+// Names (not paths) of the image files directly inside `folder`, sorted. Throws
+// std::runtime_error "cannot read image folder ..." when `folder` is not a directory.
+std::vector<std::string> image_file_names(const std::filesystem::path& folder);
 
 // Throws std::invalid_argument unless disparities 0..ndisp-1 times `scale` fit a 16-bit PNG.
 void check_disparity_scale(int ndisp, int scale);
@@ -69,4 +89,4 @@ void write_png(const std::filesystem::path& path, const cv::Mat& mat);
 // used to fail before a long computation rather than after it.
 void check_writable_location(const std::filesystem::path& path);
 
-}  // namespace stereo::app
+}  // namespace stereo::io

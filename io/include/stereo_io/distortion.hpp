@@ -8,9 +8,9 @@
 
 #include <opencv2/core/mat.hpp>
 
-#include "stereo_app/middlebury.hpp"
+#include "stereo_io/middlebury.hpp"
 
-namespace stereo::app {
+namespace stereo::io {
 
 // One-parameter division model (Fitzgibbon): with radii normalised by R,
 //   undistorted = centre + (distorted - centre) / (1 + lambda * rho_d^2).
@@ -82,4 +82,4 @@ cv::Mat warp_ground_truth(const cv::Mat& ground_truth, const PairTransform& tran
 cv::Mat exact_ground_truth(const cv::Mat& ground_truth, const PairTransform& transform,
                            cv::Mat* vertical = nullptr);
 
-}  // namespace stereo::app
+}  // namespace stereo::io

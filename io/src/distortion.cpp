@@ -1,4 +1,4 @@
-#include "stereo_app/distortion.hpp"
+#include "stereo_io/distortion.hpp"
 
 #include <cmath>
 #include <functional>
@@ -9,7 +9,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-namespace stereo::app {
+namespace stereo::io {
 
 namespace {
 
@@ -164,4 +164,4 @@ WarpedScene warp_scene(const SceneData& scene, const PairWarp& warp) {
     return out;
 }
 
-}  // namespace stereo::app
+}  // namespace stereo::io

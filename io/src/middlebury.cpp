@@ -1,10 +1,9 @@
-#include "stereo_app/middlebury.hpp"
+#include "stereo_io/middlebury.hpp"
 
 #include <opencv2/calib3d.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-namespace stereo::app {
+namespace stereo::io {
 namespace fs = std::filesystem;
 
 const std::vector<MiddleburyScene>& middlebury2003_scenes() {
@@ -27,8 +26,8 @@ std::optional<SceneData> load_scene(const fs::path& data_dir, const MiddleburySc
     }
     SceneData data{scene,
                    load_pair(dir / "left.png", dir / "right.png"),
-                   cv::imread((dir / "left.png").string(), cv::IMREAD_COLOR),
-                   cv::imread((dir / "right.png").string(), cv::IMREAD_COLOR),
+                   load_bgr(dir / "left.png"),
+                   load_bgr(dir / "right.png"),
                    {load_disparity(dir / "gt.png", scene.gt_scale), (dir / "gt.png").string()},
                    {load_mask(dir / "nonocc.png"), (dir / "nonocc.png").string()},
                    {load_mask(dir / "all.png"), (dir / "all.png").string()},
@@ -96,4 +95,4 @@ double disagreement(const DisparityMap& a, const DisparityMap& b) {
     return a.disparity.empty() ? 0.0 : static_cast<double>(differ) / a.disparity.size();
 }
 
-}  // namespace stereo::app
+}  // namespace stereo::io

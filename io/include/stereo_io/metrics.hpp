@@ -23,7 +23,7 @@
 #include <nlohmann/json_fwd.hpp>
 #include <opencv2/core/mat.hpp>
 
-namespace stereo::app {
+namespace stereo::io {
 
 // A matrix with the name used for it in error messages (a file path in the CLI).
 struct NamedMat {
@@ -76,4 +76,4 @@ cv::Mat error_map(const EvalInput& input);
 // is reserved for "no data" (GT unknown or ours invalid). Masks are ignored.
 cv::Mat signed_error_image(const NamedMat& disparity, const NamedMat& ground_truth);
 
-}  // namespace stereo::app
+}  // namespace stereo::io

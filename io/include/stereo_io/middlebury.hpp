@@ -10,10 +10,10 @@
 #include <opencv2/core/mat.hpp>
 
 #include "stereo/pipeline.hpp"
-#include "stereo_app/io.hpp"
-#include "stereo_app/metrics.hpp"
+#include "stereo_io/io.hpp"
+#include "stereo_io/metrics.hpp"
 
-namespace stereo::app {
+namespace stereo::io {
 
 struct MiddleburyScene {
     std::string name;  // folder under middlebury2003/
@@ -53,4 +53,4 @@ cv::Mat run_stereo_sgbm(const SceneData& data);
 // Fraction of pixels where two maps disagree (a different disparity or validity).
 double disagreement(const DisparityMap& a, const DisparityMap& b);
 
-}  // namespace stereo::app
+}  // namespace stereo::io
