@@ -15,8 +15,7 @@ DisparityMap run_rtl(const Image& left, const Image& right, const MatchParams& p
     if (params.cost != "ad") {
         throw std::invalid_argument("the RTL has only the AD cost");
     }
-    const TopConfig* config =
-        covering_config(left.width, left.height, params.ndisp, params.window);
+    const TopConfig* config = covering_config(left.width, left.height, params.ndisp, params.window);
     if (config == nullptr) {
         const TopConfig& largest = built_top_configs().back();
         throw std::invalid_argument(
@@ -33,9 +32,9 @@ DisparityMap run_rtl(const Image& left, const Image& right, const MatchParams& p
     const auto beats = frame_beats(left, right);
     const StreamResult result = top->stream(beats, beats.size(), {}, 100 * beats.size() + 100000);
     if (!result.completed || !result.protocol_error.empty()) {
-        throw std::runtime_error("the RTL did not complete the frame: " +
-                                 (result.protocol_error.empty() ? std::string("it stalled")
-                                                                : result.protocol_error));
+        throw std::runtime_error(
+            "the RTL did not complete the frame: " +
+            (result.protocol_error.empty() ? std::string("it stalled") : result.protocol_error));
     }
     return assemble_frame(result.outputs, 0, left.width, left.height);
 }

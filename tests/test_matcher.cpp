@@ -115,8 +115,8 @@ TEST(Registry, EveryEngineOfAMethodAgreesWithTheModel) {
         const MatchResult result = matcher->compute(left, right);
         ASSERT_EQ(result.disparity.width, left.width) << entry.method << "/" << entry.engine;
         if (entry.engine == "naive") {
-            const MatchResult model = registry.create(entry.method, "model", config)
-                                          ->compute(left, right);
+            const MatchResult model =
+                registry.create(entry.method, "model", config)->compute(left, right);
             EXPECT_EQ(result.disparity, model.disparity) << entry.method;
             EXPECT_EQ(result.vertical, model.vertical) << entry.method;
         }

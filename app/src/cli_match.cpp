@@ -92,8 +92,8 @@ std::vector<std::pair<std::string, cv::Mat>> level_files(const MatchResult& resu
         files.emplace_back(name + "_disparity.png",
                            io::disparity_to_mat(level_map, level_ndisp, scale));
         files.emplace_back(name + "_color.png", io::disparity_to_colour(level_map, level_ndisp));
-        files.emplace_back(name + "_vertical.png", vertical_to_mat(level.vertical, level.valid,
-                                                                   level.width, level.height));
+        files.emplace_back(name + "_vertical.png",
+                           vertical_to_mat(level.vertical, level.valid, level.width, level.height));
     }
     return files;
 }
@@ -102,9 +102,8 @@ void run_match(const MatchOptions& options) {
     const std::string method = options.matcher.resolved_method();
     const std::string& engine = options.matcher.engine;
     const bool two_d = method == "hierarchical";
-    if (!two_d &&
-        (options.matcher.config.vrange != 0 || !options.vertical.empty() ||
-         !options.dump_levels.empty())) {
+    if (!two_d && (options.matcher.config.vrange != 0 || !options.vertical.empty() ||
+                   !options.dump_levels.empty())) {
         throw std::invalid_argument(
             "--vrange, --vertical and --dump-levels need --method hierarchical");
     }
@@ -146,16 +145,14 @@ void run_match(const MatchOptions& options) {
 
     const DisparityMap& map = result.disparity;
     const cv::Mat stored = io::disparity_to_mat(map, ndisp, options.scale);
-    const cv::Mat colour =
-        options.colour.empty() ? cv::Mat() : io::disparity_to_colour(map, ndisp);
+    const cv::Mat colour = options.colour.empty() ? cv::Mat() : io::disparity_to_colour(map, ndisp);
     cv::Mat vertical;
     if (!options.vertical.empty() && !result.levels.empty()) {
         const Winners& full = result.levels.back();
         vertical = vertical_to_mat(full.vertical, full.valid, map.width, map.height);
     }
-    const auto levels = options.dump_levels.empty()
-                            ? std::vector<std::pair<std::string, cv::Mat>>{}
-                            : level_files(result, ndisp, options.scale);
+    const auto levels = options.dump_levels.empty() ? std::vector<std::pair<std::string, cv::Mat>>{}
+                                                    : level_files(result, ndisp, options.scale);
     io::write_png(options.output, stored);
     if (!colour.empty()) {
         io::write_png(options.colour, colour);
@@ -173,9 +170,9 @@ void run_match(const MatchOptions& options) {
     const double valid = valid_fraction(map);
     const MatchParams& params = config.pipeline;
     const bool ca = params.use_ca && method != "edges" && method != "sparse";
-    nlohmann::json summary = {{"width", map.width}, {"height", map.height}, {"method", method},
-                              {"ndisp", ndisp},     {"ca", ca},             {"engine", engine},
-                              {"valid_fraction", valid}};
+    nlohmann::json summary = {
+        {"width", map.width}, {"height", map.height}, {"method", method},       {"ndisp", ndisp},
+        {"ca", ca},           {"engine", engine},     {"valid_fraction", valid}};
     // The text line: "<W>x<H> ndisp <N> <settings>: <valid>% valid, <ms> ms<extra>".
     char settings[200];
     char extra[80] = "";
@@ -194,17 +191,19 @@ void run_match(const MatchOptions& options) {
         summary["vrange"] = vrange;
         summary["windows"] = {windows[0].window, windows[1].window, windows[2].window};
         summary["cost_evaluations_per_pixel"] = per_pixel;
-        std::snprintf(settings, sizeof settings, "vrange %d windows %d/%d/%d ca %s method %s engine %s",
-                      vrange, windows[0].window, windows[1].window, windows[2].window,
-                      ca ? "on" : "off", method.c_str(), engine.c_str());
+        std::snprintf(settings, sizeof settings,
+                      "vrange %d windows %d/%d/%d ca %s method %s engine %s", vrange,
+                      windows[0].window, windows[1].window, windows[2].window, ca ? "on" : "off",
+                      method.c_str(), engine.c_str());
         std::snprintf(extra, sizeof extra, ", %.2f cost evaluations per pixel", per_pixel);
     } else {
         summary["window"] = params.window;
         summary["sigma"] = params.sigma;
         summary["cost"] = params.cost;
-        std::snprintf(settings, sizeof settings, "window %d sigma %g cost %s ca %s method %s engine %s",
-                      params.window, params.sigma, params.cost.c_str(), ca ? "on" : "off",
-                      method.c_str(), engine.c_str());
+        std::snprintf(settings, sizeof settings,
+                      "window %d sigma %g cost %s ca %s method %s engine %s", params.window,
+                      params.sigma, params.cost.c_str(), ca ? "on" : "off", method.c_str(),
+                      engine.c_str());
     }
     summary["ms"] = elapsed.count();
     if (options.json) {

@@ -44,9 +44,8 @@ void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoi
     MatchParams& params = options.config.pipeline;
     command.add_option("--ndisp", params.ndisp, "Number of disparity labels 0..N-1")
         ->capture_default_str();
-    options.window =
-        command.add_option("--window", params.window, "Odd aggregation window side")
-            ->capture_default_str();
+    options.window = command.add_option("--window", params.window, "Odd aggregation window side")
+                         ->capture_default_str();
     options.sigma = command.add_option("--sigma", params.sigma, "Gaussian sigma in pixels")
                         ->capture_default_str();
     command.add_flag("--no-ca", options.no_ca, "Skip the cellular-automata rules");
@@ -70,7 +69,8 @@ void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoi
                     "(Verilated RTL) or full-search; not every method has every engine")
         ->check(CLI::IsMember(matchers().engines()))
         ->capture_default_str();
-    command.add_option("--frontend", options.frontend, "model, or edges (the same as --method edges)")
+    command
+        .add_option("--frontend", options.frontend, "model, or edges (the same as --method edges)")
         ->check(CLI::IsMember({"model", "edges"}))
         ->capture_default_str();
 }

@@ -35,8 +35,8 @@ struct MatcherOptions {
 };
 
 enum class MatcherChoice {
-    fixed,     // the subcommand runs one matcher: only the pipeline parameters
-    selectable // also --method, --engine, --frontend, --cost
+    fixed,      // the subcommand runs one matcher: only the pipeline parameters
+    selectable  // also --method, --engine, --frontend, --cost
 };
 
 void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoice choice);

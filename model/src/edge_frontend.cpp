@@ -140,5 +140,4 @@ DisparityMap match(const Image& left, const Image& right, const MatchParams& par
                       enhance(right, edge_params), plain);
 }
 
-
 }  // namespace stereo::edge_frontend

@@ -88,9 +88,9 @@ LevelMap match_level(const Image& left, const Image& right, const CandidateGrid&
     const auto rule2 = make_ca_rule2(width, height);
     const std::array<Refiner*, 2> ca = {rule1.get(), rule2.get()};
     WinnerTakesAll selector(grid);
-    count += search(cost->prepare(left), cost->prepare(right), grid,
-                    {*cost, *aggregator, std::span(ca.data(), use_ca ? ca.size() : 0), selector,
-                     neighbours});
+    count += search(
+        cost->prepare(left), cost->prepare(right), grid,
+        {*cost, *aggregator, std::span(ca.data(), use_ca ? ca.size() : 0), selector, neighbours});
 
     LevelMap map = selector.winners();
     const int reach = level.window / 2 + (use_ca ? 1 : 0);
@@ -176,7 +176,6 @@ Result finish(std::array<LevelMap, kLevels> levels, const CostCount& count) {
     }
     return result;
 }
-
 
 Result match(const Image& left, const Image& right, const Params& params) {
     check_pair(left, right);

@@ -217,8 +217,8 @@ void register_model_matchers(MatcherRegistry& registry) {
                   hierarchical_factory(&hierarchical::naive::match)});
     registry.add({"hierarchical", "full-search", "every D x V displacement at full size",
                   hierarchical_factory(&hierarchical::full_search)});
-    registry.add({"sparse", "model", "validated sub-pixel disparities (SLAM front end)",
-                  &make_sparse});
+    registry.add(
+        {"sparse", "model", "validated sub-pixel disparities (SLAM front end)", &make_sparse});
 }
 
 }  // namespace stereo

@@ -22,8 +22,8 @@ namespace stereo::hierarchical {
 
 // The candidate grid, the CA neighbourhood choice and the per-level winners are the plane
 // scheduler's (stereo/search.hpp).
-using stereo::CaNeighbours;
 using stereo::CandidateGrid;
+using stereo::CaNeighbours;
 using LevelMap = stereo::Winners;
 
 struct LevelParams {

@@ -22,11 +22,11 @@ namespace stereo {
 
 // Everything a matcher may be asked. A method reads the fields it documents and ignores the rest.
 struct MatchConfig {
-    MatchParams pipeline;               // ndisp, window, sigma, CA on/off, cost (every method)
-    int vrange = 0;                     // hierarchical: vertical labels, 0 = ndisp
+    MatchParams pipeline;  // ndisp, window, sigma, CA on/off, cost (every method)
+    int vrange = 0;        // hierarchical: vertical labels, 0 = ndisp
     CaNeighbours neighbours = CaNeighbours::horizontal;  // hierarchical: CA rule 1 axes
-    edge_frontend::EdgeParams edges;    // edges: LoG and truncation
-    sparse::Params sparse;              // sparse: certainty and left-right tolerance
+    edge_frontend::EdgeParams edges;                     // edges: LoG and truncation
+    sparse::Params sparse;  // sparse: certainty and left-right tolerance
 };
 
 struct MatchResult {

@@ -45,9 +45,9 @@ std::vector<std::int32_t> gaussian_kernel(int window, double sigma);
 
 InvalidBorder invalid_border(const MatchParams& params);
 
-// Stage 1 (the AD cost plug-in over a whole volume). C(x,y,d) = sum over channels |L(x,y) - R(x-d,y)|; fx::kCostMax where x-d < 0 (a
-// match outside the right image costs the most, so it never wins).
-// Grey images are matched as if every channel held the grey value (3 * |L - R|).
+// Stage 1 (the AD cost plug-in over a whole volume). C(x,y,d) = sum over channels |L(x,y) -
+// R(x-d,y)|; fx::kCostMax where x-d < 0 (a match outside the right image costs the most, so it
+// never wins). Grey images are matched as if every channel held the grey value (3 * |L - R|).
 Dsi cost(const Image& left, const Image& right, int ndisp);
 
 // Stage 2. Gaussian-weighted window sum with zero padding, one final rounding shift.

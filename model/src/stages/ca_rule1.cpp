@@ -71,7 +71,8 @@ class CaRule1 final : public Refiner {
                                   2 * (diff_after < 0 ? -diff_after : diff_after) < value;
                 const auto box =
                     static_cast<std::uint32_t>(columns[x - 1] + columns[x] + columns[x + 1]);
-                dst[x] = fire ? static_cast<CostValue>(fx::mean9(box)) : static_cast<CostValue>(value);
+                dst[x] =
+                    fire ? static_cast<CostValue>(fx::mean9(box)) : static_cast<CostValue>(value);
             }
         }
     }

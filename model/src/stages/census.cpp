@@ -68,6 +68,8 @@ class CensusCost final : public CostFunction {
 
 }  // namespace
 
-std::unique_ptr<CostFunction> make_census_cost() { return std::make_unique<CensusCost>(); }
+std::unique_ptr<CostFunction> make_census_cost() {
+    return std::make_unique<CensusCost>();
+}
 
 }  // namespace stereo

@@ -30,6 +30,8 @@ class AdCost final : public CostFunction {
 
 }  // namespace
 
-std::unique_ptr<CostFunction> make_ad_cost() { return std::make_unique<AdCost>(); }
+std::unique_ptr<CostFunction> make_ad_cost() {
+    return std::make_unique<AdCost>();
+}
 
 }  // namespace stereo

@@ -12,7 +12,8 @@ PlanarImage::PlanarImage(int w, int h, int count)
       planes(static_cast<std::size_t>(count),
              std::vector<std::uint8_t>(static_cast<std::size_t>(w) * h)) {}
 
-PlanarImage::PlanarImage(const Image& image) : PlanarImage(image.width, image.height, image.channels) {
+PlanarImage::PlanarImage(const Image& image)
+    : PlanarImage(image.width, image.height, image.channels) {
     const std::size_t size = static_cast<std::size_t>(width) * height;
     for (int c = 0; c < image.channels; ++c) {
         auto& plane = planes[static_cast<std::size_t>(c)];
@@ -38,7 +39,8 @@ std::unique_ptr<CostFunction> make_cost(std::string_view name) {
     for (const auto& n : cost_names()) {
         known += (known.empty() ? "" : ", ") + n;
     }
-    throw std::invalid_argument("unknown cost \"" + std::string(name) + "\" (known: " + known + ")");
+    throw std::invalid_argument("unknown cost \"" + std::string(name) + "\" (known: " + known +
+                                ")");
 }
 
 }  // namespace stereo

@@ -25,8 +25,8 @@ bool keys_increase_in_order(const CandidateGrid& grid) {
     std::int64_t previous = -1;
     for (int j = 0; j < grid.rows; ++j) {
         for (int i = 0; i < grid.cols; ++i) {
-            const std::int64_t key = tie_key(grid.base_d[0] + i, grid.base_v[0] + j,
-                                             grid.prefer_d[0], grid.prefer_v[0]);
+            const std::int64_t key =
+                tie_key(grid.base_d[0] + i, grid.base_v[0] + j, grid.prefer_d[0], grid.prefer_v[0]);
             if (key <= previous) {
                 return false;
             }

@@ -13,9 +13,9 @@
 
 namespace stereo::census {
 
-inline constexpr int kRadius = 2;                              // 5x5 window
+inline constexpr int kRadius = 2;                                        // 5x5 window
 inline constexpr int kBits = (2 * kRadius + 1) * (2 * kRadius + 1) - 1;  // 24
-inline constexpr int kWeight = fx::kCostMax / kBits;           // 31
+inline constexpr int kWeight = fx::kCostMax / kBits;                     // 31
 static_assert(kBits * kWeight <= fx::kCostMax && kBits <= 24, "census codes are three bytes");
 
 // Row-major 24-bit codes of an image (grey, or RGB through edge_frontend::luma).
