@@ -5,9 +5,11 @@
 #include <stdexcept>
 #include <vector>
 
+#include "cells.hpp"
 #include "stereo/reference.hpp"
 
 namespace stereo::floating {
+using reference::for_each_cell;
 namespace {
 
 struct Volume {
@@ -70,50 +72,42 @@ Volume aggregate(const Dsi& cost, int window, double sigma) {
 
 Volume ca_rule1(const Volume& in) {
     Volume out = in;
-    for (int d = 0; d < in.ndisp; ++d) {
-        for (int y = 0; y < in.height; ++y) {
-            for (int x = 0; x < in.width; ++x) {
-                const double centre = in.at(x, y, d);
-                const bool fire =
-                    (d > 0 && differs_by_less_than_half(in.at(x, y, d - 1), centre)) ||
-                    (d + 1 < in.ndisp && differs_by_less_than_half(in.at(x, y, d + 1), centre));
-                if (!fire) {
-                    continue;
-                }
-                double sum = 0.0;
-                for (int j = -1; j <= 1; ++j) {
-                    for (int i = -1; i <= 1; ++i) {
-                        sum += in.sample(x + i, y + j, d);
-                    }
-                }
-                out.at(x, y, d) = sum / 9.0;
+    for_each_cell(in.width, in.height, in.ndisp, [&](int x, int y, int d) {
+        const double centre = in.at(x, y, d);
+        const bool fire =
+            (d > 0 && differs_by_less_than_half(in.at(x, y, d - 1), centre)) ||
+            (d + 1 < in.ndisp && differs_by_less_than_half(in.at(x, y, d + 1), centre));
+        if (!fire) {
+            return;
+        }
+        double sum = 0.0;
+        for (int j = -1; j <= 1; ++j) {
+            for (int i = -1; i <= 1; ++i) {
+                sum += in.sample(x + i, y + j, d);
             }
         }
-    }
+        out.at(x, y, d) = sum / 9.0;
+    });
     return out;
 }
 
 Volume ca_rule2(const Volume& in) {
     Volume out = in;
-    for (int d = 0; d < in.ndisp; ++d) {
-        for (int y = 0; y < in.height; ++y) {
-            for (int x = 0; x < in.width; ++x) {
-                const double centre = in.at(x, y, d);
-                int count = 0;
-                for (int j = -1; j <= 1; ++j) {
-                    for (int i = -1; i <= 1; ++i) {
-                        if ((i != 0 || j != 0) &&
-                            differs_by_less_than_half(in.sample(x + i, y + j, d), centre)) {
-                            ++count;
-                        }
-                    }
-                }
-                if (count >= fx::kRule2MinCount) {
-                    out.at(x, y, d) = centre / 1.3;
+    for_each_cell(in.width, in.height, in.ndisp, [&](int x, int y, int d) {
+        const double centre = in.at(x, y, d);
+        int count = 0;
+        for (int j = -1; j <= 1; ++j) {
+            for (int i = -1; i <= 1; ++i) {
+                if ((i != 0 || j != 0) &&
+                    differs_by_less_than_half(in.sample(x + i, y + j, d), centre)) {
+                    ++count;
                 }
             }
         }
-    }
+        if (count >= fx::kRule2MinCount) {
+            out.at(x, y, d) = centre / 1.3;
+        }
+    });
     return out;
 }
 

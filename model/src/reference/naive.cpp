@@ -3,10 +3,12 @@
 // of multiply-and-shift. Slow, and meant to be.
 #include <cstdlib>
 
+#include "cells.hpp"
 #include "stereo/reference.hpp"
 #include "stereo/stages.hpp"
 
 namespace stereo::naive {
+using reference::for_each_cell;
 namespace {
 
 // Zero padding: samples outside the plane read as 0.
@@ -72,56 +74,48 @@ Dsi aggregate(const Dsi& cost, const std::vector<std::int32_t>& kernel) {
 
 Dsi ca_rule1(const Dsi& dsi) {
     Dsi out(dsi.width(), dsi.height(), dsi.ndisp());
-    for (int d = 0; d < dsi.ndisp(); ++d) {
-        for (int y = 0; y < dsi.height(); ++y) {
-            for (int x = 0; x < dsi.width(); ++x) {
-                const int centre = dsi.at(x, y, d);
-                bool fire = false;
-                if (d - 1 >= 0 && differs_by_less_than_half(dsi.at(x, y, d - 1), centre)) {
-                    fire = true;
-                }
-                if (d + 1 < dsi.ndisp() && differs_by_less_than_half(dsi.at(x, y, d + 1), centre)) {
-                    fire = true;
-                }
-                if (!fire) {
-                    out.at(x, y, d) = static_cast<Dsi::Value>(centre);
-                    continue;
-                }
-                int sum = 0;
-                for (int j = -1; j <= 1; ++j) {
-                    for (int i = -1; i <= 1; ++i) {
-                        sum += sample(dsi, x + i, y + j, d);
-                    }
-                }
-                out.at(x, y, d) = static_cast<Dsi::Value>((2 * sum + 9) / 18);  // round(sum / 9)
+    for_each_cell(dsi.width(), dsi.height(), dsi.ndisp(), [&](int x, int y, int d) {
+        const int centre = dsi.at(x, y, d);
+        bool fire = false;
+        if (d - 1 >= 0 && differs_by_less_than_half(dsi.at(x, y, d - 1), centre)) {
+            fire = true;
+        }
+        if (d + 1 < dsi.ndisp() && differs_by_less_than_half(dsi.at(x, y, d + 1), centre)) {
+            fire = true;
+        }
+        if (!fire) {
+            out.at(x, y, d) = static_cast<Dsi::Value>(centre);
+            return;
+        }
+        int sum = 0;
+        for (int j = -1; j <= 1; ++j) {
+            for (int i = -1; i <= 1; ++i) {
+                sum += sample(dsi, x + i, y + j, d);
             }
         }
-    }
+        out.at(x, y, d) = static_cast<Dsi::Value>((2 * sum + 9) / 18);  // round(sum / 9)
+    });
     return out;
 }
 
 Dsi ca_rule2(const Dsi& dsi) {
     Dsi out(dsi.width(), dsi.height(), dsi.ndisp());
-    for (int d = 0; d < dsi.ndisp(); ++d) {
-        for (int y = 0; y < dsi.height(); ++y) {
-            for (int x = 0; x < dsi.width(); ++x) {
-                const int centre = dsi.at(x, y, d);
-                int count = 0;
-                for (int j = -1; j <= 1; ++j) {
-                    for (int i = -1; i <= 1; ++i) {
-                        if (i == 0 && j == 0) {
-                            continue;
-                        }
-                        if (differs_by_less_than_half(sample(dsi, x + i, y + j, d), centre)) {
-                            ++count;
-                        }
-                    }
+    for_each_cell(dsi.width(), dsi.height(), dsi.ndisp(), [&](int x, int y, int d) {
+        const int centre = dsi.at(x, y, d);
+        int count = 0;
+        for (int j = -1; j <= 1; ++j) {
+            for (int i = -1; i <= 1; ++i) {
+                if (i == 0 && j == 0) {
+                    continue;
                 }
-                out.at(x, y, d) = static_cast<Dsi::Value>(
-                    count >= 7 ? (20 * centre + 13) / 26 : centre);  // round(centre / 1.3)
+                if (differs_by_less_than_half(sample(dsi, x + i, y + j, d), centre)) {
+                    ++count;
+                }
             }
         }
-    }
+        out.at(x, y, d) = static_cast<Dsi::Value>(count >= 7 ? (20 * centre + 13) / 26
+                                                             : centre);  // round(centre / 1.3)
+    });
     return out;
 }
 
