@@ -133,6 +133,19 @@ void check_downscale(int downscale) {
     }
 }
 
+// floor(W / F) x floor(H / F); throws when that is empty. `what` names the matrix in the message.
+std::pair<int, int> downscaled_size(const cv::Mat& mat, int downscale, const char* what) {
+    check_downscale(downscale);
+    const int width = mat.cols / downscale;
+    const int height = mat.rows / downscale;
+    if (width < 1 || height < 1) {
+        throw std::invalid_argument(std::string(what) + " (" + size_text(mat.cols, mat.rows) +
+                                    ") is too small for downscale factor " +
+                                    std::to_string(downscale));
+    }
+    return {width, height};
+}
+
 // shrink_area with the file named in the "too small" message.
 cv::Mat shrink(const cv::Mat& mat, int downscale, const fs::path& path) {
     if (downscale > 1 && (mat.cols / downscale < 1 || mat.rows / downscale < 1)) {
@@ -165,17 +178,11 @@ cv::Mat single_channel(const cv::Mat& mat, const fs::path& path) {
 }  // namespace
 
 cv::Mat shrink_area(const cv::Mat& mat, int downscale) {
-    check_downscale(downscale);
     if (downscale == 1) {
+        check_downscale(downscale);
         return mat;
     }
-    const int width = mat.cols / downscale;
-    const int height = mat.rows / downscale;
-    if (width < 1 || height < 1) {
-        throw std::invalid_argument("image (" + size_text(mat.cols, mat.rows) +
-                                    ") is too small for downscale factor " +
-                                    std::to_string(downscale));
-    }
+    const auto [width, height] = downscaled_size(mat, downscale, "image");
     cv::Mat small;
     cv::resize(mat, small, cv::Size(width, height), 0.0, 0.0, cv::INTER_AREA);
     return small;
@@ -377,14 +384,7 @@ namespace {
 
 template <typename T>
 cv::Mat sample_block_centres(const cv::Mat& full, int downscale, double divide_by) {
-    check_downscale(downscale);
-    const int width = full.cols / downscale;
-    const int height = full.rows / downscale;
-    if (width < 1 || height < 1) {
-        throw std::invalid_argument("ground truth (" + size_text(full.cols, full.rows) +
-                                    ") is too small for downscale factor " +
-                                    std::to_string(downscale));
-    }
+    const auto [width, height] = downscaled_size(full, downscale, "ground truth");
     cv::Mat small(height, width, full.type());
     const int offset = downscale / 2;
     for (int y = 0; y < height; ++y) {
