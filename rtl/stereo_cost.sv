@@ -13,12 +13,12 @@ module stereo_cost #(
     input  wire logic                                      clk,
     input  wire logic                                      rst,       // clears coordinates only
     input  wire logic                                      ce,        // advance one pixel step
-    input  wire logic signed [15:0]                        in_x,
-    input  wire logic signed [15:0]                        in_y,
+    input  wire fx_pkg::coord_t                                in_x,
+    input  wire fx_pkg::coord_t                                in_y,
     input  wire logic        [23:0]                        in_left,   // {R, G, B}
     input  wire logic        [23:0]                        in_right,  // {R, G, B}
-    output      logic signed [15:0]                        out_x,
-    output      logic signed [15:0]                        out_y,
+    output      fx_pkg::coord_t                                out_x,
+    output      fx_pkg::coord_t                                out_y,
     output      logic        [NDISP*fx_pkg::COST_BITS-1:0] out_data
 );
   localparam int COST_BITS = fx_pkg::COST_BITS;
@@ -68,7 +68,7 @@ module stereo_cost #(
   always_ff @(posedge clk) begin
     if (rst) begin
       out_x <= '0;
-      out_y <= -16'sd32768;
+      out_y <= fx_pkg::NO_PIXEL;
     end else if (ce) begin
       out_x <= in_x;
       out_y <= in_y;

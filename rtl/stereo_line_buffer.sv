@@ -19,8 +19,8 @@ module stereo_line_buffer #(
 ) (
     input  wire logic                        clk,
     input  wire logic                        ce,         // advance one pixel step
-    input  wire logic signed [15:0]          in_x,       // column of this step, 0 .. cfg_width-1
-    input  wire logic        [15:0]          cfg_width,
+    input  wire fx_pkg::coord_t                  in_x,       // column of this step, 0 .. cfg_width-1
+    input  wire fx_pkg::cfg_size_t              cfg_width,
     input  wire logic        [DATA_BITS-1:0] in_data,
     output      logic   [ROWS*DATA_BITS-1:0] rows_above  // row y-1-k at [k*DATA_BITS +: DATA_BITS]
 );

@@ -33,8 +33,10 @@
 #include "stereo/dsi.hpp"
 #include "stereo/image.hpp"
 #include "stereo/pipeline.hpp"
+#include "stereo/stage_table.hpp"
 #include "tb_options.hpp"
 #include "test_support.hpp"
+#include "verilated_harness.hpp"
 
 namespace stereo::tb {
 
@@ -115,20 +117,14 @@ class StageDriver {
     using Model = typename Stage::Model;
 
     // `ce_low` is the probability that a cycle does not step.
+    // Registers and RAMs (--x-initial unique) start random, so unmasked stale data shows.
     StageDriver(std::uint32_t seed, double ce_low)
-        : rng_(seed), ce_low_(ce_low), context_(std::make_unique<VerilatedContext>()) {
-        context_->traceEverOn(true);
-        // Registers and RAMs (--x-initial unique) start random, so unmasked stale data shows.
-        context_->randReset(2);
-        context_->randSeed(static_cast<int>(seed % 0x7FFFFFFFU) + 1);
-        model_ = std::make_unique<Model>(context_.get(), Stage::kName);
+        : rng_(seed),
+          ce_low_(ce_low),
+          harness_(Stage::kName, 2, static_cast<int>(seed % 0x7FFFFFFFU) + 1),
+          model_(&harness_.model()) {
         if (const std::string path = trace_path(); !path.empty()) {
-            trace_ = std::make_unique<VerilatedFstC>();
-            model_->trace(trace_.get(), 99);
-            trace_->open(path.c_str());
-            if (!trace_->isOpen()) {
-                throw std::runtime_error("cannot write waveform '" + path + "'");
-            }
+            harness_.trace_to(path);
         }
         scramble_inputs();
         model_->ce = 0;
@@ -136,14 +132,6 @@ class StageDriver {
         model_->clk = 0;
         model_->eval();
         reset();
-    }
-    StageDriver(const StageDriver&) = delete;
-    StageDriver& operator=(const StageDriver&) = delete;
-    ~StageDriver() {
-        if (trace_) {
-            trace_->close();
-        }
-        model_->final();
     }
 
     Model& model() { return *model_; }
@@ -159,7 +147,7 @@ class StageDriver {
             tick();
         }
         model_->rst = 0;
-        EXPECT_EQ(coordinate_value(model_->out_y), -32768) << "reset must mark 'no pixel'";
+        EXPECT_EQ(coordinate_value(model_->out_y), table::kNoPixel) << "reset must mark 'no pixel'";
     }
 
     // Streams one frame of `width` x `height` pixels and collects its outputs.
@@ -250,29 +238,12 @@ class StageDriver {
         return state;
     }
 
-    // Inputs are already set: the falling edge settles them, the rising edge steps.
-    void tick() {
-        model_->clk = 0;
-        model_->eval();
-        dump();
-        model_->clk = 1;
-        model_->eval();
-        dump();
-    }
-
-    void dump() {
-        if (trace_) {
-            trace_->dump(time_);
-        }
-        ++time_;
-    }
+    void tick() { harness_.tick(); }
 
     std::mt19937 rng_;
     double ce_low_;
-    std::unique_ptr<VerilatedContext> context_;
-    std::unique_ptr<Model> model_;
-    std::unique_ptr<VerilatedFstC> trace_;
-    std::uint64_t time_ = 0;
+    sim::VerilatedHarness<Model> harness_;
+    Model* model_;
 };
 
 // ---- Volumes ---------------------------------------------------------------------------------

@@ -21,9 +21,9 @@
 namespace stereo::tb {
 namespace {
 
-constexpr int kDisparities = 16;  // NDISP of Vstereo_aggregate
-constexpr int kWindow = 5;        // WINDOW of Vstereo_aggregate
-constexpr int kTapBits = fx::kKernelBits + 1;
+constexpr int kDisparities = table::verilated("Vstereo_aggregate").params.ndisp;
+constexpr int kWindow = 5;  // WINDOW of Vstereo_aggregate
+constexpr int kTapBits = table::kTapBits;
 
 template <typename VerilatedModel>
 struct AggregatePorts {

@@ -20,7 +20,7 @@
 namespace stereo::tb {
 namespace {
 
-constexpr int kDisparities = 16;  // NDISP of Vstereo_cost
+constexpr int kDisparities = table::verilated("Vstereo_cost").params.ndisp;
 constexpr int kCostBits = fx::kCostBits;
 
 struct CostStage {

@@ -20,7 +20,7 @@
 namespace stereo::tb {
 namespace {
 
-constexpr int kDisparities = 16;  // NDISP of Vstereo_wta
+constexpr int kDisparities = table::verilated("Vstereo_wta").params.ndisp;
 constexpr int kBits = fx::kAggBits;
 
 struct WtaStage {

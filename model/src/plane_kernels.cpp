@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "stereo/constants.hpp"
+#include "stereo/stage_table.hpp"
 
 namespace stereo::detail {
 
@@ -116,8 +117,8 @@ void PlaneRule1::run(const Value* below, const Value* centre, const Value* above
             const int value = c[x];
             const int diff_below = b != nullptr ? b[x] - value : 2 * value;
             const int diff_above = a != nullptr ? a[x] - value : 2 * value;
-            const bool fire = 2 * (diff_below < 0 ? -diff_below : diff_below) < value ||
-                              2 * (diff_above < 0 ? -diff_above : diff_above) < value;
+            const bool fire =
+                fx::agrees(value + diff_below, value) || fx::agrees(value + diff_above, value);
             const auto box =
                 static_cast<std::uint32_t>(columns[x - 1] + columns[x] + columns[x + 1]);
             dst[x] = fire ? static_cast<Value>(fx::mean9(box)) : static_cast<Value>(value);
@@ -141,8 +142,7 @@ void ca_rule2_plane(const Value* in, int width, int height, Value* out) {
                                        mid[x + 1], down[x - 1], down[x],   down[x + 1]};
             int count = 0;
             for (const int n : neighbours) {
-                const int diff = n - c;
-                count += 2 * (diff < 0 ? -diff : diff) < c ? 1 : 0;
+                count += fx::agrees(n, c) ? 1 : 0;
             }
             dst[x] = count >= fx::kRule2MinCount
                          ? static_cast<Value>(fx::div13(static_cast<std::uint32_t>(c)))

@@ -59,8 +59,13 @@ class ReportError(Exception):
     pass
 
 
+# Stages, sources and lint configurations, generated from model/include/stereo/stage_table.hpp.
+STAGE_TABLE = json.loads((REPO / "scripts" / "stage_table.json").read_text())
+
+
 def rtl_sources():
-    return [str(RTL / name) for name in (RTL / "files.f").read_text().split()]
+    names = [STAGE_TABLE["package"]] + [module + ".sv" for module in STAGE_TABLE["modules"]]
+    return [str(RTL / name) for name in names]
 
 
 def tool_version(command):
@@ -327,7 +332,7 @@ def estimate(config, target, work=None, use_dsp=True):
             "note": "Yosys resource estimate before place and route; no Fmax"}
 
 
-STAGES = ("stereo_cost", "stereo_aggregate", "stereo_ca_rule1", "stereo_ca_rule2", "stereo_wta")
+STAGES = tuple(stage["module"] for stage in STAGE_TABLE["stages"])
 
 
 def module_kind(name):
