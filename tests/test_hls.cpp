@@ -448,7 +448,7 @@ TEST(HlsStages, EachStageEqualsModelOnTsukuba) {
                             stream_volume<kNdisp, hls::agg_t>(
                                 *rule2, after_rule1, kNdisp,
                                 [&](hls::coord_t x, hls::coord_t y, const hls::agg_t(&in)[kNdisp]) {
-                                    rule2->step(x, y, in, width, height, true);
+                                    rule2->step(x, y, in, width, height, kNdisp, true);
                                 },
                                 fx::kAggMax, rng, &flushes),
                             kNdisp))

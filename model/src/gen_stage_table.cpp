@@ -12,6 +12,7 @@
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -254,9 +255,19 @@ int main(int argc, char** argv) {
             continue;
         }
         const std::filesystem::path target = std::filesystem::path(root) / path;
+        const std::string content = text();
+        {
+            // An unchanged file keeps its time stamp, so the build does not redo its users.
+            std::ifstream in(target, std::ios::binary);
+            const std::string current{std::istreambuf_iterator<char>(in),
+                                      std::istreambuf_iterator<char>()};
+            if (in && current == content) {
+                continue;
+            }
+        }
         std::filesystem::create_directories(target.parent_path());
-        std::ofstream out(target);
-        out << text();
+        std::ofstream out(target, std::ios::binary);
+        out << content;
         if (!out) {
             std::cerr << "gen_stage_table: error: cannot write " << target << '\n';
             return 1;

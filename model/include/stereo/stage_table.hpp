@@ -119,9 +119,6 @@ constexpr int hls_pipeline_latency(int width, int window) {
     return steps;
 }
 
-static_assert(pipeline_latency(64, 5) == (2 + 2) * 64 + 2 + 10);
-static_assert(hls_pipeline_latency(640, 11) == (5 + 2) * 640 + 5 + 8);
-
 // ---- RTL sources in compile order (rtl/files.f) --------------------------------------------
 // The package first, then every module before its first user. One module per file, named after
 // it; the list of modules to lint is this list without the package.
