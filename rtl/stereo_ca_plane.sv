@@ -119,15 +119,15 @@ module stereo_ca_plane #(
   always_ff @(posedge clk) begin
     if (ce) out_data <= result;
   end
-  always_ff @(posedge clk) begin
-    if (rst) begin
-      out_x <= '0;
-      out_y <= fx_pkg::NO_PIXEL;
-    end else if (ce) begin
-      out_x <= centre_x;
-      out_y <= centre_y;
-    end
-  end
+  stereo_coord_reg coordinates (
+      .clk(clk),
+      .rst(rst),
+      .ce(ce),
+      .in_x(centre_x),
+      .in_y(centre_y),
+      .out_x(out_x),
+      .out_y(out_y)
+  );
 endmodule
 
 `default_nettype wire

@@ -65,15 +65,15 @@ module stereo_cost #(
     if (ce) out_data <= cost_d;
   end
 
-  always_ff @(posedge clk) begin
-    if (rst) begin
-      out_x <= '0;
-      out_y <= fx_pkg::NO_PIXEL;
-    end else if (ce) begin
-      out_x <= in_x;
-      out_y <= in_y;
-    end
-  end
+  stereo_coord_reg coordinates (
+      .clk(clk),
+      .rst(rst),
+      .ce(ce),
+      .in_x(in_x),
+      .in_y(in_y),
+      .out_x(out_x),
+      .out_y(out_y)
+  );
 endmodule
 
 `default_nettype wire

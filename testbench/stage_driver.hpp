@@ -22,6 +22,7 @@
 #include <concepts>
 #include <cstdint>
 #include <memory>
+#include <ostream>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -34,6 +35,7 @@
 #include "stereo/image.hpp"
 #include "stereo/pipeline.hpp"
 #include "stereo/stage_table.hpp"
+#include "tb_compare.hpp"
 #include "tb_options.hpp"
 #include "test_support.hpp"
 #include "verilated_harness.hpp"
@@ -246,6 +248,26 @@ class StageDriver {
     Model* model_;
 };
 
+// ---- Parameterised cases ---------------------------------------------------------------------
+
+// A case type with a describe(case) beside it (found by argument-dependent lookup) prints and
+// names its tests by it. GoogleTest finds PrintTo by argument-dependent lookup too: a testbench
+// brings this one into its case type's namespace with `using tb::PrintTo;`.
+template <typename Case>
+concept Described = requires(const Case& c) {
+    { describe(c) } -> std::convertible_to<std::string>;
+};
+
+template <Described Case>
+void PrintTo(const Case& c, std::ostream* os) {
+    *os << describe(c);
+}
+
+template <Described Case>
+std::string case_name(const ::testing::TestParamInfo<Case>& info) {
+    return describe(info.param);
+}
+
 // ---- Volumes ---------------------------------------------------------------------------------
 
 // The first `planes` planes of a volume (the model's view when cfg_ndisp < NDISP).
@@ -276,36 +298,6 @@ inline Dsi pair_cost(int width, int height, int ndisp, int shift, std::mt19937& 
     const Image left = test::random_image(width, height, 3, rng);
     const Image right = test::shifted_copy(left, shift, 25, rng);
     return cost(left, right, ndisp);
-}
-
-// Compares planes [0, planes) of two volumes value by value; lists the first few mismatches in
-// stream order (y, x, d).
-inline ::testing::AssertionResult same_volume(const Dsi& model, const Dsi& rtl, int planes) {
-    if (model.width() != rtl.width() || model.height() != rtl.height() || model.ndisp() < planes ||
-        rtl.ndisp() < planes) {
-        return ::testing::AssertionFailure() << "volume shapes differ";
-    }
-    std::size_t mismatches = 0;
-    std::string first;
-    for (int y = 0; y < model.height(); ++y) {
-        for (int x = 0; x < model.width(); ++x) {
-            for (int d = 0; d < planes; ++d) {
-                const int expected = model.at(x, y, d);
-                const int actual = rtl.at(x, y, d);
-                if (expected != actual && mismatches++ < 5) {
-                    first += " (x=" + std::to_string(x) + ", y=" + std::to_string(y) +
-                             ", d=" + std::to_string(d) + "): model " + std::to_string(expected) +
-                             ", rtl " + std::to_string(actual) + ";";
-                }
-            }
-        }
-    }
-    if (mismatches == 0) {
-        return ::testing::AssertionSuccess();
-    }
-    return ::testing::AssertionFailure()
-           << mismatches << " of " << model.plane_size() * static_cast<std::size_t>(planes)
-           << " values differ, first:" << first;
 }
 
 // How many cells a rule changed: a test of a rule is only as strong as how often it fires.

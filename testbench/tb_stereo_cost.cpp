@@ -74,13 +74,7 @@ std::string describe(const RandomCase& c) {
            std::to_string(static_cast<int>(c.ce_low * 100));
 }
 
-void PrintTo(const RandomCase& c, std::ostream* os) {
-    *os << describe(c);
-}
-
-std::string case_name(const ::testing::TestParamInfo<RandomCase>& info) {
-    return describe(info.param);
-}
+using tb::PrintTo;  // by describe()
 
 class RandomPairs : public ::testing::TestWithParam<RandomCase> {};
 
@@ -105,7 +99,7 @@ INSTANTIATE_TEST_SUITE_P(Cost, RandomPairs,
                                            RandomCase{37, 23, true, 0.2},
                                            RandomCase{13, 9, false, 0.5},  // W < NDISP
                                            RandomCase{3, 3, true, 0.3}),
-                         case_name);
+                         case_name<RandomCase>);
 
 TEST(CostExtremes, ConstantImagesGiveZeroAndTheMaximum) {
     const std::uint32_t seed = test_seed();

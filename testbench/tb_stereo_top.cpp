@@ -13,11 +13,14 @@
 #include "stereo/stage_table.hpp"
 #include "stereo_app/io.hpp"
 #include "stereo_top_sim.hpp"
+#include "tb_compare.hpp"
 #include "tb_options.hpp"
 #include "test_support.hpp"
 
 namespace stereo::sim {
 namespace {
+
+using tb::same_map;
 
 const TopConfig& small() {
     return built_top_configs().front();
@@ -27,29 +30,6 @@ const TopConfig& small() {
 // (R + 2) * W + R + 10; the Throughput test below measures it on the RTL.
 std::uint64_t documented_latency(int width, int window) {
     return static_cast<std::uint64_t>(table::pipeline_latency(width, window));
-}
-
-::testing::AssertionResult same_map(const DisparityMap& model, const DisparityMap& rtl) {
-    std::size_t mismatches = 0;
-    std::string first;
-    for (int y = 0; y < model.height; ++y) {
-        for (int x = 0; x < model.width; ++x) {
-            const auto i = model.index(x, y);
-            if (model.disparity[i] != rtl.disparity[i] || model.valid[i] != rtl.valid[i]) {
-                if (mismatches++ < 5) {
-                    first += " (" + std::to_string(x) + "," + std::to_string(y) +
-                             "): model d=" + std::to_string(model.disparity[i]) +
-                             " valid=" + std::to_string(model.valid[i]) +
-                             ", rtl d=" + std::to_string(rtl.disparity[i]) +
-                             " valid=" + std::to_string(rtl.valid[i]) + ";";
-                }
-            }
-        }
-    }
-    if (mismatches == 0) {
-        return ::testing::AssertionSuccess();
-    }
-    return ::testing::AssertionFailure() << mismatches << " mismatching pixels, first:" << first;
 }
 
 class Cosim {

@@ -12,6 +12,7 @@
 // "Agrees" is fx::agrees (stage_table.hpp), 2|n - c| < c. With use_ca false every cell passes.
 #pragma once
 
+#include "stereo/hls/stage_output.hpp"
 #include "stereo/hls/types.hpp"
 #include "stereo/hls/window3x3.hpp"
 #include "stereo/stage_table.hpp"
@@ -21,19 +22,15 @@ namespace stereo::hls {
 using fx::agrees;
 
 template <int WIDTH, int NDISP, int RULE>
-class ca_rule {
+class ca_rule : public lane_output<agg_t, NDISP> {
     static_assert(NDISP >= 1 && NDISP <= fx::kMaxDisparities);
     static_assert(RULE == 1 || RULE == 2);
+    using lane_output<agg_t, NDISP>::out_data_;
+    using lane_output<agg_t, NDISP>::out_x_;
+    using lane_output<agg_t, NDISP>::out_y_;
 
   public:
-    using value_type = agg_t;
-    static constexpr int kLanes = NDISP;
-    using Lanes = agg_t[NDISP];
-
-    void reset() {
-        out_x_ = 0;
-        out_y_ = kNoPixel;
-    }
+    using typename lane_output<agg_t, NDISP>::Lanes;
 
     // ndisp matters to rule 1 only (rule 2 does not look across planes).
     void step(coord_t in_x, coord_t in_y, const Lanes& in, int width, int height, int ndisp,
@@ -53,16 +50,6 @@ class ca_rule {
         out_x_ = centre_x;
         out_y_ = centre_y;
         window_.step(in_x, width, in);
-    }
-
-    coord_t out_x() const {
-        return out_x_;
-    }
-    coord_t out_y() const {
-        return out_y_;
-    }
-    const Lanes& out_data() const {
-        return out_data_;
     }
 
   private:
@@ -101,9 +88,6 @@ class ca_rule {
     }
 
     window3x3<WIDTH, agg_t, NDISP> window_;
-    Lanes out_data_ = {};
-    coord_t out_x_ = 0;
-    coord_t out_y_ = kNoPixel;
 };
 
 // The two stages of the pipeline (stereo_hls_top).
