@@ -27,8 +27,8 @@ struct CostStage {
     using Model = Vstereo_cost;
     static constexpr const char* kName = "stereo_cost";
     static void scramble(Model& model, std::mt19937& rng) {
-        model.in_left = rng() & 0xFFFFFFU;
-        model.in_right = rng() & 0xFFFFFFU;
+        randomize_bits(model.in_left, table::kRgbBits, rng);
+        randomize_bits(model.in_right, table::kRgbBits, rng);
     }
     static std::vector<std::uint32_t> outputs(const Model& model) {
         return port_words(model.out_data);

@@ -190,15 +190,18 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST(Throughput, CyclesPerFrameWithoutStallsMatchTheDocumentedLatency) {
     std::mt19937 rng(tb::test_seed());
-    const Image left = test::random_image(64, 48, 3, rng);
+    const table::Params& point = table::kSmall;  // the configuration Cosim runs
+    const Image left = test::random_image(point.width, point.height, 3, rng);
     const Image right = test::shifted_copy(left, 4, 10, rng);
     Cosim cosim;
     StreamResult result;
-    (void)cosim.run(left, right, {16, 5, fx::kDefaultSigma, true}, {}, &result);
-    const std::uint64_t pixels = 64 * 48;
-    const std::uint64_t expected = pixels + documented_latency(64, 5);
-    std::cout << "[cycles] 64x48: " << result.cycles << " cycles, expected " << expected
-              << " (pixels " << pixels << " + latency " << documented_latency(64, 5) << ")\n";
+    (void)cosim.run(left, right, {point.ndisp, point.window, fx::kDefaultSigma, true}, {}, &result);
+    const auto pixels = static_cast<std::uint64_t>(point.width) * point.height;
+    const std::uint64_t latency = documented_latency(point.width, point.window);
+    const std::uint64_t expected = pixels + latency;
+    std::cout << "[cycles] " << point.width << "x" << point.height << ": " << result.cycles
+              << " cycles, expected " << expected << " (pixels " << pixels << " + latency "
+              << latency << ")\n";
     // Exactly: the stage table's latency formula is what the RTL does.
     EXPECT_EQ(result.cycles, expected);
 }

@@ -397,9 +397,9 @@ PLOT_PARAMETERS = [("ndisp", "disparities (640x480, 11x11)"),
 TARGET_STYLE = {("xilinx", True): ("#1f77b4", "7-series"),
                 ("xilinx", False): ("#17becf", "7-series, no DSP"),
                 ("ecp5", True): ("#d62728", "ECP5"), ("ecp5", False): ("#ff9896", "ECP5, no DSP")}
-STAGE_COLOURS = {"stereo_cost": "#8c564b", "stereo_aggregate": "#1f77b4",
-                 "stereo_ca_rule1": "#2ca02c", "stereo_ca_rule2": "#98df8a",
-                 "stereo_wta": "#9467bd", "glue": "#7f7f7f"}
+# In pipeline order (STAGES, from the stage table), then the glue.
+STAGE_COLOURS = dict(zip(STAGES, ("#8c564b", "#1f77b4", "#2ca02c", "#98df8a", "#9467bd")),
+                     glue="#7f7f7f")
 
 
 def sweep_series(points, parameter):
