@@ -18,20 +18,20 @@ module stereo_aggregate #(
     // into shifts and adds; cfg_kernel is then ignored.
     parameter bit RUNTIME_KERNEL = 1'b1
 ) (
-    input  wire logic                                           clk,
-    input  wire logic                                           rst,  // clears coordinates only
-    input  wire logic                                           ce,
-    input  wire fx_pkg::coord_t                                     in_x,
-    input  wire fx_pkg::coord_t                                     in_y,
-    input  wire logic        [NDISP*fx_pkg::COST_BITS-1:0]  in_data,
-    input  wire fx_pkg::cfg_size_t                                 cfg_width,
-    input  wire fx_pkg::cfg_size_t                                 cfg_height,
+    input  wire logic                               clk,
+    input  wire logic                               rst,  // clears coordinates only
+    input  wire logic                               ce,
+    input  wire fx_pkg::coord_t                     in_x,
+    input  wire fx_pkg::coord_t                     in_y,
+    input  wire logic [NDISP*fx_pkg::COST_BITS-1:0] in_data,
+    input  wire fx_pkg::cfg_size_t                  cfg_width,
+    input  wire fx_pkg::cfg_size_t                  cfg_height,
     /* verilator lint_off UNUSEDSIGNAL */  // ignored with RUNTIME_KERNEL = 0
-    input  wire logic        [WINDOW*fx_pkg::TAP_BITS-1:0]  cfg_kernel,
+    input  wire logic [WINDOW*fx_pkg::TAP_BITS-1:0] cfg_kernel,
     /* verilator lint_on UNUSEDSIGNAL */
-    output      fx_pkg::coord_t                                     out_x,
-    output      fx_pkg::coord_t                                     out_y,
-    output      logic        [NDISP*fx_pkg::AGG_BITS-1:0]   out_data
+    output      fx_pkg::coord_t                     out_x,
+    output      fx_pkg::coord_t                     out_y,
+    output      logic [NDISP*fx_pkg::AGG_BITS-1:0]  out_data
 );
   localparam int COST_BITS = fx_pkg::COST_BITS;
   localparam int TAP_BITS = fx_pkg::TAP_BITS;
@@ -225,13 +225,9 @@ module stereo_aggregate #(
     if (ce) out_data <= aggregate_d;
   end
   stereo_coord_reg coordinates (
-      .clk(clk),
-      .rst(rst),
-      .ce(ce),
       .in_x(centre_x),
       .in_y(centre_y),
-      .out_x(out_x),
-      .out_y(out_y)
+      .*
   );
 endmodule
 

@@ -19,22 +19,22 @@ module stereo_ca_plane #(
     parameter int NDISP = 16,  // disparities in parallel
     parameter int RULE  = 1    // 1 or 2
 ) (
-    input  wire logic                                   clk,
-    input  wire logic                                   rst,  // clears coordinates only
-    input  wire logic                                   ce,
-    input  wire fx_pkg::coord_t                         in_x,
-    input  wire fx_pkg::coord_t                         in_y,
-    input  wire logic           [NDISP*fx_pkg::AGG_BITS-1:0] in_data,
-    input  wire fx_pkg::cfg_size_t                      cfg_width,
-    input  wire fx_pkg::cfg_size_t                      cfg_height,
+    input  wire logic                              clk,
+    input  wire logic                              rst,  // clears coordinates only
+    input  wire logic                              ce,
+    input  wire fx_pkg::coord_t                    in_x,
+    input  wire fx_pkg::coord_t                    in_y,
+    input  wire logic [NDISP*fx_pkg::AGG_BITS-1:0] in_data,
+    input  wire fx_pkg::cfg_size_t                 cfg_width,
+    input  wire fx_pkg::cfg_size_t                 cfg_height,
     // Rule 2 does not look across planes.
     /* verilator lint_off UNUSEDSIGNAL */
-    input  wire fx_pkg::cfg_ndisp_t                     cfg_ndisp,
+    input  wire fx_pkg::cfg_ndisp_t                cfg_ndisp,
     /* verilator lint_on UNUSEDSIGNAL */
-    input  wire logic                                   cfg_use_ca,
-    output      fx_pkg::coord_t                         out_x,
-    output      fx_pkg::coord_t                         out_y,
-    output      logic           [NDISP*fx_pkg::AGG_BITS-1:0] out_data
+    input  wire logic                              cfg_use_ca,
+    output      fx_pkg::coord_t                    out_x,
+    output      fx_pkg::coord_t                    out_y,
+    output      logic [NDISP*fx_pkg::AGG_BITS-1:0] out_data
 );
   localparam int BITS = fx_pkg::AGG_BITS;
   localparam int SUM_BITS = fx_pkg::CA_SUM_BITS;
@@ -120,13 +120,9 @@ module stereo_ca_plane #(
     if (ce) out_data <= result;
   end
   stereo_coord_reg coordinates (
-      .clk(clk),
-      .rst(rst),
-      .ce(ce),
       .in_x(centre_x),
       .in_y(centre_y),
-      .out_x(out_x),
-      .out_y(out_y)
+      .*
   );
 endmodule
 

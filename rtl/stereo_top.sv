@@ -28,28 +28,28 @@ module stereo_top #(
     // be WINDOW/2 (a smaller radius with the full-size constant kernel would not be the model).
     parameter bit RUNTIME_KERNEL = 1'b1
 ) (
-    input  wire logic                                   clk,
-    input  wire logic                                   rst,
+    input  wire logic                               clk,
+    input  wire logic                               rst,
     // Configuration, sampled with the start-of-frame beat.
-    input  wire fx_pkg::cfg_size_t                      cfg_width,
-    input  wire fx_pkg::cfg_size_t                      cfg_height,
-    input  wire fx_pkg::cfg_ndisp_t                     cfg_ndisp,
-    input  wire fx_pkg::cfg_radius_t                    cfg_radius,
-    input  wire logic [WINDOW*fx_pkg::TAP_BITS-1:0]     cfg_kernel,
-    input  wire logic                                   cfg_use_ca,
+    input  wire fx_pkg::cfg_size_t                  cfg_width,
+    input  wire fx_pkg::cfg_size_t                  cfg_height,
+    input  wire fx_pkg::cfg_ndisp_t                 cfg_ndisp,
+    input  wire fx_pkg::cfg_radius_t                cfg_radius,
+    input  wire logic [WINDOW*fx_pkg::TAP_BITS-1:0] cfg_kernel,
+    input  wire logic                               cfg_use_ca,
     // Input stream.
-    input  wire logic [fx_pkg::IN_BEAT_BITS-1:0]        s_axis_tdata,
-    input  wire logic                                   s_axis_tvalid,
-    output      logic                                   s_axis_tready,
-    input  wire logic                                   s_axis_tlast,
-    input  wire logic                                   s_axis_tuser,
+    input  wire logic [fx_pkg::IN_BEAT_BITS-1:0]    s_axis_tdata,
+    input  wire logic                               s_axis_tvalid,
+    output      logic                               s_axis_tready,
+    input  wire logic                               s_axis_tlast,
+    input  wire logic                               s_axis_tuser,
     // Output stream.
-    output      fx_pkg::out_beat_t                      m_axis_tdata,
-    output      logic                                   m_axis_tvalid,
-    input  wire logic                                   m_axis_tready,
-    output      logic                                   m_axis_tlast,
-    output      logic                                   m_axis_tuser,
-    output      logic [fx_pkg::STATUS_BITS-1:0]         status
+    output      fx_pkg::out_beat_t                  m_axis_tdata,
+    output      logic                               m_axis_tvalid,
+    input  wire logic                               m_axis_tready,
+    output      logic                               m_axis_tlast,
+    output      logic                               m_axis_tuser,
+    output      logic [fx_pkg::STATUS_BITS-1:0]     status
 );
   localparam int R = WINDOW / 2;
   localparam int COST_BITS = fx_pkg::COST_BITS;

@@ -13,18 +13,18 @@ module stereo_window3x3 #(
     parameter int BITS  = 14,  // one DSI value
     parameter int NDISP = 16   // disparities in parallel
 ) (
-    input  wire logic                          clk,
-    input  wire logic                          rst,  // clears coordinates only
-    input  wire logic                          ce,
-    input  wire fx_pkg::coord_t                    in_x,
-    input  wire fx_pkg::coord_t                    in_y,
-    input  wire logic        [NDISP*BITS-1:0]  in_data,
-    input  wire fx_pkg::cfg_size_t                cfg_width,
-    input  wire fx_pkg::cfg_size_t                cfg_height,
-    output      fx_pkg::coord_t                    centre_x,
-    output      fx_pkg::coord_t                    centre_y,
-    output      logic        [9*NDISP*BITS-1:0] window_data,
-    output      logic        [8:0]             in_frame
+    input  wire logic                    clk,
+    input  wire logic                    rst,  // clears coordinates only
+    input  wire logic                    ce,
+    input  wire fx_pkg::coord_t          in_x,
+    input  wire fx_pkg::coord_t          in_y,
+    input  wire logic [NDISP*BITS-1:0]   in_data,
+    input  wire fx_pkg::cfg_size_t       cfg_width,
+    input  wire fx_pkg::cfg_size_t       cfg_height,
+    output      fx_pkg::coord_t          centre_x,
+    output      fx_pkg::coord_t          centre_y,
+    output      logic [9*NDISP*BITS-1:0] window_data,
+    output      logic [8:0]              in_frame
 );
   localparam int COLUMN = NDISP * BITS;
 

@@ -12,21 +12,21 @@
 module stereo_wta #(
     parameter int NDISP = 16  // disparities in parallel
 ) (
-    input  wire logic                                          clk,
-    input  wire logic                                          rst,  // clears coordinates only
-    input  wire logic                                          ce,
-    input  wire fx_pkg::coord_t                                    in_x,
-    input  wire fx_pkg::coord_t                                    in_y,
-    input  wire logic        [NDISP*fx_pkg::AGG_BITS-1:0]  in_data,
-    input  wire fx_pkg::cfg_size_t                                cfg_width,
-    input  wire fx_pkg::cfg_size_t                                cfg_height,
-    input  wire fx_pkg::cfg_ndisp_t                                 cfg_ndisp,
-    input  wire fx_pkg::cfg_radius_t                                cfg_radius,
-    input  wire logic                                          cfg_use_ca,
-    output      fx_pkg::coord_t                                    out_x,
-    output      fx_pkg::coord_t                                    out_y,
-    output      logic        [fx_pkg::DISP_BITS-1:0]       out_disparity,
-    output      logic                                          out_valid
+    input  wire logic                              clk,
+    input  wire logic                              rst,  // clears coordinates only
+    input  wire logic                              ce,
+    input  wire fx_pkg::coord_t                    in_x,
+    input  wire fx_pkg::coord_t                    in_y,
+    input  wire logic [NDISP*fx_pkg::AGG_BITS-1:0] in_data,
+    input  wire fx_pkg::cfg_size_t                 cfg_width,
+    input  wire fx_pkg::cfg_size_t                 cfg_height,
+    input  wire fx_pkg::cfg_ndisp_t                cfg_ndisp,
+    input  wire fx_pkg::cfg_radius_t               cfg_radius,
+    input  wire logic                              cfg_use_ca,
+    output      fx_pkg::coord_t                    out_x,
+    output      fx_pkg::coord_t                    out_y,
+    output      logic [fx_pkg::DISP_BITS-1:0]      out_disparity,
+    output      logic                              out_valid
 );
   localparam int BITS = fx_pkg::AGG_BITS;
   localparam int DISP_BITS = fx_pkg::DISP_BITS;
@@ -80,15 +80,7 @@ module stereo_wta #(
       out_valid <= valid_d;
     end
   end
-  stereo_coord_reg coordinates (
-      .clk(clk),
-      .rst(rst),
-      .ce(ce),
-      .in_x(in_x),
-      .in_y(in_y),
-      .out_x(out_x),
-      .out_y(out_y)
-  );
+  stereo_coord_reg coordinates (.*);
 endmodule
 
 `default_nettype wire

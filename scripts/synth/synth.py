@@ -112,6 +112,14 @@ def load_stat_json(path):
     return json.loads("\n".join(json_lines))
 
 
+def submodule(cell, modules):
+    """The module a cell type names, or None for a leaf cell. Yosys lists a module without
+    parameters as "\\name" but names its instances' type "name"."""
+    if cell in modules:
+        return cell
+    return "\\" + cell if "\\" + cell in modules else None
+
+
 def hierarchy_totals(modules):
     """Leaf cell counts of every module including its submodules (times their instances)."""
     own = {name: data.get("num_cells_by_type", {}) for name, data in modules.items()}
@@ -121,7 +129,8 @@ def hierarchy_totals(modules):
         if name not in totals:
             result = {}
             for cell, n in own[name].items():
-                for leaf, m in (total(cell).items() if cell in own else [(cell, 1)]):
+                sub = submodule(cell, own)
+                for leaf, m in (total(sub).items() if sub else [(cell, 1)]):
                     result[leaf] = result.get(leaf, 0) + n * m
             totals[name] = result
         return totals[name]
@@ -351,7 +360,7 @@ def stage_breakdown(stat_path):
         kind = module_kind(name)
         cells = (totals[name] if kind in STAGES else
                  {cell: n for cell, n in data.get("num_cells_by_type", {}).items()
-                  if cell not in modules} if kind in ("stereo_top", TOP) else {})
+                  if submodule(cell, modules) is None} if kind in ("stereo_top", TOP) else {})
         key = kind if kind in STAGES else "glue"
         for cell, n in cells.items():
             stages.setdefault(key, {})
