@@ -18,20 +18,20 @@ module stereo_aggregate #(
     // into shifts and adds; cfg_kernel is then ignored.
     parameter bit RUNTIME_KERNEL = 1'b1
 ) (
-    input  wire logic                                           clk,
-    input  wire logic                                           rst,  // clears coordinates only
-    input  wire logic                                           ce,
-    input  wire logic signed [15:0]                             in_x,
-    input  wire logic signed [15:0]                             in_y,
-    input  wire logic        [NDISP*fx_pkg::COST_BITS-1:0]  in_data,
-    input  wire logic        [15:0]                             cfg_width,
-    input  wire logic        [15:0]                             cfg_height,
+    input  wire logic                               clk,
+    input  wire logic                               rst,  // clears coordinates only
+    input  wire logic                               ce,
+    input  wire fx_pkg::coord_t                     in_x,
+    input  wire fx_pkg::coord_t                     in_y,
+    input  wire logic [NDISP*fx_pkg::COST_BITS-1:0] in_data,
+    input  wire fx_pkg::cfg_size_t                  cfg_width,
+    input  wire fx_pkg::cfg_size_t                  cfg_height,
     /* verilator lint_off UNUSEDSIGNAL */  // ignored with RUNTIME_KERNEL = 0
-    input  wire logic        [WINDOW*fx_pkg::TAP_BITS-1:0]  cfg_kernel,
+    input  wire logic [WINDOW*fx_pkg::TAP_BITS-1:0] cfg_kernel,
     /* verilator lint_on UNUSEDSIGNAL */
-    output      logic signed [15:0]                             out_x,
-    output      logic signed [15:0]                             out_y,
-    output      logic        [NDISP*fx_pkg::AGG_BITS-1:0]   out_data
+    output      fx_pkg::coord_t                     out_x,
+    output      fx_pkg::coord_t                     out_y,
+    output      logic [NDISP*fx_pkg::AGG_BITS-1:0]  out_data
 );
   localparam int COST_BITS = fx_pkg::COST_BITS;
   localparam int TAP_BITS = fx_pkg::TAP_BITS;
@@ -42,7 +42,6 @@ module stereo_aggregate #(
   localparam int R = WINDOW / 2;
   localparam int COLUMN_BITS = NDISP * COST_BITS;  // one pixel's costs
   localparam int V_BITS = NDISP * VSUM_BITS;       // one pixel's vertical sums
-  localparam logic signed [15:0] NO_PIXEL = -16'sd32768;
 
   logic [WINDOW*TAP_BITS-1:0] kernel;
   generate
@@ -173,12 +172,12 @@ module stereo_aggregate #(
     end
   end
 
-  logic signed [15:0] centre_x, centre_y;
+  fx_pkg::coord_t centre_x, centre_y;
   logic [WINDOW-1:0] column_inside;
   always_ff @(posedge clk) begin
     if (rst) begin
       centre_x <= '0;
-      centre_y <= NO_PIXEL;
+      centre_y <= fx_pkg::NO_PIXEL;
       column_inside <= '0;
     end else if (ce) begin
       centre_x <= 16'(next_centre_x);
@@ -225,15 +224,11 @@ module stereo_aggregate #(
   always_ff @(posedge clk) begin
     if (ce) out_data <= aggregate_d;
   end
-  always_ff @(posedge clk) begin
-    if (rst) begin
-      out_x <= '0;
-      out_y <= NO_PIXEL;
-    end else if (ce) begin
-      out_x <= centre_x;
-      out_y <= centre_y;
-    end
-  end
+  stereo_coord_reg coordinates (
+      .in_x(centre_x),
+      .in_y(centre_y),
+      .*
+  );
 endmodule
 
 `default_nettype wire

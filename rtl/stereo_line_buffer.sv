@@ -17,12 +17,12 @@ module stereo_line_buffer #(
     parameter int DATA_BITS = 8,   // one pixel's data
     parameter int ROWS      = 2    // rows kept
 ) (
-    input  wire logic                        clk,
-    input  wire logic                        ce,         // advance one pixel step
-    input  wire logic signed [15:0]          in_x,       // column of this step, 0 .. cfg_width-1
-    input  wire logic        [15:0]          cfg_width,
-    input  wire logic        [DATA_BITS-1:0] in_data,
-    output      logic   [ROWS*DATA_BITS-1:0] rows_above  // row y-1-k at [k*DATA_BITS +: DATA_BITS]
+    input  wire logic                      clk,
+    input  wire logic                      ce,         // advance one pixel step
+    input  wire fx_pkg::coord_t            in_x,       // column of this step, 0 .. cfg_width-1
+    input  wire fx_pkg::cfg_size_t         cfg_width,
+    input  wire logic [DATA_BITS-1:0]      in_data,
+    output      logic [ROWS*DATA_BITS-1:0] rows_above  // row y-1-k at [k*DATA_BITS +: DATA_BITS]
 );
   localparam int ADDR_BITS = (WIDTH > 1) ? $clog2(WIDTH) : 1;
   localparam int WORD_BITS = ROWS * DATA_BITS;

@@ -13,23 +13,23 @@ module stereo_synth_top #(
     parameter int NDISP  = 16,  // disparities evaluated in parallel (largest cfg_ndisp)
     parameter int WINDOW = 5    // aggregation window (odd), fixed by the constant kernel
 ) (
-    input  wire logic        clk,
-    input  wire logic        rst,
-    input  wire logic [15:0] cfg_width,
-    input  wire logic [15:0] cfg_height,
-    input  wire logic [ 8:0] cfg_ndisp,
-    input  wire logic        cfg_use_ca,
-    input  wire logic [47:0] s_axis_tdata,
-    input  wire logic        s_axis_tvalid,
-    output      logic        s_axis_tready,
-    input  wire logic        s_axis_tlast,
-    input  wire logic        s_axis_tuser,
-    output      logic [15:0] m_axis_tdata,
-    output      logic        m_axis_tvalid,
-    input  wire logic        m_axis_tready,
-    output      logic        m_axis_tlast,
-    output      logic        m_axis_tuser,
-    output      logic [ 2:0] status
+    input  wire logic                            clk,
+    input  wire logic                            rst,
+    input  wire fx_pkg::cfg_size_t               cfg_width,
+    input  wire fx_pkg::cfg_size_t               cfg_height,
+    input  wire fx_pkg::cfg_ndisp_t              cfg_ndisp,
+    input  wire logic                            cfg_use_ca,
+    input  wire logic [fx_pkg::IN_BEAT_BITS-1:0] s_axis_tdata,
+    input  wire logic                            s_axis_tvalid,
+    output      logic                            s_axis_tready,
+    input  wire logic                            s_axis_tlast,
+    input  wire logic                            s_axis_tuser,
+    output      fx_pkg::out_beat_t               m_axis_tdata,
+    output      logic                            m_axis_tvalid,
+    input  wire logic                            m_axis_tready,
+    output      logic                            m_axis_tlast,
+    output      logic                            m_axis_tuser,
+    output      logic [fx_pkg::STATUS_BITS-1:0]  status
 );
   stereo_top #(
       .WIDTH(WIDTH),
@@ -43,7 +43,7 @@ module stereo_synth_top #(
       .cfg_width(cfg_width),
       .cfg_height(cfg_height),
       .cfg_ndisp(cfg_ndisp),
-      .cfg_radius(5'(WINDOW / 2)),
+      .cfg_radius(fx_pkg::CFG_RADIUS_BITS'(WINDOW / 2)),
       .cfg_kernel('0),  // unused: the kernel is constant
       .cfg_use_ca(cfg_use_ca),
       .s_axis_tdata(s_axis_tdata),

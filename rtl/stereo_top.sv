@@ -2,7 +2,7 @@
 //
 //   s_axis: tdata = {right RGB, left RGB} (R in the high byte of each half), tuser = start of
 //           frame, tlast = end of line; one pixel pair per beat, raster order.
-//   m_axis: tdata = {7'b0, valid, disparity[7:0]}, tuser on the first pixel, tlast at each row
+//   m_axis: tdata = fx_pkg::out_beat_t {7'b0, valid, disparity[7:0]}, tuser on the first pixel, tlast at each row
 //           end; exactly one output beat per input pixel, bit-exact with stereo::match.
 //
 // All stages advance together on one clock enable (a "pixel step", docs/rtl.md): a step happens
@@ -12,7 +12,8 @@
 // core steps on its own (s_axis_tready low) until the frame's last output has left the WTA, so
 // a frame never waits for the next one. Cycles per frame without stalls:
 //   W*H + (R + 2)*W + R + 10, R = WINDOW/2 (docs/rtl.md).
-// Input before the first start of frame is dropped. Status bits (sticky until reset):
+// Input before the first start of frame is dropped. Status bits (sticky until reset; the
+// indices are fx_pkg::STATUS_*):
 //   [0] tlast not at the row end, [1] tuser inside a frame, [2] configuration out of range
 //   (clamped). Reset is synchronous, active high, and clears control state only.
 `default_nettype none
@@ -27,28 +28,28 @@ module stereo_top #(
     // be WINDOW/2 (a smaller radius with the full-size constant kernel would not be the model).
     parameter bit RUNTIME_KERNEL = 1'b1
 ) (
-    input  wire logic                                          clk,
-    input  wire logic                                          rst,
+    input  wire logic                               clk,
+    input  wire logic                               rst,
     // Configuration, sampled with the start-of-frame beat.
-    input  wire logic [15:0]                                   cfg_width,
-    input  wire logic [15:0]                                   cfg_height,
-    input  wire logic [8:0]                                    cfg_ndisp,
-    input  wire logic [4:0]                                    cfg_radius,
-    input  wire logic [WINDOW*fx_pkg::TAP_BITS-1:0]        cfg_kernel,
-    input  wire logic                                          cfg_use_ca,
+    input  wire fx_pkg::cfg_size_t                  cfg_width,
+    input  wire fx_pkg::cfg_size_t                  cfg_height,
+    input  wire fx_pkg::cfg_ndisp_t                 cfg_ndisp,
+    input  wire fx_pkg::cfg_radius_t                cfg_radius,
+    input  wire logic [WINDOW*fx_pkg::TAP_BITS-1:0] cfg_kernel,
+    input  wire logic                               cfg_use_ca,
     // Input stream.
-    input  wire logic [47:0]                                   s_axis_tdata,
-    input  wire logic                                          s_axis_tvalid,
-    output      logic                                          s_axis_tready,
-    input  wire logic                                          s_axis_tlast,
-    input  wire logic                                          s_axis_tuser,
+    input  wire logic [fx_pkg::IN_BEAT_BITS-1:0]    s_axis_tdata,
+    input  wire logic                               s_axis_tvalid,
+    output      logic                               s_axis_tready,
+    input  wire logic                               s_axis_tlast,
+    input  wire logic                               s_axis_tuser,
     // Output stream.
-    output      logic [15:0]                                   m_axis_tdata,
-    output      logic                                          m_axis_tvalid,
-    input  wire logic                                          m_axis_tready,
-    output      logic                                          m_axis_tlast,
-    output      logic                                          m_axis_tuser,
-    output      logic [2:0]                                    status
+    output      fx_pkg::out_beat_t                  m_axis_tdata,
+    output      logic                               m_axis_tvalid,
+    input  wire logic                               m_axis_tready,
+    output      logic                               m_axis_tlast,
+    output      logic                               m_axis_tuser,
+    output      logic [fx_pkg::STATUS_BITS-1:0]     status
 );
   localparam int R = WINDOW / 2;
   localparam int COST_BITS = fx_pkg::COST_BITS;
@@ -58,7 +59,8 @@ module stereo_top #(
   initial begin
     assert (WINDOW % 2 == 1 && WINDOW <= fx_pkg::MAX_WINDOW);
     assert (NDISP >= 1 && NDISP <= 256);
-    assert (WIDTH >= 1 && WIDTH < 16384 && HEIGHT >= 1 && HEIGHT < 16384);
+    assert (WIDTH >= 1 && WIDTH <= fx_pkg::MAX_FRAME_SIDE && HEIGHT >= 1 &&
+            HEIGHT <= fx_pkg::MAX_FRAME_SIDE);
   end
 
   // ---- configuration: sanitised ports, latched at the start of a frame ----------------------
@@ -69,9 +71,9 @@ module stereo_top #(
   } state_t;
   state_t state;
 
-  logic [15:0] port_width, port_height;
-  logic [8:0] port_ndisp;
-  logic [4:0] port_radius;
+  fx_pkg::cfg_size_t port_width, port_height;
+  fx_pkg::cfg_ndisp_t port_ndisp;
+  fx_pkg::cfg_radius_t port_radius;
   logic port_cfg_error;
   always_comb begin
     port_width = cfg_width;
@@ -80,33 +82,33 @@ module stereo_top #(
     port_radius = cfg_radius;
     port_cfg_error = 1'b0;
     if (cfg_width == 0 || $signed(32'(cfg_width)) > WIDTH) begin
-      port_width = 16'(WIDTH);
+      port_width = fx_pkg::CFG_SIZE_BITS'(WIDTH);
       port_cfg_error = 1'b1;
     end
     if (cfg_height == 0 || $signed(32'(cfg_height)) > HEIGHT) begin
-      port_height = 16'(HEIGHT);
+      port_height = fx_pkg::CFG_SIZE_BITS'(HEIGHT);
       port_cfg_error = 1'b1;
     end
     if (cfg_ndisp == 0 || $signed(32'(cfg_ndisp)) > NDISP) begin
-      port_ndisp = 9'(NDISP);
+      port_ndisp = fx_pkg::CFG_NDISP_BITS'(NDISP);
       port_cfg_error = 1'b1;
     end
     if ($signed(32'(cfg_radius)) > R) begin
-      port_radius = 5'(R);
+      port_radius = fx_pkg::CFG_RADIUS_BITS'(R);
       port_cfg_error = 1'b1;
     end
   end
 
-  logic [15:0] frame_width, frame_height;
-  logic [8:0] frame_ndisp;
-  logic [4:0] frame_radius;
+  fx_pkg::cfg_size_t frame_width, frame_height;
+  fx_pkg::cfg_ndisp_t frame_ndisp;
+  fx_pkg::cfg_radius_t frame_radius;
   logic [WINDOW*fx_pkg::TAP_BITS-1:0] frame_kernel;
   logic frame_use_ca;
   // What the stages see: the ports while idle (the start-of-frame step uses them), the latched
   // values during the frame and its flush.
-  logic [15:0] use_width, use_height;
-  logic [8:0] use_ndisp;
-  logic [4:0] use_radius;
+  fx_pkg::cfg_size_t use_width, use_height;
+  fx_pkg::cfg_ndisp_t use_ndisp;
+  fx_pkg::cfg_radius_t use_radius;
   logic [WINDOW*fx_pkg::TAP_BITS-1:0] use_kernel;
   logic use_ca;
   always_comb begin
@@ -130,8 +132,8 @@ module stereo_top #(
   // ---- stepping ----------------------------------------------------------------------------
   logic output_pending;  // m_axis holds a beat not yet taken
   logic can_step, step, start_of_frame;
-  logic signed [15:0] x_in, y_in;  // raster position of the next step
-  logic signed [15:0] wta_in_x, wta_in_y;
+  fx_pkg::coord_t x_in, y_in;  // raster position of the next step
+  fx_pkg::coord_t wta_in_x, wta_in_y;
   logic last_output_entering;  // this step moves pixel (W-1, H-1) into the output register
 
   always_comb begin
@@ -151,12 +153,13 @@ module stereo_top #(
         step = can_step;
       end
     endcase
-    last_output_entering = step && wta_in_x == 16'($signed(32'(use_width)) - 1) &&
-                           wta_in_y == 16'($signed(32'(use_height)) - 1);
+    last_output_entering = step && wta_in_x == fx_pkg::COORD_BITS'($signed(32'(use_width)) - 1) &&
+                           wta_in_y == fx_pkg::COORD_BITS'($signed(32'(use_height)) - 1);
   end
 
   logic last_input;
-  assign last_input = x_in == 16'($signed(32'(use_width)) - 1) && y_in == 16'($signed(32'(use_height)) - 1);
+  assign last_input = x_in == fx_pkg::COORD_BITS'($signed(32'(use_width)) - 1) &&
+                      y_in == fx_pkg::COORD_BITS'($signed(32'(use_height)) - 1);
 
   always_ff @(posedge clk) begin
     if (rst) begin
@@ -173,13 +176,14 @@ module stereo_top #(
           frame_radius <= port_radius;
           frame_kernel <= cfg_kernel;
           frame_use_ca <= cfg_use_ca;
-          status[2] <= status[2] | port_cfg_error;
+          if (port_cfg_error) status[fx_pkg::STATUS_CONFIG_CLAMPED] <= 1'b1;
         end
         if (state != FLUSH) begin
-          if (s_axis_tlast != (x_in == 16'($signed(32'(use_width)) - 1))) status[0] <= 1'b1;
-          if (state == RUN && s_axis_tuser) status[1] <= 1'b1;
+          if (s_axis_tlast != (x_in == fx_pkg::COORD_BITS'($signed(32'(use_width)) - 1)))
+            status[fx_pkg::STATUS_EOL_MISPLACED] <= 1'b1;
+          if (state == RUN && s_axis_tuser) status[fx_pkg::STATUS_SOF_MISPLACED] <= 1'b1;
         end
-        if (x_in == 16'($signed(32'(use_width)) - 1)) begin
+        if (x_in == fx_pkg::COORD_BITS'($signed(32'(use_width)) - 1)) begin
           x_in <= '0;
           y_in <= y_in + 16'sd1;
         end else begin
@@ -207,11 +211,11 @@ module stereo_top #(
   logic clear_coordinates;
   assign clear_coordinates = rst || (state == FLUSH && last_output_entering);
 
-  logic [23:0] left_pixel, right_pixel;
-  assign left_pixel = (state == FLUSH) ? 24'd0 : s_axis_tdata[23:0];
-  assign right_pixel = (state == FLUSH) ? 24'd0 : s_axis_tdata[47:24];
+  logic [fx_pkg::RGB_BITS-1:0] left_pixel, right_pixel;
+  assign left_pixel = (state == FLUSH) ? '0 : s_axis_tdata[fx_pkg::IN_LEFT_LSB +: fx_pkg::RGB_BITS];
+  assign right_pixel = (state == FLUSH) ? '0 : s_axis_tdata[fx_pkg::IN_RIGHT_LSB +: fx_pkg::RGB_BITS];
 
-  logic signed [15:0] cost_x, cost_y, agg_x, agg_y, rule1_x, rule1_y;
+  fx_pkg::coord_t cost_x, cost_y, agg_x, agg_y, rule1_x, rule1_y;
   logic [NDISP*COST_BITS-1:0] cost_data;
   logic [NDISP*AGG_BITS-1:0] agg_data, rule1_data, rule2_data;
 
@@ -287,7 +291,7 @@ module stereo_top #(
       .out_data(rule2_data)
   );
 
-  logic signed [15:0] out_x, out_y;
+  fx_pkg::coord_t out_x, out_y;
   logic [DISP_BITS-1:0] out_disparity;
   logic out_valid;
   stereo_wta #(
@@ -325,7 +329,11 @@ module stereo_top #(
   end
 
   assign m_axis_tvalid = output_pending;
-  assign m_axis_tdata = {7'b0, out_valid, out_disparity};
+  always_comb begin
+    m_axis_tdata.pad = '0;
+    m_axis_tdata.valid = out_valid;
+    m_axis_tdata.disparity = out_disparity;
+  end
   assign m_axis_tuser = out_x == 0 && out_y == 0;
   assign m_axis_tlast = 32'(out_x) == $signed(32'(frame_width)) - 1;
 endmodule

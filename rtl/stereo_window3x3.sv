@@ -13,21 +13,20 @@ module stereo_window3x3 #(
     parameter int BITS  = 14,  // one DSI value
     parameter int NDISP = 16   // disparities in parallel
 ) (
-    input  wire logic                          clk,
-    input  wire logic                          rst,  // clears coordinates only
-    input  wire logic                          ce,
-    input  wire logic signed [15:0]            in_x,
-    input  wire logic signed [15:0]            in_y,
-    input  wire logic        [NDISP*BITS-1:0]  in_data,
-    input  wire logic        [15:0]            cfg_width,
-    input  wire logic        [15:0]            cfg_height,
-    output      logic signed [15:0]            centre_x,
-    output      logic signed [15:0]            centre_y,
-    output      logic        [9*NDISP*BITS-1:0] window_data,
-    output      logic        [8:0]             in_frame
+    input  wire logic                    clk,
+    input  wire logic                    rst,  // clears coordinates only
+    input  wire logic                    ce,
+    input  wire fx_pkg::coord_t          in_x,
+    input  wire fx_pkg::coord_t          in_y,
+    input  wire logic [NDISP*BITS-1:0]   in_data,
+    input  wire fx_pkg::cfg_size_t       cfg_width,
+    input  wire fx_pkg::cfg_size_t       cfg_height,
+    output      fx_pkg::coord_t          centre_x,
+    output      fx_pkg::coord_t          centre_y,
+    output      logic [9*NDISP*BITS-1:0] window_data,
+    output      logic [8:0]              in_frame
 );
   localparam int COLUMN = NDISP * BITS;
-  localparam logic signed [15:0] NO_PIXEL = -16'sd32768;
 
   // ---- input register --------------------------------------------------------------------
   // The incoming pixel is registered first, and the geometry of the window it completes (its
@@ -35,7 +34,7 @@ module stereo_window3x3 #(
   // coordinates and registered beside it. The rules then start from registers: the coordinate
   // arithmetic no longer runs in front of their comparisons and sums (the critical path before,
   // docs/synthesis.md). Cost: one pixel step of latency.
-  logic signed [15:0] x_q;  // addresses the line buffer; the geometry is registered below
+  fx_pkg::coord_t x_q;  // addresses the line buffer; the geometry is registered below
   logic [COLUMN-1:0] data_q;
   always_ff @(posedge clk) begin
     if (ce) begin
@@ -91,7 +90,7 @@ module stereo_window3x3 #(
   always_ff @(posedge clk) begin
     if (rst) begin
       centre_x <= '0;
-      centre_y <= NO_PIXEL;
+      centre_y <= fx_pkg::NO_PIXEL;
       row_inside_q <= '0;
       column_inside_q <= '0;
     end else if (ce) begin

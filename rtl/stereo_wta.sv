@@ -12,27 +12,26 @@
 module stereo_wta #(
     parameter int NDISP = 16  // disparities in parallel
 ) (
-    input  wire logic                                          clk,
-    input  wire logic                                          rst,  // clears coordinates only
-    input  wire logic                                          ce,
-    input  wire logic signed [15:0]                            in_x,
-    input  wire logic signed [15:0]                            in_y,
-    input  wire logic        [NDISP*fx_pkg::AGG_BITS-1:0]  in_data,
-    input  wire logic        [15:0]                            cfg_width,
-    input  wire logic        [15:0]                            cfg_height,
-    input  wire logic        [8:0]                             cfg_ndisp,
-    input  wire logic        [4:0]                             cfg_radius,
-    input  wire logic                                          cfg_use_ca,
-    output      logic signed [15:0]                            out_x,
-    output      logic signed [15:0]                            out_y,
-    output      logic        [fx_pkg::DISP_BITS-1:0]       out_disparity,
-    output      logic                                          out_valid
+    input  wire logic                              clk,
+    input  wire logic                              rst,  // clears coordinates only
+    input  wire logic                              ce,
+    input  wire fx_pkg::coord_t                    in_x,
+    input  wire fx_pkg::coord_t                    in_y,
+    input  wire logic [NDISP*fx_pkg::AGG_BITS-1:0] in_data,
+    input  wire fx_pkg::cfg_size_t                 cfg_width,
+    input  wire fx_pkg::cfg_size_t                 cfg_height,
+    input  wire fx_pkg::cfg_ndisp_t                cfg_ndisp,
+    input  wire fx_pkg::cfg_radius_t               cfg_radius,
+    input  wire logic                              cfg_use_ca,
+    output      fx_pkg::coord_t                    out_x,
+    output      fx_pkg::coord_t                    out_y,
+    output      logic [fx_pkg::DISP_BITS-1:0]      out_disparity,
+    output      logic                              out_valid
 );
   localparam int BITS = fx_pkg::AGG_BITS;
   localparam int DISP_BITS = fx_pkg::DISP_BITS;
   localparam int LEVELS = (NDISP > 1) ? $clog2(NDISP) : 1;
   localparam int LEAVES = 1 << LEVELS;
-  localparam logic signed [15:0] NO_PIXEL = -16'sd32768;
 
   // Heap-ordered tree: node n has children 2n+1 and 2n+2; leaf LEAVES-1+d holds label d.
   // split_var lets Verilator schedule the nodes one by one (the vector is a tree, not a loop).
@@ -81,15 +80,7 @@ module stereo_wta #(
       out_valid <= valid_d;
     end
   end
-  always_ff @(posedge clk) begin
-    if (rst) begin
-      out_x <= '0;
-      out_y <= NO_PIXEL;
-    end else if (ce) begin
-      out_x <= in_x;
-      out_y <= in_y;
-    end
-  end
+  stereo_coord_reg coordinates (.*);
 endmodule
 
 `default_nettype wire

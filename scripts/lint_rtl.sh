@@ -1,10 +1,27 @@
 #!/usr/bin/env bash
-# Lints every RTL module with `verilator --lint-only -Wall`, at the default parameters and at a
-# few others (a module is linted as its own top, so unused ports and widths show up per module).
+# Lints every RTL module with `verilator --lint-only -Wall`, at the default parameters and at the
+# extra configurations of the stage table (a module is linted as its own top, so unused ports and
+# widths show up per module). The sources, the modules and the extra configurations come from
+# scripts/stage_table.json, generated from model/include/stereo/stage_table.hpp.
 # Exits non-zero on any warning. Waivers are inline, each with its reason, in the RTL itself.
 set -euo pipefail
-rtl="$(cd "$(dirname "$0")/../rtl" && pwd)"
-mapfile -t files < <(sed "s|^|$rtl/|" "$rtl/files.f")
+scripts="$(cd "$(dirname "$0")" && pwd)"
+rtl="$(cd "$scripts/../rtl" && pwd)"
+table="$scripts/stage_table.json"
+mapfile -t files < <(python3 -c '
+import json, sys
+t = json.load(open(sys.argv[1]))
+print(t["package"])
+for m in t["modules"]:
+    print(m + ".sv")' "$table" | sed "s|^|$rtl/|")
+# One lint run per line: TOP [-Gparam=value ...]; every module at its defaults, then the extras.
+mapfile -t runs < <(python3 -c '
+import json, sys
+t = json.load(open(sys.argv[1]))
+for m in t["modules"]:
+    print(m)
+for run in t["lint"]:
+    print(" ".join([run["top"]] + ["-G%s=%d" % kv for kv in run["parameters"].items()]))' "$table")
 status=0
 lint() {  # lint TOP [-Gparam=value ...]
     local top=$1
@@ -17,14 +34,8 @@ lint() {  # lint TOP [-Gparam=value ...]
         echo "lint ok: $top $*"
     fi
 }
-for module in stereo_line_buffer stereo_window3x3 stereo_cost stereo_aggregate stereo_ca_rule1 \
-              stereo_ca_rule2 stereo_wta stereo_top stereo_synth_top; do
-    lint "$module"
+for run in "${runs[@]}"; do
+    # shellcheck disable=SC2086  # a run is TOP and its -G options, split on purpose
+    lint $run
 done
-# The top at other shapes: a 3x3 window, odd label counts, and the full-size configuration.
-lint stereo_top -GNDISP=5 -GWINDOW=3
-lint stereo_top -GNDISP=33 -GWINDOW=7 -GWIDTH=100 -GHEIGHT=75
-lint stereo_top -GNDISP=64 -GWINDOW=11 -GWIDTH=640 -GHEIGHT=480
-# The FPGA build (constant kernel) at the full-size configuration.
-lint stereo_synth_top -GNDISP=64 -GWINDOW=11 -GWIDTH=640 -GHEIGHT=480
 exit $status

@@ -7,7 +7,9 @@
 
 #include "Vstereo_top_small.h"
 #include "port_bits.hpp"
+#include "stereo/stage_table.hpp"
 #include "stereo_top_sim.hpp"
+#include "verilated_harness.hpp"
 #ifdef STEREO_COSIM_FULL
 #include "Vstereo_top_full.h"
 #endif
@@ -15,24 +17,14 @@
 namespace stereo::sim {
 namespace {
 
-constexpr int kTapBits = fx::kKernelBits + 1;
-
 template <typename Model>
 class VerilatedTop final : public TopSim {
   public:
     explicit VerilatedTop(TopConfig config)
-        : config_(std::move(config)), context_(std::make_unique<VerilatedContext>()) {
-        context_->traceEverOn(true);
-        model_ = std::make_unique<Model>(context_.get(), "stereo_top");
+        : config_(std::move(config)), harness_("stereo_top"), model_(&harness_.model()) {
         idle_inputs();
         model_->clk = 0;
         model_->eval();
-    }
-    ~VerilatedTop() override {
-        if (trace_) {
-            trace_->close();
-        }
-        model_->final();
     }
 
     const TopConfig& config() const override { return config_; }
@@ -40,8 +32,8 @@ class VerilatedTop final : public TopSim {
     void reset() override {
         idle_inputs();
         model_->rst = 1;
-        tick();
-        tick();
+        harness_.tick();
+        harness_.tick();
         model_->rst = 0;
     }
 
@@ -53,7 +45,7 @@ class VerilatedTop final : public TopSim {
         model_->cfg_use_ca = params.match.use_ca ? 1 : 0;
         const auto taps = centred_kernel(params.match, config_.window);
         for (int i = 0; i < config_.window; ++i) {
-            put_bits(model_->cfg_kernel, i * kTapBits, kTapBits,
+            put_bits(model_->cfg_kernel, i * table::kTapBits, table::kTapBits,
                      static_cast<std::uint64_t>(taps[static_cast<std::size_t>(i)]));
         }
     }
@@ -85,7 +77,7 @@ class VerilatedTop final : public TopSim {
             model_->m_axis_tready = stall(rng) ? 0 : 1;
             model_->clk = 0;
             model_->eval();  // combinational outputs for this cycle's inputs
-            dump();
+            harness_.dump();
 
             // AXI4-Stream: data and framing stay stable while valid waits for ready.
             if (held_output && result.protocol_error.empty()) {
@@ -114,7 +106,7 @@ class VerilatedTop final : public TopSim {
             }
             model_->clk = 1;
             model_->eval();
-            dump();
+            harness_.dump();
             if (!started) {
                 --cycle;  // count from the first accepted beat
             }
@@ -126,14 +118,7 @@ class VerilatedTop final : public TopSim {
         return result;
     }
 
-    void trace_to(const std::string& path) override {
-        trace_ = std::make_unique<VerilatedFstC>();
-        model_->trace(trace_.get(), 99);
-        trace_->open(path.c_str());
-        if (!trace_->isOpen()) {
-            throw std::runtime_error("cannot write waveform '" + path + "'");
-        }
-    }
+    void trace_to(const std::string& path) override { harness_.trace_to(path); }
 
   private:
     void idle_inputs() {
@@ -143,35 +128,25 @@ class VerilatedTop final : public TopSim {
         model_->s_axis_tuser = 0;
         model_->m_axis_tready = 0;
     }
-    void tick() {
-        model_->clk = 0;
-        model_->eval();
-        dump();
-        model_->clk = 1;
-        model_->eval();
-        dump();
-    }
-    void dump() {
-        if (trace_) {
-            trace_->dump(time_);
-        }
-        ++time_;
-    }
 
     TopConfig config_;
-    std::unique_ptr<VerilatedContext> context_;
-    std::unique_ptr<Model> model_;
-    std::unique_ptr<VerilatedFstC> trace_;
-    std::uint64_t time_ = 0;
+    VerilatedHarness<Model> harness_;
+    Model* model_;
 };
+
+// A stereo_top configuration of the stage table (stage_table.hpp).
+TopConfig top_config(const table::VerilatedConfig& config, const char* name) {
+    const table::Params& p = config.params;
+    return {name, p.width, p.height, p.ndisp, p.window};
+}
 
 }  // namespace
 
 const std::vector<TopConfig>& built_top_configs() {
     static const std::vector<TopConfig> configs = {
-        {"small", 64, 48, 16, 5},
+        top_config(table::verilated("Vstereo_top_small"), "small"),
 #ifdef STEREO_COSIM_FULL
-        {"full", 640, 480, 64, 11},
+        top_config(table::verilated("Vstereo_top_full"), "full"),
 #endif
     };
     return configs;
@@ -213,8 +188,9 @@ std::vector<InputBeat> frame_beats(const Image& left, const Image& right) {
     };
     for (int y = 0; y < left.height; ++y) {
         for (int x = 0; x < left.width; ++x) {
-            beats.push_back({(rgb(right, x, y) << 24) | rgb(left, x, y), x == left.width - 1,
-                             x == 0 && y == 0});
+            beats.push_back(
+                {(rgb(right, x, y) << table::kInRightLsb) | (rgb(left, x, y) << table::kInLeftLsb),
+                 x == left.width - 1, x == 0 && y == 0});
         }
     }
     return beats;
@@ -235,8 +211,10 @@ DisparityMap assemble_frame(const std::vector<OutputBeat>& beats, std::size_t fi
                 throw std::runtime_error("wrong tuser/tlast framing at output pixel (" +
                                          std::to_string(x) + ", " + std::to_string(y) + ")");
             }
-            map.disparity[map.index(x, y)] = static_cast<std::uint8_t>(beat.data & 0xFF);
-            map.valid[map.index(x, y)] = static_cast<std::uint8_t>((beat.data >> 8) & 1);
+            map.disparity[map.index(x, y)] = static_cast<std::uint8_t>(
+                get_bits(beat.data, table::kOutDisparityLsb, fx::kDisparityBits));
+            map.valid[map.index(x, y)] =
+                static_cast<std::uint8_t>(get_bit(beat.data, table::kOutValidBit));
         }
     }
     return map;

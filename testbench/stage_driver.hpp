@@ -22,6 +22,7 @@
 #include <concepts>
 #include <cstdint>
 #include <memory>
+#include <ostream>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -33,8 +34,11 @@
 #include "stereo/dsi.hpp"
 #include "stereo/image.hpp"
 #include "stereo/pipeline.hpp"
+#include "stereo/stage_table.hpp"
 #include "stereo_io/test_support.hpp"
+#include "tb_compare.hpp"
 #include "tb_options.hpp"
+#include "verilated_harness.hpp"
 
 namespace stereo::tb {
 
@@ -115,20 +119,14 @@ class StageDriver {
     using Model = typename Stage::Model;
 
     // `ce_low` is the probability that a cycle does not step.
+    // Registers and RAMs (--x-initial unique) start random, so unmasked stale data shows.
     StageDriver(std::uint32_t seed, double ce_low)
-        : rng_(seed), ce_low_(ce_low), context_(std::make_unique<VerilatedContext>()) {
-        context_->traceEverOn(true);
-        // Registers and RAMs (--x-initial unique) start random, so unmasked stale data shows.
-        context_->randReset(2);
-        context_->randSeed(static_cast<int>(seed % 0x7FFFFFFFU) + 1);
-        model_ = std::make_unique<Model>(context_.get(), Stage::kName);
+        : rng_(seed),
+          ce_low_(ce_low),
+          harness_(Stage::kName, 2, static_cast<int>(seed % 0x7FFFFFFFU) + 1),
+          model_(&harness_.model()) {
         if (const std::string path = trace_path(); !path.empty()) {
-            trace_ = std::make_unique<VerilatedFstC>();
-            model_->trace(trace_.get(), 99);
-            trace_->open(path.c_str());
-            if (!trace_->isOpen()) {
-                throw std::runtime_error("cannot write waveform '" + path + "'");
-            }
+            harness_.trace_to(path);
         }
         scramble_inputs();
         model_->ce = 0;
@@ -136,14 +134,6 @@ class StageDriver {
         model_->clk = 0;
         model_->eval();
         reset();
-    }
-    StageDriver(const StageDriver&) = delete;
-    StageDriver& operator=(const StageDriver&) = delete;
-    ~StageDriver() {
-        if (trace_) {
-            trace_->close();
-        }
-        model_->final();
     }
 
     Model& model() { return *model_; }
@@ -159,7 +149,7 @@ class StageDriver {
             tick();
         }
         model_->rst = 0;
-        EXPECT_EQ(coordinate_value(model_->out_y), -32768) << "reset must mark 'no pixel'";
+        EXPECT_EQ(coordinate_value(model_->out_y), table::kNoPixel) << "reset must mark 'no pixel'";
     }
 
     // Streams one frame of `width` x `height` pixels and collects its outputs.
@@ -250,30 +240,33 @@ class StageDriver {
         return state;
     }
 
-    // Inputs are already set: the falling edge settles them, the rising edge steps.
-    void tick() {
-        model_->clk = 0;
-        model_->eval();
-        dump();
-        model_->clk = 1;
-        model_->eval();
-        dump();
-    }
-
-    void dump() {
-        if (trace_) {
-            trace_->dump(time_);
-        }
-        ++time_;
-    }
+    void tick() { harness_.tick(); }
 
     std::mt19937 rng_;
     double ce_low_;
-    std::unique_ptr<VerilatedContext> context_;
-    std::unique_ptr<Model> model_;
-    std::unique_ptr<VerilatedFstC> trace_;
-    std::uint64_t time_ = 0;
+    sim::VerilatedHarness<Model> harness_;
+    Model* model_;
 };
+
+// ---- Parameterised cases ---------------------------------------------------------------------
+
+// A case type with a describe(case) beside it (found by argument-dependent lookup) prints and
+// names its tests by it. GoogleTest finds PrintTo by argument-dependent lookup too: a testbench
+// brings this one into its case type's namespace with `using tb::PrintTo;`.
+template <typename Case>
+concept Described = requires(const Case& c) {
+    { describe(c) } -> std::convertible_to<std::string>;
+};
+
+template <Described Case>
+void PrintTo(const Case& c, std::ostream* os) {
+    *os << describe(c);
+}
+
+template <Described Case>
+std::string case_name(const ::testing::TestParamInfo<Case>& info) {
+    return describe(info.param);
+}
 
 // ---- Volumes ---------------------------------------------------------------------------------
 
@@ -305,36 +298,6 @@ inline Dsi pair_cost(int width, int height, int ndisp, int shift, std::mt19937& 
     const Image left = test::random_image(width, height, 3, rng);
     const Image right = test::shifted_copy(left, shift, 25, rng);
     return cost(left, right, ndisp);
-}
-
-// Compares planes [0, planes) of two volumes value by value; lists the first few mismatches in
-// stream order (y, x, d).
-inline ::testing::AssertionResult same_volume(const Dsi& model, const Dsi& rtl, int planes) {
-    if (model.width() != rtl.width() || model.height() != rtl.height() || model.ndisp() < planes ||
-        rtl.ndisp() < planes) {
-        return ::testing::AssertionFailure() << "volume shapes differ";
-    }
-    std::size_t mismatches = 0;
-    std::string first;
-    for (int y = 0; y < model.height(); ++y) {
-        for (int x = 0; x < model.width(); ++x) {
-            for (int d = 0; d < planes; ++d) {
-                const int expected = model.at(x, y, d);
-                const int actual = rtl.at(x, y, d);
-                if (expected != actual && mismatches++ < 5) {
-                    first += " (x=" + std::to_string(x) + ", y=" + std::to_string(y) +
-                             ", d=" + std::to_string(d) + "): model " + std::to_string(expected) +
-                             ", rtl " + std::to_string(actual) + ";";
-                }
-            }
-        }
-    }
-    if (mismatches == 0) {
-        return ::testing::AssertionSuccess();
-    }
-    return ::testing::AssertionFailure()
-           << mismatches << " of " << model.plane_size() * static_cast<std::size_t>(planes)
-           << " values differ, first:" << first;
 }
 
 // How many cells a rule changed: a test of a rule is only as strong as how often it fires.

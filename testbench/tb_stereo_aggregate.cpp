@@ -21,9 +21,9 @@
 namespace stereo::tb {
 namespace {
 
-constexpr int kDisparities = 16;  // NDISP of Vstereo_aggregate
-constexpr int kWindow = 5;        // WINDOW of Vstereo_aggregate
-constexpr int kTapBits = fx::kKernelBits + 1;
+constexpr int kDisparities = table::verilated("Vstereo_aggregate").params.ndisp;
+constexpr int kWindow = 5;  // WINDOW of Vstereo_aggregate
+constexpr int kTapBits = table::kTapBits;
 
 template <typename VerilatedModel>
 struct AggregatePorts {
@@ -84,13 +84,7 @@ std::string describe(const RandomCase& c) {
            std::to_string(static_cast<int>(c.ce_low * 100));
 }
 
-void PrintTo(const RandomCase& c, std::ostream* os) {
-    *os << describe(c);
-}
-
-std::string case_name(const ::testing::TestParamInfo<RandomCase>& info) {
-    return describe(info.param);
-}
+using tb::PrintTo;  // by describe()
 
 class RandomVolumes : public ::testing::TestWithParam<RandomCase> {};
 
@@ -128,7 +122,7 @@ INSTANTIATE_TEST_SUITE_P(
                       RandomCase{3, 3, 5, 3.0, Input::kUniform, 0.3},  // window wider than frame
                       RandomCase{3, 3, 3, 3.0, Input::kPairCost, 0.3},
                       RandomCase{3, 3, 1, 3.0, Input::kUniform, 0.0}),
-    case_name);
+    case_name<RandomCase>);
 
 // Constant and checkerboard volumes: all-765 gives the widest window sum (765 * 2^16).
 TEST(AggregateExtremes, ConstantAndCheckerboardVolumes) {

@@ -21,15 +21,15 @@
 namespace stereo::tb {
 namespace {
 
-constexpr int kDisparities = 16;  // NDISP of Vstereo_cost
+constexpr int kDisparities = table::verilated("Vstereo_cost").params.ndisp;
 constexpr int kCostBits = fx::kCostBits;
 
 struct CostStage {
     using Model = Vstereo_cost;
     static constexpr const char* kName = "stereo_cost";
     static void scramble(Model& model, std::mt19937& rng) {
-        model.in_left = rng() & 0xFFFFFFU;
-        model.in_right = rng() & 0xFFFFFFU;
+        randomize_bits(model.in_left, table::kRgbBits, rng);
+        randomize_bits(model.in_right, table::kRgbBits, rng);
     }
     static std::vector<std::uint32_t> outputs(const Model& model) {
         return port_words(model.out_data);
@@ -75,13 +75,7 @@ std::string describe(const RandomCase& c) {
            std::to_string(static_cast<int>(c.ce_low * 100));
 }
 
-void PrintTo(const RandomCase& c, std::ostream* os) {
-    *os << describe(c);
-}
-
-std::string case_name(const ::testing::TestParamInfo<RandomCase>& info) {
-    return describe(info.param);
-}
+using tb::PrintTo;  // by describe()
 
 class RandomPairs : public ::testing::TestWithParam<RandomCase> {};
 
@@ -106,7 +100,7 @@ INSTANTIATE_TEST_SUITE_P(Cost, RandomPairs,
                                            RandomCase{37, 23, true, 0.2},
                                            RandomCase{13, 9, false, 0.5},  // W < NDISP
                                            RandomCase{3, 3, true, 0.3}),
-                         case_name);
+                         case_name<RandomCase>);
 
 TEST(CostExtremes, ConstantImagesGiveZeroAndTheMaximum) {
     const std::uint32_t seed = test_seed();

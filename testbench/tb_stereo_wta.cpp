@@ -20,7 +20,7 @@
 namespace stereo::tb {
 namespace {
 
-constexpr int kDisparities = 16;  // NDISP of Vstereo_wta
+constexpr int kDisparities = table::verilated("Vstereo_wta").params.ndisp;
 constexpr int kBits = fx::kAggBits;
 
 struct WtaStage {
@@ -64,29 +64,6 @@ DisparityMap run_wta(WtaDriver& driver, const Dsi& input, const WtaConfig& confi
 DisparityMap expected_wta(const Dsi& input, const WtaConfig& config) {
     return wta(truncated(input, config.ndisp),
                InvalidBorder{config.radius + (config.use_ca ? 1 : 0)});
-}
-
-::testing::AssertionResult same_map(const DisparityMap& model, const DisparityMap& rtl) {
-    std::size_t mismatches = 0;
-    std::string first;
-    for (int y = 0; y < model.height; ++y) {
-        for (int x = 0; x < model.width; ++x) {
-            const auto i = model.index(x, y);
-            if ((model.disparity[i] != rtl.disparity[i] || model.valid[i] != rtl.valid[i]) &&
-                mismatches++ < 5) {
-                first += " (x=" + std::to_string(x) + ", y=" + std::to_string(y) +
-                         "): model d=" + std::to_string(model.disparity[i]) +
-                         " valid=" + std::to_string(model.valid[i]) +
-                         ", rtl d=" + std::to_string(rtl.disparity[i]) +
-                         " valid=" + std::to_string(rtl.valid[i]) + ";";
-            }
-        }
-    }
-    if (mismatches == 0) {
-        return ::testing::AssertionSuccess();
-    }
-    return ::testing::AssertionFailure()
-           << mismatches << " of " << model.disparity.size() << " pixels differ, first:" << first;
 }
 
 // ---- Inputs ----------------------------------------------------------------------------------
@@ -155,13 +132,7 @@ std::string describe(const WtaCase& c) {
            std::to_string(static_cast<int>(c.ce_low * 100));
 }
 
-void PrintTo(const WtaCase& c, std::ostream* os) {
-    *os << describe(c);
-}
-
-std::string case_name(const ::testing::TestParamInfo<WtaCase>& info) {
-    return describe(info.param);
-}
+using tb::PrintTo;  // by describe()
 
 class Volumes : public ::testing::TestWithParam<WtaCase> {};
 
@@ -195,7 +166,7 @@ INSTANTIATE_TEST_SUITE_P(
                       WtaCase{3, 3, Input::kUniform, {16, 0, false}, 0.3},
                       WtaCase{3, 3, Input::kTies, {4, 0, true}, 0.0},       // only the centre valid
                       WtaCase{3, 3, Input::kUniform, {16, 2, true}, 0.2}),  // none valid
-    case_name);
+    case_name<WtaCase>);
 
 // Frames follow each other without reset or idle steps, changing size and configuration.
 TEST(WtaFraming, BackToBackFrames) {

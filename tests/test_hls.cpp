@@ -14,8 +14,7 @@
 #include <vector>
 
 #include "stereo/hls/aggregate.hpp"
-#include "stereo/hls/ca_rule1.hpp"
-#include "stereo/hls/ca_rule2.hpp"
+#include "stereo/hls/ca_rule.hpp"
 #include "stereo/hls/cost.hpp"
 #include "stereo/hls/host.hpp"
 #include "stereo/hls/match.hpp"
@@ -341,9 +340,8 @@ TEST(HlsCaRule2, EqualsModel) {
     const auto eight = std::make_unique<hls::ca_rule2<64, 8>>();
     check_rule<64, 8>(
         *eight, [](const Dsi& v) { return ca_rule2(v); },
-        [&](hls::coord_t x, hls::coord_t y, const hls::agg_t(&in)[8], int w, int h, int, bool ca) {
-            eight->step(x, y, in, w, h, ca);
-        },
+        [&](hls::coord_t x, hls::coord_t y, const hls::agg_t(&in)[8], int w, int h, int n,
+            bool ca) { eight->step(x, y, in, w, h, n, ca); },
         rng, "ca_rule2");
 }
 
@@ -451,7 +449,7 @@ TEST(HlsStages, EachStageEqualsModelOnTsukuba) {
                             stream_volume<kNdisp, hls::agg_t>(
                                 *rule2, after_rule1, kNdisp,
                                 [&](hls::coord_t x, hls::coord_t y, const hls::agg_t(&in)[kNdisp]) {
-                                    rule2->step(x, y, in, width, height, true);
+                                    rule2->step(x, y, in, width, height, kNdisp, true);
                                 },
                                 fx::kAggMax, rng, &flushes),
                             kNdisp))

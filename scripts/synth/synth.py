@@ -59,8 +59,13 @@ class ReportError(Exception):
     pass
 
 
+# Stages, sources and lint configurations, generated from model/include/stereo/stage_table.hpp.
+STAGE_TABLE = json.loads((REPO / "scripts" / "stage_table.json").read_text())
+
+
 def rtl_sources():
-    return [str(RTL / name) for name in (RTL / "files.f").read_text().split()]
+    names = [STAGE_TABLE["package"]] + [module + ".sv" for module in STAGE_TABLE["modules"]]
+    return [str(RTL / name) for name in names]
 
 
 def tool_version(command):
@@ -107,6 +112,14 @@ def load_stat_json(path):
     return json.loads("\n".join(json_lines))
 
 
+def submodule(cell, modules):
+    """The module a cell type names, or None for a leaf cell. Yosys lists a module without
+    parameters as "\\name" but names its instances' type "name"."""
+    if cell in modules:
+        return cell
+    return "\\" + cell if "\\" + cell in modules else None
+
+
 def hierarchy_totals(modules):
     """Leaf cell counts of every module including its submodules (times their instances)."""
     own = {name: data.get("num_cells_by_type", {}) for name, data in modules.items()}
@@ -116,7 +129,8 @@ def hierarchy_totals(modules):
         if name not in totals:
             result = {}
             for cell, n in own[name].items():
-                for leaf, m in (total(cell).items() if cell in own else [(cell, 1)]):
+                sub = submodule(cell, own)
+                for leaf, m in (total(sub).items() if sub else [(cell, 1)]):
                     result[leaf] = result.get(leaf, 0) + n * m
             totals[name] = result
         return totals[name]
@@ -327,7 +341,7 @@ def estimate(config, target, work=None, use_dsp=True):
             "note": "Yosys resource estimate before place and route; no Fmax"}
 
 
-STAGES = ("stereo_cost", "stereo_aggregate", "stereo_ca_rule1", "stereo_ca_rule2", "stereo_wta")
+STAGES = tuple(stage["module"] for stage in STAGE_TABLE["stages"])
 
 
 def module_kind(name):
@@ -346,7 +360,7 @@ def stage_breakdown(stat_path):
         kind = module_kind(name)
         cells = (totals[name] if kind in STAGES else
                  {cell: n for cell, n in data.get("num_cells_by_type", {}).items()
-                  if cell not in modules} if kind in ("stereo_top", TOP) else {})
+                  if submodule(cell, modules) is None} if kind in ("stereo_top", TOP) else {})
         key = kind if kind in STAGES else "glue"
         for cell, n in cells.items():
             stages.setdefault(key, {})
@@ -392,9 +406,9 @@ PLOT_PARAMETERS = [("ndisp", "disparities (640x480, 11x11)"),
 TARGET_STYLE = {("xilinx", True): ("#1f77b4", "7-series"),
                 ("xilinx", False): ("#17becf", "7-series, no DSP"),
                 ("ecp5", True): ("#d62728", "ECP5"), ("ecp5", False): ("#ff9896", "ECP5, no DSP")}
-STAGE_COLOURS = {"stereo_cost": "#8c564b", "stereo_aggregate": "#1f77b4",
-                 "stereo_ca_rule1": "#2ca02c", "stereo_ca_rule2": "#98df8a",
-                 "stereo_wta": "#9467bd", "glue": "#7f7f7f"}
+# In pipeline order (STAGES, from the stage table), then the glue.
+STAGE_COLOURS = dict(zip(STAGES, ("#8c564b", "#1f77b4", "#2ca02c", "#98df8a", "#9467bd")),
+                     glue="#7f7f7f")
 
 
 def sweep_series(points, parameter):

@@ -89,6 +89,14 @@ class StatParsing(unittest.TestCase):
         top = totals["\\stereo_synth_top"]
         self.assertEqual(top, synth.load_stat_json(self.stat)["design"]["num_cells_by_type"])
 
+    def test_module_without_parameters_is_found_by_its_instances(self):
+        # Yosys lists it as "\\stereo_coord_reg", its instances' type as "stereo_coord_reg".
+        modules = {"$paramod$dd\\stereo_wta": {"num_cells_by_type": {"stereo_coord_reg": 2,
+                                                                      "LUT4": 1}},
+                   "\\stereo_coord_reg": {"num_cells_by_type": {"FF": 32}}}
+        totals = synth.hierarchy_totals(modules)
+        self.assertEqual(totals["$paramod$dd\\stereo_wta"], {"FF": 64, "LUT4": 1})
+
     def test_stage_breakdown_adds_up(self):
         stages = synth.stage_breakdown(self.stat)
         xilinx = {name: synth.resources_xilinx(cells) for name, cells in stages.items()}

@@ -5,7 +5,8 @@
 # then runs a generic `synth` and prints the cell statistics.
 set -euo pipefail
 rtl="$(cd "$(dirname "$0")/../../rtl" && pwd)"
-sources=$(sed "s|^|$rtl/|" "$rtl/files.f" | tr '\n' ' ')
+# rtl/files.f (generated from the stage table): the sources in compile order after a // header.
+sources=$(grep -v '^//' "$rtl/files.f" | sed "s|^|$rtl/|" | tr '\n' ' ')
 chparams=""
 for assignment in "$@"; do
     chparams="$chparams -set ${assignment%%=*} ${assignment#*=}"

@@ -5,6 +5,7 @@
 
 #include "cells.hpp"
 #include "stereo/reference.hpp"
+#include "stereo/stage_table.hpp"
 #include "stereo/stages.hpp"
 
 namespace stereo::naive {
@@ -21,7 +22,7 @@ int sample(const Dsi& dsi, int x, int y, int d) {
 
 bool differs_by_less_than_half(int neighbour, int centre) {
     // |n - c| < c / 2, in exact integers.
-    return 2 * std::abs(neighbour - centre) < centre;
+    return fx::agrees(neighbour, centre);
 }
 
 }  // namespace

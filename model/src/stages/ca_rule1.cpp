@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "stereo/constants.hpp"
+#include "stereo/stage_table.hpp"
 #include "stereo/stages.hpp"
 
 namespace stereo {
@@ -67,8 +68,8 @@ class CaRule1 final : public Refiner {
                 // A missing neighbour is given a difference of 2 * value, which never agrees.
                 const int diff_before = b != nullptr ? b[x] - value : 2 * value;
                 const int diff_after = a != nullptr ? a[x] - value : 2 * value;
-                const bool fire = 2 * (diff_before < 0 ? -diff_before : diff_before) < value ||
-                                  2 * (diff_after < 0 ? -diff_after : diff_after) < value;
+                const bool fire = fx::agrees(value + diff_before, value) ||
+                                  fx::agrees(value + diff_after, value);
                 const auto box =
                     static_cast<std::uint32_t>(columns[x - 1] + columns[x] + columns[x + 1]);
                 dst[x] =

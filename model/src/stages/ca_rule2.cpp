@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "stereo/constants.hpp"
+#include "stereo/stage_table.hpp"
 #include "stereo/stages.hpp"
 
 namespace stereo {
@@ -33,8 +34,7 @@ class CaRule2 final : public Refiner {
                                            mid[x + 1], down[x - 1], down[x],   down[x + 1]};
                 int count = 0;
                 for (const int n : neighbours) {
-                    const int diff = n - c;
-                    count += 2 * (diff < 0 ? -diff : diff) < c ? 1 : 0;
+                    count += fx::agrees(n, c) ? 1 : 0;
                 }
                 dst[x] = count >= fx::kRule2MinCount
                              ? static_cast<CostValue>(fx::div13(static_cast<std::uint32_t>(c)))

@@ -11,29 +11,31 @@
 #pragma once
 
 #include "stereo/hls/line_buffer.hpp"
+#include "stereo/hls/stage_output.hpp"
 #include "stereo/hls/types.hpp"
 
 namespace stereo::hls {
 
 template <int WIDTH, int NDISP, int WINDOW>
-class aggregate {
+class aggregate : public lane_output<agg_t, NDISP> {
     static_assert(NDISP >= 1 && NDISP <= fx::kMaxDisparities);
     static_assert(WINDOW % 2 == 1 && WINDOW >= fx::kMinWindow && WINDOW <= fx::kMaxWindow);
     static constexpr int R = WINDOW / 2;
     static constexpr int kRows = R > 0 ? 2 * R : 1;  // rows buffered, columns of history
 
+    using lane_output<agg_t, NDISP>::out_data_;
+    using lane_output<agg_t, NDISP>::out_x_;
+    using lane_output<agg_t, NDISP>::out_y_;
+
   public:
-    using value_type = agg_t;
-    static constexpr int kLanes = NDISP;
     using InLanes = cost_t[NDISP];
-    using Lanes = agg_t[NDISP];
     using Kernel = tap_t[WINDOW];
 
+    // Clears the coordinates only ("no pixel"), like the RTL's reset; data stays.
     void reset() {
         vertical_x_ = 0;
         vertical_y_ = kNoPixel;
-        out_x_ = 0;
-        out_y_ = kNoPixel;
+        lane_output<agg_t, NDISP>::reset();
     }
 
     void step(coord_t in_x, coord_t in_y, const InLanes& in, int width, int height,
@@ -109,25 +111,12 @@ class aggregate {
         }
     }
 
-    coord_t out_x() const {
-        return out_x_;
-    }
-    coord_t out_y() const {
-        return out_y_;
-    }
-    const Lanes& out_data() const {
-        return out_data_;
-    }
-
   private:
     line_buffer<WIDTH, cost_t, kRows, NDISP> rows_;  // row in_y-1-k at above(k)
     vsum_t vertical_q_[NDISP] = {};                  // V of column vertical_x_
     coord_t vertical_x_ = 0;
     coord_t vertical_y_ = kNoPixel;
     vsum_t history_[kRows][NDISP] = {};  // V of column vertical_x_ - 1 - k (same row or masked)
-    Lanes out_data_ = {};
-    coord_t out_x_ = 0;
-    coord_t out_y_ = kNoPixel;
 };
 
 }  // namespace stereo::hls

@@ -8,25 +8,19 @@
 // Latency: 1 pixel step (the output register).
 #pragma once
 
+#include "stereo/hls/stage_output.hpp"
 #include "stereo/hls/types.hpp"
 
 namespace stereo::hls {
 
 template <int NDISP>
-class cost {
+class cost : public lane_output<cost_t, NDISP> {
     static_assert(NDISP >= 1 && NDISP <= fx::kMaxDisparities);
+    using lane_output<cost_t, NDISP>::out_data_;
+    using lane_output<cost_t, NDISP>::out_x_;
+    using lane_output<cost_t, NDISP>::out_y_;
 
   public:
-    using value_type = cost_t;
-    static constexpr int kLanes = NDISP;
-    using Lanes = cost_t[NDISP];
-
-    // Clears the coordinates only ("no pixel"), like the RTL's reset; data stays.
-    void reset() {
-        out_x_ = 0;
-        out_y_ = kNoPixel;
-    }
-
     void step(coord_t in_x, coord_t in_y, const Rgb& left, const Rgb& right) {
 #pragma HLS INLINE
 #pragma HLS ARRAY_PARTITION variable = history_ complete
@@ -44,16 +38,6 @@ class cost {
         out_y_ = in_y;
     }
 
-    coord_t out_x() const {
-        return out_x_;
-    }
-    coord_t out_y() const {
-        return out_y_;
-    }
-    const Lanes& out_data() const {
-        return out_data_;
-    }
-
   private:
     static constexpr int kHistory = NDISP > 1 ? NDISP - 1 : 1;  // right pixels besides this one
 
@@ -63,9 +47,6 @@ class cost {
     }
 
     Rgb history_[kHistory] = {};  // history_[i] = R(x-1-i) at the step of pixel x
-    Lanes out_data_ = {};
-    coord_t out_x_ = 0;
-    coord_t out_y_ = kNoPixel;
 };
 
 }  // namespace stereo::hls

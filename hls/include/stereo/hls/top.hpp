@@ -13,8 +13,7 @@
 #pragma once
 
 #include "stereo/hls/aggregate.hpp"
-#include "stereo/hls/ca_rule1.hpp"
-#include "stereo/hls/ca_rule2.hpp"
+#include "stereo/hls/ca_rule.hpp"
 #include "stereo/hls/cost.hpp"
 #include "stereo/hls/stream.hpp"
 #include "stereo/hls/types.hpp"
@@ -22,18 +21,18 @@
 
 namespace stereo::hls {
 
-// Status bits returned by stereo_hls_top, as the RTL's sticky status port.
-inline constexpr status_t kStatusEolMisplaced = 1U << 0;   // eol not exactly at the row ends
-inline constexpr status_t kStatusSofMisplaced = 1U << 1;   // sof not exactly on the first beat
-inline constexpr status_t kStatusConfigClamped = 1U << 2;  // configuration out of range
+// Status bits returned by stereo_hls_top, as the RTL's sticky status port (stage_table.hpp).
+inline constexpr status_t kStatusEolMisplaced = 1U << table::kStatusEolMisplaced;
+inline constexpr status_t kStatusSofMisplaced = 1U << table::kStatusSofMisplaced;
+inline constexpr status_t kStatusConfigClamped = 1U << table::kStatusConfigClamped;
 
 // Pixel steps from a pixel entering the cost stage to its result leaving the WTA register, R =
-// WINDOW/2 of the synthesised window: cost 1, aggregate R*W + R + 2, each CA rule W + 2, WTA 1.
-// (The RTL's CA rules take W + 3: their windows have an input register for Fmax, hls/README.md.)
+// WINDOW/2 of the synthesised window: the stage table's table::hls_pipeline_latency, (R + 2) * W
+// + R + 8 (the RTL's CA rules take one step more each: their windows have an input register for
+// Fmax, hls/README.md).
 template <int WINDOW>
 constexpr int pipeline_delay(int width) {
-    constexpr int R = WINDOW / 2;
-    return (R + 2) * width + R + 8;
+    return table::hls_pipeline_latency(width, WINDOW);
 }
 
 // Iterations of one frame: the pixels, then the flush. The result of the last pixel is in the
@@ -76,7 +75,7 @@ class pipeline {
         wta_.step(rule2_.out_x(), rule2_.out_y(), rule2_.out_data(), cfg.width, cfg.height,
                   cfg.ndisp, cfg.radius, cfg.use_ca);
         rule2_.step(rule1_.out_x(), rule1_.out_y(), rule1_.out_data(), cfg.width, cfg.height,
-                    cfg.use_ca);
+                    cfg.ndisp, cfg.use_ca);
         rule1_.step(aggregate_.out_x(), aggregate_.out_y(), aggregate_.out_data(), cfg.width,
                     cfg.height, cfg.ndisp, cfg.use_ca);
         aggregate_.step(cost_.out_x(), cost_.out_y(), cost_.out_data(), cfg.width, cfg.height,

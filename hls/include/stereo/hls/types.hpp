@@ -9,8 +9,10 @@
 
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 
 #include "stereo/constants.hpp"
+#include "stereo/stage_table.hpp"
 
 namespace stereo::hls {
 
@@ -46,11 +48,10 @@ static_assert(holds_bits<product_t>(32));
 static_assert(holds_bits<disparity_t>(fx::kDisparityBits));
 static_assert(fx::kMaxDisparities <= std::numeric_limits<ndisp_t>::max());
 
-// Coordinates of "no pixel": what a stage's coordinate registers hold after a reset. Far
-// outside any frame, so nothing derived from them is ever taken for a frame pixel.
-inline constexpr coord_t kNoPixel = std::numeric_limits<coord_t>::min();
-// Largest frame side: coordinates of the priming and flush steps must stay representable.
-inline constexpr int kMaxFrameSide = 16383;
+// Coordinates of "no pixel" and the largest frame side: the stage table's (stage_table.hpp).
+inline constexpr coord_t kNoPixel = table::kNoPixel;
+inline constexpr int kMaxFrameSide = table::kMaxFrameSide;
+static_assert(holds_bits<std::make_unsigned_t<coord_t>>(table::kCoordBits));
 
 // Wraps like the RTL's 16-bit coordinate registers (conversion to a signed type is modular
 // in C++20).

@@ -9,12 +9,13 @@
 // Latency: 1 pixel step.
 #pragma once
 
+#include "stereo/hls/stage_output.hpp"
 #include "stereo/hls/types.hpp"
 
 namespace stereo::hls {
 
 template <int NDISP>
-class wta {
+class wta : public coord_output {
     static_assert(NDISP >= 1 && NDISP <= fx::kMaxDisparities);
 
     static constexpr int leaves(int n) {
@@ -31,11 +32,6 @@ class wta {
 
   public:
     using Lanes = agg_t[NDISP];
-
-    void reset() {
-        out_x_ = 0;
-        out_y_ = kNoPixel;
-    }
 
     void step(coord_t in_x, coord_t in_y, const Lanes& in, int width, int height, int ndisp,
               int radius, bool use_ca) {
@@ -67,12 +63,6 @@ class wta {
         out_y_ = in_y;
     }
 
-    coord_t out_x() const {
-        return out_x_;
-    }
-    coord_t out_y() const {
-        return out_y_;
-    }
     disparity_t out_disparity() const {
         return out_disparity_;
     }
@@ -83,8 +73,6 @@ class wta {
   private:
     disparity_t out_disparity_ = 0;
     bool out_valid_ = false;
-    coord_t out_x_ = 0;
-    coord_t out_y_ = kNoPixel;
 };
 
 }  // namespace stereo::hls

@@ -1,0 +1,74 @@
+// One Verilated model with its context, an optional FST waveform and the clock: what the
+// co-simulation of stereo_top (sim_configs.cpp) and the stage testbenches (testbench/) share.
+// Include the Verilator runtime headers (verilated.h, verilated_fst_c.h) before this one.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+namespace stereo::sim {
+
+template <typename Model>
+class VerilatedHarness {
+  public:
+    // `rand_reset` (Verilator's randReset, 2: random) with `rand_seed` makes registers and RAMs
+    // start random under --x-initial unique; 0 keeps Verilator's default.
+    explicit VerilatedHarness(const char* name, int rand_reset = 0, int rand_seed = 0)
+        : context_(std::make_unique<VerilatedContext>()) {
+        context_->traceEverOn(true);
+        if (rand_reset != 0) {
+            context_->randReset(rand_reset);
+            context_->randSeed(rand_seed);
+        }
+        model_ = std::make_unique<Model>(context_.get(), name);
+    }
+    VerilatedHarness(const VerilatedHarness&) = delete;
+    VerilatedHarness& operator=(const VerilatedHarness&) = delete;
+    ~VerilatedHarness() {
+        if (trace_) {
+            trace_->close();
+        }
+        model_->final();
+    }
+
+    Model& model() { return *model_; }
+    const Model& model() const { return *model_; }
+
+    // Starts writing an FST waveform of everything that follows.
+    void trace_to(const std::string& path) {
+        trace_ = std::make_unique<VerilatedFstC>();
+        model_->trace(trace_.get(), 99);
+        trace_->open(path.c_str());
+        if (!trace_->isOpen()) {
+            throw std::runtime_error("cannot write waveform '" + path + "'");
+        }
+    }
+
+    // Inputs are already set: the falling edge settles them, the rising edge steps.
+    void tick() {
+        model_->clk = 0;
+        model_->eval();
+        dump();
+        model_->clk = 1;
+        model_->eval();
+        dump();
+    }
+
+    // Writes the current values to the waveform (if any) and advances its time.
+    void dump() {
+        if (trace_) {
+            trace_->dump(time_);
+        }
+        ++time_;
+    }
+
+  private:
+    std::unique_ptr<VerilatedContext> context_;
+    std::unique_ptr<Model> model_;
+    std::unique_ptr<VerilatedFstC> trace_;
+    std::uint64_t time_ = 0;
+};
+
+}  // namespace stereo::sim

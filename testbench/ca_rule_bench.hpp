@@ -1,0 +1,187 @@
+// The shared testbench of stereo_ca_rule1 and stereo_ca_rule2 (both stereo_ca_plane): the stage
+// ports, one frame through the Verilated rule against the model's rule, the parameterised volume
+// cases, frames back to back and width one. A rule's testbench supplies `Rule`:
+//   Model, kPrefix (the Verilated configuration), kName (module), kHasNdisp (cfg_ndisp port),
+//   apply(const Dsi&) (the model's rule), pair(w, h, rng) (what the rule sees in the pipeline),
+//   structured(w, h, rng) and kStructuredName (inputs on which the rule fires often), and
+//   kSmallLow .. kSmallHigh (small values that decide agreement at 2|n - c| == c).
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <iostream>
+#include <ostream>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "stage_driver.hpp"  // first: it includes the Verilator runtime headers quietly
+
+#include "stereo/stage_table.hpp"
+#include "tb_options.hpp"
+
+namespace stereo::tb {
+
+inline constexpr int kCaBits = fx::kAggBits;
+
+// The inputs of a CA rule testbench.
+enum class CaInput { kPair, kStructured, kSmallValues, kNearMaximum, kFull14Bits };
+
+template <typename Rule>
+struct CaRuleBench {
+    using Model = typename Rule::Model;
+    using Input = CaInput;
+    static constexpr int kDisparities = table::verilated(Rule::kPrefix).params.ndisp;
+
+    static const char* input_name(Input input) {
+        switch (input) {
+            case Input::kPair:
+                return "pair";
+            case Input::kStructured:
+                return Rule::kStructuredName;
+            case Input::kSmallValues:
+                return "small";
+            case Input::kNearMaximum:
+                return "nearmax";
+            case Input::kFull14Bits:
+                return "full14bits";
+        }
+        return "?";
+    }
+
+    static Dsi make_input(Input input, int width, int height, std::mt19937& rng) {
+        switch (input) {
+            case Input::kPair:
+                return Rule::pair(width, height, rng);
+            case Input::kStructured:
+                return Rule::structured(width, height, rng);
+            case Input::kSmallValues:
+                return uniform_volume(width, height, kDisparities, Rule::kSmallLow,
+                                      Rule::kSmallHigh, rng);
+            case Input::kNearMaximum:  // the widest sums and products
+                return uniform_volume(width, height, kDisparities, fx::kAggMax - 300, fx::kAggMax,
+                                      rng);
+            case Input::kFull14Bits:  // for the identity only: every bit must pass
+                return uniform_volume(width, height, kDisparities, 0, (1 << kCaBits) - 1, rng);
+        }
+        return {};
+    }
+
+    struct Ports {
+        using Model = typename Rule::Model;
+        static constexpr const char* kName = Rule::kName;
+        static void scramble(Model& model, std::mt19937& rng) {
+            randomize_bits(model.in_data, kDisparities * kCaBits, rng);
+        }
+        static std::vector<std::uint32_t> outputs(const Model& model) {
+            return port_words(model.out_data);
+        }
+    };
+    using Driver = StageDriver<Ports>;
+
+    // Runs one frame of the NDISP-plane `input`; returns all NDISP output planes.
+    static Dsi run(Driver& driver, const Dsi& input, int ndisp, bool use_ca) {
+        auto& model = driver.model();
+        model.cfg_width = static_cast<std::uint16_t>(input.width());
+        model.cfg_height = static_cast<std::uint16_t>(input.height());
+        if constexpr (Rule::kHasNdisp) {
+            model.cfg_ndisp = static_cast<std::uint16_t>(ndisp);
+        }
+        model.cfg_use_ca = use_ca ? 1 : 0;
+        Dsi rtl(input.width(), input.height(), kDisparities);
+        driver.run_frame(
+            input.width(), input.height(),
+            [&](Model& m, int x, int y) { put_column(m.in_data, input, x, y, kCaBits); },
+            [&](const Model& m, int x, int y) { get_column(m.out_data, rtl, x, y, kCaBits); });
+        return rtl;
+    }
+
+    // The model sees only the cfg_ndisp planes the core uses; with CA off the stage is the
+    // identity.
+    static Dsi expected(const Dsi& input, int ndisp, bool use_ca) {
+        const Dsi used = truncated(input, ndisp);
+        return use_ca ? Rule::apply(used) : used;
+    }
+
+    struct Case {
+        int width, height;
+        Input input;
+        int ndisp;
+        bool use_ca;
+        double ce_low;
+        // The parameter as ctest and GoogleTest print it.
+        friend void PrintTo(const Case& c, std::ostream* os) { *os << describe(c); }
+    };
+
+    // Test names, and the parameter as ctest and GoogleTest print it.
+    static std::string describe(const Case& c) {
+        return std::to_string(c.width) + "x" + std::to_string(c.height) + "_" +
+               input_name(c.input) +
+               (Rule::kHasNdisp ? "_ndisp" + std::to_string(c.ndisp) : std::string()) +
+               (c.use_ca ? "_ca" : "_noca") + "_celow" +
+               std::to_string(static_cast<int>(c.ce_low * 100));
+    }
+    static std::string case_name(const ::testing::TestParamInfo<Case>& info) {
+        return describe(info.param);
+    }
+
+    // kFramesPerCase frames of fresh input through one driver, each value against the model.
+    static void check_case(const Case& c) {
+        const std::uint32_t seed = test_seed();
+        std::mt19937 rng(seed);
+        Driver driver(seed, c.ce_low);
+        for (int frame = 0; frame < kFramesPerCase; ++frame) {
+            const Dsi input = make_input(c.input, c.width, c.height, rng);
+            const Dsi want = expected(input, c.ndisp, c.use_ca);
+            if (c.use_ca && frame == 0) {
+                std::cout << "[fires] " << Rule::kName << " changes "
+                          << 100.0 * changed_fraction(truncated(input, c.ndisp), want)
+                          << " % of the cells\n";
+            }
+            EXPECT_TRUE(same_volume(want, run(driver, input, c.ndisp, c.use_ca), c.ndisp))
+                << "frame " << frame;
+        }
+    }
+
+    struct Frame {
+        int width, height, ndisp;
+        bool use_ca;
+    };
+
+    // Frames follow each other without idle steps, changing size, cfg_ndisp and CA: the line
+    // buffer and the column registers hold the previous frame and its flush garbage.
+    static void check_back_to_back(const std::vector<Frame>& frames, Input input) {
+        const std::uint32_t seed = test_seed();
+        std::mt19937 rng(seed);
+        Driver driver(seed, 0.1);
+        int previous_height = 0;
+        for (const Frame& f : frames) {
+            // The contract of every stage (docs/rtl.md): a frame taller than the one before
+            // needs the coordinate registers cleared between them, since the flush filler still
+            // in flight (rows >= the old height) lies inside the new frame; stereo_top clears
+            // them when a frame's last output leaves. Same-size and shorter frames follow
+            // without a reset.
+            if (f.height > previous_height) {
+                driver.reset();
+            }
+            previous_height = f.height;
+            const Dsi in = make_input(input, f.width, f.height, rng);
+            EXPECT_TRUE(same_volume(expected(in, f.ndisp, f.use_ca),
+                                    run(driver, in, f.ndisp, f.use_ca), f.ndisp))
+                << f.width << "x" << f.height << " ndisp " << f.ndisp << " CA " << f.use_ca;
+        }
+    }
+
+    // Width 1: the line buffer's read-ahead address is the word being written, which it passes
+    // straight through (a read-first RAM alone would deliver every row one row late).
+    static void check_width_one(Input input) {
+        const std::uint32_t seed = test_seed();
+        std::mt19937 rng(seed);
+        Driver driver(seed, 0.0);
+        const Dsi in = make_input(input, 1, 7, rng);
+        EXPECT_TRUE(
+            same_volume(Rule::apply(in), run(driver, in, kDisparities, true), kDisparities));
+    }
+};
+
+}  // namespace stereo::tb
