@@ -233,29 +233,31 @@ void bm_model_stage(benchmark::State& state, const StereoPair& pair, StageInputC
     set_throughput(state, pair);
 }
 
-void bm_opencv_bm(benchmark::State& state, const StereoPair& pair) {
-    const cv::Ptr<cv::StereoBM> matcher = cv::StereoBM::create(kDisparities, kBmBlockSize);
+// One OpenCV matcher on the pair (BM wants grey images, SGBM colour ones).
+void bm_opencv(benchmark::State& state, const StereoPair& pair,
+               const cv::Ptr<cv::StereoMatcher>& matcher, const cv::Mat& left,
+               const cv::Mat& right) {
     cv::Mat disparity;
     for (auto _ : state) {
-        matcher->compute(pair.left_grey, pair.right_grey, disparity);
+        matcher->compute(left, right, disparity);
         benchmark::DoNotOptimize(disparity.data);
         benchmark::ClobberMemory();
     }
     set_throughput(state, pair);
 }
 
+void bm_opencv_bm(benchmark::State& state, const StereoPair& pair) {
+    bm_opencv(state, pair, cv::StereoBM::create(kDisparities, kBmBlockSize), pair.left_grey,
+              pair.right_grey);
+}
+
 void bm_opencv_sgbm(benchmark::State& state, const StereoPair& pair) {
-    const cv::Ptr<cv::StereoSGBM> matcher = cv::StereoSGBM::create(
-        /*minDisparity=*/0, kDisparities, kSgbmBlockSize, kSgbmP1, kSgbmP2,
-        /*disp12MaxDiff=*/0, /*preFilterCap=*/0, kSgbmUniquenessRatio,
-        /*speckleWindowSize=*/0, /*speckleRange=*/0, cv::StereoSGBM::MODE_SGBM);
-    cv::Mat disparity;
-    for (auto _ : state) {
-        matcher->compute(pair.left_bgr, pair.right_bgr, disparity);
-        benchmark::DoNotOptimize(disparity.data);
-        benchmark::ClobberMemory();
-    }
-    set_throughput(state, pair);
+    bm_opencv(state, pair,
+              cv::StereoSGBM::create(
+                  /*minDisparity=*/0, kDisparities, kSgbmBlockSize, kSgbmP1, kSgbmP2,
+                  /*disp12MaxDiff=*/0, /*preFilterCap=*/0, kSgbmUniquenessRatio,
+                  /*speckleWindowSize=*/0, /*speckleRange=*/0, cv::StereoSGBM::MODE_SGBM),
+              pair.left_bgr, pair.right_bgr);
 }
 
 void register_benchmarks(const StereoPair& pair, StageInputCache& cache) {

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -82,13 +83,18 @@ TEST(Fis, SymmetricInputGoesStraight) {
     EXPECT_EQ(evaluate_fis(0, 0, 0).decision, Direction::forward);
 }
 
+// Left, centre and right occupancies, each uniform in [0, 1), drawn in that order.
+std::array<double, 3> random_occupancies(std::mt19937& rng) {
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const double l = u(rng);
+    const double c = u(rng);
+    return {l, c, u(rng)};
+}
+
 TEST(Fis, MirrorSymmetry) {
     std::mt19937 rng(test::test_seed());
-    std::uniform_real_distribution<double> u(0.0, 1.0);
     for (int i = 0; i < 50; ++i) {
-        const double l = u(rng);
-        const double c = u(rng);
-        const double r = u(rng);
+        const auto [l, c, r] = random_occupancies(rng);
         const FisResult a = evaluate_fis(l, c, r);
         const FisResult b = evaluate_fis(r, c, l);
         EXPECT_NEAR(a.angle_deg, -b.angle_deg, 1e-9);
@@ -136,11 +142,8 @@ TEST(Fis, BacksOffWhenEverythingIsOccupied) {
 
 TEST(Fis, AgreesWithABruteForceEvaluation) {
     std::mt19937 rng(test::test_seed() + 1);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
     for (int i = 0; i < 40; ++i) {
-        const double l = u(rng);
-        const double c = u(rng);
-        const double r = u(rng);
+        const auto [l, c, r] = random_occupancies(rng);
         const FisResult result = evaluate_fis(l, c, r);
         const Brute expected = brute_force(l, c, r);
         EXPECT_NEAR(result.angle_deg, expected.angle, 0.01) << l << " " << c << " " << r;

@@ -14,7 +14,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "cli.hpp"
-#include "stereo/edge_frontend.hpp"
+#include "cli_matcher_options.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_robot/calibration.hpp"
 #include "stereo_robot/decision.hpp"
@@ -41,8 +41,7 @@ struct AvoidOptions {
     std::string overlay;
     bool json = false;
     int downscale = 1;
-    MatchParams params;
-    edge_frontend::EdgeParams edges;
+    MatcherOptions matcher;  // --ndisp, --window, --sigma; config.edges: the LoG options
     robot::ThresholdParams threshold_params;
     robot::FisParams fis;
 };
@@ -101,7 +100,8 @@ FrameResult decide(const AvoidOptions& o, const DisparityMap& map, double thresh
     const bool want_threshold = o.method == "threshold" || o.method == "both";
     const bool want_fuzzy = o.method == "fuzzy" || o.method == "both";
     if (want_threshold) {
-        const auto d = robot::decide_threshold(map, threshold, o.params.ndisp, o.threshold_params);
+        const auto d = robot::decide_threshold(map, threshold, o.matcher.config.pipeline.ndisp,
+                                               o.threshold_params);
         const double arrow = d.direction == robot::Direction::left    ? -kThresholdArrowDeg
                              : d.direction == robot::Direction::right ? kThresholdArrowDeg
                                                                       : 0.0;
@@ -155,7 +155,8 @@ void run_avoid(const AvoidOptions& o) {
     }
     robot::check_fraction(o.threshold_params.rate, "--rate");
     robot::check_fraction(o.fis.backwards_threshold, "--backwards-threshold");
-    edge_frontend::validate(o.edges);
+    // The edge front end; it checks its parameters once the image size is known.
+    const auto matcher = matchers().create("edges", "model", o.matcher.resolved());
     const double threshold = pixel_threshold(o);
     bool sequence = false;
     const auto pairs = frames(o, sequence);
@@ -170,7 +171,8 @@ void run_avoid(const AvoidOptions& o) {
     for (const auto& [left_path, right_path] : pairs) {
         const auto start = std::chrono::steady_clock::now();
         const io::ImagePair pair = io::load_pair(left_path, right_path, o.downscale);
-        const DisparityMap map = edge_frontend::match(pair.left, pair.right, o.params, o.edges);
+        matcher->validate(pair.left.width, pair.left.height);
+        const DisparityMap map = matcher->compute(pair.left, pair.right).disparity;
         FrameResult result = decide(o, map, threshold);
         const std::chrono::duration<double, std::milli> elapsed =
             std::chrono::steady_clock::now() - start;
@@ -229,34 +231,22 @@ void add_avoid_command(CLI::App& app) {
     command->add_flag("--json", o->json, "One JSON object per frame (always for sequences)");
     command->add_option("--downscale", o->downscale, "Shrink both images by integer F first")
         ->capture_default_str();
-    command->add_option("--ndisp", o->params.ndisp, "Disparity labels 0..N-1")
-        ->capture_default_str();
-    command->add_option("--window", o->params.window, "Odd aggregation window side")
-        ->capture_default_str();
-    command->add_option("--sigma", o->params.sigma, "Aggregation Gaussian sigma")
-        ->capture_default_str();
-    command->add_option("--log-window", o->edges.log_window, "Odd LoG smoothing kernel side")
-        ->capture_default_str();
-    command->add_option("--log-sigma", o->edges.log_sigma, "LoG Gaussian sigma")
-        ->capture_default_str();
-    command->add_option("--edge-value", o->edges.edge_value, "Intensity of superimposed edges")
-        ->capture_default_str();
-    command->add_option("--truncation", o->edges.truncation, "Truncated-AD limit, of 765")
-        ->capture_default_str();
-    command
-        ->add_option("--rate", o->threshold_params.rate,
-                     "Threshold method: centre fraction below which it goes straight")
-        ->capture_default_str();
-    command->add_option("--border", o->threshold_params.border, "Excluded border, pixels")
-        ->capture_default_str();
-    command
-        ->add_option("--backwards-threshold", o->fis.backwards_threshold,
-                     "Fuzzy: back off when 'move backwards' exceeds this")
-        ->capture_default_str();
-    command
-        ->add_option("--forward-band", o->fis.forward_band,
-                     "Fuzzy: |angle| up to this (deg) is reported as forward")
-        ->capture_default_str();
+    // The edge front end has no CA rules: no --no-ca.
+    add_matcher_options(*command, o->matcher, MatcherChoice::fixed,
+                        {.ndisp = true, .no_ca = false});
+    edge_frontend::EdgeParams& edges = o->matcher.config.edges;
+    add_number_options(*command,
+                       {{"--log-window", &edges.log_window, "Odd LoG smoothing kernel side"},
+                        {"--log-sigma", &edges.log_sigma, "LoG Gaussian sigma"},
+                        {"--edge-value", &edges.edge_value, "Intensity of superimposed edges"},
+                        {"--truncation", &edges.truncation, "Truncated-AD limit, of 765"},
+                        {"--rate", &o->threshold_params.rate,
+                         "Threshold method: centre fraction below which it goes straight"},
+                        {"--border", &o->threshold_params.border, "Excluded border, pixels"},
+                        {"--backwards-threshold", &o->fis.backwards_threshold,
+                         "Fuzzy: back off when 'move backwards' exceeds this"},
+                        {"--forward-band", &o->fis.forward_band,
+                         "Fuzzy: |angle| up to this (deg) is reported as forward"}});
     command->callback([o] { run_avoid(*o); });
 }
 

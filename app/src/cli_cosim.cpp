@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli.hpp"
-#include "stereo/pipeline.hpp"
+#include "cli_matcher_options.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_top_sim.hpp"
 
@@ -22,8 +22,7 @@ namespace {
 struct CosimOptions {
     std::string left;
     std::string right;
-    MatchParams params;
-    bool no_ca = false;
+    MatcherOptions matcher;
     int downscale = 1;
     std::string crop;  // WxH+X+Y
     std::uint32_t seed = 1;
@@ -74,8 +73,10 @@ std::string config_text(const sim::TopConfig& config) {
 }
 
 void run_cosim(const CosimOptions& options) {
-    MatchParams params = options.params;
-    params.use_ca = !options.no_ca;
+    const MatchConfig match_config = options.matcher.resolved();
+    const MatchParams& params = match_config.pipeline;
+    // The expected map: the golden model, made (and its parameters checked) before any file.
+    const auto model = matchers().create("pipeline", "model", match_config);
     for (const double probability : {options.stall, options.gap}) {
         if (!(probability >= 0.0 && probability < 1.0)) {
             throw std::invalid_argument("--stall and --gap must be in [0, 1), got " +
@@ -93,7 +94,7 @@ void run_cosim(const CosimOptions& options) {
         apply_crop(io::load_pair(options.left, options.right, options.downscale), options.crop);
     const int width = pair.left.width;
     const int height = pair.left.height;
-    validate(params, width, height);
+    model->validate(width, height);
     const sim::TopConfig* config = sim::covering_config(width, height, params.ndisp, params.window);
     if (config == nullptr) {
         const sim::TopConfig& largest = sim::built_top_configs().back();
@@ -105,7 +106,7 @@ void run_cosim(const CosimOptions& options) {
             " (use --downscale or --crop, or build with -DSTEREO_COSIM_FULL=ON)");
     }
 
-    const DisparityMap expected = match(pair.left, pair.right, params);
+    const DisparityMap expected = model->compute(pair.left, pair.right).disparity;
 
     const auto sim = sim::make_top_sim(*config);
     if (!options.trace.empty()) {
@@ -200,15 +201,10 @@ void add_cosim_command(CLI::App& app) {
         "cosim", "Stream a pair through the Verilated RTL and compare it with the golden model.");
     command->add_option("LEFT", options->left, "Left image")->required();
     command->add_option("RIGHT", options->right, "Right image, same size as LEFT")->required();
-    options->params.ndisp = 16;
-    options->params.window = 5;
-    command->add_option("--ndisp", options->params.ndisp, "Disparity labels 0..N-1")
-        ->capture_default_str();
-    command->add_option("--window", options->params.window, "Odd aggregation window side")
-        ->capture_default_str();
-    command->add_option("--sigma", options->params.sigma, "Gaussian sigma in pixels")
-        ->capture_default_str();
-    command->add_flag("--no-ca", options->no_ca, "Skip the cellular-automata rules");
+    // The smallest Verilated configurations cover these; larger ones need a full build.
+    options->matcher.config.pipeline.ndisp = 16;
+    options->matcher.config.pipeline.window = 5;
+    add_matcher_options(*command, options->matcher, MatcherChoice::fixed);
     command->add_option("--downscale", options->downscale, "Shrink both images by integer F")
         ->capture_default_str();
     command->add_option("--crop", options->crop, "Use the region WxH+X+Y (after --downscale)");

@@ -40,15 +40,20 @@ MatchConfig MatcherOptions::resolved() const {
     return resolved_config;
 }
 
-void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoice choice) {
+void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoice choice,
+                         ExposedParams exposed) {
     MatchParams& params = options.config.pipeline;
-    command.add_option("--ndisp", params.ndisp, "Number of disparity labels 0..N-1")
-        ->capture_default_str();
+    if (exposed.ndisp) {
+        command.add_option("--ndisp", params.ndisp, "Number of disparity labels 0..N-1")
+            ->capture_default_str();
+    }
     options.window = command.add_option("--window", params.window, "Odd aggregation window side")
                          ->capture_default_str();
     options.sigma = command.add_option("--sigma", params.sigma, "Gaussian sigma in pixels")
                         ->capture_default_str();
-    command.add_flag("--no-ca", options.no_ca, "Skip the cellular-automata rules");
+    if (exposed.no_ca) {
+        command.add_flag("--no-ca", options.no_ca, "Skip the cellular-automata rules");
+    }
     if (choice == MatcherChoice::fixed) {
         return;
     }
@@ -73,6 +78,16 @@ void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoi
         .add_option("--frontend", options.frontend, "model, or edges (the same as --method edges)")
         ->check(CLI::IsMember({"model", "edges"}))
         ->capture_default_str();
+}
+
+void add_number_options(CLI::App& command, std::initializer_list<NumberOption> options) {
+    for (const NumberOption& option : options) {
+        std::visit(
+            [&](auto* value) {
+                command.add_option(option.name, *value, option.help)->capture_default_str();
+            },
+            option.value);
+    }
 }
 
 }  // namespace stereo::cli

@@ -3,7 +3,10 @@
 // one help text each, registered by one helper and resolved into a stereo::MatchConfig once.
 #pragma once
 
+#include <cstdint>
+#include <initializer_list>
 #include <string>
+#include <variant>
 
 #include "stereo/matcher.hpp"
 
@@ -39,6 +42,26 @@ enum class MatcherChoice {
     selectable  // also --method, --engine, --frontend, --cost
 };
 
-void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoice choice);
+// The pipeline parameters a subcommand exposes besides --window and --sigma: middlebury takes
+// ndisp from each scene, avoid (edges) and slam (sparse) run matchers without the CA rules.
+struct ExposedParams {
+    bool ndisp = true;
+    bool no_ca = true;
+};
+
+// Registers the options on `command`. The defaults shown by --help are the values
+// options.config holds when this is called, so a subcommand sets its own defaults first.
+void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoice choice,
+                         ExposedParams exposed = {});
+
+// A numeric option whose --help shows its default; subcommands with many tuning parameters
+// register them as one table instead of one add_option block each.
+struct NumberOption {
+    const char* name;
+    std::variant<int*, double*, std::uint32_t*> value;
+    const char* help;
+};
+
+void add_number_options(CLI::App& command, std::initializer_list<NumberOption> options);
 
 }  // namespace stereo::cli

@@ -1,6 +1,7 @@
-// `stereo middlebury`: the evaluation behind docs/results.md and docs/sigma-sweep.md. Runs the
-// model (with and without CA), its float reference and OpenCV's StereoBM / StereoSGBM on the
-// Middlebury 2003 pairs, prints a Markdown table and optionally writes JSON and figures.
+// `stereo middlebury`: the evaluation behind docs/results.md. Runs the model (with and without
+// CA), its float reference and OpenCV's StereoBM / StereoSGBM on the Middlebury 2003 pairs,
+// prints a Markdown table and optionally writes JSON and figures. (The sigma sweep of
+// docs/sigma-sweep.md is `stereo_experiments sigma-sweep`.)
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -18,7 +19,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "cli.hpp"
-#include "stereo/reference.hpp"
+#include "cli_matcher_options.hpp"
 #include "stereo_io/data_dir.hpp"
 #include "stereo_io/middlebury.hpp"
 
@@ -32,10 +33,17 @@ struct Options {
     std::string figures;
     std::string markdown;
     std::string json;
-    int window = fx::kDefaultWindow;
-    double sigma = fx::kDefaultSigma;
-    std::vector<double> sweep;
+    MatcherOptions matcher;  // --window, --sigma; ndisp comes from each scene
 };
+
+// The registry's pipeline on `engine` (model or float) for one scene and CA setting.
+std::unique_ptr<Matcher> pipeline(const Options& options, const std::string& engine, int ndisp,
+                                  bool use_ca) {
+    MatchConfig config = options.matcher.config;
+    config.pipeline.ndisp = ndisp;
+    config.pipeline.use_ca = use_ca;
+    return matchers().create("pipeline", engine, config);
+}
 
 // The thesis' own figures (Tables 3.1 and 3.2), quoted, for the table's last rows.
 struct ThesisFigures {
@@ -130,28 +138,32 @@ void run_report(const Options& options) {
             continue;
         }
         ++scenes_found;
-        const MatchParams with_ca{scene.ndisp, options.window, options.sigma, true};
-        MatchParams without_ca = with_ca;
-        without_ca.use_ca = false;
+        // Made outside the timed calls, as the bare functions these replace had nothing to make.
+        const auto matcher = [&](const std::string& engine, bool use_ca) {
+            return pipeline(options, engine, scene.ndisp, use_ca);
+        };
+        const auto model_with_ca = matcher("model", true);
+        const auto model_without_ca = matcher("model", false);
+        const auto compute = [&](const Matcher& m) {
+            return m.compute(data->pair.left, data->pair.right).disparity;
+        };
 
         std::vector<MethodRow> rows;
         double ms = 0.0;
-        const DisparityMap model_ca =
-            timed([&] { return match(data->pair.left, data->pair.right, with_ca); }, ms);
+        const DisparityMap model_ca = timed([&] { return compute(*model_with_ca); }, ms);
         const cv::Mat model_ca_f = io::to_float_disparity(model_ca);
         rows.push_back({"model, CA", io::evaluate_scene(*data, model_ca_f), ms});
-        const DisparityMap model_no_ca =
-            timed([&] { return match(data->pair.left, data->pair.right, without_ca); }, ms);
+        const DisparityMap model_no_ca = timed([&] { return compute(*model_without_ca); }, ms);
         rows.push_back(
             {"model, no CA", io::evaluate_scene(*data, io::to_float_disparity(model_no_ca)), ms});
-        const cv::Mat bm = timed([&] { return io::run_stereo_bm(*data, options.window); }, ms);
+        const cv::Mat bm = timed(
+            [&] { return io::run_stereo_bm(*data, options.matcher.config.pipeline.window); }, ms);
         rows.push_back({"OpenCV StereoBM", io::evaluate_scene(*data, bm), ms});
         const cv::Mat sgbm = timed([&] { return io::run_stereo_sgbm(*data); }, ms);
         rows.push_back({"OpenCV StereoSGBM", io::evaluate_scene(*data, sgbm), ms});
 
-        const DisparityMap float_ca = floating::match(data->pair.left, data->pair.right, with_ca);
-        const DisparityMap float_no_ca =
-            floating::match(data->pair.left, data->pair.right, without_ca);
+        const DisparityMap float_ca = compute(*matcher("float", true));
+        const DisparityMap float_no_ca = compute(*matcher("float", false));
         const double differ_ca = io::disagreement(model_ca, float_ca);
         const double differ_no_ca = io::disagreement(model_no_ca, float_no_ca);
         char line[160];
@@ -201,53 +213,6 @@ void run_report(const Options& options) {
     }
 }
 
-// Bad-pixel percentages of the model (CA on) for each sigma; the default is the sigma with the
-// lowest mean of nonocc, all and disc over the pairs.
-void run_sweep(const Options& options) {
-    std::ostringstream md;
-    md << "| sigma |";
-    for (const auto& scene : io::middlebury2003_scenes()) {
-        md << ' ' << scene.name << " nonocc/all/disc |";
-    }
-    md << " mean nonocc | mean all | mean disc | mean of the three |\n|---|";
-    for (std::size_t i = 0; i < io::middlebury2003_scenes().size() + 4; ++i) {
-        md << "---|";
-    }
-    md << '\n';
-    std::vector<io::SceneData> scenes;
-    for (const auto& scene : io::middlebury2003_scenes()) {
-        if (auto data = io::load_scene(options.data_dir, scene)) {
-            scenes.push_back(std::move(*data));
-        }
-    }
-    if (scenes.empty()) {
-        throw std::runtime_error("no Middlebury 2003 scene found under " + options.data_dir);
-    }
-    for (const double sigma : options.sweep) {
-        double sums[3] = {0, 0, 0};
-        md << "| " << sigma << " |";
-        for (const auto& data : scenes) {
-            const MatchParams params{data.scene.ndisp, options.window, sigma, true};
-            const io::EvalResult r = io::evaluate_scene(
-                data, io::to_float_disparity(match(data.pair.left, data.pair.right, params)));
-            const double values[3] = {*r.nonocc->percent(), *r.all.percent(), *r.disc->percent()};
-            char cell[64];
-            std::snprintf(cell, sizeof cell, " %.2f / %.2f / %.2f |", values[0], values[1],
-                          values[2]);
-            md << cell;
-            for (int i = 0; i < 3; ++i) {
-                sums[i] += values[i] / scenes.size();
-            }
-        }
-        char tail[96];
-        std::snprintf(tail, sizeof tail, " %.2f | %.2f | %.2f | %.2f |\n", sums[0], sums[1],
-                      sums[2], (sums[0] + sums[1] + sums[2]) / 3.0);
-        md << tail;
-        std::cout << md.str() << std::flush;
-        md.str("");
-    }
-}
-
 }  // namespace
 
 void add_middlebury_command(CLI::App& app) {
@@ -259,25 +224,17 @@ void add_middlebury_command(CLI::App& app) {
     command->add_option("--figures", options->figures, "Write one figure strip per pair here");
     command->add_option("--markdown", options->markdown, "Also write the tables to this file");
     command->add_option("--json", options->json, "Write all figures as JSON to this file");
-    command->add_option("--window", options->window, "Aggregation window")->capture_default_str();
-    command->add_option("--sigma", options->sigma, "Gaussian sigma")->capture_default_str();
-    command->add_option("--sweep-sigma", options->sweep,
-                        "Instead of the report, sweep these sigmas (CA on)");
+    // The scenes set ndisp, and the report runs both CA settings: only --window and --sigma.
+    add_matcher_options(*command, options->matcher, MatcherChoice::fixed,
+                        {.ndisp = false, .no_ca = false});
     command->callback([options] {
         // Parameters first (exit 2), then files (exit 1), whatever is wrong with both.
-        (void)gaussian_kernel(options->window, options->sigma);  // throws on a bad window/sigma
-        for (const double sigma : options->sweep) {
-            (void)gaussian_kernel(options->window, sigma);
-        }
+        (void)pipeline(*options, "model", fx::kDefaultDisparities, true);
         const fs::path folder = fs::path(options->data_dir) / "middlebury2003";
         if (!fs::is_directory(folder)) {
             throw std::runtime_error("cannot read '" + folder.string() + "': no such folder");
         }
-        if (options->sweep.empty()) {
-            run_report(*options);
-        } else {
-            run_sweep(*options);
-        }
+        run_report(*options);
     });
 }
 

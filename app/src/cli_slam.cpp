@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli.hpp"
+#include "cli_matcher_options.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_robot/slam/dataset.hpp"
 #include "stereo_robot/slam/evaluation.hpp"
@@ -44,6 +45,7 @@ struct SlamOptions {
     int downscale = 1;
     int ca_passes = 1;
     slam::SlamParams params;
+    MatcherOptions matcher;  // --ndisp, --window, --sigma of the front end (params.frontend)
 };
 
 // A one-line bar on stderr, only when stderr is a terminal; cleared when done or on error.
@@ -122,7 +124,11 @@ void write_text(const fs::path& path, const std::string& text) {
     }
 }
 
-void run_slam(const SlamOptions& o) {
+void run_slam(SlamOptions o) {
+    const MatchParams& frontend = o.matcher.config.pipeline;
+    o.params.frontend.ndisp = frontend.ndisp;
+    o.params.frontend.window = frontend.window;
+    o.params.frontend.sigma = frontend.sigma;
     if (o.downscale < 1) {
         throw std::invalid_argument("--downscale must be >= 1, got " + std::to_string(o.downscale));
     }
@@ -324,59 +330,39 @@ void add_slam_command(CLI::App& app) {
     command->add_flag("--json", o->json, "Print a JSON summary");
     command->add_option("--downscale", o->downscale, "Shrink the images by integer F first")
         ->capture_default_str();
-    command->add_option("--ndisp", p.frontend.ndisp, "Disparity labels 0..N-1")
-        ->capture_default_str();
-    command->add_option("--window", p.frontend.window, "Odd aggregation window side")
-        ->capture_default_str();
-    command->add_option("--sigma", p.frontend.sigma, "Aggregation Gaussian sigma")
-        ->capture_default_str();
-    command->add_option("--certainty", p.frontend.certainty, "Minimum (C2 - C1) / C1")
-        ->capture_default_str();
-    command->add_option("--lr-tolerance", p.frontend.lr_tolerance, "Maximum |dL - dR|")
-        ->capture_default_str();
-    command->add_option("--features", p.motion.features, "ORB features per image")
-        ->capture_default_str();
-    command->add_option("--max-hamming", p.motion.max_hamming, "Worst accepted ORB match")
-        ->capture_default_str();
-    command->add_option("--max-depth", p.motion.max_depth, "Farthest feature used, metres")
-        ->capture_default_str();
-    command->add_option("--ransac-iterations", p.motion.ransac.iterations, "RANSAC samples")
-        ->capture_default_str();
-    command
-        ->add_option("--inlier-px", p.motion.ransac.threshold,
-                     "Inlier residual in (u, v, d), pixels")
-        ->capture_default_str();
-    command
-        ->add_option("--min-inliers", p.motion.ransac.min_inliers,
-                     "Fewer inliers: constant-velocity fallback")
-        ->capture_default_str();
-    command->add_option("--seed", p.motion.ransac.seed, "RANSAC seed")->capture_default_str();
-    command->add_option("--cell", p.cell_size, "Grid cell size, metres")->capture_default_str();
-    command->add_option("--max-range", p.local.max_range, "Farthest mapped point, metres")
-        ->capture_default_str();
-    command
-        ->add_option("--max-height", p.local.max_height,
-                     "Highest obstacle point above the ground, metres")
-        ->capture_default_str();
-    command
-        ->add_option("--ground-tolerance", p.local.tolerance,
-                     "Ground band either side of the v-disparity line, pixels")
-        ->capture_default_str();
-    command->add_option("--stride", p.local.stride, "Map every stride-th pixel")
-        ->capture_default_str();
+    // The sparse front end has no CA rules: no --no-ca; its defaults are the SLAM layer's.
+    MatchParams& frontend = o->matcher.config.pipeline;
+    frontend.ndisp = p.frontend.ndisp;
+    frontend.window = p.frontend.window;
+    frontend.sigma = p.frontend.sigma;
+    add_matcher_options(*command, o->matcher, MatcherChoice::fixed,
+                        {.ndisp = true, .no_ca = false});
+    add_number_options(
+        *command,
+        {{"--certainty", &p.frontend.certainty, "Minimum (C2 - C1) / C1"},
+         {"--lr-tolerance", &p.frontend.lr_tolerance, "Maximum |dL - dR|"},
+         {"--features", &p.motion.features, "ORB features per image"},
+         {"--max-hamming", &p.motion.max_hamming, "Worst accepted ORB match"},
+         {"--max-depth", &p.motion.max_depth, "Farthest feature used, metres"},
+         {"--ransac-iterations", &p.motion.ransac.iterations, "RANSAC samples"},
+         {"--inlier-px", &p.motion.ransac.threshold, "Inlier residual in (u, v, d), pixels"},
+         {"--min-inliers", &p.motion.ransac.min_inliers,
+          "Fewer inliers: constant-velocity fallback"},
+         {"--seed", &p.motion.ransac.seed, "RANSAC seed"},
+         {"--cell", &p.cell_size, "Grid cell size, metres"},
+         {"--max-range", &p.local.max_range, "Farthest mapped point, metres"},
+         {"--max-height", &p.local.max_height, "Highest obstacle point above the ground, metres"},
+         {"--ground-tolerance", &p.local.tolerance,
+          "Ground band either side of the v-disparity line, pixels"},
+         {"--stride", &p.local.stride, "Map every stride-th pixel"}});
     command->add_flag("!--no-merge", p.merge_enabled, "Place local maps with the odometry alone");
-    command->add_option("--merge-shift", p.merge.max_shift, "Merge search: +- cells in x and z")
-        ->capture_default_str();
-    command->add_option("--merge-angle-steps", p.merge.angle_steps, "Merge search: +- steps")
-        ->capture_default_str();
-    command->add_option("--merge-angle-step", p.merge.angle_step_deg, "Merge step, degrees")
-        ->capture_default_str();
-    command
-        ->add_option("--merge-min-gain", p.merge.min_gain,
-                     "Cells a correction must gain to be applied")
-        ->capture_default_str();
-    command->add_option("--ca-passes", o->ca_passes, "Clean-up passes over the final map")
-        ->capture_default_str();
+    add_number_options(
+        *command,
+        {{"--merge-shift", &p.merge.max_shift, "Merge search: +- cells in x and z"},
+         {"--merge-angle-steps", &p.merge.angle_steps, "Merge search: +- steps"},
+         {"--merge-angle-step", &p.merge.angle_step_deg, "Merge step, degrees"},
+         {"--merge-min-gain", &p.merge.min_gain, "Cells a correction must gain to be applied"},
+         {"--ca-passes", &o->ca_passes, "Clean-up passes over the final map"}});
     command->callback([o] { run_slam(*o); });
 }
 

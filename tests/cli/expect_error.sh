@@ -1,13 +1,15 @@
 #!/bin/sh
 # Usage: expect_error.sh EXIT_CODE OUTPUTS COMMAND [ARGS...]
 #
-# Runs COMMAND and checks the error contract of `stereo`: the exit code is EXIT_CODE, stdout is
-# empty, stderr is exactly one line starting with "stereo: error: ", and none of the files in
-# OUTPUTS (':'-separated, '-' for none) exists afterwards.
+# Runs COMMAND and checks the error contract of `stereo` and `stereo_experiments`: the exit code
+# is EXIT_CODE, stdout is empty, stderr is exactly one line starting with "NAME: error: " (NAME:
+# the file name of COMMAND), and none of the files in OUTPUTS (':'-separated, '-' for none)
+# exists afterwards.
 set -u
 expected=$1
 outputs=$2
 shift 2
+prefix="$(basename "$1"): error: "
 
 fail() {
     echo "FAIL: $*"
@@ -35,8 +37,8 @@ status=$?
 [ ! -s "$out" ] || fail "stdout is not empty"
 [ "$(wc -l <"$err")" -eq 1 ] || fail "stderr is not exactly one line"
 case "$(cat "$err")" in
-    "stereo: error: "?*) ;;
-    *) fail "stderr does not start with 'stereo: error: '" ;;
+    "$prefix"?*) ;;
+    *) fail "stderr does not start with '$prefix'" ;;
 esac
 
 IFS=:

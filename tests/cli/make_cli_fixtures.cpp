@@ -13,6 +13,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "fixture_main.hpp"
 #include "stereo_io/io.hpp"
 
 namespace {
@@ -45,44 +46,36 @@ cv::Mat shifted(const cv::Mat& left, int shift) {
     return right;
 }
 
+void write_fixtures(const fs::path& dir) {
+    fs::create_directories(dir);
+    std::mt19937 rng(20240611U);
+
+    const cv::Mat left = random_texture(kWidth, kHeight, rng);
+    io::write_png(dir / "left.png", left);
+    io::write_png(dir / "right.png", shifted(left, kShift));
+    io::write_png(dir / "right_wide.png", random_texture(kWidth + 8, kHeight, rng));
+    const cv::Mat tiny = random_texture(12, 8, rng);
+    io::write_png(dir / "tiny_left.png", tiny);
+    io::write_png(dir / "tiny_right.png", shifted(tiny, 1));
+    io::write_png(dir / "deep.png",
+                  cv::Mat(kHeight, kWidth, CV_16UC3, cv::Scalar(1000, 2000, 3000)));
+    std::ofstream(dir / "not_an_image.png") << "plain text, not a PNG\n";
+    // A PNG cut in half: libpng complains on stderr unless `stereo` keeps it quiet.
+    std::vector<uchar> png;
+    cv::imencode(".png", left, png);
+    std::ofstream(dir / "truncated.png", std::ios::binary)
+        .write(reinterpret_cast<const char*>(png.data()),
+               static_cast<std::streamsize>(png.size() / 2));
+
+    // Ground truth and masks for `stereo eval`: the true shift everywhere, stored times 4.
+    io::write_png(dir / "gt.png", cv::Mat(kHeight, kWidth, CV_8UC1, cv::Scalar(kShift * 4)));
+    io::write_png(dir / "gt_narrow.png", cv::Mat(kHeight, kWidth - 4, CV_8UC1, cv::Scalar(16)));
+    io::write_png(dir / "mask.png", cv::Mat(kHeight, kWidth, CV_8UC1, cv::Scalar(255)));
+    io::write_png(dir / "mask_short.png", cv::Mat(kHeight - 2, kWidth, CV_8UC1, cv::Scalar(255)));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc != 2) {
-        std::cerr << "usage: make_cli_fixtures OUTPUT_FOLDER\n";
-        return 2;
-    }
-    try {
-        const fs::path dir = argv[1];
-        fs::create_directories(dir);
-        std::mt19937 rng(20240611U);
-
-        const cv::Mat left = random_texture(kWidth, kHeight, rng);
-        io::write_png(dir / "left.png", left);
-        io::write_png(dir / "right.png", shifted(left, kShift));
-        io::write_png(dir / "right_wide.png", random_texture(kWidth + 8, kHeight, rng));
-        const cv::Mat tiny = random_texture(12, 8, rng);
-        io::write_png(dir / "tiny_left.png", tiny);
-        io::write_png(dir / "tiny_right.png", shifted(tiny, 1));
-        io::write_png(dir / "deep.png",
-                      cv::Mat(kHeight, kWidth, CV_16UC3, cv::Scalar(1000, 2000, 3000)));
-        std::ofstream(dir / "not_an_image.png") << "plain text, not a PNG\n";
-        // A PNG cut in half: libpng complains on stderr unless `stereo` keeps it quiet.
-        std::vector<uchar> png;
-        cv::imencode(".png", left, png);
-        std::ofstream(dir / "truncated.png", std::ios::binary)
-            .write(reinterpret_cast<const char*>(png.data()),
-                   static_cast<std::streamsize>(png.size() / 2));
-
-        // Ground truth and masks for `stereo eval`: the true shift everywhere, stored times 4.
-        io::write_png(dir / "gt.png", cv::Mat(kHeight, kWidth, CV_8UC1, cv::Scalar(kShift * 4)));
-        io::write_png(dir / "gt_narrow.png", cv::Mat(kHeight, kWidth - 4, CV_8UC1, cv::Scalar(16)));
-        io::write_png(dir / "mask.png", cv::Mat(kHeight, kWidth, CV_8UC1, cv::Scalar(255)));
-        io::write_png(dir / "mask_short.png",
-                      cv::Mat(kHeight - 2, kWidth, CV_8UC1, cv::Scalar(255)));
-        return EXIT_SUCCESS;
-    } catch (const std::exception& error) {
-        std::cerr << "make_cli_fixtures: " << error.what() << '\n';
-        return EXIT_FAILURE;
-    }
+    return stereo::test::fixture_main(argc, argv, "make_cli_fixtures", write_fixtures);
 }

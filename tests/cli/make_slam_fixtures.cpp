@@ -12,6 +12,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "fixture_main.hpp"
 #include "stereo_io/io.hpp"
 
 namespace {
@@ -56,41 +57,34 @@ void make_sequence(const fs::path& dir, int left_frames, int right_frames, std::
     std::ofstream(dir / "calib.txt") << kCalib;
 }
 
+void write_fixtures(const fs::path& dir) {
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    std::mt19937 rng(20240612U);
+    cv::setRNGSeed(20240612);
+
+    make_sequence(dir / "ok", kFrames, kFrames, rng);
+    std::ofstream(dir / "ok" / "poses.txt") << kIdentity << kIdentity << kIdentity;
+
+    make_sequence(dir / "no_poses", kFrames, kFrames, rng);
+    make_sequence(dir / "unequal", kFrames, kFrames - 1, rng);
+    make_sequence(dir / "bad_calib", kFrames, kFrames, rng);
+    std::ofstream(dir / "bad_calib" / "calib.txt") << "P0: 1 2 3\nnot a calibration\n";
+    make_sequence(dir / "no_calib", kFrames, kFrames, rng);
+    fs::remove(dir / "no_calib" / "calib.txt");
+    make_sequence(dir / "no_right", kFrames, kFrames, rng);
+    fs::remove_all(dir / "no_right" / "image_r");
+    make_sequence(dir / "bad_poses", kFrames, kFrames, rng);
+    std::ofstream(dir / "bad_poses" / "poses.txt") << kIdentity << kIdentity;
+    make_sequence(dir / "corrupt_right", kFrames, kFrames, rng);
+    std::ofstream(dir / "corrupt_right" / "image_r" / frame_name(kFrames - 1)) << "not a PNG\n";
+    make_sequence(dir / "odd_size", kFrames, kFrames, rng);
+    io::write_png(dir / "odd_size" / "image_r" / frame_name(1),
+                  cv::Mat(kHeight, kWidth - 8, CV_8UC1));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc != 2) {
-        std::cerr << "usage: make_slam_fixtures OUTPUT_FOLDER\n";
-        return 2;
-    }
-    try {
-        const fs::path dir = argv[1];
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-        std::mt19937 rng(20240612U);
-        cv::setRNGSeed(20240612);
-
-        make_sequence(dir / "ok", kFrames, kFrames, rng);
-        std::ofstream(dir / "ok" / "poses.txt") << kIdentity << kIdentity << kIdentity;
-
-        make_sequence(dir / "no_poses", kFrames, kFrames, rng);
-        make_sequence(dir / "unequal", kFrames, kFrames - 1, rng);
-        make_sequence(dir / "bad_calib", kFrames, kFrames, rng);
-        std::ofstream(dir / "bad_calib" / "calib.txt") << "P0: 1 2 3\nnot a calibration\n";
-        make_sequence(dir / "no_calib", kFrames, kFrames, rng);
-        fs::remove(dir / "no_calib" / "calib.txt");
-        make_sequence(dir / "no_right", kFrames, kFrames, rng);
-        fs::remove_all(dir / "no_right" / "image_r");
-        make_sequence(dir / "bad_poses", kFrames, kFrames, rng);
-        std::ofstream(dir / "bad_poses" / "poses.txt") << kIdentity << kIdentity;
-        make_sequence(dir / "corrupt_right", kFrames, kFrames, rng);
-        std::ofstream(dir / "corrupt_right" / "image_r" / frame_name(kFrames - 1)) << "not a PNG\n";
-        make_sequence(dir / "odd_size", kFrames, kFrames, rng);
-        io::write_png(dir / "odd_size" / "image_r" / frame_name(1),
-                      cv::Mat(kHeight, kWidth - 8, CV_8UC1));
-        return EXIT_SUCCESS;
-    } catch (const std::exception& error) {
-        std::cerr << "make_slam_fixtures: " << error.what() << '\n';
-        return EXIT_FAILURE;
-    }
+    return stereo::test::fixture_main(argc, argv, "make_slam_fixtures", write_fixtures);
 }

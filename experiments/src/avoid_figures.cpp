@@ -1,24 +1,27 @@
-// Draws the figures of docs/avoidance.md with OpenCV: the membership functions of the fuzzy
-// system and its control surface. Usage: avoid_figures OUTPUT_FOLDER
+// `stereo_experiments avoid-figures OUTPUT_FOLDER`: draws the figures of docs/avoidance.md with
+// OpenCV: the membership functions of the fuzzy system and its control surface.
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "experiments.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_robot/decision.hpp"
 
+namespace stereo::experiments {
 namespace {
 
 namespace fs = std::filesystem;
-namespace io = stereo::io;
-using stereo::robot::FisParams;
-using stereo::robot::Gaussian;
+using robot::FisParams;
+using robot::Gaussian;
 
 constexpr int kWidth = 560;
 constexpr int kHeight = 300;
@@ -152,34 +155,33 @@ void save(const fs::path& path, const cv::Mat& img) {
     std::cout << path.string() << '\n';
 }
 
+void write_figures(const fs::path& out) {
+    const FisParams p;
+    save(
+        out / "mf_input.png",
+        line_plot("input MF (every window): fraction of pixels nearer than Z_safe", 0, 1, 0.1,
+                  {{"free", mf(p.free), {200, 80, 0}}, {"occupied", mf(p.occupied), {0, 0, 200}}}));
+    save(out / "mf_angle.png",
+         line_plot("output MF: direction angle (deg), negative = left", -30, 30, 10,
+                   {{"left", mf(p.left), {200, 80, 0}},
+                    {"forward", mf(p.forward), {0, 150, 0}},
+                    {"right", mf(p.right), {0, 0, 200}}}));
+    save(out / "mf_backwards.png",
+         line_plot("output MF: move backwards (red line: 0.65 threshold)", 0, 1, 0.1,
+                   {{"yes", mf(p.backwards_yes), {0, 0, 200}}}, p.backwards_threshold));
+    cv::Mat surfaces;
+    cv::hconcat(surface(0.0, p), surface(1.0, p), surfaces);
+    save(out / "control_surface.png", surfaces);
+}
+
 }  // namespace
 
-int main(int argc, char** argv) {
-    if (argc != 2) {
-        std::cerr << "usage: avoid_figures OUTPUT_FOLDER\n";
-        return 2;
-    }
-    try {
-        const fs::path out = argv[1];
-        const FisParams p;
-        save(out / "mf_input.png",
-             line_plot(
-                 "input MF (every window): fraction of pixels nearer than Z_safe", 0, 1, 0.1,
-                 {{"free", mf(p.free), {200, 80, 0}}, {"occupied", mf(p.occupied), {0, 0, 200}}}));
-        save(out / "mf_angle.png",
-             line_plot("output MF: direction angle (deg), negative = left", -30, 30, 10,
-                       {{"left", mf(p.left), {200, 80, 0}},
-                        {"forward", mf(p.forward), {0, 150, 0}},
-                        {"right", mf(p.right), {0, 0, 200}}}));
-        save(out / "mf_backwards.png",
-             line_plot("output MF: move backwards (red line: 0.65 threshold)", 0, 1, 0.1,
-                       {{"yes", mf(p.backwards_yes), {0, 0, 200}}}, p.backwards_threshold));
-        cv::Mat surfaces;
-        cv::hconcat(surface(0.0, p), surface(1.0, p), surfaces);
-        save(out / "control_surface.png", surfaces);
-    } catch (const std::exception& error) {
-        std::cerr << "avoid_figures: error: " << error.what() << '\n';
-        return 1;
-    }
-    return 0;
+void add_avoid_figures_command(CLI::App& app) {
+    auto folder = std::make_shared<std::string>();
+    CLI::App* command = app.add_subcommand(
+        "avoid-figures", "Draw the fuzzy-system figures of docs/avoidance.md into a folder.");
+    command->add_option("OUTPUT_FOLDER", *folder, "Existing folder for the PNGs")->required();
+    command->callback([folder] { write_figures(*folder); });
 }
+
+}  // namespace stereo::experiments

@@ -1,5 +1,5 @@
-// `stereo hierarchical-eval`: every number and figure of docs/results-hierarchical.md. The
-// hierarchical search, the 1-D pipeline and OpenCV StereoSGBM on the Middlebury 2003 pairs,
+// `stereo_experiments hierarchical-eval`: every number and figure of docs/results-hierarchical.md.
+// The hierarchical search, the 1-D pipeline and OpenCV StereoSGBM on the Middlebury 2003 pairs,
 // original and decalibrated (lens distortion, vertical shift, rotation of the right image), and
 // the cost count / run time of the hierarchical search against the full D x V search.
 #include <chrono>
@@ -19,7 +19,8 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "cli.hpp"
+#include "cli_matcher_options.hpp"
+#include "experiments.hpp"
 #include "stereo/hierarchical.hpp"
 #include "stereo/pipeline.hpp"
 #include "stereo_io/data_dir.hpp"
@@ -27,7 +28,7 @@
 #include "stereo_io/io.hpp"
 #include "stereo_io/middlebury.hpp"
 
-namespace stereo::cli {
+namespace stereo::experiments {
 
 namespace {
 namespace fs = std::filesystem;
@@ -76,9 +77,12 @@ MethodOutput run_method(const std::string& method, const io::SceneData& data) {
         return {disparity, std::move(result)};
     }
     if (method == "pipeline") {
-        MatchParams params;
-        params.ndisp = data.scene.ndisp;
-        return {io::to_float_disparity(match(data.pair.left, data.pair.right, params)), {}};
+        MatchConfig config;
+        config.pipeline.ndisp = data.scene.ndisp;
+        const MatchResult result = cli::matchers()
+                                       .create("pipeline", "model", config)
+                                       ->compute(data.pair.left, data.pair.right);
+        return {io::to_float_disparity(result.disparity), {}};
     }
     return {io::run_stereo_sgbm(data), {}};
 }
@@ -448,4 +452,4 @@ void add_hierarchical_eval_command(CLI::App& app) {
     command->callback([options] { run_eval(*options); });
 }
 
-}  // namespace stereo::cli
+}  // namespace stereo::experiments

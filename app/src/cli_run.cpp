@@ -1,0 +1,52 @@
+#include "cli_run.hpp"
+
+#include <exception>
+#include <iostream>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <opencv2/core/utils/logger.hpp>
+
+namespace stereo::cli {
+namespace {
+
+// Every failure is exactly one line on stderr, so scripts can rely on it.
+int fail(const std::string& program, std::string message, int exit_code) {
+    for (char& c : message) {
+        if (c == '\n' || c == '\r') {
+            c = ' ';
+        }
+    }
+    while (!message.empty() && message.back() == ' ') {
+        message.pop_back();
+    }
+    std::cerr << program << ": error: " << message << '\n';
+    return exit_code;
+}
+
+}  // namespace
+
+int run(CLI::App& app, int argc, char** argv) {
+    // Our own messages name the file and the problem; OpenCV's log lines would only add noise.
+    cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
+    const std::string program = app.get_name();
+    try {
+        app.parse(argc, argv);  // runs the chosen subcommand's callback
+        return kExitOk;
+    } catch (const CLI::Success& help) {
+        return app.exit(help);  // --help: usage on stdout, exit 0
+    } catch (const CLI::ParseError& error) {
+        return fail(program, std::string(error.what()) + " (run with --help for usage)",
+                    kExitUsageError);
+    } catch (const MismatchError& error) {
+        return fail(program, error.what(), kExitMismatch);
+    } catch (const std::invalid_argument& error) {
+        return fail(program, error.what(), kExitUsageError);
+    } catch (const std::exception& error) {
+        return fail(program, error.what(), kExitIoError);
+    } catch (...) {
+        return fail(program, "unexpected internal error", kExitIoError);
+    }
+}
+
+}  // namespace stereo::cli
