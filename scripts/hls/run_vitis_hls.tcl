@@ -57,7 +57,10 @@ open_project {*}$reset $project
 set_top stereo_hls_synth_top
 add_files $root/hls/stereo_hls_synth_top.cpp -cflags $design_flags
 add_files -tb $root/hls/tb_stereo_hls.cpp -cflags $tb_flags
-foreach model_source {pipeline.cpp plane_kernels.cpp kernel.cpp} {
+foreach model_source {pipeline.cpp kernel.cpp search.cpp edge_frontend.cpp stages/costs.cpp
+                      stages/cost_ad.cpp stages/cost_truncated_ad.cpp stages/census.cpp
+                      stages/aggregate_gaussian.cpp stages/ca_rule1.cpp stages/ca_rule2.cpp
+                      stages/wta.cpp} {
     add_files -tb $root/model/src/$model_source -cflags "$tb_flags -I$root/model/src"
 }
 
