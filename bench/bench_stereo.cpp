@@ -18,6 +18,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -37,6 +38,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "stereo/pipeline.hpp"
+#include "stereo/stage_table.hpp"
 #include "stereo_io/data_dir.hpp"
 #include "stereo_io/io.hpp"
 
@@ -75,7 +77,15 @@ const std::string kModelMatchNoCa = "BM_ModelMatchNoCa";
 const std::string kStagePrefix = "BM_ModelStage/";
 const std::string kOpenCvBm = "BM_OpenCvStereoBM";
 const std::string kOpenCvSgbm = "BM_OpenCvStereoSGBM";
-const std::vector<std::string> kStageNames = {"cost", "aggregate", "ca_rule1", "ca_rule2", "wta"};
+// The hardware stages in pipeline order, from the stage table
+// (model/include/stereo/stage_table.hpp).
+const std::vector<std::string> kStageNames = [] {
+    std::vector<std::string> names;
+    for (const auto& stage : stereo::table::kStages) {
+        names.emplace_back(stage.name);
+    }
+    return names;
+}();
 
 // ---- Input pair ---------------------------------------------------------------------------
 
@@ -274,20 +284,35 @@ void register_benchmarks(const StereoPair& pair, StageInputCache& cache) {
         kModelMatchNoCa.c_str(),
         [&pair, without_ca](auto& state) { bm_model_match(state, pair, without_ca); }));
 
-    const auto register_stage = [&](const std::string& name, auto stage) {
-        configure(benchmark::RegisterBenchmark(
-            (kStagePrefix + name).c_str(),
-            [&pair, &cache, stage](auto& state) { bm_model_stage(state, pair, cache, stage); }));
+    using StageRun = std::function<stereo::Dsi(const StageInputs&)>;
+    using WtaRun = std::function<stereo::DisparityMap(const StageInputs&)>;
+    const std::map<std::string, StageRun> volume_stages = {
+        {"cost",
+         [&pair](const StageInputs&) {
+             return stereo::cost(pair.left_rgb, pair.right_rgb, kDisparities);
+         }},
+        {"aggregate", [](const StageInputs& in) { return stereo::aggregate(in.cost, in.kernel); }},
+        {"ca_rule1", [](const StageInputs& in) { return stereo::ca_rule1(in.aggregated); }},
+        {"ca_rule2", [](const StageInputs& in) { return stereo::ca_rule2(in.rule1); }},
     };
-    register_stage("cost", [&pair](const StageInputs&) {
-        return stereo::cost(pair.left_rgb, pair.right_rgb, kDisparities);
-    });
-    register_stage("aggregate",
-                   [](const StageInputs& in) { return stereo::aggregate(in.cost, in.kernel); });
-    register_stage("ca_rule1",
-                   [](const StageInputs& in) { return stereo::ca_rule1(in.aggregated); });
-    register_stage("ca_rule2", [](const StageInputs& in) { return stereo::ca_rule2(in.rule1); });
-    register_stage("wta", [](const StageInputs& in) { return stereo::wta(in.rule2, in.border); });
+    const WtaRun wta = [](const StageInputs& in) { return stereo::wta(in.rule2, in.border); };
+    // One benchmark per stage of the table; a stage the table gains without a benchmark here is
+    // an error, not a silent gap in the report.
+    for (const std::string& name : kStageNames) {
+        const auto register_stage = [&](auto stage) {
+            configure(benchmark::RegisterBenchmark((kStagePrefix + name).c_str(),
+                                                   [&pair, &cache, stage](auto& state) {
+                                                       bm_model_stage(state, pair, cache, stage);
+                                                   }));
+        };
+        if (const auto found = volume_stages.find(name); found != volume_stages.end()) {
+            register_stage(found->second);
+        } else if (name == "wta") {
+            register_stage(wta);
+        } else {
+            throw std::logic_error("no benchmark for stage " + name);
+        }
+    }
 
     configure(benchmark::RegisterBenchmark(kOpenCvBm.c_str(),
                                            [&pair](auto& state) { bm_opencv_bm(state, pair); }));
