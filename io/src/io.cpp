@@ -1,4 +1,5 @@
 #include "stereo_io/io.hpp"
+#include "stereo_io/output.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -427,18 +428,8 @@ void write_png(const fs::path& path, const cv::Mat& mat) {
         throw std::runtime_error("cannot encode " + quoted(path) + " as PNG (" + format_text(mat) +
                                  ")");
     }
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    if (out) {
-        out.write(reinterpret_cast<const char*>(bytes.data()),
-                  static_cast<std::streamsize>(bytes.size()));
-        out.close();
-    }
-    if (!out) {
-        const std::string reason = std::strerror(errno);
-        std::error_code ignored;
-        fs::remove(path, ignored);  // never leave a truncated file behind
-        throw std::runtime_error("cannot write " + quoted(path) + ": " + reason);
-    }
+    write_file_atomic(path,
+                      std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 void check_writable_location(const fs::path& path) {

@@ -82,7 +82,8 @@ cv::Mat downscale_mask(const cv::Mat& mask, int downscale);
 // Reads an 8-bit evaluation mask (grey or 3 equal channels) as CV_8UC1.
 cv::Mat load_mask(const std::filesystem::path& path);
 
-// Encodes `mat` as PNG in memory first, so that a failure never leaves a partial file behind.
+// Encodes `mat` as PNG in memory, then writes it with write_file_atomic (stereo_io/output.hpp):
+// a failure never leaves a partial file behind nor harms an existing one.
 void write_png(const std::filesystem::path& path, const cv::Mat& mat);
 
 // Throws std::runtime_error when `path` could not be created because its folder is missing;

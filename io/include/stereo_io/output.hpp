@@ -1,0 +1,24 @@
+// Output files that lose nothing (docs/reliability.md): every file a command writes goes to a
+// temporary file in the destination folder, is flushed to disk and renamed over the destination,
+// so a failure or a kill mid-write leaves the previous file as it was, never a partial one; and a
+// command refuses, before any work, outputs that would overwrite one of its inputs or each other.
+#pragma once
+
+#include <filesystem>
+#include <string_view>
+#include <vector>
+
+namespace stereo::io {
+
+// Writes `bytes` to `path` atomically. Throws std::runtime_error (naming the file and the
+// reason) when the folder is missing, the destination exists but is not writable, or a write
+// fails; then only the temporary file is removed and an existing destination is untouched.
+void write_file_atomic(const std::filesystem::path& path, std::string_view bytes);
+
+// Throws std::invalid_argument when an output is the same file as an input (same inode, or the
+// same resolved path for a file that does not exist yet, through symbolic links), or two outputs
+// are the same file. Empty paths are ignored (an option not given).
+void check_outputs_distinct(const std::vector<std::filesystem::path>& outputs,
+                            const std::vector<std::filesystem::path>& inputs);
+
+}  // namespace stereo::io

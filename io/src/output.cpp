@@ -1,0 +1,129 @@
+#include "stereo_io/output.hpp"
+
+#include <cerrno>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace stereo::io {
+namespace fs = std::filesystem;
+namespace {
+
+std::string quoted(const fs::path& path) {
+    return "\"" + path.string() + "\"";
+}
+
+// Closes the descriptor and removes the temporary file unless released.
+class TemporaryFile {
+  public:
+    explicit TemporaryFile(const fs::path& destination) {
+        const fs::path folder =
+            destination.parent_path().empty() ? fs::path(".") : destination.parent_path();
+        std::string name = ".";  // hidden, beside the destination, so rename stays atomic
+        name += destination.filename().string();
+        name += ".XXXXXX";
+        std::string pattern = (folder / name).string();
+        descriptor_ = ::mkstemp(pattern.data());
+        if (descriptor_ < 0) {
+            throw std::runtime_error("cannot write " + quoted(destination) + ": " +
+                                     std::strerror(errno));
+        }
+        path_ = pattern;
+        // mkstemp creates the file 0600; give it the permissions a new file normally gets.
+        const mode_t mask = ::umask(0);
+        ::umask(mask);
+        ::fchmod(descriptor_, 0666 & ~mask);
+    }
+    TemporaryFile(const TemporaryFile&) = delete;
+    TemporaryFile& operator=(const TemporaryFile&) = delete;
+    ~TemporaryFile() {
+        if (descriptor_ >= 0) {
+            ::close(descriptor_);
+        }
+        if (!path_.empty()) {
+            std::error_code ignored;
+            fs::remove(path_, ignored);
+        }
+    }
+
+    int descriptor() const { return descriptor_; }
+    const fs::path& path() const { return path_; }
+    // Closes the file; returns false (errno set) when the close reports an error.
+    bool close() {
+        const int result = ::close(descriptor_);
+        descriptor_ = -1;
+        return result == 0;
+    }
+    void release() { path_.clear(); }
+
+  private:
+    int descriptor_ = -1;
+    fs::path path_;
+};
+
+// The file a path names, for comparison: its identity when it exists, else the resolved path.
+bool same_file(const fs::path& a, const fs::path& b) {
+    std::error_code error;
+    if (fs::exists(a, error) && fs::exists(b, error)) {
+        return fs::equivalent(a, b, error);
+    }
+    return fs::weakly_canonical(fs::absolute(a), error) ==
+           fs::weakly_canonical(fs::absolute(b), error);
+}
+
+}  // namespace
+
+void write_file_atomic(const fs::path& path, std::string_view bytes) {
+    std::error_code error;
+    if (fs::exists(path, error) && ::access(path.c_str(), W_OK) != 0) {
+        throw std::runtime_error("cannot write " + quoted(path) + ": " + std::strerror(errno));
+    }
+    TemporaryFile temporary(path);
+    const char* data = bytes.data();
+    std::size_t left = bytes.size();
+    while (left > 0) {
+        const ssize_t written = ::write(temporary.descriptor(), data, left);
+        if (written < 0) {
+            if (errno == EINTR) {
+                continue;
+            }
+            throw std::runtime_error("cannot write " + quoted(path) + ": " + std::strerror(errno));
+        }
+        data += written;
+        left -= static_cast<std::size_t>(written);
+    }
+    if (::fsync(temporary.descriptor()) != 0 || !temporary.close()) {
+        throw std::runtime_error("cannot write " + quoted(path) + ": " + std::strerror(errno));
+    }
+    if (::rename(temporary.path().c_str(), path.c_str()) != 0) {
+        throw std::runtime_error("cannot write " + quoted(path) + ": " + std::strerror(errno));
+    }
+    temporary.release();
+}
+
+void check_outputs_distinct(const std::vector<fs::path>& outputs,
+                            const std::vector<fs::path>& inputs) {
+    for (std::size_t i = 0; i < outputs.size(); ++i) {
+        if (outputs[i].empty()) {
+            continue;
+        }
+        for (const fs::path& input : inputs) {
+            if (!input.empty() && same_file(outputs[i], input)) {
+                throw std::invalid_argument("output " + quoted(outputs[i]) + " is the input " +
+                                            quoted(input) + ": refusing to overwrite it");
+            }
+        }
+        for (std::size_t j = i + 1; j < outputs.size(); ++j) {
+            if (!outputs[j].empty() && same_file(outputs[i], outputs[j])) {
+                throw std::invalid_argument("outputs " + quoted(outputs[i]) + " and " +
+                                            quoted(outputs[j]) + " are the same file");
+            }
+        }
+    }
+}
+
+}  // namespace stereo::io

@@ -1,0 +1,113 @@
+// Outputs that lose nothing: atomic replacement, untouched destinations on failure, refused
+// output/input collisions (stereo_io/output.hpp).
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <sys/resource.h>
+
+#include "stereo_io/output.hpp"
+
+namespace stereo::io {
+namespace {
+namespace fs = std::filesystem;
+
+class Output : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        folder_ = fs::temp_directory_path() /
+                  ("stereo_output_test_" + std::to_string(::getpid()) + "_" +
+                   ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(folder_);
+        fs::create_directories(folder_);
+    }
+    void TearDown() override {
+        std::error_code ignored;
+        fs::permissions(folder_, fs::perms::owner_all, fs::perm_options::add, ignored);
+        fs::remove_all(folder_, ignored);
+    }
+    static std::string read(const fs::path& path) {
+        std::ifstream in(path, std::ios::binary);
+        return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    }
+    static void write(const fs::path& path, const std::string& text) {
+        std::ofstream(path, std::ios::binary) << text;
+    }
+    std::size_t files_in_folder() const {
+        return static_cast<std::size_t>(
+            std::distance(fs::directory_iterator(folder_), fs::directory_iterator()));
+    }
+    fs::path folder_;
+};
+
+TEST_F(Output, WritesAndReplaces) {
+    const fs::path file = folder_ / "a.bin";
+    write_file_atomic(file, "first");
+    EXPECT_EQ(read(file), "first");
+    write_file_atomic(file, "second, longer");
+    EXPECT_EQ(read(file), "second, longer");
+    EXPECT_EQ(files_in_folder(), 1U);  // no temporary file left
+}
+
+TEST_F(Output, MissingFolderWritesNothing) {
+    EXPECT_THROW(write_file_atomic(folder_ / "none" / "a.bin", "x"), std::runtime_error);
+    EXPECT_FALSE(fs::exists(folder_ / "none"));
+}
+
+TEST_F(Output, ReadOnlyDestinationIsKept) {
+    if (::geteuid() == 0) {
+        GTEST_SKIP() << "root may write read-only files";
+    }
+    const fs::path file = folder_ / "a.bin";
+    write(file, "keep me");
+    fs::permissions(file, fs::perms::owner_read);
+    EXPECT_THROW(write_file_atomic(file, "new"), std::runtime_error);
+    EXPECT_EQ(read(file), "keep me");
+}
+
+TEST_F(Output, FailedWriteLeavesThePreviousFile) {
+    // A file-size limit makes the write fail part-way (EFBIG), as a full disk would.
+    const fs::path file = folder_ / "a.bin";
+    write(file, "previous");
+    rlimit old{};
+    ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &old), 0);
+    const auto old_handler = std::signal(SIGXFSZ, SIG_IGN);
+    rlimit small = old;
+    small.rlim_cur = 64;
+    ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &small), 0);
+    bool threw = false;
+    try {
+        write_file_atomic(file, std::string(10000, 'x'));
+    } catch (const std::runtime_error&) {
+        threw = true;
+    }
+    ::setrlimit(RLIMIT_FSIZE, &old);
+    std::signal(SIGXFSZ, old_handler);
+    EXPECT_TRUE(threw);
+    EXPECT_EQ(read(file), "previous");
+    EXPECT_EQ(files_in_folder(), 1U);
+}
+
+TEST_F(Output, OutputEqualToAnInputIsRefused) {
+    const fs::path input = folder_ / "left.png";
+    write(input, "image");
+    EXPECT_THROW(check_outputs_distinct({input}, {input}), std::invalid_argument);
+    // Another spelling of the same path, and a symbolic link to it.
+    EXPECT_THROW(check_outputs_distinct({folder_ / "." / "left.png"}, {input}),
+                 std::invalid_argument);
+    fs::create_symlink(input, folder_ / "link.png");
+    EXPECT_THROW(check_outputs_distinct({folder_ / "link.png"}, {input}), std::invalid_argument);
+    EXPECT_NO_THROW(check_outputs_distinct({folder_ / "out.png"}, {input, fs::path()}));
+}
+
+TEST_F(Output, CollidingOutputsAreRefused) {
+    EXPECT_THROW(check_outputs_distinct({folder_ / "o.png", folder_ / "x" / ".." / "o.png"}, {}),
+                 std::invalid_argument);
+    EXPECT_NO_THROW(check_outputs_distinct({folder_ / "o.png", fs::path(), folder_ / "p.png"}, {}));
+}
+
+}  // namespace
+}  // namespace stereo::io
