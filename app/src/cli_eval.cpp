@@ -13,6 +13,7 @@
 
 #include "cli.hpp"
 #include "stereo_io/io.hpp"
+#include "stereo_io/output.hpp"
 #include "stereo_io/metrics.hpp"
 
 namespace stereo::cli {
@@ -99,6 +100,9 @@ void run_eval(const EvalOptions& options) {
         throw std::invalid_argument("--gt-downscale must be >= 1, got " +
                                     std::to_string(options.gt_downscale));
     }
+    io::check_outputs_distinct(
+        {options.error_map},
+        {options.disparity, options.ground_truth, options.nonocc, options.all, options.disc});
     if (!options.error_map.empty()) {
         io::check_writable_location(options.error_map);
     }

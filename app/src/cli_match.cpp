@@ -15,6 +15,7 @@
 #include "cli_matcher_options.hpp"
 #include "stereo/hierarchical.hpp"
 #include "stereo_io/io.hpp"
+#include "stereo_io/output.hpp"
 
 namespace stereo::cli {
 
@@ -126,6 +127,8 @@ void run_match(const MatchOptions& options) {
     // Everything that can be checked cheaply is checked before loading and matching, and all
     // outputs are encoded before the first file is written.
     io::check_disparity_scale(ndisp, options.scale);
+    io::check_outputs_distinct({options.output, options.colour, options.vertical},
+                               {options.left, options.right});
     io::check_writable_location(options.output);
     for (const std::string& extra : {options.colour, options.vertical}) {
         if (!extra.empty()) {
