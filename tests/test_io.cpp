@@ -15,6 +15,7 @@
 
 #include "stereo_io/data_dir.hpp"
 #include "stereo_io/io.hpp"
+#include "stereo_io/limits.hpp"
 
 namespace stereo::io {
 namespace {
@@ -410,6 +411,36 @@ TEST(DataDir, EnvironmentOverridesTheBuiltInFolder) {
         const ScopedEnv env("STEREO_ALOE_DIR", "/tmp/stereo_aloe_override");
         EXPECT_EQ(aloe_dir(), fs::path("/tmp/stereo_aloe_override"));
     }
+}
+
+}  // namespace
+}  // namespace stereo::io
+
+namespace stereo::io {
+namespace {
+
+TEST(Limits, DeclaredSizeOfEncodedImages) {
+    // Independent path: OpenCV's encoders write the headers that declared_size parses.
+    const cv::Mat image(23, 37, CV_8UC3, cv::Scalar(10, 20, 30));
+    for (const char* extension : {".png", ".jpg"}) {
+        std::vector<uchar> bytes;
+        ASSERT_TRUE(cv::imencode(extension, image, bytes));
+        const auto size = declared_size(
+            std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+        ASSERT_TRUE(size.has_value()) << extension;
+        EXPECT_EQ(size->first, 37) << extension;
+        EXPECT_EQ(size->second, 23) << extension;
+    }
+    EXPECT_FALSE(declared_size("BM not a png").has_value());
+    EXPECT_FALSE(declared_size("\x89PNG").has_value());
+}
+
+TEST(Limits, LimitIsSettableAndChecked) {
+    const std::int64_t before = max_image_pixels();
+    EXPECT_THROW(set_max_image_pixels(0), std::invalid_argument);
+    set_max_image_pixels(12345);
+    EXPECT_EQ(max_image_pixels(), 12345);
+    set_max_image_pixels(before);
 }
 
 }  // namespace

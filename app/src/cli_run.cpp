@@ -1,11 +1,14 @@
 #include "cli_run.hpp"
 
+#include <cstdint>
 #include <exception>
 #include <iostream>
 #include <string>
 
 #include <CLI/CLI.hpp>
 #include <opencv2/core/utils/logger.hpp>
+
+#include "stereo_io/limits.hpp"
 
 namespace stereo::cli {
 namespace {
@@ -30,6 +33,14 @@ int run(CLI::App& app, int argc, char** argv) {
     // Our own messages name the file and the problem; OpenCV's log lines would only add noise.
     cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
     const std::string program = app.get_name();
+    app.add_option("--max-pixels",
+                   "Largest image any input may declare, in pixels (default 2^26, "
+                   "or STEREO_MAX_IMAGE_PIXELS)")
+        ->check(CLI::Range(std::int64_t{1}, std::int64_t{1} << 34))
+        ->each([](const std::string& value) { io::set_max_image_pixels(std::stoll(value)); });
+    for (CLI::App* command : app.get_subcommands({})) {
+        command->fallthrough();  // also after the subcommand: `stereo match ... --max-pixels N`
+    }
     try {
         app.parse(argc, argv);  // runs the chosen subcommand's callback
         return kExitOk;

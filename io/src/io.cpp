@@ -1,4 +1,5 @@
 #include "stereo_io/io.hpp"
+#include "stereo_io/limits.hpp"
 #include "stereo_io/output.hpp"
 
 #include <algorithm>
@@ -52,6 +53,16 @@ std::vector<uchar> read_bytes(const fs::path& path) {
     if (fs::is_directory(path, error)) {
         throw std::runtime_error("cannot read " + quoted(path) + ": is a directory");
     }
+    // Devices and pipes could be read without end (/dev/zero); images are regular files.
+    if (!fs::is_regular_file(path, error)) {
+        throw std::runtime_error("cannot read " + quoted(path) + ": not a regular file");
+    }
+    const auto size = fs::file_size(path, error);
+    if (!error && static_cast<std::int64_t>(size) > kMaxImageFileBytes) {
+        throw std::runtime_error("cannot read " + quoted(path) + ": " + std::to_string(size) +
+                                 " bytes is larger than the " + std::to_string(kMaxImageFileBytes) +
+                                 "-byte limit");
+    }
     std::ifstream in(path, std::ios::binary);
     if (!in) {
         throw std::runtime_error("cannot read " + quoted(path) + ": " + std::strerror(errno));
@@ -95,6 +106,16 @@ class SilencedStderr {
 
 cv::Mat decode(const fs::path& path) {
     const std::vector<uchar> bytes = read_bytes(path);
+    // The declared size, checked before the decoder allocates it.
+    const auto declared =
+        declared_size(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+    const std::int64_t limit = max_image_pixels();
+    if (declared && declared->first > 0 && declared->second > limit / declared->first) {
+        throw std::invalid_argument(
+            "image " + quoted(path) + " declares " + std::to_string(declared->first) + "x" +
+            std::to_string(declared->second) + " pixels, more than the limit of " +
+            std::to_string(limit) + " (--max-pixels or STEREO_MAX_IMAGE_PIXELS)");
+    }
     cv::Mat mat;
     try {
         const SilencedStderr quiet;

@@ -66,6 +66,18 @@ void write_fixtures(const fs::path& dir) {
     std::ofstream(dir / "truncated.png", std::ios::binary)
         .write(reinterpret_cast<const char*>(png.data()),
                static_cast<std::streamsize>(png.size() / 2));
+    // The same PNG declaring 30000 x 30000 in its header (IHDR width and height, big-endian, at
+    // bytes 16..23; the chunk CRC is left wrong): refused from the header, before decoding.
+    std::vector<uchar> huge = png;
+    for (const std::size_t at : {std::size_t{16}, std::size_t{20}}) {
+        huge[at] = 0;
+        huge[at + 1] = 0;
+        huge[at + 2] = 30000 >> 8;
+        huge[at + 3] = 30000 & 0xFF;
+    }
+    std::ofstream(dir / "huge_header.png", std::ios::binary)
+        .write(reinterpret_cast<const char*>(huge.data()),
+               static_cast<std::streamsize>(huge.size()));
 
     // Ground truth and masks for `stereo eval`: the true shift everywhere, stored times 4.
     io::write_png(dir / "gt.png", cv::Mat(kHeight, kWidth, CV_8UC1, cv::Scalar(kShift * 4)));
