@@ -21,7 +21,9 @@
 #include "cli.hpp"
 #include "cli_matcher_options.hpp"
 #include "stereo_io/data_dir.hpp"
+#include "stereo_io/io.hpp"
 #include "stereo_io/middlebury.hpp"
+#include "stereo_io/output.hpp"
 
 namespace stereo::cli {
 namespace {
@@ -119,6 +121,13 @@ nlohmann::json row_json(const MethodRow& row) {
 
 void run_report(const Options& options) {
     const fs::path data_dir = options.data_dir;
+    // The report files are checked before minutes of matching, not after.
+    io::check_outputs_distinct({options.markdown, options.json}, {});
+    for (const std::string& report_file : {options.markdown, options.json}) {
+        if (!report_file.empty()) {
+            io::check_writable_location(report_file);
+        }
+    }
     if (!options.figures.empty()) {
         fs::create_directories(options.figures);
     }
@@ -206,10 +215,10 @@ void run_report(const Options& options) {
         md.str() + "\nFixed point against the float reference:\n\n" + float_md.str();
     std::cout << report;
     if (!options.markdown.empty()) {
-        std::ofstream(options.markdown) << report;
+        io::write_file_atomic(options.markdown, report);
     }
     if (!options.json.empty()) {
-        std::ofstream(options.json) << json.dump(2) << '\n';
+        io::write_file_atomic(options.json, json.dump(2) + '\n');
     }
 }
 

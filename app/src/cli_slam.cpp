@@ -19,6 +19,7 @@
 #include "cli.hpp"
 #include "cli_matcher_options.hpp"
 #include "stereo_io/io.hpp"
+#include "stereo_io/output.hpp"
 #include "stereo_robot/slam/dataset.hpp"
 #include "stereo_robot/slam/evaluation.hpp"
 #include "stereo_robot/slam/pipeline.hpp"
@@ -116,12 +117,7 @@ double fps(int frames, double ms) {
 }
 
 void write_text(const fs::path& path, const std::string& text) {
-    std::ofstream out(path, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) {
-        throw std::runtime_error("cannot write " + path.string());
-    }
+    io::write_file_atomic(path, text);
 }
 
 void run_slam(SlamOptions o) {

@@ -27,6 +27,7 @@
 #include "stereo_io/distortion.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/middlebury.hpp"
+#include "stereo_io/output.hpp"
 
 namespace stereo::experiments {
 
@@ -421,10 +422,10 @@ void run_eval(const EvalOptions& options) {
     const std::string md = markdown_report(report);
     std::cout << md;
     if (!options.markdown.empty()) {
-        std::ofstream(options.markdown) << md;
+        io::write_file_atomic(options.markdown, md);
     }
     if (!options.json_path.empty()) {
-        std::ofstream(options.json_path) << report.dump(2) << '\n';
+        io::write_file_atomic(options.json_path, report.dump(2) + '\n');
     }
     if (!options.figures.empty()) {
         const fs::path dir(options.figures);
