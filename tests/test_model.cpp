@@ -1,5 +1,6 @@
 // The optimised golden-model stages against the naive reference, bit for bit, and hand-made
 // cases whose expected values are worked out in the comments.
+#include <algorithm>
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -280,6 +281,27 @@ TEST(Validate, RejectsImpossibleParameters) {
     EXPECT_THROW(check_pair(a, grey), std::invalid_argument);
     EXPECT_THROW(Image(0, 5, 3), std::invalid_argument);
     EXPECT_THROW(Image(5, 5, 2), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace stereo
+
+namespace stereo {
+namespace {
+
+// The documented sigma limits: a single tap at the lower one, a box (taps within one unit of
+// each other) at the upper one, for every window; just outside them, a one-line error.
+TEST(Kernel, SigmaLimits) {
+    for (int window = fx::kMinWindow; window <= fx::kMaxWindow; window += 2) {
+        const auto narrow = gaussian_kernel(window, kMinSigma);
+        EXPECT_EQ(narrow[static_cast<std::size_t>(window / 2)], fx::kKernelSum) << window;
+        const auto wide = gaussian_kernel(window, kMaxSigma);
+        const auto [low, high] = std::minmax_element(wide.begin(), wide.end());
+        EXPECT_LE(*high - *low, 1) << window;
+    }
+    EXPECT_THROW(gaussian_kernel(11, kMinSigma / 2), std::invalid_argument);
+    EXPECT_THROW(gaussian_kernel(11, kMaxSigma * 2), std::invalid_argument);
+    EXPECT_THROW(gaussian_kernel(11, 1e-300), std::invalid_argument);
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -24,9 +25,13 @@ std::vector<std::int32_t> gaussian_kernel(int window, double sigma) {
                                     ", " + std::to_string(fx::kMaxWindow) + "], got " +
                                     std::to_string(window));
     }
-    if (!std::isfinite(sigma) || sigma <= 0.0) {
-        throw std::invalid_argument("sigma must be a positive number, got " +
-                                    std::to_string(sigma));
+    // Outside this range the kernel no longer changes (a single tap below, a box above) and the
+    // arithmetic below would leave the range of doubles (sigma^2 underflows for 1e-300).
+    if (!(sigma >= kMinSigma && sigma <= kMaxSigma)) {
+        char text[96];
+        std::snprintf(text, sizeof text, "sigma must be in [%g, %g], got %g", kMinSigma, kMaxSigma,
+                      sigma);
+        throw std::invalid_argument(text);
     }
     const int radius = window / 2;
     std::vector<double> half(static_cast<std::size_t>(radius + 1));  // g(0) .. g(radius)
@@ -52,9 +57,12 @@ std::vector<std::int32_t> gaussian_kernel(int window, double sigma) {
     const std::int64_t excess = rounded_sum(half, high) - fx::kKernelSum;
     taps[static_cast<std::size_t>(radius)] -= static_cast<std::int32_t>(excess);
     if (excess < 0 || excess > 1 || taps[static_cast<std::size_t>(radius)] < 0) {
-        throw std::invalid_argument("cannot build a " + std::to_string(window) +
-                                    "-tap kernel for sigma " + std::to_string(sigma) +
-                                    " at the kernel precision");
+        char text[96];
+        std::snprintf(text, sizeof text,
+                      "cannot build a %d-tap kernel for sigma %g at the kernel "
+                      "precision",
+                      window, sigma);
+        throw std::invalid_argument(text);
     }
     return taps;
 }

@@ -40,7 +40,14 @@ struct InvalidBorder {
 // for this image size (even/too-large window, ndisp out of range, image smaller than border).
 void validate(const MatchParams& params, int width, int height);
 
+// The sigmas a kernel may have: below 0.01 every window is a single tap, above 1000 every window
+// up to fx::kMaxWindow is a box to the kernel's precision (docs/fixed-point.md).
+inline constexpr double kMinSigma = 0.01;
+inline constexpr double kMaxSigma = 1000.0;
+
 // Integer 1-D Gaussian kernel of `window` taps (odd), non-negative, summing to fx::kKernelSum.
+// Throws std::invalid_argument for a window outside [fx::kMinWindow, fx::kMaxWindow], an even
+// window, or a sigma outside [kMinSigma, kMaxSigma] (NaN included).
 std::vector<std::int32_t> gaussian_kernel(int window, double sigma);
 
 InvalidBorder invalid_border(const MatchParams& params);
