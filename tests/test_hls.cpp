@@ -431,29 +431,26 @@ TEST(HlsStages, EachStageEqualsModelOnTsukuba) {
                     kNdisp))
         << "aggregate";
 
-    const auto rule1 = std::make_unique<hls::ca_rule1<kWidth, kNdisp>>();
+    // The two CA rules have one interface: each is streamed the model's output of the stage
+    // before it.
+    const auto expect_rule = [&](auto& rule, const Dsi& in, const Dsi& expected, const char* name) {
+        EXPECT_TRUE(
+            same_volume(expected,
+                        stream_volume<kNdisp, hls::agg_t>(
+                            rule, in, kNdisp,
+                            [&](hls::coord_t x, hls::coord_t y, const hls::agg_t(&beat)[kNdisp]) {
+                                rule.step(x, y, beat, width, height, kNdisp, true);
+                            },
+                            fx::kAggMax, rng, &flushes),
+                        kNdisp))
+            << name;
+    };
     const Dsi after_rule1 = ca_rule1(aggregated);
-    EXPECT_TRUE(same_volume(after_rule1,
-                            stream_volume<kNdisp, hls::agg_t>(
-                                *rule1, aggregated, kNdisp,
-                                [&](hls::coord_t x, hls::coord_t y, const hls::agg_t(&in)[kNdisp]) {
-                                    rule1->step(x, y, in, width, height, kNdisp, true);
-                                },
-                                fx::kAggMax, rng, &flushes),
-                            kNdisp))
-        << "ca_rule1";
-
-    const auto rule2 = std::make_unique<hls::ca_rule2<kWidth, kNdisp>>();
+    expect_rule(*std::make_unique<hls::ca_rule1<kWidth, kNdisp>>(), aggregated, after_rule1,
+                "ca_rule1");
     const Dsi after_rule2 = ca_rule2(after_rule1);
-    EXPECT_TRUE(same_volume(after_rule2,
-                            stream_volume<kNdisp, hls::agg_t>(
-                                *rule2, after_rule1, kNdisp,
-                                [&](hls::coord_t x, hls::coord_t y, const hls::agg_t(&in)[kNdisp]) {
-                                    rule2->step(x, y, in, width, height, kNdisp, true);
-                                },
-                                fx::kAggMax, rng, &flushes),
-                            kNdisp))
-        << "ca_rule2";
+    expect_rule(*std::make_unique<hls::ca_rule2<kWidth, kNdisp>>(), after_rule1, after_rule2,
+                "ca_rule2");
 
     const auto winner = std::make_unique<hls::wta<kNdisp>>();
     const MatchParams params{kNdisp, kWindow, fx::kDefaultSigma, true};
