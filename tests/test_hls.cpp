@@ -293,8 +293,8 @@ Dsi realistic_volume(int width, int height, int ndisp, std::mt19937& rng) {
     return aggregate(cost(left, right, ndisp), gaussian_kernel(5, 2.0));
 }
 
-template <int WIDTH, int NDISP, typename Stage, typename Model, typename Step>
-void check_rule(Stage& stage, Model model, Step step, std::mt19937& rng, const char* name) {
+template <int WIDTH, int NDISP, typename Stage, typename Model>
+void check_rule(Stage& stage, Model model, std::mt19937& rng, const char* name) {
     for (const auto& [width, height] : rule_sizes()) {
         for (int ndisp : {NDISP, std::max(1, NDISP - 3)}) {  // lanes >= ndisp hold garbage
             for (int kind = 0; kind < 2; ++kind) {
@@ -305,7 +305,7 @@ void check_rule(Stage& stage, Model model, Step step, std::mt19937& rng, const c
                     const Dsi out = stream_volume<NDISP, hls::agg_t>(
                         stage, volume, ndisp,
                         [&](hls::coord_t x, hls::coord_t y, const hls::agg_t(&in)[NDISP]) {
-                            step(x, y, in, width, height, ndisp, use_ca);
+                            stage.step(x, y, in, width, height, ndisp, use_ca);
                         },
                         fx::kAggMax, rng, &flushes);
                     EXPECT_TRUE(same_volume(use_ca ? model(volume) : volume, out, ndisp))
@@ -321,28 +321,20 @@ void check_rule(Stage& stage, Model model, Step step, std::mt19937& rng, const c
 
 TEST(HlsCaRule1, EqualsModel) {
     auto rng = seeded(3);
-    const auto eight = std::make_unique<hls::ca_rule1<64, 8>>();
     check_rule<64, 8>(
-        *eight, [](const Dsi& v) { return ca_rule1(v); },
-        [&](hls::coord_t x, hls::coord_t y, const hls::agg_t(&in)[8], int w, int h, int n,
-            bool ca) { eight->step(x, y, in, w, h, n, ca); },
-        rng, "ca_rule1");
-    const auto one = std::make_unique<hls::ca_rule1<64, 1>>();  // no d-neighbour at all
+        *std::make_unique<hls::ca_rule1<64, 8>>(), [](const Dsi& v) { return ca_rule1(v); }, rng,
+        "ca_rule1");
+    // No d-neighbour at all.
     check_rule<64, 1>(
-        *one, [](const Dsi& v) { return ca_rule1(v); },
-        [&](hls::coord_t x, hls::coord_t y, const hls::agg_t(&in)[1], int w, int h, int n,
-            bool ca) { one->step(x, y, in, w, h, n, ca); },
-        rng, "ca_rule1");
+        *std::make_unique<hls::ca_rule1<64, 1>>(), [](const Dsi& v) { return ca_rule1(v); }, rng,
+        "ca_rule1");
 }
 
 TEST(HlsCaRule2, EqualsModel) {
     auto rng = seeded(4);
-    const auto eight = std::make_unique<hls::ca_rule2<64, 8>>();
     check_rule<64, 8>(
-        *eight, [](const Dsi& v) { return ca_rule2(v); },
-        [&](hls::coord_t x, hls::coord_t y, const hls::agg_t(&in)[8], int w, int h, int n,
-            bool ca) { eight->step(x, y, in, w, h, n, ca); },
-        rng, "ca_rule2");
+        *std::make_unique<hls::ca_rule2<64, 8>>(), [](const Dsi& v) { return ca_rule2(v); }, rng,
+        "ca_rule2");
 }
 
 // ---- stage: wta -------------------------------------------------------------------------
