@@ -709,7 +709,7 @@ TEST(HlsSynthTop, FramesBackToBackEqualModel) {
     const std::vector<std::tuple<Image, Image, MatchParams>> frames = {
         {full_left, full_right,
          MatchParams{synth::kNdisp, synth::kWindow, fx::kDefaultSigma, true}},
-        {crop(full_left, 3, 5, 100, 60), crop(full_right, 3, 5, 100, 60),
+        {io::crop(full_left, 3, 5, 100, 60), io::crop(full_right, 3, 5, 100, 60),
          MatchParams{16, 5, 2.0, false}},
     };
     for (const auto& [left, right, params] : frames) {
