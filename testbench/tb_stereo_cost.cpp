@@ -105,12 +105,7 @@ INSTANTIATE_TEST_SUITE_P(Cost, RandomPairs,
 TEST(CostExtremes, ConstantImagesGiveZeroAndTheMaximum) {
     const std::uint32_t seed = test_seed();
     CostDriver driver(seed, 0.2);
-    for (const auto& [l, r] :
-         {std::pair{0, 0}, std::pair{255, 255}, std::pair{0, 255}, std::pair{255, 0}}) {
-        Image left(64, 48, 3);
-        Image right(64, 48, 3);
-        std::fill(left.pixels.begin(), left.pixels.end(), static_cast<std::uint8_t>(l));
-        std::fill(right.pixels.begin(), right.pixels.end(), static_cast<std::uint8_t>(r));
+    for (const auto& [l, r, left, right] : test::constant_pairs(64, 48, 3)) {
         EXPECT_TRUE(same_volume(cost(left, right, kDisparities), run_cost(driver, left, right),
                                 kDisparities))
             << "left " << l << " right " << r;

@@ -102,12 +102,7 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(Extremes, ConstantImages) {
     Cosim cosim;
     const std::uint32_t seed = tb::test_seed();
-    for (const auto& [l, r] :
-         {std::pair{0, 0}, std::pair{255, 255}, std::pair{0, 255}, std::pair{255, 0}}) {
-        Image left(64, 48, 3);
-        Image right(64, 48, 3);
-        std::fill(left.pixels.begin(), left.pixels.end(), static_cast<std::uint8_t>(l));
-        std::fill(right.pixels.begin(), right.pixels.end(), static_cast<std::uint8_t>(r));
+    for (const auto& [l, r, left, right] : test::constant_pairs(64, 48, 3)) {
         const MatchParams params{16, 5, fx::kDefaultSigma, true};
         EXPECT_TRUE(
             same_map(match(left, right, params), cosim.run(left, right, params, {0.2, 0.2, seed})))

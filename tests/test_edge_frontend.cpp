@@ -27,9 +27,8 @@ class EdgeStagesEqualNaive : public ::testing::TestWithParam<Case> {};
 
 TEST_P(EdgeStagesEqualNaive, EveryStageBitExact) {
     const Case c = GetParam();
-    std::mt19937 rng(test::test_seed() + static_cast<std::uint32_t>(c.width * 7 + c.channels));
-    const Image left = test::random_image(c.width, c.height, c.channels, rng);
-    const Image right = test::shifted_copy(left, 3, 6, rng);
+    auto rng = test::seeded_rng(c.width * 7 + c.channels);
+    const auto [left, right] = test::shifted_pair(c.width, c.height, c.channels, 3, 6, rng);
     const ef::EdgeParams edges;
     const auto kernel = gaussian_kernel(edges.log_window, edges.log_sigma);
 
@@ -118,8 +117,7 @@ TEST(EdgeFrontend, TruncatedCostHandComputed) {
 
 TEST(EdgeFrontend, FindsAShiftOnTexture) {
     std::mt19937 rng(test::test_seed());
-    const Image left = test::random_image(60, 30, 1, rng);
-    const Image right = test::shifted_copy(left, 4, 2, rng);
+    const auto [left, right] = test::shifted_pair(60, 30, 1, 4, 2, rng);
     MatchParams params;
     params.ndisp = 8;
     params.window = 5;

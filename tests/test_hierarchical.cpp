@@ -88,7 +88,7 @@ TEST(DownscaleArea, HandComputed) {
 }
 
 TEST(DownscaleArea, EqualsNaive) {
-    std::mt19937 rng(test::test_seed() + 1);
+    auto rng = test::seeded_rng(1);
     for (const int channels : {1, 3}) {
         const Image image = test::random_image(41, 30, channels, rng);
         for (const int factor : {1, 2, 3, 4}) {
@@ -182,7 +182,7 @@ class LevelEqualsNaive : public ::testing::TestWithParam<LevelCase> {};
 
 TEST_P(LevelEqualsNaive, FullGridAndRefineGrid) {
     const LevelCase c = GetParam();
-    std::mt19937 rng(test::test_seed() + static_cast<std::uint32_t>(c.width * 7 + c.window));
+    auto rng = test::seeded_rng(c.width * 7 + c.window);
     const Image left = test::random_image(c.width, c.height, c.channels, rng);
     const Image right = shifted_2d(left, 2, -1, 12, rng);
     const LevelParams level = default_level(c.window);
@@ -228,7 +228,7 @@ INSTANTIATE_TEST_SUITE_P(
                       LevelCase{36, 29, 3, 9, true, CaNeighbours::horizontal_and_vertical}));
 
 TEST(MatchEqualsNaive, RandomPair) {
-    std::mt19937 rng(test::test_seed() + 5);
+    auto rng = test::seeded_rng(5);
     const Image left = test::random_image(101, 78, 3, rng);
     const Image right = shifted_2d(left, 6, 3, 15, rng);
     for (const auto neighbours :
@@ -294,7 +294,7 @@ TEST(MatchLevel, ConstantImagesTieToThePreferredDisplacement) {
 TEST(MatchLevel, OnePixelWindowFindsTheExactDisplacement) {
     // Window 1 without CA: the aggregate is the pixel's AD cost * 16, so a pixel-exact 2-D copy
     // (right(x', y') = left(x' + 1, y' - 2)) is found wherever both pixels exist.
-    std::mt19937 rng(test::test_seed() + 9);
+    auto rng = test::seeded_rng(9);
     const Image left = test::random_image(12, 10, 3, rng);
     const Image right = shifted_2d(left, 1, 2, 0, rng);
     std::int64_t count = 0;
@@ -325,7 +325,7 @@ struct ShiftField {
 };
 
 void expect_field_recovered(const ShiftField& field, const Params& params) {
-    std::mt19937 rng(test::test_seed() + 11);
+    auto rng = test::seeded_rng(11);
     const Image left = test::random_image(field.width, field.height, 3, rng);
     Image right = test::random_image(field.width, field.height, 3, rng);
     for (int y = 0; y < field.height; ++y) {
@@ -405,7 +405,7 @@ TEST(ShiftField, DisparityStepRecoveredExactly) {
 // ---- cost count and the full D x V reference -----------------------------------------------
 
 TEST(CostCount, LevelsAndFullSearch) {
-    std::mt19937 rng(test::test_seed() + 13);
+    auto rng = test::seeded_rng(13);
     const Image left = test::random_image(130, 98, 3, rng);  // quarter 32x24, half 65x49
     const Image right = shifted_2d(left, 4, 0, 5, rng);
     Params params;
@@ -422,7 +422,7 @@ TEST(CostCount, LevelsAndFullSearch) {
 TEST(FullSearch, EqualsNaiveLevelOverTheWholeRange) {
     // The full search is one full-size level over the whole range (small window to keep the
     // naive direct sums fast).
-    std::mt19937 rng(test::test_seed() + 17);
+    auto rng = test::seeded_rng(17);
     const Image left = test::random_image(72, 60, 3, rng);
     const Image right = shifted_2d(left, 5, -3, 10, rng);
     Params params;

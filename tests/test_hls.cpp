@@ -24,6 +24,7 @@
 #include "stereo/pipeline.hpp"
 #include "stereo_hls_synth_top.hpp"
 #include "stereo_io/data_dir.hpp"
+#include "stereo_io/io.hpp"
 #include "stereo_io/middlebury.hpp"
 #include "stereo_io/test_support.hpp"
 
@@ -288,13 +289,12 @@ const std::vector<std::pair<int, int>>& rule_sizes() {
 
 // Aggregated volumes of a real match (shifted random images) besides the synthetic ones.
 Dsi realistic_volume(int width, int height, int ndisp, std::mt19937& rng) {
-    const Image left = test::random_image(width, height, 3, rng);
-    const Image right = test::shifted_copy(left, 2, 10, rng);
+    const auto [left, right] = test::shifted_pair(width, height, 3, 2, 10, rng);
     return aggregate(cost(left, right, ndisp), gaussian_kernel(5, 2.0));
 }
 
-template <int WIDTH, int NDISP, typename Stage, typename Model, typename Step>
-void check_rule(Stage& stage, Model model, Step step, std::mt19937& rng, const char* name) {
+template <int WIDTH, int NDISP, typename Stage, typename Model>
+void check_rule(Stage& stage, Model model, std::mt19937& rng, const char* name) {
     for (const auto& [width, height] : rule_sizes()) {
         for (int ndisp : {NDISP, std::max(1, NDISP - 3)}) {  // lanes >= ndisp hold garbage
             for (int kind = 0; kind < 2; ++kind) {
@@ -305,7 +305,7 @@ void check_rule(Stage& stage, Model model, Step step, std::mt19937& rng, const c
                     const Dsi out = stream_volume<NDISP, hls::agg_t>(
                         stage, volume, ndisp,
                         [&](hls::coord_t x, hls::coord_t y, const hls::agg_t(&in)[NDISP]) {
-                            step(x, y, in, width, height, ndisp, use_ca);
+                            stage.step(x, y, in, width, height, ndisp, use_ca);
                         },
                         fx::kAggMax, rng, &flushes);
                     EXPECT_TRUE(same_volume(use_ca ? model(volume) : volume, out, ndisp))
@@ -321,28 +321,20 @@ void check_rule(Stage& stage, Model model, Step step, std::mt19937& rng, const c
 
 TEST(HlsCaRule1, EqualsModel) {
     auto rng = seeded(3);
-    const auto eight = std::make_unique<hls::ca_rule1<64, 8>>();
     check_rule<64, 8>(
-        *eight, [](const Dsi& v) { return ca_rule1(v); },
-        [&](hls::coord_t x, hls::coord_t y, const hls::agg_t(&in)[8], int w, int h, int n,
-            bool ca) { eight->step(x, y, in, w, h, n, ca); },
-        rng, "ca_rule1");
-    const auto one = std::make_unique<hls::ca_rule1<64, 1>>();  // no d-neighbour at all
+        *std::make_unique<hls::ca_rule1<64, 8>>(), [](const Dsi& v) { return ca_rule1(v); }, rng,
+        "ca_rule1");
+    // No d-neighbour at all.
     check_rule<64, 1>(
-        *one, [](const Dsi& v) { return ca_rule1(v); },
-        [&](hls::coord_t x, hls::coord_t y, const hls::agg_t(&in)[1], int w, int h, int n,
-            bool ca) { one->step(x, y, in, w, h, n, ca); },
-        rng, "ca_rule1");
+        *std::make_unique<hls::ca_rule1<64, 1>>(), [](const Dsi& v) { return ca_rule1(v); }, rng,
+        "ca_rule1");
 }
 
 TEST(HlsCaRule2, EqualsModel) {
     auto rng = seeded(4);
-    const auto eight = std::make_unique<hls::ca_rule2<64, 8>>();
     check_rule<64, 8>(
-        *eight, [](const Dsi& v) { return ca_rule2(v); },
-        [&](hls::coord_t x, hls::coord_t y, const hls::agg_t(&in)[8], int w, int h, int n,
-            bool ca) { eight->step(x, y, in, w, h, n, ca); },
-        rng, "ca_rule2");
+        *std::make_unique<hls::ca_rule2<64, 8>>(), [](const Dsi& v) { return ca_rule2(v); }, rng,
+        "ca_rule2");
 }
 
 // ---- stage: wta -------------------------------------------------------------------------
@@ -431,29 +423,26 @@ TEST(HlsStages, EachStageEqualsModelOnTsukuba) {
                     kNdisp))
         << "aggregate";
 
-    const auto rule1 = std::make_unique<hls::ca_rule1<kWidth, kNdisp>>();
+    // The two CA rules have one interface: each is streamed the model's output of the stage
+    // before it.
+    const auto expect_rule = [&](auto& rule, const Dsi& in, const Dsi& expected, const char* name) {
+        EXPECT_TRUE(
+            same_volume(expected,
+                        stream_volume<kNdisp, hls::agg_t>(
+                            rule, in, kNdisp,
+                            [&](hls::coord_t x, hls::coord_t y, const hls::agg_t(&beat)[kNdisp]) {
+                                rule.step(x, y, beat, width, height, kNdisp, true);
+                            },
+                            fx::kAggMax, rng, &flushes),
+                        kNdisp))
+            << name;
+    };
     const Dsi after_rule1 = ca_rule1(aggregated);
-    EXPECT_TRUE(same_volume(after_rule1,
-                            stream_volume<kNdisp, hls::agg_t>(
-                                *rule1, aggregated, kNdisp,
-                                [&](hls::coord_t x, hls::coord_t y, const hls::agg_t(&in)[kNdisp]) {
-                                    rule1->step(x, y, in, width, height, kNdisp, true);
-                                },
-                                fx::kAggMax, rng, &flushes),
-                            kNdisp))
-        << "ca_rule1";
-
-    const auto rule2 = std::make_unique<hls::ca_rule2<kWidth, kNdisp>>();
+    expect_rule(*std::make_unique<hls::ca_rule1<kWidth, kNdisp>>(), aggregated, after_rule1,
+                "ca_rule1");
     const Dsi after_rule2 = ca_rule2(after_rule1);
-    EXPECT_TRUE(same_volume(after_rule2,
-                            stream_volume<kNdisp, hls::agg_t>(
-                                *rule2, after_rule1, kNdisp,
-                                [&](hls::coord_t x, hls::coord_t y, const hls::agg_t(&in)[kNdisp]) {
-                                    rule2->step(x, y, in, width, height, kNdisp, true);
-                                },
-                                fx::kAggMax, rng, &flushes),
-                            kNdisp))
-        << "ca_rule2";
+    expect_rule(*std::make_unique<hls::ca_rule2<kWidth, kNdisp>>(), after_rule1, after_rule2,
+                "ca_rule2");
 
     const auto winner = std::make_unique<hls::wta<kNdisp>>();
     const MatchParams params{kNdisp, kWindow, fx::kDefaultSigma, true};
@@ -504,8 +493,7 @@ TEST(HlsTop, LastResultLeavesAfterTheDocumentedLatency) {
     const int height = 10;
     EXPECT_EQ(hls::pipeline_delay<kWindow>(width), 1 + (R * width + R + 2) + 2 * (width + 2) + 1);
     auto rng = seeded(6);
-    const Image left = test::random_image(width, height, 3, rng);
-    const Image right = test::shifted_copy(left, 2, 5, rng);
+    const auto [left, right] = test::shifted_pair(width, height, 3, 2, 5, rng);
     const MatchParams params{8, kWindow, 2.0, true};
     const auto cfg = hls::frame_config<kWindow>(params, width, height);
     const auto state = std::make_unique<hls::pipeline<64, 64, 8, kWindow>>();
@@ -538,8 +526,7 @@ TEST(HlsTop, BackToBackFramesOfDifferentSizesAndConfigurations) {
         {40, 30, MatchParams{16, 11, fx::kDefaultSigma, true}},
     };
     for (const auto& [width, height, params] : frames) {
-        const Image left = test::random_image(width, height, 3, rng);
-        const Image right = test::shifted_copy(left, 3, 12, rng);
+        const auto [left, right] = test::shifted_pair(width, height, 3, 3, 12, rng);
         EXPECT_TRUE(same_map(match(left, right, params), run_top(*state, left, right, params)))
             << width << "x" << height << " ndisp " << params.ndisp << " window " << params.window;
     }
@@ -549,8 +536,7 @@ TEST(HlsTop, ReportsMisplacedFramingAndClampsTheConfiguration) {
     auto rng = seeded(8);
     const int width = 12;
     const int height = 8;
-    const Image left = test::random_image(width, height, 3, rng);
-    const Image right = test::shifted_copy(left, 1, 5, rng);
+    const auto [left, right] = test::shifted_pair(width, height, 3, 1, 5, rng);
     const auto state = std::make_unique<hls::pipeline<32, 32, 4, 3>>();
     const MatchParams params{4, 3, 1.0, true};
     auto cfg = hls::frame_config<3>(params, width, height);
@@ -595,22 +581,9 @@ void expect_match(const Image& left, const Image& right, const MatchParams& para
         << (params.use_ca ? " CA" : " no CA");
 }
 
-Image crop(const Image& image, int x0, int y0, int width, int height) {
-    Image out(width, height, image.channels);
-    for (int y = 0; y < height; ++y) {
-        for (int x = 0; x < width; ++x) {
-            for (int c = 0; c < image.channels; ++c) {
-                out.at(x, y, c) = image.at(x0 + x, y0 + y, c);
-            }
-        }
-    }
-    return out;
-}
-
 TEST(HlsMatch, SmallRandomImagesOverTheParameters) {
     auto rng = seeded(9);
-    const Image left = test::random_image(37, 23, 3, rng);
-    const Image right = test::shifted_copy(left, 3, 8, rng);
+    const auto [left, right] = test::shifted_pair(37, 23, 3, 3, 8, rng);
     for (const int ndisp : {1, 7, 16, 17, 36}) {
         for (const int window : {1, 3, 5, 11, 13}) {
             for (const bool use_ca : {true, false}) {
@@ -623,10 +596,7 @@ TEST(HlsMatch, SmallRandomImagesOverTheParameters) {
 
 TEST(HlsMatch, OddSizedRandomCrop631x479) {
     auto rng = seeded(10);
-    const Image full = test::random_image(640, 480, 3, rng);
-    const Image shifted = test::shifted_copy(full, 5, 6, rng);
-    const Image left = crop(full, 7, 1, 631, 479);
-    const Image right = crop(shifted, 7, 1, 631, 479);
+    const auto [left, right] = io::crop(test::shifted_pair(640, 480, 3, 5, 6, rng), 7, 1, 631, 479);
     expect_match(left, right, MatchParams{16, 11, fx::kDefaultSigma, true}, "631x479");
     expect_match(left, right, MatchParams{12, 7, 2.0, false}, "631x479");
 }
@@ -635,20 +605,14 @@ TEST(HlsMatch, GreyImages) {
     auto rng = seeded(11);
     for (const auto& [width, height, ndisp, window] :
          {std::tuple{53, 41, 12, 5}, std::tuple{101, 77, 24, 11}}) {
-        const Image left = test::random_image(width, height, 1, rng);
-        const Image right = test::shifted_copy(left, 4, 10, rng);
+        const auto [left, right] = test::shifted_pair(width, height, 1, 4, 10, rng);
         expect_match(left, right, MatchParams{ndisp, window, fx::kDefaultSigma, true}, "grey");
         expect_match(left, right, MatchParams{ndisp, window, fx::kDefaultSigma, false}, "grey");
     }
 }
 
 TEST(HlsMatch, ConstantAndExtremeImages) {
-    for (const auto& [l, r] :
-         {std::pair{0, 0}, std::pair{255, 255}, std::pair{0, 255}, std::pair{255, 0}}) {
-        Image left(40, 30, 3);
-        Image right(40, 30, 3);
-        std::fill(left.pixels.begin(), left.pixels.end(), static_cast<std::uint8_t>(l));
-        std::fill(right.pixels.begin(), right.pixels.end(), static_cast<std::uint8_t>(r));
+    for (const auto& [l, r, left, right] : test::constant_pairs(40, 30, 3)) {
         expect_match(left, right, MatchParams{8, 5, 2.0, true}, "constant");
         expect_match(left, right, MatchParams{8, 11, fx::kDefaultSigma, false}, "constant");
     }
@@ -669,12 +633,10 @@ TEST(HlsMatch, ConstantAndExtremeImages) {
 
 TEST(HlsMatch, LargestWindowAndMostLanes) {
     auto rng = seeded(12);
-    const Image left = test::random_image(90, 70, 3, rng);
-    const Image right = test::shifted_copy(left, 6, 8, rng);
+    const auto [left, right] = test::shifted_pair(90, 70, 3, 6, 8, rng);
     expect_match(left, right, MatchParams{20, 31, 6.0, true}, "window 31");
     expect_match(left, right, MatchParams{20, 13, fx::kDefaultSigma, true}, "window 13 of 31");
-    const Image wide_left = test::random_image(300, 40, 3, rng);
-    const Image wide_right = test::shifted_copy(wide_left, 40, 8, rng);
+    const auto [wide_left, wide_right] = test::shifted_pair(300, 40, 3, 40, 8, rng);
     expect_match(wide_left, wide_right, MatchParams{256, 5, 2.0, true}, "256 lanes");
     expect_match(wide_left, wide_right, MatchParams{200, 31, 6.0, false}, "256 lanes, window 31");
 }
@@ -742,12 +704,12 @@ TEST(HlsMatch, PicksTheSmallestCoveringVariant) {
 TEST(HlsSynthTop, FramesBackToBackEqualModel) {
     namespace synth = hls::synth;
     auto rng = seeded(14);
-    const Image full_left = test::random_image(synth::kWidth, synth::kHeight, 3, rng);
-    const Image full_right = test::shifted_copy(full_left, 9, 4, rng);
+    const auto [full_left, full_right] =
+        test::shifted_pair(synth::kWidth, synth::kHeight, 3, 9, 4, rng);
     const std::vector<std::tuple<Image, Image, MatchParams>> frames = {
         {full_left, full_right,
          MatchParams{synth::kNdisp, synth::kWindow, fx::kDefaultSigma, true}},
-        {crop(full_left, 3, 5, 100, 60), crop(full_right, 3, 5, 100, 60),
+        {io::crop(full_left, 3, 5, 100, 60), io::crop(full_right, 3, 5, 100, 60),
          MatchParams{16, 5, 2.0, false}},
     };
     for (const auto& [left, right, params] : frames) {

@@ -25,8 +25,7 @@ MatcherRegistry model_registry() {
 TEST(Census, CostVolumeEqualsNaive) {
     std::mt19937 rng(test::test_seed());
     for (const int channels : {1, 3}) {
-        const Image left = test::random_image(37, 23, channels, rng);
-        const Image right = test::shifted_copy(left, 4, 6, rng);
+        const auto [left, right] = test::shifted_pair(37, 23, channels, 4, 6, rng);
         const auto census = make_census_cost();
         EXPECT_EQ(cost_volume(*census, left, right, 9), census::naive::cost(left, right, 9))
             << channels << " channel(s)";
@@ -35,8 +34,7 @@ TEST(Census, CostVolumeEqualsNaive) {
 
 TEST(Census, MatchEqualsNaiveAndFindsTheShift) {
     std::mt19937 rng(test::test_seed());
-    const Image left = test::random_image(48, 32, 3, rng);
-    const Image right = test::shifted_copy(left, 5, 4, rng);
+    const auto [left, right] = test::shifted_pair(48, 32, 3, 5, 4, rng);
     MatchParams params{12, 5, 1.5, true, "census"};
     const DisparityMap model = match(left, right, params);
     EXPECT_EQ(model, naive::match(left, right, params));
@@ -104,8 +102,7 @@ TEST(Registry, EveryEngineOfAMethodAgreesWithTheModel) {
     // Engines that are bit-exact with the model must give the same map; float and full-search
     // compute something else on purpose and only have to run.
     std::mt19937 rng(test::test_seed());
-    const Image left = test::random_image(64, 48, 3, rng);
-    const Image right = test::shifted_copy(left, 3, 4, rng);
+    const auto [left, right] = test::shifted_pair(64, 48, 3, 3, 4, rng);
     const MatcherRegistry registry = model_registry();
     MatchConfig config;
     config.pipeline = {8, 5, 1.5, true};

@@ -66,9 +66,8 @@ class StagesEqualNaive : public ::testing::TestWithParam<Case> {};
 
 TEST_P(StagesEqualNaive, EveryStageBitExact) {
     const Case c = GetParam();
-    std::mt19937 rng(test::test_seed() + static_cast<std::uint32_t>(c.width * 131 + c.window));
-    const Image left = test::random_image(c.width, c.height, c.channels, rng);
-    const Image right = test::shifted_copy(left, 3, 20, rng);
+    auto rng = test::seeded_rng(c.width * 131 + c.window);
+    const auto [left, right] = test::shifted_pair(c.width, c.height, c.channels, 3, 20, rng);
     const auto kernel = gaussian_kernel(c.window, c.sigma);
 
     const Dsi costs = cost(left, right, c.ndisp);
@@ -98,12 +97,7 @@ INSTANTIATE_TEST_SUITE_P(RandomOddSizes, StagesEqualNaive,
 
 // Extreme images: all zero, all 255, and one black / one white. Costs hit 0 and fx::kCostMax.
 TEST(StagesEqualNaive, ConstantAndExtremeImages) {
-    for (const auto& [l, r] :
-         {std::pair{0, 0}, std::pair{255, 255}, std::pair{0, 255}, std::pair{255, 0}}) {
-        Image left(40, 30, 3);
-        Image right(40, 30, 3);
-        std::fill(left.pixels.begin(), left.pixels.end(), static_cast<std::uint8_t>(l));
-        std::fill(right.pixels.begin(), right.pixels.end(), static_cast<std::uint8_t>(r));
+    for (const auto& [l, r, left, right] : test::constant_pairs(40, 30, 3)) {
         const MatchParams params{8, 5, 2.0, true};
         const Dsi costs = cost(left, right, params.ndisp);
         EXPECT_TRUE(same_dsi(naive::cost(left, right, params.ndisp), costs));
@@ -231,8 +225,8 @@ TEST(InvalidBorderTest, ReachIsRadiusPlusOneWithCa) {
 
 TEST(Match, RecoversAShiftAndFlagsEveryPixelByTheBorderRule) {
     std::mt19937 rng(test::test_seed());
-    const Image left = test::random_image(80, 40, 3, rng);
-    const Image right = test::shifted_copy(left, 5, 0, rng);  // right(x) = left(x + 5): d = 5
+    const auto [left, right] =
+        test::shifted_pair(80, 40, 3, 5, 0, rng);  // right(x) = left(x + 5): d = 5
     const MatchParams params{12, 5, 1.5, true};
     const DisparityMap map = match(left, right, params);
     const InvalidBorder border = invalid_border(params);

@@ -141,7 +141,7 @@ TEST(Fis, BacksOffWhenEverythingIsOccupied) {
 }
 
 TEST(Fis, AgreesWithABruteForceEvaluation) {
-    std::mt19937 rng(test::test_seed() + 1);
+    auto rng = test::seeded_rng(1);
     for (int i = 0; i < 40; ++i) {
         const auto [l, c, r] = random_occupancies(rng);
         const FisResult result = evaluate_fis(l, c, r);

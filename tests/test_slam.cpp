@@ -103,8 +103,7 @@ TEST(Validation, LeftRightCheckRejectsAnInconsistentPixel) {
 
 TEST(Frontend, ShiftedTextureGivesItsShift) {
     std::mt19937 rng(test::test_seed());
-    const Image left = test::random_image(96, 40, 1, rng);
-    const Image right = test::shifted_copy(left, 5, 0, rng);
+    const auto [left, right] = test::shifted_pair(96, 40, 1, 5, 0, rng);
     FrontendParams params;
     params.ndisp = 16;
     params.window = 5;

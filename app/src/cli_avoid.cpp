@@ -14,6 +14,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "cli.hpp"
+#include "cli_command.hpp"
 #include "cli_matcher_options.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_robot/calibration.hpp"
@@ -206,9 +207,10 @@ void run_avoid(const AvoidOptions& o) {
 }  // namespace
 
 void add_avoid_command(CLI::App& app) {
-    auto o = std::make_shared<AvoidOptions>();
-    CLI::App* command = app.add_subcommand(
-        "avoid", "Obstacle avoidance (thesis Sec. 4.1): direction decision on a pair or sequence.");
+    const auto [command, o] = add_command<AvoidOptions>(
+        app, "avoid",
+        "Obstacle avoidance (thesis Sec. 4.1): direction decision on a pair or sequence.",
+        run_avoid);
     command->add_option("LEFT", o->left, "Left image, folder of left images, or a list file")
         ->required();
     command->add_option("RIGHT", o->right,
@@ -247,7 +249,6 @@ void add_avoid_command(CLI::App& app) {
                          "Fuzzy: back off when 'move backwards' exceeds this"},
                         {"--forward-band", &o->fis.forward_band,
                          "Fuzzy: |angle| up to this (deg) is reported as forward"}});
-    command->callback([o] { run_avoid(*o); });
 }
 
 }  // namespace stereo::cli

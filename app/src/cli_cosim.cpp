@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli.hpp"
+#include "cli_command.hpp"
 #include "cli_matcher_options.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_top_sim.hpp"
@@ -33,18 +34,6 @@ struct CosimOptions {
     bool json = false;
 };
 
-Image crop_image(const Image& image, int x0, int y0, int width, int height) {
-    Image out(width, height, image.channels);
-    for (int y = 0; y < height; ++y) {
-        for (int x = 0; x < width; ++x) {
-            for (int c = 0; c < image.channels; ++c) {
-                out.at(x, y, c) = image.at(x0 + x, y0 + y, c);
-            }
-        }
-    }
-    return out;
-}
-
 io::ImagePair apply_crop(io::ImagePair pair, const std::string& geometry) {
     if (geometry.empty()) {
         return pair;
@@ -63,8 +52,7 @@ io::ImagePair apply_crop(io::ImagePair pair, const std::string& geometry) {
                                     std::to_string(pair.left.width) + "x" +
                                     std::to_string(pair.left.height) + " image");
     }
-    return {crop_image(pair.left, x0, y0, width, height),
-            crop_image(pair.right, x0, y0, width, height)};
+    return io::crop(pair, x0, y0, width, height);
 }
 
 std::string config_text(const sim::TopConfig& config) {
@@ -196,9 +184,9 @@ void run_cosim(const CosimOptions& options) {
 }  // namespace
 
 void add_cosim_command(CLI::App& app) {
-    auto options = std::make_shared<CosimOptions>();
-    CLI::App* command = app.add_subcommand(
-        "cosim", "Stream a pair through the Verilated RTL and compare it with the golden model.");
+    const auto [command, options] = add_command<CosimOptions>(
+        app, "cosim",
+        "Stream a pair through the Verilated RTL and compare it with the golden model.", run_cosim);
     command->add_option("LEFT", options->left, "Left image")->required();
     command->add_option("RIGHT", options->right, "Right image, same size as LEFT")->required();
     // The smallest Verilated configurations cover these; larger ones need a full build.
@@ -218,7 +206,6 @@ void add_cosim_command(CLI::App& app) {
     command->add_option("--trace", options->trace, "Write an FST waveform of the run");
     command->add_flag("--json", options->json,
                       "Print one JSON object (mismatches, cycles, pixels, ...)");
-    command->callback([options] { run_cosim(*options); });
 }
 
 }  // namespace stereo::cli

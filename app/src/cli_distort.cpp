@@ -14,6 +14,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "cli.hpp"
+#include "cli_command.hpp"
 #include "stereo_io/distortion.hpp"
 #include "stereo_io/io.hpp"
 
@@ -105,10 +106,10 @@ void run_distort(const DistortOptions& options) {
 }  // namespace
 
 void add_distort_command(CLI::App& app) {
-    auto options = std::make_shared<DistortOptions>();
-    CLI::App* command = app.add_subcommand(
-        "distort",
-        "Write a decalibrated copy of a scene folder (lens distortion, shift, rotation).");
+    const auto [command, options] = add_command<DistortOptions>(
+        app, "distort",
+        "Write a decalibrated copy of a scene folder (lens distortion, shift, rotation).",
+        run_distort);
     command->add_option("SCENE", options->scene, "Folder with left.png, right.png [gt.png, masks]")
         ->required();
     command->add_option("OUT", options->output, "Output folder (created if its parent exists)")
@@ -133,7 +134,6 @@ void add_distort_command(CLI::App& app) {
                      "every pixel through the warp")
         ->check(CLI::IsMember({"warped", "exact"}))
         ->capture_default_str();
-    command->callback([options] { run_distort(*options); });
 }
 
 }  // namespace stereo::cli

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli.hpp"
+#include "cli_command.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/output.hpp"
 #include "stereo_io/metrics.hpp"
@@ -133,9 +134,9 @@ void run_eval(const EvalOptions& options) {
 }  // namespace
 
 void add_eval_command(CLI::App& app) {
-    auto options = std::make_shared<EvalOptions>();  // shared with the callback
-    CLI::App* command = app.add_subcommand(
-        "eval", "Score a disparity PNG against ground truth (Middlebury bad-pixel %, NMSE).");
+    const auto [command, options] = add_command<EvalOptions>(
+        app, "eval", "Score a disparity PNG against ground truth (Middlebury bad-pixel %, NMSE).",
+        run_eval);
     command->add_option("DISP", options->disparity, "Our disparity PNG, 0 = invalid")->required();
     command->add_option("GT", options->ground_truth, "Ground-truth PNG, 0 = unknown")->required();
     command->add_option("--scale", options->scale, "DISP holds disparity * K")
@@ -155,7 +156,6 @@ void add_eval_command(CLI::App& app) {
     command->add_option("--error-map", options->error_map,
                         "Write an RGB PNG: grey correct, red bad, blue invalid, black unscored");
     command->add_flag("--json", options->json, "Print the scores as one JSON object");
-    command->callback([options] { run_eval(*options); });
 }
 
 }  // namespace stereo::cli

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli.hpp"
+#include "cli_command.hpp"
 #include "stereo_robot/decision.hpp"
 
 namespace stereo::cli {
@@ -37,9 +38,9 @@ void run_fis(const FisOptions& options) {
 }  // namespace
 
 void add_fis_command(CLI::App& app) {
-    auto options = std::make_shared<FisOptions>();
-    CLI::App* command = app.add_subcommand(
-        "fis", "Evaluate the fuzzy obstacle-avoidance system on three window occupancies.");
+    const auto [command, options] = add_command<FisOptions>(
+        app, "fis", "Evaluate the fuzzy obstacle-avoidance system on three window occupancies.",
+        run_fis);
     command->add_option("--left", options->left, "Occupied fraction of the left window, [0, 1]")
         ->required();
     command
@@ -49,7 +50,6 @@ void add_fis_command(CLI::App& app) {
     command->add_option("--right", options->right, "Occupied fraction of the right window, [0, 1]")
         ->required();
     command->add_flag("--json", options->json, "Print one JSON object");
-    command->callback([options] { run_fis(*options); });
 }
 
 }  // namespace stereo::cli

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli.hpp"
+#include "cli_command.hpp"
 #include "cli_matcher_options.hpp"
 #include "stereo/hierarchical.hpp"
 #include "stereo_io/io.hpp"
@@ -220,10 +221,8 @@ void run_match(const MatchOptions& options) {
 }  // namespace
 
 void add_match_command(CLI::App& app) {
-    // Shared with the callback, which outlives this function.
-    auto options = std::make_shared<MatchOptions>();
-    CLI::App* command =
-        app.add_subcommand("match", "Compute a disparity map from a stereo pair with any matcher.");
+    const auto [command, options] = add_command<MatchOptions>(
+        app, "match", "Compute a disparity map from a stereo pair with any matcher.", run_match);
     command->add_option("LEFT", options->left, "Left image (8-bit grey, RGB or RGBA)")->required();
     command->add_option("RIGHT", options->right, "Right image, same size as LEFT")->required();
     command
@@ -247,7 +246,6 @@ void add_match_command(CLI::App& app) {
     command->add_option("--downscale", options->downscale, "Shrink both images by integer F first")
         ->capture_default_str();
     command->add_flag("--json", options->json, "Print the summary as one JSON object");
-    command->callback([options] { run_match(*options); });
 }
 
 }  // namespace stereo::cli

@@ -19,6 +19,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "cli.hpp"
+#include "cli_command.hpp"
 #include "cli_matcher_options.hpp"
 #include "stereo_io/data_dir.hpp"
 #include "stereo_io/io.hpp"
@@ -222,29 +223,29 @@ void run_report(const Options& options) {
     }
 }
 
+void run_middlebury(const Options& options) {
+    // Parameters first (exit 2), then files (exit 1), whatever is wrong with both.
+    (void)pipeline(options, "model", fx::kDefaultDisparities, true);
+    const fs::path folder = fs::path(options.data_dir) / "middlebury2003";
+    if (!fs::is_directory(folder)) {
+        throw std::runtime_error("cannot read '" + folder.string() + "': no such folder");
+    }
+    run_report(options);
+}
+
 }  // namespace
 
 void add_middlebury_command(CLI::App& app) {
-    auto options = std::make_shared<Options>();
-    CLI::App* command = app.add_subcommand(
-        "middlebury", "Evaluate the model and OpenCV baselines on the Middlebury 2003 pairs.");
-    command->add_option("--data", options->data_dir, "Folder holding middlebury2003/")
-        ->capture_default_str();
+    const auto [command, options] = add_command<Options>(
+        app, "middlebury", "Evaluate the model and OpenCV baselines on the Middlebury 2003 pairs.",
+        run_middlebury);
+    add_data_option(*command, options->data_dir);
     command->add_option("--figures", options->figures, "Write one figure strip per pair here");
     command->add_option("--markdown", options->markdown, "Also write the tables to this file");
     command->add_option("--json", options->json, "Write all figures as JSON to this file");
     // The scenes set ndisp, and the report runs both CA settings: only --window and --sigma.
     add_matcher_options(*command, options->matcher, MatcherChoice::fixed,
                         {.ndisp = false, .no_ca = false});
-    command->callback([options] {
-        // Parameters first (exit 2), then files (exit 1), whatever is wrong with both.
-        (void)pipeline(*options, "model", fx::kDefaultDisparities, true);
-        const fs::path folder = fs::path(options->data_dir) / "middlebury2003";
-        if (!fs::is_directory(folder)) {
-            throw std::runtime_error("cannot read '" + folder.string() + "': no such folder");
-        }
-        run_report(*options);
-    });
 }
 
 }  // namespace stereo::cli

@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli.hpp"
+#include "cli_command.hpp"
 #include "cli_matcher_options.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/output.hpp"
@@ -303,10 +304,10 @@ void run_slam(SlamOptions o) {
 }  // namespace
 
 void add_slam_command(CLI::App& app) {
-    auto o = std::make_shared<SlamOptions>();
+    const auto [command, o] = add_command<SlamOptions>(
+        app, "slam", "Stereo SLAM (thesis Sec. 4.2): trajectory and occupancy map of a sequence.",
+        run_slam);
     auto& p = o->params;
-    CLI::App* command = app.add_subcommand(
-        "slam", "Stereo SLAM (thesis Sec. 4.2): trajectory and occupancy map of a sequence.");
     command
         ->add_option("SEQ_DIR", o->sequence,
                      "Sequence folder: image_l/ image_r/ calib.txt [poses.txt] (KITTI) or "
@@ -359,7 +360,6 @@ void add_slam_command(CLI::App& app) {
          {"--merge-angle-step", &p.merge.angle_step_deg, "Merge step, degrees"},
          {"--merge-min-gain", &p.merge.min_gain, "Cells a correction must gain to be applied"},
          {"--ca-passes", &o->ca_passes, "Clean-up passes over the final map"}});
-    command->callback([o] { run_slam(*o); });
 }
 
 }  // namespace stereo::cli

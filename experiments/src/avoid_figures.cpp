@@ -12,6 +12,7 @@
 #include <CLI/CLI.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "cli_command.hpp"
 #include "experiments.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_robot/decision.hpp"
@@ -177,11 +178,10 @@ void write_figures(const fs::path& out) {
 }  // namespace
 
 void add_avoid_figures_command(CLI::App& app) {
-    auto folder = std::make_shared<std::string>();
-    CLI::App* command = app.add_subcommand(
-        "avoid-figures", "Draw the fuzzy-system figures of docs/avoidance.md into a folder.");
+    const auto [command, folder] = cli::add_command<std::string>(
+        app, "avoid-figures", "Draw the fuzzy-system figures of docs/avoidance.md into a folder.",
+        write_figures);
     command->add_option("OUTPUT_FOLDER", *folder, "Existing folder for the PNGs")->required();
-    command->callback([folder] { write_figures(*folder); });
 }
 
 }  // namespace stereo::experiments

@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "cli_command.hpp"
 #include "cli_matcher_options.hpp"
 #include "experiments.hpp"
 #include "stereo/hierarchical.hpp"
@@ -438,19 +439,17 @@ void run_eval(const EvalOptions& options) {
 }  // namespace
 
 void add_hierarchical_eval_command(CLI::App& app) {
-    auto options = std::make_shared<EvalOptions>();
-    CLI::App* command =
-        app.add_subcommand("hierarchical-eval",
-                           "Evaluate the hierarchical 2-D search on decalibrated Middlebury pairs "
-                           "(docs/results-hierarchical.md).");
-    command->add_option("--data", options->data, "Folder holding middlebury2003/")
-        ->capture_default_str();
+    const auto [command, options] = cli::add_command<EvalOptions>(
+        app, "hierarchical-eval",
+        "Evaluate the hierarchical 2-D search on decalibrated Middlebury pairs "
+        "(docs/results-hierarchical.md).",
+        run_eval);
+    cli::add_data_option(*command, options->data);
     command->add_option("--markdown", options->markdown, "Also write the tables to FILE");
     command->add_option("--json", options->json_path, "Write every number as JSON to FILE");
     command->add_option("--figures", options->figures, "Write the figures into this folder");
     command->add_flag("--skip-full-search", options->skip_full_search,
                       "Count the full D x V search without running it (no run time)");
-    command->callback([options] { run_eval(*options); });
 }
 
 }  // namespace stereo::experiments

@@ -12,6 +12,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli_command.hpp"
 #include "cli_matcher_options.hpp"
 #include "experiments.hpp"
 #include "stereo_io/data_dir.hpp"
@@ -95,16 +96,14 @@ void run_sweep(const SweepOptions& options) {
 }  // namespace
 
 void add_sigma_sweep_command(CLI::App& app) {
-    auto options = std::make_shared<SweepOptions>();
-    CLI::App* command = app.add_subcommand(
-        "sigma-sweep",
-        "Sweep the aggregation sigma on the Middlebury 2003 pairs (docs/sigma-sweep.md).");
+    const auto [command, options] = cli::add_command<SweepOptions>(
+        app, "sigma-sweep",
+        "Sweep the aggregation sigma on the Middlebury 2003 pairs (docs/sigma-sweep.md).",
+        run_sweep);
     command->add_option("SIGMA", options->sigmas, "The sigmas to try, in pixels")->required();
-    command->add_option("--data", options->data_dir, "Folder holding middlebury2003/")
-        ->capture_default_str();
+    cli::add_data_option(*command, options->data_dir);
     command->add_option("--window", options->window, "Odd aggregation window side")
         ->capture_default_str();
-    command->callback([options] { run_sweep(*options); });
 }
 
 }  // namespace stereo::experiments

@@ -232,6 +232,29 @@ std::vector<std::string> image_file_names(const fs::path& folder) {
     return names;
 }
 
+Image crop(const Image& image, int x0, int y0, int width, int height) {
+    if (width < 1 || height < 1 || x0 < 0 || y0 < 0 || x0 + width > image.width ||
+        y0 + height > image.height) {
+        std::string text = "crop ";
+        text += size_text(width, height) + "+" + std::to_string(x0) + "+" + std::to_string(y0);
+        text += " does not fit the " + size_text(image.width, image.height) + " image";
+        throw std::invalid_argument(text);
+    }
+    Image out(width, height, image.channels);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            for (int c = 0; c < image.channels; ++c) {
+                out.at(x, y, c) = image.at(x0 + x, y0 + y, c);
+            }
+        }
+    }
+    return out;
+}
+
+ImagePair crop(const ImagePair& pair, int x0, int y0, int width, int height) {
+    return {crop(pair.left, x0, y0, width, height), crop(pair.right, x0, y0, width, height)};
+}
+
 cv::Mat load_bgr(const fs::path& path) {
     const cv::Mat mat = read_colour_or_grey(path);
     if (mat.channels() == 1) {

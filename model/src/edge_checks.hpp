@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "stereo/constants.hpp"
 #include "stereo/edge_frontend.hpp"
@@ -30,6 +31,18 @@ inline void check_grey(const Image& grey) {
     if (grey.empty() || grey.channels != 1) {
         throw std::invalid_argument("the LoG needs a non-empty grey image");
     }
+}
+
+// What both LoG versions start from: a checked grey image's size and the kernel's radius.
+struct LogShape {
+    int w;
+    int h;
+    int r;
+};
+
+inline LogShape log_shape(const Image& grey, const std::vector<std::int32_t>& kernel) {
+    check_grey(grey);
+    return {grey.width, grey.height, static_cast<int>(kernel.size()) / 2};
 }
 
 inline void check_same_size(const Image& image, const Image& edges) {
@@ -68,8 +81,14 @@ inline bool opposite(std::int32_t a, std::int32_t b) {
     return (a < 0 && b > 0) || (a > 0 && b < 0);
 }
 
-inline MatchParams without_ca(MatchParams params) {
+// The checks both match() versions run first (pair, matching and edge parameters); returns
+// the matching parameters without the CA rules, which the edge front end does not use.
+inline MatchParams checked_plain_params(const Image& left, const Image& right, MatchParams params,
+                                        const EdgeParams& edge_params) {
+    check_pair(left, right);
     params.use_ca = false;
+    stereo::validate(params, left.width, left.height);
+    validate(edge_params);
     return params;
 }
 

@@ -39,10 +39,7 @@ Image luma(const Image& image) {
 }
 
 Response log_response(const Image& grey, const std::vector<std::int32_t>& kernel) {
-    check_grey(grey);
-    const int w = grey.width;
-    const int h = grey.height;
-    const int r = static_cast<int>(kernel.size()) / 2;
+    const auto [w, h, r] = log_shape(grey, kernel);
     const auto row_start = [w](int y) { return static_cast<std::size_t>(y) * w; };
 
     // Vertical pass then horizontal pass, both with replicated borders; no rounding, so the
@@ -131,10 +128,7 @@ Dsi truncated_cost(const Image& left, const Image& right, int ndisp, int truncat
 
 DisparityMap match(const Image& left, const Image& right, const MatchParams& params,
                    const EdgeParams& edge_params) {
-    check_pair(left, right);
-    const MatchParams plain = without_ca(params);
-    stereo::validate(plain, left.width, left.height);
-    validate(edge_params);
+    const MatchParams plain = checked_plain_params(left, right, params, edge_params);
     return match_with(*make_truncated_ad_cost(edge_params.truncation),
                       gaussian_kernel(plain.window, plain.sigma), enhance(left, edge_params),
                       enhance(right, edge_params), plain);

@@ -28,6 +28,13 @@ Image load_image(const std::filesystem::path& path, int downscale = 1);
 ImagePair load_pair(const std::filesystem::path& left, const std::filesystem::path& right,
                     int downscale = 1);
 
+// The width x height region of `image` whose top-left pixel is (x0, y0), copied. Throws
+// std::invalid_argument when the region is empty or does not lie inside the image.
+Image crop(const Image& image, int x0, int y0, int width, int height);
+
+// The same region of both images of a pair.
+ImagePair crop(const ImagePair& pair, int x0, int y0, int width, int height);
+
 // Reads an 8-bit image file as BGR, OpenCV's channel order (grey replicated, alpha dropped):
 // for figures and the OpenCV baselines. Same errors as load_image.
 cv::Mat load_bgr(const std::filesystem::path& path);

@@ -1,6 +1,7 @@
 // Helpers shared by tests/ and testbench/ (CMake target stereo_test_support, header-only):
-// seeded random images. The seed is printed and replayable with STEREO_SEED. The data folder
-// is io::data_dir() (stereo_io/data_dir.hpp), not a helper of its own.
+// seeded random images and pairs, constant extreme pairs. The seed is printed and replayable
+// with STEREO_SEED. The data folder is io::data_dir() (stereo_io/data_dir.hpp), not a helper of
+// its own.
 #pragma once
 
 #include <algorithm>
@@ -9,8 +10,11 @@
 #include <iostream>
 #include <random>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "stereo/image.hpp"
+#include "stereo_io/io.hpp"
 
 namespace stereo::test {
 
@@ -25,6 +29,11 @@ inline std::uint32_t test_seed() {
         return value;
     }();
     return seed;
+}
+
+// A generator seeded with test_seed() + salt: one test's or one case's own replayable stream.
+inline std::mt19937 seeded_rng(int salt = 0) {
+    return std::mt19937(test_seed() + static_cast<std::uint32_t>(salt));
 }
 
 inline Image random_image(int width, int height, int channels, std::mt19937& rng) {
@@ -51,6 +60,36 @@ inline Image shifted_copy(const Image& left, int shift, int noise, std::mt19937&
         }
     }
     return right;
+}
+
+// A random left image and shifted_copy(left, shift, noise): a pair with true disparity `shift`.
+// Draws from `rng` in that order, so it replaces the two calls one for one.
+inline io::ImagePair shifted_pair(int width, int height, int channels, int shift, int noise,
+                                  std::mt19937& rng) {
+    Image left = random_image(width, height, channels, rng);
+    Image right = shifted_copy(left, shift, noise, rng);
+    return {std::move(left), std::move(right)};
+}
+
+// Constant images at the extremes of the pixel range: black and white against themselves and
+// each other, so that every cost is 0 or its maximum.
+struct ConstantPair {
+    int left_value;
+    int right_value;
+    Image left;
+    Image right;
+};
+
+inline std::vector<ConstantPair> constant_pairs(int width, int height, int channels) {
+    std::vector<ConstantPair> pairs;
+    for (const auto& [l, r] :
+         {std::pair{0, 0}, std::pair{255, 255}, std::pair{0, 255}, std::pair{255, 0}}) {
+        ConstantPair pair{l, r, Image(width, height, channels), Image(width, height, channels)};
+        std::fill(pair.left.pixels.begin(), pair.left.pixels.end(), static_cast<std::uint8_t>(l));
+        std::fill(pair.right.pixels.begin(), pair.right.pixels.end(), static_cast<std::uint8_t>(r));
+        pairs.push_back(std::move(pair));
+    }
+    return pairs;
 }
 
 }  // namespace stereo::test

@@ -28,10 +28,7 @@ Image luma(const Image& image) {
 }
 
 Response log_response(const Image& grey, const std::vector<std::int32_t>& kernel) {
-    check_grey(grey);
-    const int w = grey.width;
-    const int h = grey.height;
-    const int r = static_cast<int>(kernel.size()) / 2;
+    const auto [w, h, r] = log_shape(grey, kernel);
     const auto pixel = [&](int x, int y) {
         return static_cast<std::int64_t>(
             grey.at(std::clamp(x, 0, w - 1), std::clamp(y, 0, h - 1), 0));
@@ -119,10 +116,7 @@ Dsi truncated_cost(const Image& left, const Image& right, int ndisp, int truncat
 
 DisparityMap match(const Image& left, const Image& right, const MatchParams& params,
                    const EdgeParams& edge_params) {
-    check_pair(left, right);
-    const MatchParams plain = without_ca(params);
-    stereo::validate(plain, left.width, left.height);
-    validate(edge_params);
+    const MatchParams plain = checked_plain_params(left, right, params, edge_params);
     const auto enhance_naive = [&](const Image& image) {
         const auto kernel = gaussian_kernel(edge_params.log_window, edge_params.log_sigma);
         return naive::superimpose(

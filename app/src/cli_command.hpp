@@ -1,0 +1,35 @@
+// How every subcommand of `stereo` and `stereo_experiments` is registered: its options object
+// and its callback. CLI11 runs the callback after the add_*_command function has returned, so
+// the options live in a shared_ptr that the callback holds.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace stereo::cli {
+
+template <class Options>
+struct Command {
+    CLI::App* app;                     // the subcommand, to register its options on
+    std::shared_ptr<Options> options;  // what they parse into; run() receives it
+};
+
+// Adds the subcommand `name` to `app` with a default-constructed Options; parsing it calls
+// run(options).
+template <class Options, class Run>
+Command<Options> add_command(CLI::App& app, const std::string& name, const std::string& description,
+                             Run run) {
+    auto options = std::make_shared<Options>();
+    CLI::App* command = app.add_subcommand(name, description);
+    command->callback([options, run] { run(*options); });
+    return {command, options};
+}
+
+// --data: the folder that holds middlebury2003/ (its default shown by --help).
+inline void add_data_option(CLI::App& command, std::string& folder) {
+    command.add_option("--data", folder, "Folder holding middlebury2003/")->capture_default_str();
+}
+
+}  // namespace stereo::cli
