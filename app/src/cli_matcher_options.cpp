@@ -57,27 +57,24 @@ void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoi
     if (choice == MatcherChoice::fixed) {
         return;
     }
-    command
-        .add_option("--cost", params.cost,
-                    "Matching cost: ad (absolute differences over RGB) or census (5x5, Hamming)")
-        ->check(CLI::IsMember(cost_names()))
-        ->capture_default_str();
-    command
-        .add_option("--method", options.method,
-                    "pipeline (1-D, rectified pairs), edges (LoG front end), hierarchical (2-D, "
-                    "uncalibrated pairs) or sparse (validated sub-pixel)")
-        ->check(CLI::IsMember(matchers().methods()))
-        ->capture_default_str();
-    command
-        .add_option("--engine", options.engine,
-                    "model (bit-exact), naive, float, hls (C-simulated HLS kernels), rtl "
-                    "(Verilated RTL) or full-search; not every method has every engine")
-        ->check(CLI::IsMember(matchers().engines()))
-        ->capture_default_str();
-    command
-        .add_option("--frontend", options.frontend, "model, or edges (the same as --method edges)")
-        ->check(CLI::IsMember({"model", "edges"}))
-        ->capture_default_str();
+    // An option whose value must be one of `choices`, its default shown in --help.
+    const auto add_choice = [&command](const char* name, std::string& value, const char* help,
+                                       const std::vector<std::string>& choices) {
+        command.add_option(name, value, help)->check(CLI::IsMember(choices))->capture_default_str();
+    };
+    add_choice("--cost", params.cost,
+               "Matching cost: ad (absolute differences over RGB) or census (5x5, Hamming)",
+               cost_names());
+    add_choice("--method", options.method,
+               "pipeline (1-D, rectified pairs), edges (LoG front end), hierarchical (2-D, "
+               "uncalibrated pairs) or sparse (validated sub-pixel)",
+               matchers().methods());
+    add_choice("--engine", options.engine,
+               "model (bit-exact), naive, float, hls (C-simulated HLS kernels), rtl "
+               "(Verilated RTL) or full-search; not every method has every engine",
+               matchers().engines());
+    add_choice("--frontend", options.frontend, "model, or edges (the same as --method edges)",
+               {"model", "edges"});
 }
 
 void add_number_options(CLI::App& command, std::initializer_list<NumberOption> options) {
