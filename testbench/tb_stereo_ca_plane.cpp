@@ -31,6 +31,13 @@ Dsi pair_aggregate(int width, int height, std::mt19937& rng) {
                      gaussian_kernel(5, fx::kDefaultSigma));
 }
 
+// `base` plus uniform noise over a range `spread` wide, inside the aggregate's range.
+Dsi::Value noisy(int base, double spread, std::mt19937& rng) {
+    std::uniform_real_distribution<double> unit(-0.5, 0.5);
+    const int value = base + static_cast<int>(spread * unit(rng));
+    return static_cast<Dsi::Value>(std::clamp(value, 0, fx::kAggMax));
+}
+
 // Per pixel a base value and a spread, per disparity the base plus noise within the spread:
 // neighbouring d agree (2|n - c| < c) where the spread is small, which makes rule 1 fire often,
 // and disagree where it is large.
@@ -38,14 +45,12 @@ Dsi clustered_volume(int width, int height, std::mt19937& rng) {
     Dsi volume(width, height, kDisparities);
     std::uniform_int_distribution<int> base_value(0, fx::kAggMax);
     std::uniform_real_distribution<double> spread_fraction(0.0, 3.0);
-    std::uniform_real_distribution<double> unit(-0.5, 0.5);
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
             const int base = base_value(rng);
             const double spread = base * spread_fraction(rng);
             for (int d = 0; d < kDisparities; ++d) {
-                const int value = base + static_cast<int>(spread * unit(rng));
-                volume.at(x, y, d) = static_cast<Dsi::Value>(std::clamp(value, 0, fx::kAggMax));
+                volume.at(x, y, d) = noisy(base, spread, rng);
             }
         }
     }
@@ -59,7 +64,6 @@ Dsi smooth_volume(int width, int height, std::mt19937& rng) {
     Dsi volume(width, height, kDisparities);
     std::uniform_int_distribution<int> base_value(200, fx::kAggMax);
     std::uniform_real_distribution<double> amplitude(0.3, 1.4);
-    std::uniform_real_distribution<double> unit(-0.5, 0.5);
     for (int d = 0; d < kDisparities; ++d) {
         const int base = base_value(rng);
         const double left_amplitude = amplitude(rng);
@@ -69,8 +73,7 @@ Dsi smooth_volume(int width, int height, std::mt19937& rng) {
                 // The amplitude ramps across the row, so a plane holds several regimes.
                 const double t = width > 1 ? static_cast<double>(x) / (width - 1) : 0.0;
                 const double spread = base * ((1 - t) * left_amplitude + t * right_amplitude);
-                const int value = base + static_cast<int>(spread * unit(rng));
-                volume.at(x, y, d) = static_cast<Dsi::Value>(std::clamp(value, 0, fx::kAggMax));
+                volume.at(x, y, d) = noisy(base, spread, rng);
             }
         }
     }
