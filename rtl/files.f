@@ -6,8 +6,6 @@ stereo_window3x3.sv
 stereo_ca_plane.sv
 stereo_cost.sv
 stereo_aggregate.sv
-stereo_ca_rule1.sv
-stereo_ca_rule2.sv
 stereo_wta.sv
 stereo_top.sv
 stereo_synth_top.sv

@@ -11,7 +11,7 @@
 // "Agrees" is fx_pkg::agrees, 2|n - c| < c. With cfg_use_ca low every cell passes unchanged.
 // Output pixel = input pixel moved back one row and one column. Latency: W + 3 pixel steps
 // (the window's input register, the centre one row and one column back, the result register).
-// stereo_ca_rule1 and stereo_ca_rule2 are this module with RULE fixed.
+// stereo_top instantiates it twice: as ca_rule1 (RULE 1) and ca_rule2 (RULE 2).
 `default_nettype none
 
 module stereo_ca_plane #(

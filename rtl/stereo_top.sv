@@ -254,9 +254,11 @@ module stereo_top #(
       .out_data(agg_data)
   );
 
-  stereo_ca_rule1 #(
+  // The two CA rules: the skeleton stereo_ca_plane with RULE 1 and 2 (rule 2 ignores cfg_ndisp).
+  stereo_ca_plane #(
       .WIDTH(WIDTH),
-      .NDISP(NDISP)
+      .NDISP(NDISP),
+      .RULE (1)
   ) ca_rule1 (
       .clk(clk),
       .rst(clear_coordinates),
@@ -273,9 +275,10 @@ module stereo_top #(
       .out_data(rule1_data)
   );
 
-  stereo_ca_rule2 #(
+  stereo_ca_plane #(
       .WIDTH(WIDTH),
-      .NDISP(NDISP)
+      .NDISP(NDISP),
+      .RULE (2)
   ) ca_rule2 (
       .clk(clk),
       .rst(clear_coordinates),
@@ -285,6 +288,7 @@ module stereo_top #(
       .in_data(rule1_data),
       .cfg_width(use_width),
       .cfg_height(use_height),
+      .cfg_ndisp(use_ndisp),
       .cfg_use_ca(use_ca),
       .out_x(wta_in_x),
       .out_y(wta_in_y),

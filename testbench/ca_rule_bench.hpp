@@ -1,9 +1,9 @@
-// The shared testbench of stereo_ca_rule1 and stereo_ca_rule2 (both stereo_ca_plane): the stage
-// ports, one frame through the Verilated rule against the model's rule, the parameterised volume
-// cases, frames back to back and width one. A rule's testbench supplies `Rule`:
-//   Model, kPrefix (the Verilated configuration), kName (module), kHasNdisp (cfg_ndisp port),
+// The testbench of stereo_ca_plane as one rule (its Verilated configurations Vstereo_ca_rule1 and
+// Vstereo_ca_rule2): the stage ports, one frame through the Verilated rule against the model's
+// rule, the parameterised volume cases, frames back to back and width one. `Rule` supplies:
+//   Model, kPrefix (the Verilated configuration), kName (the stage),
 //   apply(const Dsi&) (the model's rule), pair(w, h, rng) (what the rule sees in the pipeline),
-//   structured(w, h, rng) and kStructuredName (inputs on which the rule fires often), and
+//   structured(w, h, rng) (inputs on which the rule fires often), and
 //   kSmallLow .. kSmallHigh (small values that decide agreement at 2|n - c| == c).
 #pragma once
 
@@ -27,27 +27,49 @@ inline constexpr int kCaBits = fx::kAggBits;
 // The inputs of a CA rule testbench.
 enum class CaInput { kPair, kStructured, kSmallValues, kNearMaximum, kFull14Bits };
 
+// One parameterised case: frames of `input` through the rule, the model sees cfg_ndisp planes.
+struct CaCase {
+    int width, height;
+    CaInput input;
+    int ndisp;
+    bool use_ca;
+    double ce_low;
+};
+
+inline const char* input_name(CaInput input) {
+    switch (input) {
+        case CaInput::kPair:
+            return "pair";
+        case CaInput::kStructured:
+            return "structured";
+        case CaInput::kSmallValues:
+            return "small";
+        case CaInput::kNearMaximum:
+            return "nearmax";
+        case CaInput::kFull14Bits:
+            return "full14bits";
+    }
+    return "?";
+}
+
+// Test names, and the parameter as ctest and GoogleTest print it (tb::PrintTo).
+inline std::string describe(const CaCase& c) {
+    return std::to_string(c.width) + "x" + std::to_string(c.height) + "_" + input_name(c.input) +
+           "_ndisp" + std::to_string(c.ndisp) + (c.use_ca ? "_ca" : "_noca") + "_celow" +
+           std::to_string(static_cast<int>(c.ce_low * 100));
+}
+
+// One frame of frames back to back.
+struct CaFrame {
+    int width, height, ndisp;
+    bool use_ca;
+};
+
 template <typename Rule>
 struct CaRuleBench {
     using Model = typename Rule::Model;
     using Input = CaInput;
     static constexpr int kDisparities = table::verilated(Rule::kPrefix).params.ndisp;
-
-    static const char* input_name(Input input) {
-        switch (input) {
-            case Input::kPair:
-                return "pair";
-            case Input::kStructured:
-                return Rule::kStructuredName;
-            case Input::kSmallValues:
-                return "small";
-            case Input::kNearMaximum:
-                return "nearmax";
-            case Input::kFull14Bits:
-                return "full14bits";
-        }
-        return "?";
-    }
 
     static Dsi make_input(Input input, int width, int height, std::mt19937& rng) {
         switch (input) {
@@ -84,9 +106,7 @@ struct CaRuleBench {
         auto& model = driver.model();
         model.cfg_width = static_cast<std::uint16_t>(input.width());
         model.cfg_height = static_cast<std::uint16_t>(input.height());
-        if constexpr (Rule::kHasNdisp) {
-            model.cfg_ndisp = static_cast<std::uint16_t>(ndisp);
-        }
+        model.cfg_ndisp = static_cast<std::uint16_t>(ndisp);  // rule 2 ignores it
         model.cfg_use_ca = use_ca ? 1 : 0;
         Dsi rtl(input.width(), input.height(), kDisparities);
         driver.run_frame(
@@ -103,27 +123,7 @@ struct CaRuleBench {
         return use_ca ? Rule::apply(used) : used;
     }
 
-    struct Case {
-        int width, height;
-        Input input;
-        int ndisp;
-        bool use_ca;
-        double ce_low;
-        // The parameter as ctest and GoogleTest print it.
-        friend void PrintTo(const Case& c, std::ostream* os) { *os << describe(c); }
-    };
-
-    // Test names, and the parameter as ctest and GoogleTest print it.
-    static std::string describe(const Case& c) {
-        return std::to_string(c.width) + "x" + std::to_string(c.height) + "_" +
-               input_name(c.input) +
-               (Rule::kHasNdisp ? "_ndisp" + std::to_string(c.ndisp) : std::string()) +
-               (c.use_ca ? "_ca" : "_noca") + "_celow" +
-               std::to_string(static_cast<int>(c.ce_low * 100));
-    }
-    static std::string case_name(const ::testing::TestParamInfo<Case>& info) {
-        return describe(info.param);
-    }
+    using Case = CaCase;
 
     // kFramesPerCase frames of fresh input through one driver, each value against the model.
     static void check_case(const Case& c) {
@@ -143,10 +143,7 @@ struct CaRuleBench {
         }
     }
 
-    struct Frame {
-        int width, height, ndisp;
-        bool use_ca;
-    };
+    using Frame = CaFrame;
 
     // Frames follow each other without idle steps, changing size, cfg_ndisp and CA: the line
     // buffer and the column registers hold the previous frame and its flush garbage.

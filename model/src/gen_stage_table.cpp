@@ -147,15 +147,14 @@ std::string files_text() {
 }
 
 // NAME=VALUE of every parameter that is set, in a fixed order.
-std::vector<std::pair<std::string, int>> assignments(const stereo::table::Params& params,
-                                                     int rule = stereo::table::kUnset) {
+std::vector<std::pair<std::string, int>> assignments(const stereo::table::Params& params) {
     std::vector<std::pair<std::string, int>> out;
     const std::pair<const char*, int> all[] = {{"WIDTH", params.width},
                                                {"HEIGHT", params.height},
                                                {"NDISP", params.ndisp},
                                                {"WINDOW", params.window},
                                                {"RUNTIME_KERNEL", params.runtime_kernel},
-                                               {"RULE", rule}};
+                                               {"RULE", params.rule}};
     for (const auto& [name, value] : all) {
         if (value != stereo::table::kUnset) {
             out.emplace_back(name, value);
@@ -218,7 +217,7 @@ std::string json_text() {
     for (std::size_t i = 0; i < t::kExtraLintConfigs.size(); ++i) {
         const auto& lint = t::kExtraLintConfigs[i];
         out << "    {\"top\": \"" << lint.top
-            << "\", \"parameters\": " << json_parameters(assignments(lint.params, lint.rule)) << '}'
+            << "\", \"parameters\": " << json_parameters(assignments(lint.params)) << '}'
             << (i + 1 < t::kExtraLintConfigs.size() ? "," : "") << '\n';
     }
     out << "  ],\n  \"verilated\": [\n";

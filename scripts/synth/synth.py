@@ -326,22 +326,29 @@ def estimate(config, target, work=None, use_dsp=True):
     nodsp = "" if use_dsp else " -nodsp"
     synth = {"xilinx": f"synth_xilinx -family xc7{nodsp} -top {TOP}",
              "ecp5": f"synth_ecp5 -noflatten{nodsp} -top {TOP}"}[target]
+    # Each stage's module, found through its instance in stereo_top (two stages can share a
+    # module with different parameters: the CA rules are both stereo_ca_plane).
+    instances = {name: work / f"stage_{name}.txt" for name in STAGES}
     # chparam leaves the top as a derived "$paramod...stereo_synth_top": name it back for stat.
     script = (f"read_verilog -sv {' '.join(rtl_sources())}; {chparam(config)}; "
               f"{synth}; chformal -remove; opt_clean; rename -top {TOP}; "
-              f"tee -q -o {stat} stat -json")
+              f"tee -q -o {stat} stat -json; " +
+              "; ".join(f"tee -q -o {path} {stage_module_query(name)}"
+                        for name, path in instances.items()))
     seconds = run_yosys(script, work / "yosys.log")
     resources_of = resources_xilinx if target == "xilinx" else resources_ecp5
     cells = read_stat_json(stat)
+    modules = stage_modules({name: path.read_text() for name, path in instances.items()})
     stages = {name: resources_of(stage_cells) for name, stage_cells in
-              stage_breakdown(stat).items()}
+              stage_breakdown(stat, modules).items()}
     return {"target": target, "top": TOP, "config": config, "use_dsp": use_dsp,
             "resources": resources_of(cells), "stages": stages,
             "yosys_seconds": round(seconds, 1), "tools": {"yosys": tool_version(["yosys", "-V"])},
             "note": "Yosys resource estimate before place and route; no Fmax"}
 
 
-STAGES = tuple(stage["module"] for stage in STAGE_TABLE["stages"])
+# Stage names in pipeline order; each is also the name of the stage's instance in stereo_top.
+STAGES = tuple(stage["name"] for stage in STAGE_TABLE["stages"])
 
 
 def module_kind(name):
@@ -350,18 +357,38 @@ def module_kind(name):
     return match.group(1) if match else name
 
 
-def stage_breakdown(stat_path):
+def stage_module_query(stage):
+    """Yosys command listing `<module>/clk` of the module that implements stereo_top's instance
+    `stage` (every stage module has a clk port)."""
+    return f"select -list *stereo_top/{stage} %M w:clk %i"
+
+
+def stage_modules(listings):
+    """{module name: stage} from the output of stage_module_query for every stage."""
+    modules = {}
+    for stage, text in listings.items():
+        found = [line.rsplit("/", 1)[0].lstrip("\\") for line in text.splitlines()
+                 if line.endswith("/clk")]
+        if len(found) != 1:
+            raise ReportError(f"no single module implements stage {stage}: {found}")
+        modules[found[0]] = stage
+    return modules
+
+
+def stage_breakdown(stat_path, modules_of_stages):
     """Cells of each pipeline stage including its line buffers, and of the glue around them
-    (stereo_top's own logic and the AXI wrapper), from a hierarchical `stat -json`."""
+    (stereo_top's own logic and the AXI wrapper), from a hierarchical `stat -json`.
+    modules_of_stages maps each stage's module name (stage_modules) to the stage."""
     modules = load_stat_json(stat_path)["modules"]
     totals = hierarchy_totals(modules)
     stages = {}
     for name, data in modules.items():
-        kind = module_kind(name)
-        cells = (totals[name] if kind in STAGES else
+        stage = modules_of_stages.get(name.lstrip("\\"))
+        cells = (totals[name] if stage else
                  {cell: n for cell, n in data.get("num_cells_by_type", {}).items()
-                  if submodule(cell, modules) is None} if kind in ("stereo_top", TOP) else {})
-        key = kind if kind in STAGES else "glue"
+                  if submodule(cell, modules) is None}
+                 if module_kind(name) in ("stereo_top", TOP) else {})
+        key = stage or "glue"
         for cell, n in cells.items():
             stages.setdefault(key, {})
             stages[key][cell] = stages[key].get(cell, 0) + n
@@ -530,7 +557,7 @@ def plot_stages(points, target, metric="luts"):
         parts.append(f'<rect x="{width - 160}" y="{top + 10 + 20 * k}" width="12" height="12" '
                      f'fill="{colour}"/>')
         parts.append(svg_text(width - 142, top + 20 + 20 * k,
-                              stage.replace("stereo_", ""), 11, "start"))
+                              stage, 11, "start"))
     return svg_document(width, height, parts)
 
 
@@ -598,7 +625,7 @@ def command_table(args):
                 r = with_bram_kbits(dict(largest["stages"].get(name, {})), target)
                 total = largest["resources"]
                 share = 100 * r.get("luts", 0) / total["luts"] if total["luts"] else 0
-                lines.append(f"| {name.replace('stereo_', '')} | {r.get('luts', 0):,} "
+                lines.append(f"| {name} | {r.get('luts', 0):,} "
                              f"({share:.0f} %) | {r.get('ffs', 0):,} | {r.get('bram_kbits', 0):,}"
                              f" | {r.get('dsps', 0):,} |")
             lines.append("")

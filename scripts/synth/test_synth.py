@@ -31,8 +31,8 @@ STAT_WITH_LISTING = """
          "num_cells_by_type": {
             "$paramod$bb\\\\stereo_aggregate": 1,
             "$paramod\\\\stereo_cost\\\\NDISP=s32'00000000000000000000000000000100": 1,
-            "$paramod$dd\\\\stereo_ca_rule1": 1,
-            "$paramod$dd\\\\stereo_ca_rule2": 1,
+            "$paramod$dd\\\\stereo_ca_plane": 1,
+            "$paramod$de\\\\stereo_ca_plane": 1,
             "$paramod$ee\\\\stereo_wta": 1,
             "FDRE": 7
          }
@@ -50,8 +50,8 @@ STAT_WITH_LISTING = """
       "$paramod\\\\stereo_cost\\\\NDISP=s32'00000000000000000000000000000100": {
          "num_cells_by_type": {"LUT4": 20, "FDRE": 2}
       },
-      "$paramod$dd\\\\stereo_ca_rule1": {"num_cells_by_type": {"LUT1": 1}},
-      "$paramod$dd\\\\stereo_ca_rule2": {"num_cells_by_type": {"LUT1": 1}},
+      "$paramod$dd\\\\stereo_ca_plane": {"num_cells_by_type": {"LUT1": 1}},
+      "$paramod$de\\\\stereo_ca_plane": {"num_cells_by_type": {"LUT1": 1}},
       "$paramod$ee\\\\stereo_wta": {"num_cells_by_type": {"FDRE": 1}}
    },
        \\stereo_synth_top      1
@@ -63,6 +63,16 @@ STAT_WITH_LISTING = """
       }
 }
 """
+
+# The module of each stage, as stage_module_query lists it (the two CA rules are stereo_ca_plane
+# with different parameters).
+STAGE_LISTINGS = {
+    "cost": "$paramod\\stereo_cost\\NDISP=s32'00000000000000000000000000000100/clk\n",
+    "aggregate": "$paramod$bb\\stereo_aggregate/clk\n",
+    "ca_rule1": "$paramod$dd\\stereo_ca_plane/clk\n",
+    "ca_rule2": "$paramod$de\\stereo_ca_plane/clk\n",
+    "wta": "$paramod$ee\\stereo_wta/clk\n",
+}
 
 
 class StatParsing(unittest.TestCase):
@@ -97,14 +107,23 @@ class StatParsing(unittest.TestCase):
         totals = synth.hierarchy_totals(modules)
         self.assertEqual(totals["$paramod$dd\\stereo_wta"], {"FF": 64, "LUT4": 1})
 
+    def test_stage_modules_from_the_instance_listings(self):
+        # What stage_module_query writes: `<module>/clk`, or a warning when nothing matched.
+        listings = dict(STAGE_LISTINGS)
+        self.assertEqual(synth.stage_modules(listings)["$paramod$de\\stereo_ca_plane"],
+                         "ca_rule2")
+        listings["wta"] = 'Warning: Selection "*stereo_top/wta" did not match any object.\n'
+        with self.assertRaises(synth.ReportError):
+            synth.stage_modules(listings)
+
     def test_stage_breakdown_adds_up(self):
-        stages = synth.stage_breakdown(self.stat)
+        stages = synth.stage_breakdown(self.stat, synth.stage_modules(STAGE_LISTINGS))
         xilinx = {name: synth.resources_xilinx(cells) for name, cells in stages.items()}
-        self.assertEqual(xilinx["stereo_aggregate"]["luts"], 12)
-        self.assertEqual(xilinx["stereo_aggregate"]["ramb18"], 6)
-        self.assertEqual(xilinx["stereo_aggregate"]["brams"], 3.0)  # 36 Kib equivalents
-        self.assertEqual(xilinx["stereo_aggregate"]["bram_kbits"], 108)
-        self.assertEqual(xilinx["stereo_cost"]["luts"], 20)
+        self.assertEqual(xilinx["aggregate"]["luts"], 12)
+        self.assertEqual(xilinx["aggregate"]["ramb18"], 6)
+        self.assertEqual(xilinx["aggregate"]["brams"], 3.0)  # 36 Kib equivalents
+        self.assertEqual(xilinx["aggregate"]["bram_kbits"], 108)
+        self.assertEqual(xilinx["cost"]["luts"], 20)
         # glue = the two tops' own cells: 3 LUT2 + 5 IBUF + 7 FDRE
         self.assertEqual(xilinx["glue"]["luts"], 3)
         self.assertEqual(xilinx["glue"]["ffs"], 7)
@@ -112,7 +131,7 @@ class StatParsing(unittest.TestCase):
                   "stages": xilinx}
         synth.check_stages(report)  # 3 + 12 + 20 + 1 + 1 + 0 = 37 LUTs both ways
         self.assertEqual(report["resources"]["luts"], 37)
-        report["stages"]["stereo_wta"]["luts"] += 1
+        report["stages"]["wta"]["luts"] += 1
         with self.assertRaises(synth.ReportError):
             synth.check_stages(report)
 
@@ -190,7 +209,7 @@ class Tables(unittest.TestCase):
         return {"target": "xilinx", "use_dsp": use_dsp,
                 "config": {"width": 640, "height": 480, "ndisp": ndisp, "window": 11},
                 "resources": resources,
-                "stages": {"stereo_aggregate": dict(resources)}}
+                "stages": {"aggregate": dict(resources)}}
 
     def test_sweep_and_single_estimate_report(self):
         with tempfile.TemporaryDirectory() as folder:

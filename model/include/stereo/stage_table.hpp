@@ -81,8 +81,8 @@ struct Latency {
 };
 
 struct Stage {
-    std::string_view name;    // ca_rule1
-    std::string_view module;  // stereo_ca_rule1 (file rtl/<module>.sv)
+    std::string_view name;    // ca_rule1, also the name of the stage's instance in stereo_top
+    std::string_view module;  // stereo_ca_plane (file rtl/<module>.sv)
     int in_lane_bits;         // input bits per disparity lane (cost: the pixel pair, shared)
     int out_lane_bits;        // output bits per disparity lane (wta: one result, not per lane)
     Latency rtl;              // the RTL module
@@ -94,8 +94,9 @@ struct Stage {
 inline constexpr std::array<Stage, 5> kStages = {{
     {"cost", "stereo_cost", kInBeatBits, fx::kCostBits, {0, 0, 0, 1}, 0},
     {"aggregate", "stereo_aggregate", fx::kCostBits, fx::kAggBits, {1, 0, 1, 2}, 0},
-    {"ca_rule1", "stereo_ca_rule1", fx::kAggBits, fx::kAggBits, {0, 1, 0, 3}, 1},
-    {"ca_rule2", "stereo_ca_rule2", fx::kAggBits, fx::kAggBits, {0, 1, 0, 3}, 1},
+    // The two CA rules are one module, stereo_ca_plane, with RULE = 1 and 2.
+    {"ca_rule1", "stereo_ca_plane", fx::kAggBits, fx::kAggBits, {0, 1, 0, 3}, 1},
+    {"ca_rule2", "stereo_ca_plane", fx::kAggBits, fx::kAggBits, {0, 1, 0, 3}, 1},
     {"wta", "stereo_wta", fx::kAggBits, fx::kDisparityBits + 1, {0, 0, 0, 1}, 0},
 }};
 
@@ -123,10 +124,9 @@ constexpr int hls_pipeline_latency(int width, int window) {
 // The package first, then every module before its first user. One module per file, named after
 // it; the list of modules to lint is this list without the package.
 inline constexpr std::string_view kPackageFile = "fx_pkg.sv";
-inline constexpr std::array<std::string_view, 11> kRtlModules = {
-    "stereo_coord_reg", "stereo_line_buffer", "stereo_window3x3", "stereo_ca_plane",
-    "stereo_cost",      "stereo_aggregate",   "stereo_ca_rule1",  "stereo_ca_rule2",
-    "stereo_wta",       "stereo_top",         "stereo_synth_top",
+inline constexpr std::array<std::string_view, 9> kRtlModules = {
+    "stereo_coord_reg", "stereo_line_buffer", "stereo_window3x3", "stereo_ca_plane",  "stereo_cost",
+    "stereo_aggregate", "stereo_wta",         "stereo_top",       "stereo_synth_top",
 };
 
 // ---- Verilated configurations (sim/verilated_configs.cmake) --------------------------------
@@ -138,6 +138,7 @@ struct Params {
     int ndisp = kUnset;
     int window = kUnset;
     int runtime_kernel = kUnset;
+    int rule = kUnset;  // stereo_ca_plane's RULE
 };
 
 struct VerilatedConfig {
@@ -162,13 +163,14 @@ inline constexpr std::array<VerilatedConfig, 8> kVerilatedConfigs = {{
      "stereo_aggregate",
      {kSmall.width, kUnset, kSmall.ndisp, kSmall.window, 0},
      ""},
+    // The CA skeleton as rule 1 and as rule 2.
     {"Vstereo_ca_rule1",
-     "stereo_ca_rule1",
-     {kSmall.width, kUnset, kSmall.ndisp, kUnset, kUnset},
+     "stereo_ca_plane",
+     {kSmall.width, kUnset, kSmall.ndisp, kUnset, kUnset, 1},
      ""},
     {"Vstereo_ca_rule2",
-     "stereo_ca_rule2",
-     {kSmall.width, kUnset, kSmall.ndisp, kUnset, kUnset},
+     "stereo_ca_plane",
+     {kSmall.width, kUnset, kSmall.ndisp, kUnset, kUnset, 2},
      ""},
     {"Vstereo_wta", "stereo_wta", {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset}, ""},
     // Its C++ takes minutes to compile: only with -DSTEREO_COSIM_FULL=ON.
@@ -191,12 +193,11 @@ constexpr const VerilatedConfig& verilated(std::string_view prefix) {
 struct LintConfig {
     std::string_view top;
     Params params;
-    int rule = kUnset;  // stereo_ca_plane's RULE
 };
 
 inline constexpr std::array<LintConfig, 5> kExtraLintConfigs = {{
     // The CA skeleton with the other rule.
-    {"stereo_ca_plane", {}, 2},
+    {"stereo_ca_plane", {kUnset, kUnset, kUnset, kUnset, kUnset, 2}},
     // The top at other shapes: a 3x3 window, odd label counts, and the full-size configuration.
     {"stereo_top", {kUnset, kUnset, 5, 3, kUnset}},
     {"stereo_top", {100, 75, 33, 7, kUnset}},
