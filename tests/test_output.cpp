@@ -91,6 +91,22 @@ TEST_F(Output, FailedWriteLeavesThePreviousFile) {
     EXPECT_EQ(files_in_folder(), 1U);
 }
 
+TEST_F(Output, SeveralFilesAllOrNothing) {
+    const fs::path a = folder_ / "a.png";
+    write(a, "old a");
+    // The third destination's folder is missing: nothing may change, no temporary file stays.
+    EXPECT_THROW(
+        write_files_atomic(
+            {{a, "new a"}, {folder_ / "b.png", "new b"}, {folder_ / "none" / "c.png", "new c"}}),
+        std::runtime_error);
+    EXPECT_EQ(read(a), "old a");
+    EXPECT_FALSE(fs::exists(folder_ / "b.png"));
+    EXPECT_EQ(files_in_folder(), 1U);
+    write_files_atomic({{a, "new a"}, {folder_ / "b.png", "new b"}});
+    EXPECT_EQ(read(a), "new a");
+    EXPECT_EQ(read(folder_ / "b.png"), "new b");
+}
+
 TEST_F(Output, OutputEqualToAnInputIsRefused) {
     const fs::path input = folder_ / "left.png";
     write(input, "image");

@@ -17,6 +17,7 @@
 #include "cli_command.hpp"
 #include "cli_matcher_options.hpp"
 #include "stereo_io/io.hpp"
+#include "stereo_io/output.hpp"
 #include "stereo_robot/calibration.hpp"
 #include "stereo_robot/decision.hpp"
 #include "stereo_robot/overlay.hpp"
@@ -161,6 +162,12 @@ void run_avoid(const AvoidOptions& o) {
     const double threshold = pixel_threshold(o);
     bool sequence = false;
     const auto pairs = frames(o, sequence);
+    std::vector<std::filesystem::path> inputs = {o.left, o.right, o.calib};
+    for (const auto& [left, right] : pairs) {
+        inputs.push_back(left);
+        inputs.push_back(right);
+    }
+    io::check_outputs_distinct({o.overlay}, inputs);
     if (!o.overlay.empty()) {
         io::check_writable_location(o.overlay);
     }

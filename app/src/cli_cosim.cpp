@@ -15,6 +15,7 @@
 #include "cli_command.hpp"
 #include "cli_matcher_options.hpp"
 #include "stereo_io/io.hpp"
+#include "stereo_io/output.hpp"
 #include "stereo_top_sim.hpp"
 
 namespace stereo::cli {
@@ -75,6 +76,7 @@ void run_cosim(const CosimOptions& options) {
         throw std::invalid_argument("--downscale must be >= 1, got " +
                                     std::to_string(options.downscale));
     }
+    io::check_outputs_distinct({options.output, options.trace}, {options.left, options.right});
     if (!options.output.empty()) {
         io::check_writable_location(options.output);
     }

@@ -17,6 +17,7 @@
 #include "cli_command.hpp"
 #include "stereo_io/distortion.hpp"
 #include "stereo_io/io.hpp"
+#include "stereo_io/output.hpp"
 
 namespace stereo::cli {
 
@@ -63,6 +64,8 @@ void run_distort(const DistortOptions& options) {
         throw std::runtime_error("cannot write into \"" + options.output +
                                  "\": not a folder, and its parent folder does not exist");
     }
+    // Writing into the scene itself would replace the inputs with their distorted copies.
+    io::check_outputs_distinct({out}, {scene});
     const cv::Mat left = read_colour(scene / "left.png");
     const cv::Mat right = read_colour(scene / "right.png");
     check_size(right, left, scene / "right.png");
@@ -94,9 +97,11 @@ void run_distort(const DistortOptions& options) {
         }
     }
     fs::create_directories(out);
+    std::vector<std::pair<fs::path, cv::Mat>> paths;
     for (const auto& [name, mat] : files) {
-        io::write_png(out / name, mat);
+        paths.emplace_back(out / name, mat);
     }
+    io::write_pngs(paths);  // all or nothing
     std::cout << "wrote " << files.size() << " files to " << options.output << " (distortion "
               << options.warp.distortion_percent << " %, right shift " << options.warp.right_shift_y
               << " px, right rotation " << options.warp.right_rotation_deg << " deg, gt "

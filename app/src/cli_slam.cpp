@@ -150,6 +150,15 @@ void run_slam(SlamOptions o) {
         throw std::invalid_argument("--vdisparity-frame must be in 0.." +
                                     std::to_string(frames - 1));
     }
+    // The sequence's own files (poses, calibration, timestamps) must survive any output path.
+    std::vector<fs::path> inputs = {o.calib};
+    std::error_code listing;
+    for (const auto& entry : fs::directory_iterator(o.sequence, listing)) {
+        if (entry.is_regular_file(listing)) {
+            inputs.push_back(entry.path());
+        }
+    }
+    io::check_outputs_distinct({o.map, o.trajectory, o.vdisparity}, inputs);
     for (const std::string& output : {o.map, o.trajectory, o.vdisparity}) {
         if (!output.empty()) {
             io::check_writable_location(output);

@@ -460,7 +460,7 @@ cv::Mat load_mask(const fs::path& path) {
     return single_channel(mat, path).clone();
 }
 
-void write_png(const fs::path& path, const cv::Mat& mat) {
+std::string encode_png(const cv::Mat& mat, const fs::path& path) {
     std::vector<uchar> bytes;
     bool encoded = false;
     try {
@@ -472,8 +472,20 @@ void write_png(const fs::path& path, const cv::Mat& mat) {
         throw std::runtime_error("cannot encode " + quoted(path) + " as PNG (" + format_text(mat) +
                                  ")");
     }
-    write_file_atomic(path,
-                      std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+    return {bytes.begin(), bytes.end()};
+}
+
+void write_png(const fs::path& path, const cv::Mat& mat) {
+    write_file_atomic(path, encode_png(mat, path));
+}
+
+void write_pngs(const std::vector<std::pair<fs::path, cv::Mat>>& files) {
+    std::vector<std::pair<fs::path, std::string>> encoded;
+    encoded.reserve(files.size());
+    for (const auto& [path, mat] : files) {
+        encoded.emplace_back(path, encode_png(mat, path));
+    }
+    write_files_atomic(encoded);
 }
 
 void check_writable_location(const fs::path& path) {

@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -77,16 +78,19 @@ bool same_file(const fs::path& a, const fs::path& b) {
 
 }  // namespace
 
-void write_file_atomic(const fs::path& path, std::string_view bytes) {
+namespace {
+
+// The bytes in a synced temporary file beside `path`, ready to be renamed over it.
+std::unique_ptr<TemporaryFile> stage(const fs::path& path, std::string_view bytes) {
     std::error_code error;
     if (fs::exists(path, error) && ::access(path.c_str(), W_OK) != 0) {
         throw std::runtime_error("cannot write " + quoted(path) + ": " + std::strerror(errno));
     }
-    TemporaryFile temporary(path);
+    auto temporary = std::make_unique<TemporaryFile>(path);
     const char* data = bytes.data();
     std::size_t left = bytes.size();
     while (left > 0) {
-        const ssize_t written = ::write(temporary.descriptor(), data, left);
+        const ssize_t written = ::write(temporary->descriptor(), data, left);
         if (written < 0) {
             if (errno == EINTR) {
                 continue;
@@ -96,13 +100,35 @@ void write_file_atomic(const fs::path& path, std::string_view bytes) {
         data += written;
         left -= static_cast<std::size_t>(written);
     }
-    if (::fsync(temporary.descriptor()) != 0 || !temporary.close()) {
+    if (::fsync(temporary->descriptor()) != 0 || !temporary->close()) {
         throw std::runtime_error("cannot write " + quoted(path) + ": " + std::strerror(errno));
     }
+    return temporary;
+}
+
+void commit(TemporaryFile& temporary, const fs::path& path) {
     if (::rename(temporary.path().c_str(), path.c_str()) != 0) {
         throw std::runtime_error("cannot write " + quoted(path) + ": " + std::strerror(errno));
     }
     temporary.release();
+}
+
+}  // namespace
+
+void write_file_atomic(const fs::path& path, std::string_view bytes) {
+    const auto temporary = stage(path, bytes);
+    commit(*temporary, path);
+}
+
+void write_files_atomic(const std::vector<std::pair<fs::path, std::string>>& files) {
+    std::vector<std::unique_ptr<TemporaryFile>> staged;
+    staged.reserve(files.size());
+    for (const auto& [path, bytes] : files) {
+        staged.push_back(stage(path, bytes));  // a throw here removes every staged file
+    }
+    for (std::size_t i = 0; i < files.size(); ++i) {
+        commit(*staged[i], files[i].first);
+    }
 }
 
 void check_outputs_distinct(const std::vector<fs::path>& outputs,

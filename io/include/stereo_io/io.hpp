@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <opencv2/core/mat.hpp>
@@ -92,6 +93,12 @@ cv::Mat load_mask(const std::filesystem::path& path);
 // Encodes `mat` as PNG in memory, then writes it with write_file_atomic (stereo_io/output.hpp):
 // a failure never leaves a partial file behind nor harms an existing one.
 void write_png(const std::filesystem::path& path, const cv::Mat& mat);
+
+// `mat` as PNG bytes; std::runtime_error naming `path` when it cannot be encoded.
+std::string encode_png(const cv::Mat& mat, const std::filesystem::path& path);
+
+// Several PNGs, all or nothing (write_files_atomic): a set of figures or a distorted scene.
+void write_pngs(const std::vector<std::pair<std::filesystem::path, cv::Mat>>& files);
 
 // Throws std::runtime_error when `path` could not be created because its folder is missing;
 // used to fail before a long computation rather than after it.

@@ -5,7 +5,9 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace stereo::io {
@@ -14,6 +16,12 @@ namespace stereo::io {
 // reason) when the folder is missing, the destination exists but is not writable, or a write
 // fails; then only the temporary file is removed and an existing destination is untouched.
 void write_file_atomic(const std::filesystem::path& path, std::string_view bytes);
+
+// Several files, all or nothing: every one is written to its temporary file and synced first;
+// only when all of them are on disk are they renamed into place. A failure before that leaves
+// every destination untouched. (A failure among the renames themselves, on one file system, is
+// not expected; it is reported and leaves the files renamed so far.)
+void write_files_atomic(const std::vector<std::pair<std::filesystem::path, std::string>>& files);
 
 // Throws std::invalid_argument when an output is the same file as an input (same inode, or the
 // same resolved path for a file that does not exist yet, through symbolic links), or two outputs
