@@ -1,7 +1,7 @@
 // The optimised golden-model stages against the naive reference, bit for bit, and hand-made
 // cases whose expected values are worked out in the comments.
-#include <algorithm>
 #include <gtest/gtest.h>
+#include <algorithm>
 
 #include <filesystem>
 #include <random>

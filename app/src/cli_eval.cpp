@@ -14,8 +14,8 @@
 #include "cli.hpp"
 #include "cli_command.hpp"
 #include "stereo_io/io.hpp"
-#include "stereo_io/output.hpp"
 #include "stereo_io/metrics.hpp"
+#include "stereo_io/output.hpp"
 
 namespace stereo::cli {
 
@@ -101,9 +101,8 @@ void run_eval(const EvalOptions& options) {
         throw std::invalid_argument("--gt-downscale must be >= 1, got " +
                                     std::to_string(options.gt_downscale));
     }
-    io::check_outputs_distinct(
-        {options.error_map},
-        {options.disparity, options.ground_truth, options.nonocc, options.all, options.disc});
+    io::check_outputs_distinct({options.error_map}, {options.disparity, options.ground_truth,
+                                                     options.nonocc, options.all, options.disc});
     if (!options.error_map.empty()) {
         io::check_writable_location(options.error_map);
     }

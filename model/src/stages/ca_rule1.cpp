@@ -68,8 +68,8 @@ class CaRule1 final : public Refiner {
                 // A missing neighbour is given a difference of 2 * value, which never agrees.
                 const int diff_before = b != nullptr ? b[x] - value : 2 * value;
                 const int diff_after = a != nullptr ? a[x] - value : 2 * value;
-                const bool fire = fx::agrees(value + diff_before, value) ||
-                                  fx::agrees(value + diff_after, value);
+                const bool fire =
+                    fx::agrees(value + diff_before, value) || fx::agrees(value + diff_after, value);
                 const auto box =
                     static_cast<std::uint32_t>(columns[x - 1] + columns[x] + columns[x + 1]);
                 dst[x] =
