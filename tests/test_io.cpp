@@ -445,3 +445,25 @@ TEST(Limits, LimitIsSettableAndChecked) {
 
 }  // namespace
 }  // namespace stereo::io
+
+namespace stereo::io {
+namespace {
+
+TEST(Crop, CopiesTheRegionAndRefusesWhatDoesNotFit) {
+    Image image(5, 4, 1);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+        image.pixels[i] = static_cast<std::uint8_t>(i);
+    }
+    const Image part = crop(image, 1, 2, 3, 2);
+    ASSERT_EQ(part.width, 3);
+    EXPECT_EQ(part.at(0, 0, 0), 2 * 5 + 1);  // by hand: row 2, column 1
+    EXPECT_EQ(part.at(2, 1, 0), 3 * 5 + 3);
+    EXPECT_THROW(crop(image, 1, 0, 5, 4), std::invalid_argument);
+    EXPECT_THROW(crop(image, -1, 0, 2, 2), std::invalid_argument);
+    // Offsets and sizes whose sum overflows an int.
+    EXPECT_THROW(crop(image, 2147483647, 0, 10, 1), std::invalid_argument);
+    EXPECT_THROW(crop(image, 1, 0, 2147483647, 1), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace stereo::io

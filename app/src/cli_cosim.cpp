@@ -44,15 +44,18 @@ io::ImagePair apply_crop(io::ImagePair pair, const std::string& geometry) {
     if (!std::regex_match(geometry, parts, pattern)) {
         throw std::invalid_argument("--crop must be WxH+X+Y, got '" + geometry + "'");
     }
-    const int width = std::stoi(parts[1]);
-    const int height = std::stoi(parts[2]);
-    const int x0 = std::stoi(parts[3]);
-    const int y0 = std::stoi(parts[4]);
-    if (width < 1 || height < 1 || x0 + width > pair.left.width || y0 + height > pair.left.height) {
-        throw std::invalid_argument("--crop " + geometry + " does not fit the " +
-                                    std::to_string(pair.left.width) + "x" +
-                                    std::to_string(pair.left.height) + " image");
-    }
+    // Each number is at most 9 digits (the pattern's \d+ could hold any count): larger values
+    // cannot fit any image and must not overflow an int.
+    const auto number = [&geometry](const std::string& digits) {
+        if (digits.size() > 9) {
+            throw std::invalid_argument("--crop " + geometry + ": " + digits + " is too large");
+        }
+        return std::stoi(digits);
+    };
+    const int width = number(parts[1]);
+    const int height = number(parts[2]);
+    const int x0 = number(parts[3]);
+    const int y0 = number(parts[4]);
     return io::crop(pair, x0, y0, width, height);
 }
 

@@ -233,8 +233,9 @@ std::vector<std::string> image_file_names(const fs::path& folder) {
 }
 
 Image crop(const Image& image, int x0, int y0, int width, int height) {
-    if (width < 1 || height < 1 || x0 < 0 || y0 < 0 || x0 + width > image.width ||
-        y0 + height > image.height) {
+    // Written without x0 + width, which could overflow for hostile values.
+    if (width < 1 || height < 1 || x0 < 0 || y0 < 0 || x0 > image.width - width ||
+        y0 > image.height - height) {
         std::string text = "crop ";
         text += size_text(width, height) + "+" + std::to_string(x0) + "+" + std::to_string(y0);
         text += " does not fit the " + size_text(image.width, image.height) + " image";
