@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <stdexcept>
@@ -652,6 +653,29 @@ TEST(RealData, KittiOdometryOnAShortClip) {
     const double error = (slam.odometry().back().translation() - truth.back().translation()).norm();
     EXPECT_LT(error, 0.05 * travelled);
     EXPECT_LT(rotation_deg(truth.back().inverse() * slam.odometry().back()), 1.0);
+}
+
+}  // namespace
+}  // namespace stereo::robot::slam
+
+namespace stereo::robot::slam {
+namespace {
+
+TEST(Calibration, CameraOutsideAnyRealRigIsRefused) {
+    const Camera good{700.0, 320.0, 240.0, 0.5};
+    EXPECT_NO_THROW(validate_camera(good, 640, 480));
+    Camera bad = good;
+    bad.cx = 1e308;  // sent points and grid indices out of range before
+    EXPECT_THROW(validate_camera(bad, 640, 480), std::invalid_argument);
+    bad = good;
+    bad.focal = 1e-300;
+    EXPECT_THROW(validate_camera(bad, 640, 480), std::invalid_argument);
+    bad = good;
+    bad.baseline = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_THROW(validate_camera(bad, 640, 480), std::invalid_argument);
+    bad = good;
+    bad.cy = -500.0;  // more than one image height above the image
+    EXPECT_THROW(validate_camera(bad, 640, 480), std::invalid_argument);
 }
 
 }  // namespace

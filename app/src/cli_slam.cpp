@@ -166,6 +166,7 @@ void run_slam(SlamOptions o) {
     }
 
     const slam::Camera camera = sequence.camera.downscaled(o.downscale);
+    slam::validate_camera(camera, width, height);
     slam::Slam slam(camera, o.params);
     Totals totals;
     cv::Mat vdisparity_picture;

@@ -45,8 +45,13 @@ void validate(const SlamParams& params, int width, int height) {
     require(params.motion.ransac.iterations >= 1, "--ransac-iterations must be >= 1");
     require(positive(params.motion.ransac.threshold), "--inlier-px must be > 0");
     require(params.motion.ransac.min_inliers >= 3, "--min-inliers must be >= 3");
-    require(positive(params.cell_size), "--cell must be > 0 metres");
+    // A cell from 1 cm to 100 m, and at most 10^5 cells across the mapped range: the grids stay
+    // small and every cell index fits an int (a 1e-6 m cell grew the grids past 3 GB).
+    require(params.cell_size >= 0.01 && params.cell_size <= 100.0,
+            "--cell must be in [0.01, 100] metres");
     require(positive(params.local.max_range), "--max-range must be > 0");
+    require(params.local.max_range / params.cell_size <= 1e5,
+            "--max-range / --cell must be at most 100000 cells");
     require(positive(params.local.max_height), "--max-height must be > 0");
     require(params.local.tolerance >= 0.0 && std::isfinite(params.local.tolerance),
             "--ground-tolerance must be >= 0");
@@ -57,6 +62,20 @@ void validate(const SlamParams& params, int width, int height) {
             "--merge-angle-steps must be in 0..20");
     require(positive(params.merge.angle_step_deg), "--merge-angle-step must be > 0 degrees");
     require(positive(params.ray_bin_deg), "ray bins must be > 0 degrees");
+}
+
+void validate_camera(const Camera& camera, int width, int height) {
+    // The principal point within one image size of the image, a focal length and baseline of a
+    // real rig: a calibration with cx = 1e308 sent points (and grid indices) out of range.
+    const auto within = [](double v, double low, double high) {
+        return std::isfinite(v) && v >= low && v <= high;
+    };
+    require(within(camera.focal, 1.0, 1e6), "calibration: focal length must be in [1, 1e6] px");
+    require(within(camera.cx, -width, 2.0 * width),
+            "calibration: cx must lie within one image width of the image");
+    require(within(camera.cy, -height, 2.0 * height),
+            "calibration: cy must lie within one image height of the image");
+    require(within(camera.baseline, 1e-3, 1e3), "calibration: baseline must be in [1 mm, 1 km]");
 }
 
 Slam::Slam(const Camera& camera, const SlamParams& params)

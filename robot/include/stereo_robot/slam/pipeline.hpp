@@ -29,6 +29,10 @@ struct SlamParams {
 
 // Throws std::invalid_argument for impossible parameters (image size from the first frame).
 void validate(const SlamParams& params, int width, int height);
+// Throws std::invalid_argument (one line) for a camera no real rig has: focal length outside
+// [1, 1e6] px, principal point more than one image size outside the image, baseline outside
+// [1 mm, 1 km], or any value not finite.
+void validate_camera(const Camera& camera, int width, int height);
 
 struct StageTimes {
     double frontend_ms = 0.0;
