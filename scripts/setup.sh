@@ -8,6 +8,7 @@ packages=(
   libopencv-dev opencv-doc          # image I/O, StereoBM/SGBM baselines; opencv-doc ships Aloe
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libeigen3-dev
+  libyaml-cpp-dev                  # EuRoC rectification YAML (robot/src/slam/dataset.cpp)
   verilator zlib1g-dev yosys       # RTL co-simulation (FST traces need zlib), synthesis check
   nextpnr-ice40 python3            # place and route, synthesis reports (scripts/synth/synth.py)
   clang-format

@@ -3,16 +3,21 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cmath>
+#include <cstdint>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
+#include <yaml-cpp/yaml.h>
 #include <opencv2/calib3d.hpp>
-#include <opencv2/core/persistence.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "stereo_io/io.hpp"
+#include "stereo_io/limits.hpp"
 
 namespace stereo::robot::slam {
 
@@ -53,34 +58,75 @@ int parse_index(const std::string& text, const std::string& whole) {
     return value;
 }
 
-cv::Mat read_matrix(const cv::FileStorage& storage, const std::string& name, int rows, int cols,
-                    const fs::path& path) {
-    cv::Mat m;
-    storage[name] >> m;
-    if (m.rows != rows || m.cols != cols) {
-        throw std::invalid_argument("rectification file " + path.string() + " has no " +
-                                    std::to_string(rows) + "x" + std::to_string(cols) + " matrix " +
-                                    name);
+// OpenCV's YAML dialect read with yaml-cpp: OpenCV 4.6's own parser can spin forever on a few
+// malformed bytes (`%YAML:1.` then `---[]R:.-`). OpenCV writes a non-standard `%YAML:1.0`
+// directive first, which yaml-cpp does not accept, so that line is dropped.
+YAML::Node load_opencv_yaml(const fs::path& path) {
+    constexpr std::uintmax_t kMaxBytes = 1 << 20;  // a rectification file is a few kilobytes
+    std::error_code error;
+    if (!fs::is_regular_file(path, error)) {
+        throw std::runtime_error("cannot read rectification file " + path.string());
     }
-    m.convertTo(m, CV_64F);
-    return m;
+    if (fs::file_size(path, error) > kMaxBytes) {
+        throw std::invalid_argument("rectification file " + path.string() +
+                                    " is larger than 1 MiB");
+    }
+    std::ifstream in(path, std::ios::binary);
+    std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    if (text.rfind("%YAML:", 0) == 0) {
+        const auto end_of_line = text.find('\n');
+        text.erase(0, end_of_line == std::string::npos ? text.size() : end_of_line + 1);
+    }
+    try {
+        YAML::Node root = YAML::Load(text);
+        if (!root.IsMap()) {
+            throw YAML::Exception(YAML::Mark::null_mark(), "not a map");
+        }
+        return root;
+    } catch (const YAML::Exception&) {
+        throw std::invalid_argument("rectification file " + path.string() +
+                                    " is not an OpenCV YAML file");
+    }
+}
+
+// An `!!opencv-matrix` entry of rows x cols finite values, as CV_64F.
+cv::Mat read_matrix(const YAML::Node& root, const std::string& name, int rows, int cols,
+                    const fs::path& path) {
+    const auto fail = [&]() {
+        return std::invalid_argument("rectification file " + path.string() + " has no " +
+                                     std::to_string(rows) + "x" + std::to_string(cols) +
+                                     " matrix " + name);
+    };
+    try {
+        const YAML::Node node = root[name];
+        if (!node || !node.IsMap() || node["rows"].as<int>() != rows ||
+            node["cols"].as<int>() != cols) {
+            throw fail();
+        }
+        const auto data = node["data"].as<std::vector<double>>();
+        if (data.size() != static_cast<std::size_t>(rows) * cols ||
+            !std::all_of(data.begin(), data.end(), [](double v) { return std::isfinite(v); })) {
+            throw fail();
+        }
+        cv::Mat m(rows, cols, CV_64F);
+        std::copy(data.begin(), data.end(), m.begin<double>());
+        return m;
+    } catch (const YAML::Exception&) {
+        throw fail();
+    }
+}
+
+int read_size(const YAML::Node& root, const char* name, const fs::path& path) {
+    try {
+        return root[name] ? root[name].as<int>() : 0;
+    } catch (const YAML::Exception&) {
+        throw std::invalid_argument("rectification file " + path.string() + ": " + name +
+                                    " is not a whole number");
+    }
 }
 
 void load_euroc_rectification(const fs::path& path, Sequence& sequence) {
-    if (!fs::is_regular_file(path)) {
-        throw std::runtime_error("cannot read rectification file " + path.string());
-    }
-    cv::FileStorage storage;
-    try {
-        storage.open(path.string(), cv::FileStorage::READ);
-    } catch (const cv::Exception&) {
-        throw std::invalid_argument("rectification file " + path.string() +
-                                    " is not an OpenCV YAML/XML file");
-    }
-    if (!storage.isOpened()) {
-        throw std::invalid_argument("rectification file " + path.string() +
-                                    " is not an OpenCV YAML/XML file");
-    }
+    const YAML::Node storage = load_opencv_yaml(path);
     const cv::Mat k0 = read_matrix(storage, "K0", 3, 3, path);
     const cv::Mat k1 = read_matrix(storage, "K1", 3, 3, path);
     const cv::Mat d0 = read_matrix(storage, "D0", 1, 4, path);
@@ -89,10 +135,16 @@ void load_euroc_rectification(const fs::path& path, Sequence& sequence) {
     const cv::Mat r2 = read_matrix(storage, "R2", 3, 3, path);
     const cv::Mat p1 = read_matrix(storage, "P1", 3, 4, path);
     const cv::Mat p2 = read_matrix(storage, "P2", 3, 4, path);
-    int width = 0;
-    int height = 0;
-    storage["image_width"] >> width;
-    storage["image_height"] >> height;
+    const int width = read_size(storage, "image_width", path);
+    const int height = read_size(storage, "image_height", path);
+    // The rectification maps are allocated from this size: bound it like any image.
+    if (width > 0 && height > 0 &&
+        static_cast<std::int64_t>(width) * height > io::max_image_pixels()) {
+        throw std::invalid_argument("rectification file " + path.string() + " declares " +
+                                    std::to_string(width) + "x" + std::to_string(height) +
+                                    " images, more than the limit of " +
+                                    std::to_string(io::max_image_pixels()) + " pixels");
+    }
     const double focal = p1.at<double>(0, 0);
     const double baseline = focal > 0.0 ? -p2.at<double>(0, 3) / p2.at<double>(0, 0) : 0.0;
     if (width <= 0 || height <= 0 || !(focal > 0.0) || !(baseline > 0.0)) {
