@@ -41,9 +41,11 @@ std::string quoted(const std::string& path) {
 
 // CLI11's own range validators print the full double range; these messages stay short.
 void require_positive(double value, const std::string& option) {
-    if (!(value > 0.0) || !std::isfinite(value)) {
+    // Scales store disparity * K in a PNG: 1e-3 .. 1e6 covers every format in use (Middlebury
+    // 1..16, KITTI 256); a denormal like 1e-320 made every disparity infinite.
+    if (!(value >= 1e-3 && value <= 1e6)) {
         std::ostringstream message;
-        message << option << " must be a positive number, got " << value;
+        message << option << " must be in [0.001, 1e6], got " << value;
         throw std::invalid_argument(message.str());
     }
 }

@@ -75,8 +75,11 @@ PairTransform::PairTransform(int width, int height, const PairWarp& warp)
       cos_(std::cos(warp.right_rotation_deg * std::numbers::pi / 180.0)),
       sin_(std::sin(warp.right_rotation_deg * std::numbers::pi / 180.0)),
       shift_y_(warp.right_shift_y) {
-    if (!std::isfinite(warp.right_shift_y) || !std::isfinite(warp.right_rotation_deg)) {
-        throw std::invalid_argument("shift and rotation must be finite numbers");
+    // Beyond these the right image is empty: an error, not a black image.
+    if (!(std::abs(warp.right_shift_y) < height) || !(std::abs(warp.right_rotation_deg) <= 180.0)) {
+        throw std::invalid_argument("the vertical shift must be smaller than the image height (" +
+                                    std::to_string(height) +
+                                    " px) and the rotation within [-180, 180] degrees");
     }
 }
 

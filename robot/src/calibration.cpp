@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -85,12 +86,18 @@ StereoGeometry load_calibration(const fs::path& path) {
 }
 
 double disparity_threshold(const StereoGeometry& geometry, double safe_distance, int downscale) {
-    if (!(geometry.focal_px > 0.0) || !(geometry.baseline > 0.0)) {
-        throw std::invalid_argument("focal length and baseline must be positive");
+    // A real rig and a distance a robot can see: also rejects inf and NaN, and keeps the
+    // threshold f B / Z a finite number of pixels (focal 1e-300 or Z = inf gave 0 or inf).
+    if (!(geometry.focal_px >= 1.0 && geometry.focal_px <= 1e6) ||
+        !(geometry.baseline >= 1e-3 && geometry.baseline <= 1e3)) {
+        throw std::invalid_argument(
+            "focal length must be in [1, 1e6] px and baseline in [0.001, 1000] m");
     }
-    if (!(safe_distance > 0.0)) {
-        throw std::invalid_argument("safe distance must be positive, got " +
-                                    std::to_string(safe_distance));
+    if (!(safe_distance >= 1e-3 && safe_distance <= 1e4)) {
+        char text[96];
+        std::snprintf(text, sizeof text, "safe distance must be in [0.001, 10000] m, got %g",
+                      safe_distance);
+        throw std::invalid_argument(text);
     }
     if (downscale < 1) {
         throw std::invalid_argument("downscale must be >= 1");

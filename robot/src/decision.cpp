@@ -32,6 +32,9 @@ void check_params(const FisParams& params) {
         !(params.backwards_step > 0.0)) {
         throw std::invalid_argument("FIS output ranges and grid steps must be positive");
     }
+    if (!(params.forward_band >= 0.0 && params.forward_band <= 90.0)) {  // NaN fails too
+        throw std::invalid_argument("--forward-band must be in [0, 90] degrees");
+    }
 }
 
 }  // namespace
