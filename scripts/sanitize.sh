@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# ASan + UBSan build (CMake preset "sanitize", folder build-sanitize/) of the model, io, robot and
+# CLI with their tests, then those tests: any memory error or undefined behaviour fails the run.
+# The RTL testbenches, the synthesis checks and the long golden digests are left to the normal
+# build (./scripts/test.sh), which covers the same code paths without the sanitizers' cost.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+targets=(stereo stereo_experiments test_model test_matcher test_io test_output test_metrics test_middlebury
+         test_edge_frontend test_hierarchical test_robot test_slam test_constants
+         make_cli_fixtures make_slam_fixtures)
+cmake --preset sanitize
+cmake --build build-sanitize -j"$(nproc)" --target "${targets[@]}"
+export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+ctest --test-dir build-sanitize --output-on-failure -j"$(nproc)" -L "model|app|robot|cli" \
+  -E "golden|NOT_BUILT|hls|hierarchical_end_to_end"
