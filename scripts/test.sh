@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Builds and runs the default test suite (everything except the long `bench` label).
+# Builds and runs the default test suite (everything except the long `bench` and `soak` labels).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/build.sh
-ctest --test-dir build --output-on-failure -j"$(nproc)" -LE bench
+ctest --test-dir build --output-on-failure -j"$(nproc)" -LE "bench|soak"

@@ -1,5 +1,6 @@
 // `stereo cosim LEFT RIGHT [options]`: stream a pair through the Verilated stereo_top and compare
 // every output pixel with the golden model. Exit 0 when they agree, 3 when any pixel differs.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -33,6 +34,8 @@ struct CosimOptions {
     std::string output;  // the RTL's disparity PNG
     std::string trace;   // FST waveform
     bool json = false;
+    int frames = 1;     // frames streamed, traffic seed + f for frame f
+    int reset_at = -1;  // before every frame: this many beats of it, then a mid-frame reset
 };
 
 io::ImagePair apply_crop(io::ImagePair pair, const std::string& geometry) {
@@ -79,6 +82,10 @@ void run_cosim(const CosimOptions& options) {
         throw std::invalid_argument("--downscale must be >= 1, got " +
                                     std::to_string(options.downscale));
     }
+    if (options.frames < 1 || options.frames > 1000000) {
+        throw std::invalid_argument("--frames must be in [1, 1000000], got " +
+                                    std::to_string(options.frames));
+    }
     io::check_outputs_distinct({options.output, options.trace}, {options.left, options.right});
     if (!options.output.empty()) {
         io::check_writable_location(options.output);
@@ -106,49 +113,75 @@ void run_cosim(const CosimOptions& options) {
         io::check_writable_location(options.trace);
         sim->trace_to(options.trace);
     }
+    const auto beats = sim::frame_beats(pair.left, pair.right);
+    if (options.reset_at >= static_cast<int>(beats.size())) {
+        throw std::invalid_argument("--reset-at must be below the frame's " +
+                                    std::to_string(beats.size()) + " beats");
+    }
     sim->reset();
     sim->set_params({width, height, params});
-    const auto beats = sim::frame_beats(pair.left, pair.right);
-    const auto start = std::chrono::steady_clock::now();
-    const sim::StreamResult result =
-        sim->stream(beats, beats.size(), {options.gap, options.stall, options.seed},
-                    100 * beats.size() + 100000);
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (!result.completed) {
-        throw std::runtime_error("the core stalled: " + std::to_string(result.outputs.size()) +
-                                 " of " + std::to_string(beats.size()) + " outputs arrived");
-    }
-    if (!result.protocol_error.empty()) {
-        throw std::runtime_error("AXI4-Stream protocol error: " + result.protocol_error);
-    }
-    const DisparityMap rtl = sim::assemble_frame(result.outputs, 0, width, height);
-
+    // Every frame: optionally the first beats of it and a reset in the middle, then the whole
+    // frame, under the frame's own traffic seed; every pixel compared with the model.
     std::size_t mismatches = 0;
     nlohmann::json first = nlohmann::json::array();
-    for (int y = 0; y < height; ++y) {
-        for (int x = 0; x < width; ++x) {
-            const auto i = rtl.index(x, y);
-            if (rtl.disparity[i] != expected.disparity[i] || rtl.valid[i] != expected.valid[i]) {
-                if (mismatches++ < 10) {
-                    first.push_back({{"x", x},
-                                     {"y", y},
-                                     {"model", expected.valid[i] ? expected.disparity[i] : -1},
-                                     {"rtl", rtl.valid[i] ? rtl.disparity[i] : -1}});
+    sim::StreamResult result;
+    std::uint64_t total_cycles = 0;
+    const auto start = std::chrono::steady_clock::now();
+    for (int frame = 0; frame < options.frames; ++frame) {
+        const sim::Traffic traffic{options.gap, options.stall,
+                                   options.seed + static_cast<std::uint32_t>(frame)};
+        if (options.reset_at >= 0) {
+            const std::vector<sim::InputBeat> part(beats.begin(), beats.begin() + options.reset_at);
+            // Stop once a quarter of them came out (or the cycle budget ends): the reset then
+            // lands with beats still inside the pipeline.
+            total_cycles += sim->stream(part, std::max<std::size_t>(1, part.size() / 4), traffic,
+                                        10 * part.size() + 10000)
+                                .cycles;
+            sim->reset();
+            sim->set_params({width, height, params});
+        }
+        result = sim->stream(beats, beats.size(), traffic, 100 * beats.size() + 100000);
+        total_cycles += result.cycles;
+        if (!result.completed) {
+            throw std::runtime_error("the core stalled in frame " + std::to_string(frame) + ": " +
+                                     std::to_string(result.outputs.size()) + " of " +
+                                     std::to_string(beats.size()) + " outputs arrived");
+        }
+        if (!result.protocol_error.empty()) {
+            throw std::runtime_error("AXI4-Stream protocol error: " + result.protocol_error);
+        }
+        const DisparityMap rtl = sim::assemble_frame(result.outputs, 0, width, height);
+        for (int y = 0; y < height; ++y) {
+            for (int x = 0; x < width; ++x) {
+                const auto i = rtl.index(x, y);
+                if (rtl.disparity[i] != expected.disparity[i] ||
+                    rtl.valid[i] != expected.valid[i]) {
+                    if (mismatches++ < 10) {
+                        first.push_back({{"frame", frame},
+                                         {"x", x},
+                                         {"y", y},
+                                         {"model", expected.valid[i] ? expected.disparity[i] : -1},
+                                         {"rtl", rtl.valid[i] ? rtl.disparity[i] : -1}});
+                    }
                 }
             }
         }
+        if (frame + 1 == options.frames && !options.output.empty()) {
+            io::write_png(options.output, io::disparity_to_mat(rtl, params.ndisp, 1));
+        }
     }
-    if (!options.output.empty()) {
-        io::write_png(options.output, io::disparity_to_mat(rtl, params.ndisp, 1));
-    }
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     const std::size_t pixels = beats.size();
     const double per_pixel = static_cast<double>(result.cycles) / pixels;
     if (options.json) {
         const nlohmann::json summary = {
             {"mismatches", mismatches},
+            {"frames", options.frames},
+            {"reset_at", options.reset_at},
             {"cycles", result.cycles},
+            {"total_cycles", total_cycles},
             {"pixels", pixels},
             {"cycles_per_pixel", per_pixel},
             {"first_mismatches", first},
@@ -163,7 +196,7 @@ void run_cosim(const CosimOptions& options) {
             {"gap", options.gap},
             {"status", result.status},
             {"sim_seconds", seconds},
-            {"sim_cycles_per_second", result.cycles / seconds},
+            {"sim_cycles_per_second", total_cycles / seconds},
         };
         std::cout << summary.dump() << '\n';
     } else {
@@ -174,11 +207,15 @@ void run_cosim(const CosimOptions& options) {
             width, height, params.ndisp, params.window, params.use_ca ? "on" : "off",
             config->name.c_str(), config_text(*config).c_str(), options.seed, options.stall,
             options.gap, mismatches, pixels, static_cast<unsigned long long>(result.cycles),
-            per_pixel, result.cycles / seconds);
+            per_pixel, total_cycles / seconds);
+        if (options.frames > 1 || options.reset_at >= 0) {
+            std::printf("%d frames, reset after %d beats of each (-1 = none): %zu mismatches\n",
+                        options.frames, options.reset_at, mismatches);
+        }
         for (const auto& m : first) {
-            std::printf("  mismatch at (%d, %d): model %d, rtl %d (-1 = invalid)\n",
-                        m["x"].get<int>(), m["y"].get<int>(), m["model"].get<int>(),
-                        m["rtl"].get<int>());
+            std::printf("  mismatch in frame %d at (%d, %d): model %d, rtl %d (-1 = invalid)\n",
+                        m["frame"].get<int>(), m["x"].get<int>(), m["y"].get<int>(),
+                        m["model"].get<int>(), m["rtl"].get<int>());
         }
     }
     if (mismatches != 0) {
@@ -208,6 +245,12 @@ void add_cosim_command(CLI::App& app) {
     command->add_option("--gap", options->gap, "Probability of s_axis_tvalid withheld per cycle")
         ->capture_default_str();
     command->add_option("-o,--output", options->output, "Write the RTL's disparity PNG");
+    command
+        ->add_option("--frames", options->frames,
+                     "Stream the pair this many times (traffic seed + frame), all compared")
+        ->capture_default_str();
+    command->add_option("--reset-at", options->reset_at,
+                        "Before each frame, stream this many of its beats and reset mid-frame");
     command->add_option("--trace", options->trace, "Write an FST waveform of the run");
     command->add_flag("--json", options->json,
                       "Print one JSON object (mismatches, cycles, pixels, ...)");
