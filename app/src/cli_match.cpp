@@ -55,15 +55,6 @@ double valid_fraction(const DisparityMap& map) {
     return map.valid.empty() ? 0.0 : static_cast<double>(valid) / map.valid.size();
 }
 
-std::int64_t count_of(const MatchResult& result, const std::string& name) {
-    for (const auto& [key, value] : result.counts) {
-        if (key == name) {
-            return value;
-        }
-    }
-    return 0;
-}
-
 void check_dump_folder(const std::string& folder) {
     const std::filesystem::path dump(folder);
     std::error_code error;
@@ -79,9 +70,8 @@ void check_dump_folder(const std::string& folder) {
 // Per-level disparity, colour and vertical maps of a hierarchical result.
 std::vector<std::pair<std::string, cv::Mat>> level_files(const MatchResult& result, int ndisp,
                                                          int scale) {
-    constexpr std::array<const char*, hierarchical::kLevels> kNames = {"quarter", "half", "full"};
     std::vector<std::pair<std::string, cv::Mat>> files;
-    for (std::size_t l = 0; l < result.levels.size() && l < kNames.size(); ++l) {
+    for (std::size_t l = 0; l < result.levels.size() && l < hierarchical::kLevelNames.size(); ++l) {
         const Winners& level = result.levels[l];
         const int level_ndisp = ndisp / hierarchical::kLevelFactor[l];
         DisparityMap level_map(level.width, level.height);
@@ -90,7 +80,7 @@ std::vector<std::pair<std::string, cv::Mat>> level_files(const MatchResult& resu
             level_map.disparity[p] =
                 level.valid[p] != 0 ? static_cast<std::uint8_t>(level.disparity[p]) : 0;
         }
-        const std::string name = kNames[l];
+        const std::string name = hierarchical::kLevelNames[l];
         files.emplace_back(name + "_disparity.png",
                            io::disparity_to_mat(level_map, level_ndisp, scale));
         files.emplace_back(name + "_color.png", io::disparity_to_colour(level_map, level_ndisp));
@@ -182,10 +172,9 @@ void run_match(const MatchOptions& options) {
     char extra[80] = "";
     if (two_d) {
         const hierarchical::Params levels_params;
-        const std::array<const char*, 3> names = {"quarter", "half", "full"};
         std::int64_t total = 0;
-        for (const char* name : names) {
-            const std::int64_t count = count_of(result, std::string("cost_evaluations.") + name);
+        for (const char* name : hierarchical::kLevelNames) {
+            const std::int64_t count = result.count(std::string("cost_evaluations.") + name);
             summary["cost_evaluations"][name] = count;
             total += count;
         }

@@ -12,10 +12,8 @@
 namespace stereo::hierarchical {
 namespace {
 
-constexpr std::array<const char*, kLevels> kLevelName = {"quarter", "half", "full"};
-
 std::string level_message(int level, int width, int height, const std::string& what) {
-    return std::string(kLevelName[static_cast<std::size_t>(level)]) + " level (" +
+    return std::string(kLevelNames[static_cast<std::size_t>(level)]) + " level (" +
            std::to_string(width) + "x" + std::to_string(height) + "): " + what;
 }
 

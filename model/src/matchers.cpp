@@ -82,12 +82,11 @@ using HierarchicalFunction = hierarchical::Result (*)(const Image&, const Image&
 
 MatchResult to_match_result(hierarchical::Result result) {
     MatchResult out{std::move(result.disparity), {}, std::move(result.vertical), {}, {}};
-    constexpr std::array<const char*, hierarchical::kLevels> kNames = {"quarter", "half", "full"};
     for (std::size_t l = 0; l < result.levels.size(); ++l) {
         if (!result.levels[l].valid.empty()) {
             out.levels.push_back(std::move(result.levels[l]));
         }
-        out.counts.emplace_back(std::string("cost_evaluations.") + kNames[l],
+        out.counts.emplace_back(std::string("cost_evaluations.") + hierarchical::kLevelNames[l],
                                 result.cost_evaluations.level[l]);
     }
     return out;

@@ -38,6 +38,7 @@ constexpr LevelParams default_level(int window) {
 
 inline constexpr int kLevels = 3;  // quarter, half, full
 inline constexpr std::array<int, kLevels> kLevelFactor = {4, 2, 1};
+inline constexpr std::array<const char*, kLevels> kLevelNames = {"quarter", "half", "full"};
 inline constexpr int kMaxVerticalRange = 252;  // offsets fit an int8 and 128 + v a PNG byte
 
 struct Params {

@@ -39,6 +39,16 @@ struct MatchResult {
     std::vector<Winners> levels;
     // Named counts for reports: DSI cells per level, validation outcomes, ...
     std::vector<std::pair<std::string, std::int64_t>> counts;
+
+    // The count named `name`, 0 when the matcher did not report it.
+    std::int64_t count(std::string_view name) const {
+        for (const auto& [key, value] : counts) {
+            if (key == name) {
+                return value;
+            }
+        }
+        return 0;
+    }
 };
 
 class Matcher {

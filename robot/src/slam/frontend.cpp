@@ -40,12 +40,7 @@ SparseDisparity sparse_disparity(const Image& left, const Image& right,
     out.disparity = result.subpixel;
     if (counts != nullptr) {
         const auto count = [&result](const char* name) {
-            for (const auto& [key, value] : result.counts) {
-                if (key == name) {
-                    return static_cast<std::size_t>(value);
-                }
-            }
-            return std::size_t{0};
+            return static_cast<std::size_t>(result.count(name));
         };
         *counts = {count("candidates"), count("uncertain"), count("inconsistent"), count("valid")};
     }
