@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <initializer_list>
 #include <iostream>
 #include <iterator>
 #include <sstream>
@@ -41,27 +42,40 @@ std::string package_text() {
         }
         sv << '\n';
     };
-    param("PIXEL_BITS", fx::kPixelBits, "one colour channel");
-    param("COST_BITS", fx::kCostBits, "AD cost over RGB");
-    param("COST_MAX", fx::kCostMax, "3 * 255");
-    param("COST_OUTSIDE", fx::kCostOutside, "cost where x - d < 0");
-    param("KERNEL_BITS", fx::kKernelBits, "1-D kernel taps sum to 2^KERNEL_BITS");
-    param("TAP_BITS", fx::kKernelBits + 1, "one tap, 0 .. 2^KERNEL_BITS");
-    param("VSUM_BITS", fx::kVerticalSumBits, "vertical pass, full precision");
-    param("WSUM_BITS", fx::kWindowSumBits, "window sum, full precision");
-    param("AGG_FRAC_BITS", fx::kAggFracBits, "fraction bits of the aggregate");
-    param("AGG_SHIFT", fx::kAggShift, "the single rounding shift");
-    param("AGG_BITS", fx::kAggBits, "aggregated cost, CA values");
-    param("AGG_MAX", fx::kAggMax, "largest aggregated cost");
-    param("CA_SUM_BITS", fx::kCaSumBits, "3x3 sum of rule 1");
-    param("MEAN9_MUL", fx::kMean9Mul, "round(sum / 9) = (sum * MUL + 2^(SHIFT-1)) >> SHIFT");
-    param("MEAN9_SHIFT", fx::kMean9Shift, "");
-    param("DIV13_MUL", fx::kDiv13Mul, "round(v / 1.3) = (v * MUL + 2^(SHIFT-1)) >> SHIFT");
-    param("DIV13_SHIFT", fx::kDiv13Shift, "");
-    param("RULE2_MIN_COUNT", fx::kRule2MinCount, "agreeing neighbours of 8 for rule 2");
-    param("DISP_BITS", fx::kDisparityBits, "output disparity");
-    param("MAX_WINDOW", fx::kMaxWindow, "largest aggregation window");
-    param("DEFAULT_WINDOW", fx::kDefaultWindow, "thesis Sec. 3.1");
+    struct Param {
+        const char* name;
+        long long value;
+        const char* comment;
+    };
+    // A run of constants, written in table order.
+    auto params = [&](std::initializer_list<Param> table) {
+        for (const Param& entry : table) {
+            param(entry.name, entry.value, entry.comment);
+        }
+    };
+    params({
+        {"PIXEL_BITS", fx::kPixelBits, "one colour channel"},
+        {"COST_BITS", fx::kCostBits, "AD cost over RGB"},
+        {"COST_MAX", fx::kCostMax, "3 * 255"},
+        {"COST_OUTSIDE", fx::kCostOutside, "cost where x - d < 0"},
+        {"KERNEL_BITS", fx::kKernelBits, "1-D kernel taps sum to 2^KERNEL_BITS"},
+        {"TAP_BITS", fx::kKernelBits + 1, "one tap, 0 .. 2^KERNEL_BITS"},
+        {"VSUM_BITS", fx::kVerticalSumBits, "vertical pass, full precision"},
+        {"WSUM_BITS", fx::kWindowSumBits, "window sum, full precision"},
+        {"AGG_FRAC_BITS", fx::kAggFracBits, "fraction bits of the aggregate"},
+        {"AGG_SHIFT", fx::kAggShift, "the single rounding shift"},
+        {"AGG_BITS", fx::kAggBits, "aggregated cost, CA values"},
+        {"AGG_MAX", fx::kAggMax, "largest aggregated cost"},
+        {"CA_SUM_BITS", fx::kCaSumBits, "3x3 sum of rule 1"},
+        {"MEAN9_MUL", fx::kMean9Mul, "round(sum / 9) = (sum * MUL + 2^(SHIFT-1)) >> SHIFT"},
+        {"MEAN9_SHIFT", fx::kMean9Shift, ""},
+        {"DIV13_MUL", fx::kDiv13Mul, "round(v / 1.3) = (v * MUL + 2^(SHIFT-1)) >> SHIFT"},
+        {"DIV13_SHIFT", fx::kDiv13Shift, ""},
+        {"RULE2_MIN_COUNT", fx::kRule2MinCount, "agreeing neighbours of 8 for rule 2"},
+        {"DISP_BITS", fx::kDisparityBits, "output disparity"},
+        {"MAX_WINDOW", fx::kMaxWindow, "largest aggregation window"},
+        {"DEFAULT_WINDOW", fx::kDefaultWindow, "thesis Sec. 3.1"},
+    });
 
     // The interface of stereo_top and of the stage modules (stage_table.hpp).
     namespace t = stereo::table;
@@ -71,18 +85,22 @@ std::string package_text() {
           "  // Coordinates after a reset: far outside any frame.\n"
           "  localparam logic signed [COORD_BITS-1:0] NO_PIXEL = -"
        << t::kCoordBits << "'sd" << -t::kNoPixel << ";\n";
-    param("MAX_FRAME_SIDE", t::kMaxFrameSide, "largest WIDTH and HEIGHT");
-    param("CFG_SIZE_BITS", t::kCfgSizeBits, "cfg_width, cfg_height");
-    param("CFG_NDISP_BITS", t::kCfgNdispBits, "cfg_ndisp");
-    param("CFG_RADIUS_BITS", t::kCfgRadiusBits, "cfg_radius");
+    params({
+        {"MAX_FRAME_SIDE", t::kMaxFrameSide, "largest WIDTH and HEIGHT"},
+        {"CFG_SIZE_BITS", t::kCfgSizeBits, "cfg_width, cfg_height"},
+        {"CFG_NDISP_BITS", t::kCfgNdispBits, "cfg_ndisp"},
+        {"CFG_RADIUS_BITS", t::kCfgRadiusBits, "cfg_radius"},
+    });
     sv << "  typedef logic [CFG_SIZE_BITS-1:0] cfg_size_t;\n"
           "  typedef logic [CFG_NDISP_BITS-1:0] cfg_ndisp_t;\n"
           "  typedef logic [CFG_RADIUS_BITS-1:0] cfg_radius_t;\n";
-    param("RGB_BITS", t::kRgbBits, "one RGB pixel");
-    param("IN_BEAT_BITS", t::kInBeatBits, "s_axis_tdata = {right RGB, left RGB}");
-    param("IN_LEFT_LSB", t::kInLeftLsb, "");
-    param("IN_RIGHT_LSB", t::kInRightLsb, "");
-    param("OUT_BEAT_BITS", t::kOutBeatBits, "m_axis_tdata, the layout of out_beat_t");
+    params({
+        {"RGB_BITS", t::kRgbBits, "one RGB pixel"},
+        {"IN_BEAT_BITS", t::kInBeatBits, "s_axis_tdata = {right RGB, left RGB}"},
+        {"IN_LEFT_LSB", t::kInLeftLsb, ""},
+        {"IN_RIGHT_LSB", t::kInRightLsb, ""},
+        {"OUT_BEAT_BITS", t::kOutBeatBits, "m_axis_tdata, the layout of out_beat_t"},
+    });
     sv << "  typedef struct packed {\n"
           "    logic ["
        << t::kOutPadBits - 1
@@ -94,10 +112,12 @@ std::string package_text() {
        << fx::kDisparityBits - 1 << ":" << t::kOutDisparityLsb
        << "\n"
           "  } out_beat_t;\n";
-    param("STATUS_BITS", t::kStatusBits, "sticky status bits:");
-    param("STATUS_EOL_MISPLACED", t::kStatusEolMisplaced, "tlast not at the row end");
-    param("STATUS_SOF_MISPLACED", t::kStatusSofMisplaced, "tuser inside a frame");
-    param("STATUS_CONFIG_CLAMPED", t::kStatusConfigClamped, "configuration out of range");
+    params({
+        {"STATUS_BITS", t::kStatusBits, "sticky status bits:"},
+        {"STATUS_EOL_MISPLACED", t::kStatusEolMisplaced, "tlast not at the row end"},
+        {"STATUS_SOF_MISPLACED", t::kStatusSofMisplaced, "tuser inside a frame"},
+        {"STATUS_CONFIG_CLAMPED", t::kStatusConfigClamped, "configuration out of range"},
+    });
 
     // The CA agreement test (stereo::fx::agrees), shared by rules 1 and 2.
     sv << "\n  // CA rules: 2|n - c| < c  <=>  c < 2n < 3c, exactly in integers "
