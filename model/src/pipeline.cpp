@@ -7,6 +7,7 @@
 
 #include "stereo/search.hpp"
 #include "stereo/stages.hpp"
+#include "stereo/stages/validate.hpp"
 
 namespace stereo {
 namespace {
@@ -72,6 +73,22 @@ void validate(const MatchParams& params, int width, int height) {
         throw std::invalid_argument("ndisp must be in [1, " + std::to_string(fx::kMaxDisparities) +
                                     "], got " + std::to_string(params.ndisp));
     }
+    if (params.min_disp < -fx::kMaxMinDisparity || params.min_disp > fx::kMaxMinDisparity) {
+        throw std::invalid_argument(
+            "min-disp must be in [" + std::to_string(-fx::kMaxMinDisparity) + ", " +
+            std::to_string(fx::kMaxMinDisparity) + "], got " + std::to_string(params.min_disp));
+    }
+    const ValidationParams& v = params.validation;
+    if (v.uniqueness_ratio < 0 || v.uniqueness_ratio > fx::kMaxUniqueness) {
+        throw std::invalid_argument("uniqueness ratio must be in [0, " +
+                                    std::to_string(fx::kMaxUniqueness) + "] percent, got " +
+                                    std::to_string(v.uniqueness_ratio));
+    }
+    if (v.lr_tolerance < 0 || v.lr_tolerance > fx::kMaxLrTolerance) {
+        throw std::invalid_argument("left-right tolerance must be in [0, " +
+                                    std::to_string(fx::kMaxLrTolerance) + "] labels, got " +
+                                    std::to_string(v.lr_tolerance));
+    }
     (void)gaussian_kernel(params.window, params.sigma);  // throws on a bad window or sigma
     (void)make_cost(params.cost);                        // throws on an unknown cost
     validate_size(params, width, height);
@@ -82,6 +99,14 @@ void validate_size(const MatchParams& params, int width, int height) {
         throw std::invalid_argument("ndisp " + std::to_string(params.ndisp) +
                                     " must be smaller than the image width " +
                                     std::to_string(width));
+    }
+    // Some disparity of the range must leave a match inside the image.
+    const int lowest = params.min_disp;
+    const int highest = params.min_disp + params.ndisp - 1;
+    if (lowest >= width || highest <= -width) {
+        throw std::invalid_argument("disparities " + std::to_string(lowest) + " .. " +
+                                    std::to_string(highest) + " leave the image (width " +
+                                    std::to_string(width) + ")");
     }
     const InvalidBorder border = invalid_border(params);
     if (width <= 2 * border.reach || height <= 2 * border.reach) {
@@ -150,8 +175,20 @@ DisparityMap match(const Image& left, const Image& right, const MatchParams& par
                       right, params);
 }
 
-DisparityMap match_with(const CostFunction& cost, const std::vector<std::int32_t>& kernel,
-                        const Image& left, const Image& right, const MatchParams& params) {
+ValidatedDisparity match_validated(const Image& left, const Image& right,
+                                   const MatchParams& params) {
+    check_pair(left, right);
+    validate(params, left.width, left.height);
+    return match_validated_with(*make_cost(params.cost),
+                                gaussian_kernel(params.window, params.sigma), left, right, params);
+}
+
+namespace {
+
+// Runs the pipeline's stages over the 1-D search into `selector`.
+void run_pipeline(const CostFunction& cost, const std::vector<std::int32_t>& kernel,
+                  const Image& left, const Image& right, const MatchParams& params,
+                  Selector& selector) {
     check_pair(left, right);
     validate_size(params, left.width, left.height);
     if (kernel.size() != static_cast<std::size_t>(params.window)) {
@@ -161,15 +198,36 @@ DisparityMap match_with(const CostFunction& cost, const std::vector<std::int32_t
     const int height = left.height;
     const PlanarImage left_planes = cost.prepare(left);
     const PlanarImage right_planes = cost.prepare(right);
-    const auto grid = CandidateGrid::horizontal(width, height, params.ndisp);
+    const auto grid = CandidateGrid::horizontal(width, height, params.ndisp, params.min_disp);
     const auto aggregator = make_gaussian_aggregator(kernel, width, height);
     const auto rule1 = make_ca_rule1(width, height);
     const auto rule2 = make_ca_rule2(width, height);
     const std::array<Refiner*, 2> ca = {rule1.get(), rule2.get()};
-    WinnerTakesAll selector(grid);
     search(left_planes, right_planes, grid,
            {cost, *aggregator, std::span(ca.data(), params.use_ca ? ca.size() : 0), selector});
+}
+
+}  // namespace
+
+DisparityMap match_with(const CostFunction& cost, const std::vector<std::int32_t>& kernel,
+                        const Image& left, const Image& right, const MatchParams& params) {
+    if (params.min_disp != 0 || params.validation != ValidationParams{}) {
+        return to_label_map(match_validated_with(cost, kernel, left, right, params));
+    }
+    // The plain winners: the validating selector's result without its extra work.
+    const auto grid = CandidateGrid::horizontal(left.width, left.height, params.ndisp);
+    WinnerTakesAll selector(grid);
+    run_pipeline(cost, kernel, left, right, params, selector);
     return to_disparity_map(selector.winners(), invalid_border(params));
+}
+
+ValidatedDisparity match_validated_with(const CostFunction& cost,
+                                        const std::vector<std::int32_t>& kernel, const Image& left,
+                                        const Image& right, const MatchParams& params) {
+    ValidatingSelector selector(left.width, left.height, params.ndisp, params.min_disp,
+                                params.validation, invalid_border(params));
+    run_pipeline(cost, kernel, left, right, params, selector);
+    return selector.result();
 }
 
 }  // namespace stereo

@@ -9,8 +9,9 @@
 
 namespace stereo {
 
-CandidateGrid CandidateGrid::horizontal(int width, int height, int ndisp) {
-    return {width, height, ndisp, 1, {0}, {0}, {0}, {0}};
+CandidateGrid CandidateGrid::horizontal(int width, int height, int ndisp, int min_disp) {
+    const auto base = static_cast<std::int16_t>(min_disp);
+    return {width, height, ndisp, 1, {base}, {0}, {base}, {0}};
 }
 
 bool window_valid(int x, int y, int d, int v, int width, int height, int reach) {
@@ -60,10 +61,11 @@ void cost_plane(const CostFunction& cost, const PlanarImage& left, const PlanarI
     }
 }
 
-Dsi cost_volume(const CostFunction& cost, const Image& left, const Image& right, int ndisp) {
+Dsi cost_volume(const CostFunction& cost, const Image& left, const Image& right, int ndisp,
+                int min_disp) {
     const PlanarImage left_planes = cost.prepare(left);
     const PlanarImage right_planes = cost.prepare(right);
-    const auto grid = CandidateGrid::horizontal(left.width, left.height, ndisp);
+    const auto grid = CandidateGrid::horizontal(left.width, left.height, ndisp, min_disp);
     Dsi dsi(left.width, left.height, ndisp);
     for (int d = 0; d < ndisp; ++d) {
         cost_plane(cost, left_planes, right_planes, grid, d, 0, dsi.plane(d).data());

@@ -68,6 +68,33 @@ inline constexpr int kMaxDisparities = 1 << kDisparityBits;  // labels 0..255
 inline constexpr int kInvalidDisparity = 0;                  // written where the valid flag is 0
 inline constexpr int kDefaultDisparities = 64;
 
+// ---- Stage 6: validation and sub-pixel output (docs/fixed-point.md stage 6) --------------
+// The search covers d = min_disp .. min_disp + ndisp - 1; |min_disp| <= kMaxMinDisparity keeps
+// every disparity x 16 inside a signed 16-bit output.
+inline constexpr int kMaxMinDisparity = 1024;
+inline constexpr int kSubpixelBits = 4;  // disparities are output x 16, as OpenCV and Vitis do
+inline constexpr int kSubpixelScale = 1 << kSubpixelBits;
+inline constexpr int kFixedDisparityBits = 16;  // signed disparity x 16
+static_assert((kMaxMinDisparity + kMaxDisparities) * kSubpixelScale <
+              (1 << (kFixedDisparityBits - 1)));
+// Uniqueness: invalid when C1 * (100 + U) >= C2 * 100, U in 0 .. kMaxUniqueness percent.
+inline constexpr int kMaxUniqueness = 255;
+inline constexpr int kUniquenessBase = 100;
+// Left-right check: invalid when |dL(x) - dR(x - dL(x))| > T, T in 0 .. kMaxLrTolerance labels.
+inline constexpr int kMaxLrTolerance = 255;
+// Certainty = floor((C2 - C1) * 2^kCertaintyBits / (C2 + 1)), 0 .. 255; C2 = kNoSecondCost
+// when every label lies next to the winner (ndisp <= 3).
+inline constexpr int kCertaintyBits = 8;
+inline constexpr int kNoSecondCost = (1 << kAggBits) - 1;
+static_assert(kNoSecondCost > kAggMax);
+static_assert(static_cast<std::int64_t>(kAggMax) * (kUniquenessBase + kMaxUniqueness) < (1 << 23));
+// Why a pixel is invalid (the output beat's reason field, kReasonBits wide).
+inline constexpr int kReasonBits = 3;
+inline constexpr int kReasonValid = 0;
+inline constexpr int kReasonBorder = 1;      // window or match outside the images
+inline constexpr int kReasonUniqueness = 2;  // a distant label costs almost as little
+inline constexpr int kReasonLeftRight = 3;   // the right image's winner disagrees
+
 // ---- Exactness proofs (compile time) ----------------------------------------------------
 constexpr std::uint32_t mean9(std::uint32_t sum) {
     return (sum * kMean9Mul + (1U << (kMean9Shift - 1))) >> kMean9Shift;

@@ -10,29 +10,43 @@
 #include "stereo/constants.hpp"
 #include "stereo/dsi.hpp"
 #include "stereo/image.hpp"
+#include "stereo/validated.hpp"
 
 namespace stereo {
 
+// The validation stages after the winner takes all (docs/fixed-point.md stage 6). Each can be
+// switched off; with all off the output is the plain winner.
+struct ValidationParams {
+    bool uniqueness = false;  // invalid when C1 * (100 + ratio) >= C2 * 100
+    int uniqueness_ratio = 10;
+    bool left_right = false;  // invalid when |dL(x) - dR(x - dL(x))| > tolerance
+    int lr_tolerance = 1;
+    bool subpixel = false;  // parabola through the costs at d - 1, d, d + 1
+    bool operator==(const ValidationParams&) const = default;
+};
+
 struct MatchParams {
-    int ndisp = fx::kDefaultDisparities;  // labels 0 .. ndisp-1
+    int ndisp = fx::kDefaultDisparities;  // labels 0 .. ndisp-1: d = min_disp + label
     int window = fx::kDefaultWindow;      // odd side of the square aggregation window
     double sigma = fx::kDefaultSigma;     // Gaussian sigma in pixels
     bool use_ca = true;                   // apply CA rules 1 and 2
     std::string cost = "ad";              // a name of stereo::cost_names(): "ad", "census"
+    int min_disp = 0;                     // smallest disparity searched (may be negative)
+    ValidationParams validation{};        // 1-D pipeline only
 };
 
 // Which outputs are valid. `reach` is how far a result looks from its pixel: the aggregation
 // radius, plus one for the 3x3 CA neighbourhoods. A pixel is valid when everything its winning
 // disparity d depends on lies inside both images: the window stays inside the image
 // (reach <= x < width - reach, reach <= y < height - reach) and its right-image samples do too
-// (x - d - reach >= 0).
+// (reach <= x - d < width - reach; the upper bound matters for negative d only).
 struct InvalidBorder {
     int reach = 0;
     bool window_inside(int x, int y, int width, int height) const {
         return x >= reach && x < width - reach && y >= reach && y < height - reach;
     }
     bool valid(int x, int y, int d, int width, int height) const {
-        return window_inside(x, y, width, height) && x - d >= reach;
+        return window_inside(x, y, width, height) && x - d >= reach && x - d < width - reach;
     }
 };
 
@@ -73,8 +87,14 @@ Dsi ca_rule2(const Dsi& dsi);
 DisparityMap wta(const Dsi& dsi, const InvalidBorder& border);
 
 // The whole pipeline: validate, cost (params.cost), aggregate, [ca_rule1, ca_rule2], wta, run
-// by the plane scheduler (stereo/search.hpp).
+// by the plane scheduler (stereo/search.hpp). The 8-bit view (to_label_map) of
+// match_validated: with min_disp 0 and every validation stage off, the plain winners.
 DisparityMap match(const Image& left, const Image& right, const MatchParams& params);
+
+// The same with stage 6 (params.min_disp, params.validation): signed sub-pixel disparity x 16,
+// invalid reason and certainty per pixel.
+ValidatedDisparity match_validated(const Image& left, const Image& right,
+                                   const MatchParams& params);
 
 // The checks of validate() that depend on the image size (ndisp against the width, the invalid
 // border against the size), for callers that built the kernel and the cost already.
@@ -86,6 +106,9 @@ class CostFunction;
 // matcher that builds its stages once.
 DisparityMap match_with(const CostFunction& cost, const std::vector<std::int32_t>& kernel,
                         const Image& left, const Image& right, const MatchParams& params);
+ValidatedDisparity match_validated_with(const CostFunction& cost,
+                                        const std::vector<std::int32_t>& kernel, const Image& left,
+                                        const Image& right, const MatchParams& params);
 
 // Throws std::invalid_argument unless the two images have the same size and channel count.
 void check_pair(const Image& left, const Image& right);

@@ -10,14 +10,21 @@ namespace stereo::naive {
 // Obviously-correct integer versions: direct 2-D window sums, integer division for the
 // rounded 1/9 and 1/1.3, no separability, no incremental tricks. They must equal the
 // optimised stages of pipeline.hpp exactly.
-Dsi cost(const Image& left, const Image& right, int ndisp);
+Dsi cost(const Image& left, const Image& right, int ndisp, int min_disp = 0);
 Dsi aggregate(const Dsi& cost, const std::vector<std::int32_t>& kernel);
 Dsi ca_rule1(const Dsi& dsi);
 Dsi ca_rule2(const Dsi& dsi);
 DisparityMap wta(const Dsi& dsi, const InvalidBorder& border);
 // The naive volume of the cost named `name` (stereo::cost_names()).
-Dsi cost_volume(const std::string& name, const Image& left, const Image& right, int ndisp);
+Dsi cost_volume(const std::string& name, const Image& left, const Image& right, int ndisp,
+                int min_disp = 0);
 DisparityMap match(const Image& left, const Image& right, const MatchParams& params);
+// Stage 6 by its definition over a whole final volume: every label scanned for the winner, the
+// second-best cost and the right image's winner; the parabola vertex in double precision.
+ValidatedDisparity validate(const Dsi& dsi, int min_disp, const ValidationParams& params,
+                            const InvalidBorder& border);
+ValidatedDisparity match_validated(const Image& left, const Image& right,
+                                   const MatchParams& params);
 
 }  // namespace stereo::naive
 
@@ -25,7 +32,7 @@ namespace stereo::census::naive {
 
 // Census cost by its definition: codes recomputed for every pixel pair from the naive luma,
 // bits counted one by one.
-Dsi cost(const Image& left, const Image& right, int ndisp);
+Dsi cost(const Image& left, const Image& right, int ndisp, int min_disp = 0);
 
 }  // namespace stereo::census::naive
 

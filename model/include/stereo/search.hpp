@@ -26,8 +26,8 @@ struct CandidateGrid {
     std::vector<std::int16_t> prefer_d;
     std::vector<std::int16_t> prefer_v;
 
-    // The 1-D search: d = 0..ndisp-1, v = 0, ties to the smaller d.
-    static CandidateGrid horizontal(int width, int height, int ndisp);
+    // The 1-D search: d = min_disp .. min_disp + ndisp - 1, v = 0, ties to the smaller d.
+    static CandidateGrid horizontal(int width, int height, int ndisp, int min_disp = 0);
     bool uniform() const { return base_d.size() == 1; }
     std::size_t at(std::size_t p) const { return uniform() ? 0 : p; }
 };
@@ -87,8 +87,9 @@ std::int64_t search(const PlanarImage& left, const PlanarImage& right, const Can
 void cost_plane(const CostFunction& cost, const PlanarImage& left, const PlanarImage& right,
                 const CandidateGrid& grid, int i, int j, CostValue* out);
 
-// Stage 1 over a whole 1-D volume (d = 0..ndisp-1), for the stage-by-stage tests.
-Dsi cost_volume(const CostFunction& cost, const Image& left, const Image& right, int ndisp);
+// Stage 1 over a whole 1-D volume (plane k: d = min_disp + k), for the stage-by-stage tests.
+Dsi cost_volume(const CostFunction& cost, const Image& left, const Image& right, int ndisp,
+                int min_disp = 0);
 
 // A pixel is valid when its window and CA neighbourhood (`reach`) lie inside both images at its
 // displacement: reach <= x < W - reach, reach <= y < H - reach, x - d >= reach and

@@ -20,23 +20,24 @@ bool bit(const Image& grey, int x, int y, int n) {
 
 }  // namespace
 
-Dsi cost(const Image& left, const Image& right, int ndisp) {
+Dsi cost(const Image& left, const Image& right, int ndisp, int min_disp) {
     check_pair(left, right);
     const Image l = edge_frontend::naive::luma(left);
     const Image r = edge_frontend::naive::luma(right);
     Dsi dsi(left.width, left.height, ndisp);
-    for (int d = 0; d < ndisp; ++d) {
+    for (int k = 0; k < ndisp; ++k) {
+        const int d = min_disp + k;
         for (int y = 0; y < left.height; ++y) {
             for (int x = 0; x < left.width; ++x) {
-                if (x - d < 0) {
-                    dsi.at(x, y, d) = fx::kCostOutside;
+                if (x - d < 0 || x - d >= left.width) {
+                    dsi.at(x, y, k) = fx::kCostOutside;
                     continue;
                 }
                 int distance = 0;
                 for (int n = 0; n < kBits; ++n) {
                     distance += bit(l, x, y, n) != bit(r, x - d, y, n) ? 1 : 0;
                 }
-                dsi.at(x, y, d) = static_cast<Dsi::Value>(distance * kWeight);
+                dsi.at(x, y, k) = static_cast<Dsi::Value>(distance * kWeight);
             }
         }
     }

@@ -1,6 +1,7 @@
 // Deliberately plain: every value is computed straight from its definition in
 // docs/fixed-point.md, with bounds checks in the innermost loops and integer division instead
 // of multiply-and-shift. Slow, and meant to be.
+#include <cmath>
 #include <cstdlib>
 
 #include "cells.hpp"
@@ -27,14 +28,15 @@ bool differs_by_less_than_half(int neighbour, int centre) {
 
 }  // namespace
 
-Dsi cost(const Image& left, const Image& right, int ndisp) {
+Dsi cost(const Image& left, const Image& right, int ndisp, int min_disp) {
     check_pair(left, right);
     Dsi dsi(left.width, left.height, ndisp);
     for (int y = 0; y < left.height; ++y) {
         for (int x = 0; x < left.width; ++x) {
-            for (int d = 0; d < ndisp; ++d) {
-                if (x - d < 0) {
-                    dsi.at(x, y, d) = fx::kCostMax;  // the right pixel is outside the image
+            for (int k = 0; k < ndisp; ++k) {
+                const int d = min_disp + k;
+                if (x - d < 0 || x - d >= left.width) {
+                    dsi.at(x, y, k) = fx::kCostMax;  // the right pixel is outside the image
                     continue;
                 }
                 int sum = 0;
@@ -43,7 +45,7 @@ Dsi cost(const Image& left, const Image& right, int ndisp) {
                     const int channel = left.channels == 3 ? c : 0;
                     sum += std::abs(left.at(x, y, channel) - right.at(x - d, y, channel));
                 }
-                dsi.at(x, y, d) = static_cast<Dsi::Value>(sum);
+                dsi.at(x, y, k) = static_cast<Dsi::Value>(sum);
             }
         }
     }
@@ -142,24 +144,115 @@ DisparityMap wta(const Dsi& dsi, const InvalidBorder& border) {
     return map;
 }
 
-Dsi cost_volume(const std::string& name, const Image& left, const Image& right, int ndisp) {
+Dsi cost_volume(const std::string& name, const Image& left, const Image& right, int ndisp,
+                int min_disp) {
     if (name == "census") {
-        return census::naive::cost(left, right, ndisp);
+        return census::naive::cost(left, right, ndisp, min_disp);
     }
     (void)make_cost(name);  // throws on an unknown name
-    return naive::cost(left, right, ndisp);
+    return naive::cost(left, right, ndisp, min_disp);
 }
 
-DisparityMap match(const Image& left, const Image& right, const MatchParams& params) {
+namespace {
+
+// The final volume of the pipeline, stage by stage.
+Dsi final_volume(const Image& left, const Image& right, const MatchParams& params) {
     check_pair(left, right);
     validate(params, left.width, left.height);
     // Qualified calls: argument-dependent lookup would also find the optimised stereo:: stages.
-    Dsi dsi = naive::aggregate(naive::cost_volume(params.cost, left, right, params.ndisp),
-                               gaussian_kernel(params.window, params.sigma));
+    Dsi dsi = naive::aggregate(
+        naive::cost_volume(params.cost, left, right, params.ndisp, params.min_disp),
+        gaussian_kernel(params.window, params.sigma));
     if (params.use_ca) {
         dsi = naive::ca_rule2(naive::ca_rule1(dsi));
     }
-    return naive::wta(dsi, invalid_border(params));
+    return dsi;
+}
+
+// First label of the smallest cost among labels k with accept(k).
+template <typename Accept, typename CostOf>
+int first_minimum(int ndisp, Accept accept, CostOf cost_of) {
+    int best = -1;
+    for (int k = 0; k < ndisp; ++k) {
+        if (accept(k) && (best < 0 || cost_of(k) < cost_of(best))) {
+            best = k;
+        }
+    }
+    return best;
+}
+
+}  // namespace
+
+DisparityMap match(const Image& left, const Image& right, const MatchParams& params) {
+    if (params.min_disp != 0 || params.validation != ValidationParams{}) {
+        return to_label_map(naive::match_validated(left, right, params));
+    }
+    return naive::wta(final_volume(left, right, params), invalid_border(params));
+}
+
+ValidatedDisparity validate(const Dsi& dsi, int min_disp, const ValidationParams& params,
+                            const InvalidBorder& border) {
+    const int width = dsi.width();
+    const int height = dsi.height();
+    const int ndisp = dsi.ndisp();
+    ValidatedDisparity out(width, height);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const auto cost = [&](int k) { return static_cast<int>(dsi.at(x, y, k)); };
+            const int winner = first_minimum(
+                ndisp, [](int) { return true; }, cost);
+            const int second = first_minimum(
+                ndisp, [&](int k) { return k < winner - 1 || k > winner + 1; }, cost);
+            const std::int64_t c1 = cost(winner);
+            const std::int64_t c2 = second < 0 ? fx::kNoSecondCost : cost(second);
+            const std::size_t q = out.index(x, y);
+            out.certainty[q] = static_cast<std::uint8_t>((c2 - c1) * 256 / (c2 + 1));
+            const int d = min_disp + winner;
+            const int r = border.reach;
+            const bool inside = x >= r && y >= r && x < width - r && y < height - r && x - d >= r &&
+                                x - d < width - r;
+            if (!inside) {
+                out.reason[q] = fx::kReasonBorder;
+                continue;
+            }
+            if (params.uniqueness && second >= 0 &&
+                c1 * (100 + params.uniqueness_ratio) >= c2 * 100) {
+                out.reason[q] = fx::kReasonUniqueness;
+                continue;
+            }
+            if (params.left_right) {
+                // The right pixel's own winner: the first minimum over the left pixels that see it.
+                const int xr = x - d;
+                const int right_winner = first_minimum(
+                    ndisp,
+                    [&](int k) { return xr + min_disp + k >= 0 && xr + min_disp + k < width; },
+                    [&](int k) { return static_cast<int>(dsi.at(xr + min_disp + k, y, k)); });
+                if (std::abs(winner - right_winner) > params.lr_tolerance) {
+                    out.reason[q] = fx::kReasonLeftRight;
+                    continue;
+                }
+            }
+            out.reason[q] = fx::kReasonValid;
+            double offset = 0.0;
+            if (params.subpixel && winner > 0 && winner < ndisp - 1) {
+                const double before = cost(winner - 1);
+                const double after = cost(winner + 1);
+                const double curvature = before + after - 2.0 * static_cast<double>(c1);
+                if (curvature > 0) {
+                    // The parabola's vertex in 1/16 pixel, halves away from zero (std::round).
+                    offset = std::round(8.0 * (before - after) / curvature);
+                }
+            }
+            out.fixed[q] = static_cast<std::int16_t>(16 * d + static_cast<int>(offset));
+        }
+    }
+    return out;
+}
+
+ValidatedDisparity match_validated(const Image& left, const Image& right,
+                                   const MatchParams& params) {
+    return naive::validate(final_volume(left, right, params), params.min_disp, params.validation,
+                           invalid_border(params));
 }
 
 }  // namespace stereo::naive
