@@ -234,7 +234,7 @@ void add_cosim_command(CLI::App& app) {
     // The smallest Verilated configurations cover these; larger ones need a full build.
     options->matcher.config.pipeline.ndisp = 16;
     options->matcher.config.pipeline.window = 5;
-    add_matcher_options(*command, options->matcher, MatcherChoice::fixed);
+    add_matcher_options(*command, options->matcher, MatcherChoice::fixed, {.validation = true});
     command->add_option("--downscale", options->downscale, "Shrink both images by integer F")
         ->capture_default_str();
     command->add_option("--crop", options->crop, "Use the region WxH+X+Y (after --downscale)");

@@ -218,7 +218,8 @@ void add_match_command(CLI::App& app) {
         ->add_option("-o,--output", options->output,
                      "Disparity PNG: disparity * scale, 0 = invalid")
         ->required();
-    add_matcher_options(*command, options->matcher, MatcherChoice::selectable);
+    add_matcher_options(*command, options->matcher, MatcherChoice::selectable,
+                        {.validation = true});
     command
         ->add_option("--vrange", options->matcher.config.vrange,
                      "hierarchical: vertical labels V (offsets -V/2..V/2-1), 0 = ndisp")

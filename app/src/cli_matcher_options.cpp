@@ -37,6 +37,10 @@ std::string MatcherOptions::resolved_method() const {
 MatchConfig MatcherOptions::resolved() const {
     MatchConfig resolved_config = config;
     resolved_config.pipeline.use_ca = !no_ca;
+    ValidationParams& validation = resolved_config.pipeline.validation;
+    validation.uniqueness =
+        validation.uniqueness || (uniqueness != nullptr && uniqueness->count() > 0);
+    validation.left_right = validation.left_right || (lr_check != nullptr && lr_check->count() > 0);
     return resolved_config;
 }
 
@@ -53,6 +57,24 @@ void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoi
                         ->capture_default_str();
     if (exposed.no_ca) {
         command.add_flag("--no-ca", options.no_ca, "Skip the cellular-automata rules");
+    }
+    if (exposed.validation) {
+        ValidationParams& v = params.validation;
+        command
+            .add_option("--min-disp", params.min_disp,
+                        "Smallest disparity searched (may be negative): labels cover "
+                        "min-disp .. min-disp + ndisp - 1")
+            ->capture_default_str();
+        options.uniqueness =
+            command.add_option("--uniqueness", v.uniqueness_ratio,
+                               "Invalidate a pixel whose best cost is not U percent below every "
+                               "cost outside its neighbours (0..255)");
+        options.lr_check = command.add_option(
+            "--lr-check", v.lr_tolerance,
+            "Invalidate a pixel whose right-image winner differs by more than T labels (0..255)");
+        command.add_flag("--subpixel", v.subpixel,
+                         "Refine each disparity by the parabola through its neighbours' costs "
+                         "(1/16 pixel)");
     }
     if (choice == MatcherChoice::fixed) {
         return;

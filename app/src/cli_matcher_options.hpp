@@ -28,12 +28,14 @@ struct MatcherOptions {
     std::string frontend = "model";  // "edges": the same as --method edges (kept for scripts)
     CLI::Option* window = nullptr;
     CLI::Option* sigma = nullptr;
+    CLI::Option* uniqueness = nullptr;
+    CLI::Option* lr_check = nullptr;
 
     // --window or --sigma was given on the command line.
     bool window_given() const;
     // The method after --frontend; throws std::invalid_argument when the two contradict.
     std::string resolved_method() const;
-    // The configuration with --no-ca applied.
+    // The configuration with --no-ca and the stage 6 switches applied.
     MatchConfig resolved() const;
 };
 
@@ -47,6 +49,7 @@ enum class MatcherChoice {
 struct ExposedParams {
     bool ndisp = true;
     bool no_ca = true;
+    bool validation = false;  // --min-disp, --uniqueness, --lr-check, --subpixel (stage 6)
 };
 
 // Registers the options on `command`. The defaults shown by --help are the values

@@ -34,15 +34,14 @@ class ModelPipeline final : public Matcher {
         : params_(params),
           kernel_(gaussian_kernel(params.window, params.sigma)),
           cost_(make_cost(params.cost)) {
-        if (params.ndisp < 1 || params.ndisp > fx::kMaxDisparities) {
-            throw std::invalid_argument("ndisp must be in [1, " +
-                                        std::to_string(fx::kMaxDisparities) + "], got " +
-                                        std::to_string(params.ndisp));
-        }
+        validate_params(params);
     }
     void validate(int width, int height) const override { validate_size(params_, width, height); }
     MatchResult compute(const Image& left, const Image& right) const override {
-        return {match_with(*cost_, kernel_, left, right, params_), {}, {}, {}, {}};
+        MatchResult result;
+        result.validated = match_validated_with(*cost_, kernel_, left, right, params_);
+        result.disparity = to_label_map(result.validated);
+        return result;
     }
 
   private:
@@ -143,10 +142,31 @@ std::unique_ptr<Matcher> make_sparse(const MatchConfig& config) {
 MatcherFactory pipeline_factory(PipelineFunction run) {
     return [run](const MatchConfig& config) -> std::unique_ptr<Matcher> {
         const MatchParams params = config.pipeline;
+        validate_params(params);
+        if (params.min_disp != 0 || params.validation != ValidationParams{}) {
+            throw std::invalid_argument(
+                "this engine has no minimum disparity or validation stages (use --engine model, "
+                "naive, hls or rtl)");
+        }
         return std::make_unique<FunctionMatcher>(
             [params](int width, int height) { validate(params, width, height); },
             [params, run](const Image& left, const Image& right) {
                 return MatchResult{run(left, right, params), {}, {}, {}, {}};
+            });
+    };
+}
+
+MatcherFactory pipeline_factory(ValidatedPipelineFunction run) {
+    return [run](const MatchConfig& config) -> std::unique_ptr<Matcher> {
+        const MatchParams params = config.pipeline;
+        validate_params(params);
+        return std::make_unique<FunctionMatcher>(
+            [params](int width, int height) { validate(params, width, height); },
+            [params, run](const Image& left, const Image& right) {
+                MatchResult result;
+                result.validated = run(left, right, params);
+                result.disparity = to_label_map(result.validated);
+                return result;
             });
     };
 }
@@ -203,7 +223,7 @@ void register_model_matchers(MatcherRegistry& registry) {
                       return std::make_unique<ModelPipeline>(config.pipeline);
                   }});
     registry.add({"pipeline", "naive", "Sec. 3.1 pipeline, naive reference (direct sums)",
-                  pipeline_factory(&naive::match)});
+                  pipeline_factory(&naive::match_validated)});
     registry.add({"pipeline", "float", "Sec. 3.1 pipeline in double precision",
                   pipeline_factory(&floating::match)});
     registry.add({"edges", "model", "LoG edge front end with truncated AD, no CA (Sec. 4.1.1)",

@@ -69,6 +69,11 @@ InvalidBorder invalid_border(const MatchParams& params) {
 }
 
 void validate(const MatchParams& params, int width, int height) {
+    validate_params(params);
+    validate_size(params, width, height);
+}
+
+void validate_params(const MatchParams& params) {
     if (params.ndisp < 1 || params.ndisp > fx::kMaxDisparities) {
         throw std::invalid_argument("ndisp must be in [1, " + std::to_string(fx::kMaxDisparities) +
                                     "], got " + std::to_string(params.ndisp));
@@ -91,7 +96,6 @@ void validate(const MatchParams& params, int width, int height) {
     }
     (void)gaussian_kernel(params.window, params.sigma);  // throws on a bad window or sigma
     (void)make_cost(params.cost);                        // throws on an unknown cost
-    validate_size(params, width, height);
 }
 
 void validate_size(const MatchParams& params, int width, int height) {

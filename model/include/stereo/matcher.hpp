@@ -39,6 +39,9 @@ struct MatchResult {
     std::vector<Winners> levels;
     // Named counts for reports: DSI cells per level, validation outcomes, ...
     std::vector<std::pair<std::string, std::int64_t>> counts;
+    // Pipeline: stage 6's full output (signed sub-pixel disparity x 16, invalid reason,
+    // certainty), of which `disparity` is the 8-bit view; empty for the other methods.
+    ValidatedDisparity validated;
 
     // The count named `name`, 0 when the matcher did not report it.
     std::int64_t count(std::string_view name) const {
@@ -102,9 +105,13 @@ class FunctionMatcher final : public Matcher {
     Compute compute_;
 };
 
-// A factory for a pipeline engine: validates with stereo::validate, then runs `run`.
+// A factory for a pipeline engine: validates with stereo::validate, then runs `run`. An engine
+// that returns only the 8-bit map refuses min_disp and the validation stages.
 using PipelineFunction = DisparityMap (*)(const Image&, const Image&, const MatchParams&);
 MatcherFactory pipeline_factory(PipelineFunction run);
+using ValidatedPipelineFunction = ValidatedDisparity (*)(const Image&, const Image&,
+                                                         const MatchParams&);
+MatcherFactory pipeline_factory(ValidatedPipelineFunction run);
 
 // The model's matchers: pipeline (model, naive, float), edges (model, naive), hierarchical
 // (model, naive, full-search), sparse (model).

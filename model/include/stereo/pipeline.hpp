@@ -53,6 +53,8 @@ struct InvalidBorder {
 // Throws std::invalid_argument with a one-line message when the parameters are impossible
 // for this image size (even/too-large window, ndisp out of range, image smaller than border).
 void validate(const MatchParams& params, int width, int height);
+// The checks of validate() that do not depend on the image size.
+void validate_params(const MatchParams& params);
 
 // The sigmas a kernel may have: below 0.01 every window is a single tap, above 1000 every window
 // up to fx::kMaxWindow is a box to the kernel's precision (docs/fixed-point.md).
