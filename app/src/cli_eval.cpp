@@ -13,6 +13,7 @@
 
 #include "cli.hpp"
 #include "cli_command.hpp"
+#include "stereo_io/disparity_files.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/metrics.hpp"
 #include "stereo_io/output.hpp"
@@ -33,6 +34,8 @@ struct EvalOptions {
     double threshold = 1.0;
     std::string error_map;  // empty: not written
     bool json = false;
+    std::string encoding = "scaled";  // of a PNG DISP: scaled or offset16 (.pfm: by extension)
+    std::string same_pixels;          // another disparity file: score where both are valid
 };
 
 std::string quoted(const std::string& path) {
@@ -76,6 +79,7 @@ void print_text(const io::EvalResult& result) {
     print_region("bad_nonocc", result.nonocc, "--nonocc");
     print_region("bad_all", result.all, "--all");
     print_region("bad_disc", result.disc, "--disc");
+    print_region("bad_valid", result.valid, "--all");
     if (result.nmse.has_value()) {
         std::printf("nmse        %.6g  (%lld pixels)\n", *result.nmse,
                     static_cast<long long>(result.nmse_pixels));
@@ -103,23 +107,52 @@ void run_eval(const EvalOptions& options) {
         throw std::invalid_argument("--gt-downscale must be >= 1, got " +
                                     std::to_string(options.gt_downscale));
     }
-    io::check_outputs_distinct({options.error_map}, {options.disparity, options.ground_truth,
-                                                     options.nonocc, options.all, options.disc});
+    io::check_outputs_distinct(
+        {options.error_map}, {options.disparity, options.ground_truth, options.nonocc, options.all,
+                              options.disc, options.same_pixels});
     if (!options.error_map.empty()) {
         io::check_writable_location(options.error_map);
     }
+    const io::DisparityEncoding png_encoding = options.encoding == "offset16"
+                                                   ? io::DisparityEncoding::offset16
+                                                   : io::DisparityEncoding::scaled;
+    const auto load_ours = [&](const std::string& path) {
+        return io::load_disparity_file(path, io::encoding_of(path, png_encoding), options.scale);
+    };
+    // Every map is float with NaN where invalid or unknown: valid zero and negative
+    // disparities count like any other.
     io::EvalInput input{
-        .disparity = {io::load_disparity(options.disparity, options.scale),
-                      "disparity " + quoted(options.disparity)},
+        .disparity = {load_ours(options.disparity), "disparity " + quoted(options.disparity)},
         .ground_truth = {io::downscale_ground_truth(
-                             io::load_disparity(options.ground_truth, options.gt_scale),
+                             io::load_disparity_file(options.ground_truth,
+                                                     io::encoding_of(options.ground_truth,
+                                                                     io::DisparityEncoding::scaled),
+                                                     options.gt_scale),
                              options.gt_downscale),
                          "ground truth " + quoted(options.ground_truth)},
         .nonocc = load_optional_mask(options.nonocc, "nonocc", options.gt_downscale),
         .all = load_optional_mask(options.all, "all", options.gt_downscale),
         .disc = load_optional_mask(options.disc, "disc", options.gt_downscale),
         .threshold = options.threshold,
+        .zero_is_invalid = false,
+        .gt_zero_is_unknown = false,
     };
+    if (!options.same_pixels.empty()) {
+        const cv::Mat other = load_ours(options.same_pixels);
+        if (other.size() != input.disparity.mat.size()) {
+            throw std::invalid_argument("--same-pixels " + quoted(options.same_pixels) +
+                                        " is not the size of " + quoted(options.disparity));
+        }
+        cv::Mat both(other.size(), CV_8UC1, cv::Scalar(0));
+        for (int y = 0; y < other.rows; ++y) {
+            for (int x = 0; x < other.cols; ++x) {
+                const bool valid = std::isfinite(other.at<float>(y, x)) &&
+                                   std::isfinite(input.disparity.mat.at<float>(y, x));
+                both.at<std::uint8_t>(y, x) = valid ? 255 : 0;
+            }
+        }
+        input.scored = io::NamedMat{both, "pixels valid in both maps"};
+    }
     const io::EvalResult result = io::evaluate(input);  // checks every size first
     if (!options.error_map.empty()) {
         io::write_png(options.error_map, io::error_map(input));
@@ -138,8 +171,9 @@ void add_eval_command(CLI::App& app) {
     const auto [command, options] = add_command<EvalOptions>(
         app, "eval", "Score a disparity PNG against ground truth (Middlebury bad-pixel %, NMSE).",
         run_eval);
-    command->add_option("DISP", options->disparity, "Our disparity PNG, 0 = invalid")->required();
-    command->add_option("GT", options->ground_truth, "Ground-truth PNG, 0 = unknown")->required();
+    command->add_option("DISP", options->disparity, "Our disparity PNG or PFM")->required();
+    command->add_option("GT", options->ground_truth, "Ground-truth PNG (0 = unknown) or PFM")
+        ->required();
     command->add_option("--scale", options->scale, "DISP holds disparity * K")
         ->capture_default_str();
     command->add_option("--gt-scale", options->gt_scale, "GT holds disparity * G")
@@ -157,6 +191,16 @@ void add_eval_command(CLI::App& app) {
     command->add_option("--error-map", options->error_map,
                         "Write an RGB PNG: grey correct, red bad, blue invalid, black unscored");
     command->add_flag("--json", options->json, "Print the scores as one JSON object");
+    command
+        ->add_option("--encoding", options->encoding,
+                     "How a PNG DISP stores disparities: scaled (d * K, 0 = invalid) or offset16 "
+                     "(32768 + 16 d, 0 = invalid; stereo match --png16). A .pfm file (DISP or GT) "
+                     "is read as float with inf = invalid")
+        ->check(CLI::IsMember({"scaled", "offset16"}))
+        ->capture_default_str();
+    command->add_option("--same-pixels", options->same_pixels,
+                        "Score only pixels valid in DISP and in this other disparity file (same "
+                        "encoding), to compare two maps on one pixel set");
 }
 
 }  // namespace stereo::cli

@@ -15,6 +15,7 @@
 #include "cli_command.hpp"
 #include "cli_matcher_options.hpp"
 #include "stereo/hierarchical.hpp"
+#include "stereo_io/disparity_files.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/output.hpp"
 
@@ -31,6 +32,7 @@ struct MatchOptions {
     int scale = 1;
     int downscale = 1;
     bool json = false;
+    bool png16 = false;       // pipeline: offset16 PNG (signed sub-pixel) instead of 8-bit
     std::string vertical;     // 2-D methods: vertical offset PNG, empty: none
     std::string dump_levels;  // hierarchical: folder for the per-level maps, empty: none
 };
@@ -111,6 +113,24 @@ void run_match(const MatchOptions& options) {
         throw std::invalid_argument("--downscale must be >= 1, got " +
                                     std::to_string(options.downscale));
     }
+    const auto output_encoding =
+        io::encoding_of(options.output, options.png16 ? io::DisparityEncoding::offset16
+                                                      : io::DisparityEncoding::scaled);
+    {
+        std::string extension = std::filesystem::path(options.output).extension().string();
+        for (char& c : extension) {
+            c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        }
+        if (extension != ".png" && extension != ".pfm") {
+            throw std::invalid_argument("-o must name a .png or .pfm file, got '" + options.output +
+                                        "'");
+        }
+    }
+    if (output_encoding != io::DisparityEncoding::scaled && method != "pipeline") {
+        throw std::invalid_argument(
+            "PFM and --png16 outputs hold the pipeline's validated disparities: use --method "
+            "pipeline");
+    }
     const MatchConfig config = options.matcher.resolved();
     const auto matcher = matchers().create(method, engine, config);
     const int ndisp = config.pipeline.ndisp;
@@ -138,7 +158,15 @@ void run_match(const MatchOptions& options) {
         std::chrono::steady_clock::now() - start;
 
     const DisparityMap& map = result.disparity;
-    const cv::Mat stored = io::disparity_to_mat(map, ndisp, options.scale);
+    std::string stored_bytes;
+    if (output_encoding == io::DisparityEncoding::pfm) {
+        stored_bytes = io::encode_pfm(io::to_float_disparity(result.validated));
+    } else if (output_encoding == io::DisparityEncoding::offset16) {
+        stored_bytes = io::encode_png(io::to_offset16(result.validated), options.output);
+    } else {
+        stored_bytes =
+            io::encode_png(io::disparity_to_mat(map, ndisp, options.scale), options.output);
+    }
     const cv::Mat colour = options.colour.empty() ? cv::Mat() : io::disparity_to_colour(map, ndisp);
     cv::Mat vertical;
     if (!options.vertical.empty() && !result.levels.empty()) {
@@ -147,7 +175,7 @@ void run_match(const MatchOptions& options) {
     }
     const auto levels = options.dump_levels.empty() ? std::vector<std::pair<std::string, cv::Mat>>{}
                                                     : level_files(result, ndisp, options.scale);
-    io::write_png(options.output, stored);
+    io::write_file_atomic(options.output, stored_bytes);
     if (!colour.empty()) {
         io::write_png(options.colour, colour);
     }
@@ -193,6 +221,20 @@ void run_match(const MatchOptions& options) {
         summary["window"] = params.window;
         summary["sigma"] = params.sigma;
         summary["cost"] = params.cost;
+        summary["min_disp"] = params.min_disp;
+        const ValidationParams& v = params.validation;
+        summary["uniqueness"] =
+            v.uniqueness ? nlohmann::json(v.uniqueness_ratio) : nlohmann::json(nullptr);
+        summary["lr_check"] =
+            v.left_right ? nlohmann::json(v.lr_tolerance) : nlohmann::json(nullptr);
+        summary["subpixel"] = v.subpixel;
+        std::array<std::int64_t, 4> reasons{};
+        for (const auto reason : result.validated.reason) {
+            reasons[std::min<std::size_t>(reason, reasons.size() - 1)] += 1;
+        }
+        summary["invalid"] = {{"border", reasons[fx::kReasonBorder]},
+                              {"uniqueness", reasons[fx::kReasonUniqueness]},
+                              {"left_right", reasons[fx::kReasonLeftRight]}};
         std::snprintf(settings, sizeof settings,
                       "window %d sigma %g cost %s ca %s method %s engine %s", params.window,
                       params.sigma, params.cost.c_str(), ca ? "on" : "off", method.c_str(),
@@ -220,6 +262,9 @@ void add_match_command(CLI::App& app) {
         ->required();
     add_matcher_options(*command, options->matcher, MatcherChoice::selectable,
                         {.validation = true});
+    command->add_flag("--png16", options->png16,
+                      "pipeline: write a 16-bit PNG of 32768 + 16 d (signed, 1/16 pixel), 0 = "
+                      "invalid; a .pfm output holds float disparities with +inf invalid");
     command
         ->add_option("--vrange", options->matcher.config.vrange,
                      "hierarchical: vertical labels V (offsets -V/2..V/2-1), 0 = ndisp")

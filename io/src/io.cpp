@@ -45,7 +45,7 @@ std::string format_text(const cv::Mat& mat) {
 
 // Reading the bytes ourselves (instead of cv::imread) gives a precise message for a missing
 // or unreadable file and keeps OpenCV from printing its own warnings about it.
-std::vector<uchar> read_bytes(const fs::path& path) {
+std::vector<uchar> read_bytes_checked(const fs::path& path) {
     std::error_code error;
     if (!fs::exists(path, error)) {
         throw std::runtime_error("cannot read " + quoted(path) + ": no such file");
@@ -105,7 +105,7 @@ class SilencedStderr {
 };
 
 cv::Mat decode(const fs::path& path) {
-    const std::vector<uchar> bytes = read_bytes(path);
+    const std::vector<uchar> bytes = read_bytes_checked(path);
     // The declared size, checked before the decoder allocates it.
     const auto declared =
         declared_size(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
@@ -409,6 +409,10 @@ cv::Mat to_float_disparity(const DisparityMap& map) {
         }
     }
     return out;
+}
+
+std::vector<unsigned char> read_input_file(const fs::path& path) {
+    return read_bytes_checked(path);
 }
 
 cv::Mat load_disparity(const fs::path& path, double scale) {

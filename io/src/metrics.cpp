@@ -32,7 +32,7 @@ void check_matches(const NamedMat& input, int type, const std::string& expected,
 void check_input(const EvalInput& input) {
     check_type(input.disparity, CV_32FC1, "float");
     check_matches(input.ground_truth, CV_32FC1, "float", input.disparity);
-    for (const auto* mask : {&input.nonocc, &input.all, &input.disc}) {
+    for (const auto* mask : {&input.nonocc, &input.all, &input.disc, &input.scored}) {
         if (mask->has_value()) {
             check_matches(**mask, CV_8UC1, "8-bit single-channel", input.disparity);
         }
@@ -95,17 +95,19 @@ EvalResult evaluate(const EvalInput& input) {
     for (int y = 0; y < truth.rows; ++y) {
         for (int x = 0; x < truth.cols; ++x) {
             const float gt = truth.at<float>(y, x);
-            if (!(gt > 0.0F)) {  // also skips NaN
-                continue;
+            const bool known = input.gt_zero_is_unknown ? gt > 0.0F : std::isfinite(gt);
+            if (!known || (input.scored.has_value() && !in_mask(input.scored, x, y))) {
+                continue;  // NaN is never known
             }
             ++result.known;
             const float d = disparity.at<float>(y, x);
-            const bool valid = d > 0.0F;
+            const bool valid = input.zero_is_invalid ? d > 0.0F : std::isfinite(d);
             result.known_and_valid += valid ? 1 : 0;
             const bool bad = !valid || std::abs(d - gt) > input.threshold;
             if (in_all(input, x, y)) {
                 count(result.all, bad);
                 if (valid) {
+                    count(result.valid, bad);
                     ++result.nmse_pixels;
                     squared_error += static_cast<double>(d - gt) * (d - gt);
                     squared_truth += static_cast<double>(gt) * gt;
@@ -119,8 +121,8 @@ EvalResult evaluate(const EvalInput& input) {
             }
         }
     }
-    if (result.nmse_pixels > 0) {
-        result.nmse = squared_error / squared_truth;  // squared_truth > 0: every gt > 0
+    if (result.nmse_pixels > 0 && squared_truth > 0.0) {
+        result.nmse = squared_error / squared_truth;
     }
     if (result.known > 0) {
         result.coverage =
@@ -136,6 +138,7 @@ void to_json(nlohmann::json& json, const EvalResult& result) {
     json = {
         {"bad_nonocc", or_null(percent(result.nonocc))},
         {"bad_all", or_null(result.all.percent())},
+        {"bad_valid", or_null(result.valid.percent())},
         {"bad_disc", or_null(percent(result.disc))},
         {"nmse", or_null(result.nmse)},
         {"coverage", or_null(result.coverage)},
@@ -164,8 +167,11 @@ cv::Mat error_map(const EvalInput& input) {
             const float gt = truth.at<float>(y, x);
             const float d = disparity.at<float>(y, x);
             cv::Vec3b colour = black;
-            if (gt > 0.0F && in_all(input, x, y)) {
-                if (!(d > 0.0F)) {
+            const bool known = input.gt_zero_is_unknown ? gt > 0.0F : std::isfinite(gt);
+            const bool valid = input.zero_is_invalid ? d > 0.0F : std::isfinite(d);
+            const bool scored = !input.scored.has_value() || in_mask(input.scored, x, y);
+            if (known && scored && in_all(input, x, y)) {
+                if (!valid) {
                     colour = blue;
                 } else if (std::abs(d - gt) > input.threshold) {
                     colour = red;

@@ -79,6 +79,10 @@ cv::Mat to_float_disparity(const DisparityMap& map);
 // disparity = value / scale; 0 stays 0 and means invalid (ours) or unknown (ground truth).
 cv::Mat load_disparity(const std::filesystem::path& path, double scale);
 
+// The bytes of an input file: a regular file of at most kMaxImageFileBytes, with a one-line
+// error naming it otherwise.
+std::vector<unsigned char> read_input_file(const std::filesystem::path& path);
+
 // Brings a full-size ground truth (CV_32FC1) or mask (CV_8UC1) to the grid of an image loaded
 // with `downscale` F: floor(W/F) x floor(H/F), each pixel sampled at the centre of its F x F
 // block, (F*x + F/2, F*y + F/2). Ground-truth disparities are divided by F (unknown stays 0);

@@ -13,6 +13,10 @@
 //                     the `all` mask when one is given. Invalid pixels are left out, as in the
 //                     thesis, which excludes the frame the pipeline does not compute.
 //   coverage        = known pixels where ours is valid / known pixels (no mask applied).
+//   bad_valid       = 100 * pixels in `all` where ours is valid and |d - gt| > threshold / pixels
+//                     in `all` where ours is valid: the error among the pixels a method outputs.
+// With zero_is_invalid = false a disparity is valid when finite (0 and negatives included), and
+// with gt_zero_is_unknown = false a GT value is known when finite.
 // A value with an empty denominator is not reported (std::nullopt, null in JSON).
 #pragma once
 
@@ -38,6 +42,14 @@ struct EvalInput {
     std::optional<NamedMat> all = std::nullopt;
     std::optional<NamedMat> disc = std::nullopt;
     double threshold = 1.0;  // a pixel is bad when |d - gt| > threshold
+    // false: every finite disparity is valid (0 and negative ones too) and NaN / inf mark invalid
+    // pixels, as in PFM files and stage 6's output; true: 0 (and below) is invalid.
+    bool zero_is_invalid = true;
+    // false: every finite GT value is known (signed GT, e.g. the light field); true: GT > 0.
+    bool gt_zero_is_unknown = true;
+    // Only pixels where this mask is 255 are scored at all (to compare two maps on the same
+    // pixel set: the pixels both output).
+    std::optional<NamedMat> scored = std::nullopt;
 };
 
 struct RegionScore {
@@ -50,6 +62,9 @@ struct EvalResult {
     std::optional<RegionScore> nonocc;  // nullopt when no mask was given
     RegionScore all;                    // every known pixel when no `all` mask was given
     std::optional<RegionScore> disc;
+    // Among the known pixels (inside `all`) where ours is valid: bad = |d - gt| > threshold. The
+    // error rate of what a method outputs, beside its coverage.
+    RegionScore valid;
     std::int64_t known = 0;            // GT > 0
     std::int64_t known_and_valid = 0;  // GT > 0 and ours valid: coverage numerator
     std::int64_t nmse_pixels = 0;      // pixels in the NMSE sums
