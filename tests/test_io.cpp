@@ -1,8 +1,11 @@
 // Image and disparity-map files of the host tools (io/include/stereo_io/io.hpp), and the
 // data-folder rule (stereo_io/data_dir.hpp).
+#include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <optional>
 #include <random>
 #include <stdexcept>
@@ -11,7 +14,9 @@
 
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
+
 #include <opencv2/imgproc.hpp>
+#include "stereo_io/disparity_files.hpp"
 
 #include "stereo_io/data_dir.hpp"
 #include "stereo_io/io.hpp"
@@ -467,3 +472,81 @@ TEST(Crop, CopiesTheRegionAndRefusesWhatDoesNotFit) {
 
 }  // namespace
 }  // namespace stereo::io
+
+// ---- disparity files of stage 6: PFM and offset16 -------------------------------------------
+
+namespace stereo {
+namespace {
+
+TEST(DisparityFiles, PfmRoundTripKeepsSignedZeroAndInvalid) {
+    cv::Mat map(2, 3, CV_32FC1);
+    map.at<float>(0, 0) = -3.25F;
+    map.at<float>(0, 1) = 0.0F;
+    map.at<float>(0, 2) = std::numeric_limits<float>::quiet_NaN();
+    map.at<float>(1, 0) = 12.5F;
+    map.at<float>(1, 1) = std::numeric_limits<float>::infinity();
+    map.at<float>(1, 2) = 255.0625F;
+    const std::string bytes = io::encode_pfm(map);
+    // Header by hand, then the bottom row first.
+    ASSERT_EQ(bytes.substr(0, 10), "Pf\n3 2\n-1\n");
+    float first = 0.0F;
+    std::memcpy(&first, bytes.data() + 10, sizeof first);
+    EXPECT_EQ(first, 12.5F);
+    const cv::Mat back = io::decode_pfm(bytes, "map");
+    EXPECT_EQ(back.at<float>(0, 0), -3.25F);
+    EXPECT_EQ(back.at<float>(0, 1), 0.0F);
+    EXPECT_TRUE(std::isnan(back.at<float>(0, 2)));
+    EXPECT_TRUE(std::isnan(back.at<float>(1, 1)));
+    EXPECT_EQ(back.at<float>(1, 2), 255.0625F);
+}
+
+TEST(DisparityFiles, PfmBigEndianIsRead) {
+    std::string bytes = "Pf\n1 1\n1.0\n";
+    const float value = 7.5F;
+    std::uint32_t word = 0;
+    std::memcpy(&word, &value, sizeof word);
+    for (int shift = 24; shift >= 0; shift -= 8) {  // most significant byte first
+        bytes += static_cast<char>((word >> shift) & 0xFFU);
+    }
+    EXPECT_EQ(io::decode_pfm(bytes, "big").at<float>(0, 0), 7.5F);
+}
+
+TEST(DisparityFiles, BadPfmIsRefusedWithItsName) {
+    const auto refused = [](const std::string& bytes, const std::string& fragment) {
+        try {
+            (void)io::decode_pfm(bytes, "'x.pfm'");
+        } catch (const std::runtime_error& error) {
+            const std::string message = error.what();
+            return message.find("'x.pfm'") != std::string::npos &&
+                   message.find(fragment) != std::string::npos;
+        }
+        return false;
+    };
+    std::string colour = "PF\n1 1\n-1\n" + std::string(12, '\0');
+    EXPECT_TRUE(refused(colour, "3-channel"));
+    EXPECT_TRUE(refused("P5\n1 1\n255\n" + std::string(1, '\0'), "not a PFM"));
+    EXPECT_TRUE(refused("Pf\n2 2\n-1\n" + std::string(12, '\0'), "expected 16"));  // truncated
+    EXPECT_TRUE(refused("Pf\n0 2\n-1\n", "positive"));
+    EXPECT_TRUE(refused("Pf\n99999 99999\n-1\n", "limit"));
+    std::string nan_map = "Pf\n1 1\n-1\n";
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    nan_map.append(reinterpret_cast<const char*>(&nan), sizeof nan);
+    EXPECT_TRUE(refused(nan_map, "NaN"));
+}
+
+TEST(DisparityFiles, Offset16HoldsSignedSubpixelDisparities) {
+    ValidatedDisparity v(3, 1);
+    v.fixed = {-35, 0, 4000};  // -2.1875, 0, 250
+    v.reason = {fx::kReasonValid, fx::kReasonValid, fx::kReasonUniqueness};
+    const cv::Mat codes = io::to_offset16(v);
+    EXPECT_EQ(codes.at<std::uint16_t>(0, 0), 32768 - 35);
+    EXPECT_EQ(codes.at<std::uint16_t>(0, 1), 32768);
+    EXPECT_EQ(codes.at<std::uint16_t>(0, 2), 0);  // invalid
+    const cv::Mat floats = io::to_float_disparity(v);
+    EXPECT_EQ(floats.at<float>(0, 0), -2.1875F);
+    EXPECT_EQ(floats.at<float>(0, 1), 0.0F);
+    EXPECT_TRUE(std::isnan(floats.at<float>(0, 2)));
+}
+
+}  // namespace
+}  // namespace stereo

@@ -131,7 +131,15 @@ void run_match(const MatchOptions& options) {
             "PFM and --png16 outputs hold the pipeline's validated disparities: use --method "
             "pipeline");
     }
-    const MatchConfig config = options.matcher.resolved();
+    MatchConfig config = options.matcher.resolved();
+    if (method != "pipeline") {
+        // Stage 6 belongs to the 1-D pipeline; the other methods validate in their own way.
+        if (options.matcher.explicit_validation() || config.pipeline.min_disp != 0) {
+            throw std::invalid_argument(
+                "--min-disp, --uniqueness, --lr-check and --subpixel need --method pipeline");
+        }
+        config.pipeline.validation = {};
+    }
     const auto matcher = matchers().create(method, engine, config);
     const int ndisp = config.pipeline.ndisp;
 
@@ -261,7 +269,7 @@ void add_match_command(CLI::App& app) {
                      "Disparity PNG: disparity * scale, 0 = invalid")
         ->required();
     add_matcher_options(*command, options->matcher, MatcherChoice::selectable,
-                        {.validation = true});
+                        {.validation = true, .validation_on_by_default = true});
     command->add_flag("--png16", options->png16,
                       "pipeline: write a 16-bit PNG of 32768 + 16 d (signed, 1/16 pixel), 0 = "
                       "invalid; a .pfm output holds float disparities with +inf invalid");

@@ -34,13 +34,24 @@ std::string MatcherOptions::resolved_method() const {
     return frontend;  // "edges"
 }
 
+bool MatcherOptions::explicit_validation() const {
+    return (uniqueness != nullptr && uniqueness->count() > 0) ||
+           (lr_check != nullptr && lr_check->count() > 0) || subpixel;
+}
+
 MatchConfig MatcherOptions::resolved() const {
     MatchConfig resolved_config = config;
     resolved_config.pipeline.use_ca = !no_ca;
+    // --no-validation clears the steps a subcommand turns on by default; an explicit option
+    // turns its own step (back) on.
     ValidationParams& validation = resolved_config.pipeline.validation;
+    if (no_validation) {
+        validation.uniqueness = validation.left_right = validation.subpixel = false;
+    }
     validation.uniqueness =
         validation.uniqueness || (uniqueness != nullptr && uniqueness->count() > 0);
     validation.left_right = validation.left_right || (lr_check != nullptr && lr_check->count() > 0);
+    validation.subpixel = validation.subpixel || subpixel;
     return resolved_config;
 }
 
@@ -60,19 +71,30 @@ void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoi
     }
     if (exposed.validation) {
         ValidationParams& v = params.validation;
+        if (exposed.validation_on_by_default) {
+            v = ValidationParams::all_on();
+            command.add_flag("--no-validation", options.no_validation,
+                             "Output the plain winners: no uniqueness, left-right or sub-pixel "
+                             "step (an explicit --uniqueness, --lr-check or --subpixel turns "
+                             "that step back on)");
+        }
         command
             .add_option("--min-disp", params.min_disp,
                         "Smallest disparity searched (may be negative): labels cover "
                         "min-disp .. min-disp + ndisp - 1")
             ->capture_default_str();
         options.uniqueness =
-            command.add_option("--uniqueness", v.uniqueness_ratio,
-                               "Invalidate a pixel whose best cost is not U percent below every "
-                               "cost outside its neighbours (0..255)");
-        options.lr_check = command.add_option(
-            "--lr-check", v.lr_tolerance,
-            "Invalidate a pixel whose right-image winner differs by more than T labels (0..255)");
-        command.add_flag("--subpixel", v.subpixel,
+            command
+                .add_option("--uniqueness", v.uniqueness_ratio,
+                            "Invalidate a pixel whose best cost is not U percent below every "
+                            "cost outside its neighbours (0..255)")
+                ->capture_default_str();
+        options.lr_check = command
+                               .add_option("--lr-check", v.lr_tolerance,
+                                           "Invalidate a pixel whose right-image winner differs "
+                                           "by more than T labels (0..255)")
+                               ->capture_default_str();
+        command.add_flag("--subpixel", options.subpixel,
                          "Refine each disparity by the parabola through its neighbours' costs "
                          "(1/16 pixel)");
     }

@@ -30,11 +30,15 @@ struct MatcherOptions {
     CLI::Option* sigma = nullptr;
     CLI::Option* uniqueness = nullptr;
     CLI::Option* lr_check = nullptr;
+    bool no_validation = false;
+    bool subpixel = false;
 
     // --window or --sigma was given on the command line.
     bool window_given() const;
     // The method after --frontend; throws std::invalid_argument when the two contradict.
     std::string resolved_method() const;
+    // --uniqueness, --lr-check or --subpixel was given on the command line.
+    bool explicit_validation() const;
     // The configuration with --no-ca and the stage 6 switches applied.
     MatchConfig resolved() const;
 };
@@ -50,6 +54,8 @@ struct ExposedParams {
     bool ndisp = true;
     bool no_ca = true;
     bool validation = false;  // --min-disp, --uniqueness, --lr-check, --subpixel (stage 6)
+    // Stage 6 on unless --no-validation (stereo match); otherwise each option turns its step on.
+    bool validation_on_by_default = false;
 };
 
 // Registers the options on `command`. The defaults shown by --help are the values

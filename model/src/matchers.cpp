@@ -145,8 +145,8 @@ MatcherFactory pipeline_factory(PipelineFunction run) {
         validate_params(params);
         if (params.min_disp != 0 || params.validation != ValidationParams{}) {
             throw std::invalid_argument(
-                "this engine has no minimum disparity or validation stages (use --engine model, "
-                "naive, hls or rtl)");
+                "this engine has no minimum disparity or validation stages (use --no-validation, "
+                "or --engine model or naive)");
         }
         return std::make_unique<FunctionMatcher>(
             [params](int width, int height) { validate(params, width, height); },

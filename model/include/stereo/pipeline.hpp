@@ -15,14 +15,19 @@
 namespace stereo {
 
 // The validation stages after the winner takes all (docs/fixed-point.md stage 6). Each can be
-// switched off; with all off the output is the plain winner.
+// switched off; all are off by default here, so the API's default is the plain winner. The
+// ratio and tolerance are what `stereo match` uses (its stages are on unless --no-validation):
+// chosen on all eight scenes with ground truth (docs/results.md, "Validated output").
 struct ValidationParams {
     bool uniqueness = false;  // invalid when C1 * (100 + ratio) >= C2 * 100
-    int uniqueness_ratio = 10;
+    int uniqueness_ratio = 20;
     bool left_right = false;  // invalid when |dL(x) - dR(x - dL(x))| > tolerance
-    int lr_tolerance = 1;
+    int lr_tolerance = 0;
     bool subpixel = false;  // parabola through the costs at d - 1, d, d + 1
     bool operator==(const ValidationParams&) const = default;
+
+    // Every stage on, with the ratio and tolerance above.
+    static ValidationParams all_on() { return {true, 20, true, 0, true}; }
 };
 
 struct MatchParams {
