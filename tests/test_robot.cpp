@@ -194,6 +194,10 @@ TEST(Windows, SplitIntoThreeInsideTheBorder) {
     EXPECT_EQ(w[2].y1, 40);
     EXPECT_THROW(split_windows(42, 60, 20), std::invalid_argument);
     EXPECT_THROW(split_windows(100, 40, 20), std::invalid_argument);
+    // 2 * border in int arithmetic overflowed (wrapping to a negative border in practice), and the
+    // windows then lay outside the map: `avoid --border 2147483647` (issue 18 bad-input table).
+    EXPECT_THROW(split_windows(64, 32, 2147483647), std::invalid_argument);
+    EXPECT_THROW(split_windows(64, 32, 1073741824), std::invalid_argument);
 }
 
 TEST(Windows, InvalidPixelsAreNotCountedAndAnEmptyWindowIsOccupied) {

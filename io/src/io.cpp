@@ -104,7 +104,7 @@ class SilencedStderr {
     int saved_ = -1;
 };
 
-cv::Mat decode(const fs::path& path) {
+cv::Mat decode(const fs::path& path, int flags = cv::IMREAD_UNCHANGED) {
     const std::vector<uchar> bytes = read_bytes(path);
     // The declared size, checked before the decoder allocates it.
     const auto declared =
@@ -120,7 +120,7 @@ cv::Mat decode(const fs::path& path) {
     try {
         const SilencedStderr quiet;
         if (!bytes.empty()) {
-            mat = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
+            mat = cv::imdecode(bytes, flags);
         }
     } catch (const cv::Exception&) {
         mat.release();  // reported below, with the file name, as one line
@@ -299,6 +299,10 @@ Image to_image(const cv::Mat& mat, const std::string& name) {
                     image.pixels.begin() + static_cast<std::ptrdiff_t>(y * row_bytes));
     }
     return image;
+}
+
+cv::Mat load_grey(const fs::path& path) {
+    return decode(path, cv::IMREAD_GRAYSCALE);
 }
 
 Image load_image(const fs::path& path, int downscale) {
@@ -498,6 +502,25 @@ void check_writable_location(const fs::path& path) {
     }
     if (fs::is_directory(path, error)) {
         throw std::runtime_error("cannot write " + quoted(path) + ": is a directory");
+    }
+    // Outputs replace regular files only (write_file_atomic): not /dev/null, a FIFO or a socket.
+    if (fs::exists(path, error) && !fs::is_regular_file(path, error)) {
+        throw std::runtime_error("cannot write " + quoted(path) + ": not a regular file");
+    }
+}
+
+void check_output_folder(const fs::path& folder) {
+    std::error_code error;
+    if (fs::exists(folder, error)) {
+        if (!fs::is_directory(folder, error)) {
+            throw std::runtime_error("cannot write into " + quoted(folder) + ": not a folder");
+        }
+        return;
+    }
+    const fs::path parent = folder.parent_path().empty() ? fs::path(".") : folder.parent_path();
+    if (!fs::is_directory(parent, error)) {
+        throw std::runtime_error("cannot create folder " + quoted(folder) + ": folder " +
+                                 quoted(parent) + " does not exist");
     }
 }
 
