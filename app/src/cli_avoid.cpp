@@ -167,6 +167,9 @@ void run_avoid(const AvoidOptions& o) {
     for (const auto& [left, right] : pairs) {
         inputs.push_back(left);
         inputs.push_back(right);
+        // Every frame file before the first line is printed (docs/cli.md).
+        io::check_image_file(left);
+        io::check_image_file(right);
     }
     io::check_outputs_distinct({o.overlay}, inputs);
     if (!o.overlay.empty()) {

@@ -46,23 +46,7 @@ std::string format_text(const cv::Mat& mat) {
 // Reading the bytes ourselves (instead of cv::imread) gives a precise message for a missing
 // or unreadable file and keeps OpenCV from printing its own warnings about it.
 std::vector<uchar> read_bytes(const fs::path& path) {
-    std::error_code error;
-    if (!fs::exists(path, error)) {
-        throw std::runtime_error("cannot read " + quoted(path) + ": no such file");
-    }
-    if (fs::is_directory(path, error)) {
-        throw std::runtime_error("cannot read " + quoted(path) + ": is a directory");
-    }
-    // Devices and pipes could be read without end (/dev/zero); images are regular files.
-    if (!fs::is_regular_file(path, error)) {
-        throw std::runtime_error("cannot read " + quoted(path) + ": not a regular file");
-    }
-    const auto size = fs::file_size(path, error);
-    if (!error && static_cast<std::int64_t>(size) > kMaxImageFileBytes) {
-        throw std::runtime_error("cannot read " + quoted(path) + ": " + std::to_string(size) +
-                                 " bytes is larger than the " + std::to_string(kMaxImageFileBytes) +
-                                 "-byte limit");
-    }
+    check_image_file(path);
     std::ifstream in(path, std::ios::binary);
     if (!in) {
         throw std::runtime_error("cannot read " + quoted(path) + ": " + std::strerror(errno));
@@ -299,6 +283,26 @@ Image to_image(const cv::Mat& mat, const std::string& name) {
                     image.pixels.begin() + static_cast<std::ptrdiff_t>(y * row_bytes));
     }
     return image;
+}
+
+void check_image_file(const fs::path& path) {
+    std::error_code error;
+    if (!fs::exists(path, error)) {
+        throw std::runtime_error("cannot read " + quoted(path) + ": no such file");
+    }
+    if (fs::is_directory(path, error)) {
+        throw std::runtime_error("cannot read " + quoted(path) + ": is a directory");
+    }
+    // Devices and pipes could be read without end (/dev/zero); images are regular files.
+    if (!fs::is_regular_file(path, error)) {
+        throw std::runtime_error("cannot read " + quoted(path) + ": not a regular file");
+    }
+    const auto size = fs::file_size(path, error);
+    if (!error && static_cast<std::int64_t>(size) > kMaxImageFileBytes) {
+        throw std::runtime_error("cannot read " + quoted(path) + ": " + std::to_string(size) +
+                                 " bytes is larger than the " + std::to_string(kMaxImageFileBytes) +
+                                 "-byte limit");
+    }
 }
 
 cv::Mat load_grey(const fs::path& path) {

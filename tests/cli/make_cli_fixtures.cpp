@@ -97,6 +97,8 @@ void write_fixtures(const fs::path& dir) {
                                          << "P1: nan 0 32 -10 0 nan 16 0 0 0 1 0\n";
     std::ofstream(dir / "calib_huge.txt") << "P0: 1e308 0 32 0 0 1e308 16 0 0 0 1 0\n"
                                           << "P1: 1e308 0 32 -1e308 0 1e308 16 0 0 0 1 0\n";
+    // An avoidance sequence whose second frame is missing: refused before the first line.
+    std::ofstream(dir / "list_missing_frame.txt") << "left.png right.png\nleft.png nope.png\n";
     std::ofstream(dir / "calib.txt") << "P0: 100 0 32 0 0 100 16 0 0 0 1 0\n"
                                      << "P1: 100 0 32 -20 0 100 16 0 0 0 1 0\n";
 

@@ -40,6 +40,11 @@ ImagePair crop(const ImagePair& pair, int x0, int y0, int width, int height);
 // for figures and the OpenCV baselines. Same errors as load_image.
 cv::Mat load_bgr(const std::filesystem::path& path);
 
+// The checks every image load makes before reading a byte: `path` exists, is a regular file
+// (not a folder, device or FIFO) and is at most kMaxImageFileBytes; std::runtime_error naming the
+// file otherwise. For sequences, to refuse a bad frame before the first one is processed.
+void check_image_file(const std::filesystem::path& path);
+
 // Reads an image file as 8-bit grey, converted as cv::imread(IMREAD_GRAYSCALE) does, with the
 // checks and errors of load_image (regular file, size from the header, one-line messages).
 cv::Mat load_grey(const std::filesystem::path& path);
