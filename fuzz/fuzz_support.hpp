@@ -49,22 +49,21 @@ class ScratchFile {
 // std::invalid_argument (bad content) and std::runtime_error (unreadable), each with a one-line
 // message; anything else escaping (cv::Exception, std::bad_alloc, std::out_of_range, ...) or a
 // multi-line or empty message is a finding and aborts, so libFuzzer keeps the input.
+inline void expect_one_line(const char* what, const std::string& message) {
+    if (message.empty() || message.find('\n') != std::string::npos) {
+        std::fprintf(stderr, "fuzz: %s: malformed message \"%s\"\n", what, message.c_str());
+        std::abort();
+    }
+}
+
 template <class Parse>
 void expect_documented_errors(const char* what, Parse&& parse) {
     try {
         parse();
     } catch (const std::runtime_error& error) {
-        const std::string message = error.what();
-        if (message.empty() || message.find('\n') != std::string::npos) {
-            std::fprintf(stderr, "fuzz: %s: malformed message \"%s\"\n", what, message.c_str());
-            std::abort();
-        }
+        expect_one_line(what, error.what());
     } catch (const std::invalid_argument& error) {
-        const std::string message = error.what();
-        if (message.empty() || message.find('\n') != std::string::npos) {
-            std::fprintf(stderr, "fuzz: %s: malformed message \"%s\"\n", what, message.c_str());
-            std::abort();
-        }
+        expect_one_line(what, error.what());
     } catch (const std::exception& error) {
         std::fprintf(stderr, "fuzz: %s: undocumented exception: %s\n", what, error.what());
         std::abort();
