@@ -5,7 +5,7 @@
 # build (./scripts/test.sh), which covers the same code paths without the sanitizers' cost.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-targets=(stereo stereo_experiments test_model test_matcher test_io test_output test_metrics test_middlebury
+targets=(stereo stereo_experiments test_model test_matcher test_io test_output test_cli_run test_metrics test_middlebury
          test_edge_frontend test_hierarchical test_robot test_slam test_constants
          make_cli_fixtures make_slam_fixtures)
 cmake --preset sanitize

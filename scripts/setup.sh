@@ -12,6 +12,7 @@ packages=(
   verilator zlib1g-dev yosys       # RTL co-simulation (FST traces need zlib), synthesis check
   nextpnr-ice40 python3            # place and route, synthesis reports (scripts/synth/synth.py)
   clang-format
+  clang                            # libFuzzer harnesses (fuzz/, scripts/fuzz.sh)
 )
 
 missing=()

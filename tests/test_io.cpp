@@ -427,7 +427,7 @@ namespace {
 TEST(Limits, DeclaredSizeOfEncodedImages) {
     // Independent path: OpenCV's encoders write the headers that declared_size parses.
     const cv::Mat image(23, 37, CV_8UC3, cv::Scalar(10, 20, 30));
-    for (const char* extension : {".png", ".jpg"}) {
+    for (const char* extension : {".png", ".jpg", ".ppm", ".bmp"}) {
         std::vector<uchar> bytes;
         ASSERT_TRUE(cv::imencode(extension, image, bytes));
         const auto size = declared_size(
@@ -438,6 +438,32 @@ TEST(Limits, DeclaredSizeOfEncodedImages) {
     }
     EXPECT_FALSE(declared_size("BM not a png").has_value());
     EXPECT_FALSE(declared_size("\x89PNG").has_value());
+    // PNM headers with comments, and sizes no decoder could allocate.
+    const auto pnm = declared_size("P5\n# made by hand\n 640\t# width\n480\n255\n");
+    ASSERT_TRUE(pnm.has_value());
+    EXPECT_EQ(*pnm, std::make_pair(std::int64_t{640}, std::int64_t{480}));
+    const auto huge_pnm = declared_size("P6 99999999999999 2 255 ");
+    ASSERT_TRUE(huge_pnm.has_value());
+    EXPECT_GT(huge_pnm->first, max_image_pixels());
+}
+
+// Found by fuzz_image_loaders: a JPEG with bytes that are no marker before its frame header.
+// libjpeg skips them and decodes the 14884 x 65312 frame (2.9 GB); the header walk stopped at
+// them and let the file through unchecked.
+TEST(Limits, JpegFrameBehindGarbageIsFound) {
+    std::vector<uchar> bytes;
+    ASSERT_TRUE(cv::imencode(".jpg", cv::Mat(8, 8, CV_8UC1, cv::Scalar(7)), bytes));
+    const std::string jpeg(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    const std::size_t frame = jpeg.find("\xFF\xC0");
+    ASSERT_NE(frame, std::string::npos);
+    std::string hostile = jpeg.substr(0, frame) + "garbage!" + jpeg.substr(frame);
+    hostile[frame + 8 + 5] = '\xFF';  // height 0xFF20, width 0x3A24
+    hostile[frame + 8 + 6] = '\x20';
+    hostile[frame + 8 + 7] = '\x3A';
+    hostile[frame + 8 + 8] = '\x24';
+    const auto size = declared_size(hostile);
+    ASSERT_TRUE(size.has_value());
+    EXPECT_EQ(*size, std::make_pair(std::int64_t{0x3A24}, std::int64_t{0xFF20}));
 }
 
 TEST(Limits, LimitIsSettableAndChecked) {

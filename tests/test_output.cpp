@@ -8,8 +8,11 @@
 
 #include <gtest/gtest.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 
+#include "stereo_io/io.hpp"
 #include "stereo_io/output.hpp"
+#include "stereo_io/text_file.hpp"
 
 namespace stereo::io {
 namespace {
@@ -50,6 +53,43 @@ TEST_F(Output, WritesAndReplaces) {
     write_file_atomic(file, "second, longer");
     EXPECT_EQ(read(file), "second, longer");
     EXPECT_EQ(files_in_folder(), 1U);  // no temporary file left
+}
+
+// A FIFO (like /dev/null, a device) named as an output: renaming over it would replace it with a
+// regular file, so it is refused up front (check_writable_location) and by the writer.
+TEST_F(Output, NonRegularDestinationIsRefusedAndKept) {
+    const fs::path fifo = folder_ / "pipe.png";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+    EXPECT_THROW(check_writable_location(fifo), std::runtime_error);
+    EXPECT_THROW(write_file_atomic(fifo, "bytes"), std::runtime_error);
+    EXPECT_THROW(write_files_atomic({{folder_ / "a.png", "a"}, {fifo, "b"}}), std::runtime_error);
+    EXPECT_TRUE(fs::is_fifo(fifo));
+    EXPECT_FALSE(fs::exists(folder_ / "a.png"));  // all or nothing
+    EXPECT_EQ(files_in_folder(), 1U);             // and no temporary file left
+}
+
+TEST_F(Output, OutputFolderMustExistOrHaveAParent) {
+    EXPECT_NO_THROW(check_output_folder(folder_));
+    EXPECT_NO_THROW(check_output_folder(folder_ / "new"));
+    EXPECT_THROW(check_output_folder(folder_ / "none" / "new"), std::runtime_error);
+    write(folder_ / "file", "x");
+    EXPECT_THROW(check_output_folder(folder_ / "file"), std::runtime_error);
+}
+
+// Calibration, pose and list files are read whole, bounded, and only when they are regular
+// files: a FIFO used to block in the open and /dev/zero to be read without end.
+TEST_F(Output, TextInputsAreRegularBoundedFiles) {
+    const fs::path text = folder_ / "calib.txt";
+    write(text, "P0: 1 2 3\n");
+    EXPECT_EQ(read_text_file(text, "calibration file"), "P0: 1 2 3\n");
+    EXPECT_THROW((void)read_text_file(text, "calibration file", 4), std::invalid_argument);
+    EXPECT_THROW((void)read_text_file(folder_ / "none.txt", "calibration file"),
+                 std::runtime_error);
+    EXPECT_THROW((void)read_text_file(folder_, "calibration file"), std::runtime_error);
+    EXPECT_THROW((void)read_text_file("/dev/zero", "calibration file"), std::runtime_error);
+    const fs::path fifo = folder_ / "pipe.txt";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+    EXPECT_THROW((void)read_text_file(fifo, "pose file"), std::runtime_error);
 }
 
 TEST_F(Output, MissingFolderWritesNothing) {

@@ -194,6 +194,10 @@ TEST(Windows, SplitIntoThreeInsideTheBorder) {
     EXPECT_EQ(w[2].y1, 40);
     EXPECT_THROW(split_windows(42, 60, 20), std::invalid_argument);
     EXPECT_THROW(split_windows(100, 40, 20), std::invalid_argument);
+    // 2 * border in int arithmetic overflowed (wrapping to a negative border in practice), and the
+    // windows then lay outside the map: `avoid --border 2147483647` (issue 18 bad-input table).
+    EXPECT_THROW(split_windows(64, 32, 2147483647), std::invalid_argument);
+    EXPECT_THROW(split_windows(64, 32, 1073741824), std::invalid_argument);
 }
 
 TEST(Windows, InvalidPixelsAreNotCountedAndAnEmptyWindowIsOccupied) {
@@ -298,6 +302,11 @@ TEST_F(TempDir, KittiCalibration) {
 
     EXPECT_THROW(load_calibration(dir_ / "nope.txt"), std::runtime_error);
     EXPECT_THROW(load_calibration(write("bad.txt", "hello\n1 2 3\n")), std::invalid_argument);
+    // Not regular files: a folder read as an empty file (a usage error, exit 2, instead of an
+    // unreadable file), /dev/zero read without end (issue 18 bad-input table).
+    EXPECT_THROW(load_calibration(dir_), std::runtime_error);
+    EXPECT_THROW(load_calibration("/dev/zero"), std::runtime_error);
+    EXPECT_THROW(pairs_from_list("/dev/zero"), std::runtime_error);
     EXPECT_THROW(disparity_threshold(g, 0.0), std::invalid_argument);
     EXPECT_THROW(disparity_threshold({0.0, 0.5}, 5.0), std::invalid_argument);
 }

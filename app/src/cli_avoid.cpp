@@ -51,8 +51,9 @@ struct AvoidOptions {
 // The disparity threshold in pixels of the matched (possibly downscaled) images.
 double pixel_threshold(const AvoidOptions& o) {
     if (o.threshold) {
-        if (!(*o.threshold >= 0.0)) {
-            throw std::invalid_argument("--threshold must be >= 0");
+        // A disparity: at most the 256 labels any matcher has (inf and NaN fail too).
+        if (!(*o.threshold >= 0.0 && *o.threshold <= 256.0)) {
+            throw std::invalid_argument("--threshold must be in [0, 256] pixels");
         }
         return *o.threshold;
     }
@@ -166,9 +167,13 @@ void run_avoid(const AvoidOptions& o) {
     for (const auto& [left, right] : pairs) {
         inputs.push_back(left);
         inputs.push_back(right);
+        // Every frame file before the first line is printed (docs/cli.md).
+        io::check_image_file(left);
+        io::check_image_file(right);
     }
     io::check_outputs_distinct({o.overlay}, inputs);
     if (!o.overlay.empty()) {
+        robot::check_overlay_path(o.overlay, sequence);
         io::check_writable_location(o.overlay);
     }
     std::optional<robot::SequenceWriter> writer;

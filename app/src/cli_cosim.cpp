@@ -86,9 +86,15 @@ void run_cosim(const CosimOptions& options) {
         throw std::invalid_argument("--frames must be in [1, 1000000], got " +
                                     std::to_string(options.frames));
     }
+    if (options.reset_at < -1) {
+        throw std::invalid_argument("--reset-at must be >= 0 (or -1: no reset), got " +
+                                    std::to_string(options.reset_at));
+    }
     io::check_outputs_distinct({options.output, options.trace}, {options.left, options.right});
-    if (!options.output.empty()) {
-        io::check_writable_location(options.output);
+    for (const std::string& output : {options.output, options.trace}) {
+        if (!output.empty()) {
+            io::check_writable_location(output);
+        }
     }
     const io::ImagePair pair =
         apply_crop(io::load_pair(options.left, options.right, options.downscale), options.crop);
@@ -110,7 +116,6 @@ void run_cosim(const CosimOptions& options) {
 
     const auto sim = sim::make_top_sim(*config);
     if (!options.trace.empty()) {
-        io::check_writable_location(options.trace);
         sim->trace_to(options.trace);
     }
     const auto beats = sim::frame_beats(pair.left, pair.right);

@@ -32,14 +32,6 @@ struct DistortOptions {
     std::string gt_mode = "warped";  // or "exact"
 };
 
-cv::Mat read_colour(const fs::path& path) {
-    const cv::Mat image = cv::imread(path.string(), cv::IMREAD_COLOR);
-    if (image.empty()) {
-        throw std::runtime_error("cannot read image \"" + path.string() + "\"");
-    }
-    return image;
-}
-
 void check_size(const cv::Mat& mat, const cv::Mat& left, const fs::path& path) {
     if (mat.size() != left.size()) {
         throw std::invalid_argument("\"" + path.string() + "\" is " + std::to_string(mat.cols) +
@@ -49,8 +41,9 @@ void check_size(const cv::Mat& mat, const cv::Mat& left, const fs::path& path) {
 }
 
 void run_distort(const DistortOptions& options) {
-    if (!(options.gt_scale > 0)) {
-        throw std::invalid_argument("--gt-scale must be > 0");
+    // As `eval --gt-scale`: inf, NaN and denormals would store nonsense disparities.
+    if (!(options.gt_scale >= 1e-3 && options.gt_scale <= 1e6)) {
+        throw std::invalid_argument("--gt-scale must be in [0.001, 1e6]");
     }
     const fs::path scene(options.scene);
     const fs::path out(options.output);
@@ -58,16 +51,11 @@ void run_distort(const DistortOptions& options) {
     if (!fs::is_directory(scene, error)) {
         throw std::runtime_error("scene folder \"" + options.scene + "\" does not exist");
     }
-    const fs::path out_parent = out.parent_path().empty() ? fs::path(".") : out.parent_path();
-    if (fs::exists(out, error) ? !fs::is_directory(out, error)
-                               : !fs::is_directory(out_parent, error)) {
-        throw std::runtime_error("cannot write into \"" + options.output +
-                                 "\": not a folder, and its parent folder does not exist");
-    }
+    io::check_output_folder(out);
     // Writing into the scene itself would replace the inputs with their distorted copies.
     io::check_outputs_distinct({out}, {scene});
-    const cv::Mat left = read_colour(scene / "left.png");
-    const cv::Mat right = read_colour(scene / "right.png");
+    const cv::Mat left = io::load_bgr(scene / "left.png");
+    const cv::Mat right = io::load_bgr(scene / "right.png");
     check_size(right, left, scene / "right.png");
     const io::PairTransform transform(left.cols, left.rows, options.warp);  // checks the warp
 

@@ -57,18 +57,6 @@ double valid_fraction(const DisparityMap& map) {
     return map.valid.empty() ? 0.0 : static_cast<double>(valid) / map.valid.size();
 }
 
-void check_dump_folder(const std::string& folder) {
-    const std::filesystem::path dump(folder);
-    std::error_code error;
-    const std::filesystem::path parent =
-        dump.parent_path().empty() ? std::filesystem::path(".") : dump.parent_path();
-    if (std::filesystem::exists(dump, error) ? !std::filesystem::is_directory(dump, error)
-                                             : !std::filesystem::is_directory(parent, error)) {
-        throw std::runtime_error("cannot write level maps into \"" + folder +
-                                 "\": not a folder, and its parent folder does not exist");
-    }
-}
-
 // Per-level disparity, colour and vertical maps of a hierarchical result.
 std::vector<std::pair<std::string, cv::Mat>> level_files(const MatchResult& result, int ndisp,
                                                          int scale) {
@@ -155,7 +143,7 @@ void run_match(const MatchOptions& options) {
         }
     }
     if (!options.dump_levels.empty()) {
-        check_dump_folder(options.dump_levels);
+        io::check_output_folder(options.dump_levels);
     }
     const io::ImagePair pair = io::load_pair(options.left, options.right, options.downscale);
     matcher->validate(pair.left.width, pair.left.height);
@@ -183,19 +171,23 @@ void run_match(const MatchOptions& options) {
     }
     const auto levels = options.dump_levels.empty() ? std::vector<std::pair<std::string, cv::Mat>>{}
                                                     : level_files(result, ndisp, options.scale);
-    io::write_file_atomic(options.output, stored_bytes);
+    // Every output together, all or nothing (io::write_files_atomic).
+    std::vector<std::pair<std::filesystem::path, std::string>> files;
+    files.emplace_back(options.output, stored_bytes);
     if (!colour.empty()) {
-        io::write_png(options.colour, colour);
+        files.emplace_back(options.colour, io::encode_png(colour, options.colour));
     }
     if (!vertical.empty()) {
-        io::write_png(options.vertical, vertical);
+        files.emplace_back(options.vertical, io::encode_png(vertical, options.vertical));
+    }
+    for (const auto& [name, mat] : levels) {
+        const std::filesystem::path path = std::filesystem::path(options.dump_levels) / name;
+        files.emplace_back(path, io::encode_png(mat, path));
     }
     if (!levels.empty()) {
         std::filesystem::create_directories(options.dump_levels);
-        for (const auto& [name, mat] : levels) {
-            io::write_png(std::filesystem::path(options.dump_levels) / name, mat);
-        }
     }
+    io::write_files_atomic(files);
 
     const double valid = valid_fraction(map);
     const MatchParams& params = config.pipeline;

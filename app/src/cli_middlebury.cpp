@@ -86,7 +86,8 @@ auto timed(Function&& function, double& milliseconds) {
 
 // One strip per scene: left, ground truth, ours, signed error, bad pixels; half size so the
 // figure stays small (the source images are not redistributed at full size).
-void write_figure(const io::SceneData& data, const cv::Mat& ours, const fs::path& path) {
+// Returned as PNG bytes: the run writes every file at the end, all or nothing.
+std::string figure_png(const io::SceneData& data, const cv::Mat& ours, const fs::path& path) {
     const int ndisp = data.scene.ndisp;
     io::EvalInput input{{ours, "ours"}, data.ground_truth};
     input.all = data.all;
@@ -104,7 +105,7 @@ void write_figure(const io::SceneData& data, const cv::Mat& ours, const fs::path
     }
     cv::Mat strip;
     cv::hconcat(halves, strip);
-    io::write_png(path, strip);
+    return io::encode_png(strip, path);
 }
 
 struct MethodRow {
@@ -130,8 +131,11 @@ void run_report(const Options& options) {
         }
     }
     if (!options.figures.empty()) {
-        fs::create_directories(options.figures);
+        // Created at the end, with the figures in it; its parent must exist now.
+        io::check_output_folder(options.figures);
     }
+    // Every output file (figures, Markdown, JSON), written together at the end: all or nothing.
+    std::vector<std::pair<fs::path, std::string>> files;
     std::ostringstream md;
     md << "| pair | method | bad nonocc % | bad all % | bad disc % | NMSE | coverage | ms |\n"
        << "|---|---|---|---|---|---|---|---|\n";
@@ -205,7 +209,8 @@ void run_report(const Options& options) {
         }
         json.push_back(scene_json);
         if (!options.figures.empty()) {
-            write_figure(*data, model_ca_f, fs::path(options.figures) / (scene.name + ".png"));
+            const fs::path figure = fs::path(options.figures) / (scene.name + ".png");
+            files.emplace_back(figure, figure_png(*data, model_ca_f, figure));
         }
     }
     if (scenes_found == 0) {
@@ -214,13 +219,17 @@ void run_report(const Options& options) {
     }
     const std::string report =
         md.str() + "\nFixed point against the float reference:\n\n" + float_md.str();
-    std::cout << report;
     if (!options.markdown.empty()) {
-        io::write_file_atomic(options.markdown, report);
+        files.emplace_back(options.markdown, report);
     }
     if (!options.json.empty()) {
-        io::write_file_atomic(options.json, json.dump(2) + '\n');
+        files.emplace_back(options.json, json.dump(2) + '\n');
     }
+    if (!options.figures.empty()) {
+        fs::create_directories(options.figures);
+    }
+    io::write_files_atomic(files);
+    std::cout << report;  // after the files: no report on stdout for a run that then fails
 }
 
 void run_middlebury(const Options& options) {

@@ -5,7 +5,10 @@
 #include <iostream>
 #include <string>
 
+#include <new>
+
 #include <CLI/CLI.hpp>
+#include <opencv2/core.hpp>
 #include <opencv2/core/utils/logger.hpp>
 
 #include "stereo_io/limits.hpp"
@@ -25,6 +28,22 @@ int fail(const std::string& program, std::string message, int exit_code) {
     }
     std::cerr << program << ": error: " << message << '\n';
     return exit_code;
+}
+
+// OpenCV's exceptions carry a multi-line what() ("OpenCV(4.6.0) file:line: error: (-215:Assertion
+// failed) ... in function '...'"): reported as one line without the source location. They come
+// from inputs OpenCV cannot handle (sizes, depths, memory), so they are usage errors.
+std::string opencv_message(const cv::Exception& error) {
+    std::string what = error.err.empty() ? std::string("unknown error") : error.err;
+    if (error.code == cv::Error::StsNoMem) {
+        return "out of memory in OpenCV (" + what +
+               "): the input is too large for this machine (see --max-pixels)";
+    }
+    std::string message = "OpenCV cannot process the input";
+    if (!error.func.empty()) {
+        message += " (" + error.func + ")";
+    }
+    return message + ": " + what;
 }
 
 }  // namespace
@@ -53,6 +72,12 @@ int run(CLI::App& app, int argc, char** argv) {
         return fail(program, error.what(), kExitMismatch);
     } catch (const std::invalid_argument& error) {
         return fail(program, error.what(), kExitUsageError);
+    } catch (const cv::Exception& error) {
+        return fail(program, opencv_message(error), kExitUsageError);
+    } catch (const std::bad_alloc&) {
+        return fail(program,
+                    "out of memory: the input is too large for this machine (see --max-pixels)",
+                    kExitUsageError);
     } catch (const std::exception& error) {
         return fail(program, error.what(), kExitIoError);
     } catch (...) {

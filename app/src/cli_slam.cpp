@@ -117,10 +117,6 @@ double fps(int frames, double ms) {
     return ms > 0.0 ? 1000.0 * frames / ms : 0.0;
 }
 
-void write_text(const fs::path& path, const std::string& text) {
-    io::write_file_atomic(path, text);
-}
-
 void run_slam(SlamOptions o) {
     const MatchParams& frontend = o.matcher.config.pipeline;
     o.params.frontend.ndisp = frontend.ndisp;
@@ -129,8 +125,9 @@ void run_slam(SlamOptions o) {
     if (o.downscale < 1) {
         throw std::invalid_argument("--downscale must be >= 1, got " + std::to_string(o.downscale));
     }
-    if (o.ca_passes < 0) {
-        throw std::invalid_argument("--ca-passes must be >= 0");
+    if (o.ca_passes < 0 || o.ca_passes > 1000) {
+        throw std::invalid_argument("--ca-passes must be in 0..1000, got " +
+                                    std::to_string(o.ca_passes));
     }
     const slam::Layout layout = slam::parse_layout(o.layout, o.sequence);
     const std::optional<fs::path> calib =
@@ -269,20 +266,24 @@ void run_slam(SlamOptions o) {
                       {"occupied_after_ca", cleaned.count(slam::Cell::occupied)},
                       {"free_after_ca", cleaned.count(slam::Cell::free)}};
 
+    // Map, v-disparity and trajectory together, all or nothing.
+    std::vector<std::pair<fs::path, std::string>> files;
     if (!o.map.empty()) {
         std::vector<slam::Polyline> paths;
         if (truth) {
             paths.push_back({truth_path, cv::Scalar(0, 170, 0)});
         }
         paths.push_back({estimate_path, cv::Scalar(0, 0, 255)});
-        io::write_png(o.map, slam::render_map(cleaned, o.params.cell_size, paths));
+        files.emplace_back(
+            o.map, io::encode_png(slam::render_map(cleaned, o.params.cell_size, paths), o.map));
     }
     if (!o.vdisparity.empty()) {
-        io::write_png(o.vdisparity, vdisparity_picture);
+        files.emplace_back(o.vdisparity, io::encode_png(vdisparity_picture, o.vdisparity));
     }
     if (!o.trajectory.empty()) {
-        write_text(o.trajectory, slam::format_kitti_poses(estimate));
+        files.emplace_back(o.trajectory, slam::format_kitti_poses(estimate));
     }
+    io::write_files_atomic(files);
 
     if (o.json) {
         std::cout << summary.dump() << std::endl;

@@ -7,6 +7,7 @@
 #include <iostream>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -151,13 +152,13 @@ cv::Mat surface(double right, const FisParams& params) {
     return img;
 }
 
-void save(const fs::path& path, const cv::Mat& img) {
-    io::write_png(path, img);
-    std::cout << path.string() << '\n';
-}
-
 void write_figures(const fs::path& out) {
     const FisParams p;
+    // Drawn first, written together (all or nothing), then listed.
+    std::vector<std::pair<fs::path, cv::Mat>> figures;
+    const auto save = [&figures](const fs::path& path, const cv::Mat& img) {
+        figures.emplace_back(path, img);
+    };
     save(
         out / "mf_input.png",
         line_plot("input MF (every window): fraction of pixels nearer than Z_safe", 0, 1, 0.1,
@@ -173,6 +174,10 @@ void write_figures(const fs::path& out) {
     cv::Mat surfaces;
     cv::hconcat(surface(0.0, p), surface(1.0, p), surfaces);
     save(out / "control_surface.png", surfaces);
+    io::write_pngs(figures);
+    for (const auto& [path, img] : figures) {
+        std::cout << path.string() << '\n';
+    }
 }
 
 }  // namespace

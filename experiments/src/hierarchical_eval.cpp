@@ -13,6 +13,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -421,19 +422,25 @@ void run_eval(const EvalOptions& options) {
     }
 
     const std::string md = markdown_report(report);
-    std::cout << md;
+    // Reports and figures together, all or nothing, before the tables are printed.
+    std::vector<std::pair<fs::path, std::string>> files;
     if (!options.markdown.empty()) {
-        io::write_file_atomic(options.markdown, md);
+        files.emplace_back(options.markdown, md);
     }
     if (!options.json_path.empty()) {
-        io::write_file_atomic(options.json_path, report.dump(2) + '\n');
+        files.emplace_back(options.json_path, report.dump(2) + '\n');
     }
     if (!options.figures.empty()) {
         const fs::path dir(options.figures);
-        io::write_png(dir / "nmse_vs_distortion.png", plot_sweep(report["sweep"]));
-        io::write_png(dir / "tsukuba_distorted_10_maps.png",
-                      maps_figure(figure_left, figure_disparity, figure_vertical, 16));
+        const fs::path sweep = dir / "nmse_vs_distortion.png";
+        const fs::path maps = dir / "tsukuba_distorted_10_maps.png";
+        files.emplace_back(sweep, io::encode_png(plot_sweep(report["sweep"]), sweep));
+        files.emplace_back(
+            maps,
+            io::encode_png(maps_figure(figure_left, figure_disparity, figure_vertical, 16), maps));
     }
+    io::write_files_atomic(files);
+    std::cout << md;
 }
 
 }  // namespace

@@ -45,24 +45,8 @@ std::string format_text(const cv::Mat& mat) {
 
 // Reading the bytes ourselves (instead of cv::imread) gives a precise message for a missing
 // or unreadable file and keeps OpenCV from printing its own warnings about it.
-std::vector<uchar> read_bytes_checked(const fs::path& path) {
-    std::error_code error;
-    if (!fs::exists(path, error)) {
-        throw std::runtime_error("cannot read " + quoted(path) + ": no such file");
-    }
-    if (fs::is_directory(path, error)) {
-        throw std::runtime_error("cannot read " + quoted(path) + ": is a directory");
-    }
-    // Devices and pipes could be read without end (/dev/zero); images are regular files.
-    if (!fs::is_regular_file(path, error)) {
-        throw std::runtime_error("cannot read " + quoted(path) + ": not a regular file");
-    }
-    const auto size = fs::file_size(path, error);
-    if (!error && static_cast<std::int64_t>(size) > kMaxImageFileBytes) {
-        throw std::runtime_error("cannot read " + quoted(path) + ": " + std::to_string(size) +
-                                 " bytes is larger than the " + std::to_string(kMaxImageFileBytes) +
-                                 "-byte limit");
-    }
+std::vector<uchar> read_bytes(const fs::path& path) {
+    check_image_file(path);
     std::ifstream in(path, std::ios::binary);
     if (!in) {
         throw std::runtime_error("cannot read " + quoted(path) + ": " + std::strerror(errno));
@@ -104,8 +88,8 @@ class SilencedStderr {
     int saved_ = -1;
 };
 
-cv::Mat decode(const fs::path& path) {
-    const std::vector<uchar> bytes = read_bytes_checked(path);
+cv::Mat decode(const fs::path& path, int flags = cv::IMREAD_UNCHANGED) {
+    const std::vector<uchar> bytes = read_bytes(path);
     // The declared size, checked before the decoder allocates it.
     const auto declared =
         declared_size(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
@@ -120,7 +104,7 @@ cv::Mat decode(const fs::path& path) {
     try {
         const SilencedStderr quiet;
         if (!bytes.empty()) {
-            mat = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
+            mat = cv::imdecode(bytes, flags);
         }
     } catch (const cv::Exception&) {
         mat.release();  // reported below, with the file name, as one line
@@ -301,6 +285,30 @@ Image to_image(const cv::Mat& mat, const std::string& name) {
     return image;
 }
 
+void check_image_file(const fs::path& path) {
+    std::error_code error;
+    if (!fs::exists(path, error)) {
+        throw std::runtime_error("cannot read " + quoted(path) + ": no such file");
+    }
+    if (fs::is_directory(path, error)) {
+        throw std::runtime_error("cannot read " + quoted(path) + ": is a directory");
+    }
+    // Devices and pipes could be read without end (/dev/zero); images are regular files.
+    if (!fs::is_regular_file(path, error)) {
+        throw std::runtime_error("cannot read " + quoted(path) + ": not a regular file");
+    }
+    const auto size = fs::file_size(path, error);
+    if (!error && static_cast<std::int64_t>(size) > kMaxImageFileBytes) {
+        throw std::runtime_error("cannot read " + quoted(path) + ": " + std::to_string(size) +
+                                 " bytes is larger than the " + std::to_string(kMaxImageFileBytes) +
+                                 "-byte limit");
+    }
+}
+
+cv::Mat load_grey(const fs::path& path) {
+    return decode(path, cv::IMREAD_GRAYSCALE);
+}
+
 Image load_image(const fs::path& path, int downscale) {
     check_downscale(downscale);
     return to_image(shrink(read_colour_or_grey(path), downscale, path), quoted(path));
@@ -412,7 +420,7 @@ cv::Mat to_float_disparity(const DisparityMap& map) {
 }
 
 std::vector<unsigned char> read_input_file(const fs::path& path) {
-    return read_bytes_checked(path);
+    return read_bytes(path);
 }
 
 cv::Mat load_disparity(const fs::path& path, double scale) {
@@ -502,6 +510,25 @@ void check_writable_location(const fs::path& path) {
     }
     if (fs::is_directory(path, error)) {
         throw std::runtime_error("cannot write " + quoted(path) + ": is a directory");
+    }
+    // Outputs replace regular files only (write_file_atomic): not /dev/null, a FIFO or a socket.
+    if (fs::exists(path, error) && !fs::is_regular_file(path, error)) {
+        throw std::runtime_error("cannot write " + quoted(path) + ": not a regular file");
+    }
+}
+
+void check_output_folder(const fs::path& folder) {
+    std::error_code error;
+    if (fs::exists(folder, error)) {
+        if (!fs::is_directory(folder, error)) {
+            throw std::runtime_error("cannot write into " + quoted(folder) + ": not a folder");
+        }
+        return;
+    }
+    const fs::path parent = folder.parent_path().empty() ? fs::path(".") : folder.parent_path();
+    if (!fs::is_directory(parent, error)) {
+        throw std::runtime_error("cannot create folder " + quoted(folder) + ": folder " +
+                                 quoted(parent) + " does not exist");
     }
 }
 

@@ -86,6 +86,10 @@ std::unique_ptr<TemporaryFile> stage(const fs::path& path, std::string_view byte
     if (fs::exists(path, error) && ::access(path.c_str(), W_OK) != 0) {
         throw std::runtime_error("cannot write " + quoted(path) + ": " + std::strerror(errno));
     }
+    // The rename would replace a device (/dev/null), FIFO or socket with a regular file.
+    if (fs::exists(path, error) && !fs::is_regular_file(path, error)) {
+        throw std::runtime_error("cannot write " + quoted(path) + ": not a regular file");
+    }
     auto temporary = std::make_unique<TemporaryFile>(path);
     const char* data = bytes.data();
     std::size_t left = bytes.size();

@@ -40,7 +40,7 @@ Image luma(const Image& image) {
 
 Response log_response(const Image& grey, const std::vector<std::int32_t>& kernel) {
     const auto [w, h, r] = log_shape(grey, kernel);
-    const auto row_start = [w](int y) { return static_cast<std::size_t>(y) * w; };
+    const auto row_start = [w = w](int y) { return static_cast<std::size_t>(y) * w; };
 
     // Vertical pass then horizontal pass, both with replicated borders; no rounding, so the
     // result equals the direct 2-D sum with weights k[i] k[j].

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "stereo_io/io.hpp"
+#include "stereo_io/text_file.hpp"
 
 namespace stereo::robot {
 namespace fs = std::filesystem;
@@ -28,10 +29,7 @@ std::vector<std::string> image_names(const fs::path& folder) {
 }  // namespace
 
 StereoGeometry load_calibration(const fs::path& path) {
-    std::ifstream in(path);
-    if (!in) {
-        throw std::runtime_error("cannot read calibration file " + path.string());
-    }
+    std::istringstream in(io::read_text_file(path, "calibration file"));
     std::vector<std::pair<std::string, Projection>> matrices;
     std::string line;
     while (std::getline(in, line)) {
@@ -123,10 +121,7 @@ std::vector<FramePair> pairs_from_folders(const fs::path& left, const fs::path& 
 }
 
 std::vector<FramePair> pairs_from_list(const fs::path& list) {
-    std::ifstream in(list);
-    if (!in || fs::is_directory(list)) {
-        throw std::runtime_error("cannot read list file " + list.string());
-    }
+    std::istringstream in(io::read_text_file(list, "list file"));
     const fs::path base = list.parent_path();
     std::vector<FramePair> pairs;
     std::string line;

@@ -1,15 +1,20 @@
 #include "stereo_robot/overlay.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
+
+#include "stereo_io/io.hpp"
 
 namespace stereo::robot {
 namespace {
@@ -82,9 +87,61 @@ struct SequenceWriter::State {
     std::vector<cv::Mat> frames;
 };
 
+namespace {
+
+std::string lower_extension(const std::filesystem::path& path) {
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return extension;
+}
+
+// OpenCV's VideoWriter writes in place: the video goes to a hidden file beside the destination
+// and is renamed over it once complete.
+void write_video(const std::filesystem::path& path, const std::vector<cv::Mat>& frames,
+                 double fps) {
+    const std::filesystem::path folder =
+        path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
+    std::string name = ".";  // appended: `"." + string` trips a GCC 12 -Wrestrict false positive
+    name += path.filename().string();
+    name += ".partial.avi";
+    const std::filesystem::path partial = folder / name;
+    bool ok = false;
+    {
+        cv::VideoWriter writer(partial.string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), fps,
+                               frames.front().size());
+        if (writer.isOpened()) {
+            for (const auto& frame : frames) {
+                writer.write(frame);
+            }
+            ok = true;
+        }
+    }
+    std::error_code error;
+    if (ok) {
+        std::filesystem::rename(partial, path, error);
+    }
+    if (!ok || error) {
+        std::filesystem::remove(partial, error);
+        throw std::runtime_error("cannot write video " + path.string());
+    }
+}
+
+}  // namespace
+
+void check_overlay_path(const std::filesystem::path& path, bool sequence) {
+    const std::string extension = lower_extension(path);
+    if (extension == ".png" || (sequence && extension == ".avi")) {
+        return;
+    }
+    throw std::invalid_argument(
+        "--overlay " + path.string() +
+        (sequence ? " must end in .png (contact sheet) or .avi (video)" : " must end in .png"));
+}
+
 SequenceWriter::SequenceWriter(std::filesystem::path path, double fps)
     : state_(std::make_unique<State>()) {
-    state_->video = path.extension() == ".avi";
+    state_->video = lower_extension(path) == ".avi";
     state_->path = std::move(path);
     state_->fps = fps;
 }
@@ -108,14 +165,7 @@ void SequenceWriter::finish() {
         return;
     }
     if (state_->video) {
-        cv::VideoWriter writer(state_->path.string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'),
-                               state_->fps, frames.front().size());
-        if (!writer.isOpened()) {
-            throw std::runtime_error("cannot write video " + state_->path.string());
-        }
-        for (const auto& frame : frames) {
-            writer.write(frame);
-        }
+        write_video(state_->path, frames, state_->fps);
         return;
     }
     const int cols = std::min<int>(kSheetColumns, static_cast<int>(frames.size()));
@@ -129,9 +179,7 @@ void SequenceWriter::finish() {
         cv::resize(frames[i], fitted, cell, 0, 0, cv::INTER_AREA);
         fitted.copyTo(sheet(cv::Rect(c * cell.width, r * cell.height, cell.width, cell.height)));
     }
-    if (!cv::imwrite(state_->path.string(), sheet)) {
-        throw std::runtime_error("cannot write " + state_->path.string());
-    }
+    io::write_png(state_->path, sheet);  // atomic
 }
 
 }  // namespace stereo::robot

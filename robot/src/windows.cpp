@@ -1,5 +1,6 @@
 #include "stereo_robot/windows.hpp"
 
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -9,13 +10,15 @@ std::array<Rect, 3> split_windows(int width, int height, int border) {
     if (border < 0) {
         throw std::invalid_argument("window border must be >= 0, got " + std::to_string(border));
     }
-    const int inner_width = width - 2 * border;
-    const int inner_height = height - 2 * border;
-    if (inner_width < 3 || inner_height < 1) {
+    // In 64 bits: 2 * border overflows an int for --border 2147483647 (undefined behaviour).
+    const std::int64_t wide_inner_width = std::int64_t{width} - 2 * std::int64_t{border};
+    const std::int64_t wide_inner_height = std::int64_t{height} - 2 * std::int64_t{border};
+    if (wide_inner_width < 3 || wide_inner_height < 1) {
         throw std::invalid_argument("a " + std::to_string(width) + "x" + std::to_string(height) +
                                     " map leaves no room for three windows inside a " +
                                     std::to_string(border) + "-pixel border");
     }
+    const int inner_width = static_cast<int>(wide_inner_width);
     std::array<Rect, 3> windows{};
     for (int i = 0; i < 3; ++i) {
         windows[i] = {border + i * inner_width / 3, border, border + (i + 1) * inner_width / 3,

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <sys/stat.h>
+
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
@@ -78,6 +80,27 @@ void write_fixtures(const fs::path& dir) {
     std::ofstream(dir / "huge_header.png", std::ios::binary)
         .write(reinterpret_cast<const char*>(huge.data()),
                static_cast<std::streamsize>(huge.size()));
+
+    // File kinds for the bad-input table (bad_inputs.txt): an empty file, a folder and a FIFO
+    // named like images, a file nobody may read, and calibrations no rig has.
+    std::ofstream(dir / "empty.png", std::ios::binary).flush();
+    fs::create_directories(dir / "folder.png");
+    fs::remove(dir / "fifo.png");
+    if (::mkfifo((dir / "fifo.png").c_str(), 0644) != 0) {
+        throw std::runtime_error("cannot create the FIFO fifo.png");
+    }
+    const fs::path unreadable = dir / "unreadable.png";
+    fs::remove(unreadable);
+    io::write_png(unreadable, left);
+    fs::permissions(unreadable, fs::perms::none);
+    std::ofstream(dir / "calib_nan.txt") << "P0: nan 0 32 0 0 nan 16 0 0 0 1 0\n"
+                                         << "P1: nan 0 32 -10 0 nan 16 0 0 0 1 0\n";
+    std::ofstream(dir / "calib_huge.txt") << "P0: 1e308 0 32 0 0 1e308 16 0 0 0 1 0\n"
+                                          << "P1: 1e308 0 32 -1e308 0 1e308 16 0 0 0 1 0\n";
+    // An avoidance sequence whose second frame is missing: refused before the first line.
+    std::ofstream(dir / "list_missing_frame.txt") << "left.png right.png\nleft.png nope.png\n";
+    std::ofstream(dir / "calib.txt") << "P0: 100 0 32 0 0 100 16 0 0 0 1 0\n"
+                                     << "P1: 100 0 32 -20 0 100 16 0 0 0 1 0\n";
 
     // Ground truth and masks for `stereo eval`: the true shift everywhere, stored times 4.
     io::write_png(dir / "gt.png", cv::Mat(kHeight, kWidth, CV_8UC1, cv::Scalar(kShift * 4)));

@@ -40,6 +40,15 @@ ImagePair crop(const ImagePair& pair, int x0, int y0, int width, int height);
 // for figures and the OpenCV baselines. Same errors as load_image.
 cv::Mat load_bgr(const std::filesystem::path& path);
 
+// The checks every image load makes before reading a byte: `path` exists, is a regular file
+// (not a folder, device or FIFO) and is at most kMaxImageFileBytes; std::runtime_error naming the
+// file otherwise. For sequences, to refuse a bad frame before the first one is processed.
+void check_image_file(const std::filesystem::path& path);
+
+// Reads an image file as 8-bit grey, converted as cv::imread(IMREAD_GRAYSCALE) does, with the
+// checks and errors of load_image (regular file, size from the header, one-line messages).
+cv::Mat load_grey(const std::filesystem::path& path);
+
 // Converts an 8-bit OpenCV matrix (grey, BGR or BGRA) into an Image; `name` is for messages.
 Image to_image(const cv::Mat& mat, const std::string& name);
 
@@ -107,5 +116,9 @@ void write_pngs(const std::vector<std::pair<std::filesystem::path, cv::Mat>>& fi
 // Throws std::runtime_error when `path` could not be created because its folder is missing;
 // used to fail before a long computation rather than after it.
 void check_writable_location(const std::filesystem::path& path);
+
+// The same for an output folder a command creates (figure sets, level maps): std::runtime_error
+// unless `folder` is an existing folder or does not exist and its parent folder does.
+void check_output_folder(const std::filesystem::path& folder);
 
 }  // namespace stereo::io

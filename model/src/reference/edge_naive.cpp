@@ -28,7 +28,12 @@ Image luma(const Image& image) {
 }
 
 Response log_response(const Image& grey, const std::vector<std::int32_t>& kernel) {
-    const auto [w, h, r] = log_shape(grey, kernel);
+    // Named variables, not a structured binding: the lambdas below capture them, which clang
+    // before 16 (the fuzz build, docs/reliability.md) does not allow for bindings.
+    const LogShape shape = log_shape(grey, kernel);
+    const int w = shape.w;
+    const int h = shape.h;
+    const int r = shape.r;
     const auto pixel = [&](int x, int y) {
         return static_cast<std::int64_t>(
             grey.at(std::clamp(x, 0, w - 1), std::clamp(y, 0, h - 1), 0));

@@ -25,9 +25,14 @@ struct OverlayInfo {
 cv::Mat draw_overlay(const cv::Mat& left, const DisparityMap& map, double threshold, int border,
                      const OverlayInfo& info);
 
+// Throws std::invalid_argument unless `path` can hold the overlay: a .png file, or for a sequence
+// also an .avi video (any case). Called before the first frame is processed.
+void check_overlay_path(const std::filesystem::path& path, bool sequence);
+
 // Collects the overlays of a sequence: an MJPG .avi when the path ends in .avi, otherwise a
 // PNG contact sheet of thumbnails (4 per row, at most 320 pixels wide each). Nothing is
-// written until finish(), which throws std::runtime_error when the file cannot be written.
+// written until finish(), which throws std::runtime_error when the file cannot be written;
+// both kinds are written to a temporary file and renamed, so a failure leaves no partial file.
 class SequenceWriter {
   public:
     SequenceWriter(std::filesystem::path path, double fps);

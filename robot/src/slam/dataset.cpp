@@ -18,6 +18,7 @@
 
 #include "stereo_io/io.hpp"
 #include "stereo_io/limits.hpp"
+#include "stereo_io/text_file.hpp"
 
 namespace stereo::robot::slam {
 
@@ -63,16 +64,7 @@ int parse_index(const std::string& text, const std::string& whole) {
 // directive first, which yaml-cpp does not accept, so that line is dropped.
 YAML::Node load_opencv_yaml(const fs::path& path) {
     constexpr std::uintmax_t kMaxBytes = 1 << 20;  // a rectification file is a few kilobytes
-    std::error_code error;
-    if (!fs::is_regular_file(path, error)) {
-        throw std::runtime_error("cannot read rectification file " + path.string());
-    }
-    if (fs::file_size(path, error) > kMaxBytes) {
-        throw std::invalid_argument("rectification file " + path.string() +
-                                    " is larger than 1 MiB");
-    }
-    std::ifstream in(path, std::ios::binary);
-    std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    std::string text = io::read_text_file(path, "rectification file", kMaxBytes);
     if (text.rfind("%YAML:", 0) == 0) {
         const auto end_of_line = text.find('\n');
         text.erase(0, end_of_line == std::string::npos ? text.size() : end_of_line + 1);
@@ -201,7 +193,7 @@ FrameRange parse_frames(const std::string& text, int count) {
 Camera load_kitti_camera(const fs::path& path) {
     const StereoGeometry geometry = load_calibration(path);  // f, B and every format check
     // The principal point, from the same matrix load_calibration took as the left one.
-    std::ifstream in(path);
+    std::istringstream in(io::read_text_file(path, "calibration file"));
     std::vector<std::pair<std::string, std::vector<double>>> matrices;
     std::string line;
     while (std::getline(in, line)) {
@@ -246,11 +238,7 @@ Sequence open_sequence(const fs::path& dir, Layout layout, const std::optional<f
         sequence.frames = list_frames(dir / "image_l", dir / "image_r");
         sequence.camera = load_kitti_camera(calib.value_or(dir / "calib.txt"));
         const fs::path first = sequence.frames.front().first;
-        const cv::Mat image = cv::imread(first.string(), cv::IMREAD_GRAYSCALE);
-        if (image.empty()) {
-            throw std::runtime_error("cannot read image " + first.string());
-        }
-        sequence.size = image.size();
+        sequence.size = io::load_grey(first).size();
         const fs::path poses = dir / "poses.txt";
         if (fs::exists(poses)) {
             Trajectory truth = load_kitti_poses(poses);
@@ -275,10 +263,7 @@ StereoFrame load_frame(const Sequence& sequence, int index, int downscale) {
     cv::Mat* const targets[] = {&frame.left, &frame.right};
     const fs::path* const paths[] = {&left_path, &right_path};
     for (int side = 0; side < 2; ++side) {
-        cv::Mat image = cv::imread(paths[side]->string(), cv::IMREAD_GRAYSCALE);
-        if (image.empty()) {
-            throw std::runtime_error("cannot read image " + paths[side]->string());
-        }
+        cv::Mat image = io::load_grey(*paths[side]);
         if (image.size() != sequence.size) {
             throw std::invalid_argument(
                 "image " + paths[side]->string() + " is " + std::to_string(image.cols) + "x" +

@@ -8,15 +8,13 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "stereo_io/text_file.hpp"
 #include "stereo_robot/slam/motion.hpp"
 
 namespace stereo::robot::slam {
 
 Trajectory load_kitti_poses(const std::filesystem::path& path) {
-    std::ifstream in(path);
-    if (!in || std::filesystem::is_directory(path)) {
-        throw std::runtime_error("cannot read pose file " + path.string());
-    }
+    std::istringstream in(io::read_text_file(path, "pose file"));
     Trajectory poses;
     std::string line;
     int number = 0;

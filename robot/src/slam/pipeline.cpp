@@ -38,13 +38,21 @@ void require(bool condition, const char* message) {
 void validate(const SlamParams& params, int width, int height) {
     validate_frontend(params.frontend, width, height);
     const auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
-    require(params.motion.features >= 10, "--features must be >= 10");
+    // Every bound keeps the work and the memory of a run finite and every value meaningful
+    // (docs/reliability.md lists them): 2^31 RANSAC samples or CA passes would run for days.
+    const auto within = [](double v, double low, double high) { return v >= low && v <= high; };
+    require(within(params.frontend.certainty, 0.0, 1000.0), "--certainty must be in [0, 1000]");
+    require(within(params.frontend.lr_tolerance, 0, 256), "--lr-tolerance must be in 0..256");
+    require(within(params.motion.features, 10, 100000), "--features must be in 10..100000");
     require(params.motion.max_hamming >= 0 && params.motion.max_hamming <= 256,
             "--max-hamming must be in 0..256");
-    require(positive(params.motion.max_depth), "--max-depth must be > 0");
-    require(params.motion.ransac.iterations >= 1, "--ransac-iterations must be >= 1");
-    require(positive(params.motion.ransac.threshold), "--inlier-px must be > 0");
-    require(params.motion.ransac.min_inliers >= 3, "--min-inliers must be >= 3");
+    require(within(params.motion.max_depth, 1e-3, 1e4), "--max-depth must be in [0.001, 10000] m");
+    require(within(params.motion.ransac.iterations, 1, 100000),
+            "--ransac-iterations must be in 1..100000");
+    require(within(params.motion.ransac.threshold, 1e-3, 1000.0),
+            "--inlier-px must be in [0.001, 1000]");
+    require(within(params.motion.ransac.min_inliers, 3, 100000),
+            "--min-inliers must be in 3..100000");
     // A cell from 1 cm to 100 m, and at most 10^5 cells across the mapped range: the grids stay
     // small and every cell index fits an int (a 1e-6 m cell grew the grids past 3 GB).
     require(params.cell_size >= 0.01 && params.cell_size <= 100.0,
@@ -52,15 +60,17 @@ void validate(const SlamParams& params, int width, int height) {
     require(positive(params.local.max_range), "--max-range must be > 0");
     require(params.local.max_range / params.cell_size <= 1e5,
             "--max-range / --cell must be at most 100000 cells");
-    require(positive(params.local.max_height), "--max-height must be > 0");
-    require(params.local.tolerance >= 0.0 && std::isfinite(params.local.tolerance),
-            "--ground-tolerance must be >= 0");
-    require(params.local.stride >= 1, "--stride must be >= 1");
+    require(within(params.local.max_height, 1e-3, 1000.0),
+            "--max-height must be in [0.001, 1000] m");
+    require(within(params.local.tolerance, 0.0, 1000.0), "--ground-tolerance must be in [0, 1000]");
+    require(within(params.local.stride, 1, 10000), "--stride must be in 1..10000");
     require(params.merge.max_shift >= 0 && params.merge.max_shift <= 20,
             "--merge-shift must be in 0..20 cells");
     require(params.merge.angle_steps >= 0 && params.merge.angle_steps <= 20,
             "--merge-angle-steps must be in 0..20");
-    require(positive(params.merge.angle_step_deg), "--merge-angle-step must be > 0 degrees");
+    require(within(params.merge.angle_step_deg, 1e-3, 45.0),
+            "--merge-angle-step must be in [0.001, 45] degrees");
+    require(within(params.merge.min_gain, 0, 1000000), "--merge-min-gain must be in 0..1000000");
     require(positive(params.ray_bin_deg), "ray bins must be > 0 degrees");
 }
 

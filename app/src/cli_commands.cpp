@@ -1,0 +1,21 @@
+// Every subcommand of `stereo`, in one place: main() and the CLI fuzz harness
+// (fuzz/fuzz_cli_options.cpp) build the same application from it.
+#include <CLI/CLI.hpp>
+
+#include "cli.hpp"
+
+namespace stereo::cli {
+
+void add_stereo_commands(CLI::App& app) {
+    app.require_subcommand(1);
+    add_match_command(app);
+    add_eval_command(app);
+    add_middlebury_command(app);
+    add_cosim_command(app);
+    add_fis_command(app);
+    add_avoid_command(app);
+    add_distort_command(app);
+    add_slam_command(app);
+}
+
+}  // namespace stereo::cli
