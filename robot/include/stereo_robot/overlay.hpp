@@ -22,8 +22,9 @@ struct OverlayInfo {
 };
 
 // `left` is the left image in OpenCV BGR (or grey) order, of the map's size.
+// Near pixels are tinted red, near pixels that the ground model ignores (optional) blue.
 cv::Mat draw_overlay(const cv::Mat& left, const DisparityMap& map, double threshold, int border,
-                     const OverlayInfo& info);
+                     const OverlayInfo& info, const GroundModel* ground = nullptr);
 
 // Collects the overlays of a sequence: an MJPG .avi when the path ends in .avi, otherwise a
 // PNG contact sheet of thumbnails (4 per row, at most 320 pixels wide each). Nothing is
