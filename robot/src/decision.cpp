@@ -116,11 +116,18 @@ FisResult evaluate_fis(double left, double centre, double right, const FisParams
 
     result.mamdani_angle_deg = result.angle_deg;
 
+    // A turn rule "fires" when its clipped output set is not flat across the opposite third of
+    // the angle range (the other side's window): strength >= the turn MF at that third's inner
+    // edge (left MF at +10 degrees, right MF at -10: exp(-29^2 / (2 5.5^2)) = 9.2e-7). Weaker
+    // rules carry no direction; their centroid is noise around 0.
+    const double third = (params.angle_max - params.angle_min) / 3.0;
+    const bool left_fires = w_left >= params.left(params.angle_max - third);
+    const bool right_fires = w_right >= params.right(params.angle_min + third);
     if (result.backwards > params.backwards_threshold) {
         result.decision = Direction::backwards;
-    } else if (result.angle_deg < -params.forward_band) {
+    } else if (result.angle_deg < -params.forward_band && left_fires) {
         result.decision = Direction::left;
-    } else if (result.angle_deg > params.forward_band) {
+    } else if (result.angle_deg > params.forward_band && right_fires) {
         result.decision = Direction::right;
     } else if (centre < params.rate) {
         result.decision = Direction::forward;

@@ -76,7 +76,9 @@ void check_fraction(double value, const std::string& name);
 // Mamdani FIS: min for AND and implication, max aggregation, centroid over the grids; an empty
 // aggregated set defuzzifies to the midpoint of its range. The decision (docs/avoidance.md):
 //   backwards when backwards > backwards_threshold;
-//   else a turn by the angle's sign when |angle| > forward_band;
+//   else a turn by the angle's sign when |angle| > forward_band and that side's turn rule fires
+//   (strength at least the turn MF at the inner edge of the opposite third of the angle range,
+//   9.2e-7 with the defaults: below it the clipped set is flat over the other side's sector);
 //   else forward when centre < rate;
 //   else (rule 5, the default rule: a blocked centre and no turn rule decisive) a turn to the
 //   freer side (smaller occupancy, ties left), or backwards when that side is blocked as well;
