@@ -369,6 +369,10 @@ void add_slam_command(CLI::App& app) {
          {"--merge-angle-steps", &p.merge.angle_steps, "Merge search: +- steps"},
          {"--merge-angle-step", &p.merge.angle_step_deg, "Merge step, degrees"},
          {"--merge-min-gain", &p.merge.min_gain, "Cells a correction must gain to be applied"},
+         {"--merge-significance", &p.merge.significance,
+          "Gain must exceed this times sqrt(score + base score); 0: off"},
+         {"--merge-min-match", &p.merge.min_match,
+          "Share of the placed local map's cells that must hit occupied cells; 0: off"},
          {"--ca-passes", &o->ca_passes, "Clean-up passes over the final map"}});
 }
 

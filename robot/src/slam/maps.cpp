@@ -447,13 +447,23 @@ MergeResult best_placement(const EvidenceGrid& global, const std::vector<Eigen::
                     best.dz = dz;
                     best.dtheta = step;
                     best.score = score;
+                    best.cells = static_cast<int>(cells.size());
                     best_size = size;
                     first = false;
                 }
             }
         }
     }
-    best.applied = best.score >= best.base_score + params.min_gain && best_size > 0;
+    // The gates (docs/slam.md): a gain noise cannot explain (sigma * sqrt of the counts, the
+    // Poisson spread of a count of chance coincidences), and a local map that the global map
+    // confirms (at least min_match of its cells on occupied cells once placed).
+    const int gain = best.score - best.base_score;
+    const bool significant =
+        gain >= params.min_gain &&
+        gain >= params.significance * std::sqrt(static_cast<double>(best.score + best.base_score));
+    const bool confirmed =
+        best.cells > 0 && best.score >= params.min_match * static_cast<double>(best.cells);
+    best.applied = significant && confirmed && best_size > 0;
     return best;
 }
 

@@ -61,6 +61,10 @@ void validate(const SlamParams& params, int width, int height) {
     require(params.merge.angle_steps >= 0 && params.merge.angle_steps <= 20,
             "--merge-angle-steps must be in 0..20");
     require(positive(params.merge.angle_step_deg), "--merge-angle-step must be > 0 degrees");
+    require(params.merge.significance >= 0.0 && std::isfinite(params.merge.significance),
+            "--merge-significance must be >= 0");
+    require(params.merge.min_match >= 0.0 && params.merge.min_match <= 1.0,
+            "--merge-min-match must be in [0, 1]");
     require(positive(params.ray_bin_deg), "ray bins must be > 0 degrees");
 }
 

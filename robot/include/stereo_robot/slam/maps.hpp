@@ -170,6 +170,12 @@ struct MergeParams {
     int angle_steps = 2;  // rotations -angle_steps .. +angle_steps
     double angle_step_deg = 0.5;
     int min_gain = 3;  // overlap cells the best placement must gain over no change
+    // The gain must also exceed significance * sqrt(score + base score): chance coincidences
+    // of noisy cells are Poisson-like counts (0 switches this gate off).
+    double significance = 3.0;
+    // The placed local map must land with at least this share of its cells on occupied map
+    // cells: a correction is only trusted when the map confirms the local map (0 = off).
+    double min_match = 0.5;
 };
 
 struct MergeResult {
@@ -178,6 +184,7 @@ struct MergeResult {
     int dtheta = 0;      // steps of angle_step_deg
     int score = 0;       // occupied cells of the chosen placement that are occupied in the map
     int base_score = 0;  // the same without correction
+    int cells = 0;       // distinct cells of the chosen placement
     bool applied = false;
 };
 
