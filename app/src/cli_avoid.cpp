@@ -18,6 +18,7 @@
 #include "cli_matcher_options.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/output.hpp"
+#include "stereo_robot/bands.hpp"
 #include "stereo_robot/calibration.hpp"
 #include "stereo_robot/decision.hpp"
 #include "stereo_robot/ground.hpp"
@@ -48,6 +49,7 @@ struct AvoidOptions {
     robot::ThresholdParams threshold_params;
     robot::FisParams fis;
     std::string ground = "fit";  // fit | off
+    int threads = 0;             // row bands matched in parallel; 0 = every core
     robot::GroundRemoval ground_params;
 };
 
@@ -74,6 +76,10 @@ double pixel_threshold(const AvoidOptions& o) {
         throw std::invalid_argument("give --safe-distance Z (with a calibration) or --threshold T");
     }
     const auto geometry = geometry_of(o);
+    if (o.threads < 0) {
+        throw std::invalid_argument("--threads must be >= 0 (0: every core)");
+    }
+    const int threads = o.threads == 0 ? robot::default_threads() : o.threads;
     if (!geometry) {
         throw std::invalid_argument(
             "missing calibration: --safe-distance needs --calib FILE or --focal F --baseline B");
@@ -176,6 +182,10 @@ void run_avoid(const AvoidOptions& o) {
         throw std::invalid_argument("--max-height must be > 0 and --ground-tolerance >= 0");
     }
     const auto geometry = geometry_of(o);
+    if (o.threads < 0) {
+        throw std::invalid_argument("--threads must be >= 0 (0: every core)");
+    }
+    const int threads = o.threads == 0 ? robot::default_threads() : o.threads;
     // The edge front end; it checks its parameters once the image size is known.
     const auto matcher = matchers().create("edges", "model", o.matcher.resolved());
     const double threshold = pixel_threshold(o);
@@ -199,7 +209,12 @@ void run_avoid(const AvoidOptions& o) {
         const auto start = std::chrono::steady_clock::now();
         const io::ImagePair pair = io::load_pair(left_path, right_path, o.downscale);
         matcher->validate(pair.left.width, pair.left.height);
-        const DisparityMap map = matcher->compute(pair.left, pair.right).disparity;
+        // The registry's edge matcher, run on row bands in parallel (bit-exact, bands.hpp).
+        const MatchConfig config = o.matcher.resolved();
+        MatchParams params = config.pipeline;
+        params.use_ca = false;
+        const DisparityMap map =
+            robot::edge_match_bands(pair.left, pair.right, params, config.edges, threads);
         std::optional<robot::GroundModel> ground;
         if (geometry && o.ground == "fit") {
             ground = robot::fit_ground(
@@ -291,6 +306,8 @@ void add_avoid_command(CLI::App& app) {
           "Ground band, pixels of disparity above the v-disparity line"},
          {"--max-height", &o->ground_params.max_height,
           "Metres above the ground: higher pixels are not obstacles"}});
+    command->add_option("--threads", o->threads, "Row bands matched in parallel; 0: every core")
+        ->capture_default_str();
     command
         ->add_option("--ground", o->ground,
                      "Ground removal: fit (v-disparity line; needs a calibration) or off")

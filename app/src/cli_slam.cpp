@@ -21,6 +21,7 @@
 #include "cli_matcher_options.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/output.hpp"
+#include "stereo_robot/bands.hpp"
 #include "stereo_robot/slam/dataset.hpp"
 #include "stereo_robot/slam/evaluation.hpp"
 #include "stereo_robot/slam/pipeline.hpp"
@@ -126,6 +127,9 @@ void run_slam(SlamOptions o) {
     o.params.frontend.ndisp = frontend.ndisp;
     o.params.frontend.window = frontend.window;
     o.params.frontend.sigma = frontend.sigma;
+    if (o.params.threads == 0) {
+        o.params.threads = robot::default_threads();
+    }
     if (o.downscale < 1) {
         throw std::invalid_argument("--downscale must be >= 1, got " + std::to_string(o.downscale));
     }
@@ -318,6 +322,9 @@ void add_slam_command(CLI::App& app) {
         app, "slam", "Stereo SLAM (thesis Sec. 4.2): trajectory and occupancy map of a sequence.",
         run_slam);
     auto& p = o->params;
+    p.threads = 0;  // the command line's default: every core
+    command->add_option("--threads", p.threads, "Front-end row bands in parallel; 0: every core")
+        ->capture_default_str();
     command
         ->add_option("SEQ_DIR", o->sequence,
                      "Sequence folder: image_l/ image_r/ calib.txt [poses.txt] (KITTI) or "

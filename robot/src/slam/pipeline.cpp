@@ -2,9 +2,11 @@
 
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <stdexcept>
 
 #include "stereo_io/io.hpp"
+#include "stereo_robot/bands.hpp"
 
 namespace stereo::robot::slam {
 
@@ -39,6 +41,7 @@ void validate(const SlamParams& params, int width, int height) {
     validate_frontend(params.frontend, width, height);
     const auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
     require(params.motion.features >= 10, "--features must be >= 10");
+    require(params.threads >= 1 && params.threads <= 256, "--threads must be in 1..256");
     require(params.motion.max_hamming >= 0 && params.motion.max_hamming <= 256,
             "--max-hamming must be in 0..256");
     require(positive(params.motion.max_depth), "--max-depth must be > 0");
@@ -89,13 +92,20 @@ FrameReport Slam::process(const cv::Mat& left, const cv::Mat& right) {
     FrameReport report;
 
     auto start = Clock::now();
-    SparseDisparity disparity =
-        sparse_disparity(to_grey_image(left), to_grey_image(right), params_.frontend);
+    // ORB on the left image does not depend on the disparities: with threads > 1 it runs
+    // beside the front end (its time is then included in frontend_ms).
+    std::future<Features> detected;
+    if (params_.threads > 1) {
+        detected =
+            std::async(std::launch::async, [&] { return detect_features(left, params_.motion); });
+    }
+    SparseDisparity disparity = sparse_disparity_bands(to_grey_image(left), to_grey_image(right),
+                                                       params_.frontend, params_.threads);
     report.valid_fraction = disparity.valid_fraction();
+    Features features = detected.valid() ? detected.get() : detect_features(left, params_.motion);
     report.ms.frontend_ms = ms_since(start);
 
     start = Clock::now();
-    Features features = detect_features(left, params_.motion);
     if (odometry_.empty()) {
         odometry_.push_back(Eigen::Isometry3d::Identity());
         trajectory_.push_back(Eigen::Isometry3d::Identity());
