@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <future>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -76,10 +77,6 @@ double pixel_threshold(const AvoidOptions& o) {
         throw std::invalid_argument("give --safe-distance Z (with a calibration) or --threshold T");
     }
     const auto geometry = geometry_of(o);
-    if (o.threads < 0) {
-        throw std::invalid_argument("--threads must be >= 0 (0: every core)");
-    }
-    const int threads = o.threads == 0 ? robot::default_threads() : o.threads;
     if (!geometry) {
         throw std::invalid_argument(
             "missing calibration: --safe-distance needs --calib FILE or --focal F --baseline B");
@@ -205,9 +202,18 @@ void run_avoid(const AvoidOptions& o) {
         writer.emplace(o.overlay, 10.0);
     }
 
-    for (const auto& [left_path, right_path] : pairs) {
+    // The next pair is read and decoded on another thread while this one is matched.
+    const auto load = [&](std::size_t i) {
+        return io::load_pair(pairs[i].first, pairs[i].second, o.downscale);
+    };
+    std::future<io::ImagePair> next = std::async(std::launch::async, load, 0);
+    for (std::size_t index = 0; index < pairs.size(); ++index) {
+        const auto& [left_path, right_path] = pairs[index];
         const auto start = std::chrono::steady_clock::now();
-        const io::ImagePair pair = io::load_pair(left_path, right_path, o.downscale);
+        const io::ImagePair pair = next.get();
+        if (index + 1 < pairs.size()) {
+            next = std::async(std::launch::async, load, index + 1);
+        }
         matcher->validate(pair.left.width, pair.left.height);
         // The registry's edge matcher, run on row bands in parallel (bit-exact, bands.hpp).
         const MatchConfig config = o.matcher.resolved();

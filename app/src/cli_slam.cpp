@@ -276,9 +276,9 @@ void run_slam(SlamOptions o) {
     if (!o.map.empty()) {
         std::vector<slam::Polyline> paths;
         if (truth) {
-            paths.push_back({truth_path, cv::Scalar(0, 170, 0)});
+            paths.push_back({truth_path, cv::Scalar(0, 170, 0), "true (poses.txt)"});
         }
-        paths.push_back({estimate_path, cv::Scalar(0, 0, 255)});
+        paths.push_back({estimate_path, cv::Scalar(0, 0, 255), "estimate (output)"});
         io::write_png(o.map, slam::render_map(cleaned, o.params.cell_size, paths));
     }
     if (!o.vdisparity.empty()) {

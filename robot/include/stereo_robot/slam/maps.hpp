@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
@@ -204,10 +205,13 @@ Eigen::Isometry3d merge_correction(const MergeResult& result, const Eigen::Vecto
 
 // ---- pictures -----------------------------------------------------------------------------
 // The grid (unknown grey, free white, occupied black), x to the right and z up, `pixels` per
-// cell, with trajectories (camera positions, x and z) drawn as polylines in their BGR colours.
+// cell, with trajectories (camera positions, x and z) drawn as polylines in their BGR colours;
+// below it a strip with the legend (cell states, labelled paths), a metric scale bar and the
+// axes.
 struct Polyline {
     std::vector<Eigen::Vector2d> points;
     cv::Scalar colour;
+    std::string label;  // shown in the legend when not empty
 };
 cv::Mat render_map(const DenseGrid& grid, double cell_size, const std::vector<Polyline>& paths,
                    int pixels = 4);
