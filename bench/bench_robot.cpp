@@ -123,44 +123,26 @@ void BM_SparseFrontend(benchmark::State& state) {
     set_fps(state);
 }
 
-// stereo avoid's work per frame after loading: front end, ground fit, both decisions.
+// stereo avoid's work per frame after loading: front end, ground fit, both decisions. Arguments:
+// threads, and the downscale (1: full size, 64 labels; 2: half size, 32 labels, as
+// `stereo avoid --downscale 2 --ndisp 32`).
 void BM_AvoidDecision(benchmark::State& state) {
     if (skip_without_data(state)) {
         return;
     }
     const int threads = static_cast<int>(state.range(0));
+    const int downscale = static_cast<int>(state.range(1));
+    const io::ImagePair& pair = downscale == 1 ? frames()->pair : frames()->half;
     MatchParams params;
     params.use_ca = false;
-    const double t = robot::disparity_threshold(frames()->geometry, 10.0);
+    params.ndisp = 64 / downscale;
+    const double t = robot::disparity_threshold(frames()->geometry, 10.0, downscale);
     for (auto _ : state) {
         const DisparityMap map =
-            robot::edge_match_bands(frames()->pair.left, frames()->pair.right, params, {}, threads);
+            robot::edge_match_bands(pair.left, pair.right, params, {}, threads);
         const auto ground = robot::fit_ground(
             map, params.ndisp,
-            robot::avoidance_camera(frames()->geometry, 1, map.width, map.height), {});
-        const robot::GroundModel* g = ground ? &*ground : nullptr;
-        benchmark::DoNotOptimize(robot::decide_threshold(map, t, params.ndisp, {}, g));
-        benchmark::DoNotOptimize(robot::decide_fuzzy(map, t, {}, robot::kDefaultBorder, g));
-    }
-    set_fps(state);
-}
-
-// The same at half size with 32 labels (stereo avoid --downscale 2 --ndisp 32).
-void BM_AvoidDecisionHalf(benchmark::State& state) {
-    if (skip_without_data(state)) {
-        return;
-    }
-    const int threads = static_cast<int>(state.range(0));
-    MatchParams params;
-    params.use_ca = false;
-    params.ndisp = 32;
-    const double t = robot::disparity_threshold(frames()->geometry, 10.0, 2);
-    for (auto _ : state) {
-        const DisparityMap map =
-            robot::edge_match_bands(frames()->half.left, frames()->half.right, params, {}, threads);
-        const auto ground = robot::fit_ground(
-            map, params.ndisp,
-            robot::avoidance_camera(frames()->geometry, 2, map.width, map.height), {});
+            robot::avoidance_camera(frames()->geometry, downscale, map.width, map.height), {});
         const robot::GroundModel* g = ground ? &*ground : nullptr;
         benchmark::DoNotOptimize(robot::decide_threshold(map, t, params.ndisp, {}, g));
         benchmark::DoNotOptimize(robot::decide_fuzzy(map, t, {}, robot::kDefaultBorder, g));
@@ -191,8 +173,13 @@ void BM_SlamStep(benchmark::State& state) {
 BENCHMARK(BM_OpenCvStereoSGBM)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_EdgeFrontend)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_SparseFrontend)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_AvoidDecision)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_AvoidDecisionHalf)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_AvoidDecision)
+    ->Args({1, 1})
+    ->Args({2, 1})
+    ->Args({1, 2})
+    ->Args({2, 2})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK(BM_SlamStep)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Keeps each run's real time per iteration for the ratio summary.

@@ -88,6 +88,21 @@ std::function<double(double)> mf(const Gaussian& g) {
     return [g](double x) { return g(x); };
 }
 
+// Tick labels 0, 0.25, ..., 1 along the x and y axes of a square plot of cells x cells squares
+// of `cell` pixels whose top-left corner is (left, top).
+void occupancy_ticks(cv::Mat& img, int left, int top, int cells, int cell) {
+    const int side = cells * cell;
+    for (int k = 0; k <= 4; ++k) {
+        char label[8];
+        std::snprintf(label, sizeof label, "%.2f", k / 4.0);
+        const int pos = k * (cells - 1) * cell / 4;
+        cv::putText(img, label, {left + pos - 12, top + side + 16}, cv::FONT_HERSHEY_SIMPLEX, 0.4,
+                    kBlack, 1, cv::LINE_AA);
+        cv::putText(img, label, {8, top + side - pos + 4}, cv::FONT_HERSHEY_SIMPLEX, 0.4, kBlack, 1,
+                    cv::LINE_AA);
+    }
+}
+
 // Angle over centre occupancy (x) and left occupancy (y), right occupancy fixed; cells where
 // the robot backs off are hatched black.
 cv::Mat surface(double right, const FisParams& params) {
@@ -123,15 +138,7 @@ cv::Mat surface(double right, const FisParams& params) {
     std::snprintf(title, sizeof title, "angle (deg); x: centre, y: left occupancy; right = %.1f",
                   right);
     cv::putText(img, title, {kLeftPad, 20}, cv::FONT_HERSHEY_SIMPLEX, 0.5, kBlack, 1, cv::LINE_AA);
-    for (int k = 0; k <= 4; ++k) {
-        char label[8];
-        std::snprintf(label, sizeof label, "%.2f", k / 4.0);
-        const int pos = k * (kCells - 1) * kCell / 4;
-        cv::putText(img, label, {kLeftPad + pos - 12, kTop + kCells * kCell + 16},
-                    cv::FONT_HERSHEY_SIMPLEX, 0.4, kBlack, 1, cv::LINE_AA);
-        cv::putText(img, label, {8, kTop + kCells * kCell - pos + 4}, cv::FONT_HERSHEY_SIMPLEX, 0.4,
-                    kBlack, 1, cv::LINE_AA);
-    }
+    occupancy_ticks(img, kLeftPad, kTop, kCells, kCell);
     cv::putText(img, "centre occupancy (y: left occupancy)",
                 {kLeftPad + 130, kTop + kCells * kCell + 36}, cv::FONT_HERSHEY_SIMPLEX, 0.45,
                 kBlack, 1, cv::LINE_AA);
@@ -196,15 +203,7 @@ cv::Mat decision_map(double right, const FisParams& params, bool before) {
     char title[120];
     std::snprintf(title, sizeof title, "%s; right = %.1f", before ? "before" : "after", right);
     cv::putText(img, title, {kLeftPad, 20}, cv::FONT_HERSHEY_SIMPLEX, 0.45, kBlack, 1, cv::LINE_AA);
-    for (int k = 0; k <= 4; ++k) {
-        char label[8];
-        std::snprintf(label, sizeof label, "%.2f", k / 4.0);
-        const int pos = k * (kCells - 1) * kCell / 4;
-        cv::putText(img, label, {kLeftPad + pos - 12, kTop + kCells * kCell + 16},
-                    cv::FONT_HERSHEY_SIMPLEX, 0.4, kBlack, 1, cv::LINE_AA);
-        cv::putText(img, label, {8, kTop + kCells * kCell - pos + 4}, cv::FONT_HERSHEY_SIMPLEX, 0.4,
-                    kBlack, 1, cv::LINE_AA);
-    }
+    occupancy_ticks(img, kLeftPad, kTop, kCells, kCell);
     cv::putText(img, "x: centre, y: left occupancy", {kLeftPad + 40, kTop + kCells * kCell + 36},
                 cv::FONT_HERSHEY_SIMPLEX, 0.45, kBlack, 1, cv::LINE_AA);
     return img;
