@@ -154,58 +154,53 @@ TEST(SyntheticRoad, GroundNearerThanZsafeIsNotAnObstacle) {
     EXPECT_EQ(removed.fuzzy.fis.decision, Direction::forward);
 }
 
+// Pastes an obstacle (window, share, distance, texture seed) into `pair`.
+void paste(io::ImagePair& pair, const std::string& position, double coverage, double distance,
+           std::uint32_t seed) {
+    paste_obstacle(pair.left, pair.right,
+                   obstacle_in_window(kWidth, kHeight, kBorder, position, coverage, distance,
+                                      kGeometry, 1, seed));
+}
+
+// The road scene of `seed` with one obstacle, decided at Z_safe = 2 m with ground removal.
+Decisions road_with(std::uint32_t seed, const std::string& position, double coverage,
+                    double distance) {
+    io::ImagePair pair = road_scene(seed);
+    paste(pair, position, coverage, distance, seed);
+    return decide_both(pair, kGeometry, kNdisp, kBorder, 2.0, true);
+}
+
 TEST(SyntheticRoad, ObstaclesNearerThanZsafeAreAvoided) {
     for (const std::uint32_t seed : {test::test_seed(), test::test_seed() + 1}) {
         for (const double coverage : {0.34, 0.8}) {
             // Centre, 1.2 m (d = 33 px > T = 20 px): a turn or a stop, never forward.
-            io::ImagePair pair = road_scene(seed);
-            paste_obstacle(pair.left, pair.right,
-                           obstacle_in_window(kWidth, kHeight, kBorder, "centre", coverage, 1.2,
-                                              kGeometry, 1, seed));
-            const Decisions centre = decide_both(pair, kGeometry, kNdisp, kBorder, 2.0, true);
+            const Decisions centre = road_with(seed, "centre", coverage, 1.2);
             EXPECT_TRUE(turns_or_stops(centre.threshold.direction)) << coverage;
             EXPECT_TRUE(turns_or_stops(centre.fuzzy.fis.decision)) << coverage;
         }
         // In the right window only: the centre is free, go on.
-        io::ImagePair side = road_scene(seed);
-        paste_obstacle(
-            side.left, side.right,
-            obstacle_in_window(kWidth, kHeight, kBorder, "right", 0.8, 1.2, kGeometry, 1, seed));
-        const Decisions right = decide_both(side, kGeometry, kNdisp, kBorder, 2.0, true);
+        const Decisions right = road_with(seed, "right", 0.8, 1.2);
         EXPECT_EQ(right.threshold.direction, Direction::forward);
         EXPECT_EQ(right.fuzzy.fis.decision, Direction::forward);
         // Centre and right blocked: turn left (both methods).
-        paste_obstacle(side.left, side.right,
-                       obstacle_in_window(kWidth, kHeight, kBorder, "centre", 0.8, 1.2, kGeometry,
-                                          1, seed + 7));
+        io::ImagePair side = road_scene(seed);
+        paste(side, "right", 0.8, 1.2, seed);
+        paste(side, "centre", 0.8, 1.2, seed + 7);
         const Decisions both = decide_both(side, kGeometry, kNdisp, kBorder, 2.0, true);
         EXPECT_EQ(both.threshold.direction, Direction::left);
         EXPECT_EQ(both.fuzzy.fis.decision, Direction::left);
         // A wall across the view: the fuzzy method backs off, the threshold one turns.
-        io::ImagePair wall = road_scene(seed);
-        paste_obstacle(
-            wall.left, wall.right,
-            obstacle_in_window(kWidth, kHeight, kBorder, "wall", 0.9, 1.2, kGeometry, 1, seed));
-        const Decisions walled = decide_both(wall, kGeometry, kNdisp, kBorder, 2.0, true);
+        const Decisions walled = road_with(seed, "wall", 0.9, 1.2);
         EXPECT_EQ(walled.fuzzy.fis.decision, Direction::backwards);
         EXPECT_NE(walled.threshold.direction, Direction::forward);
         // The same centre obstacle beyond Z_safe (4 m, d = 10 px < T): forward.
-        io::ImagePair far = road_scene(seed);
-        paste_obstacle(
-            far.left, far.right,
-            obstacle_in_window(kWidth, kHeight, kBorder, "centre", 0.8, 4.0, kGeometry, 1, seed));
-        const Decisions beyond = decide_both(far, kGeometry, kNdisp, kBorder, 2.0, true);
+        const Decisions beyond = road_with(seed, "centre", 0.8, 4.0);
         EXPECT_EQ(beyond.threshold.direction, Direction::forward);
         EXPECT_EQ(beyond.fuzzy.fis.decision, Direction::forward);
     }
 }
 
 // ---- real KITTI frames --------------------------------------------------------------------------
-
-struct KittiCase {
-    std::string clip;
-    int frame;
-};
 
 TEST(KittiObstacles, AnObstacleAtSixMetresInTheCentreIsNeverDrivenInto) {
     int frames = 0;
