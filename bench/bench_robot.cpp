@@ -94,33 +94,32 @@ void BM_OpenCvStereoSGBM(benchmark::State& state) {
     set_fps(state);
 }
 
-void BM_EdgeFrontend(benchmark::State& state) {
+// One front end on frame 10, range(0) = threads (row bands).
+template <typename Match>
+void frontend_benchmark(benchmark::State& state, Match match) {
     if (skip_without_data(state)) {
         return;
     }
     const int threads = static_cast<int>(state.range(0));
-    MatchParams params;
-    params.use_ca = false;
     for (auto _ : state) {
-        const DisparityMap map =
-            robot::edge_match_bands(frames()->pair.left, frames()->pair.right, params, {}, threads);
-        benchmark::DoNotOptimize(map.disparity.data());
+        benchmark::DoNotOptimize(match(frames()->pair.left, frames()->pair.right, threads));
     }
     set_fps(state);
 }
 
+void BM_EdgeFrontend(benchmark::State& state) {
+    MatchParams params;
+    params.use_ca = false;
+    frontend_benchmark(state, [&](const Image& l, const Image& r, int threads) {
+        return robot::edge_match_bands(l, r, params, {}, threads);
+    });
+}
+
 void BM_SparseFrontend(benchmark::State& state) {
-    if (skip_without_data(state)) {
-        return;
-    }
-    const int threads = static_cast<int>(state.range(0));
     const robot::slam::FrontendParams params;
-    for (auto _ : state) {
-        const auto map = robot::sparse_disparity_bands(frames()->pair.left, frames()->pair.right,
-                                                       params, threads);
-        benchmark::DoNotOptimize(map.disparity.data());
-    }
-    set_fps(state);
+    frontend_benchmark(state, [&](const Image& l, const Image& r, int threads) {
+        return robot::sparse_disparity_bands(l, r, params, threads);
+    });
 }
 
 // stereo avoid's work per frame after loading: front end, ground fit, both decisions. Arguments:

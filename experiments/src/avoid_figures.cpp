@@ -88,6 +88,17 @@ std::function<double(double)> mf(const Gaussian& g) {
     return [g](double x) { return g(x); };
 }
 
+// The occupancy plots: kCells x kCells squares (occupancy 0, 0.01, ..., 1) of `cell` pixels,
+// drawn at (kLeftPad, kTop) on a white canvas with room for labels and `extra_right` pixels.
+constexpr int kCells = 101;
+constexpr int kLeftPad = 50;
+constexpr int kTop = 30;
+
+cv::Mat blank_plot(int cell, int extra_right) {
+    return {kTop + kCells * cell + 45, kLeftPad + kCells * cell + extra_right, CV_8UC3,
+            cv::Scalar(255, 255, 255)};
+}
+
 // Tick labels 0, 0.25, ..., 1 along the x and y axes of a square plot of cells x cells squares
 // of `cell` pixels whose top-left corner is (left, top).
 void occupancy_ticks(cv::Mat& img, int left, int top, int cells, int cell) {
@@ -106,12 +117,8 @@ void occupancy_ticks(cv::Mat& img, int left, int top, int cells, int cell) {
 // Angle over centre occupancy (x) and left occupancy (y), right occupancy fixed; cells where
 // the robot backs off are hatched black.
 cv::Mat surface(double right, const FisParams& params) {
-    constexpr int kCells = 101;
     constexpr int kCell = 4;
-    constexpr int kLeftPad = 50;
-    constexpr int kTop = 30;
-    cv::Mat img(kTop + kCells * kCell + 45, kLeftPad + kCells * kCell + 90, CV_8UC3,
-                cv::Scalar(255, 255, 255));
+    cv::Mat img = blank_plot(kCell, 90);
     cv::Mat value(kCells, kCells, CV_8UC1);
     cv::Mat back(kCells, kCells, CV_8UC1);
     for (int i = 0; i < kCells; ++i) {      // centre
@@ -163,12 +170,8 @@ cv::Mat surface(double right, const FisParams& params) {
 // forward green, left blue, right red, backwards black. `before`: the issue-8 rule (10-degree
 // band on the Mamdani angle, no default rule); else the current decision.
 cv::Mat decision_map(double right, const FisParams& params, bool before) {
-    constexpr int kCells = 101;
     constexpr int kCell = 3;
-    constexpr int kLeftPad = 50;
-    constexpr int kTop = 30;
-    cv::Mat img(kTop + kCells * kCell + 45, kLeftPad + kCells * kCell + 20, CV_8UC3,
-                cv::Scalar(255, 255, 255));
+    cv::Mat img = blank_plot(kCell, 20);
     const auto colour_of = [](Direction d) {
         switch (d) {
             case Direction::forward:
