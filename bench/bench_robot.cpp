@@ -205,7 +205,7 @@ int main(int argc, char** argv) {
     benchmark::Shutdown();
     const auto base = reporter.seconds.find("BM_OpenCvStereoSGBM/real_time");
     if (base == reporter.seconds.end()) {
-        std::cout << "no StereoSGBM baseline measured (data absent?): no ratios\n";
+        std::cout << "no StereoSGBM baseline measured (filtered out, or no data): no ratios\n";
         return 0;
     }
     std::printf("\n%-36s %10s %10s %14s\n", "benchmark", "ms/frame", "frames/s", "x SGBM time");

@@ -5,19 +5,22 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <optional>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "cli_command.hpp"
+#include "cli_matcher_options.hpp"
 #include "experiments.hpp"
 #include "stereo/edge_frontend.hpp"
 #include "stereo_io/io.hpp"
+#include "stereo_io/output.hpp"
 #include "stereo_robot/bands.hpp"
 #include "stereo_robot/calibration.hpp"
 #include "stereo_robot/decision.hpp"
@@ -75,6 +78,10 @@ struct Tally {
 };
 
 void run(const Options& o) {
+    if (o.stride < 1 || o.downscale < 1 || o.threads < 1 || o.ndisp < 2) {
+        throw std::invalid_argument(
+            "--stride, --downscale and --threads must be >= 1, --ndisp >= 2");
+    }
     const std::vector<Case> cases = {
         {"free road", "", 0.0, true},
         {"centre, 1/3 of the window, near", "centre", 0.34, true},
@@ -86,10 +93,8 @@ void run(const Options& o) {
         {"wall, 90 %, far", "wall", 0.9, false},
     };
     std::map<std::string, std::map<std::string, Tally>> tallies;  // clip -> case -> tally
-    std::ofstream md(o.out);
-    if (!md) {
-        throw std::runtime_error("cannot write " + o.out);
-    }
+    io::check_writable_location(o.out);  // before the run; the table is written after it
+    std::ostringstream md;
     double match_ms = 0.0;
     int matches = 0;
     for (const std::string clip : {"kitti_sequence_1", "kitti_sequence_2"}) {
@@ -166,6 +171,7 @@ void run(const Options& o) {
                   o.safe_distance, o.near, o.far, o.stride, o.downscale, o.ndisp, o.threads,
                   match_ms / matches, matches);
     md << footer;
+    io::write_file_atomic(o.out, md.str());
     std::cout << o.out << '\n';
 }
 
@@ -179,18 +185,14 @@ void add_avoid_benchmark_command(CLI::App& app) {
     command->add_option("DATA_DIR", o->data, "The shared data folder (holds sequence/)")
         ->required();
     command->add_option("OUT", o->out, "Markdown table to write")->required();
-    command->add_option("--stride", o->stride, "Use every N-th frame")->capture_default_str();
-    command->add_option("--safe-distance", o->safe_distance, "Z_safe, metres")
-        ->capture_default_str();
-    command->add_option("--near", o->near, "Distance of near obstacles, metres")
-        ->capture_default_str();
-    command->add_option("--far", o->far, "Distance of far obstacles, metres")
-        ->capture_default_str();
-    command->add_option("--downscale", o->downscale, "Shrink both images by F first")
-        ->capture_default_str();
-    command->add_option("--ndisp", o->ndisp, "Disparity labels")->capture_default_str();
-    command->add_option("--threads", o->threads, "Row bands matched in parallel")
-        ->capture_default_str();
+    cli::add_number_options(*command,
+                            {{"--stride", &o->stride, "Use every N-th frame"},
+                             {"--safe-distance", &o->safe_distance, "Z_safe, metres"},
+                             {"--near", &o->near, "Distance of near obstacles, metres"},
+                             {"--far", &o->far, "Distance of far obstacles, metres"},
+                             {"--downscale", &o->downscale, "Shrink both images by F first"},
+                             {"--ndisp", &o->ndisp, "Disparity labels"},
+                             {"--threads", &o->threads, "Row bands matched in parallel"}});
 }
 
 }  // namespace stereo::experiments
