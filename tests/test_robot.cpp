@@ -12,6 +12,8 @@
 #include <numbers>
 #include <random>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "stereo_io/test_support.hpp"
 #include "stereo_robot/calibration.hpp"
@@ -46,7 +48,8 @@ struct Brute {
 };
 
 // Trapezoidal centroid on a grid unlike the implementation's (n intervals, n odd).
-Brute brute_force(double l, double c, double r) {
+Brute brute_force(double l, double c, double r, int angle_intervals = 12347,
+                  int backwards_intervals = 3331) {
     const double free_c = g(c, 0, 0.065);
     const double occ_c = g(c, 1, 0.25);
     const double w1 = free_c;
@@ -64,12 +67,12 @@ Brute brute_force(double l, double c, double r) {
         }
         return den > 0 ? num / den : (lo + hi) / 2;
     };
-    const double angle = trapezoid(-30, 30, 12347, [&](double a) {
+    const double angle = trapezoid(-30, 30, angle_intervals, [&](double a) {
         return std::max({std::min(w1, g(a, 0, 12.5)), std::min(w2, g(a, -19, 5.5)),
                          std::min(w3, g(a, 19, 5.5))});
     });
-    const double back =
-        trapezoid(0, 1, 3331, [&](double b) { return std::min(w4, g(b, 0.85, 0.23)); });
+    const double back = trapezoid(0, 1, backwards_intervals,
+                                  [&](double b) { return std::min(w4, g(b, 0.85, 0.23)); });
     return {angle, back};
 }
 
@@ -77,7 +80,7 @@ TEST(Fis, SymmetricInputGoesStraight) {
     for (const double side : {0.0, 0.3, 1.0}) {
         for (const double centre : {0.0, 0.1, 0.5, 0.9, 1.0}) {
             const FisResult result = evaluate_fis(side, centre, side);
-            EXPECT_NEAR(result.angle_deg, 0.0, 1e-9) << side << " " << centre;
+            EXPECT_NEAR(result.mamdani_angle_deg, 0.0, 1e-9) << side << " " << centre;
         }
     }
     EXPECT_EQ(evaluate_fis(0, 0, 0).decision, Direction::forward);
@@ -103,10 +106,10 @@ TEST(Fis, MirrorSymmetry) {
 }
 
 TEST(Fis, TurnGrowsMonotonicallyAsTheCentreFills) {
-    double previous = evaluate_fis(0.0, 0.0, 1.0).angle_deg;
+    double previous = evaluate_fis(0.0, 0.0, 1.0).mamdani_angle_deg;
     EXPECT_NEAR(previous, 0.0, 0.05);
     for (int i = 1; i <= 40; ++i) {
-        const double angle = evaluate_fis(0.0, i / 40.0, 1.0).angle_deg;
+        const double angle = evaluate_fis(0.0, i / 40.0, 1.0).mamdani_angle_deg;
         EXPECT_LE(angle, previous + 1e-9) << "centre " << i / 40.0;
         previous = angle;
     }
@@ -146,7 +149,7 @@ TEST(Fis, AgreesWithABruteForceEvaluation) {
         const auto [l, c, r] = random_occupancies(rng);
         const FisResult result = evaluate_fis(l, c, r);
         const Brute expected = brute_force(l, c, r);
-        EXPECT_NEAR(result.angle_deg, expected.angle, 0.01) << l << " " << c << " " << r;
+        EXPECT_NEAR(result.mamdani_angle_deg, expected.angle, 0.01) << l << " " << c << " " << r;
         EXPECT_NEAR(result.backwards, expected.backwards, 1e-3) << l << " " << c << " " << r;
     }
 }
@@ -157,6 +160,164 @@ TEST(Fis, EmptyAggregateDefuzzifiesToTheMidpoint) {
     const FisResult result = evaluate_fis(0.0, 0.0, 0.0, params);
     EXPECT_EQ(result.firing[3], 0.0);
     EXPECT_DOUBLE_EQ(result.backwards, 0.5);
+}
+
+// ---- safety of the decision over the whole input space -------------------------------------
+
+// The decision the issue-8 system made (band 10 degrees, no default rule), from the brute force.
+Direction old_decision(const Brute& b) {
+    if (b.backwards > 0.65) {
+        return Direction::backwards;
+    }
+    if (b.angle < -10.0) {
+        return Direction::left;
+    }
+    return b.angle > 10.0 ? Direction::right : Direction::forward;
+}
+
+double occupancy_of(Direction side, double l, double r) {
+    return side == Direction::left ? l : r;
+}
+
+// The safety properties, checked on every point of a grid (plus points either side of the
+// rate): "forward" only with the centre below the rate; a turn goes to the side that is not the
+// more occupied one; a blocked centre whose freer side is blocked too backs off or turns.
+void check_safe(double l, double c, double r, const FisParams& params) {
+    const FisResult result = evaluate_fis(l, c, r, params);
+    const std::string where = std::to_string(l) + " " + std::to_string(c) + " " + std::to_string(r);
+    if (result.decision == Direction::forward) {
+        ASSERT_LT(c, params.rate) << where;
+    }
+    if (result.decision == Direction::left || result.decision == Direction::right) {
+        const Direction other =
+            result.decision == Direction::left ? Direction::right : Direction::left;
+        ASSERT_LE(occupancy_of(result.decision, l, r), occupancy_of(other, l, r)) << where;
+        // The reported angle points the same way as the decision.
+        ASSERT_EQ(result.angle_deg < 0.0, result.decision == Direction::left) << where;
+    }
+}
+
+std::vector<double> grid_values(int steps, double rate) {
+    std::vector<double> values;
+    for (int i = 0; i <= steps; ++i) {
+        values.push_back(static_cast<double>(i) / steps);
+    }
+    for (const double v : {rate - 1e-9, rate, rate + 1e-9}) {
+        values.push_back(v);
+    }
+    return values;
+}
+
+TEST(FisSafety, NeverForwardWithABlockedCentreOnAFineGrid) {
+    FisParams params;
+    params.angle_step = 0.1;  // a coarser centroid: the properties do not depend on it
+    params.backwards_step = 0.01;
+    const auto values = grid_values(50, params.rate);
+    for (const double l : values) {
+        for (const double c : values) {
+            for (const double r : values) {
+                check_safe(l, c, r, params);
+            }
+        }
+    }
+}
+
+TEST(FisSafety, NeverForwardWithABlockedCentreAtDefaultResolution) {
+    const FisParams params;
+    const auto values = grid_values(20, params.rate);
+    for (const double l : values) {
+        for (const double c : values) {
+            for (const double r : values) {
+                check_safe(l, c, r, params);
+            }
+        }
+    }
+    // Other rates and bands keep the property.
+    for (const double rate : {0.05, 0.5, 0.9}) {
+        FisParams other;
+        other.rate = rate;
+        other.forward_band = 5.0;
+        other.angle_step = 0.1;
+        other.backwards_step = 0.01;
+        for (const double l : grid_values(10, rate)) {
+            for (const double c : grid_values(10, rate)) {
+                for (const double r : grid_values(10, rate)) {
+                    check_safe(l, c, r, other);
+                }
+            }
+        }
+    }
+}
+
+TEST(FisSafety, KeepsEverySafeDecisionOfTheIssue8System) {
+    // Wherever the old system (the brute force with the 10-degree band) was safe, the decision
+    // is unchanged, except that angles in (1, 10] degrees are now turns (the thesis counts a
+    // 9-degree output as one). Where it said "forward" with a blocked centre, the new one turns
+    // to the freer side or backs off. Points within the grid error of a boundary are skipped.
+    const FisParams params;
+    int changed = 0;
+    int unsafe_before = 0;
+    for (int li = 0; li <= 20; ++li) {
+        for (int ci = 0; ci <= 20; ++ci) {
+            for (int ri = 0; ri <= 20; ++ri) {
+                const double l = li / 20.0;
+                const double c = ci / 20.0;
+                const double r = ri / 20.0;
+                const Brute b = brute_force(l, c, r, 2471, 997);
+                if (std::abs(std::abs(b.angle) - 10.0) < 0.05 ||
+                    std::abs(std::abs(b.angle) - 1.0) < 0.05 ||
+                    std::abs(b.backwards - 0.65) < 0.002) {
+                    continue;
+                }
+                const Direction before = old_decision(b);
+                const Direction now = evaluate_fis(l, c, r, params).decision;
+                if (before == Direction::forward && c >= params.rate) {
+                    ++unsafe_before;
+                    EXPECT_NE(now, Direction::forward);
+                    continue;
+                }
+                if (before == Direction::forward && std::abs(b.angle) > 1.0) {
+                    EXPECT_EQ(now, b.angle < 0 ? Direction::left : Direction::right);
+                    ++changed;
+                    continue;
+                }
+                EXPECT_EQ(now, before) << l << " " << c << " " << r;
+            }
+        }
+    }
+    // The old system had an unsafe region (the issue's finding); the grid must see it.
+    EXPECT_GT(unsafe_before, 100);
+    EXPECT_GE(changed, 0);
+}
+
+TEST(FisSafety, ANineDegreeOutputIsATurn) {
+    // Left 20 %, centre 35 %, right free: the Mamdani centroid is about +9.5 degrees (brute
+    // force); the issue-8 band of 10 degrees called it forward, the thesis a right turn.
+    const Brute b = brute_force(0.2, 0.35, 0.0);
+    ASSERT_GT(b.angle, 5.0);
+    ASSERT_LT(b.angle, 10.0);
+    const FisResult result = evaluate_fis(0.2, 0.35, 0.0);
+    EXPECT_NEAR(result.angle_deg, b.angle, 0.01);
+    EXPECT_EQ(result.decision, Direction::right);
+}
+
+TEST(FisSafety, DeadZoneAndSymmetricObstaclesTurnOrBackOff) {
+    // The issue's cases: all windows moderately full (every rule at ~1e-19) and a centred
+    // obstacle with both sides free (opposing turns cancel): no longer "forward".
+    const FisResult dead = evaluate_fis(0.6, 0.6, 1.0);
+    EXPECT_NEAR(dead.mamdani_angle_deg, 0.0, 1.0);
+    EXPECT_EQ(dead.decision, Direction::backwards);  // the freer side (0.6) is blocked too
+    const FisResult tsukuba = evaluate_fis(0.12, 0.43, 0.15);
+    EXPECT_EQ(tsukuba.decision, Direction::left);
+    EXPECT_TRUE(tsukuba.default_rule);
+    EXPECT_NEAR(tsukuba.angle_deg, truncated_normal_mean(-19, 5.5, -30, 30), 0.005);
+    const FisResult symmetric = evaluate_fis(0.0, 0.8, 0.0);
+    EXPECT_NEAR(symmetric.mamdani_angle_deg, 0.0, 1e-9);
+    EXPECT_EQ(symmetric.decision, Direction::left);  // ties go left, as the threshold method
+    EXPECT_EQ(evaluate_fis(0.1, 0.8, 0.0).decision, Direction::right);
+    // A free centre still goes straight whatever the sides.
+    EXPECT_EQ(evaluate_fis(1.0, 0.1, 0.0).decision, Direction::forward);
+    EXPECT_THROW(evaluate_fis(0, 0, 0, FisParams{.rate = 1.5}), std::invalid_argument);
 }
 
 TEST(Fis, RejectsFractionsOutsideTheUnitInterval) {

@@ -441,6 +441,40 @@ TEST(MapMerge, KeepsThePlacementWhenNothingIsGained) {
     EXPECT_FALSE(result.applied);
 }
 
+TEST(MapMerge, ChanceOverlapWithAClutteredMapIsNotACorrection) {
+    // A map of scattered occupied cells (30 % of a 40 x 40 m area, like roadside vegetation) and
+    // a local map drawn independently of it: any "gain" of the best of the 125 placements is
+    // chance. The ungated search of issue 9 takes it; the gated one must not.
+    auto rng = test::seeded_rng(20);
+    std::uniform_real_distribution<double> where(0.0, 40.0);
+    std::bernoulli_distribution occupied(0.3);
+    EvidenceGrid global(1.0);
+    std::vector<CellIndex> cells;
+    for (int x = 0; x < 40; ++x) {
+        for (int z = 0; z < 40; ++z) {
+            if (occupied(rng)) {
+                cells.push_back({x, z});
+            }
+        }
+    }
+    global.add_frame({-100, -100}, cells, {});
+    int ungated_applied = 0;
+    int gated_applied = 0;
+    for (int trial = 0; trial < 20; ++trial) {
+        std::vector<Eigen::Vector2d> local;
+        for (int i = 0; i < 300; ++i) {
+            local.emplace_back(where(rng), where(rng));
+        }
+        MergeParams ungated;
+        ungated.significance = 0.0;
+        ungated.min_match = 0.0;
+        ungated_applied += best_placement(global, local, {20.0, 20.0}, ungated).applied ? 1 : 0;
+        gated_applied += best_placement(global, local, {20.0, 20.0}, {}).applied ? 1 : 0;
+    }
+    EXPECT_GE(ungated_applied, 15);  // the failure mode the gates remove
+    EXPECT_EQ(gated_applied, 0);
+}
+
 // ---- evaluation -----------------------------------------------------------------------------
 
 Trajectory straight_line(double step, int n) {
@@ -653,6 +687,10 @@ TEST(RealData, KittiOdometryOnAShortClip) {
     const double error = (slam.odometry().back().translation() - truth.back().translation()).norm();
     EXPECT_LT(error, 0.05 * travelled);
     EXPECT_LT(rotation_deg(truth.back().inverse() * slam.odometry().back()), 1.0);
+    // The default output (gated merging) is no worse than the odometry it starts from.
+    const double merged =
+        (slam.trajectory().back().translation() - truth.back().translation()).norm();
+    EXPECT_LE(merged, error + 0.01);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <future>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -18,8 +19,10 @@
 #include "cli_matcher_options.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/output.hpp"
+#include "stereo_robot/bands.hpp"
 #include "stereo_robot/calibration.hpp"
 #include "stereo_robot/decision.hpp"
+#include "stereo_robot/ground.hpp"
 #include "stereo_robot/overlay.hpp"
 
 namespace stereo::cli {
@@ -46,7 +49,21 @@ struct AvoidOptions {
     MatcherOptions matcher;  // --ndisp, --window, --sigma; config.edges: the LoG options
     robot::ThresholdParams threshold_params;
     robot::FisParams fis;
+    std::string ground = "fit";  // fit | off
+    int threads = 0;             // row bands matched in parallel; 0 = every core
+    robot::GroundRemoval ground_params;
 };
+
+// The camera geometry when one is given (--calib, or --focal and --baseline).
+std::optional<robot::StereoGeometry> geometry_of(const AvoidOptions& o) {
+    if (!o.calib.empty()) {
+        return robot::load_calibration(o.calib);
+    }
+    if (o.focal && o.baseline) {
+        return robot::StereoGeometry{*o.focal, *o.baseline};
+    }
+    return std::nullopt;
+}
 
 // The disparity threshold in pixels of the matched (possibly downscaled) images.
 double pixel_threshold(const AvoidOptions& o) {
@@ -60,16 +77,12 @@ double pixel_threshold(const AvoidOptions& o) {
     if (!o.safe_distance) {
         throw std::invalid_argument("give --safe-distance Z (with a calibration) or --threshold T");
     }
-    robot::StereoGeometry geometry;
-    if (!o.calib.empty()) {
-        geometry = robot::load_calibration(o.calib);
-    } else if (o.focal && o.baseline) {
-        geometry = {*o.focal, *o.baseline};
-    } else {
+    const auto geometry = geometry_of(o);
+    if (!geometry) {
         throw std::invalid_argument(
             "missing calibration: --safe-distance needs --calib FILE or --focal F --baseline B");
     }
-    return robot::disparity_threshold(geometry, *o.safe_distance, o.downscale);
+    return robot::disparity_threshold(*geometry, *o.safe_distance, o.downscale);
 }
 
 std::vector<robot::FramePair> frames(const AvoidOptions& o, bool& sequence) {
@@ -98,13 +111,14 @@ struct FrameResult {
     robot::OverlayInfo overlay;
 };
 
-FrameResult decide(const AvoidOptions& o, const DisparityMap& map, double threshold) {
+FrameResult decide(const AvoidOptions& o, const DisparityMap& map, double threshold,
+                   const robot::GroundModel* ground) {
     FrameResult out;
     const bool want_threshold = o.method == "threshold" || o.method == "both";
     const bool want_fuzzy = o.method == "fuzzy" || o.method == "both";
     if (want_threshold) {
         const auto d = robot::decide_threshold(map, threshold, o.matcher.config.pipeline.ndisp,
-                                               o.threshold_params);
+                                               o.threshold_params, ground);
         const double arrow = d.direction == robot::Direction::left    ? -kThresholdArrowDeg
                              : d.direction == robot::Direction::right ? kThresholdArrowDeg
                                                                       : 0.0;
@@ -118,10 +132,14 @@ FrameResult decide(const AvoidOptions& o, const DisparityMap& map, double thresh
                        "threshold"};
     }
     if (want_fuzzy) {
-        const auto d = robot::decide_fuzzy(map, threshold, o.fis, o.threshold_params.border);
+        robot::FisParams fis = o.fis;
+        fis.rate = o.threshold_params.rate;  // one safety rate for both methods
+        const auto d = robot::decide_fuzzy(map, threshold, fis, o.threshold_params.border, ground);
         out.json["fuzzy"] = {{"decision", robot::to_string(d.fis.decision)},
                              {"angle_deg", d.fis.angle_deg},
                              {"backwards", d.fis.backwards},
+                             {"mamdani_angle_deg", d.fis.mamdani_angle_deg},
+                             {"default_rule", d.fis.default_rule},
                              {"occupancy", occupancy_json(d.stats)}};
         char caption[64];
         std::snprintf(caption, sizeof caption, "fuzzy %+.1f deg", d.fis.angle_deg);
@@ -158,6 +176,14 @@ void run_avoid(const AvoidOptions& o) {
     }
     robot::check_fraction(o.threshold_params.rate, "--rate");
     robot::check_fraction(o.fis.backwards_threshold, "--backwards-threshold");
+    if (!(o.ground_params.max_height > 0.0) || !(o.ground_params.fit.tolerance >= 0.0)) {
+        throw std::invalid_argument("--max-height must be > 0 and --ground-tolerance >= 0");
+    }
+    const auto geometry = geometry_of(o);
+    if (o.threads < 0) {
+        throw std::invalid_argument("--threads must be >= 0 (0: every core)");
+    }
+    const int threads = o.threads == 0 ? robot::default_threads() : o.threads;
     // The edge front end; it checks its parameters once the image size is known.
     const auto matcher = matchers().create("edges", "model", o.matcher.resolved());
     const double threshold = pixel_threshold(o);
@@ -181,12 +207,34 @@ void run_avoid(const AvoidOptions& o) {
         writer.emplace(o.overlay, 10.0);
     }
 
-    for (const auto& [left_path, right_path] : pairs) {
+    // The next pair is read and decoded on another thread while this one is matched.
+    const auto load = [&](std::size_t i) {
+        return io::load_pair(pairs[i].first, pairs[i].second, o.downscale);
+    };
+    std::future<io::ImagePair> next = std::async(std::launch::async, load, 0);
+    for (std::size_t index = 0; index < pairs.size(); ++index) {
+        const auto& [left_path, right_path] = pairs[index];
         const auto start = std::chrono::steady_clock::now();
-        const io::ImagePair pair = io::load_pair(left_path, right_path, o.downscale);
+        const io::ImagePair pair = next.get();
+        if (index + 1 < pairs.size()) {
+            next = std::async(std::launch::async, load, index + 1);
+        }
         matcher->validate(pair.left.width, pair.left.height);
-        const DisparityMap map = matcher->compute(pair.left, pair.right).disparity;
-        FrameResult result = decide(o, map, threshold);
+        // The registry's edge matcher, run on row bands in parallel (bit-exact, bands.hpp).
+        const MatchConfig config = o.matcher.resolved();
+        MatchParams params = config.pipeline;
+        params.use_ca = false;
+        const DisparityMap map =
+            robot::edge_match_bands(pair.left, pair.right, params, config.edges, threads);
+        std::optional<robot::GroundModel> ground;
+        if (geometry && o.ground == "fit") {
+            ground = robot::fit_ground(
+                map, o.matcher.config.pipeline.ndisp,
+                robot::avoidance_camera(*geometry, o.downscale, map.width, map.height),
+                o.ground_params);
+        }
+        const robot::GroundModel* ground_ptr = ground ? &*ground : nullptr;
+        FrameResult result = decide(o, map, threshold, ground_ptr);
         const std::chrono::duration<double, std::milli> elapsed =
             std::chrono::steady_clock::now() - start;
 
@@ -195,6 +243,9 @@ void run_avoid(const AvoidOptions& o) {
         frame["threshold_px"] = threshold;
         frame["occupancy"] = result.overlay.occupancy;
         frame["ms"] = elapsed.count();
+        frame["ground"] = ground ? nlohmann::json{{"slope", ground->line.slope},
+                                                  {"intercept", ground->line.intercept}}
+                                 : nlohmann::json(nullptr);
         if (sequence || o.json) {
             std::cout << frame.dump() << std::endl;
         } else {
@@ -202,8 +253,9 @@ void run_avoid(const AvoidOptions& o) {
         }
         if (!o.overlay.empty()) {
             result.overlay.caption = left_path.filename().string() + " " + result.overlay.caption;
-            const cv::Mat picture = robot::draw_overlay(io::to_bgr(pair.left), map, threshold,
-                                                        o.threshold_params.border, result.overlay);
+            const cv::Mat picture =
+                robot::draw_overlay(io::to_bgr(pair.left), map, threshold,
+                                    o.threshold_params.border, result.overlay, ground_ptr);
             if (writer) {
                 writer->add(picture);
             } else {
@@ -249,18 +301,29 @@ void add_avoid_command(CLI::App& app) {
     add_matcher_options(*command, o->matcher, MatcherChoice::fixed,
                         {.ndisp = true, .no_ca = false});
     edge_frontend::EdgeParams& edges = o->matcher.config.edges;
-    add_number_options(*command,
-                       {{"--log-window", &edges.log_window, "Odd LoG smoothing kernel side"},
-                        {"--log-sigma", &edges.log_sigma, "LoG Gaussian sigma"},
-                        {"--edge-value", &edges.edge_value, "Intensity of superimposed edges"},
-                        {"--truncation", &edges.truncation, "Truncated-AD limit, of 765"},
-                        {"--rate", &o->threshold_params.rate,
-                         "Threshold method: centre fraction below which it goes straight"},
-                        {"--border", &o->threshold_params.border, "Excluded border, pixels"},
-                        {"--backwards-threshold", &o->fis.backwards_threshold,
-                         "Fuzzy: back off when 'move backwards' exceeds this"},
-                        {"--forward-band", &o->fis.forward_band,
-                         "Fuzzy: |angle| up to this (deg) is reported as forward"}});
+    add_number_options(
+        *command,
+        {{"--log-window", &edges.log_window, "Odd LoG smoothing kernel side"},
+         {"--log-sigma", &edges.log_sigma, "LoG Gaussian sigma"},
+         {"--edge-value", &edges.edge_value, "Intensity of superimposed edges"},
+         {"--truncation", &edges.truncation, "Truncated-AD limit, of 765"},
+         {"--rate", &o->threshold_params.rate,
+          "Threshold method: centre fraction below which it goes straight"},
+         {"--border", &o->threshold_params.border, "Excluded border, pixels"},
+         {"--backwards-threshold", &o->fis.backwards_threshold,
+          "Fuzzy: back off when 'move backwards' exceeds this"},
+         {"--forward-band", &o->fis.forward_band, "Fuzzy: |angle| up to this (deg) is no turn"},
+         {"--ground-tolerance", &o->ground_params.fit.tolerance,
+          "Ground band, pixels of disparity above the v-disparity line"},
+         {"--max-height", &o->ground_params.max_height,
+          "Metres above the ground: higher pixels are not obstacles"}});
+    command->add_option("--threads", o->threads, "Row bands matched in parallel; 0: every core")
+        ->capture_default_str();
+    command
+        ->add_option("--ground", o->ground,
+                     "Ground removal: fit (v-disparity line; needs a calibration) or off")
+        ->check(CLI::IsMember({"fit", "off"}))
+        ->capture_default_str();
 }
 
 }  // namespace stereo::cli

@@ -19,11 +19,12 @@ struct FisOptions {
     double centre = 0.0;
     double right = 0.0;
     bool json = false;
+    robot::FisParams params;
 };
 
 void run_fis(const FisOptions& options) {
     const robot::FisResult result =
-        robot::evaluate_fis(options.left, options.centre, options.right);
+        robot::evaluate_fis(options.left, options.centre, options.right, options.params);
     if (options.json) {
         const nlohmann::json out = {{"angle_deg", result.angle_deg},
                                     {"backwards", result.backwards},
@@ -50,6 +51,14 @@ void add_fis_command(CLI::App& app) {
     command->add_option("--right", options->right, "Occupied fraction of the right window, [0, 1]")
         ->required();
     command->add_flag("--json", options->json, "Print one JSON object");
+    command
+        ->add_option("--rate", options->params.rate,
+                     "Centre occupancy from which 'forward' is never the answer")
+        ->capture_default_str();
+    command
+        ->add_option("--forward-band", options->params.forward_band,
+                     "|angle| up to this (deg) is no turn")
+        ->capture_default_str();
 }
 
 }  // namespace stereo::cli

@@ -21,6 +21,7 @@
 #include "cli_matcher_options.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/output.hpp"
+#include "stereo_robot/bands.hpp"
 #include "stereo_robot/slam/dataset.hpp"
 #include "stereo_robot/slam/evaluation.hpp"
 #include "stereo_robot/slam/pipeline.hpp"
@@ -122,6 +123,9 @@ void run_slam(SlamOptions o) {
     o.params.frontend.ndisp = frontend.ndisp;
     o.params.frontend.window = frontend.window;
     o.params.frontend.sigma = frontend.sigma;
+    if (o.params.threads == 0) {
+        o.params.threads = robot::default_threads();
+    }
     if (o.downscale < 1) {
         throw std::invalid_argument("--downscale must be >= 1, got " + std::to_string(o.downscale));
     }
@@ -271,9 +275,9 @@ void run_slam(SlamOptions o) {
     if (!o.map.empty()) {
         std::vector<slam::Polyline> paths;
         if (truth) {
-            paths.push_back({truth_path, cv::Scalar(0, 170, 0)});
+            paths.push_back({truth_path, cv::Scalar(0, 170, 0), "true (poses.txt)"});
         }
-        paths.push_back({estimate_path, cv::Scalar(0, 0, 255)});
+        paths.push_back({estimate_path, cv::Scalar(0, 0, 255), "estimate (output)"});
         files.emplace_back(
             o.map, io::encode_png(slam::render_map(cleaned, o.params.cell_size, paths), o.map));
     }
@@ -319,6 +323,9 @@ void add_slam_command(CLI::App& app) {
         app, "slam", "Stereo SLAM (thesis Sec. 4.2): trajectory and occupancy map of a sequence.",
         run_slam);
     auto& p = o->params;
+    p.threads = 0;  // the command line's default: every core
+    command->add_option("--threads", p.threads, "Front-end row bands in parallel; 0: every core")
+        ->capture_default_str();
     command
         ->add_option("SEQ_DIR", o->sequence,
                      "Sequence folder: image_l/ image_r/ calib.txt [poses.txt] (KITTI) or "
@@ -370,6 +377,10 @@ void add_slam_command(CLI::App& app) {
          {"--merge-angle-steps", &p.merge.angle_steps, "Merge search: +- steps"},
          {"--merge-angle-step", &p.merge.angle_step_deg, "Merge step, degrees"},
          {"--merge-min-gain", &p.merge.min_gain, "Cells a correction must gain to be applied"},
+         {"--merge-significance", &p.merge.significance,
+          "Gain must exceed this times sqrt(score + base score); 0: off"},
+         {"--merge-min-match", &p.merge.min_match,
+          "Share of the placed local map's cells that must hit occupied cells; 0: off"},
          {"--ca-passes", &o->ca_passes, "Clean-up passes over the final map"}});
 }
 

@@ -22,6 +22,7 @@ namespace stereo::experiments {
 namespace {
 
 namespace fs = std::filesystem;
+using robot::Direction;
 using robot::FisParams;
 using robot::Gaussian;
 
@@ -88,15 +89,37 @@ std::function<double(double)> mf(const Gaussian& g) {
     return [g](double x) { return g(x); };
 }
 
+// The occupancy plots: kCells x kCells squares (occupancy 0, 0.01, ..., 1) of `cell` pixels,
+// drawn at (kLeftPad, kTop) on a white canvas with room for labels and `extra_right` pixels.
+constexpr int kCells = 101;
+constexpr int kLeftPad = 50;
+constexpr int kTop = 30;
+
+cv::Mat blank_plot(int cell, int extra_right) {
+    return {kTop + kCells * cell + 45, kLeftPad + kCells * cell + extra_right, CV_8UC3,
+            cv::Scalar(255, 255, 255)};
+}
+
+// Tick labels 0, 0.25, ..., 1 along the x and y axes of a square plot of cells x cells squares
+// of `cell` pixels whose top-left corner is (left, top).
+void occupancy_ticks(cv::Mat& img, int left, int top, int cells, int cell) {
+    const int side = cells * cell;
+    for (int k = 0; k <= 4; ++k) {
+        char label[8];
+        std::snprintf(label, sizeof label, "%.2f", k / 4.0);
+        const int pos = k * (cells - 1) * cell / 4;
+        cv::putText(img, label, {left + pos - 12, top + side + 16}, cv::FONT_HERSHEY_SIMPLEX, 0.4,
+                    kBlack, 1, cv::LINE_AA);
+        cv::putText(img, label, {8, top + side - pos + 4}, cv::FONT_HERSHEY_SIMPLEX, 0.4, kBlack, 1,
+                    cv::LINE_AA);
+    }
+}
+
 // Angle over centre occupancy (x) and left occupancy (y), right occupancy fixed; cells where
 // the robot backs off are hatched black.
 cv::Mat surface(double right, const FisParams& params) {
-    constexpr int kCells = 101;
     constexpr int kCell = 4;
-    constexpr int kLeftPad = 50;
-    constexpr int kTop = 30;
-    cv::Mat img(kTop + kCells * kCell + 45, kLeftPad + kCells * kCell + 90, CV_8UC3,
-                cv::Scalar(255, 255, 255));
+    cv::Mat img = blank_plot(kCell, 90);
     cv::Mat value(kCells, kCells, CV_8UC1);
     cv::Mat back(kCells, kCells, CV_8UC1);
     for (int i = 0; i < kCells; ++i) {      // centre
@@ -123,15 +146,7 @@ cv::Mat surface(double right, const FisParams& params) {
     std::snprintf(title, sizeof title, "angle (deg); x: centre, y: left occupancy; right = %.1f",
                   right);
     cv::putText(img, title, {kLeftPad, 20}, cv::FONT_HERSHEY_SIMPLEX, 0.5, kBlack, 1, cv::LINE_AA);
-    for (int k = 0; k <= 4; ++k) {
-        char label[8];
-        std::snprintf(label, sizeof label, "%.2f", k / 4.0);
-        const int pos = k * (kCells - 1) * kCell / 4;
-        cv::putText(img, label, {kLeftPad + pos - 12, kTop + kCells * kCell + 16},
-                    cv::FONT_HERSHEY_SIMPLEX, 0.4, kBlack, 1, cv::LINE_AA);
-        cv::putText(img, label, {8, kTop + kCells * kCell - pos + 4}, cv::FONT_HERSHEY_SIMPLEX, 0.4,
-                    kBlack, 1, cv::LINE_AA);
-    }
+    occupancy_ticks(img, kLeftPad, kTop, kCells, kCell);
     cv::putText(img, "centre occupancy (y: left occupancy)",
                 {kLeftPad + 130, kTop + kCells * kCell + 36}, cv::FONT_HERSHEY_SIMPLEX, 0.45,
                 kBlack, 1, cv::LINE_AA);
@@ -149,6 +164,52 @@ cv::Mat surface(double right, const FisParams& params) {
         cv::putText(img, std::to_string(deg), {bar_x + 20, y + 4}, cv::FONT_HERSHEY_SIMPLEX, 0.4,
                     kBlack, 1, cv::LINE_AA);
     }
+    return img;
+}
+
+// The decision over centre occupancy (x) and left occupancy (y), right occupancy fixed:
+// forward green, left blue, right red, backwards black. `before`: the issue-8 rule (10-degree
+// band on the Mamdani angle, no default rule); else the current decision.
+cv::Mat decision_map(double right, const FisParams& params, bool before) {
+    constexpr int kCell = 3;
+    cv::Mat img = blank_plot(kCell, 20);
+    const auto colour_of = [](Direction d) {
+        switch (d) {
+            case Direction::forward:
+                return cv::Vec3b(60, 180, 60);
+            case Direction::left:
+                return cv::Vec3b(220, 120, 40);
+            case Direction::right:
+                return cv::Vec3b(40, 40, 220);
+            case Direction::backwards:
+                return cv::Vec3b(0, 0, 0);
+        }
+        return cv::Vec3b(255, 255, 255);
+    };
+    for (int i = 0; i < kCells; ++i) {      // centre
+        for (int j = 0; j < kCells; ++j) {  // left
+            const auto r = stereo::robot::evaluate_fis(j / 100.0, i / 100.0, right, params);
+            Direction d = r.decision;
+            if (before) {
+                d = r.backwards > params.backwards_threshold ? Direction::backwards
+                    : r.mamdani_angle_deg < -10.0            ? Direction::left
+                    : r.mamdani_angle_deg > 10.0             ? Direction::right
+                                                             : Direction::forward;
+            }
+            const cv::Rect cell(kLeftPad + i * kCell, kTop + (kCells - 1 - j) * kCell, kCell,
+                                kCell);
+            img(cell).setTo(colour_of(d));
+        }
+    }
+    // The rate: from this centre occupancy on, "forward" is unsafe.
+    const int x_rate = kLeftPad + static_cast<int>(std::lround(params.rate * 100.0 * kCell));
+    cv::line(img, {x_rate, kTop}, {x_rate, kTop + kCells * kCell}, cv::Scalar(0, 200, 255), 1);
+    char title[120];
+    std::snprintf(title, sizeof title, "%s; right = %.1f", before ? "before" : "after", right);
+    cv::putText(img, title, {kLeftPad, 20}, cv::FONT_HERSHEY_SIMPLEX, 0.45, kBlack, 1, cv::LINE_AA);
+    occupancy_ticks(img, kLeftPad, kTop, kCells, kCell);
+    cv::putText(img, "x: centre, y: left occupancy", {kLeftPad + 40, kTop + kCells * kCell + 36},
+                cv::FONT_HERSHEY_SIMPLEX, 0.45, kBlack, 1, cv::LINE_AA);
     return img;
 }
 
@@ -174,6 +235,19 @@ void write_figures(const fs::path& out) {
     cv::Mat surfaces;
     cv::hconcat(surface(0.0, p), surface(1.0, p), surfaces);
     save(out / "control_surface.png", surfaces);
+    // Decisions before and after the default rule, right window free / half / full; legend:
+    // green forward, blue left, red right, black backwards, orange line: the rate.
+    std::vector<cv::Mat> rows;
+    for (const bool before : {true, false}) {
+        cv::Mat row;
+        cv::hconcat(std::vector<cv::Mat>{decision_map(0.0, p, before), decision_map(0.5, p, before),
+                                         decision_map(1.0, p, before)},
+                    row);
+        rows.push_back(row);
+    }
+    cv::Mat decisions;
+    cv::vconcat(rows, decisions);
+    save(out / "decision_surface.png", decisions);
     io::write_pngs(figures);
     for (const auto& [path, img] : figures) {
         std::cout << path.string() << '\n';

@@ -12,5 +12,6 @@ void add_hierarchical_eval_command(CLI::App& app);  // docs/results-hierarchical
 void add_sigma_sweep_command(CLI::App& app);        // docs/sigma-sweep.md
 void add_avoid_figures_command(CLI::App& app);      // docs/avoidance.md
 void add_validation_eval_command(CLI::App& app);    // docs/results.md, validated output
+void add_avoid_benchmark_command(CLI::App& app);    // docs/results-avoidance.md
 
 }  // namespace stereo::experiments

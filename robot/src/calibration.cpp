@@ -80,7 +80,7 @@ StereoGeometry load_calibration(const fs::path& path) {
         throw std::invalid_argument("calibration file " + path.string() +
                                     " gives no positive focal length and baseline");
     }
-    return {focal, baseline};
+    return {focal, baseline, (*left)[2], (*left)[6]};
 }
 
 double disparity_threshold(const StereoGeometry& geometry, double safe_distance, int downscale) {

@@ -35,6 +35,7 @@ void check_params(const FisParams& params) {
     if (!(params.forward_band >= 0.0 && params.forward_band <= 90.0)) {  // NaN fails too
         throw std::invalid_argument("--forward-band must be in [0, 90] degrees");
     }
+    check_fraction(params.rate, "rate");
 }
 
 }  // namespace
@@ -54,12 +55,12 @@ std::string to_string(Direction direction) {
 }
 
 ThresholdDecision decide_threshold(const DisparityMap& map, double threshold, int ndisp,
-                                   const ThresholdParams& params) {
+                                   const ThresholdParams& params, const GroundModel* ground) {
     if (!(params.rate >= 0.0 && params.rate <= 1.0)) {
         throw std::invalid_argument("rate r must be in [0, 1], got " + std::to_string(params.rate));
     }
     ThresholdDecision decision;
-    decision.stats = all_window_stats(map, threshold, params.border);
+    decision.stats = all_window_stats(map, threshold, params.border, ground);
     for (int i = 0; i < 3; ++i) {
         decision.mean[i] = decision.stats[i].mean_disparity(ndisp);
     }
@@ -113,22 +114,45 @@ FisResult evaluate_fis(double left, double centre, double right, const FisParams
         return std::min(w_back, params.backwards_yes(b));
     });
 
+    result.mamdani_angle_deg = result.angle_deg;
+
+    // A turn rule "fires" when its clipped output set is not flat across the opposite third of
+    // the angle range (the other side's window): strength >= the turn MF at that third's inner
+    // edge (left MF at +10 degrees, right MF at -10: exp(-29^2 / (2 5.5^2)) = 9.2e-7). Weaker
+    // rules carry no direction; their centroid is noise around 0.
+    const double third = (params.angle_max - params.angle_min) / 3.0;
+    const bool left_fires = w_left >= params.left(params.angle_max - third);
+    const bool right_fires = w_right >= params.right(params.angle_min + third);
     if (result.backwards > params.backwards_threshold) {
         result.decision = Direction::backwards;
-    } else if (result.angle_deg < -params.forward_band) {
+    } else if (result.angle_deg < -params.forward_band && left_fires) {
         result.decision = Direction::left;
-    } else if (result.angle_deg > params.forward_band) {
+    } else if (result.angle_deg > params.forward_band && right_fires) {
         result.decision = Direction::right;
-    } else {
+    } else if (centre < params.rate) {
         result.decision = Direction::forward;
+    } else {
+        // Rule 5: the centre is blocked but no turn rule is decisive (the dead zone where every
+        // rule fires at ~1e-19, or opposing turns cancelling).
+        result.default_rule = true;
+        const bool go_left = left <= right;
+        const double freer = go_left ? left : right;
+        if (freer >= params.rate) {
+            result.decision = Direction::backwards;
+        } else {
+            result.decision = go_left ? Direction::left : Direction::right;
+            const Gaussian& mf = go_left ? params.left : params.right;
+            result.angle_deg = centroid(params.angle_min, params.angle_max, params.angle_step,
+                                        [&](double a) { return mf(a); });
+        }
     }
     return result;
 }
 
 FuzzyDecision decide_fuzzy(const DisparityMap& map, double threshold, const FisParams& params,
-                           int border) {
+                           int border, const GroundModel* ground) {
     FuzzyDecision decision;
-    decision.stats = all_window_stats(map, threshold, border);
+    decision.stats = all_window_stats(map, threshold, border, ground);
     decision.fis =
         evaluate_fis(decision.stats[kLeft].occupancy(), decision.stats[kCentre].occupancy(),
                      decision.stats[kRight].occupancy(), params);

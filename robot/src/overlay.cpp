@@ -15,6 +15,7 @@
 #include <opencv2/videoio.hpp>
 
 #include "stereo_io/io.hpp"
+#include "stereo_robot/ground.hpp"
 
 namespace stereo::robot {
 namespace {
@@ -29,7 +30,7 @@ constexpr int kThumbWidth = 320;
 }  // namespace
 
 cv::Mat draw_overlay(const cv::Mat& left, const DisparityMap& map, double threshold, int border,
-                     const OverlayInfo& info) {
+                     const OverlayInfo& info, const GroundModel* ground) {
     if (left.cols != map.width || left.rows != map.height) {
         throw std::invalid_argument("overlay image and disparity map differ in size");
     }
@@ -39,12 +40,18 @@ cv::Mat draw_overlay(const cv::Mat& left, const DisparityMap& map, double thresh
     } else {
         out = left.clone();
     }
-    // Tint near pixels half-way to red.
+    // Tint near pixels half-way to red; the ground model's ground (and overhead) pixels in blue.
     for (int y = 0; y < map.height; ++y) {
         auto* row = out.ptr<cv::Vec3b>(y);
         for (int x = 0; x < map.width; ++x) {
             const std::size_t i = map.index(x, y);
-            if (map.valid[i] != 0 && map.disparity[i] > threshold) {
+            if (map.valid[i] == 0 || !(map.disparity[i] > threshold)) {
+                continue;
+            }
+            if (ground != nullptr && !ground->obstacle(y, map.disparity[i])) {
+                row[x] = cv::Vec3b(static_cast<std::uint8_t>(128 + row[x][0] / 2), row[x][1] / 2,
+                                   row[x][2] / 2);
+            } else {
                 row[x] = cv::Vec3b(row[x][0] / 2, row[x][1] / 2,
                                    static_cast<std::uint8_t>(128 + row[x][2] / 2));
             }

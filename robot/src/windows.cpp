@@ -1,6 +1,8 @@
 #include "stereo_robot/windows.hpp"
 
 #include <cstdint>
+#include "stereo_robot/ground.hpp"
+
 #include <stdexcept>
 #include <string>
 
@@ -27,7 +29,8 @@ std::array<Rect, 3> split_windows(int width, int height, int border) {
     return windows;
 }
 
-WindowStats window_stats(const DisparityMap& map, const Rect& window, double threshold) {
+WindowStats window_stats(const DisparityMap& map, const Rect& window, double threshold,
+                         const GroundModel* ground) {
     WindowStats stats;
     for (int y = window.y0; y < window.y1; ++y) {
         for (int x = window.x0; x < window.x1; ++x) {
@@ -37,6 +40,10 @@ WindowStats window_stats(const DisparityMap& map, const Rect& window, double thr
             }
             const int d = map.disparity[i];
             ++stats.valid;
+            if (ground != nullptr && !ground->obstacle(y, d)) {
+                ++stats.ignored;
+                continue;
+            }
             stats.above += d > threshold ? 1 : 0;
             stats.disparity_sum += d;
         }
@@ -44,10 +51,12 @@ WindowStats window_stats(const DisparityMap& map, const Rect& window, double thr
     return stats;
 }
 
-std::array<WindowStats, 3> all_window_stats(const DisparityMap& map, double threshold, int border) {
+std::array<WindowStats, 3> all_window_stats(const DisparityMap& map, double threshold, int border,
+                                            const GroundModel* ground) {
     const auto windows = split_windows(map.width, map.height, border);
-    return {window_stats(map, windows[0], threshold), window_stats(map, windows[1], threshold),
-            window_stats(map, windows[2], threshold)};
+    return {window_stats(map, windows[0], threshold, ground),
+            window_stats(map, windows[1], threshold, ground),
+            window_stats(map, windows[2], threshold, ground)};
 }
 
 }  // namespace stereo::robot

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -11,6 +12,10 @@ namespace stereo::robot {
 struct StereoGeometry {
     double focal_px = 0.0;  // rectified focal length, pixels
     double baseline = 0.0;  // metres (or any unit, the same as the safety distance)
+    // Principal point of the left camera, full-size pixels; NaN when unknown (--focal/--baseline
+    // given by hand): the ground model then assumes the image centre.
+    double cx = std::numeric_limits<double>::quiet_NaN();
+    double cy = std::numeric_limits<double>::quiet_NaN();
 };
 
 // Reads a rectified calibration in KITTI form: lines of 12 numbers (a 3x4 projection matrix,

@@ -30,7 +30,8 @@ struct ThresholdDecision {
 // Centre occupancy below `rate` -> forward; otherwise the side with the smaller mean disparity
 // (ties go left). `ndisp` stands in for the mean of a window with no valid pixel.
 ThresholdDecision decide_threshold(const DisparityMap& map, double threshold, int ndisp,
-                                   const ThresholdParams& params = {});
+                                   const ThresholdParams& params = {},
+                                   const GroundModel* ground = nullptr);
 
 // ---- fuzzy algorithm (Sec. 4.1.3) ------------------------------------------------------------
 struct Gaussian {
@@ -51,21 +52,38 @@ struct FisParams {
     double angle_step = 0.01;  // centroid grid
     double backwards_step = 0.001;
     double backwards_threshold = 0.65;  // back off above this
-    double forward_band = 10.0;         // |angle| <= this is reported as "forward"
+    // |angle| <= this is "no turn": forward when the centre is free, else the default rule
+    // (below) decides. 1 degree: see docs/avoidance.md (the thesis counts a 9-degree output as
+    // a turn).
+    double forward_band = 1.0;
+    // Safety rate r (the threshold method's): a centre occupancy >= rate is "blocked" and never
+    // gives "forward".
+    double rate = 0.20;
 };
 
 struct FisResult {
-    double angle_deg = 0.0;
+    double angle_deg = 0.0;  // the Mamdani centroid, or the default rule's turn angle
     double backwards = 0.0;
     Direction decision = Direction::forward;
     std::array<double, 4> firing{};  // rule strengths: forward, left, right, backwards
+    double mamdani_angle_deg = 0.0;  // the centroid of rules 1-3 alone
+    bool default_rule = false;       // rule 5 decided (blocked centre, no decisive turn)
 };
 
 // Throws std::invalid_argument unless every input is a number in [0, 1].
 void check_fraction(double value, const std::string& name);
 
 // Mamdani FIS: min for AND and implication, max aggregation, centroid over the grids; an empty
-// aggregated set defuzzifies to the midpoint of its range.
+// aggregated set defuzzifies to the midpoint of its range. The decision (docs/avoidance.md):
+//   backwards when backwards > backwards_threshold;
+//   else a turn by the angle's sign when |angle| > forward_band and that side's turn rule fires
+//   (strength at least the turn MF at the inner edge of the opposite third of the angle range,
+//   9.2e-7 with the defaults: below it the clipped set is flat over the other side's sector);
+//   else forward when centre < rate;
+//   else (rule 5, the default rule: a blocked centre and no turn rule decisive) a turn to the
+//   freer side (smaller occupancy, ties left), or backwards when that side is blocked as well;
+//   the reported angle is then the centroid of that side's whole output MF.
+// So "forward" implies centre < rate for every input (tests/test_robot.cpp checks a grid).
 FisResult evaluate_fis(double left, double centre, double right, const FisParams& params = {});
 
 // The fuzzy decision on a disparity map: window occupancies at `threshold`, then evaluate_fis.
@@ -74,6 +92,6 @@ struct FuzzyDecision {
     std::array<WindowStats, 3> stats{};
 };
 FuzzyDecision decide_fuzzy(const DisparityMap& map, double threshold, const FisParams& params = {},
-                           int border = kDefaultBorder);
+                           int border = kDefaultBorder, const GroundModel* ground = nullptr);
 
 }  // namespace stereo::robot

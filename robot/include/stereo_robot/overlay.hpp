@@ -22,8 +22,9 @@ struct OverlayInfo {
 };
 
 // `left` is the left image in OpenCV BGR (or grey) order, of the map's size.
+// Near pixels are tinted red, near pixels that the ground model ignores (optional) blue.
 cv::Mat draw_overlay(const cv::Mat& left, const DisparityMap& map, double threshold, int border,
-                     const OverlayInfo& info);
+                     const OverlayInfo& info, const GroundModel* ground = nullptr);
 
 // Throws std::invalid_argument unless `path` can hold the overlay: a .png file, or for a sequence
 // also an .avi video (any case). Called before the first frame is processed.

@@ -9,6 +9,8 @@ namespace stereo::robot {
 
 inline constexpr int kDefaultBorder = 20;  // pixels excluded on every side (thesis Sec. 4.1.1)
 
+struct GroundModel;  // ground.hpp
+
 enum class Side { left = 0, centre = 1, right = 2 };
 
 // Half-open pixel rectangle [x0, x1) x [y0, y1).
@@ -30,21 +32,29 @@ std::array<Rect, 3> split_windows(int width, int height, int border = kDefaultBo
 // no disparity, and counting it as 0 would call it free.
 struct WindowStats {
     int valid = 0;                // valid pixels in the window
-    int above = 0;                // valid pixels with disparity > threshold
-    long long disparity_sum = 0;  // sum of valid disparities
+    int above = 0;                // valid, not ignored pixels with disparity > threshold
+    int ignored = 0;              // valid pixels the ground model calls ground or overhead
+    long long disparity_sum = 0;  // sum of the disparities of valid, not ignored pixels
 
-    // Fraction of valid pixels above the threshold; a window without any valid pixel counts as
-    // fully occupied (1), since nothing shows that it is free.
+    // Fraction of valid pixels above the threshold (ignored pixels count as free); a window
+    // without any valid pixel counts as fully occupied (1), since nothing shows that it is free.
     double occupancy() const { return valid == 0 ? 1.0 : static_cast<double>(above) / valid; }
-    // Mean valid disparity; `none` when there is no valid pixel.
+    // Mean disparity of the valid, not ignored pixels; `none` when there is no valid pixel, 0
+    // when all valid pixels are ground (nothing stands there).
     double mean_disparity(double none) const {
-        return valid == 0 ? none : static_cast<double>(disparity_sum) / valid;
+        const int counted = valid - ignored;
+        return valid == 0     ? none
+               : counted == 0 ? 0.0
+                              : static_cast<double>(disparity_sum) / counted;
     }
 };
 
-WindowStats window_stats(const DisparityMap& map, const Rect& window, double threshold);
+// `ground` (optional): pixels that are not obstacles by the ground model are ignored.
+WindowStats window_stats(const DisparityMap& map, const Rect& window, double threshold,
+                         const GroundModel* ground = nullptr);
 
 std::array<WindowStats, 3> all_window_stats(const DisparityMap& map, double threshold,
-                                            int border = kDefaultBorder);
+                                            int border = kDefaultBorder,
+                                            const GroundModel* ground = nullptr);
 
 }  // namespace stereo::robot

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <numbers>
 #include <random>
 #include <stdexcept>
+#include <string>
 #include <unordered_set>
 
 #include <opencv2/imgproc.hpp>
@@ -447,13 +449,23 @@ MergeResult best_placement(const EvidenceGrid& global, const std::vector<Eigen::
                     best.dz = dz;
                     best.dtheta = step;
                     best.score = score;
+                    best.cells = static_cast<int>(cells.size());
                     best_size = size;
                     first = false;
                 }
             }
         }
     }
-    best.applied = best.score >= best.base_score + params.min_gain && best_size > 0;
+    // The gates (docs/slam.md): a gain noise cannot explain (sigma * sqrt of the counts, the
+    // Poisson spread of a count of chance coincidences), and a local map that the global map
+    // confirms (at least min_match of its cells on occupied cells once placed).
+    const int gain = best.score - best.base_score;
+    const bool significant =
+        gain >= params.min_gain &&
+        gain >= params.significance * std::sqrt(static_cast<double>(best.score + best.base_score));
+    const bool confirmed =
+        best.cells > 0 && best.score >= params.min_match * static_cast<double>(best.cells);
+    best.applied = significant && confirmed && best_size > 0;
     return best;
 }
 
@@ -500,7 +512,58 @@ cv::Mat render_map(const DenseGrid& grid, double cell_size, const std::vector<Po
             cv::circle(picture, to_pixel(path.points.front()), 4, path.colour, cv::FILLED);
         }
     }
-    return picture;
+    // A strip below the map: legend, scale bar and axes (the map's pixels stay where they are).
+    constexpr int kStrip = 70;
+    const int width = std::max(picture.cols, 560);
+    cv::Mat out(picture.rows + kStrip, width, CV_8UC3, cv::Scalar(255, 255, 255));
+    picture.copyTo(out(cv::Rect(0, 0, picture.cols, picture.rows)));
+    const cv::Scalar ink(0, 0, 0);
+    const int y0 = picture.rows + 18;
+    int x = 8;
+    const auto swatch = [&](const cv::Scalar& colour, const std::string& text, bool line) {
+        if (line) {
+            cv::line(out, {x, y0}, {x + 18, y0}, colour, 2, cv::LINE_AA);
+        } else {
+            cv::rectangle(out, cv::Rect(x, y0 - 6, 12, 12), colour, cv::FILLED);
+            cv::rectangle(out, cv::Rect(x, y0 - 6, 12, 12), ink, 1);
+        }
+        cv::putText(out, text, {x + 24, y0 + 5}, cv::FONT_HERSHEY_SIMPLEX, 0.45, ink, 1,
+                    cv::LINE_AA);
+        x += 24 + 9 * static_cast<int>(text.size()) + 14;
+    };
+    swatch(cv::Scalar(0, 0, 0), "occupied", false);
+    swatch(cv::Scalar(255, 255, 255), "free", false);
+    swatch(cv::Scalar(150, 150, 150), "unknown", false);
+    for (const Polyline& path : paths) {
+        if (!path.label.empty()) {
+            swatch(path.colour, path.label, true);
+        }
+    }
+    // Scale bar: the largest of 1, 2, 5, 10, 20, 50, 100 m that fits a quarter of the width.
+    double metres = 1.0;
+    for (const double m : {2.0, 5.0, 10.0, 20.0, 50.0, 100.0}) {
+        if (m / cell_size * pixels <= width / 4.0) {
+            metres = m;
+        }
+    }
+    const int bar = static_cast<int>(std::lround(metres / cell_size * pixels));
+    const int y1 = picture.rows + 48;
+    cv::line(out, {8, y1}, {8 + bar, y1}, ink, 2);
+    for (const int end : {8, 8 + bar}) {
+        cv::line(out, {end, y1 - 5}, {end, y1 + 5}, ink, 2);
+    }
+    char text[64];
+    std::snprintf(text, sizeof text, "%g m (cell %g m)", metres, cell_size);
+    cv::putText(out, text, {16 + bar, y1 + 5}, cv::FONT_HERSHEY_SIMPLEX, 0.45, ink, 1, cv::LINE_AA);
+    // Axes: x to the right, z (forward at the first frame) up.
+    const cv::Point origin(width - 60, picture.rows + 60);
+    cv::arrowedLine(out, origin, origin + cv::Point(40, 0), ink, 1, cv::LINE_AA, 0, 0.25);
+    cv::arrowedLine(out, origin, origin + cv::Point(0, -40), ink, 1, cv::LINE_AA, 0, 0.25);
+    cv::putText(out, "x", origin + cv::Point(44, 4), cv::FONT_HERSHEY_SIMPLEX, 0.45, ink, 1,
+                cv::LINE_AA);
+    cv::putText(out, "z", origin + cv::Point(-14, -32), cv::FONT_HERSHEY_SIMPLEX, 0.45, ink, 1,
+                cv::LINE_AA);
+    return out;
 }
 
 }  // namespace stereo::robot::slam

@@ -2,9 +2,11 @@
 
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <stdexcept>
 
 #include "stereo_io/io.hpp"
+#include "stereo_robot/bands.hpp"
 
 namespace stereo::robot::slam {
 
@@ -44,6 +46,7 @@ void validate(const SlamParams& params, int width, int height) {
     require(within(params.frontend.certainty, 0.0, 1000.0), "--certainty must be in [0, 1000]");
     require(within(params.frontend.lr_tolerance, 0, 256), "--lr-tolerance must be in 0..256");
     require(within(params.motion.features, 10, 100000), "--features must be in 10..100000");
+    require(params.threads >= 1 && params.threads <= 256, "--threads must be in 1..256");
     require(params.motion.max_hamming >= 0 && params.motion.max_hamming <= 256,
             "--max-hamming must be in 0..256");
     require(within(params.motion.max_depth, 1e-3, 1e4), "--max-depth must be in [0.001, 10000] m");
@@ -71,6 +74,10 @@ void validate(const SlamParams& params, int width, int height) {
     require(within(params.merge.angle_step_deg, 1e-3, 45.0),
             "--merge-angle-step must be in [0.001, 45] degrees");
     require(within(params.merge.min_gain, 0, 1000000), "--merge-min-gain must be in 0..1000000");
+    require(params.merge.significance >= 0.0 && std::isfinite(params.merge.significance),
+            "--merge-significance must be >= 0");
+    require(params.merge.min_match >= 0.0 && params.merge.min_match <= 1.0,
+            "--merge-min-match must be in [0, 1]");
     require(positive(params.ray_bin_deg), "ray bins must be > 0 degrees");
 }
 
@@ -95,13 +102,20 @@ FrameReport Slam::process(const cv::Mat& left, const cv::Mat& right) {
     FrameReport report;
 
     auto start = Clock::now();
-    SparseDisparity disparity =
-        sparse_disparity(to_grey_image(left), to_grey_image(right), params_.frontend);
+    // ORB on the left image does not depend on the disparities: with threads > 1 it runs
+    // beside the front end (its time is then included in frontend_ms).
+    std::future<Features> detected;
+    if (params_.threads > 1) {
+        detected =
+            std::async(std::launch::async, [&] { return detect_features(left, params_.motion); });
+    }
+    SparseDisparity disparity = sparse_disparity_bands(to_grey_image(left), to_grey_image(right),
+                                                       params_.frontend, params_.threads);
     report.valid_fraction = disparity.valid_fraction();
+    Features features = detected.valid() ? detected.get() : detect_features(left, params_.motion);
     report.ms.frontend_ms = ms_since(start);
 
     start = Clock::now();
-    Features features = detect_features(left, params_.motion);
     if (odometry_.empty()) {
         odometry_.push_back(Eigen::Isometry3d::Identity());
         trajectory_.push_back(Eigen::Isometry3d::Identity());

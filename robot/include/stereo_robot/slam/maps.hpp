@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
@@ -170,6 +171,12 @@ struct MergeParams {
     int angle_steps = 2;  // rotations -angle_steps .. +angle_steps
     double angle_step_deg = 0.5;
     int min_gain = 3;  // overlap cells the best placement must gain over no change
+    // The gain must also exceed significance * sqrt(score + base score): chance coincidences
+    // of noisy cells are Poisson-like counts (0 switches this gate off).
+    double significance = 3.0;
+    // The placed local map must land with at least this share of its cells on occupied map
+    // cells: a correction is only trusted when the map confirms the local map (0 = off).
+    double min_match = 0.5;
 };
 
 struct MergeResult {
@@ -178,6 +185,7 @@ struct MergeResult {
     int dtheta = 0;      // steps of angle_step_deg
     int score = 0;       // occupied cells of the chosen placement that are occupied in the map
     int base_score = 0;  // the same without correction
+    int cells = 0;       // distinct cells of the chosen placement
     bool applied = false;
 };
 
@@ -197,10 +205,13 @@ Eigen::Isometry3d merge_correction(const MergeResult& result, const Eigen::Vecto
 
 // ---- pictures -----------------------------------------------------------------------------
 // The grid (unknown grey, free white, occupied black), x to the right and z up, `pixels` per
-// cell, with trajectories (camera positions, x and z) drawn as polylines in their BGR colours.
+// cell, with trajectories (camera positions, x and z) drawn as polylines in their BGR colours;
+// below it a strip with the legend (cell states, labelled paths), a metric scale bar and the
+// axes.
 struct Polyline {
     std::vector<Eigen::Vector2d> points;
     cv::Scalar colour;
+    std::string label;  // shown in the legend when not empty
 };
 cv::Mat render_map(const DenseGrid& grid, double cell_size, const std::vector<Polyline>& paths,
                    int pixels = 4);

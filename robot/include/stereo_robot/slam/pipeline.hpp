@@ -25,6 +25,9 @@ struct SlamParams {
     double cell_size = 0.25;    // metres
     double ray_bin_deg = 0.5;   // bearing bins of the free-space rays
     bool merge_enabled = true;  // false: place local maps with the odometry alone
+    // Row bands of the front end matched in parallel (bit-exact, stereo_robot/bands.hpp), and
+    // the ORB detection run beside the front end; 1 = everything on the calling thread.
+    int threads = 1;
 };
 
 // Throws std::invalid_argument for impossible parameters (image size from the first frame).
