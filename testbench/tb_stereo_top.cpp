@@ -21,16 +21,27 @@
 namespace stereo::sim {
 namespace {
 
-using tb::same_map;
+using tb::same_validated;
 
 const TopConfig& small() {
     return built_top_configs().front();
 }
 
 // Pipeline delay in pixel steps: the stage table's formula (stage_table.hpp, docs/rtl.md),
-// (R + 2) * W + R + 10; the Throughput test below measures it on the RTL.
-std::uint64_t documented_latency(int width, int window) {
-    return static_cast<std::uint64_t>(table::pipeline_latency(width, window));
+// (R + 2) * W + R + 11 + N + K; the Throughput test below measures it on the RTL.
+std::uint64_t documented_latency(int width, int window, int min_disp) {
+    return static_cast<std::uint64_t>(
+        table::pipeline_latency(width, window, small().ndisp, min_disp));
+}
+
+// The golden model's stage-6 output.
+ValidatedDisparity expected(const Image& left, const Image& right, const MatchParams& params) {
+    return match_validated(left, right, params);
+}
+
+ValidatedDisparity frame_of(const StreamResult& result, std::size_t first, int width,
+                            int height) {
+    return assemble_validated(result.outputs, first, width, height);
 }
 
 class Cosim {
@@ -43,8 +54,8 @@ class Cosim {
     }
     TopSim& sim() { return *sim_; }
 
-    // Streams one frame and returns the RTL's map, checking completion and protocol.
-    DisparityMap run(const Image& left, const Image& right, const MatchParams& params,
+    // Streams one frame and returns the RTL's result, checking completion and protocol.
+    ValidatedDisparity run(const Image& left, const Image& right, const MatchParams& params,
                      const Traffic& traffic, StreamResult* result_out = nullptr) {
         sim_->set_params({left.width, left.height, params});
         const auto beats = frame_beats(left, right);
@@ -53,7 +64,8 @@ class Cosim {
                                       << beats.size() << " outputs";
         EXPECT_EQ(result.protocol_error, "");
         EXPECT_EQ(result.status, 0U) << "status bits";
-        const DisparityMap map = assemble_frame(result.outputs, 0, left.width, left.height);
+        const ValidatedDisparity map =
+            assemble_validated(result.outputs, 0, left.width, left.height);
         if (result_out != nullptr) {
             *result_out = std::move(result);
         }
@@ -85,8 +97,8 @@ TEST_P(RandomPairs, EveryPixelEqualsTheModel) {
     const Image right = test::shifted_copy(left, 3, 25, rng);
     const MatchParams params{c.ndisp, c.window, fx::kDefaultSigma, c.use_ca};
     Cosim cosim;
-    const DisparityMap rtl = cosim.run(left, right, params, {c.gap, c.stall, seed});
-    EXPECT_TRUE(same_map(match(left, right, params), rtl));
+    const ValidatedDisparity rtl = cosim.run(left, right, params, {c.gap, c.stall, seed});
+    EXPECT_TRUE(same_validated(expected(left, right, params), rtl));
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -105,7 +117,7 @@ TEST(Extremes, ConstantImages) {
     for (const auto& [l, r, left, right] : test::constant_pairs(64, 48, 3)) {
         const MatchParams params{16, 5, fx::kDefaultSigma, true};
         EXPECT_TRUE(
-            same_map(match(left, right, params), cosim.run(left, right, params, {0.2, 0.2, seed})))
+            same_validated(expected(left, right, params), cosim.run(left, right, params, {0.2, 0.2, seed})))
             << "left " << l << " right " << r;
     }
 }
@@ -116,7 +128,7 @@ TEST(Extremes, GreyInputIsMatchedAsRgb) {
     const Image right = test::shifted_copy(left, 2, 10, rng);
     const MatchParams params{12, 5, fx::kDefaultSigma, true};
     Cosim cosim;
-    EXPECT_TRUE(same_map(match(left, right, params), cosim.run(left, right, params, {})));
+    EXPECT_TRUE(same_validated(expected(left, right, params), cosim.run(left, right, params, {})));
 }
 
 // A crop of a real pair, at the small configuration's size.
@@ -163,7 +175,7 @@ TEST_P(RealPairs, EveryPixelEqualsTheModel) {
     Cosim cosim;
     for (const bool use_ca : {true, false}) {
         const MatchParams params{c.ndisp, 5, fx::kDefaultSigma, use_ca};
-        EXPECT_TRUE(same_map(match(pair->first, pair->second, params),
+        EXPECT_TRUE(same_validated(expected(pair->first, pair->second, params),
                              cosim.run(pair->first, pair->second, params, {0.1, 0.1, seed})))
             << c.name << " CA " << use_ca;
     }
@@ -192,7 +204,7 @@ TEST(Throughput, CyclesPerFrameWithoutStallsMatchTheDocumentedLatency) {
     StreamResult result;
     (void)cosim.run(left, right, {point.ndisp, point.window, fx::kDefaultSigma, true}, {}, &result);
     const auto pixels = static_cast<std::uint64_t>(point.width) * point.height;
-    const std::uint64_t latency = documented_latency(point.width, point.window);
+    const std::uint64_t latency = documented_latency(point.width, point.window, 0);
     const std::uint64_t expected = pixels + latency;
     std::cout << "[cycles] " << point.width << "x" << point.height << ": " << result.cycles
               << " cycles, expected " << expected << " (pixels " << pixels << " + latency "
@@ -221,9 +233,9 @@ TEST(Framing, BackToBackFramesWithoutIdle) {
     EXPECT_EQ(result.protocol_error, "");
     EXPECT_EQ(result.status, 0U);
     for (int f = 0; f < 3; ++f) {
-        const DisparityMap rtl =
-            assemble_frame(result.outputs, static_cast<std::size_t>(f) * 64 * 48, 64, 48);
-        EXPECT_TRUE(same_map(match(frames[f].first, frames[f].second, params), rtl))
+        const ValidatedDisparity rtl =
+            frame_of(result, static_cast<std::size_t>(f) * 64 * 48, 64, 48);
+        EXPECT_TRUE(same_validated(expected(frames[f].first, frames[f].second, params), rtl))
             << "frame " << f;
     }
 }
@@ -240,7 +252,7 @@ TEST(Framing, BackToBackFramesOfDifferentSizes) {
         const Image left = test::random_image(width, height, 3, rng);
         const Image right = test::shifted_copy(left, 3, 10, rng);
         EXPECT_TRUE(
-            same_map(match(left, right, params), cosim.run(left, right, params, {0.1, 0.1, seed})))
+            same_validated(expected(left, right, params), cosim.run(left, right, params, {0.1, 0.1, seed})))
             << width << "x" << height;
     }
 }
@@ -263,7 +275,7 @@ TEST(Framing, ResetInTheMiddleOfAFrameThenACleanFrame) {
     const Image left2 = test::random_image(64, 48, 3, rng);
     const Image right2 = test::shifted_copy(left2, 7, 15, rng);
     EXPECT_TRUE(
-        same_map(match(left2, right2, params), cosim.run(left2, right2, params, {0.2, 0.2, seed})));
+        same_validated(expected(left2, right2, params), cosim.run(left2, right2, params, {0.2, 0.2, seed})));
 }
 
 TEST(BadInput, BeatsBeforeTheFirstStartOfFrameAreDropped) {
@@ -279,7 +291,7 @@ TEST(BadInput, BeatsBeforeTheFirstStartOfFrameAreDropped) {
     const StreamResult result = cosim.sim().stream(stream, beats.size(), {}, 100000);
     ASSERT_TRUE(result.completed);
     EXPECT_EQ(result.status, 0U);
-    EXPECT_TRUE(same_map(match(left, right, params), assemble_frame(result.outputs, 0, 32, 24)));
+    EXPECT_TRUE(same_validated(expected(left, right, params), frame_of(result, 0, 32, 24)));
 }
 
 TEST(BadInput, MisplacedTlastAndTuserSetStatusBitsAndTheFrameStillCompletes) {
@@ -310,7 +322,7 @@ TEST(BadInput, AStreamThatEndsEarlyNeverProducesAPartialFrameAndResetRecovers) {
     EXPECT_FALSE(stalled.completed);
     EXPECT_LT(stalled.outputs.size(), beats.size());
     cosim.sim().reset();
-    EXPECT_TRUE(same_map(match(left, right, params), cosim.run(left, right, params, {})));
+    EXPECT_TRUE(same_validated(expected(left, right, params), cosim.run(left, right, params, {})));
 }
 
 TEST(BadInput, OutOfRangeConfigurationIsFlaggedAndClamped) {
@@ -330,7 +342,7 @@ TEST(BadInput, OutOfRangeConfigurationIsFlaggedAndClamped) {
     ASSERT_TRUE(result.completed);
     EXPECT_EQ(result.status & (1U << table::kStatusConfigClamped),
               1U << table::kStatusConfigClamped);
-    EXPECT_TRUE(same_map(match(left, right, params), assemble_frame(result.outputs, 0, 64, 48)));
+    EXPECT_TRUE(same_validated(expected(left, right, params), frame_of(result, 0, 64, 48)));
 }
 
 }  // namespace
