@@ -3,6 +3,7 @@
 // real and synthetic images, and malformed streams.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -111,6 +112,169 @@ INSTANTIATE_TEST_SUITE_P(
                       RandomCase{23, 17, 4, 1, false, 0.0, 0.3},  // 1x1 window
                       RandomCase{63, 47, 16, 5, true, 0.5, 0.0}));
 
+// ---- Stage 6: signed range, uniqueness, left-right check, sub-pixel -------------------------
+struct Stage6Case {
+    int width, height, ndisp, window;
+    bool use_ca;
+    int min_disp;
+    int uniqueness;  // -1: off
+    int lr;          // -1: off
+    bool subpixel;
+    int shift;  // true disparity of the synthetic pair (negative: the right image leads)
+    double gap, stall;
+};
+
+void PrintTo(const Stage6Case& c, std::ostream* out) {
+    *out << c.width << "x" << c.height << " ndisp " << c.ndisp << " window " << c.window
+         << (c.use_ca ? " CA" : " no CA") << " min_disp " << c.min_disp << " uniqueness "
+         << c.uniqueness << " lr " << c.lr << (c.subpixel ? " subpixel" : "") << " shift "
+         << c.shift << " gap " << c.gap << " stall " << c.stall;
+}
+
+MatchParams stage6_params(const Stage6Case& c) {
+    MatchParams params{c.ndisp, c.window, fx::kDefaultSigma, c.use_ca};
+    params.min_disp = c.min_disp;
+    params.validation.uniqueness = c.uniqueness >= 0;
+    params.validation.uniqueness_ratio = std::max(c.uniqueness, 0);
+    params.validation.left_right = c.lr >= 0;
+    params.validation.lr_tolerance = std::max(c.lr, 0);
+    params.validation.subpixel = c.subpixel;
+    return params;
+}
+
+class Stage6Pairs : public ::testing::TestWithParam<Stage6Case> {};
+
+TEST_P(Stage6Pairs, EveryPixelEqualsTheModel) {
+    const Stage6Case c = GetParam();
+    const std::uint32_t seed = tb::test_seed();
+    std::mt19937 rng(seed);
+    const Image left = test::random_image(c.width, c.height, 3, rng);
+    const Image right = test::shifted_copy(left, c.shift, 25, rng);
+    const MatchParams params = stage6_params(c);
+    Cosim cosim;
+    const ValidatedDisparity model = expected(left, right, params);
+    EXPECT_TRUE(same_validated(model, cosim.run(left, right, params, {c.gap, c.stall, seed})));
+    // The comparison must have something to compare: the checks it enables reject some pixels
+    // of a noisy pair, and sub-pixel refinement moves some disparities off the integer grid
+    // (with more than 3 labels; with one label nothing can fail).
+    std::size_t rejected = 0;
+    std::size_t fractional = 0;
+    for (std::size_t i = 0; i < model.fixed.size(); ++i) {
+        rejected += model.reason[i] > fx::kReasonBorder ? 1 : 0;
+        fractional += model.fixed[i] % fx::kSubpixelScale != 0 ? 1 : 0;
+    }
+    if ((c.uniqueness >= 0 || c.lr >= 0) && c.ndisp > 3) {
+        EXPECT_GT(rejected, 0U) << "no pixel failed the enabled checks";
+    }
+    if (c.subpixel && c.ndisp > 2) {
+        EXPECT_GT(fractional, 0U) << "no sub-pixel disparity";
+    }
+}
+
+constexpr int kMaxMin = table::kDefaultMaxMinDisp;
+INSTANTIATE_TEST_SUITE_P(
+    Stereo, Stage6Pairs,
+    ::testing::Values(
+        // All on, stalls both ways.
+        Stage6Case{64, 48, 16, 5, true, 0, 10, 1, true, 3, 0.2, 0.2},
+        // Negative ranges: the left pixel waits K steps; true disparity negative.
+        Stage6Case{64, 48, 16, 5, true, -kMaxMin, 10, 1, true, -3, 0.1, 0.3},
+        Stage6Case{63, 47, 16, 5, true, -5, -1, 0, true, 2, 0.3, 0.1},
+        // Positive minimum disparity.
+        Stage6Case{64, 48, 16, 5, false, kMaxMin, 25, 2, false, 12, 0.2, 0.2},
+        Stage6Case{37, 23, 9, 3, true, 2, -1, -1, true, 5, 0.1, 0.1},
+        // Each check alone; odd sizes; few labels (no second cost for N <= 3).
+        Stage6Case{41, 29, 16, 5, true, -1, 30, -1, false, 4, 0.2, 0.0},
+        Stage6Case{33, 21, 12, 5, false, 0, -1, 0, false, 3, 0.0, 0.4},
+        Stage6Case{23, 17, 3, 1, false, -1, 50, 1, true, 0, 0.1, 0.1},
+        Stage6Case{23, 17, 1, 3, true, -2, 10, 0, true, -2, 0.2, 0.2}));
+
+// Without stalls a frame takes W*H + latency cycles, the latency growing by K = -min_disp.
+TEST(Throughput, NegativeMinimumDisparityAddsItsDelay) {
+    std::mt19937 rng(tb::test_seed());
+    const table::Params& point = table::kSmall;
+    const Image left = test::random_image(point.width, point.height, 3, rng);
+    const Image right = test::shifted_copy(left, -2, 10, rng);
+    Cosim cosim;
+    for (const int min_disp : {-kMaxMin, -3, 4}) {
+        MatchParams params{point.ndisp, point.window, fx::kDefaultSigma, true};
+        params.min_disp = min_disp;
+        params.validation.left_right = true;
+        StreamResult result;
+        EXPECT_TRUE(same_validated(expected(left, right, params),
+                                   cosim.run(left, right, params, {}, &result)));
+        const auto pixels = static_cast<std::uint64_t>(point.width) * point.height;
+        EXPECT_EQ(result.cycles,
+                  pixels + documented_latency(point.width, point.window, min_disp))
+            << "min_disp " << min_disp;
+    }
+}
+
+// Frames of different sizes and stage-6 configurations back to back in one stream, without
+// reset: the configuration is latched at each start of frame.
+TEST(Framing, BackToBackFramesWithDifferentStage6Configurations) {
+    const std::uint32_t seed = tb::test_seed();
+    std::mt19937 rng(seed);
+    Cosim cosim;
+    const Stage6Case cases[] = {
+        {32, 24, 8, 5, true, -kMaxMin, 10, 1, true, -4, 0, 0},
+        {20, 30, 8, 5, true, 3, 20, 0, false, 5, 0, 0},
+        {64, 48, 16, 5, false, -2, -1, 2, true, 1, 0, 0},
+        {13, 9, 4, 3, true, 0, -1, -1, false, 1, 0, 0},
+        {40, 12, 16, 3, true, -6, 5, 1, true, -5, 0, 0},
+    };
+    for (const Stage6Case& c : cases) {
+        const Image left = test::random_image(c.width, c.height, 3, rng);
+        const Image right = test::shifted_copy(left, c.shift, 15, rng);
+        const MatchParams params = stage6_params(c);
+        EXPECT_TRUE(same_validated(expected(left, right, params),
+                                   cosim.run(left, right, params, {0.1, 0.1, seed})))
+            << ::testing::PrintToString(c);
+    }
+}
+
+TEST(Framing, ResetInTheMiddleOfAStage6Frame) {
+    const std::uint32_t seed = tb::test_seed();
+    std::mt19937 rng(seed);
+    const Stage6Case c{64, 48, 16, 5, true, -kMaxMin, 10, 1, true, -3, 0, 0};
+    const MatchParams params = stage6_params(c);
+    const Image left = test::random_image(64, 48, 3, rng);
+    const Image right = test::shifted_copy(left, -3, 15, rng);
+    Cosim cosim;
+    cosim.sim().set_params({64, 48, params});
+    const auto beats = frame_beats(left, right);
+    const std::vector<InputBeat> part(beats.begin(), beats.begin() + 2 * beats.size() / 3);
+    EXPECT_GT(cosim.sim().stream(part, 200, {0.2, 0.2, seed}, 100000).input_beats, 0U);
+    cosim.sim().reset();
+    const Image left2 = test::random_image(64, 48, 3, rng);
+    const Image right2 = test::shifted_copy(left2, 6, 15, rng);
+    MatchParams params2 = params;
+    params2.min_disp = 2;
+    EXPECT_TRUE(same_validated(expected(left2, right2, params2),
+                               cosim.run(left2, right2, params2, {0.2, 0.2, seed})));
+}
+
+TEST(BadInput, OutOfRangeMinimumDisparityIsClampedAndFlagged) {
+    std::mt19937 rng(tb::test_seed());
+    const Image left = test::random_image(64, 48, 3, rng);
+    const Image right = test::shifted_copy(left, -3, 5, rng);
+    for (const int sign : {-1, 1}) {
+        Cosim cosim;
+        MatchParams params{16, 5, fx::kDefaultSigma, true};
+        params.validation.left_right = true;
+        CoreParams wide{64, 48, params};
+        wide.match.min_disp = sign * (kMaxMin + 7);
+        cosim.sim().set_params(wide);
+        const auto beats = frame_beats(left, right);
+        const StreamResult result = cosim.sim().stream(beats, beats.size(), {}, 100000);
+        ASSERT_TRUE(result.completed);
+        EXPECT_EQ(result.status & (1U << table::kStatusConfigClamped),
+                  1U << table::kStatusConfigClamped);
+        params.min_disp = sign * kMaxMin;  // what the core clamps to
+        EXPECT_TRUE(same_validated(expected(left, right, params), frame_of(result, 0, 64, 48)));
+    }
+}
+
 TEST(Extremes, ConstantImages) {
     Cosim cosim;
     const std::uint32_t seed = tb::test_seed();
@@ -178,6 +342,15 @@ TEST_P(RealPairs, EveryPixelEqualsTheModel) {
         EXPECT_TRUE(same_validated(expected(pair->first, pair->second, params),
                              cosim.run(pair->first, pair->second, params, {0.1, 0.1, seed})))
             << c.name << " CA " << use_ca;
+    }
+    // Stage 6 on: a shifted range, every check and sub-pixel output.
+    for (const int min_disp : {-3, 2}) {
+        MatchParams params{c.ndisp, 5, fx::kDefaultSigma, true};
+        params.min_disp = min_disp;
+        params.validation = {true, 15, true, 1, true};
+        EXPECT_TRUE(same_validated(expected(pair->first, pair->second, params),
+                                   cosim.run(pair->first, pair->second, params, {0.1, 0.1, seed})))
+            << c.name << " stage 6, min_disp " << min_disp;
     }
 }
 
