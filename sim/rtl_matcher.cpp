@@ -23,9 +23,9 @@ ValidatedDisparity run_rtl(const Image& left, const Image& right, const MatchPar
             "no Verilated configuration covers " + std::to_string(left.width) + "x" +
             std::to_string(left.height) + " ndisp " + std::to_string(params.ndisp) + " window " +
             std::to_string(params.window) + " min_disp " + std::to_string(params.min_disp) +
-            "; the largest built is " +
-            std::to_string(largest.width) + "x" + std::to_string(largest.height) + " ndisp " +
-            std::to_string(largest.ndisp) + " window " + std::to_string(largest.window) +
+            "; the largest built is " + std::to_string(largest.width) + "x" +
+            std::to_string(largest.height) + " ndisp " + std::to_string(largest.ndisp) +
+            " window " + std::to_string(largest.window) +
             " |min_disp| <= " + std::to_string(largest.max_min_disp) +
             " (stereo cosim --crop, or -DSTEREO_COSIM_FULL=ON)");
     }

@@ -146,8 +146,9 @@ class VerilatedTop final : public TopSim {
 // A stereo_top configuration of the stage table (stage_table.hpp).
 TopConfig top_config(const table::VerilatedConfig& config, const char* name) {
     const table::Params& p = config.params;
-    return {name, p.width, p.height, p.ndisp, p.window,
-            p.max_min_disp == table::kUnset ? table::kDefaultMaxMinDisp : p.max_min_disp};
+    return {name,     p.width,
+            p.height, p.ndisp,
+            p.window, p.max_min_disp == table::kUnset ? table::kDefaultMaxMinDisp : p.max_min_disp};
 }
 
 }  // namespace
@@ -222,8 +223,8 @@ ValidatedDisparity assemble_validated(const std::vector<OutputBeat>& beats, std:
                 throw std::runtime_error("wrong tuser/tlast framing at output pixel (" +
                                          std::to_string(x) + ", " + std::to_string(y) + ")");
             }
-            if (get_bits(beat.data, table::kOutReasonLsb + fx::kReasonBits,
-                         table::kOutPadBits) != 0) {
+            if (get_bits(beat.data, table::kOutReasonLsb + fx::kReasonBits, table::kOutPadBits) !=
+                0) {
                 throw std::runtime_error("non-zero padding bits at output pixel (" +
                                          std::to_string(x) + ", " + std::to_string(y) + ")");
             }

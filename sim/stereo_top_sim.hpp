@@ -18,10 +18,10 @@ namespace stereo::sim {
 // A Verilated configuration of stereo_top: the synthesis parameters it was built with.
 struct TopConfig {
     std::string name;
-    int width;   // largest frame width
-    int height;  // largest frame height
-    int ndisp;   // largest cfg_ndisp
-    int window;  // largest window
+    int width;         // largest frame width
+    int height;        // largest frame height
+    int ndisp;         // largest cfg_ndisp
+    int window;        // largest window
     int max_min_disp;  // largest |cfg_min_disp| (MAX_MIN_DISP)
 };
 

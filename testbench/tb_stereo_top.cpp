@@ -40,8 +40,7 @@ ValidatedDisparity expected(const Image& left, const Image& right, const MatchPa
     return match_validated(left, right, params);
 }
 
-ValidatedDisparity frame_of(const StreamResult& result, std::size_t first, int width,
-                            int height) {
+ValidatedDisparity frame_of(const StreamResult& result, std::size_t first, int width, int height) {
     return assemble_validated(result.outputs, first, width, height);
 }
 
@@ -57,7 +56,7 @@ class Cosim {
 
     // Streams one frame and returns the RTL's result, checking completion and protocol.
     ValidatedDisparity run(const Image& left, const Image& right, const MatchParams& params,
-                     const Traffic& traffic, StreamResult* result_out = nullptr) {
+                           const Traffic& traffic, StreamResult* result_out = nullptr) {
         sim_->set_params({left.width, left.height, params});
         const auto beats = frame_beats(left, right);
         StreamResult result = sim_->stream(beats, beats.size(), traffic, 50 * beats.size() + 10000);
@@ -204,8 +203,7 @@ TEST(Throughput, NegativeMinimumDisparityAddsItsDelay) {
         EXPECT_TRUE(same_validated(expected(left, right, params),
                                    cosim.run(left, right, params, {}, &result)));
         const auto pixels = static_cast<std::uint64_t>(point.width) * point.height;
-        EXPECT_EQ(result.cycles,
-                  pixels + documented_latency(point.width, point.window, min_disp))
+        EXPECT_EQ(result.cycles, pixels + documented_latency(point.width, point.window, min_disp))
             << "min_disp " << min_disp;
     }
 }
@@ -280,8 +278,8 @@ TEST(Extremes, ConstantImages) {
     const std::uint32_t seed = tb::test_seed();
     for (const auto& [l, r, left, right] : test::constant_pairs(64, 48, 3)) {
         const MatchParams params{16, 5, fx::kDefaultSigma, true};
-        EXPECT_TRUE(
-            same_validated(expected(left, right, params), cosim.run(left, right, params, {0.2, 0.2, seed})))
+        EXPECT_TRUE(same_validated(expected(left, right, params),
+                                   cosim.run(left, right, params, {0.2, 0.2, seed})))
             << "left " << l << " right " << r;
     }
 }
@@ -340,7 +338,7 @@ TEST_P(RealPairs, EveryPixelEqualsTheModel) {
     for (const bool use_ca : {true, false}) {
         const MatchParams params{c.ndisp, 5, fx::kDefaultSigma, use_ca};
         EXPECT_TRUE(same_validated(expected(pair->first, pair->second, params),
-                             cosim.run(pair->first, pair->second, params, {0.1, 0.1, seed})))
+                                   cosim.run(pair->first, pair->second, params, {0.1, 0.1, seed})))
             << c.name << " CA " << use_ca;
     }
     // Stage 6 on: a shifted range, every check and sub-pixel output.
@@ -424,8 +422,8 @@ TEST(Framing, BackToBackFramesOfDifferentSizes) {
                                         std::pair{64, 48}, std::pair{13, 9}}) {
         const Image left = test::random_image(width, height, 3, rng);
         const Image right = test::shifted_copy(left, 3, 10, rng);
-        EXPECT_TRUE(
-            same_validated(expected(left, right, params), cosim.run(left, right, params, {0.1, 0.1, seed})))
+        EXPECT_TRUE(same_validated(expected(left, right, params),
+                                   cosim.run(left, right, params, {0.1, 0.1, seed})))
             << width << "x" << height;
     }
 }
@@ -447,8 +445,8 @@ TEST(Framing, ResetInTheMiddleOfAFrameThenACleanFrame) {
     // A second frame with different content must come out exactly right.
     const Image left2 = test::random_image(64, 48, 3, rng);
     const Image right2 = test::shifted_copy(left2, 7, 15, rng);
-    EXPECT_TRUE(
-        same_validated(expected(left2, right2, params), cosim.run(left2, right2, params, {0.2, 0.2, seed})));
+    EXPECT_TRUE(same_validated(expected(left2, right2, params),
+                               cosim.run(left2, right2, params, {0.2, 0.2, seed})));
 }
 
 TEST(BadInput, BeatsBeforeTheFirstStartOfFrameAreDropped) {

@@ -101,10 +101,9 @@ void run_cosim(const CosimOptions& options) {
         const sim::TopConfig& largest = sim::built_top_configs().back();
         throw std::invalid_argument(
             "no co-simulation model covers " + std::to_string(width) + "x" +
-            std::to_string(height) + " with ndisp " + std::to_string(params.ndisp) +
-            ", window " + std::to_string(params.window) + " and min_disp " +
-            std::to_string(params.min_disp) + "; the largest built is " +
-            config_text(largest) +
+            std::to_string(height) + " with ndisp " + std::to_string(params.ndisp) + ", window " +
+            std::to_string(params.window) + " and min_disp " + std::to_string(params.min_disp) +
+            "; the largest built is " + config_text(largest) +
             " (use --downscale or --crop, or build with -DSTEREO_COSIM_FULL=ON)");
     }
 
@@ -175,8 +174,7 @@ void run_cosim(const CosimOptions& options) {
             }
         }
         if (frame + 1 == options.frames && !options.output.empty()) {
-            io::write_png(options.output,
-                          io::disparity_to_mat(to_label_map(rtl), params.ndisp, 1));
+            io::write_png(options.output, io::disparity_to_mat(to_label_map(rtl), params.ndisp, 1));
         }
     }
     const double seconds =
@@ -220,13 +218,12 @@ void run_cosim(const CosimOptions& options) {
             "(fixed, reason or certainty) of %zu; %llu cycles, %.3f cycles/pixel; simulated at "
             "%.0f cycles/s\n",
             width, height, params.ndisp, params.window, params.use_ca ? "on" : "off",
-            params.min_disp,
-            params.validation.uniqueness ? params.validation.uniqueness_ratio : -1,
+            params.min_disp, params.validation.uniqueness ? params.validation.uniqueness_ratio : -1,
             params.validation.left_right ? params.validation.lr_tolerance : -1,
-            params.validation.subpixel ? "on" : "off",
-            config->name.c_str(), config_text(*config).c_str(), options.seed, options.stall,
-            options.gap, mismatches, pixels, static_cast<unsigned long long>(result.cycles),
-            per_pixel, total_cycles / seconds);
+            params.validation.subpixel ? "on" : "off", config->name.c_str(),
+            config_text(*config).c_str(), options.seed, options.stall, options.gap, mismatches,
+            pixels, static_cast<unsigned long long>(result.cycles), per_pixel,
+            total_cycles / seconds);
         if (options.frames > 1 || options.reset_at >= 0) {
             std::printf("%d frames, reset after %d beats of each (-1 = none): %zu mismatches\n",
                         options.frames, options.reset_at, mismatches);

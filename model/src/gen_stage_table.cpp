@@ -128,12 +128,11 @@ std::string package_text() {
        << t::kOutCertaintyLsb << ", every pixel\n    logic [" << t::kOutPadBits - 1
        << ":0] pad;  // zero\n    logic [REASON_BITS-1:0] reason;  // bits "
        << t::kOutReasonLsb + fx::kReasonBits - 1 << ":" << t::kOutReasonLsb
-       << ", REASON_*\n    logic signed [FIXED_BITS-1:0] fixed;  // bits "
-       << t::kOutReasonLsb - 1 << ":" << t::kOutFixedLsb
-       << ", disparity x 16, 0 where invalid\n  } out_beat_t;\n";
-    static_assert(t::kOutFixedLsb == 0 && t::kOutCertaintyLsb + t::kOutCertaintyBits ==
-                                              t::kOutBeatBits,
-                  "out_beat_t lists the fields from the top bit down");
+       << ", REASON_*\n    logic signed [FIXED_BITS-1:0] fixed;  // bits " << t::kOutReasonLsb - 1
+       << ":" << t::kOutFixedLsb << ", disparity x 16, 0 where invalid\n  } out_beat_t;\n";
+    static_assert(
+        t::kOutFixedLsb == 0 && t::kOutCertaintyLsb + t::kOutCertaintyBits == t::kOutBeatBits,
+        "out_beat_t lists the fields from the top bit down");
     params({
         {"STATUS_BITS", t::kStatusBits, "sticky status bits:"},
         {"STATUS_EOL_MISPLACED", t::kStatusEolMisplaced, "tlast not at the row end"},
@@ -253,10 +252,9 @@ std::string json_text() {
             << ", \"out_lane_bits\": " << stage.out_lane_bits
             << ", \"latency\": {\"radius_rows\": " << stage.rtl.radius_rows
             << ", \"rows\": " << stage.rtl.rows << ", \"radius_steps\": " << stage.rtl.radius_steps
-            << ", \"steps\": " << stage.rtl.steps
-            << ", \"ndisp_steps\": " << stage.rtl.ndisp_steps
-            << ", \"left_delay\": " << stage.rtl.left_delay << "}}" << (i + 1 < t::kStages.size() ? "," : "")
-            << '\n';
+            << ", \"steps\": " << stage.rtl.steps << ", \"ndisp_steps\": " << stage.rtl.ndisp_steps
+            << ", \"left_delay\": " << stage.rtl.left_delay << "}}"
+            << (i + 1 < t::kStages.size() ? "," : "") << '\n';
     }
     out << "  ],\n  \"lint\": [\n";
     for (std::size_t i = 0; i < t::kExtraLintConfigs.size(); ++i) {

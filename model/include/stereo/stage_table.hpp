@@ -77,7 +77,7 @@ inline constexpr int kOutBeatBits = 32;
 inline constexpr int kOutFixedLsb = 0;
 inline constexpr int kOutReasonLsb = kOutFixedLsb + fx::kFixedDisparityBits;  // 16
 inline constexpr int kOutCertaintyBits = fx::kCertaintyBits;
-inline constexpr int kOutCertaintyLsb = kOutBeatBits - kOutCertaintyBits;  // 24
+inline constexpr int kOutCertaintyLsb = kOutBeatBits - kOutCertaintyBits;               // 24
 inline constexpr int kOutPadBits = kOutCertaintyLsb - kOutReasonLsb - fx::kReasonBits;  // 5
 static_assert(kOutPadBits >= 0);
 // Sticky status bits (stereo_top's status port; stereo_hls_top's return value).
@@ -172,7 +172,7 @@ struct Params {
     int ndisp = kUnset;
     int window = kUnset;
     int runtime_kernel = kUnset;
-    int rule = kUnset;  // stereo_ca_plane's RULE
+    int rule = kUnset;          // stereo_ca_plane's RULE
     int max_min_disp = kUnset;  // stereo_top's and stereo_cost's MAX_MIN_DISP
 };
 
