@@ -121,9 +121,9 @@ module stereo_lr_check #(
                  scaled_best >= scaled_second;
   end
 
+  // A left result in the delay line; its coordinates travel beside it in registers of their own
+  // (reset to "no pixel"; the data has no reset).
   typedef struct packed {
-    fx_pkg::coord_t x;
-    fx_pkg::coord_t y;
     logic [DISP_BITS-1:0] label;
     logic border;
     logic not_unique;
@@ -131,9 +131,8 @@ module stereo_lr_check #(
     logic signed [fx_pkg::FIXED_BITS-1:0] fixed;
   } result_t;
   result_t entering, leaving;
+  fx_pkg::coord_t leaving_x, leaving_y;
   always_comb begin
-    entering.x = in_x;
-    entering.y = in_y;
     entering.label = in_label;
     entering.border = in_border;
     entering.not_unique = not_unique;
@@ -144,21 +143,36 @@ module stereo_lr_check #(
   generate
     if (DELAY > 0) begin : g_delay
       result_t line[DELAY];
+      fx_pkg::coord_t line_x[DELAY];
+      fx_pkg::coord_t line_y[DELAY];
       always_ff @(posedge clk) begin
         if (ce) begin
           line[0] <= entering;
           for (int i = 1; i < DELAY; i++) line[i] <= line[i-1];
         end
-        if (rst) begin  // coordinates only: "no pixel"
+      end
+      always_ff @(posedge clk) begin
+        if (rst) begin
           for (int i = 0; i < DELAY; i++) begin
-            line[i].x <= '0;
-            line[i].y <= fx_pkg::NO_PIXEL;
+            line_x[i] <= '0;
+            line_y[i] <= fx_pkg::NO_PIXEL;
+          end
+        end else if (ce) begin
+          line_x[0] <= in_x;
+          line_y[0] <= in_y;
+          for (int i = 1; i < DELAY; i++) begin
+            line_x[i] <= line_x[i-1];
+            line_y[i] <= line_y[i-1];
           end
         end
       end
       assign leaving = line[DELAY-1];
+      assign leaving_x = line_x[DELAY-1];
+      assign leaving_y = line_y[DELAY-1];
     end else begin : g_direct
       assign leaving = entering;
+      assign leaving_x = in_x;
+      assign leaving_y = in_y;
       // One label: no delay line, whose coordinates rst would clear.
       /* verilator lint_off UNUSEDSIGNAL */
       logic unused_rst;
@@ -189,8 +203,8 @@ module stereo_lr_check #(
     else beat.reason = fx_pkg::REASON_BITS'(fx_pkg::REASON_VALID);
     beat.fixed = (beat.reason == fx_pkg::REASON_BITS'(fx_pkg::REASON_VALID)) ? leaving.fixed : '0;
   end
-  assign next_x = leaving.x;
-  assign next_y = leaving.y;
+  assign next_x = leaving_x;
+  assign next_y = leaving_y;
 
   always_ff @(posedge clk) begin
     if (ce) out_beat <= beat;
@@ -199,8 +213,8 @@ module stereo_lr_check #(
       .clk(clk),
       .rst(rst_output),
       .ce(ce),
-      .in_x(leaving.x),
-      .in_y(leaving.y),
+      .in_x(leaving_x),
+      .in_y(leaving_y),
       .out_x(out_x),
       .out_y(out_y)
   );
