@@ -215,7 +215,8 @@ void run_cosim(const CosimOptions& options) {
         std::printf(
             "%dx%d ndisp %d window %d ca %s min-disp %d uniqueness %d lr-check %d subpixel %s on "
             "the '%s' model (%s), seed %u, stall %.2f, gap %.2f\n%zu mismatching pixels "
-            "(fixed, reason or certainty) of %zu; %llu cycles, %.3f cycles/pixel; simulated at "
+            "of %zu (fixed, reason and certainty compared); %llu cycles, %.3f cycles/pixel; "
+            "simulated at "
             "%.0f cycles/s\n",
             width, height, params.ndisp, params.window, params.use_ca ? "on" : "off",
             params.min_disp, params.validation.uniqueness ? params.validation.uniqueness_ratio : -1,
