@@ -130,6 +130,7 @@ module stereo_lr_check #(
     logic [fx_pkg::CERTAINTY_BITS-1:0] certainty;
     logic signed [fx_pkg::FIXED_BITS-1:0] fixed;
   } result_t;
+  localparam int RESULT_BITS = DISP_BITS + 2 + fx_pkg::CERTAINTY_BITS + fx_pkg::FIXED_BITS;
   result_t entering, leaving;
   fx_pkg::coord_t leaving_x, leaving_y;
   always_comb begin
@@ -142,13 +143,18 @@ module stereo_lr_check #(
 
   generate
     if (DELAY > 0) begin : g_delay
-      result_t line[DELAY];
+      // One flat vector, entry i at [i*RESULT_BITS +: RESULT_BITS] (Yosys 0.23 loses an
+      // unpacked array of structs).
+      logic [DELAY*RESULT_BITS-1:0] line;
       fx_pkg::coord_t line_x[DELAY];
       fx_pkg::coord_t line_y[DELAY];
-      always_ff @(posedge clk) begin
-        if (ce) begin
-          line[0] <= entering;
-          for (int i = 1; i < DELAY; i++) line[i] <= line[i-1];
+      if (DELAY > 1) begin : g_shift
+        always_ff @(posedge clk) begin
+          if (ce) line <= {line[(DELAY-1)*RESULT_BITS-1:0], entering};
+        end
+      end else begin : g_single
+        always_ff @(posedge clk) begin
+          if (ce) line <= entering;
         end
       end
       always_ff @(posedge clk) begin
@@ -166,7 +172,7 @@ module stereo_lr_check #(
           end
         end
       end
-      assign leaving = line[DELAY-1];
+      assign leaving = line[(DELAY-1)*RESULT_BITS +: RESULT_BITS];
       assign leaving_x = line_x[DELAY-1];
       assign leaving_y = line_y[DELAY-1];
     end else begin : g_direct
