@@ -2,11 +2,13 @@
 // disparity range d = m + k, k = 0 .. NDISP-1, m = cfg_min_disp (model: stereo::cost,
 // docs/fixed-point.md stages 1 and 6).
 //
-// The right pixels pass through a continuous delay line (across row boundaries): at each step it
-// holds the newest right pixel and the NDISP - 1 + MAX_MIN_DISP before it. For a negative m the
-// left pixel must wait for right pixels that arrive later: it is delayed (with its coordinates)
-// by K = max(0, -m) steps. The right sample of label k then sits k + max(m, 0) positions behind
-// the newest right pixel, and the cost of label k is
+// The right pixels pass through continuous delay lines (across row boundaries). For a negative m
+// the left pixel must wait for right pixels that arrive later: it is delayed (with its
+// coordinates) by K = max(0, -m) steps. The right sample of label k sits k + P positions behind
+// the newest right pixel, P = max(m, 0): one multiplexer picks the right pixel P steps old from a
+// pre-delay line of MAX_MIN_DISP, and the lanes' delay line of NDISP - 1 holds its history (a
+// lane reading a value picked under the previous frame's P reads a position before the frame,
+// which is outside). The cost of label k is
 //   |Lr - Rr(xr)| + |Lg - Rg(xr)| + |Lb - Rb(xr)|,  xr = x - m - k,
 // or COST_OUTSIDE where xr lies outside [0, W): exactly where the tap holds a pixel of another
 // row (or none), so nothing is ever cleared. cfg_min_disp must stay within +-MAX_MIN_DISP
@@ -32,8 +34,9 @@ module stereo_cost #(
     output      logic [NDISP*fx_pkg::COST_BITS-1:0] out_data
 );
   localparam int COST_BITS = fx_pkg::COST_BITS;
-  // Right pixels kept besides the newest: label NDISP-1 at the largest positive m.
-  localparam int HISTORY = (NDISP - 1 + MAX_MIN_DISP > 0) ? NDISP - 1 + MAX_MIN_DISP : 1;
+  // Right pixels kept: the pre-delay line, and the lanes' history besides the selected pixel.
+  localparam int PRE_DELAY = (MAX_MIN_DISP > 0) ? MAX_MIN_DISP : 1;
+  localparam int HISTORY = (NDISP > 1) ? NDISP - 1 : 1;
   localparam int LEFT_DELAY = (MAX_MIN_DISP > 0) ? MAX_MIN_DISP : 1;  // left pixels kept
   localparam int SHIFT_BITS = $clog2(MAX_MIN_DISP + 1) + 1;
 
@@ -41,7 +44,9 @@ module stereo_cost #(
     assert (MAX_MIN_DISP >= 0 && MAX_MIN_DISP <= fx_pkg::MAX_MIN_DISPARITY);
   end
 
-  // right_history[i*24 +: 24] = the right pixel i + 1 steps before the newest.
+  // right_pre[i*24 +: 24] = the right pixel i + 1 steps before the newest.
+  logic [PRE_DELAY*24-1:0] right_pre;
+  // right_history[i*24 +: 24] = the selected right pixel i + 1 steps ago.
   logic [HISTORY*24-1:0] right_history;
   // The left pixel and its coordinates, i + 1 steps ago.
   logic [LEFT_DELAY*24-1:0] left_history;
@@ -55,6 +60,15 @@ module stereo_cost #(
     right_skip = '0;
     if (cfg_min_disp < 0) left_wait = SHIFT_BITS'(-cfg_min_disp);
     else right_skip = SHIFT_BITS'(cfg_min_disp);
+  end
+
+  // The right pixel P steps old.
+  logic [23:0] right_selected;
+  always_comb begin
+    right_selected = in_right;
+    for (int p = 1; p <= MAX_MIN_DISP; p++) begin
+      if (32'(right_skip) == p) right_selected = right_pre[(p-1)*24 +: 24];
+    end
   end
 
   // The left pixel matched at this step.
@@ -87,11 +101,8 @@ module stereo_cost #(
       logic [23:0] right_pixel;
       logic signed [17:0] right_x;  // xr = x - m - k
       always_comb begin
-        // Tap k + P: position 0 is the newest right pixel.
-        right_pixel = (k == 0) ? in_right : right_history[(k > 0 ? k - 1 : 0)*24 +: 24];
-        for (int p = 1; p <= MAX_MIN_DISP; p++) begin
-          if (32'(right_skip) == p) right_pixel = right_history[(k+p-1)*24 +: 24];
-        end
+        // Tap k + P behind the newest right pixel: k behind the selected one.
+        right_pixel = (k == 0) ? right_selected : right_history[(k > 0 ? k - 1 : 0)*24 +: 24];
         right_x = 18'(left_x) - 18'(cfg_min_disp) - 18'(k);
       end
       assign cost_d[k*COST_BITS +: COST_BITS] =
@@ -103,11 +114,20 @@ module stereo_cost #(
   generate
     if (HISTORY > 1) begin : g_shift
       always_ff @(posedge clk) begin
-        if (ce) right_history <= {right_history[(HISTORY-1)*24-1:0], in_right};
+        if (ce) right_history <= {right_history[(HISTORY-1)*24-1:0], right_selected};
       end
     end else begin : g_single
       always_ff @(posedge clk) begin
-        if (ce) right_history <= in_right;
+        if (ce) right_history <= right_selected;
+      end
+    end
+    if (PRE_DELAY > 1) begin : g_pre_shift
+      always_ff @(posedge clk) begin
+        if (ce) right_pre <= {right_pre[(PRE_DELAY-1)*24-1:0], in_right};
+      end
+    end else begin : g_pre_single
+      always_ff @(posedge clk) begin
+        if (ce) right_pre <= in_right;
       end
     end
     if (LEFT_DELAY > 1) begin : g_left_shift

@@ -2,10 +2,11 @@
 // the signed range d = m + k (model: stereo::cost, docs/fixed-point.md stages 1 and 6; RTL:
 // rtl/stereo_cost.sv).
 //
-// The right pixels pass through a continuous delay line (across rows): it holds the newest right
-// pixel's NDISP - 1 + MAX_MIN_DISP predecessors. For a negative m the left pixel and its
-// coordinates wait K = max(0, -m) steps in a delay line of their own. Lane k reads the right
-// pixel k + max(m, 0) positions behind the newest and is
+// The right pixels pass through continuous delay lines (across rows): one selection picks the
+// right pixel P = max(m, 0) steps old from a pre-delay line of MAX_MIN_DISP, and the lanes'
+// delay line of NDISP - 1 holds its history, so lane k reads the right pixel k + P positions
+// behind the newest. For a negative m the left pixel and its coordinates wait K = max(0, -m)
+// steps in a delay line of their own. Lane k is
 //   |Lr - Rr(xr)| + |Lg - Rg(xr)| + |Lb - Rb(xr)|,  xr = x - m - k,
 // or fx::kCostOutside where xr lies outside [0, W), decided from the coordinates alone, so no
 // delay line is ever cleared between rows or frames (only the left coordinates, by reset()).
@@ -41,6 +42,7 @@ class cost : public lane_output<cost_t, NDISP> {
               int min_disp) {
 #pragma HLS INLINE
 #pragma HLS ARRAY_PARTITION variable = history_ complete
+#pragma HLS ARRAY_PARTITION variable = pre_ complete
 #pragma HLS ARRAY_PARTITION variable = left_ complete
 #pragma HLS ARRAY_PARTITION variable = left_x_ complete
 #pragma HLS ARRAY_PARTITION variable = left_y_ complete
@@ -50,9 +52,9 @@ class cost : public lane_output<cost_t, NDISP> {
         const Rgb matched = wait == 0 ? left : left_[wait - 1];
         const coord_t x = wait == 0 ? in_x : left_x_[wait - 1];
         const coord_t y = wait == 0 ? in_y : left_y_[wait - 1];
+        const Rgb selected = skip == 0 ? right : pre_[skip - 1];
         for (int k = 0; k < NDISP; ++k) {
-            const int tap = k + skip;
-            const Rgb& match = tap == 0 ? right : history_[tap - 1];
+            const Rgb& match = k == 0 ? selected : history_[k - 1];
             const int right_x = x - min_disp - k;
             out_data_[k] = right_x < 0 || right_x >= width ? static_cast<cost_t>(fx::kCostOutside)
                                                            : rgb_cost(matched, match);
@@ -60,7 +62,11 @@ class cost : public lane_output<cost_t, NDISP> {
         for (int i = kHistory - 1; i > 0; --i) {
             history_[i] = history_[i - 1];
         }
-        history_[0] = right;
+        history_[0] = selected;
+        for (int i = kPreDelay - 1; i > 0; --i) {
+            pre_[i] = pre_[i - 1];
+        }
+        pre_[0] = right;
         for (int i = kLeftDelay - 1; i > 0; --i) {
             left_[i] = left_[i - 1];
             left_x_[i] = left_x_[i - 1];
@@ -74,8 +80,9 @@ class cost : public lane_output<cost_t, NDISP> {
     }
 
   private:
-    // Right pixels besides the newest; left pixels kept.
-    static constexpr int kHistory = NDISP - 1 + MAX_MIN_DISP > 0 ? NDISP - 1 + MAX_MIN_DISP : 1;
+    // The lanes' right history, the right pre-delay line, the left pixels kept.
+    static constexpr int kHistory = NDISP > 1 ? NDISP - 1 : 1;
+    static constexpr int kPreDelay = MAX_MIN_DISP > 0 ? MAX_MIN_DISP : 1;
     static constexpr int kLeftDelay = MAX_MIN_DISP > 0 ? MAX_MIN_DISP : 1;
 
     static cost_t rgb_cost(const Rgb& a, const Rgb& b) {
@@ -83,7 +90,8 @@ class cost : public lane_output<cost_t, NDISP> {
         return static_cast<cost_t>(diff(a.r, b.r) + diff(a.g, b.g) + diff(a.b, b.b));
     }
 
-    Rgb history_[kHistory] = {};  // history_[i]: the right pixel i + 1 steps before the newest
+    Rgb history_[kHistory] = {};  // history_[i]: the selected right pixel i + 1 steps ago
+    Rgb pre_[kPreDelay] = {};     // pre_[i]: the right pixel i + 1 steps before the newest
     Rgb left_[kLeftDelay] = {};   // left_[i]: the left pixel i + 1 steps ago, and its place
     coord_t left_x_[kLeftDelay] = {};
     coord_t left_y_[kLeftDelay] = {};
