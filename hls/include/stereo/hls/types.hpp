@@ -65,6 +65,15 @@ inline coord_t to_coord(int value) {
     return static_cast<coord_t>(value);
 }
 
+// Leaves of a comparator tree over n lanes: the next power of two (wta, validate_stage).
+constexpr int tree_leaves(int n) {
+    int count = 1;
+    while (count < n) {
+        count *= 2;
+    }
+    return count;
+}
+
 inline bool inside(int x, int y, int width, int height) {
     return x >= 0 && x < width && y >= 0 && y < height;
 }

@@ -23,14 +23,7 @@ namespace stereo::hls {
 
 template <int NDISP>
 class validate_stage : public coord_output {
-    static constexpr int leaves(int n) {
-        int count = 1;
-        while (count < n) {
-            count *= 2;
-        }
-        return count;
-    }
-    static constexpr int kLeaves = leaves(NDISP);
+    static constexpr int kLeaves = tree_leaves(NDISP);
     static constexpr int kSteps = fx::kSubpixelScale / 2;  // largest |offset|
     static_assert(fx::kNoSecondCost == (1 << fx::kAggBits) - 1);
 

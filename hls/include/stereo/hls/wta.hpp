@@ -23,14 +23,7 @@ class wta : public lane_output<agg_t, NDISP> {
     using lane_output<agg_t, NDISP>::out_x_;
     using lane_output<agg_t, NDISP>::out_y_;
 
-    static constexpr int leaves(int n) {
-        int count = 1;
-        while (count < n) {
-            count *= 2;
-        }
-        return count;
-    }
-    static constexpr int kLeaves = leaves(NDISP);
+    static constexpr int kLeaves = tree_leaves(NDISP);
     // Absent labels carry a code above any aggregate: they never win.
     static constexpr agg_t kAbsent = (1 << fx::kAggBits) - 1;
     static_assert(kAbsent > fx::kAggMax);
