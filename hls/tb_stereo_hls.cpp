@@ -73,7 +73,9 @@ long run_frame(const char* name, const Image& left, const Image& right, const Ma
     const hls::status_t status = stereo_hls_synth_top(
         in, out, static_cast<std::uint16_t>(cfg.width), static_cast<std::uint16_t>(cfg.height),
         static_cast<std::uint16_t>(cfg.ndisp), static_cast<std::uint8_t>(cfg.radius), cfg.kernel,
-        cfg.use_ca);
+        cfg.use_ca, static_cast<std::int16_t>(cfg.min_disp), cfg.uniqueness,
+        static_cast<std::uint8_t>(cfg.uniqueness_ratio), cfg.left_right,
+        static_cast<std::uint8_t>(cfg.lr_tolerance), cfg.subpixel);
     const DisparityMap actual = hls::collect_frame(out, left.width, left.height);
     const DisparityMap expected = stereo::match(left, right, params);
     long mismatches = 0;

@@ -7,5 +7,8 @@ stereo_ca_plane.sv
 stereo_cost.sv
 stereo_aggregate.sv
 stereo_wta.sv
+stereo_divider.sv
+stereo_validate.sv
+stereo_lr_check.sv
 stereo_top.sv
 stereo_synth_top.sv

@@ -27,6 +27,19 @@ package fx_pkg;
   localparam int DISP_BITS = 8;  // output disparity
   localparam int MAX_WINDOW = 31;  // largest aggregation window
   localparam int DEFAULT_WINDOW = 11;  // thesis Sec. 3.1
+  localparam int MAX_MIN_DISPARITY = 1024;  // largest |min_disp| of the model
+  localparam int SUBPIXEL_BITS = 4;  // disparities are output x 2^SUBPIXEL_BITS
+  localparam int FIXED_BITS = 16;  // signed disparity x 16
+  localparam int UNIQUENESS_BASE = 100;  // invalid when C1 * (BASE + U) >= C2 * BASE
+  localparam int MAX_UNIQUENESS = 255;  // largest U
+  localparam int MAX_LR_TOLERANCE = 255;  // largest left-right tolerance T
+  localparam int CERTAINTY_BITS = 8;  // floor(((C2 - C1) << BITS) / (C2 + 1))
+  localparam int NO_SECOND_COST = 16383;  // C2 when no label lies away from the winner
+  localparam int REASON_BITS = 3;  // why a pixel is invalid:
+  localparam int REASON_VALID = 0;
+  localparam int REASON_BORDER = 1;  // window or match outside the images
+  localparam int REASON_UNIQUENESS = 2;  // a distant label costs almost as little
+  localparam int REASON_LEFT_RIGHT = 3;  // the right image's winner disagrees
 
   // ---- Interface (model/include/stereo/stage_table.hpp, docs/rtl.md) ----
   localparam int COORD_BITS = 16;  // signed pixel coordinates beside the data
@@ -37,18 +50,26 @@ package fx_pkg;
   localparam int CFG_SIZE_BITS = 16;  // cfg_width, cfg_height
   localparam int CFG_NDISP_BITS = 9;  // cfg_ndisp
   localparam int CFG_RADIUS_BITS = 5;  // cfg_radius
+  localparam int CFG_MIN_DISP_BITS = 12;  // cfg_min_disp, signed
+  localparam int CFG_UNIQUENESS_BITS = 8;  // cfg_uniqueness
+  localparam int CFG_LR_TOLERANCE_BITS = 8;  // cfg_lr_tolerance
+  localparam int DEFAULT_MAX_MIN_DISP = 8;  // stereo_top's MAX_MIN_DISP default
   typedef logic [CFG_SIZE_BITS-1:0] cfg_size_t;
   typedef logic [CFG_NDISP_BITS-1:0] cfg_ndisp_t;
   typedef logic [CFG_RADIUS_BITS-1:0] cfg_radius_t;
+  typedef logic signed [CFG_MIN_DISP_BITS-1:0] cfg_min_disp_t;
+  typedef logic [CFG_UNIQUENESS_BITS-1:0] cfg_uniqueness_t;
+  typedef logic [CFG_LR_TOLERANCE_BITS-1:0] cfg_lr_tolerance_t;
   localparam int RGB_BITS = 24;  // one RGB pixel
   localparam int IN_BEAT_BITS = 48;  // s_axis_tdata = {right RGB, left RGB}
   localparam int IN_LEFT_LSB = 0;
   localparam int IN_RIGHT_LSB = 24;
-  localparam int OUT_BEAT_BITS = 16;  // m_axis_tdata, the layout of out_beat_t
+  localparam int OUT_BEAT_BITS = 32;  // m_axis_tdata, the layout of out_beat_t
   typedef struct packed {
-    logic [6:0] pad;  // zero
-    logic valid;  // bit 8
-    logic [DISP_BITS-1:0] disparity;  // bits 7:0
+    logic [7:0] certainty;  // bits 31:24, every pixel
+    logic [4:0] pad;  // zero
+    logic [REASON_BITS-1:0] reason;  // bits 18:16, REASON_*
+    logic signed [FIXED_BITS-1:0] fixed;  // bits 15:0, disparity x 16, 0 where invalid
   } out_beat_t;
   localparam int STATUS_BITS = 3;  // sticky status bits:
   localparam int STATUS_EOL_MISPLACED = 0;  // tlast not at the row end

@@ -3,7 +3,7 @@
 // The aggregation kernel is the model's default for WINDOW (fx_pkg::default_tap, sigma 3) and is
 // a constant here (stereo_top RUNTIME_KERNEL = 0), so every tap multiplier reduces to shifts and
 // adds; the radius is WINDOW/2.
-// Frame size, label count and the CA switch stay run-time inputs. Everything else, including
+// Frame size, label count, the CA switch and stage 6's configuration stay run-time inputs. Everything else, including
 // the AXI4-Stream ports and the latency, is stereo_top's.
 `default_nettype none
 
@@ -19,6 +19,12 @@ module stereo_synth_top #(
     input  wire fx_pkg::cfg_size_t               cfg_height,
     input  wire fx_pkg::cfg_ndisp_t              cfg_ndisp,
     input  wire logic                            cfg_use_ca,
+    input  wire fx_pkg::cfg_min_disp_t           cfg_min_disp,
+    input  wire logic                            cfg_uniqueness_en,
+    input  wire fx_pkg::cfg_uniqueness_t         cfg_uniqueness,
+    input  wire logic                            cfg_lr_en,
+    input  wire fx_pkg::cfg_lr_tolerance_t       cfg_lr_tolerance,
+    input  wire logic                            cfg_subpixel_en,
     input  wire logic [fx_pkg::IN_BEAT_BITS-1:0] s_axis_tdata,
     input  wire logic                            s_axis_tvalid,
     output      logic                            s_axis_tready,
@@ -46,6 +52,12 @@ module stereo_synth_top #(
       .cfg_radius(fx_pkg::CFG_RADIUS_BITS'(WINDOW / 2)),
       .cfg_kernel('0),  // unused: the kernel is constant
       .cfg_use_ca(cfg_use_ca),
+      .cfg_min_disp(cfg_min_disp),
+      .cfg_uniqueness_en(cfg_uniqueness_en),
+      .cfg_uniqueness(cfg_uniqueness),
+      .cfg_lr_en(cfg_lr_en),
+      .cfg_lr_tolerance(cfg_lr_tolerance),
+      .cfg_subpixel_en(cfg_subpixel_en),
       .s_axis_tdata(s_axis_tdata),
       .s_axis_tvalid(s_axis_tvalid),
       .s_axis_tready(s_axis_tready),

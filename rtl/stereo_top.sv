@@ -2,8 +2,12 @@
 //
 //   s_axis: tdata = {right RGB, left RGB} (R in the high byte of each half), tuser = start of
 //           frame, tlast = end of line; one pixel pair per beat, raster order.
-//   m_axis: tdata = fx_pkg::out_beat_t {7'b0, valid, disparity[7:0]}, tuser on the first pixel, tlast at each row
-//           end; exactly one output beat per input pixel, bit-exact with stereo::match.
+//   m_axis: tdata = fx_pkg::out_beat_t {certainty[31:24], 5'b0, reason[18:16], fixed[15:0]}
+//           (stage_table.hpp: fixed = signed disparity x 16, 0 where invalid; reason 0 valid,
+//           1 border, 2 uniqueness, 3 left-right), tuser on the first pixel, tlast at each row
+//           end; exactly one output beat per input pixel, bit-exact with stereo::match_validated.
+//           With cfg_min_disp 0 and every stage-6 switch off, fixed = 16 * stereo::match's
+//           disparity and reason = 0 exactly where it is valid.
 //
 // All stages advance together on one clock enable (a "pixel step", docs/rtl.md): a step happens
 // when there is something to push (an input pixel, or a flush step after the frame's last
@@ -11,11 +15,12 @@
 // everything without losing or duplicating a pixel. After the last input pixel of a frame the
 // core steps on its own (s_axis_tready low) until the frame's last output has left the WTA, so
 // a frame never waits for the next one. Cycles per frame without stalls:
-//   W*H + (R + 2)*W + R + 10, R = WINDOW/2 (docs/rtl.md).
+//   W*H + (R + 2)*W + R + 11 + NDISP + K, R = WINDOW/2, K = max(0, -cfg_min_disp)
+// (stage_table.hpp, docs/rtl.md).
 // Input before the first start of frame is dropped. Status bits (sticky until reset; the
 // indices are fx_pkg::STATUS_*):
 //   [0] tlast not at the row end, [1] tuser inside a frame, [2] configuration out of range
-//   (clamped). Reset is synchronous, active high, and clears control state only.
+//   (clamped; |cfg_min_disp| > MAX_MIN_DISP included). Reset is synchronous, active high, and clears control state only.
 `default_nettype none
 
 module stereo_top #(
@@ -26,7 +31,9 @@ module stereo_top #(
     // 1: cfg_kernel and cfg_radius set the window at run time. 0: the model's default kernel
     // for WINDOW as constants (cheaper multipliers); cfg_kernel is ignored and cfg_radius must
     // be WINDOW/2 (a smaller radius with the full-size constant kernel would not be the model).
-    parameter bit RUNTIME_KERNEL = 1'b1
+    parameter bit RUNTIME_KERNEL = 1'b1,
+    // Largest |cfg_min_disp|: sizes the cost stage's delay lines.
+    parameter int MAX_MIN_DISP = fx_pkg::DEFAULT_MAX_MIN_DISP
 ) (
     input  wire logic                               clk,
     input  wire logic                               rst,
@@ -37,6 +44,14 @@ module stereo_top #(
     input  wire fx_pkg::cfg_radius_t                cfg_radius,
     input  wire logic [WINDOW*fx_pkg::TAP_BITS-1:0] cfg_kernel,
     input  wire logic                               cfg_use_ca,
+    // Stage 6 (docs/fixed-point.md): signed minimum disparity, uniqueness ratio U (percent),
+    // left-right tolerance T (labels), sub-pixel refinement; each check has an enable.
+    input  wire fx_pkg::cfg_min_disp_t              cfg_min_disp,
+    input  wire logic                               cfg_uniqueness_en,
+    input  wire fx_pkg::cfg_uniqueness_t            cfg_uniqueness,
+    input  wire logic                               cfg_lr_en,
+    input  wire fx_pkg::cfg_lr_tolerance_t          cfg_lr_tolerance,
+    input  wire logic                               cfg_subpixel_en,
     // Input stream.
     input  wire logic [fx_pkg::IN_BEAT_BITS-1:0]    s_axis_tdata,
     input  wire logic                               s_axis_tvalid,
@@ -55,10 +70,12 @@ module stereo_top #(
   localparam int COST_BITS = fx_pkg::COST_BITS;
   localparam int AGG_BITS = fx_pkg::AGG_BITS;
   localparam int DISP_BITS = fx_pkg::DISP_BITS;
+  localparam int FIXED_BITS = fx_pkg::FIXED_BITS;
 
   initial begin
     assert (WINDOW % 2 == 1 && WINDOW <= fx_pkg::MAX_WINDOW);
     assert (NDISP >= 1 && NDISP <= 256);
+    assert (MAX_MIN_DISP >= 0 && MAX_MIN_DISP <= fx_pkg::MAX_MIN_DISPARITY);
     assert (WIDTH >= 1 && WIDTH <= fx_pkg::MAX_FRAME_SIDE && HEIGHT >= 1 &&
             HEIGHT <= fx_pkg::MAX_FRAME_SIDE);
   end
@@ -74,12 +91,14 @@ module stereo_top #(
   fx_pkg::cfg_size_t port_width, port_height;
   fx_pkg::cfg_ndisp_t port_ndisp;
   fx_pkg::cfg_radius_t port_radius;
+  fx_pkg::cfg_min_disp_t port_min_disp;
   logic port_cfg_error;
   always_comb begin
     port_width = cfg_width;
     port_height = cfg_height;
     port_ndisp = cfg_ndisp;
     port_radius = cfg_radius;
+    port_min_disp = cfg_min_disp;
     port_cfg_error = 1'b0;
     if (cfg_width == 0 || $signed(32'(cfg_width)) > WIDTH) begin
       port_width = fx_pkg::CFG_SIZE_BITS'(WIDTH);
@@ -97,6 +116,14 @@ module stereo_top #(
       port_radius = fx_pkg::CFG_RADIUS_BITS'(R);
       port_cfg_error = 1'b1;
     end
+    if (32'(cfg_min_disp) > MAX_MIN_DISP) begin
+      port_min_disp = fx_pkg::CFG_MIN_DISP_BITS'(MAX_MIN_DISP);
+      port_cfg_error = 1'b1;
+    end
+    if (32'(cfg_min_disp) < -MAX_MIN_DISP) begin
+      port_min_disp = fx_pkg::CFG_MIN_DISP_BITS'(-MAX_MIN_DISP);
+      port_cfg_error = 1'b1;
+    end
   end
 
   fx_pkg::cfg_size_t frame_width, frame_height;
@@ -104,6 +131,10 @@ module stereo_top #(
   fx_pkg::cfg_radius_t frame_radius;
   logic [WINDOW*fx_pkg::TAP_BITS-1:0] frame_kernel;
   logic frame_use_ca;
+  fx_pkg::cfg_min_disp_t frame_min_disp;
+  logic frame_uniqueness_en, frame_lr_en, frame_subpixel_en;
+  fx_pkg::cfg_uniqueness_t frame_uniqueness;
+  fx_pkg::cfg_lr_tolerance_t frame_lr_tolerance;
   // What the stages see: the ports while idle (the start-of-frame step uses them), the latched
   // values during the frame and its flush.
   fx_pkg::cfg_size_t use_width, use_height;
@@ -111,6 +142,10 @@ module stereo_top #(
   fx_pkg::cfg_radius_t use_radius;
   logic [WINDOW*fx_pkg::TAP_BITS-1:0] use_kernel;
   logic use_ca;
+  fx_pkg::cfg_min_disp_t use_min_disp;
+  logic use_uniqueness_en, use_lr_en, use_subpixel_en;
+  fx_pkg::cfg_uniqueness_t use_uniqueness;
+  fx_pkg::cfg_lr_tolerance_t use_lr_tolerance;
   always_comb begin
     if (state == IDLE) begin
       use_width = port_width;
@@ -119,6 +154,12 @@ module stereo_top #(
       use_radius = port_radius;
       use_kernel = cfg_kernel;
       use_ca = cfg_use_ca;
+      use_min_disp = port_min_disp;
+      use_uniqueness_en = cfg_uniqueness_en;
+      use_uniqueness = cfg_uniqueness;
+      use_lr_en = cfg_lr_en;
+      use_lr_tolerance = cfg_lr_tolerance;
+      use_subpixel_en = cfg_subpixel_en;
     end else begin
       use_width = frame_width;
       use_height = frame_height;
@@ -126,6 +167,12 @@ module stereo_top #(
       use_radius = frame_radius;
       use_kernel = frame_kernel;
       use_ca = frame_use_ca;
+      use_min_disp = frame_min_disp;
+      use_uniqueness_en = frame_uniqueness_en;
+      use_uniqueness = frame_uniqueness;
+      use_lr_en = frame_lr_en;
+      use_lr_tolerance = frame_lr_tolerance;
+      use_subpixel_en = frame_subpixel_en;
     end
   end
 
@@ -133,7 +180,7 @@ module stereo_top #(
   logic output_pending;  // m_axis holds a beat not yet taken
   logic can_step, step, start_of_frame;
   fx_pkg::coord_t x_in, y_in;  // raster position of the next step
-  fx_pkg::coord_t wta_in_x, wta_in_y;
+  fx_pkg::coord_t final_x, final_y;  // the pixel entering the output register at a step
   logic last_output_entering;  // this step moves pixel (W-1, H-1) into the output register
 
   always_comb begin
@@ -153,8 +200,8 @@ module stereo_top #(
         step = can_step;
       end
     endcase
-    last_output_entering = step && wta_in_x == fx_pkg::COORD_BITS'($signed(32'(use_width)) - 1) &&
-                           wta_in_y == fx_pkg::COORD_BITS'($signed(32'(use_height)) - 1);
+    last_output_entering = step && final_x == fx_pkg::COORD_BITS'($signed(32'(use_width)) - 1) &&
+                           final_y == fx_pkg::COORD_BITS'($signed(32'(use_height)) - 1);
   end
 
   logic last_input;
@@ -176,6 +223,12 @@ module stereo_top #(
           frame_radius <= port_radius;
           frame_kernel <= cfg_kernel;
           frame_use_ca <= cfg_use_ca;
+          frame_min_disp <= port_min_disp;
+          frame_uniqueness_en <= cfg_uniqueness_en;
+          frame_uniqueness <= cfg_uniqueness;
+          frame_lr_en <= cfg_lr_en;
+          frame_lr_tolerance <= cfg_lr_tolerance;
+          frame_subpixel_en <= cfg_subpixel_en;
           if (port_cfg_error) status[fx_pkg::STATUS_CONFIG_CLAMPED] <= 1'b1;
         end
         if (state != FLUSH) begin
@@ -204,10 +257,10 @@ module stereo_top #(
   end
 
   // ---- the pipeline ------------------------------------------------------------------------
-  // When a frame's last output enters the WTA, everything still in the stages is flush filler
+  // When a frame's last output enters the output register, everything still in the stages is flush filler
   // whose coordinates (y >= H) would read as real pixels if a taller frame came next: the stage
-  // coordinate registers are cleared to "no pixel" then, as by a reset. The WTA keeps its
-  // register: it holds the frame's last output beat.
+  // coordinate registers are cleared to "no pixel" then, as by a reset. The output register
+  // (stereo_lr_check's) keeps its coordinates: it holds the frame's last output beat.
   logic clear_coordinates;
   assign clear_coordinates = rst || (state == FLUSH && last_output_entering);
 
@@ -215,12 +268,13 @@ module stereo_top #(
   assign left_pixel = (state == FLUSH) ? '0 : s_axis_tdata[fx_pkg::IN_LEFT_LSB +: fx_pkg::RGB_BITS];
   assign right_pixel = (state == FLUSH) ? '0 : s_axis_tdata[fx_pkg::IN_RIGHT_LSB +: fx_pkg::RGB_BITS];
 
-  fx_pkg::coord_t cost_x, cost_y, agg_x, agg_y, rule1_x, rule1_y;
+  fx_pkg::coord_t cost_x, cost_y, agg_x, agg_y, rule1_x, rule1_y, wta_in_x, wta_in_y;
   logic [NDISP*COST_BITS-1:0] cost_data;
   logic [NDISP*AGG_BITS-1:0] agg_data, rule1_data, rule2_data;
 
   stereo_cost #(
-      .NDISP(NDISP)
+      .NDISP(NDISP),
+      .MAX_MIN_DISP(MAX_MIN_DISP)
   ) cost (
       .clk(clk),
       .rst(clear_coordinates),
@@ -229,6 +283,8 @@ module stereo_top #(
       .in_y(y_in),
       .in_left(left_pixel),
       .in_right(right_pixel),
+      .cfg_width(use_width),
+      .cfg_min_disp(use_min_disp),
       .out_x(cost_x),
       .out_y(cost_y),
       .out_data(cost_data)
@@ -295,14 +351,18 @@ module stereo_top #(
       .out_data(rule2_data)
   );
 
-  fx_pkg::coord_t out_x, out_y;
-  logic [DISP_BITS-1:0] out_disparity;
-  logic out_valid;
+  // ---- winner, stage 6 and the output register ------------------------------------------------
+  fx_pkg::coord_t wta_x, wta_y, validate_x, validate_y, out_x, out_y;
+  logic [DISP_BITS-1:0] wta_label, validate_label;
+  logic wta_border, validate_border;
+  logic [AGG_BITS-1:0] wta_cost, wta_before, wta_after, validate_cost, validate_second;
+  logic [NDISP*AGG_BITS-1:0] wta_data;
+  logic signed [FIXED_BITS-1:0] validate_fixed;
   stereo_wta #(
       .NDISP(NDISP)
   ) wta (
       .clk(clk),
-      .rst(rst),
+      .rst(clear_coordinates),
       .ce(step),
       .in_x(wta_in_x),
       .in_y(wta_in_y),
@@ -312,16 +372,80 @@ module stereo_top #(
       .cfg_ndisp(use_ndisp),
       .cfg_radius(use_radius),
       .cfg_use_ca(use_ca),
-      .out_x(out_x),
-      .out_y(out_y),
-      .out_disparity(out_disparity),
-      .out_valid(out_valid)
+      .cfg_min_disp(use_min_disp),
+      .out_x(wta_x),
+      .out_y(wta_y),
+      .out_label(wta_label),
+      .out_border(wta_border),
+      .out_cost(wta_cost),
+      .out_before(wta_before),
+      .out_after(wta_after),
+      .out_data(wta_data)
   );
 
-  // ---- output: the WTA register is the output register -------------------------------------
+  stereo_validate #(
+      .NDISP(NDISP)
+  ) validate (
+      .clk(clk),
+      .rst(clear_coordinates),
+      .ce(step),
+      .in_x(wta_x),
+      .in_y(wta_y),
+      .in_label(wta_label),
+      .in_border(wta_border),
+      .in_cost(wta_cost),
+      .in_before(wta_before),
+      .in_after(wta_after),
+      .in_data(wta_data),
+      .cfg_ndisp(use_ndisp),
+      .cfg_min_disp(use_min_disp),
+      .cfg_subpixel_en(use_subpixel_en),
+      .out_x(validate_x),
+      .out_y(validate_y),
+      .out_label(validate_label),
+      .out_border(validate_border),
+      .out_cost(validate_cost),
+      .out_second(validate_second),
+      .out_fixed(validate_fixed)
+  );
+
+  fx_pkg::out_beat_t out_beat;
+  stereo_lr_check #(
+      .NDISP(NDISP)
+  ) lr_check (
+      .clk(clk),
+      .rst(clear_coordinates),
+      .rst_output(rst),
+      .ce(step),
+      .acc_x(wta_x),
+      .acc_y(wta_y),
+      .acc_data(wta_data),
+      .in_x(validate_x),
+      .in_y(validate_y),
+      .in_label(validate_label),
+      .in_border(validate_border),
+      .in_cost(validate_cost),
+      .in_second(validate_second),
+      .in_fixed(validate_fixed),
+      .cfg_width(use_width),
+      .cfg_height(use_height),
+      .cfg_ndisp(use_ndisp),
+      .cfg_min_disp(use_min_disp),
+      .cfg_uniqueness_en(use_uniqueness_en),
+      .cfg_uniqueness(use_uniqueness),
+      .cfg_lr_en(use_lr_en),
+      .cfg_lr_tolerance(use_lr_tolerance),
+      .next_x(final_x),
+      .next_y(final_y),
+      .out_x(out_x),
+      .out_y(out_y),
+      .out_beat(out_beat)
+  );
+
+  // ---- output: stereo_lr_check's register is the output register ------------------------------
   logic entering_in_frame;
-  assign entering_in_frame = wta_in_x >= 0 && 32'(wta_in_x) < $signed(32'(use_width)) &&
-                             wta_in_y >= 0 && 32'(wta_in_y) < $signed(32'(use_height));
+  assign entering_in_frame = final_x >= 0 && 32'(final_x) < $signed(32'(use_width)) &&
+                             final_y >= 0 && 32'(final_y) < $signed(32'(use_height));
   always_ff @(posedge clk) begin
     if (rst) begin
       output_pending <= 1'b0;
@@ -333,11 +457,7 @@ module stereo_top #(
   end
 
   assign m_axis_tvalid = output_pending;
-  always_comb begin
-    m_axis_tdata.pad = '0;
-    m_axis_tdata.valid = out_valid;
-    m_axis_tdata.disparity = out_disparity;
-  end
+  assign m_axis_tdata = out_beat;
   assign m_axis_tuser = out_x == 0 && out_y == 0;
   assign m_axis_tlast = 32'(out_x) == $signed(32'(frame_width)) - 1;
 endmodule

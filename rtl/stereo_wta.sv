@@ -1,11 +1,15 @@
-// stereo_wta: winner takes all and the validity flag (model: stereo::wta, docs/fixed-point.md
-// stage 5).
+// stereo_wta: winner takes all and the border rule (model: stereo::wta and the winner of
+// stereo::ValidatingSelector, docs/fixed-point.md stages 5 and 6).
 //
 // A comparator tree over the NDISP values of a pixel finds the smallest; on equal values the
-// left (smaller d) input wins, so ties go to the smallest d. Labels d >= cfg_ndisp take no part.
-// The pixel is valid when its window stays inside the frame and its winner's right-image samples
-// do too: reach <= x < W - reach, reach <= y < H - reach, x - d >= reach, with
-// reach = cfg_radius + (cfg_use_ca ? 1 : 0). Invalid pixels output disparity 0.
+// left (smaller k) input wins, so ties go to the smallest label. Labels k >= cfg_ndisp take no
+// part. Label k stands for disparity d = cfg_min_disp + k. The pixel passes the border rule when
+// its window stays inside the frame and its winner's right-image samples do too:
+//   reach <= x < W - reach,  reach <= y < H - reach,  reach <= x - d < W - reach,
+// reach = cfg_radius + (cfg_use_ca ? 1 : 0).
+// Registered outputs for stage 6 (stereo_validate, stereo_lr_check): the winner k1 (whatever
+// the border rule says), its cost C1, the costs at k1 - 1 and k1 + 1 (meaningful where those
+// labels exist), the border flag and the whole cost vector.
 // Latency: 1 pixel step.
 `default_nettype none
 
@@ -23,10 +27,15 @@ module stereo_wta #(
     input  wire fx_pkg::cfg_ndisp_t                cfg_ndisp,
     input  wire fx_pkg::cfg_radius_t               cfg_radius,
     input  wire logic                              cfg_use_ca,
+    input  wire fx_pkg::cfg_min_disp_t             cfg_min_disp,
     output      fx_pkg::coord_t                    out_x,
     output      fx_pkg::coord_t                    out_y,
-    output      logic [fx_pkg::DISP_BITS-1:0]      out_disparity,
-    output      logic                              out_valid
+    output      logic [fx_pkg::DISP_BITS-1:0]      out_label,   // k1
+    output      logic                              out_border,  // the border rule holds
+    output      logic [fx_pkg::AGG_BITS-1:0]       out_cost,    // C1 = E(k1)
+    output      logic [fx_pkg::AGG_BITS-1:0]       out_before,  // E(k1 - 1)
+    output      logic [fx_pkg::AGG_BITS-1:0]       out_after,   // E(k1 + 1)
+    output      logic [NDISP*fx_pkg::AGG_BITS-1:0] out_data     // the cost vector, as it came
 );
   localparam int BITS = fx_pkg::AGG_BITS;
   localparam int DISP_BITS = fx_pkg::DISP_BITS;
@@ -36,10 +45,8 @@ module stereo_wta #(
   // Heap-ordered tree: node n has children 2n+1 and 2n+2; leaf LEAVES-1+d holds label d.
   // split_var lets Verilator schedule the nodes one by one (the vector is a tree, not a loop).
   localparam int NODES = 2 * LEAVES - 1;
-  // The root's value (the minimum cost itself) is not needed, only its label.
-  /* verilator lint_off UNUSEDSIGNAL */
+  // The leaves' values feed the nodes only.
   logic [NODES*BITS-1:0] node_value  /*verilator split_var*/;
-  /* verilator lint_on UNUSEDSIGNAL */
   logic [NODES*DISP_BITS-1:0] node_label  /*verilator split_var*/;
   logic [DISP_BITS-1:0] winner;
   generate
@@ -65,19 +72,36 @@ module stereo_wta #(
   endgenerate
   assign winner = node_label[0 +: DISP_BITS];
 
-  logic valid_d;
+  // The winner's neighbours (a don't-care where the label does not exist).
+  logic [BITS-1:0] cost_before, cost_after;
+  always_comb begin
+    cost_before = '0;
+    cost_after = '0;
+    for (int k = 0; k < NDISP; k++) begin
+      if (32'(winner) == k + 1) cost_before = in_data[k*BITS +: BITS];
+      if (32'(winner) + 1 == k) cost_after = in_data[k*BITS +: BITS];
+    end
+  end
+
+  logic border_ok;
   always_comb begin
     logic signed [17:0] reach;  // 18-bit signed coordinate arithmetic
+    logic signed [17:0] right_x;  // x - d, d = m + k1
     reach = $signed(18'(cfg_radius)) + (cfg_use_ca ? 18'sd1 : 18'sd0);
-    valid_d = 18'(in_x) >= reach && 18'(in_x) < $signed(18'(cfg_width)) - reach &&
-              18'(in_y) >= reach && 18'(in_y) < $signed(18'(cfg_height)) - reach &&
-              18'(in_x) - $signed(18'(winner)) >= reach;
+    right_x = 18'(in_x) - 18'(cfg_min_disp) - $signed(18'(winner));
+    border_ok = 18'(in_x) >= reach && 18'(in_x) < $signed(18'(cfg_width)) - reach &&
+                18'(in_y) >= reach && 18'(in_y) < $signed(18'(cfg_height)) - reach &&
+                right_x >= reach && right_x < $signed(18'(cfg_width)) - reach;
   end
 
   always_ff @(posedge clk) begin
     if (ce) begin
-      out_disparity <= valid_d ? winner : '0;
-      out_valid <= valid_d;
+      out_label <= winner;
+      out_border <= border_ok;
+      out_cost <= node_value[0 +: BITS];
+      out_before <= cost_before;
+      out_after <= cost_after;
+      out_data <= in_data;
     end
   end
   stereo_coord_reg coordinates (.*);

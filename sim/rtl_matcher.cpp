@@ -9,21 +9,24 @@
 namespace stereo::sim {
 namespace {
 
-DisparityMap run_rtl(const Image& left, const Image& right, const MatchParams& params) {
+ValidatedDisparity run_rtl(const Image& left, const Image& right, const MatchParams& params) {
     check_pair(left, right);
     validate(params, left.width, left.height);
     if (params.cost != "ad") {
         throw std::invalid_argument("the RTL has only the AD cost");
     }
-    const TopConfig* config = covering_config(left.width, left.height, params.ndisp, params.window);
+    const TopConfig* config =
+        covering_config(left.width, left.height, params.ndisp, params.window, params.min_disp);
     if (config == nullptr) {
         const TopConfig& largest = built_top_configs().back();
         throw std::invalid_argument(
             "no Verilated configuration covers " + std::to_string(left.width) + "x" +
             std::to_string(left.height) + " ndisp " + std::to_string(params.ndisp) + " window " +
-            std::to_string(params.window) + "; the largest built is " +
-            std::to_string(largest.width) + "x" + std::to_string(largest.height) + " ndisp " +
-            std::to_string(largest.ndisp) + " window " + std::to_string(largest.window) +
+            std::to_string(params.window) + " min_disp " + std::to_string(params.min_disp) +
+            "; the largest built is " + std::to_string(largest.width) + "x" +
+            std::to_string(largest.height) + " ndisp " + std::to_string(largest.ndisp) +
+            " window " + std::to_string(largest.window) +
+            " |min_disp| <= " + std::to_string(largest.max_min_disp) +
             " (stereo cosim --crop, or -DSTEREO_COSIM_FULL=ON)");
     }
     const auto top = make_top_sim(*config);
@@ -36,7 +39,7 @@ DisparityMap run_rtl(const Image& left, const Image& right, const MatchParams& p
             "the RTL did not complete the frame: " +
             (result.protocol_error.empty() ? std::string("it stalled") : result.protocol_error));
     }
-    return assemble_frame(result.outputs, 0, left.width, left.height);
+    return assemble_validated(result.outputs, 0, left.width, left.height);
 }
 
 }  // namespace

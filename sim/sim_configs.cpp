@@ -43,6 +43,15 @@ class VerilatedTop final : public TopSim {
         model_->cfg_ndisp = static_cast<std::uint16_t>(params.match.ndisp);
         model_->cfg_radius = static_cast<std::uint8_t>(params.match.window / 2);
         model_->cfg_use_ca = params.match.use_ca ? 1 : 0;
+        // Two's complement in the port's kCfgMinDispBits.
+        model_->cfg_min_disp = static_cast<std::uint16_t>(
+            static_cast<unsigned>(params.match.min_disp) & ((1U << table::kCfgMinDispBits) - 1));
+        const ValidationParams& v = params.match.validation;
+        model_->cfg_uniqueness_en = v.uniqueness ? 1 : 0;
+        model_->cfg_uniqueness = static_cast<std::uint8_t>(v.uniqueness_ratio);
+        model_->cfg_lr_en = v.left_right ? 1 : 0;
+        model_->cfg_lr_tolerance = static_cast<std::uint8_t>(v.lr_tolerance);
+        model_->cfg_subpixel_en = v.subpixel ? 1 : 0;
         const auto taps = centred_kernel(params.match, config_.window);
         for (int i = 0; i < config_.window; ++i) {
             put_bits(model_->cfg_kernel, i * table::kTapBits, table::kTapBits,
@@ -59,7 +68,7 @@ class VerilatedTop final : public TopSim {
         std::size_t next = 0;
         bool offering = false;     // s_axis_tvalid is up and must stay up until taken
         bool held_output = false;  // m_axis_tvalid was up without tready last cycle
-        std::uint16_t held_data = 0;
+        std::uint32_t held_data = 0;
         bool held_last = false;
         bool held_user = false;
         std::uint64_t cycle = 0;
@@ -137,7 +146,9 @@ class VerilatedTop final : public TopSim {
 // A stereo_top configuration of the stage table (stage_table.hpp).
 TopConfig top_config(const table::VerilatedConfig& config, const char* name) {
     const table::Params& p = config.params;
-    return {name, p.width, p.height, p.ndisp, p.window};
+    return {name,     p.width,
+            p.height, p.ndisp,
+            p.window, p.max_min_disp == table::kUnset ? table::kDefaultMaxMinDisp : p.max_min_disp};
 }
 
 }  // namespace
@@ -152,10 +163,11 @@ const std::vector<TopConfig>& built_top_configs() {
     return configs;
 }
 
-const TopConfig* covering_config(int width, int height, int ndisp, int window) {
+const TopConfig* covering_config(int width, int height, int ndisp, int window, int min_disp) {
     for (const TopConfig& config : built_top_configs()) {
         if (width <= config.width && height <= config.height && ndisp <= config.ndisp &&
-            window <= config.window) {
+            window <= config.window && min_disp <= config.max_min_disp &&
+            -min_disp <= config.max_min_disp) {
             return &config;
         }
     }
@@ -196,9 +208,9 @@ std::vector<InputBeat> frame_beats(const Image& left, const Image& right) {
     return beats;
 }
 
-DisparityMap assemble_frame(const std::vector<OutputBeat>& beats, std::size_t first, int width,
-                            int height) {
-    DisparityMap map(width, height);
+ValidatedDisparity assemble_validated(const std::vector<OutputBeat>& beats, std::size_t first,
+                                      int width, int height) {
+    ValidatedDisparity out(width, height);
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
             const std::size_t n = first + static_cast<std::size_t>(y) * width + x;
@@ -211,13 +223,26 @@ DisparityMap assemble_frame(const std::vector<OutputBeat>& beats, std::size_t fi
                 throw std::runtime_error("wrong tuser/tlast framing at output pixel (" +
                                          std::to_string(x) + ", " + std::to_string(y) + ")");
             }
-            map.disparity[map.index(x, y)] = static_cast<std::uint8_t>(
-                get_bits(beat.data, table::kOutDisparityLsb, fx::kDisparityBits));
-            map.valid[map.index(x, y)] =
-                static_cast<std::uint8_t>(get_bit(beat.data, table::kOutValidBit));
+            if (get_bits(beat.data, table::kOutReasonLsb + fx::kReasonBits, table::kOutPadBits) !=
+                0) {
+                throw std::runtime_error("non-zero padding bits at output pixel (" +
+                                         std::to_string(x) + ", " + std::to_string(y) + ")");
+            }
+            const std::size_t i = out.index(x, y);
+            out.fixed[i] = static_cast<std::int16_t>(static_cast<std::uint16_t>(
+                get_bits(beat.data, table::kOutFixedLsb, fx::kFixedDisparityBits)));
+            out.reason[i] = static_cast<std::uint8_t>(
+                get_bits(beat.data, table::kOutReasonLsb, fx::kReasonBits));
+            out.certainty[i] = static_cast<std::uint8_t>(
+                get_bits(beat.data, table::kOutCertaintyLsb, table::kOutCertaintyBits));
         }
     }
-    return map;
+    return out;
+}
+
+DisparityMap assemble_frame(const std::vector<OutputBeat>& beats, std::size_t first, int width,
+                            int height) {
+    return to_label_map(assemble_validated(beats, first, width, height));
 }
 
 std::vector<std::int32_t> centred_kernel(const MatchParams& params, int window) {

@@ -18,17 +18,18 @@ namespace stereo::sim {
 // A Verilated configuration of stereo_top: the synthesis parameters it was built with.
 struct TopConfig {
     std::string name;
-    int width;   // largest frame width
-    int height;  // largest frame height
-    int ndisp;   // largest cfg_ndisp
-    int window;  // largest window
+    int width;         // largest frame width
+    int height;        // largest frame height
+    int ndisp;         // largest cfg_ndisp
+    int window;        // largest window
+    int max_min_disp;  // largest |cfg_min_disp| (MAX_MIN_DISP)
 };
 
 // The configurations built into this binary, smallest first.
 const std::vector<TopConfig>& built_top_configs();
 
 // The smallest built configuration that covers a request; nullptr when none does.
-const TopConfig* covering_config(int width, int height, int ndisp, int window);
+const TopConfig* covering_config(int width, int height, int ndisp, int window, int min_disp = 0);
 
 // Traffic shaping: each cycle the input is withheld with probability `input_gap` and the
 // output is not ready with probability `output_stall`, from a generator seeded with `seed`.
@@ -45,7 +46,7 @@ struct InputBeat {
 };
 
 struct OutputBeat {
-    std::uint16_t data;  // {valid, disparity}
+    std::uint32_t data;  // fx_pkg::out_beat_t: {certainty, 0, reason, fixed} (stage_table.hpp)
     bool last;
     bool user;
 };
@@ -86,8 +87,11 @@ class TopSim {
 
 std::unique_ptr<TopSim> make_top_sim(const TopConfig& config);
 
-// Output beats of one frame back into a map; throws std::runtime_error naming the first beat
-// whose tuser/tlast framing is wrong.
+// Output beats of one frame back into the validated result (fixed, reason, certainty of every
+// pixel); throws std::runtime_error naming the first beat whose tuser/tlast framing is wrong.
+ValidatedDisparity assemble_validated(const std::vector<OutputBeat>& beats, std::size_t first,
+                                      int width, int height);
+// Its 8-bit view, stereo::to_label_map(assemble_validated(...)).
 DisparityMap assemble_frame(const std::vector<OutputBeat>& beats, std::size_t first, int width,
                             int height);
 

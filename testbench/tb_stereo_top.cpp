@@ -3,6 +3,7 @@
 // real and synthetic images, and malformed streams.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -21,16 +22,26 @@
 namespace stereo::sim {
 namespace {
 
-using tb::same_map;
+using tb::same_validated;
 
 const TopConfig& small() {
     return built_top_configs().front();
 }
 
 // Pipeline delay in pixel steps: the stage table's formula (stage_table.hpp, docs/rtl.md),
-// (R + 2) * W + R + 10; the Throughput test below measures it on the RTL.
-std::uint64_t documented_latency(int width, int window) {
-    return static_cast<std::uint64_t>(table::pipeline_latency(width, window));
+// (R + 2) * W + R + 11 + N + K; the Throughput test below measures it on the RTL.
+std::uint64_t documented_latency(int width, int window, int min_disp) {
+    return static_cast<std::uint64_t>(
+        table::pipeline_latency(width, window, small().ndisp, min_disp));
+}
+
+// The golden model's stage-6 output.
+ValidatedDisparity expected(const Image& left, const Image& right, const MatchParams& params) {
+    return match_validated(left, right, params);
+}
+
+ValidatedDisparity frame_of(const StreamResult& result, std::size_t first, int width, int height) {
+    return assemble_validated(result.outputs, first, width, height);
 }
 
 class Cosim {
@@ -43,9 +54,9 @@ class Cosim {
     }
     TopSim& sim() { return *sim_; }
 
-    // Streams one frame and returns the RTL's map, checking completion and protocol.
-    DisparityMap run(const Image& left, const Image& right, const MatchParams& params,
-                     const Traffic& traffic, StreamResult* result_out = nullptr) {
+    // Streams one frame and returns the RTL's result, checking completion and protocol.
+    ValidatedDisparity run(const Image& left, const Image& right, const MatchParams& params,
+                           const Traffic& traffic, StreamResult* result_out = nullptr) {
         sim_->set_params({left.width, left.height, params});
         const auto beats = frame_beats(left, right);
         StreamResult result = sim_->stream(beats, beats.size(), traffic, 50 * beats.size() + 10000);
@@ -53,7 +64,8 @@ class Cosim {
                                       << beats.size() << " outputs";
         EXPECT_EQ(result.protocol_error, "");
         EXPECT_EQ(result.status, 0U) << "status bits";
-        const DisparityMap map = assemble_frame(result.outputs, 0, left.width, left.height);
+        const ValidatedDisparity map =
+            assemble_validated(result.outputs, 0, left.width, left.height);
         if (result_out != nullptr) {
             *result_out = std::move(result);
         }
@@ -85,8 +97,8 @@ TEST_P(RandomPairs, EveryPixelEqualsTheModel) {
     const Image right = test::shifted_copy(left, 3, 25, rng);
     const MatchParams params{c.ndisp, c.window, fx::kDefaultSigma, c.use_ca};
     Cosim cosim;
-    const DisparityMap rtl = cosim.run(left, right, params, {c.gap, c.stall, seed});
-    EXPECT_TRUE(same_map(match(left, right, params), rtl));
+    const ValidatedDisparity rtl = cosim.run(left, right, params, {c.gap, c.stall, seed});
+    EXPECT_TRUE(same_validated(expected(left, right, params), rtl));
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -99,13 +111,175 @@ INSTANTIATE_TEST_SUITE_P(
                       RandomCase{23, 17, 4, 1, false, 0.0, 0.3},  // 1x1 window
                       RandomCase{63, 47, 16, 5, true, 0.5, 0.0}));
 
+// ---- Stage 6: signed range, uniqueness, left-right check, sub-pixel -------------------------
+struct Stage6Case {
+    int width, height, ndisp, window;
+    bool use_ca;
+    int min_disp;
+    int uniqueness;  // -1: off
+    int lr;          // -1: off
+    bool subpixel;
+    int shift;  // true disparity of the synthetic pair (negative: the right image leads)
+    double gap, stall;
+};
+
+void PrintTo(const Stage6Case& c, std::ostream* out) {
+    *out << c.width << "x" << c.height << " ndisp " << c.ndisp << " window " << c.window
+         << (c.use_ca ? " CA" : " no CA") << " min_disp " << c.min_disp << " uniqueness "
+         << c.uniqueness << " lr " << c.lr << (c.subpixel ? " subpixel" : "") << " shift "
+         << c.shift << " gap " << c.gap << " stall " << c.stall;
+}
+
+MatchParams stage6_params(const Stage6Case& c) {
+    MatchParams params{c.ndisp, c.window, fx::kDefaultSigma, c.use_ca};
+    params.min_disp = c.min_disp;
+    params.validation.uniqueness = c.uniqueness >= 0;
+    params.validation.uniqueness_ratio = std::max(c.uniqueness, 0);
+    params.validation.left_right = c.lr >= 0;
+    params.validation.lr_tolerance = std::max(c.lr, 0);
+    params.validation.subpixel = c.subpixel;
+    return params;
+}
+
+class Stage6Pairs : public ::testing::TestWithParam<Stage6Case> {};
+
+TEST_P(Stage6Pairs, EveryPixelEqualsTheModel) {
+    const Stage6Case c = GetParam();
+    const std::uint32_t seed = tb::test_seed();
+    std::mt19937 rng(seed);
+    const Image left = test::random_image(c.width, c.height, 3, rng);
+    const Image right = test::shifted_copy(left, c.shift, 25, rng);
+    const MatchParams params = stage6_params(c);
+    Cosim cosim;
+    const ValidatedDisparity model = expected(left, right, params);
+    EXPECT_TRUE(same_validated(model, cosim.run(left, right, params, {c.gap, c.stall, seed})));
+    // The comparison must have something to compare: the checks it enables reject some pixels
+    // of a noisy pair, and sub-pixel refinement moves some disparities off the integer grid
+    // (with more than 3 labels; with one label nothing can fail).
+    std::size_t rejected = 0;
+    std::size_t fractional = 0;
+    for (std::size_t i = 0; i < model.fixed.size(); ++i) {
+        rejected += model.reason[i] > fx::kReasonBorder ? 1 : 0;
+        fractional += model.fixed[i] % fx::kSubpixelScale != 0 ? 1 : 0;
+    }
+    if ((c.uniqueness >= 0 || c.lr >= 0) && c.ndisp > 3) {
+        EXPECT_GT(rejected, 0U) << "no pixel failed the enabled checks";
+    }
+    if (c.subpixel && c.ndisp > 2) {
+        EXPECT_GT(fractional, 0U) << "no sub-pixel disparity";
+    }
+}
+
+constexpr int kMaxMin = table::kDefaultMaxMinDisp;
+INSTANTIATE_TEST_SUITE_P(
+    Stereo, Stage6Pairs,
+    ::testing::Values(
+        // All on, stalls both ways.
+        Stage6Case{64, 48, 16, 5, true, 0, 10, 1, true, 3, 0.2, 0.2},
+        // Negative ranges: the left pixel waits K steps; true disparity negative.
+        Stage6Case{64, 48, 16, 5, true, -kMaxMin, 10, 1, true, -3, 0.1, 0.3},
+        Stage6Case{63, 47, 16, 5, true, -5, -1, 0, true, 2, 0.3, 0.1},
+        // Positive minimum disparity.
+        Stage6Case{64, 48, 16, 5, false, kMaxMin, 25, 2, false, 12, 0.2, 0.2},
+        Stage6Case{37, 23, 9, 3, true, 2, -1, -1, true, 5, 0.1, 0.1},
+        // Each check alone; odd sizes; few labels (no second cost for N <= 3).
+        Stage6Case{41, 29, 16, 5, true, -1, 30, -1, false, 4, 0.2, 0.0},
+        Stage6Case{33, 21, 12, 5, false, 0, -1, 0, false, 3, 0.0, 0.4},
+        Stage6Case{23, 17, 3, 1, false, -1, 50, 1, true, 0, 0.1, 0.1},
+        Stage6Case{23, 17, 1, 3, true, -2, 10, 0, true, -2, 0.2, 0.2}));
+
+// Without stalls a frame takes W*H + latency cycles, the latency growing by K = -min_disp.
+TEST(Throughput, NegativeMinimumDisparityAddsItsDelay) {
+    std::mt19937 rng(tb::test_seed());
+    const table::Params& point = table::kSmall;
+    const Image left = test::random_image(point.width, point.height, 3, rng);
+    const Image right = test::shifted_copy(left, -2, 10, rng);
+    Cosim cosim;
+    for (const int min_disp : {-kMaxMin, -3, 4}) {
+        MatchParams params{point.ndisp, point.window, fx::kDefaultSigma, true};
+        params.min_disp = min_disp;
+        params.validation.left_right = true;
+        StreamResult result;
+        EXPECT_TRUE(same_validated(expected(left, right, params),
+                                   cosim.run(left, right, params, {}, &result)));
+        const auto pixels = static_cast<std::uint64_t>(point.width) * point.height;
+        EXPECT_EQ(result.cycles, pixels + documented_latency(point.width, point.window, min_disp))
+            << "min_disp " << min_disp;
+    }
+}
+
+// Frames of different sizes and stage-6 configurations back to back in one stream, without
+// reset: the configuration is latched at each start of frame.
+TEST(Framing, BackToBackFramesWithDifferentStage6Configurations) {
+    const std::uint32_t seed = tb::test_seed();
+    std::mt19937 rng(seed);
+    Cosim cosim;
+    const Stage6Case cases[] = {
+        {32, 24, 8, 5, true, -kMaxMin, 10, 1, true, -4, 0, 0},
+        {20, 30, 8, 5, true, 3, 20, 0, false, 5, 0, 0},
+        {64, 48, 16, 5, false, -2, -1, 2, true, 1, 0, 0},
+        {13, 9, 4, 3, true, 0, -1, -1, false, 1, 0, 0},
+        {40, 12, 16, 3, true, -6, 5, 1, true, -5, 0, 0},
+    };
+    for (const Stage6Case& c : cases) {
+        const Image left = test::random_image(c.width, c.height, 3, rng);
+        const Image right = test::shifted_copy(left, c.shift, 15, rng);
+        const MatchParams params = stage6_params(c);
+        EXPECT_TRUE(same_validated(expected(left, right, params),
+                                   cosim.run(left, right, params, {0.1, 0.1, seed})))
+            << ::testing::PrintToString(c);
+    }
+}
+
+TEST(Framing, ResetInTheMiddleOfAStage6Frame) {
+    const std::uint32_t seed = tb::test_seed();
+    std::mt19937 rng(seed);
+    const Stage6Case c{64, 48, 16, 5, true, -kMaxMin, 10, 1, true, -3, 0, 0};
+    const MatchParams params = stage6_params(c);
+    const Image left = test::random_image(64, 48, 3, rng);
+    const Image right = test::shifted_copy(left, -3, 15, rng);
+    Cosim cosim;
+    cosim.sim().set_params({64, 48, params});
+    const auto beats = frame_beats(left, right);
+    const std::vector<InputBeat> part(beats.begin(), beats.begin() + 2 * beats.size() / 3);
+    EXPECT_GT(cosim.sim().stream(part, 200, {0.2, 0.2, seed}, 100000).input_beats, 0U);
+    cosim.sim().reset();
+    const Image left2 = test::random_image(64, 48, 3, rng);
+    const Image right2 = test::shifted_copy(left2, 6, 15, rng);
+    MatchParams params2 = params;
+    params2.min_disp = 2;
+    EXPECT_TRUE(same_validated(expected(left2, right2, params2),
+                               cosim.run(left2, right2, params2, {0.2, 0.2, seed})));
+}
+
+TEST(BadInput, OutOfRangeMinimumDisparityIsClampedAndFlagged) {
+    std::mt19937 rng(tb::test_seed());
+    const Image left = test::random_image(64, 48, 3, rng);
+    const Image right = test::shifted_copy(left, -3, 5, rng);
+    for (const int sign : {-1, 1}) {
+        Cosim cosim;
+        MatchParams params{16, 5, fx::kDefaultSigma, true};
+        params.validation.left_right = true;
+        CoreParams wide{64, 48, params};
+        wide.match.min_disp = sign * (kMaxMin + 7);
+        cosim.sim().set_params(wide);
+        const auto beats = frame_beats(left, right);
+        const StreamResult result = cosim.sim().stream(beats, beats.size(), {}, 100000);
+        ASSERT_TRUE(result.completed);
+        EXPECT_EQ(result.status & (1U << table::kStatusConfigClamped),
+                  1U << table::kStatusConfigClamped);
+        params.min_disp = sign * kMaxMin;  // what the core clamps to
+        EXPECT_TRUE(same_validated(expected(left, right, params), frame_of(result, 0, 64, 48)));
+    }
+}
+
 TEST(Extremes, ConstantImages) {
     Cosim cosim;
     const std::uint32_t seed = tb::test_seed();
     for (const auto& [l, r, left, right] : test::constant_pairs(64, 48, 3)) {
         const MatchParams params{16, 5, fx::kDefaultSigma, true};
-        EXPECT_TRUE(
-            same_map(match(left, right, params), cosim.run(left, right, params, {0.2, 0.2, seed})))
+        EXPECT_TRUE(same_validated(expected(left, right, params),
+                                   cosim.run(left, right, params, {0.2, 0.2, seed})))
             << "left " << l << " right " << r;
     }
 }
@@ -116,7 +290,7 @@ TEST(Extremes, GreyInputIsMatchedAsRgb) {
     const Image right = test::shifted_copy(left, 2, 10, rng);
     const MatchParams params{12, 5, fx::kDefaultSigma, true};
     Cosim cosim;
-    EXPECT_TRUE(same_map(match(left, right, params), cosim.run(left, right, params, {})));
+    EXPECT_TRUE(same_validated(expected(left, right, params), cosim.run(left, right, params, {})));
 }
 
 // A crop of a real pair, at the small configuration's size.
@@ -163,9 +337,18 @@ TEST_P(RealPairs, EveryPixelEqualsTheModel) {
     Cosim cosim;
     for (const bool use_ca : {true, false}) {
         const MatchParams params{c.ndisp, 5, fx::kDefaultSigma, use_ca};
-        EXPECT_TRUE(same_map(match(pair->first, pair->second, params),
-                             cosim.run(pair->first, pair->second, params, {0.1, 0.1, seed})))
+        EXPECT_TRUE(same_validated(expected(pair->first, pair->second, params),
+                                   cosim.run(pair->first, pair->second, params, {0.1, 0.1, seed})))
             << c.name << " CA " << use_ca;
+    }
+    // Stage 6 on: a shifted range, every check and sub-pixel output.
+    for (const int min_disp : {-3, 2}) {
+        MatchParams params{c.ndisp, 5, fx::kDefaultSigma, true};
+        params.min_disp = min_disp;
+        params.validation = {true, 15, true, 1, true};
+        EXPECT_TRUE(same_validated(expected(pair->first, pair->second, params),
+                                   cosim.run(pair->first, pair->second, params, {0.1, 0.1, seed})))
+            << c.name << " stage 6, min_disp " << min_disp;
     }
 }
 
@@ -192,7 +375,7 @@ TEST(Throughput, CyclesPerFrameWithoutStallsMatchTheDocumentedLatency) {
     StreamResult result;
     (void)cosim.run(left, right, {point.ndisp, point.window, fx::kDefaultSigma, true}, {}, &result);
     const auto pixels = static_cast<std::uint64_t>(point.width) * point.height;
-    const std::uint64_t latency = documented_latency(point.width, point.window);
+    const std::uint64_t latency = documented_latency(point.width, point.window, 0);
     const std::uint64_t expected = pixels + latency;
     std::cout << "[cycles] " << point.width << "x" << point.height << ": " << result.cycles
               << " cycles, expected " << expected << " (pixels " << pixels << " + latency "
@@ -221,9 +404,9 @@ TEST(Framing, BackToBackFramesWithoutIdle) {
     EXPECT_EQ(result.protocol_error, "");
     EXPECT_EQ(result.status, 0U);
     for (int f = 0; f < 3; ++f) {
-        const DisparityMap rtl =
-            assemble_frame(result.outputs, static_cast<std::size_t>(f) * 64 * 48, 64, 48);
-        EXPECT_TRUE(same_map(match(frames[f].first, frames[f].second, params), rtl))
+        const ValidatedDisparity rtl =
+            frame_of(result, static_cast<std::size_t>(f) * 64 * 48, 64, 48);
+        EXPECT_TRUE(same_validated(expected(frames[f].first, frames[f].second, params), rtl))
             << "frame " << f;
     }
 }
@@ -239,8 +422,8 @@ TEST(Framing, BackToBackFramesOfDifferentSizes) {
                                         std::pair{64, 48}, std::pair{13, 9}}) {
         const Image left = test::random_image(width, height, 3, rng);
         const Image right = test::shifted_copy(left, 3, 10, rng);
-        EXPECT_TRUE(
-            same_map(match(left, right, params), cosim.run(left, right, params, {0.1, 0.1, seed})))
+        EXPECT_TRUE(same_validated(expected(left, right, params),
+                                   cosim.run(left, right, params, {0.1, 0.1, seed})))
             << width << "x" << height;
     }
 }
@@ -262,8 +445,8 @@ TEST(Framing, ResetInTheMiddleOfAFrameThenACleanFrame) {
     // A second frame with different content must come out exactly right.
     const Image left2 = test::random_image(64, 48, 3, rng);
     const Image right2 = test::shifted_copy(left2, 7, 15, rng);
-    EXPECT_TRUE(
-        same_map(match(left2, right2, params), cosim.run(left2, right2, params, {0.2, 0.2, seed})));
+    EXPECT_TRUE(same_validated(expected(left2, right2, params),
+                               cosim.run(left2, right2, params, {0.2, 0.2, seed})));
 }
 
 TEST(BadInput, BeatsBeforeTheFirstStartOfFrameAreDropped) {
@@ -279,7 +462,7 @@ TEST(BadInput, BeatsBeforeTheFirstStartOfFrameAreDropped) {
     const StreamResult result = cosim.sim().stream(stream, beats.size(), {}, 100000);
     ASSERT_TRUE(result.completed);
     EXPECT_EQ(result.status, 0U);
-    EXPECT_TRUE(same_map(match(left, right, params), assemble_frame(result.outputs, 0, 32, 24)));
+    EXPECT_TRUE(same_validated(expected(left, right, params), frame_of(result, 0, 32, 24)));
 }
 
 TEST(BadInput, MisplacedTlastAndTuserSetStatusBitsAndTheFrameStillCompletes) {
@@ -310,7 +493,7 @@ TEST(BadInput, AStreamThatEndsEarlyNeverProducesAPartialFrameAndResetRecovers) {
     EXPECT_FALSE(stalled.completed);
     EXPECT_LT(stalled.outputs.size(), beats.size());
     cosim.sim().reset();
-    EXPECT_TRUE(same_map(match(left, right, params), cosim.run(left, right, params, {})));
+    EXPECT_TRUE(same_validated(expected(left, right, params), cosim.run(left, right, params, {})));
 }
 
 TEST(BadInput, OutOfRangeConfigurationIsFlaggedAndClamped) {
@@ -330,7 +513,7 @@ TEST(BadInput, OutOfRangeConfigurationIsFlaggedAndClamped) {
     ASSERT_TRUE(result.completed);
     EXPECT_EQ(result.status & (1U << table::kStatusConfigClamped),
               1U << table::kStatusConfigClamped);
-    EXPECT_TRUE(same_map(match(left, right, params), assemble_frame(result.outputs, 0, 64, 48)));
+    EXPECT_TRUE(same_validated(expected(left, right, params), frame_of(result, 0, 64, 48)));
 }
 
 }  // namespace

@@ -30,7 +30,8 @@ struct WtaStage {
         randomize_bits(model.in_data, kDisparities * kBits, rng);
     }
     static std::vector<std::uint32_t> outputs(const Model& model) {
-        return {model.out_disparity, model.out_valid};
+        return {model.out_label, model.out_border, model.out_cost, model.out_before,
+                model.out_after};
     }
 };
 
@@ -49,13 +50,15 @@ DisparityMap run_wta(WtaDriver& driver, const Dsi& input, const WtaConfig& confi
     model.cfg_ndisp = static_cast<std::uint16_t>(config.ndisp);
     model.cfg_radius = static_cast<std::uint8_t>(config.radius);
     model.cfg_use_ca = config.use_ca ? 1 : 0;
+    model.cfg_min_disp = 0;  // stage 6's signed range: tb_stereo_top and tb_stereo_validate
     DisparityMap rtl(input.width(), input.height());
     driver.run_frame(
         input.width(), input.height(),
         [&](Vstereo_wta& m, int x, int y) { put_column(m.in_data, input, x, y, kBits); },
         [&](const Vstereo_wta& m, int x, int y) {
-            rtl.disparity[rtl.index(x, y)] = m.out_disparity;
-            rtl.valid[rtl.index(x, y)] = m.out_valid;
+            // The label is the winner whatever the border rule says; the map writes 0 there.
+            rtl.disparity[rtl.index(x, y)] = m.out_border ? m.out_label : 0;
+            rtl.valid[rtl.index(x, y)] = m.out_border;
         });
     return rtl;
 }

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <random>
@@ -195,7 +196,7 @@ void centred_kernel(int window, double sigma, hls::tap_t (&kernel)[WINDOW]) {
 
 template <int NDISP>
 void check_cost(const Image& left, const Image& right, std::mt19937& rng) {
-    const auto stage = std::make_unique<hls::cost<NDISP>>();
+    const auto stage = std::make_unique<hls::cost<NDISP, table::kDefaultMaxMinDisp>>();
     std::uniform_int_distribution<int> garbage(0, 255);
     const auto noise = [&] {
         return hls::Rgb{static_cast<hls::pixel_t>(garbage(rng)),
@@ -211,7 +212,7 @@ void check_cost(const Image& left, const Image& right, std::mt19937& rng) {
                 const bool in_frame = y < left.height;
                 stage->step(static_cast<hls::coord_t>(x), static_cast<hls::coord_t>(y),
                             in_frame ? rgb_at(left, x, y) : noise(),
-                            in_frame ? rgb_at(right, x, y) : noise());
+                            in_frame ? rgb_at(right, x, y) : noise(), left.width, 0);
             },
             [&](int x, int y) {
                 for (int d = 0; d < NDISP; ++d) {
@@ -359,7 +360,7 @@ void check_wta(std::mt19937& rng) {
                                             : hls::agg_t{0};
                             }
                             stage->step(static_cast<hls::coord_t>(x), static_cast<hls::coord_t>(y),
-                                        in, width, height, ndisp, radius, use_ca);
+                                        in, width, height, ndisp, radius, use_ca, 0);
                         },
                         [&](int x, int y) {
                             out.disparity[out.index(x, y)] = stage->out_disparity();
@@ -455,7 +456,7 @@ TEST(HlsStages, EachStageEqualsModelOnTsukuba) {
                 in[d] = y < height ? static_cast<hls::agg_t>(after_rule2.at(x, y, d)) : 0;
             }
             winner->step(static_cast<hls::coord_t>(x), static_cast<hls::coord_t>(y), in, width,
-                         height, kNdisp, kWindow / 2, true);
+                         height, kNdisp, kWindow / 2, true, 0);
         },
         [&](int x, int y) {
             out.disparity[out.index(x, y)] = winner->out_disparity();
@@ -468,49 +469,67 @@ TEST(HlsStages, EachStageEqualsModelOnTsukuba) {
 
 // ---- the streaming top ---------------------------------------------------------------------
 
-template <int WIDTH, int HEIGHT, int NDISP, int WINDOW>
-DisparityMap run_top(hls::pipeline<WIDTH, HEIGHT, NDISP, WINDOW>& state, const Image& left,
-                     const Image& right, const MatchParams& params,
-                     hls::status_t expected_status = 0) {
+template <int WIDTH, int HEIGHT, int NDISP, int WINDOW, int MAX_MIN_DISP>
+ValidatedDisparity run_top_validated(
+    hls::pipeline<WIDTH, HEIGHT, NDISP, WINDOW, MAX_MIN_DISP>& state, const Image& left,
+    const Image& right, const MatchParams& params, hls::status_t expected_status = 0) {
     hls::stream<hls::InputBeat> in("test.in");
     hls::stream<hls::OutputBeat> out("test.out");
     hls::push_frame(left, right, in);
-    const hls::status_t status = hls::stereo_hls_top<WIDTH, HEIGHT, NDISP, WINDOW>(
+    const hls::status_t status = hls::stereo_hls_top<WIDTH, HEIGHT, NDISP, WINDOW, MAX_MIN_DISP>(
         in, out, hls::frame_config<WINDOW>(params, left.width, left.height), state);
     EXPECT_EQ(status, expected_status);
     EXPECT_TRUE(in.empty());
     EXPECT_EQ(out.size(), static_cast<std::size_t>(left.width) * left.height)
         << "one output beat per input pixel";
-    return hls::collect_frame(out, left.width, left.height);
+    return hls::collect_validated(out, left.width, left.height);
+}
+
+template <int WIDTH, int HEIGHT, int NDISP, int WINDOW, int MAX_MIN_DISP>
+DisparityMap run_top(hls::pipeline<WIDTH, HEIGHT, NDISP, WINDOW, MAX_MIN_DISP>& state,
+                     const Image& left, const Image& right, const MatchParams& params,
+                     hls::status_t expected_status = 0) {
+    return to_label_map(run_top_validated(state, left, right, params, expected_status));
 }
 
 TEST(HlsTop, LastResultLeavesAfterTheDocumentedLatency) {
-    // hls/README.md: D = (R + 2) * W + R + 8 pixel steps (the RTL takes 2 more), the sum of the
-    // stage latencies 1 + (R*W + R + 2) + 2 (W + 2) + 1 measured one by one above.
+    // hls/README.md: D = (R + 2) * W + R + 9 + N + K pixel steps (the RTL takes 2 more), the sum
+    // of the stage latencies 1 + K + (R*W + R + 2) + 2 (W + 2) + 1 measured one by one above,
+    // and stage 6's 1 + N.
     constexpr int kWindow = 5;
     constexpr int R = kWindow / 2;
     const int width = 20;
     const int height = 10;
-    EXPECT_EQ(hls::pipeline_delay<kWindow>(width), 1 + (R * width + R + 2) + 2 * (width + 2) + 1);
+    constexpr int N = 8;
+    EXPECT_EQ((hls::pipeline_delay<N, kWindow>(width)),
+              1 + (R * width + R + 2) + 2 * (width + 2) + 1 + 1 + N);
+    EXPECT_EQ((hls::pipeline_delay<N, kWindow>(width, -5)),
+              (hls::pipeline_delay<N, kWindow>(width)) + 5);
     auto rng = seeded(6);
     const auto [left, right] = test::shifted_pair(width, height, 3, 2, 5, rng);
     const MatchParams params{8, kWindow, 2.0, true};
     const auto cfg = hls::frame_config<kWindow>(params, width, height);
-    const auto state = std::make_unique<hls::pipeline<64, 64, 8, kWindow>>();
-    state->reset();
-    int last_step = -1;
-    for (int step = 0; step < width * height + 3 * hls::pipeline_delay<kWindow>(width); ++step) {
-        const int x = step % width;
-        const int y = step / width;
-        const bool in_frame = y < height;
-        state->step(static_cast<hls::coord_t>(x), static_cast<hls::coord_t>(y),
-                    in_frame ? rgb_at(left, x, y) : hls::Rgb{},
-                    in_frame ? rgb_at(right, x, y) : hls::Rgb{}, cfg);
-        if (state->out_x() == width - 1 && state->out_y() == height - 1) {
-            last_step = step;
+    for (const int min_disp : {0, -3, 2}) {
+        auto frame_cfg = cfg;
+        frame_cfg.min_disp = min_disp;
+        const auto state = std::make_unique<hls::pipeline<64, 64, N, kWindow>>();
+        state->reset();
+        int last_step = -1;
+        for (int step = 0; step < width * height + 3 * hls::pipeline_delay<N, kWindow>(width);
+             ++step) {
+            const int x = step % width;
+            const int y = step / width;
+            const bool in_frame = y < height;
+            state->step(static_cast<hls::coord_t>(x), static_cast<hls::coord_t>(y),
+                        in_frame ? rgb_at(left, x, y) : hls::Rgb{},
+                        in_frame ? rgb_at(right, x, y) : hls::Rgb{}, frame_cfg);
+            if (state->out_x() == width - 1 && state->out_y() == height - 1) {
+                last_step = step;
+            }
         }
+        EXPECT_EQ(last_step + 1, (hls::frame_steps<N, kWindow>(width, height, min_disp)))
+            << "min_disp " << min_disp;
     }
-    EXPECT_EQ(last_step + 1, hls::frame_steps<kWindow>(width, height));
 }
 
 TEST(HlsTop, BackToBackFramesOfDifferentSizesAndConfigurations) {
@@ -579,6 +598,122 @@ void expect_match(const Image& left, const Image& right, const MatchParams& para
         << what << ": " << left.width << "x" << left.height << "x" << left.channels << " ndisp "
         << params.ndisp << " window " << params.window << " sigma " << params.sigma
         << (params.use_ca ? " CA" : " no CA");
+}
+
+// Stage 6: fixed disparity, reason and certainty of every pixel against the golden model.
+testing::AssertionResult same_validated(const ValidatedDisparity& expected,
+                                        const ValidatedDisparity& actual) {
+    if (expected.width != actual.width || expected.height != actual.height) {
+        return testing::AssertionFailure() << "sizes differ";
+    }
+    std::size_t mismatches = 0;
+    std::string first;
+    for (std::size_t i = 0; i < expected.fixed.size(); ++i) {
+        if ((expected.fixed[i] != actual.fixed[i] || expected.reason[i] != actual.reason[i] ||
+             expected.certainty[i] != actual.certainty[i]) &&
+            mismatches++ < 5) {
+            first += " [" + std::to_string(i % expected.width) + "," +
+                     std::to_string(i / expected.width) + "] model " +
+                     std::to_string(expected.fixed[i]) + "/" + std::to_string(expected.reason[i]) +
+                     "/" + std::to_string(expected.certainty[i]) + " hls " +
+                     std::to_string(actual.fixed[i]) + "/" + std::to_string(actual.reason[i]) +
+                     "/" + std::to_string(actual.certainty[i]) + ";";
+        }
+    }
+    if (mismatches == 0) {
+        return testing::AssertionSuccess();
+    }
+    return testing::AssertionFailure() << mismatches << " pixels differ:" << first;
+}
+
+MatchParams with_stage6(MatchParams params, int min_disp, int uniqueness, int lr, bool subpixel) {
+    params.min_disp = min_disp;
+    params.validation.uniqueness = uniqueness >= 0;
+    params.validation.uniqueness_ratio = uniqueness >= 0 ? uniqueness : 10;
+    params.validation.left_right = lr >= 0;
+    params.validation.lr_tolerance = lr >= 0 ? lr : 1;
+    params.validation.subpixel = subpixel;
+    return params;
+}
+
+TEST(HlsMatchValidated, EqualsMatchValidatedOverStage6Parameters) {
+    auto rng = seeded(15);
+    for (const int shift : {-4, 3}) {
+        const auto [left, right] = test::shifted_pair(41, 27, 3, shift, 20, rng);
+        struct Combo {
+            int ndisp, window, min_disp, uniqueness, lr;
+            bool subpixel, ca;
+        };
+        for (const Combo& c :
+             {Combo{16, 5, 0, -1, -1, false, true}, Combo{16, 5, -8, 10, 1, true, true},
+              Combo{12, 3, -5, -1, 0, true, false}, Combo{16, 7, 2, 25, -1, true, true},
+              Combo{9, 5, -1, 0, 2, false, true}, Combo{3, 3, -2, 50, 1, true, false},
+              Combo{1, 5, -3, 10, 0, true, true}, Combo{20, 5, -12, 15, 1, true, true},
+              Combo{17, 11, 4, -1, 1, true, true}}) {
+            const MatchParams params =
+                with_stage6(MatchParams{c.ndisp, c.window, fx::kDefaultSigma, c.ca}, c.min_disp,
+                            c.uniqueness, c.lr, c.subpixel);
+            const ValidatedDisparity model = match_validated(left, right, params);
+            EXPECT_TRUE(same_validated(model, hls::match_validated(left, right, params)))
+                << "shift " << shift << " ndisp " << c.ndisp << " window " << c.window
+                << " min_disp " << c.min_disp << " uniqueness " << c.uniqueness << " lr " << c.lr
+                << (c.subpixel ? " subpixel" : "");
+        }
+    }
+}
+
+TEST(HlsMatchValidated, TheMatcherRegistryRunsStage6) {
+    auto rng = seeded(16);
+    const auto [left, right] = test::shifted_pair(33, 21, 3, -2, 15, rng);
+    MatchConfig config;
+    config.pipeline = with_stage6(MatchParams{8, 5, fx::kDefaultSigma, true}, -4, 10, 1, true);
+    MatcherRegistry registry;
+    hls::register_matchers(registry);
+    const MatchResult result = registry.create("pipeline", "hls", config)->compute(left, right);
+    EXPECT_TRUE(same_validated(match_validated(left, right, config.pipeline), result.validated));
+    EXPECT_TRUE(same_map(to_label_map(result.validated), result.disparity));
+}
+
+TEST(HlsMatchValidated, MiddleburyCropsWithStage6) {
+    const auto dir = io::data_dir() / "middlebury2003" / "cones";
+    if (!std::filesystem::exists(dir / "left.png")) {
+        GTEST_SKIP() << "cones not found under " << io::data_dir();
+    }
+    const auto pair =
+        io::crop(io::load_pair(dir / "left.png", dir / "right.png", 2), 40, 40, 96, 64);
+    for (const int min_disp : {-6, 0, 5}) {
+        const MatchParams params =
+            with_stage6(MatchParams{24, 7, fx::kDefaultSigma, true}, min_disp, 15, 1, true);
+        EXPECT_TRUE(same_validated(match_validated(pair.left, pair.right, params),
+                                   hls::match_validated(pair.left, pair.right, params)))
+            << "min_disp " << min_disp;
+    }
+}
+
+TEST(HlsTop, BackToBackStage6FramesAndMinDispClamp) {
+    auto rng = seeded(17);
+    const auto state = std::make_unique<hls::pipeline<64, 64, 16, 5>>();
+    constexpr int kMax = table::kDefaultMaxMinDisp;
+    const std::vector<std::tuple<int, int, MatchParams>> frames = {
+        {40, 30, with_stage6(MatchParams{16, 5, fx::kDefaultSigma, true}, -kMax, 10, 1, true)},
+        {25, 45, with_stage6(MatchParams{9, 3, 1.5, true}, 3, 20, 0, false)},
+        {64, 14, with_stage6(MatchParams{16, 5, 1.0, false}, -2, -1, 2, true)},
+        {40, 30, with_stage6(MatchParams{16, 5, fx::kDefaultSigma, true}, 0, -1, -1, false)},
+    };
+    for (const auto& [width, height, params] : frames) {
+        const auto [left, right] = test::shifted_pair(width, height, 3, -1, 12, rng);
+        EXPECT_TRUE(same_validated(match_validated(left, right, params),
+                                   run_top_validated(*state, left, right, params)))
+            << width << "x" << height << " min_disp " << params.min_disp;
+    }
+    // Beyond +-MAX_MIN_DISP: clamped and flagged, as in the RTL.
+    const auto [left, right] = test::shifted_pair(40, 30, 3, -1, 12, rng);
+    MatchParams params =
+        with_stage6(MatchParams{16, 5, fx::kDefaultSigma, true}, -kMax - 5, 10, 1, true);
+    const ValidatedDisparity clamped =
+        run_top_validated(*state, left, right, params, hls::kStatusConfigClamped);
+    params.min_disp = -kMax;
+    EXPECT_TRUE(same_validated(match_validated(left, right, params), clamped));
 }
 
 TEST(HlsMatch, SmallRandomImagesOverTheParameters) {
@@ -720,7 +855,10 @@ TEST(HlsSynthTop, FramesBackToBackEqualModel) {
         EXPECT_EQ(stereo_hls_synth_top(
                       in, out, static_cast<std::uint16_t>(cfg.width),
                       static_cast<std::uint16_t>(cfg.height), static_cast<std::uint16_t>(cfg.ndisp),
-                      static_cast<std::uint8_t>(cfg.radius), cfg.kernel, cfg.use_ca),
+                      static_cast<std::uint8_t>(cfg.radius), cfg.kernel, cfg.use_ca,
+                      static_cast<std::int16_t>(cfg.min_disp), cfg.uniqueness,
+                      static_cast<std::uint8_t>(cfg.uniqueness_ratio), cfg.left_right,
+                      static_cast<std::uint8_t>(cfg.lr_tolerance), cfg.subpixel),
                   0);
         EXPECT_TRUE(
             same_map(match(left, right, params), hls::collect_frame(out, left.width, left.height)))

@@ -101,18 +101,20 @@ void run_cosim(const CosimOptions& options) {
     const int width = pair.left.width;
     const int height = pair.left.height;
     model->validate(width, height);
-    const sim::TopConfig* config = sim::covering_config(width, height, params.ndisp, params.window);
+    const sim::TopConfig* config =
+        sim::covering_config(width, height, params.ndisp, params.window, params.min_disp);
     if (config == nullptr) {
         const sim::TopConfig& largest = sim::built_top_configs().back();
         throw std::invalid_argument(
             "no co-simulation model covers " + std::to_string(width) + "x" +
-            std::to_string(height) + " with ndisp " + std::to_string(params.ndisp) +
-            " and window " + std::to_string(params.window) + "; the largest built is " +
-            config_text(largest) +
+            std::to_string(height) + " with ndisp " + std::to_string(params.ndisp) + ", window " +
+            std::to_string(params.window) + " and min_disp " + std::to_string(params.min_disp) +
+            "; the largest built is " + config_text(largest) +
             " (use --downscale or --crop, or build with -DSTEREO_COSIM_FULL=ON)");
     }
 
-    const DisparityMap expected = model->compute(pair.left, pair.right).disparity;
+    // Stage 6's full output: fixed disparity, reason and certainty of every pixel.
+    const ValidatedDisparity expected = model->compute(pair.left, pair.right).validated;
 
     const auto sim = sim::make_top_sim(*config);
     if (!options.trace.empty()) {
@@ -155,24 +157,29 @@ void run_cosim(const CosimOptions& options) {
         if (!result.protocol_error.empty()) {
             throw std::runtime_error("AXI4-Stream protocol error: " + result.protocol_error);
         }
-        const DisparityMap rtl = sim::assemble_frame(result.outputs, 0, width, height);
+        const ValidatedDisparity rtl = sim::assemble_validated(result.outputs, 0, width, height);
         for (int y = 0; y < height; ++y) {
             for (int x = 0; x < width; ++x) {
                 const auto i = rtl.index(x, y);
-                if (rtl.disparity[i] != expected.disparity[i] ||
-                    rtl.valid[i] != expected.valid[i]) {
+                if (rtl.fixed[i] != expected.fixed[i] || rtl.reason[i] != expected.reason[i] ||
+                    rtl.certainty[i] != expected.certainty[i]) {
                     if (mismatches++ < 10) {
+                        auto fields = [i](const ValidatedDisparity& v) {
+                            return nlohmann::json{{"fixed", v.fixed[i]},
+                                                  {"reason", v.reason[i]},
+                                                  {"certainty", v.certainty[i]}};
+                        };
                         first.push_back({{"frame", frame},
                                          {"x", x},
                                          {"y", y},
-                                         {"model", expected.valid[i] ? expected.disparity[i] : -1},
-                                         {"rtl", rtl.valid[i] ? rtl.disparity[i] : -1}});
+                                         {"model", fields(expected)},
+                                         {"rtl", fields(rtl)}});
                     }
                 }
             }
         }
         if (frame + 1 == options.frames && !options.output.empty()) {
-            io::write_png(options.output, io::disparity_to_mat(rtl, params.ndisp, 1));
+            io::write_png(options.output, io::disparity_to_mat(to_label_map(rtl), params.ndisp, 1));
         }
     }
     const double seconds =
@@ -188,6 +195,7 @@ void run_cosim(const CosimOptions& options) {
             {"cycles", result.cycles},
             {"total_cycles", total_cycles},
             {"pixels", pixels},
+            {"pixels_compared", pixels * static_cast<std::size_t>(options.frames)},
             {"cycles_per_pixel", per_pixel},
             {"first_mismatches", first},
             {"config", config->name},
@@ -196,6 +204,10 @@ void run_cosim(const CosimOptions& options) {
             {"ndisp", params.ndisp},
             {"window", params.window},
             {"ca", params.use_ca},
+            {"min_disp", params.min_disp},
+            {"uniqueness", params.validation.uniqueness ? params.validation.uniqueness_ratio : -1},
+            {"lr_check", params.validation.left_right ? params.validation.lr_tolerance : -1},
+            {"subpixel", params.validation.subpixel},
             {"seed", options.seed},
             {"stall", options.stall},
             {"gap", options.gap},
@@ -206,21 +218,30 @@ void run_cosim(const CosimOptions& options) {
         std::cout << summary.dump() << '\n';
     } else {
         std::printf(
-            "%dx%d ndisp %d window %d ca %s on the '%s' model (%s), seed %u, stall %.2f, gap "
-            "%.2f\n%zu mismatching pixels of %zu; %llu cycles, %.3f cycles/pixel; simulated at "
+            "%dx%d ndisp %d window %d ca %s min-disp %d uniqueness %d lr-check %d subpixel %s on "
+            "the '%s' model (%s), seed %u, stall %.2f, gap %.2f\n%zu mismatching pixels "
+            "of %zu (fixed, reason and certainty compared); %llu cycles, %.3f cycles/pixel; "
+            "simulated at "
             "%.0f cycles/s\n",
             width, height, params.ndisp, params.window, params.use_ca ? "on" : "off",
-            config->name.c_str(), config_text(*config).c_str(), options.seed, options.stall,
-            options.gap, mismatches, pixels, static_cast<unsigned long long>(result.cycles),
-            per_pixel, total_cycles / seconds);
+            params.min_disp, params.validation.uniqueness ? params.validation.uniqueness_ratio : -1,
+            params.validation.left_right ? params.validation.lr_tolerance : -1,
+            params.validation.subpixel ? "on" : "off", config->name.c_str(),
+            config_text(*config).c_str(), options.seed, options.stall, options.gap, mismatches,
+            pixels, static_cast<unsigned long long>(result.cycles), per_pixel,
+            total_cycles / seconds);
         if (options.frames > 1 || options.reset_at >= 0) {
             std::printf("%d frames, reset after %d beats of each (-1 = none): %zu mismatches\n",
                         options.frames, options.reset_at, mismatches);
         }
         for (const auto& m : first) {
-            std::printf("  mismatch in frame %d at (%d, %d): model %d, rtl %d (-1 = invalid)\n",
-                        m["frame"].get<int>(), m["x"].get<int>(), m["y"].get<int>(),
-                        m["model"].get<int>(), m["rtl"].get<int>());
+            std::printf(
+                "  mismatch in frame %d at (%d, %d): model fixed %d reason %d certainty %d, rtl "
+                "fixed %d reason %d certainty %d\n",
+                m["frame"].get<int>(), m["x"].get<int>(), m["y"].get<int>(),
+                m["model"]["fixed"].get<int>(), m["model"]["reason"].get<int>(),
+                m["model"]["certainty"].get<int>(), m["rtl"]["fixed"].get<int>(),
+                m["rtl"]["reason"].get<int>(), m["rtl"]["certainty"].get<int>());
         }
     }
     if (mismatches != 0) {

@@ -12,8 +12,8 @@ namespace stereo::hls {
 namespace {
 
 template <int NDISP, int WINDOW>
-DisparityMap run_variant(const Image& left, const Image& right, const MatchParams& params) {
-    using Pipeline = pipeline<kHostMaxWidth, kHostMaxHeight, NDISP, WINDOW>;
+ValidatedDisparity run_variant(const Image& left, const Image& right, const MatchParams& params) {
+    using Pipeline = pipeline<kHostMaxWidth, kHostMaxHeight, NDISP, WINDOW, kHostMaxMinDisp>;
     // Megabytes of line buffers: on the heap, never on the stack.
     const auto state = std::make_unique<Pipeline>();
     const FrameConfig<WINDOW> cfg = frame_config<WINDOW>(params, left.width, left.height);
@@ -21,12 +21,13 @@ DisparityMap run_variant(const Image& left, const Image& right, const MatchParam
     stream<OutputBeat> out("match.out");
     push_frame(left, right, in);
     const status_t status =
-        stereo_hls_top<kHostMaxWidth, kHostMaxHeight, NDISP, WINDOW>(in, out, cfg, *state);
+        stereo_hls_top<kHostMaxWidth, kHostMaxHeight, NDISP, WINDOW, kHostMaxMinDisp>(in, out, cfg,
+                                                                                      *state);
     if (status != 0 || !in.empty()) {
         throw std::logic_error("HLS top reported status " + std::to_string(status) + " with " +
                                std::to_string(in.size()) + " input beats left");
     }
-    DisparityMap map = collect_frame(out, left.width, left.height);
+    ValidatedDisparity map = collect_validated(out, left.width, left.height);
     if (!out.empty()) {
         throw std::logic_error("HLS top wrote " + std::to_string(out.size()) +
                                " output beats too many");
@@ -35,8 +36,8 @@ DisparityMap run_variant(const Image& left, const Image& right, const MatchParam
 }
 
 template <int NDISP>
-DisparityMap run_window(const Image& left, const Image& right, const MatchParams& params,
-                        const Variant& variant) {
+ValidatedDisparity run_window(const Image& left, const Image& right, const MatchParams& params,
+                              const Variant& variant) {
     return variant.window == 11 ? run_variant<NDISP, 11>(left, right, params)
                                 : run_variant<NDISP, 31>(left, right, params);
 }
@@ -53,9 +54,15 @@ Variant variant_for(const MatchParams& params) {
     return {kHostMaxWidth, kHostMaxHeight, ndisp, window};
 }
 
-DisparityMap match(const Image& left, const Image& right, const MatchParams& params) {
+ValidatedDisparity match_validated(const Image& left, const Image& right,
+                                   const MatchParams& params) {
     check_pair(left, right);
-    validate(params, left.width, left.height);
+    stereo::validate(params, left.width, left.height);
+    if (params.min_disp > kHostMaxMinDisp || params.min_disp < -kHostMaxMinDisp) {
+        throw std::invalid_argument("min_disp " + std::to_string(params.min_disp) +
+                                    " is outside the HLS variants' +-" +
+                                    std::to_string(kHostMaxMinDisp));
+    }
     if (left.width > kHostMaxWidth || left.height > kHostMaxHeight) {
         throw std::invalid_argument(
             "image " + std::to_string(left.width) + "x" + std::to_string(left.height) +
@@ -76,9 +83,14 @@ DisparityMap match(const Image& left, const Image& right, const MatchParams& par
     }
 }
 
+DisparityMap match(const Image& left, const Image& right, const MatchParams& params) {
+    return to_label_map(hls::match_validated(left, right, params));
+}
+
 void register_matchers(MatcherRegistry& registry) {
-    registry.add({"pipeline", "hls", "Sec. 3.1 pipeline, the HLS kernels in C simulation",
-                  pipeline_factory(&match)});
+    registry.add({"pipeline", "hls",
+                  "Sec. 3.1 pipeline with stage 6, the HLS kernels in C simulation",
+                  pipeline_factory(&match_validated)});
 }
 
 }  // namespace stereo::hls

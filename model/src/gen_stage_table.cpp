@@ -75,6 +75,20 @@ std::string package_text() {
         {"DISP_BITS", fx::kDisparityBits, "output disparity"},
         {"MAX_WINDOW", fx::kMaxWindow, "largest aggregation window"},
         {"DEFAULT_WINDOW", fx::kDefaultWindow, "thesis Sec. 3.1"},
+        // Stage 6 (docs/fixed-point.md): validation and sub-pixel output.
+        {"MAX_MIN_DISPARITY", fx::kMaxMinDisparity, "largest |min_disp| of the model"},
+        {"SUBPIXEL_BITS", fx::kSubpixelBits, "disparities are output x 2^SUBPIXEL_BITS"},
+        {"FIXED_BITS", fx::kFixedDisparityBits, "signed disparity x 16"},
+        {"UNIQUENESS_BASE", fx::kUniquenessBase, "invalid when C1 * (BASE + U) >= C2 * BASE"},
+        {"MAX_UNIQUENESS", fx::kMaxUniqueness, "largest U"},
+        {"MAX_LR_TOLERANCE", fx::kMaxLrTolerance, "largest left-right tolerance T"},
+        {"CERTAINTY_BITS", fx::kCertaintyBits, "floor(((C2 - C1) << BITS) / (C2 + 1))"},
+        {"NO_SECOND_COST", fx::kNoSecondCost, "C2 when no label lies away from the winner"},
+        {"REASON_BITS", fx::kReasonBits, "why a pixel is invalid:"},
+        {"REASON_VALID", fx::kReasonValid, ""},
+        {"REASON_BORDER", fx::kReasonBorder, "window or match outside the images"},
+        {"REASON_UNIQUENESS", fx::kReasonUniqueness, "a distant label costs almost as little"},
+        {"REASON_LEFT_RIGHT", fx::kReasonLeftRight, "the right image's winner disagrees"},
     });
 
     // The interface of stereo_top and of the stage modules (stage_table.hpp).
@@ -90,10 +104,17 @@ std::string package_text() {
         {"CFG_SIZE_BITS", t::kCfgSizeBits, "cfg_width, cfg_height"},
         {"CFG_NDISP_BITS", t::kCfgNdispBits, "cfg_ndisp"},
         {"CFG_RADIUS_BITS", t::kCfgRadiusBits, "cfg_radius"},
+        {"CFG_MIN_DISP_BITS", t::kCfgMinDispBits, "cfg_min_disp, signed"},
+        {"CFG_UNIQUENESS_BITS", t::kCfgUniquenessBits, "cfg_uniqueness"},
+        {"CFG_LR_TOLERANCE_BITS", t::kCfgLrToleranceBits, "cfg_lr_tolerance"},
+        {"DEFAULT_MAX_MIN_DISP", t::kDefaultMaxMinDisp, "stereo_top's MAX_MIN_DISP default"},
     });
     sv << "  typedef logic [CFG_SIZE_BITS-1:0] cfg_size_t;\n"
           "  typedef logic [CFG_NDISP_BITS-1:0] cfg_ndisp_t;\n"
-          "  typedef logic [CFG_RADIUS_BITS-1:0] cfg_radius_t;\n";
+          "  typedef logic [CFG_RADIUS_BITS-1:0] cfg_radius_t;\n"
+          "  typedef logic signed [CFG_MIN_DISP_BITS-1:0] cfg_min_disp_t;\n"
+          "  typedef logic [CFG_UNIQUENESS_BITS-1:0] cfg_uniqueness_t;\n"
+          "  typedef logic [CFG_LR_TOLERANCE_BITS-1:0] cfg_lr_tolerance_t;\n";
     params({
         {"RGB_BITS", t::kRgbBits, "one RGB pixel"},
         {"IN_BEAT_BITS", t::kInBeatBits, "s_axis_tdata = {right RGB, left RGB}"},
@@ -103,15 +124,15 @@ std::string package_text() {
     });
     sv << "  typedef struct packed {\n"
           "    logic ["
-       << t::kOutPadBits - 1
-       << ":0] pad;  // zero\n"
-          "    logic valid;  // bit "
-       << t::kOutValidBit
-       << "\n"
-          "    logic [DISP_BITS-1:0] disparity;  // bits "
-       << fx::kDisparityBits - 1 << ":" << t::kOutDisparityLsb
-       << "\n"
-          "  } out_beat_t;\n";
+       << t::kOutCertaintyBits - 1 << ":0] certainty;  // bits " << t::kOutBeatBits - 1 << ":"
+       << t::kOutCertaintyLsb << ", every pixel\n    logic [" << t::kOutPadBits - 1
+       << ":0] pad;  // zero\n    logic [REASON_BITS-1:0] reason;  // bits "
+       << t::kOutReasonLsb + fx::kReasonBits - 1 << ":" << t::kOutReasonLsb
+       << ", REASON_*\n    logic signed [FIXED_BITS-1:0] fixed;  // bits " << t::kOutReasonLsb - 1
+       << ":" << t::kOutFixedLsb << ", disparity x 16, 0 where invalid\n  } out_beat_t;\n";
+    static_assert(
+        t::kOutFixedLsb == 0 && t::kOutCertaintyLsb + t::kOutCertaintyBits == t::kOutBeatBits,
+        "out_beat_t lists the fields from the top bit down");
     params({
         {"STATUS_BITS", t::kStatusBits, "sticky status bits:"},
         {"STATUS_EOL_MISPLACED", t::kStatusEolMisplaced, "tlast not at the row end"},
@@ -174,7 +195,8 @@ std::vector<std::pair<std::string, int>> assignments(const stereo::table::Params
                                                {"NDISP", params.ndisp},
                                                {"WINDOW", params.window},
                                                {"RUNTIME_KERNEL", params.runtime_kernel},
-                                               {"RULE", params.rule}};
+                                               {"RULE", params.rule},
+                                               {"MAX_MIN_DISP", params.max_min_disp}};
     for (const auto& [name, value] : all) {
         if (value != stereo::table::kUnset) {
             out.emplace_back(name, value);
@@ -230,8 +252,9 @@ std::string json_text() {
             << ", \"out_lane_bits\": " << stage.out_lane_bits
             << ", \"latency\": {\"radius_rows\": " << stage.rtl.radius_rows
             << ", \"rows\": " << stage.rtl.rows << ", \"radius_steps\": " << stage.rtl.radius_steps
-            << ", \"steps\": " << stage.rtl.steps << "}}" << (i + 1 < t::kStages.size() ? "," : "")
-            << '\n';
+            << ", \"steps\": " << stage.rtl.steps << ", \"ndisp_steps\": " << stage.rtl.ndisp_steps
+            << ", \"left_delay\": " << stage.rtl.left_delay << "}}"
+            << (i + 1 < t::kStages.size() ? "," : "") << '\n';
     }
     out << "  ],\n  \"lint\": [\n";
     for (std::size_t i = 0; i < t::kExtraLintConfigs.size(); ++i) {

@@ -389,6 +389,8 @@ def stage_breakdown(stat_path, modules_of_stages):
                   if submodule(cell, modules) is None}
                  if module_kind(name) in ("stereo_top", TOP) else {})
         key = stage or "glue"
+        if stage:  # a stage that synthesized to nothing is reported, with no cells
+            stages.setdefault(key, {})
         for cell, n in cells.items():
             stages.setdefault(key, {})
             stages[key][cell] = stages[key].get(cell, 0) + n

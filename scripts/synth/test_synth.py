@@ -34,6 +34,8 @@ STAT_WITH_LISTING = """
             "$paramod$dd\\\\stereo_ca_plane": 1,
             "$paramod$de\\\\stereo_ca_plane": 1,
             "$paramod$ee\\\\stereo_wta": 1,
+            "$paramod$ef\\\\stereo_validate": 1,
+            "$paramod$eg\\\\stereo_lr_check": 1,
             "FDRE": 7
          }
       },
@@ -52,7 +54,9 @@ STAT_WITH_LISTING = """
       },
       "$paramod$dd\\\\stereo_ca_plane": {"num_cells_by_type": {"LUT1": 1}},
       "$paramod$de\\\\stereo_ca_plane": {"num_cells_by_type": {"LUT1": 1}},
-      "$paramod$ee\\\\stereo_wta": {"num_cells_by_type": {"FDRE": 1}}
+      "$paramod$ee\\\\stereo_wta": {"num_cells_by_type": {"FDRE": 1}},
+      "$paramod$ef\\\\stereo_validate": {"num_cells_by_type": {}},
+      "$paramod$eg\\\\stereo_lr_check": {"num_cells_by_type": {}}
    },
        \\stereo_synth_top      1
          $paramod$aa\\stereo_top      1
@@ -72,6 +76,8 @@ STAGE_LISTINGS = {
     "ca_rule1": "$paramod$dd\\stereo_ca_plane/clk\n",
     "ca_rule2": "$paramod$de\\stereo_ca_plane/clk\n",
     "wta": "$paramod$ee\\stereo_wta/clk\n",
+    "validate": "$paramod$ef\\stereo_validate/clk\n",
+    "lr_check": "$paramod$eg\\stereo_lr_check/clk\n",
 }
 
 
@@ -87,7 +93,7 @@ class StatParsing(unittest.TestCase):
     def test_interleaved_listing_is_dropped(self):
         data = synth.load_stat_json(self.stat)
         self.assertIn("design", data)
-        self.assertEqual(len(data["modules"]), 8)
+        self.assertEqual(len(data["modules"]), 10)
 
     def test_hierarchy_totals_multiply_instances(self):
         modules = synth.load_stat_json(self.stat)["modules"]

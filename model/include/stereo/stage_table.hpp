@@ -46,6 +46,20 @@ inline constexpr int kTapBits = fx::kKernelBits + 1;
 inline constexpr int kCfgSizeBits = 16;   // cfg_width, cfg_height
 inline constexpr int kCfgNdispBits = 9;   // cfg_ndisp, 1 .. 256
 inline constexpr int kCfgRadiusBits = 5;  // cfg_radius, 0 .. kMaxWindow / 2
+// Stage 6's configuration ports: cfg_min_disp (signed, |value| <= the core's MAX_MIN_DISP, else
+// clamped), cfg_uniqueness (U, 0 .. fx::kMaxUniqueness percent), cfg_lr_tolerance (T, 0 ..
+// fx::kMaxLrTolerance labels), each beside an enable bit (cfg_uniqueness_en, cfg_lr_en,
+// cfg_subpixel_en).
+inline constexpr int kCfgMinDispBits = 12;
+inline constexpr int kCfgUniquenessBits = 8;
+inline constexpr int kCfgLrToleranceBits = 8;
+static_assert((1 << (kCfgMinDispBits - 1)) > fx::kMaxMinDisparity);
+static_assert((1 << kCfgUniquenessBits) > fx::kMaxUniqueness);
+static_assert((1 << kCfgLrToleranceBits) > fx::kMaxLrTolerance);
+// The default of stereo_top's MAX_MIN_DISP, the largest |cfg_min_disp| the core takes: it sizes
+// the cost stage's delay lines (MAX_MIN_DISP more right pixels, MAX_MIN_DISP left pixels).
+inline constexpr int kDefaultMaxMinDisp = 8;
+static_assert(kDefaultMaxMinDisp <= fx::kMaxMinDisparity);
 static_assert((1 << kCfgNdispBits) > fx::kMaxDisparities);
 static_assert((1 << kCfgRadiusBits) > fx::kMaxWindow / 2);
 static_assert((1 << kCfgSizeBits) > kMaxFrameSide);
@@ -54,11 +68,17 @@ inline constexpr int kRgbBits = fx::kChannels * fx::kPixelBits;  // 24
 inline constexpr int kInBeatBits = 2 * kRgbBits;                 // 48
 inline constexpr int kInLeftLsb = 0;
 inline constexpr int kInRightLsb = kRgbBits;
-// Output beat: {padding, valid, disparity}.
-inline constexpr int kOutBeatBits = 16;
-inline constexpr int kOutDisparityLsb = 0;
-inline constexpr int kOutValidBit = fx::kDisparityBits;  // 8
-inline constexpr int kOutPadBits = kOutBeatBits - fx::kDisparityBits - 1;
+// Output beat (stage 6, stereo::ValidatedDisparity of one pixel), 32 bits:
+//   [15:0]  fixed disparity: signed, disparity x 16 (fx::kSubpixelScale), 0 where invalid
+//   [18:16] reason: fx::kReasonValid, kReasonBorder, kReasonUniqueness, kReasonLeftRight
+//   [23:19] zero
+//   [31:24] certainty, 0 .. 255, every pixel (border pixels too)
+inline constexpr int kOutBeatBits = 32;
+inline constexpr int kOutFixedLsb = 0;
+inline constexpr int kOutReasonLsb = kOutFixedLsb + fx::kFixedDisparityBits;  // 16
+inline constexpr int kOutCertaintyBits = fx::kCertaintyBits;
+inline constexpr int kOutCertaintyLsb = kOutBeatBits - kOutCertaintyBits;               // 24
+inline constexpr int kOutPadBits = kOutCertaintyLsb - kOutReasonLsb - fx::kReasonBits;  // 5
 static_assert(kOutPadBits >= 0);
 // Sticky status bits (stereo_top's status port; stereo_hls_top's return value).
 inline constexpr int kStatusEolMisplaced = 0;   // tlast not at the row end
@@ -67,16 +87,22 @@ inline constexpr int kStatusConfigClamped = 2;  // configuration out of range (c
 inline constexpr int kStatusBits = 3;
 
 // ---- The hardware stages, in pipeline order ------------------------------------------------
-// Latency of one stage in pixel steps, R = WINDOW/2 of the synthesised window, W = frame width:
-//   (radius_rows * R + rows) * W + radius_steps * R + steps
+// Latency of one stage in pixel steps, R = WINDOW/2 of the synthesised window, W = frame width,
+// N = NDISP of the synthesised core, K = max(0, -min_disp) (the cost stage delays the left pixel
+// by K steps for a negative minimum disparity):
+//   (radius_rows * R + rows) * W + radius_steps * R + steps + ndisp_steps * N + left_delay * K
 struct Latency {
     int radius_rows = 0;
     int rows = 0;
     int radius_steps = 0;
     int steps = 0;
-    constexpr int at(int width, int window) const {
+    int ndisp_steps = 0;
+    int left_delay = 0;
+    constexpr int at(int width, int window, int ndisp, int min_disp) const {
         const int radius = window / 2;
-        return (radius_rows * radius + rows) * width + radius_steps * radius + steps;
+        const int k = min_disp < 0 ? -min_disp : 0;
+        return (radius_rows * radius + rows) * width + radius_steps * radius + steps +
+               ndisp_steps * ndisp + left_delay * k;
     }
 };
 
@@ -91,31 +117,38 @@ struct Stage {
     int hls_fewer_steps;
 };
 
-inline constexpr std::array<Stage, 5> kStages = {{
-    {"cost", "stereo_cost", kInBeatBits, fx::kCostBits, {0, 0, 0, 1}, 0},
+inline constexpr std::array<Stage, 7> kStages = {{
+    {"cost", "stereo_cost", kInBeatBits, fx::kCostBits, {0, 0, 0, 1, 0, 1}, 0},
     {"aggregate", "stereo_aggregate", fx::kCostBits, fx::kAggBits, {1, 0, 1, 2}, 0},
     // The two CA rules are one module, stereo_ca_plane, with RULE = 1 and 2.
     {"ca_rule1", "stereo_ca_plane", fx::kAggBits, fx::kAggBits, {0, 1, 0, 3}, 1},
     {"ca_rule2", "stereo_ca_plane", fx::kAggBits, fx::kAggBits, {0, 1, 0, 3}, 1},
-    {"wta", "stereo_wta", fx::kAggBits, fx::kDisparityBits + 1, {0, 0, 0, 1}, 0},
+    // The winner (k1, C1, its neighbours' costs, the border rule with d = min_disp + k1) and
+    // the final cost vector, registered for the stages after it.
+    {"wta", "stereo_wta", fx::kAggBits, fx::kAggBits, {0, 0, 0, 1}, 0},
+    // Stage 6: the second cost C2 (a masked comparator tree) and the sub-pixel offset.
+    {"validate", "stereo_validate", fx::kAggBits, fx::kAggBits, {0, 0, 0, 1}, 0},
+    // Stage 6: certainty (divider), uniqueness, the left-right check along the DSI diagonal
+    // (NDISP - 1 steps of delay line) and the output register: N steps.
+    {"lr_check", "stereo_lr_check", fx::kAggBits, kOutBeatBits, {0, 0, 0, 0, 1}, 0},
 }};
 
 // Pixel steps from a pixel entering stereo_top's cost stage to its output beat:
-// (R + 2) * W + R + 10. stereo_top streams one frame in W*H + this many cycles without stalls
-// (checked by tb_stereo_top's Throughput test).
-constexpr int pipeline_latency(int width, int window) {
+// (R + 2) * W + R + 11 + N + K (N = NDISP, K = max(0, -min_disp)). stereo_top streams one frame
+// in W*H + this many cycles without stalls (checked by tb_stereo_top's Throughput test).
+constexpr int pipeline_latency(int width, int window, int ndisp, int min_disp = 0) {
     int steps = 0;
     for (const Stage& stage : kStages) {
-        steps += stage.rtl.at(width, window);
+        steps += stage.rtl.at(width, window, ndisp, min_disp);
     }
     return steps;
 }
 
-// The same for the HLS pipeline (stereo_hls_top): (R + 2) * W + R + 8.
-constexpr int hls_pipeline_latency(int width, int window) {
+// The same for the HLS pipeline (stereo_hls_top): (R + 2) * W + R + 9 + N + K.
+constexpr int hls_pipeline_latency(int width, int window, int ndisp, int min_disp = 0) {
     int steps = 0;
     for (const Stage& stage : kStages) {
-        steps += stage.rtl.at(width, window) - stage.hls_fewer_steps;
+        steps += stage.rtl.at(width, window, ndisp, min_disp) - stage.hls_fewer_steps;
     }
     return steps;
 }
@@ -124,9 +157,10 @@ constexpr int hls_pipeline_latency(int width, int window) {
 // The package first, then every module before its first user. One module per file, named after
 // it; the list of modules to lint is this list without the package.
 inline constexpr std::string_view kPackageFile = "fx_pkg.sv";
-inline constexpr std::array<std::string_view, 9> kRtlModules = {
-    "stereo_coord_reg", "stereo_line_buffer", "stereo_window3x3", "stereo_ca_plane",  "stereo_cost",
-    "stereo_aggregate", "stereo_wta",         "stereo_top",       "stereo_synth_top",
+inline constexpr std::array<std::string_view, 12> kRtlModules = {
+    "stereo_coord_reg", "stereo_line_buffer", "stereo_window3x3", "stereo_ca_plane",
+    "stereo_cost",      "stereo_aggregate",   "stereo_wta",       "stereo_divider",
+    "stereo_validate",  "stereo_lr_check",    "stereo_top",       "stereo_synth_top",
 };
 
 // ---- Verilated configurations (sim/verilated_configs.cmake) --------------------------------
@@ -138,7 +172,8 @@ struct Params {
     int ndisp = kUnset;
     int window = kUnset;
     int runtime_kernel = kUnset;
-    int rule = kUnset;  // stereo_ca_plane's RULE
+    int rule = kUnset;          // stereo_ca_plane's RULE
+    int max_min_disp = kUnset;  // stereo_top's and stereo_cost's MAX_MIN_DISP
 };
 
 struct VerilatedConfig {
@@ -151,7 +186,7 @@ struct VerilatedConfig {
 inline constexpr Params kSmall{64, 48, 16, 5, kUnset};  // the co-simulation point
 inline constexpr Params kFull{640, 480, 64, 11, kUnset};
 
-inline constexpr std::array<VerilatedConfig, 8> kVerilatedConfigs = {{
+inline constexpr std::array<VerilatedConfig, 10> kVerilatedConfigs = {{
     {"Vstereo_top_small", "stereo_top", kSmall, ""},
     {"Vstereo_cost", "stereo_cost", {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset}, ""},
     {"Vstereo_aggregate",
@@ -173,6 +208,8 @@ inline constexpr std::array<VerilatedConfig, 8> kVerilatedConfigs = {{
      {kSmall.width, kUnset, kSmall.ndisp, kUnset, kUnset, 2},
      ""},
     {"Vstereo_wta", "stereo_wta", {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset}, ""},
+    {"Vstereo_validate", "stereo_validate", {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset}, ""},
+    {"Vstereo_lr_check", "stereo_lr_check", {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset}, ""},
     // Its C++ takes minutes to compile: only with -DSTEREO_COSIM_FULL=ON.
     {"Vstereo_top_full", "stereo_top", kFull, "STEREO_COSIM_FULL"},
 }};
@@ -195,7 +232,11 @@ struct LintConfig {
     Params params;
 };
 
-inline constexpr std::array<LintConfig, 5> kExtraLintConfigs = {{
+inline constexpr std::array<LintConfig, 8> kExtraLintConfigs = {{
+    // Stage 6 with one label (no delay line, no neighbours) and with odd label counts.
+    {"stereo_lr_check", {kUnset, kUnset, 1, kUnset, kUnset}},
+    {"stereo_validate", {kUnset, kUnset, 3, kUnset, kUnset}},
+    {"stereo_top", {kUnset, kUnset, 1, 3, kUnset}},
     // The CA skeleton with the other rule.
     {"stereo_ca_plane", {kUnset, kUnset, kUnset, kUnset, kUnset, 2}},
     // The top at other shapes: a 3x3 window, odd label counts, and the full-size configuration.

@@ -1,11 +1,16 @@
-// cost: absolute-difference matching cost over RGB, all NDISP disparities of one pixel per step
-// (model: stereo::cost, docs/fixed-point.md stage 1; RTL: rtl/stereo_cost.sv).
+// cost: absolute-difference matching cost over RGB, all NDISP labels of one pixel per step, over
+// the signed range d = m + k (model: stereo::cost, docs/fixed-point.md stages 1 and 6; RTL:
+// rtl/stereo_cost.sv).
 //
-// The right pixels of the row pass through a delay line, so that at the step of left pixel x it
-// holds R(x-1) .. R(x-NDISP+1). Lane d is
-//   |Lr - Rr(x-d)| + |Lg - Rg(x-d)| + |Lb - Rb(x-d)|,  or fx::kCostOutside where x - d < 0,
-// decided from the coordinate alone, so the delay line is never cleared between rows or frames.
-// Latency: 1 pixel step (the output register).
+// The right pixels pass through continuous delay lines (across rows): one selection picks the
+// right pixel P = max(m, 0) steps old from a pre-delay line of MAX_MIN_DISP, and the lanes'
+// delay line of NDISP - 1 holds its history, so lane k reads the right pixel k + P positions
+// behind the newest. For a negative m the left pixel and its coordinates wait K = max(0, -m)
+// steps in a delay line of their own. Lane k is
+//   |Lr - Rr(xr)| + |Lg - Rg(xr)| + |Lb - Rb(xr)|,  xr = x - m - k,
+// or fx::kCostOutside where xr lies outside [0, W), decided from the coordinates alone, so no
+// delay line is ever cleared between rows or frames (only the left coordinates, by reset()).
+// Latency: 1 + K pixel steps.
 #pragma once
 
 #include "stereo/hls/stage_output.hpp"
@@ -13,40 +18,83 @@
 
 namespace stereo::hls {
 
-template <int NDISP>
+template <int NDISP, int MAX_MIN_DISP>
 class cost : public lane_output<cost_t, NDISP> {
     static_assert(NDISP >= 1 && NDISP <= fx::kMaxDisparities);
+    static_assert(MAX_MIN_DISP >= 0 && MAX_MIN_DISP <= fx::kMaxMinDisparity);
     using lane_output<cost_t, NDISP>::out_data_;
     using lane_output<cost_t, NDISP>::out_x_;
     using lane_output<cost_t, NDISP>::out_y_;
 
   public:
-    void step(coord_t in_x, coord_t in_y, const Rgb& left, const Rgb& right) {
+    cost() { reset(); }
+
+    // The delayed left pixels' coordinates to "no pixel", as the stage's own.
+    void reset() {
+        coord_output::reset();
+        for (int i = 0; i < kLeftDelay; ++i) {
+            left_x_[i] = 0;
+            left_y_[i] = kNoPixel;
+        }
+    }
+
+    void step(coord_t in_x, coord_t in_y, const Rgb& left, const Rgb& right, int width,
+              int min_disp) {
 #pragma HLS INLINE
 #pragma HLS ARRAY_PARTITION variable = history_ complete
+#pragma HLS ARRAY_PARTITION variable = pre_ complete
+#pragma HLS ARRAY_PARTITION variable = left_ complete
+#pragma HLS ARRAY_PARTITION variable = left_x_ complete
+#pragma HLS ARRAY_PARTITION variable = left_y_ complete
 #pragma HLS ARRAY_PARTITION variable = out_data_ complete
-        for (int d = 0; d < NDISP; ++d) {
-            const Rgb& match = d == 0 ? right : history_[d - 1];
-            out_data_[d] =
-                in_x - d < 0 ? static_cast<cost_t>(fx::kCostOutside) : rgb_cost(left, match);
+        const int wait = min_disp < 0 ? -min_disp : 0;  // K
+        const int skip = min_disp > 0 ? min_disp : 0;   // P
+        const Rgb matched = wait == 0 ? left : left_[wait - 1];
+        const coord_t x = wait == 0 ? in_x : left_x_[wait - 1];
+        const coord_t y = wait == 0 ? in_y : left_y_[wait - 1];
+        const Rgb selected = skip == 0 ? right : pre_[skip - 1];
+        for (int k = 0; k < NDISP; ++k) {
+            const Rgb& match = k == 0 ? selected : history_[k - 1];
+            const int right_x = x - min_disp - k;
+            out_data_[k] = right_x < 0 || right_x >= width ? static_cast<cost_t>(fx::kCostOutside)
+                                                           : rgb_cost(matched, match);
         }
         for (int i = kHistory - 1; i > 0; --i) {
             history_[i] = history_[i - 1];
         }
-        history_[0] = right;
-        out_x_ = in_x;
-        out_y_ = in_y;
+        history_[0] = selected;
+        for (int i = kPreDelay - 1; i > 0; --i) {
+            pre_[i] = pre_[i - 1];
+        }
+        pre_[0] = right;
+        for (int i = kLeftDelay - 1; i > 0; --i) {
+            left_[i] = left_[i - 1];
+            left_x_[i] = left_x_[i - 1];
+            left_y_[i] = left_y_[i - 1];
+        }
+        left_[0] = left;
+        left_x_[0] = in_x;
+        left_y_[0] = in_y;
+        out_x_ = x;
+        out_y_ = y;
     }
 
   private:
-    static constexpr int kHistory = NDISP > 1 ? NDISP - 1 : 1;  // right pixels besides this one
+    // The lanes' right history, the right pre-delay line, the left pixels kept.
+    static constexpr int kHistory = NDISP > 1 ? NDISP - 1 : 1;
+    static constexpr int kPreDelay = MAX_MIN_DISP > 0 ? MAX_MIN_DISP : 1;
+    static constexpr int kLeftDelay = MAX_MIN_DISP > 0 ? MAX_MIN_DISP : 1;
 
     static cost_t rgb_cost(const Rgb& a, const Rgb& b) {
         const auto diff = [](int p, int q) { return p >= q ? p - q : q - p; };
         return static_cast<cost_t>(diff(a.r, b.r) + diff(a.g, b.g) + diff(a.b, b.b));
     }
 
-    Rgb history_[kHistory] = {};  // history_[i] = R(x-1-i) at the step of pixel x
+    Rgb history_[kHistory] = {};  // history_[i]: the selected right pixel i + 1 steps ago
+    Rgb pre_[kPreDelay] = {};     // pre_[i]: the right pixel i + 1 steps before the newest
+    Rgb left_[kLeftDelay] = {};   // left_[i]: the left pixel i + 1 steps ago, and its place
+    coord_t left_x_[kLeftDelay] = {};
+    coord_t left_y_[kLeftDelay] = {};
 };
 
 }  // namespace stereo::hls

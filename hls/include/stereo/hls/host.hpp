@@ -32,6 +32,12 @@ FrameConfig<WINDOW> frame_config(const MatchParams& params, int width, int heigh
     cfg.ndisp = params.ndisp;
     cfg.radius = params.window / 2;
     cfg.use_ca = params.use_ca;
+    cfg.min_disp = params.min_disp;
+    cfg.uniqueness = params.validation.uniqueness;
+    cfg.uniqueness_ratio = params.validation.uniqueness_ratio;
+    cfg.left_right = params.validation.left_right;
+    cfg.lr_tolerance = params.validation.lr_tolerance;
+    cfg.subpixel = params.validation.subpixel;
     const int first = (WINDOW - params.window) / 2;
     for (std::size_t i = 0; i < taps.size(); ++i) {
         cfg.kernel[first + static_cast<int>(i)] = static_cast<tap_t>(taps[i]);
@@ -62,8 +68,8 @@ inline void push_frame(const Image& left, const Image& right, stream<InputBeat>&
 
 // Reads one frame of width*height beats; throws std::logic_error when a beat is missing or
 // its sof/eol framing is wrong.
-inline DisparityMap collect_frame(stream<OutputBeat>& out, int width, int height) {
-    DisparityMap map(width, height);
+inline ValidatedDisparity collect_validated(stream<OutputBeat>& out, int width, int height) {
+    ValidatedDisparity map(width, height);
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
             if (out.empty()) {
@@ -76,11 +82,17 @@ inline DisparityMap collect_frame(stream<OutputBeat>& out, int width, int height
                                        ", " + std::to_string(y) + ")");
             }
             const std::size_t i = map.index(x, y);
-            map.disparity[i] = beat.disparity;
-            map.valid[i] = beat.valid ? 1 : 0;
+            map.fixed[i] = beat.result.fixed;
+            map.reason[i] = beat.result.reason;
+            map.certainty[i] = beat.result.certainty;
         }
     }
     return map;
+}
+
+// Its 8-bit view (stereo::to_label_map).
+inline DisparityMap collect_frame(stream<OutputBeat>& out, int width, int height) {
+    return to_label_map(collect_validated(out, width, height));
 }
 
 }  // namespace stereo::hls

@@ -1,5 +1,6 @@
-// stereo::hls::match: the HLS kernels in C simulation on a whole image pair, bit-exact with
-// stereo::match. The host wrapper behind `stereo match --engine hls`.
+// stereo::hls::match_validated: the HLS kernels in C simulation on a whole image pair, bit-exact
+// with stereo::match_validated (stage 6 included). The host wrapper behind
+// `stereo match --engine hls`.
 #pragma once
 
 #include "stereo/image.hpp"
@@ -11,6 +12,8 @@ namespace stereo::hls {
 // Largest frame the compiled variants take (the line buffers are this many columns wide).
 inline constexpr int kHostMaxWidth = 4096;
 inline constexpr int kHostMaxHeight = 4096;
+// Largest |min_disp| the compiled variants take (MAX_MIN_DISP: the cost stage's delay lines).
+inline constexpr int kHostMaxMinDisp = 64;
 
 // Template parameters of a compiled stereo_hls_top variant.
 struct Variant {
@@ -25,8 +28,12 @@ struct Variant {
 // parameters no variant covers.
 Variant variant_for(const MatchParams& params);
 
-// Validates like stereo::match (same exceptions), then streams the pair through the variant's
-// stereo_hls_top and returns its output. The stage objects live on the heap for the call.
+// Validates like stereo::match (same exceptions, and |min_disp| <= kHostMaxMinDisp), then streams
+// the pair through the variant's stereo_hls_top and returns its output. The stage objects live
+// on the heap for the call.
+ValidatedDisparity match_validated(const Image& left, const Image& right,
+                                   const MatchParams& params);
+// Its 8-bit view, stereo::to_label_map(match_validated(...)).
 DisparityMap match(const Image& left, const Image& right, const MatchParams& params);
 
 // Registers method "pipeline", engine "hls".

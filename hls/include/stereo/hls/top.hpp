@@ -1,11 +1,12 @@
 // stereo_hls_top: the whole pipeline as one streaming loop, one pixel step per iteration
 // (RTL: rtl/stereo_top.sv; architecture in docs/rtl.md).
 //
-// `pipeline` holds the five stages, each a small object with its line buffers and registers;
+// `pipeline` holds the seven stages, each a small object with its line buffers and registers;
 // stereo_hls_top runs one frame through them: W*H iterations that read one input beat each,
 // then flush iterations that push zero pixels whose coordinates continue the raster, until the
-// frame's last result has entered the WTA's register. Every iteration that leaves a frame pixel
-// in that register writes one output beat, so exactly W*H beats come out, in raster order.
+// frame's last result has entered the output register (stage 6's lr_check). Every iteration that
+// leaves a frame pixel in that register writes one output beat, so exactly W*H beats come out, in
+// raster order.
 //
 // As in the RTL, every stage carries the coordinates of its data and decides zero padding from
 // them, so nothing is cleared between frames: the stage objects keep their RAM contents, only
@@ -17,6 +18,7 @@
 #include "stereo/hls/cost.hpp"
 #include "stereo/hls/stream.hpp"
 #include "stereo/hls/types.hpp"
+#include "stereo/hls/validate.hpp"
 #include "stereo/hls/wta.hpp"
 
 namespace stereo::hls {
@@ -26,27 +28,28 @@ inline constexpr status_t kStatusEolMisplaced = 1U << table::kStatusEolMisplaced
 inline constexpr status_t kStatusSofMisplaced = 1U << table::kStatusSofMisplaced;
 inline constexpr status_t kStatusConfigClamped = 1U << table::kStatusConfigClamped;
 
-// Pixel steps from a pixel entering the cost stage to its result leaving the WTA register, R =
-// WINDOW/2 of the synthesised window: the stage table's table::hls_pipeline_latency, (R + 2) * W
-// + R + 8 (the RTL's CA rules take one step more each: their windows have an input register for
-// Fmax, hls/README.md).
-template <int WINDOW>
-constexpr int pipeline_delay(int width) {
-    return table::hls_pipeline_latency(width, WINDOW);
+// Pixel steps from a pixel entering the cost stage to its result leaving the output register
+// (stage 6's lr_check), R = WINDOW/2 of the synthesised window, N = NDISP, K = max(0, -min_disp):
+// the stage table's table::hls_pipeline_latency, (R + 2) * W + R + 9 + N + K (the RTL's CA rules
+// take one step more each: their windows have an input register for Fmax, hls/README.md).
+template <int NDISP, int WINDOW>
+constexpr int pipeline_delay(int width, int min_disp = 0) {
+    return table::hls_pipeline_latency(width, WINDOW, NDISP, min_disp);
 }
 
 // Iterations of one frame: the pixels, then the flush. The result of the last pixel is in the
-// WTA register after its own step plus pipeline_delay - 1 more (the RTL's D counts the output
-// beat's cycle too).
-template <int WINDOW>
-constexpr int frame_steps(int width, int height) {
-    return width * height + pipeline_delay<WINDOW>(width) - 1;
+// output register after its own step plus pipeline_delay - 1 more (the RTL's D counts the
+// output beat's cycle too).
+template <int NDISP, int WINDOW>
+constexpr int frame_steps(int width, int height, int min_disp = 0) {
+    return width * height + pipeline_delay<NDISP, WINDOW>(width, min_disp) - 1;
 }
 
 // The state of stereo_hls_top: the stages of rtl/stereo_top.sv. Large (the line buffers are
 // WIDTH columns of whole disparity columns): a static object in a synthesis top, a heap object
 // in C-simulation hosts.
-template <int WIDTH, int HEIGHT, int NDISP, int WINDOW>
+template <int WIDTH, int HEIGHT, int NDISP, int WINDOW,
+          int MAX_MIN_DISP = table::kDefaultMaxMinDisp>
 class pipeline {
     static_assert(WIDTH >= 1 && WIDTH <= kMaxFrameSide && HEIGHT >= 1 && HEIGHT <= kMaxFrameSide);
 
@@ -55,6 +58,7 @@ class pipeline {
     static constexpr int kHeight = HEIGHT;
     static constexpr int kNdisp = NDISP;
     static constexpr int kWindow = WINDOW;
+    static constexpr int kMaxMinDisp = MAX_MIN_DISP;
 
     // Every stage's coordinate registers to "no pixel"; data registers and RAMs keep their
     // contents (stale data is masked by coordinates).
@@ -64,6 +68,8 @@ class pipeline {
         rule1_.reset();
         rule2_.reset();
         wta_.reset();
+        validate_.reset();
+        lr_check_.reset();
     }
 
     // One pixel step of every stage with the pixel pair of raster position (x, y). The stages
@@ -72,42 +78,44 @@ class pipeline {
     void step(coord_t x, coord_t y, const Rgb& left, const Rgb& right,
               const FrameConfig<WINDOW>& cfg) {
 #pragma HLS INLINE
+        lr_check_.step(wta_, validate_, cfg.width, cfg.height, cfg.ndisp, cfg.min_disp,
+                       cfg.uniqueness, cfg.uniqueness_ratio, cfg.left_right, cfg.lr_tolerance);
+        validate_.step(wta_, cfg.ndisp, cfg.min_disp, cfg.subpixel);
         wta_.step(rule2_.out_x(), rule2_.out_y(), rule2_.out_data(), cfg.width, cfg.height,
-                  cfg.ndisp, cfg.radius, cfg.use_ca);
+                  cfg.ndisp, cfg.radius, cfg.use_ca, cfg.min_disp);
         rule2_.step(rule1_.out_x(), rule1_.out_y(), rule1_.out_data(), cfg.width, cfg.height,
                     cfg.ndisp, cfg.use_ca);
         rule1_.step(aggregate_.out_x(), aggregate_.out_y(), aggregate_.out_data(), cfg.width,
                     cfg.height, cfg.ndisp, cfg.use_ca);
         aggregate_.step(cost_.out_x(), cost_.out_y(), cost_.out_data(), cfg.width, cfg.height,
                         cfg.kernel);
-        cost_.step(x, y, left, right);
+        cost_.step(x, y, left, right, cfg.width, cfg.min_disp);
     }
 
-    // The WTA register, which is the output register.
+    // lr_check's register, which is the output register.
     coord_t out_x() const {
-        return wta_.out_x();
+        return lr_check_.out_x();
     }
     coord_t out_y() const {
-        return wta_.out_y();
+        return lr_check_.out_y();
     }
-    disparity_t out_disparity() const {
-        return wta_.out_disparity();
-    }
-    bool out_valid() const {
-        return wta_.out_valid();
+    const Validated& out() const {
+        return lr_check_.out();
     }
 
   private:
-    cost<NDISP> cost_;
+    cost<NDISP, MAX_MIN_DISP> cost_;
     aggregate<WIDTH, NDISP, WINDOW> aggregate_;
     ca_rule1<WIDTH, NDISP> rule1_;
     ca_rule2<WIDTH, NDISP> rule2_;
     wta<NDISP> wta_;
+    validate_stage<NDISP> validate_;
+    lr_check<NDISP> lr_check_;
 };
 
 // The configuration as the stages will use it: out-of-range values clamped as the RTL does
 // (size 0 or above the maximum becomes the maximum), with kStatusConfigClamped set.
-template <int WIDTH, int HEIGHT, int NDISP, int WINDOW>
+template <int WIDTH, int HEIGHT, int NDISP, int WINDOW, int MAX_MIN_DISP>
 FrameConfig<WINDOW> sanitise(const FrameConfig<WINDOW>& requested, status_t& status) {
 #pragma HLS INLINE
     FrameConfig<WINDOW> cfg = requested;
@@ -121,23 +129,32 @@ FrameConfig<WINDOW> sanitise(const FrameConfig<WINDOW>& requested, status_t& sta
     clamp(cfg.height, 1, HEIGHT);
     clamp(cfg.ndisp, 1, NDISP);
     clamp(cfg.radius, 0, WINDOW / 2);
+    // The minimum disparity to the nearer end of +-MAX_MIN_DISP; the ratio and the tolerance
+    // are 8-bit ports in the RTL, which hold every value of their range.
+    if (cfg.min_disp > MAX_MIN_DISP || cfg.min_disp < -MAX_MIN_DISP) {
+        cfg.min_disp = cfg.min_disp > 0 ? MAX_MIN_DISP : -MAX_MIN_DISP;
+        status |= kStatusConfigClamped;
+    }
+    cfg.uniqueness_ratio &= (1 << table::kCfgUniquenessBits) - 1;
+    cfg.lr_tolerance &= (1 << table::kCfgLrToleranceBits) - 1;
     return cfg;
 }
 
 // One frame: cfg.width * cfg.height beats from `in`, as many to `out`. Returns the status bits.
 // Unlike the RTL, which drops beats until a start of frame, a call reads exactly one frame's
 // beats; misplaced sof/eol flags are reported, not resynchronised on.
-template <int WIDTH, int HEIGHT, int NDISP, int WINDOW>
+template <int WIDTH, int HEIGHT, int NDISP, int WINDOW, int MAX_MIN_DISP>
 status_t stereo_hls_top(stream<InputBeat>& in, stream<OutputBeat>& out,
                         const FrameConfig<WINDOW>& requested,
-                        pipeline<WIDTH, HEIGHT, NDISP, WINDOW>& state) {
+                        pipeline<WIDTH, HEIGHT, NDISP, WINDOW, MAX_MIN_DISP>& state) {
 #pragma HLS INLINE
-    constexpr int kMaxSteps = frame_steps<WINDOW>(WIDTH, HEIGHT);
+    constexpr int kMaxSteps = frame_steps<NDISP, WINDOW>(WIDTH, HEIGHT, -MAX_MIN_DISP);
     status_t status = 0;
-    const FrameConfig<WINDOW> cfg = sanitise<WIDTH, HEIGHT, NDISP>(requested, status);
+    const FrameConfig<WINDOW> cfg =
+        sanitise<WIDTH, HEIGHT, NDISP, WINDOW, MAX_MIN_DISP>(requested, status);
     state.reset();
     const int pixels = cfg.width * cfg.height;
-    const int steps = frame_steps<WINDOW>(cfg.width, cfg.height);
+    const int steps = frame_steps<NDISP, WINDOW>(cfg.width, cfg.height, cfg.min_disp);
     int x = 0;  // raster position of this step's input; y >= height while flushing
     int y = 0;
 frame_loop:
@@ -161,8 +178,7 @@ frame_loop:
         const int out_y = state.out_y();
         if (inside(out_x, out_y, cfg.width, cfg.height)) {
             OutputBeat result;
-            result.disparity = state.out_disparity();
-            result.valid = state.out_valid();
+            result.result = state.out();
             result.sof = out_x == 0 && out_y == 0;
             result.eol = out_x == cfg.width - 1;
             out.write(result);

@@ -28,6 +28,9 @@ using disparity_t = std::uint8_t;  // fx::kDisparityBits
 using ndisp_t = std::uint16_t;     // a label count 1 .. fx::kMaxDisparities (9 bits)
 using coord_t = std::int16_t;      // pixel coordinates, signed 16 bits as in the RTL
 using status_t = std::uint8_t;     // sticky error bits of one frame (see top.hpp)
+using fixed_t = std::int16_t;      // signed disparity x 16: fx::kFixedDisparityBits
+using certainty_t = std::uint8_t;  // fx::kCertaintyBits
+using reason_t = std::uint8_t;     // fx::kReasonBits
 
 template <typename T>
 constexpr bool holds_bits(int bits) {
@@ -47,6 +50,9 @@ static_assert(holds_bits<ca_sum_t>(fx::kCaSumBits));
 static_assert(holds_bits<product_t>(32));
 static_assert(holds_bits<disparity_t>(fx::kDisparityBits));
 static_assert(fx::kMaxDisparities <= std::numeric_limits<ndisp_t>::max());
+static_assert(std::numeric_limits<fixed_t>::digits + 1 >= fx::kFixedDisparityBits);
+static_assert(holds_bits<certainty_t>(fx::kCertaintyBits));
+static_assert(holds_bits<reason_t>(fx::kReasonBits));
 
 // Coordinates of "no pixel" and the largest frame side: the stage table's (stage_table.hpp).
 inline constexpr coord_t kNoPixel = table::kNoPixel;
@@ -57,6 +63,15 @@ static_assert(holds_bits<std::make_unsigned_t<coord_t>>(table::kCoordBits));
 // in C++20).
 inline coord_t to_coord(int value) {
     return static_cast<coord_t>(value);
+}
+
+// Leaves of a comparator tree over n lanes: the next power of two (wta, validate_stage).
+constexpr int tree_leaves(int n) {
+    int count = 1;
+    while (count < n) {
+        count *= 2;
+    }
+    return count;
 }
 
 inline bool inside(int x, int y, int width, int height) {
@@ -78,10 +93,17 @@ struct InputBeat {
     bool eol = false;
 };
 
-// One output beat per input pixel: the disparity (fx::kInvalidDisparity where not valid).
+// Stage 6's output for one pixel, the RTL's out_beat_t (stage_table.hpp): the signed disparity
+// x 16 (0 where invalid), why it is invalid (fx::kReason*), the certainty (every pixel).
+struct Validated {
+    fixed_t fixed = 0;
+    reason_t reason = fx::kReasonBorder;
+    certainty_t certainty = 0;
+};
+
+// One output beat per input pixel.
 struct OutputBeat {
-    disparity_t disparity = 0;
-    bool valid = false;
+    Validated result;
     bool sof = false;
     bool eol = false;
 };
@@ -97,6 +119,13 @@ struct FrameConfig {
     int radius = 0;             // 0 .. WINDOW/2
     tap_t kernel[WINDOW] = {};  // non-negative, summing to fx::kKernelSum
     bool use_ca = true;         // apply CA rules 1 and 2
+    // Stage 6 (docs/fixed-point.md): d = min_disp + label, |min_disp| <= the top's MAX_MIN_DISP.
+    int min_disp = 0;
+    bool uniqueness = false;   // invalid when C1 (100 + ratio) >= C2 100
+    int uniqueness_ratio = 0;  // 0 .. fx::kMaxUniqueness
+    bool left_right = false;   // invalid when |k1 - kR(x - d)| > lr_tolerance
+    int lr_tolerance = 0;      // 0 .. fx::kMaxLrTolerance
+    bool subpixel = false;     // parabola through the costs at k1 - 1, k1, k1 + 1
 };
 
 }  // namespace stereo::hls

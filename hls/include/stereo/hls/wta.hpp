@@ -1,11 +1,13 @@
-// wta: winner takes all and the validity flag, one pixel per step
-// (model: stereo::wta, docs/fixed-point.md stage 5; RTL: rtl/stereo_wta.sv).
+// wta: winner takes all and the border rule, one pixel per step (model: stereo::wta and the
+// winner of stereo::ValidatingSelector, docs/fixed-point.md stages 5 and 6; RTL:
+// rtl/stereo_wta.sv).
 //
 // A comparator tree over the NDISP lanes finds the smallest value; on equal values the left
-// (smaller d) input wins, so ties go to the smallest d. Lanes d >= ndisp take no part. The pixel
-// is valid when its window stays inside the frame and its winner's right-image samples do too:
-//   reach <= x < W - reach,  reach <= y < H - reach,  x - d >= reach,
-// reach = radius + (use_ca ? 1 : 0). Invalid pixels output fx::kInvalidDisparity.
+// (smaller k) input wins, so ties go to the smallest label. Lanes k >= ndisp take no part. Label
+// k stands for d = min_disp + k; the pixel passes the border rule when
+//   reach <= x < W - reach,  reach <= y < H - reach,  reach <= x - d < W - reach,
+// reach = radius + (use_ca ? 1 : 0). Registered for stage 6: the winner k1 whatever the border
+// says, C1, the costs at k1 - 1 and k1 + 1, the border flag and the cost vector.
 // Latency: 1 pixel step.
 #pragma once
 
@@ -15,17 +17,13 @@
 namespace stereo::hls {
 
 template <int NDISP>
-class wta : public coord_output {
+class wta : public lane_output<agg_t, NDISP> {
     static_assert(NDISP >= 1 && NDISP <= fx::kMaxDisparities);
+    using lane_output<agg_t, NDISP>::out_data_;
+    using lane_output<agg_t, NDISP>::out_x_;
+    using lane_output<agg_t, NDISP>::out_y_;
 
-    static constexpr int leaves(int n) {
-        int count = 1;
-        while (count < n) {
-            count *= 2;
-        }
-        return count;
-    }
-    static constexpr int kLeaves = leaves(NDISP);
+    static constexpr int kLeaves = tree_leaves(NDISP);
     // Absent labels carry a code above any aggregate: they never win.
     static constexpr agg_t kAbsent = (1 << fx::kAggBits) - 1;
     static_assert(kAbsent > fx::kAggMax);
@@ -34,8 +32,9 @@ class wta : public coord_output {
     using Lanes = agg_t[NDISP];
 
     void step(coord_t in_x, coord_t in_y, const Lanes& in, int width, int height, int ndisp,
-              int radius, bool use_ca) {
+              int radius, bool use_ca, int min_disp) {
 #pragma HLS INLINE
+#pragma HLS ARRAY_PARTITION variable = out_data_ complete
         agg_t value[kLeaves];
         disparity_t label[kLeaves];
 #pragma HLS ARRAY_PARTITION variable = value complete
@@ -55,24 +54,49 @@ class wta : public coord_output {
         }
         const int winner = label[0];
         const int reach = radius + (use_ca ? 1 : 0);
-        const bool valid = in_x >= reach && in_x < width - reach && in_y >= reach &&
-                           in_y < height - reach && in_x - winner >= reach;
-        out_disparity_ = static_cast<disparity_t>(valid ? winner : fx::kInvalidDisparity);
-        out_valid_ = valid;
+        const int right_x = in_x - min_disp - winner;
+        out_border_ = in_x >= reach && in_x < width - reach && in_y >= reach &&
+                      in_y < height - reach && right_x >= reach && right_x < width - reach;
+        out_label_ = static_cast<disparity_t>(winner);
+        out_cost_ = value[0];
+        out_before_ = winner > 0 ? in[winner - 1] : 0;
+        out_after_ = winner + 1 < NDISP ? in[winner + 1] : 0;
+        for (int k = 0; k < NDISP; ++k) {
+            out_data_[k] = in[k];
+        }
         out_x_ = in_x;
         out_y_ = in_y;
     }
 
+    disparity_t out_label() const {
+        return out_label_;
+    }
+    bool out_border() const {
+        return out_border_;
+    }
+    agg_t out_cost() const {
+        return out_cost_;
+    }
+    agg_t out_before() const {
+        return out_before_;
+    }
+    agg_t out_after() const {
+        return out_after_;
+    }
+    // Stage 5's view: the winner where the border rule holds, else fx::kInvalidDisparity.
     disparity_t out_disparity() const {
-        return out_disparity_;
+        return out_border_ ? out_label_ : static_cast<disparity_t>(fx::kInvalidDisparity);
     }
     bool out_valid() const {
-        return out_valid_;
+        return out_border_;
     }
 
   private:
-    disparity_t out_disparity_ = 0;
-    bool out_valid_ = false;
+    disparity_t out_label_ = 0;
+    bool out_border_ = false;
+    agg_t out_cost_ = 0;
+    agg_t out_before_ = 0;
+    agg_t out_after_ = 0;
 };
 
 }  // namespace stereo::hls
