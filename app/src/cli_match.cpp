@@ -109,9 +109,11 @@ void run_match(const MatchOptions& options) {
         for (char& c : extension) {
             c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
         }
-        if (extension != ".png" && extension != ".pfm") {
-            throw std::invalid_argument("-o must name a .png or .pfm file, got '" + options.output +
-                                        "'");
+        // No extension is a PNG, as before; a folder or device fails the file checks (exit 1).
+        if (!extension.empty() && extension != ".png" && extension != ".pfm") {
+            throw std::invalid_argument(
+                "-o must name a .png or .pfm file (or have no extension), got '" + options.output +
+                "'");
         }
     }
     if (output_encoding != io::DisparityEncoding::scaled && method != "pipeline") {
