@@ -93,8 +93,7 @@ TEST_P(RandomPairs, EveryPixelEqualsTheModel) {
     const RandomCase c = GetParam();
     const std::uint32_t seed = tb::test_seed();
     std::mt19937 rng(seed);
-    const Image left = test::random_image(c.width, c.height, 3, rng);
-    const Image right = test::shifted_copy(left, 3, 25, rng);
+    const auto [left, right] = test::shifted_pair(c.width, c.height, 3, 3, 25, rng);
     const MatchParams params{c.ndisp, c.window, fx::kDefaultSigma, c.use_ca};
     Cosim cosim;
     const ValidatedDisparity rtl = cosim.run(left, right, params, {c.gap, c.stall, seed});
@@ -147,8 +146,7 @@ TEST_P(Stage6Pairs, EveryPixelEqualsTheModel) {
     const Stage6Case c = GetParam();
     const std::uint32_t seed = tb::test_seed();
     std::mt19937 rng(seed);
-    const Image left = test::random_image(c.width, c.height, 3, rng);
-    const Image right = test::shifted_copy(left, c.shift, 25, rng);
+    const auto [left, right] = test::shifted_pair(c.width, c.height, 3, c.shift, 25, rng);
     const MatchParams params = stage6_params(c);
     Cosim cosim;
     const ValidatedDisparity model = expected(left, right, params);
