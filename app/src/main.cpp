@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
     stereo::cli::add_fis_command(app);
     stereo::cli::add_avoid_command(app);
     stereo::cli::add_distort_command(app);
+    stereo::cli::add_relight_command(app);
     stereo::cli::add_slam_command(app);
     return stereo::cli::run(app, argc, argv);
 }

@@ -11,5 +11,6 @@ namespace stereo::experiments {
 void add_hierarchical_eval_command(CLI::App& app);  // docs/results-hierarchical.md
 void add_sigma_sweep_command(CLI::App& app);        // docs/sigma-sweep.md
 void add_avoid_figures_command(CLI::App& app);      // docs/avoidance.md
+void add_illumination_command(CLI::App& app);       // docs/results-illumination.md
 
 }  // namespace stereo::experiments

@@ -11,5 +11,6 @@ int main(int argc, char** argv) {
     stereo::experiments::add_hierarchical_eval_command(app);
     stereo::experiments::add_sigma_sweep_command(app);
     stereo::experiments::add_avoid_figures_command(app);
+    stereo::experiments::add_illumination_command(app);
     return stereo::cli::run(app, argc, argv);
 }
