@@ -35,7 +35,7 @@ inline constexpr int kHueCount = 6 * kHueSteps;  // 1536 entries per table
 inline constexpr int kTrigBits = 12;
 // Floor of the saturation denominator min(L2, 510 - L2) (chosen in docs/results-illumination.md
 // by the mean over the four Middlebury 2003 pairs and the lightness sweep, not one scene).
-inline constexpr int kDarkFloor = 32;
+inline constexpr int kDarkFloor = 8;
 inline constexpr int kLightSum = 2 * fx::kPixelMax;  // 510: L2 of white
 
 // Widths (docs/fixed-point.md): a, b in kCoordBits signed bits; the squared distance in
