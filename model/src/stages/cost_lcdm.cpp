@@ -5,6 +5,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "stereo/stages.hpp"
 #include "stereo/stages/lcdm.hpp"
@@ -125,6 +126,18 @@ double cost(int r1, int g1, int b1, int r2, int g2, int b2, int dark_floor) {
 namespace {
 
 // The converted image: a + kRadius and b + kRadius (11 bits each) as low and high bytes.
+// The (a, b) coordinates of `count` pixels of row y from column x0 (offset by kRadius removed).
+void unpack(const PlanarImage& image, int y, int x0, int count, int* a, int* b) {
+    const std::uint8_t* a_lo = image.row(0, y) + x0;
+    const std::uint8_t* a_hi = image.row(1, y) + x0;
+    const std::uint8_t* b_lo = image.row(2, y) + x0;
+    const std::uint8_t* b_hi = image.row(3, y) + x0;
+    for (int n = 0; n < count; ++n) {
+        a[n] = a_lo[n] + (a_hi[n] << 8) - lcdm::kRadius;
+        b[n] = b_lo[n] + (b_hi[n] << 8) - lcdm::kRadius;
+    }
+}
+
 class LcdmCost final : public CostFunction {
   public:
     explicit LcdmCost(int dark_floor) : dark_floor_(dark_floor) {}
@@ -148,17 +161,23 @@ class LcdmCost final : public CostFunction {
 
     void row(const PlanarImage& left, const PlanarImage& right, int y, int yr, int x0, int count,
              int shift, CostValue* out) const override {
-        const auto point = [](const PlanarImage& image, int y_, int x) {
-            const auto coordinate = [&](int plane) {
-                return image.row(plane, y_)[x] + (image.row(plane + 1, y_)[x] << 8) - lcdm::kRadius;
-            };
-            return lcdm::Chroma{static_cast<std::int16_t>(coordinate(0)),
-                                static_cast<std::int16_t>(coordinate(2))};
-        };
+        // Unpack both row segments once, then a loop the compiler vectorises (lcdm::cost
+        // inlined: the double square root truncated is the integer one, see lcdm::isqrt).
+        thread_local std::vector<int> buffer;
+        buffer.resize(4 * static_cast<std::size_t>(count));
+        int* __restrict la = buffer.data();
+        int* __restrict lb = la + count;
+        int* __restrict ra = lb + count;
+        int* __restrict rb = ra + count;
+        unpack(left, y, x0, count, la, lb);
+        unpack(right, yr, x0 - shift, count, ra, rb);
         for (int n = 0; n < count; ++n) {
-            const int x = x0 + n;
-            out[n] =
-                static_cast<CostValue>(lcdm::cost(point(left, y, x), point(right, yr, x - shift)));
+            const int da = la[n] - ra[n];
+            const int db = lb[n] - rb[n];
+            const int root =
+                static_cast<int>(std::sqrt(static_cast<double>(4 * (da * da + db * db))));
+            const int scaled = (root * fx::kCostMax + 2 * lcdm::kRadius) >> (lcdm::kRadiusBits + 2);
+            out[n] = static_cast<CostValue>(scaled < fx::kCostMax ? scaled : fx::kCostMax);
         }
     }
 
