@@ -5,6 +5,8 @@ stereo_line_buffer.sv
 stereo_window3x3.sv
 stereo_ca_plane.sv
 stereo_cost.sv
+stereo_lcdm_convert.sv
+stereo_cost_lcdm.sv
 stereo_aggregate.sv
 stereo_wta.sv
 stereo_top.sv

@@ -26,7 +26,10 @@ module stereo_top #(
     // 1: cfg_kernel and cfg_radius set the window at run time. 0: the model's default kernel
     // for WINDOW as constants (cheaper multipliers); cfg_kernel is ignored and cfg_radius must
     // be WINDOW/2 (a smaller radius with the full-size constant kernel would not be the model).
-    parameter bit RUNTIME_KERNEL = 1'b1
+    parameter bit RUNTIME_KERNEL = 1'b1,
+    // Matching cost stage: 0 AD over RGB (stereo_cost), 1 LCDM (stereo_cost_lcdm, thesis
+    // Sec. 3.5; colour input). Same ports and latency.
+    parameter int COST = 0
 ) (
     input  wire logic                               clk,
     input  wire logic                               rst,
@@ -219,20 +222,39 @@ module stereo_top #(
   logic [NDISP*COST_BITS-1:0] cost_data;
   logic [NDISP*AGG_BITS-1:0] agg_data, rule1_data, rule2_data;
 
-  stereo_cost #(
-      .NDISP(NDISP)
-  ) cost (
-      .clk(clk),
-      .rst(clear_coordinates),
-      .ce(step),
-      .in_x(x_in),
-      .in_y(y_in),
-      .in_left(left_pixel),
-      .in_right(right_pixel),
-      .out_x(cost_x),
-      .out_y(cost_y),
-      .out_data(cost_data)
-  );
+  generate
+    if (COST == 1) begin : g_cost_lcdm
+      stereo_cost_lcdm #(
+          .NDISP(NDISP)
+      ) cost (
+          .clk(clk),
+          .rst(clear_coordinates),
+          .ce(step),
+          .in_x(x_in),
+          .in_y(y_in),
+          .in_left(left_pixel),
+          .in_right(right_pixel),
+          .out_x(cost_x),
+          .out_y(cost_y),
+          .out_data(cost_data)
+      );
+    end else begin : g_cost_ad
+      stereo_cost #(
+          .NDISP(NDISP)
+      ) cost (
+          .clk(clk),
+          .rst(clear_coordinates),
+          .ce(step),
+          .in_x(x_in),
+          .in_y(y_in),
+          .in_left(left_pixel),
+          .in_right(right_pixel),
+          .out_x(cost_x),
+          .out_y(cost_y),
+          .out_data(cost_data)
+      );
+    end
+  endgenerate
 
   stereo_aggregate #(
       .WIDTH(WIDTH),

@@ -5,6 +5,7 @@
 #include <verilated.h>
 #include <verilated_fst_c.h>
 
+#include "Vstereo_top_lcdm.h"
 #include "Vstereo_top_small.h"
 #include "port_bits.hpp"
 #include "stereo/stage_table.hpp"
@@ -152,6 +153,11 @@ const std::vector<TopConfig>& built_top_configs() {
     return configs;
 }
 
+const TopConfig& lcdm_top_config() {
+    static const TopConfig config = top_config(table::verilated("Vstereo_top_lcdm"), "small-lcdm");
+    return config;
+}
+
 const TopConfig* covering_config(int width, int height, int ndisp, int window) {
     for (const TopConfig& config : built_top_configs()) {
         if (width <= config.width && height <= config.height && ndisp <= config.ndisp &&
@@ -165,6 +171,9 @@ const TopConfig* covering_config(int width, int height, int ndisp, int window) {
 std::unique_ptr<TopSim> make_top_sim(const TopConfig& config) {
     if (config.name == "small") {
         return std::make_unique<VerilatedTop<Vstereo_top_small>>(config);
+    }
+    if (config.name == "small-lcdm") {
+        return std::make_unique<VerilatedTop<Vstereo_top_lcdm>>(config);
     }
 #ifdef STEREO_COSIM_FULL
     if (config.name == "full") {

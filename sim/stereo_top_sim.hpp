@@ -27,6 +27,10 @@ struct TopConfig {
 // The configurations built into this binary, smallest first.
 const std::vector<TopConfig>& built_top_configs();
 
+// stereo_top with the LCDM cost stage (COST = 1) at the small configuration's size; not one of
+// built_top_configs(), which all have the AD cost.
+const TopConfig& lcdm_top_config();
+
 // The smallest built configuration that covers a request; nullptr when none does.
 const TopConfig* covering_config(int width, int height, int ndisp, int window);
 

@@ -93,8 +93,9 @@ TEST(Lcdm, HandComputedColours) {
 }
 
 TEST(Lcdm, FixedPointFollowsTheExactTrigonometry) {
-    // Random colour pairs: the fixed-point cost stays within 3 of the float reference (0.4 % of the range)
-    // (hue index 0.23 degrees, coordinates to 1/512, floored square root; docs/fixed-point.md).
+    // Random colour pairs: the fixed-point cost stays within 3 of the float reference (0.4 % of the
+    // range) (hue index 0.23 degrees, coordinates to 1/512, floored square root;
+    // docs/fixed-point.md).
     std::mt19937 rng(test::test_seed() + 2);
     std::uniform_int_distribution<int> value(0, 255);
     double worst = 0.0;
@@ -117,6 +118,20 @@ TEST(Lcdm, FixedPointFollowsTheExactTrigonometry) {
     EXPECT_LT(sum / trials, 0.5);
     RecordProperty("max_abs_error", std::to_string(worst));
     RecordProperty("mean_abs_error", std::to_string(sum / trials));
+}
+
+TEST(Lcdm, TablesBuiltFromTheQuarterWaveAreTheRoundedTrigonometry) {
+    // Independent path: std::cos / std::sin of every index, rounded half away from zero.
+    for (int h = 0; h < lcdm::kHueCount; ++h) {
+        const double angle = 2.0 * 3.14159265358979323846 * h / lcdm::kHueCount;
+        const auto unit = static_cast<double>(1 << lcdm::kTrigBits);
+        EXPECT_EQ(lcdm::cos_table()[static_cast<std::size_t>(h)],
+                  std::lround(std::cos(angle) * unit))
+            << h;
+        EXPECT_EQ(lcdm::sin_table()[static_cast<std::size_t>(h)],
+                  std::lround(std::sin(angle) * unit))
+            << h;
+    }
 }
 
 TEST(Lcdm, IntegerSquareRootIsTheFloor) {

@@ -22,8 +22,38 @@
 #include "stereo/constants.hpp"
 #include "stereo/pipeline.hpp"
 #include "stereo/stage_table.hpp"
+#include "stereo/stages/lcdm.hpp"
 
 namespace {
+
+// The LCDM cost (model/include/stereo/stages/lcdm.hpp, docs/fixed-point.md): its constants and
+// the quarter wave of its cosine table.
+std::string lcdm_section() {
+    namespace lcdm = stereo::lcdm;
+    std::ostringstream sv;
+    sv << "\n  // ---- LCDM cost (model/include/stereo/stages/lcdm.hpp) ----\n";
+    const std::pair<const char*, int> constants[] = {
+        {"LCDM_RADIUS_BITS", lcdm::kRadiusBits}, {"LCDM_RADIUS", lcdm::kRadius},
+        {"LCDM_HUE_STEPS", lcdm::kHueSteps},     {"LCDM_HUE_COUNT", lcdm::kHueCount},
+        {"LCDM_HUE_QUARTER", lcdm::kHueQuarter}, {"LCDM_TRIG_BITS", lcdm::kTrigBits},
+        {"LCDM_DARK_FLOOR", lcdm::kDarkFloor},   {"LCDM_LIGHT_SUM", lcdm::kLightSum},
+        {"LCDM_COORD_BITS", lcdm::kCoordBits},   {"LCDM_DIST_SQ_BITS", lcdm::kDistSqBits},
+        {"LCDM_DIST_BITS", lcdm::kDistBits}};
+    for (const auto& [name, value] : constants) {
+        sv << "  localparam int " << name << " = " << value << ";\n";
+    }
+    sv << "  // round(2^LCDM_TRIG_BITS cos(2 pi k / LCDM_HUE_COUNT)), k = 0 .. LCDM_HUE_QUARTER.\n"
+          "  function automatic logic signed [LCDM_TRIG_BITS+1:0] lcdm_quarter_cos(\n"
+          "      input logic [8:0] k);\n"
+          "    case (k)";
+    for (int k = 0; k <= lcdm::kHueQuarter; ++k) {
+        sv << (k % 4 == 0 ? "\n      " : " ") << "9'd" << k
+           << ": lcdm_quarter_cos = " << lcdm::kTrigBits + 2 << "'sd" << lcdm::quarter_cos(k)
+           << ';';
+    }
+    sv << "\n      default: lcdm_quarter_cos = '0;\n    endcase\n  endfunction\n";
+    return sv.str();
+}
 
 std::string package_text() {
     namespace fx = stereo::fx;
@@ -147,8 +177,9 @@ std::string package_text() {
         }
         sv << "\n        default: default_tap = 0;\n      endcase\n";
     }
-    sv << "      default: default_tap = 0;\n    endcase\n  endfunction\n"
-          "  /* verilator lint_on UNUSEDPARAM */\n\nendpackage\n\n"
+    sv << "      default: default_tap = 0;\n    endcase\n  endfunction\n";
+    sv << lcdm_section();
+    sv << "  /* verilator lint_on UNUSEDPARAM */\n\nendpackage\n\n"
           "`default_nettype wire\n";
     return sv.str();
 }
@@ -174,7 +205,8 @@ std::vector<std::pair<std::string, int>> assignments(const stereo::table::Params
                                                {"NDISP", params.ndisp},
                                                {"WINDOW", params.window},
                                                {"RUNTIME_KERNEL", params.runtime_kernel},
-                                               {"RULE", params.rule}};
+                                               {"RULE", params.rule},
+                                               {"COST", params.cost}};
     for (const auto& [name, value] : all) {
         if (value != stereo::table::kUnset) {
             out.emplace_back(name, value);

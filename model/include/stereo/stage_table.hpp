@@ -124,9 +124,10 @@ constexpr int hls_pipeline_latency(int width, int window) {
 // The package first, then every module before its first user. One module per file, named after
 // it; the list of modules to lint is this list without the package.
 inline constexpr std::string_view kPackageFile = "fx_pkg.sv";
-inline constexpr std::array<std::string_view, 9> kRtlModules = {
-    "stereo_coord_reg", "stereo_line_buffer", "stereo_window3x3", "stereo_ca_plane",  "stereo_cost",
-    "stereo_aggregate", "stereo_wta",         "stereo_top",       "stereo_synth_top",
+inline constexpr std::array<std::string_view, 11> kRtlModules = {
+    "stereo_coord_reg", "stereo_line_buffer",  "stereo_window3x3", "stereo_ca_plane",
+    "stereo_cost",      "stereo_lcdm_convert", "stereo_cost_lcdm", "stereo_aggregate",
+    "stereo_wta",       "stereo_top",          "stereo_synth_top",
 };
 
 // ---- Verilated configurations (sim/verilated_configs.cmake) --------------------------------
@@ -139,6 +140,7 @@ struct Params {
     int window = kUnset;
     int runtime_kernel = kUnset;
     int rule = kUnset;  // stereo_ca_plane's RULE
+    int cost = kUnset;  // stereo_top's COST: 0 AD (stereo_cost), 1 LCDM (stereo_cost_lcdm)
 };
 
 struct VerilatedConfig {
@@ -150,10 +152,15 @@ struct VerilatedConfig {
 
 inline constexpr Params kSmall{64, 48, 16, 5, kUnset};  // the co-simulation point
 inline constexpr Params kFull{640, 480, 64, 11, kUnset};
+// The co-simulation point with the LCDM cost stage (stereo_top COST = 1).
+inline constexpr Params kSmallLcdm{
+    kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window, kUnset, kUnset, 1};
 
-inline constexpr std::array<VerilatedConfig, 8> kVerilatedConfigs = {{
+inline constexpr std::array<VerilatedConfig, 10> kVerilatedConfigs = {{
     {"Vstereo_top_small", "stereo_top", kSmall, ""},
     {"Vstereo_cost", "stereo_cost", {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset}, ""},
+    {"Vstereo_top_lcdm", "stereo_top", kSmallLcdm, ""},
+    {"Vstereo_cost_lcdm", "stereo_cost_lcdm", {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset}, ""},
     {"Vstereo_aggregate",
      "stereo_aggregate",
      {kSmall.width, kUnset, kSmall.ndisp, kSmall.window, kUnset},
@@ -195,7 +202,9 @@ struct LintConfig {
     Params params;
 };
 
-inline constexpr std::array<LintConfig, 5> kExtraLintConfigs = {{
+inline constexpr std::array<LintConfig, 6> kExtraLintConfigs = {{
+    // The top with the LCDM cost stage.
+    {"stereo_top", kSmallLcdm},
     // The CA skeleton with the other rule.
     {"stereo_ca_plane", {kUnset, kUnset, kUnset, kUnset, kUnset, 2}},
     // The top at other shapes: a 3x3 window, odd label counts, and the full-size configuration.

@@ -14,17 +14,40 @@ namespace stereo {
 namespace lcdm {
 namespace {
 
+// cos of index h from the quarter wave, by the symmetries of the cosine (the RTL does the same
+// with lcdm_quarter_cos in fx_pkg); sin(h) = cos(h + 3/4 turn).
+int cos_from_quarter(int h) {
+    h %= kHueCount;
+    if (h <= kHueQuarter) {
+        return quarter_cos(h);
+    }
+    if (h <= 2 * kHueQuarter) {
+        return -quarter_cos(2 * kHueQuarter - h);
+    }
+    if (h <= 3 * kHueQuarter) {
+        return -quarter_cos(h - 2 * kHueQuarter);
+    }
+    return quarter_cos(kHueCount - h);
+}
+
 std::array<std::int16_t, kHueCount> make_table(bool sine) {
     std::array<std::int16_t, kHueCount> table{};
     for (int h = 0; h < kHueCount; ++h) {
-        const double angle = 2.0 * std::numbers::pi * h / kHueCount;
-        const double value = (sine ? std::sin(angle) : std::cos(angle)) * (1 << kTrigBits);
-        table[static_cast<std::size_t>(h)] = static_cast<std::int16_t>(std::lround(value));
+        table[static_cast<std::size_t>(h)] =
+            static_cast<std::int16_t>(cos_from_quarter(sine ? h + 3 * kHueQuarter : h));
     }
     return table;
 }
 
 }  // namespace
+
+int quarter_cos(int k) {
+    if (k < 0 || k > kHueQuarter) {
+        throw std::out_of_range("quarter_cos index " + std::to_string(k));
+    }
+    const double angle = 2.0 * std::numbers::pi * k / kHueCount;
+    return static_cast<int>(std::lround(std::cos(angle) * (1 << kTrigBits)));
+}
 
 const std::array<std::int16_t, kHueCount>& cos_table() {
     static const auto table = make_table(false);

@@ -30,8 +30,11 @@ inline constexpr int kRadiusBits = 9;
 inline constexpr int kRadius = 1 << kRadiusBits;  // 512
 // Hue resolution: kHueSteps indices per 60-degree sector of the hexagonal HSL hue.
 inline constexpr int kHueSteps = 256;
-inline constexpr int kHueCount = 6 * kHueSteps;  // 1536 entries per table
-// cos / sin table entries are round(2^kTrigBits * cos(2 pi h / kHueCount)).
+inline constexpr int kHueCount = 6 * kHueSteps;    // 1536 entries per table
+inline constexpr int kHueQuarter = kHueCount / 4;  // 384
+static_assert(kHueCount % 4 == 0);
+// cos / sin table entries are round(2^kTrigBits * cos(2 pi h / kHueCount)), built from the
+// quarter wave h = 0 .. kHueQuarter by the symmetries of the cosine (as the RTL does).
 inline constexpr int kTrigBits = 12;
 // Floor of the saturation denominator min(L2, 510 - L2) (chosen in docs/results-illumination.md
 // by the mean over the four Middlebury 2003 pairs and the lightness sweep, not one scene).
@@ -56,6 +59,8 @@ struct Chroma {
     bool operator==(const Chroma&) const = default;
 };
 
+// round(2^kTrigBits cos(2 pi k / kHueCount)) for k = 0 .. kHueQuarter (the stored quarter wave).
+int quarter_cos(int k);
 // The two tables, kHueCount entries each (cos, sin), computed once.
 const std::array<std::int16_t, kHueCount>& cos_table();
 const std::array<std::int16_t, kHueCount>& sin_table();
