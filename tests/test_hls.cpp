@@ -16,12 +16,15 @@
 #include "stereo/hls/aggregate.hpp"
 #include "stereo/hls/ca_rule.hpp"
 #include "stereo/hls/cost.hpp"
+#include "stereo/hls/cost_lcdm.hpp"
 #include "stereo/hls/host.hpp"
 #include "stereo/hls/match.hpp"
 #include "stereo/hls/stream.hpp"
 #include "stereo/hls/top.hpp"
 #include "stereo/hls/wta.hpp"
 #include "stereo/pipeline.hpp"
+#include "stereo/search.hpp"
+#include "stereo/stages.hpp"
 #include "stereo_hls_synth_top.hpp"
 #include "stereo_io/data_dir.hpp"
 #include "stereo_io/io.hpp"
@@ -235,6 +238,66 @@ TEST(HlsCost, EqualsModelColourAndGrey) {
         check_cost<16>(left, right, rng);
         check_cost<64>(left, right, rng);  // more lanes than columns in most frames
     }
+}
+
+// The LCDM cost stage against the model's "lcdm" plug-in, every lane of every pixel, with
+// garbage flush pixels and two frames through one object.
+template <int NDISP>
+void check_cost_lcdm(const Image& left, const Image& right, std::mt19937& rng) {
+    const auto stage = std::make_unique<hls::cost_lcdm<NDISP>>();
+    std::uniform_int_distribution<int> garbage(0, 255);
+    const auto noise = [&] {
+        return hls::Rgb{static_cast<hls::pixel_t>(garbage(rng)),
+                        static_cast<hls::pixel_t>(garbage(rng)),
+                        static_cast<hls::pixel_t>(garbage(rng))};
+    };
+    const Dsi model = cost_volume(*make_cost("lcdm"), left, right, NDISP);
+    for (int frame = 0; frame < 2; ++frame) {
+        Dsi out(left.width, left.height, NDISP);
+        const int flushes = stream_frame(
+            *stage, left.width, left.height,
+            [&](int x, int y) {
+                const bool in_frame = y < left.height;
+                stage->step(static_cast<hls::coord_t>(x), static_cast<hls::coord_t>(y),
+                            in_frame ? rgb_at(left, x, y) : noise(),
+                            in_frame ? rgb_at(right, x, y) : noise());
+            },
+            [&](int x, int y) {
+                for (int d = 0; d < NDISP; ++d) {
+                    out.at(x, y, d) = stage->out_data()[d];
+                }
+            });
+        EXPECT_EQ(flushes + 1, 1) << "latency";
+        EXPECT_TRUE(same_volume(model, out, NDISP))
+            << left.width << "x" << left.height << ", NDISP " << NDISP;
+    }
+}
+
+TEST(HlsCostLcdm, EqualsModel) {
+    auto rng = seeded(21);
+    for (const auto& [width, height] :
+         {std::pair{37, 23}, std::pair{5, 3}, std::pair{1, 1}, std::pair{70, 9}}) {
+        const Image left = test::random_image(width, height, 3, rng);
+        const Image right = test::random_image(width, height, 3, rng);
+        check_cost_lcdm<1>(left, right, rng);
+        check_cost_lcdm<16>(left, right, rng);
+    }
+    // Every 15th colour of the six faces of the RGB cube (every hue sector, every tie).
+    Image cube(18 * 18, 6, 3);
+    for (int x = 0; x < cube.width; ++x) {
+        const int u = 15 * (x % 18);
+        const int v = 15 * (x / 18);
+        const int rows[6][3] = {{u, v, 0},   {u, 0, v},   {0, u, v},
+                                {u, v, 255}, {u, 255, v}, {255, u, v}};
+        for (int y = 0; y < 6; ++y) {
+            for (int c = 0; c < 3; ++c) {
+                cube.at(x, y, c) = static_cast<std::uint8_t>(std::min(rows[y][c], 255));
+            }
+        }
+    }
+    Image reversed = cube;
+    std::reverse(reversed.pixels.begin(), reversed.pixels.end());
+    check_cost_lcdm<16>(cube, reversed, rng);
 }
 
 // ---- stage: aggregate ----------------------------------------------------------------------
@@ -592,6 +655,20 @@ TEST(HlsMatch, SmallRandomImagesOverTheParameters) {
             }
         }
     }
+}
+
+TEST(HlsMatch, LcdmCostEqualsModel) {
+    auto rng = seeded(22);
+    const auto [left, right] = test::shifted_pair(61, 37, 3, 4, 8, rng);
+    for (const int window : {1, 5, 11}) {
+        MatchParams params{16, window, fx::kDefaultSigma, window != 1};
+        params.cost = "lcdm";
+        expect_match(left, right, params, "lcdm");
+    }
+    MatchParams params;
+    params.cost = "lcdm";
+    const Image grey = test::random_image(61, 37, 1, rng);
+    EXPECT_THROW((void)hls::match(grey, grey, params), std::invalid_argument);
 }
 
 TEST(HlsMatch, OddSizedRandomCrop631x479) {

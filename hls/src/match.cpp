@@ -7,13 +7,14 @@
 #include "stereo/hls/host.hpp"
 #include "stereo/hls/stream.hpp"
 #include "stereo/hls/top.hpp"
+#include "stereo/stages/lcdm.hpp"
 
 namespace stereo::hls {
 namespace {
 
-template <int NDISP, int WINDOW>
+template <int NDISP, int WINDOW, template <int> class COST>
 DisparityMap run_variant(const Image& left, const Image& right, const MatchParams& params) {
-    using Pipeline = pipeline<kHostMaxWidth, kHostMaxHeight, NDISP, WINDOW>;
+    using Pipeline = pipeline<kHostMaxWidth, kHostMaxHeight, NDISP, WINDOW, COST>;
     // Megabytes of line buffers: on the heap, never on the stack.
     const auto state = std::make_unique<Pipeline>();
     const FrameConfig<WINDOW> cfg = frame_config<WINDOW>(params, left.width, left.height);
@@ -21,7 +22,7 @@ DisparityMap run_variant(const Image& left, const Image& right, const MatchParam
     stream<OutputBeat> out("match.out");
     push_frame(left, right, in);
     const status_t status =
-        stereo_hls_top<kHostMaxWidth, kHostMaxHeight, NDISP, WINDOW>(in, out, cfg, *state);
+        stereo_hls_top<kHostMaxWidth, kHostMaxHeight, NDISP, WINDOW, COST>(in, out, cfg, *state);
     if (status != 0 || !in.empty()) {
         throw std::logic_error("HLS top reported status " + std::to_string(status) + " with " +
                                std::to_string(in.size()) + " input beats left");
@@ -34,11 +35,18 @@ DisparityMap run_variant(const Image& left, const Image& right, const MatchParam
     return map;
 }
 
+template <int NDISP, template <int> class COST>
+DisparityMap run_cost(const Image& left, const Image& right, const MatchParams& params,
+                      const Variant& variant) {
+    return variant.window == 11 ? run_variant<NDISP, 11, COST>(left, right, params)
+                                : run_variant<NDISP, 31, COST>(left, right, params);
+}
+
 template <int NDISP>
 DisparityMap run_window(const Image& left, const Image& right, const MatchParams& params,
                         const Variant& variant) {
-    return variant.window == 11 ? run_variant<NDISP, 11>(left, right, params)
-                                : run_variant<NDISP, 31>(left, right, params);
+    return params.cost == "lcdm" ? run_cost<NDISP, cost_lcdm>(left, right, params, variant)
+                                 : run_cost<NDISP, cost>(left, right, params, variant);
 }
 
 }  // namespace
@@ -62,8 +70,12 @@ DisparityMap match(const Image& left, const Image& right, const MatchParams& par
             " is larger than the HLS variants' " + std::to_string(kHostMaxWidth) + "x" +
             std::to_string(kHostMaxHeight));
     }
-    if (params.cost != "ad") {
-        throw std::invalid_argument("the HLS kernels have only the AD cost");
+    if (params.cost != "ad" && params.cost != "lcdm") {
+        throw std::invalid_argument("the HLS kernels have the ad and lcdm costs, not \"" +
+                                    params.cost + "\"");
+    }
+    if (params.cost == "lcdm") {
+        lcdm::require_colour(left);
     }
     const Variant variant = variant_for(params);
     switch (variant.ndisp) {

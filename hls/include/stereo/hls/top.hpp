@@ -15,6 +15,7 @@
 #include "stereo/hls/aggregate.hpp"
 #include "stereo/hls/ca_rule.hpp"
 #include "stereo/hls/cost.hpp"
+#include "stereo/hls/cost_lcdm.hpp"
 #include "stereo/hls/stream.hpp"
 #include "stereo/hls/types.hpp"
 #include "stereo/hls/wta.hpp"
@@ -46,7 +47,8 @@ constexpr int frame_steps(int width, int height) {
 // The state of stereo_hls_top: the stages of rtl/stereo_top.sv. Large (the line buffers are
 // WIDTH columns of whole disparity columns): a static object in a synthesis top, a heap object
 // in C-simulation hosts.
-template <int WIDTH, int HEIGHT, int NDISP, int WINDOW>
+// COST is the cost stage: `cost` (AD) or `cost_lcdm` (LCDM), same interface and latency.
+template <int WIDTH, int HEIGHT, int NDISP, int WINDOW, template <int> class COST = cost>
 class pipeline {
     static_assert(WIDTH >= 1 && WIDTH <= kMaxFrameSide && HEIGHT >= 1 && HEIGHT <= kMaxFrameSide);
 
@@ -98,7 +100,7 @@ class pipeline {
     }
 
   private:
-    cost<NDISP> cost_;
+    COST<NDISP> cost_;
     aggregate<WIDTH, NDISP, WINDOW> aggregate_;
     ca_rule1<WIDTH, NDISP> rule1_;
     ca_rule2<WIDTH, NDISP> rule2_;
@@ -127,10 +129,10 @@ FrameConfig<WINDOW> sanitise(const FrameConfig<WINDOW>& requested, status_t& sta
 // One frame: cfg.width * cfg.height beats from `in`, as many to `out`. Returns the status bits.
 // Unlike the RTL, which drops beats until a start of frame, a call reads exactly one frame's
 // beats; misplaced sof/eol flags are reported, not resynchronised on.
-template <int WIDTH, int HEIGHT, int NDISP, int WINDOW>
+template <int WIDTH, int HEIGHT, int NDISP, int WINDOW, template <int> class COST = cost>
 status_t stereo_hls_top(stream<InputBeat>& in, stream<OutputBeat>& out,
                         const FrameConfig<WINDOW>& requested,
-                        pipeline<WIDTH, HEIGHT, NDISP, WINDOW>& state) {
+                        pipeline<WIDTH, HEIGHT, NDISP, WINDOW, COST>& state) {
 #pragma HLS INLINE
     constexpr int kMaxSteps = frame_steps<WINDOW>(WIDTH, HEIGHT);
     status_t status = 0;
