@@ -298,11 +298,12 @@ std::string hls_lcdm_table_text() {
            "// quarter wave, as rtl/fx_pkg.sv's lcdm_quarter_cos.\n"
            "#pragma once\n\n#include <cstdint>\n\n#include \"stereo/stages/lcdm.hpp\"\n\n"
            "namespace stereo::hls {\n\n"
+           "// clang-format off\n"
            "inline constexpr std::int16_t kLcdmQuarterCos[lcdm::kHueQuarter + 1] = {";
     for (int k = 0; k <= lcdm::kHueQuarter; ++k) {
         out << (k % 12 == 0 ? "\n    " : " ") << lcdm::quarter_cos(k) << ',';
     }
-    out << "\n};\n\n}  // namespace stereo::hls\n";
+    out << "\n};\n// clang-format on\n\n}  // namespace stereo::hls\n";
     return out.str();
 }
 

@@ -10,6 +10,7 @@
 
 namespace stereo::hls {
 
+// clang-format off
 inline constexpr std::int16_t kLcdmQuarterCos[lcdm::kHueQuarter + 1] = {
     4096, 4096, 4096, 4096, 4095, 4095, 4095, 4094, 4094, 4093, 4093, 4092,
     4091, 4090, 4089, 4088, 4087, 4086, 4085, 4084, 4082, 4081, 4079, 4078,
@@ -45,5 +46,6 @@ inline constexpr std::int16_t kLcdmQuarterCos[lcdm::kHueQuarter + 1] = {
     201, 184, 168, 151, 134, 117, 101, 84, 67, 50, 34, 17,
     0,
 };
+// clang-format on
 
 }  // namespace stereo::hls
