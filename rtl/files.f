@@ -7,6 +7,7 @@ stereo_ca_plane.sv
 stereo_cost.sv
 stereo_lcdm_convert.sv
 stereo_cost_lcdm.sv
+stereo_cost_select.sv
 stereo_aggregate.sv
 stereo_wta.sv
 stereo_top.sv

@@ -222,39 +222,21 @@ module stereo_top #(
   logic [NDISP*COST_BITS-1:0] cost_data;
   logic [NDISP*AGG_BITS-1:0] agg_data, rule1_data, rule2_data;
 
-  generate
-    if (COST == 1) begin : g_cost_lcdm
-      stereo_cost_lcdm #(
-          .NDISP(NDISP)
-      ) cost (
-          .clk(clk),
-          .rst(clear_coordinates),
-          .ce(step),
-          .in_x(x_in),
-          .in_y(y_in),
-          .in_left(left_pixel),
-          .in_right(right_pixel),
-          .out_x(cost_x),
-          .out_y(cost_y),
-          .out_data(cost_data)
-      );
-    end else begin : g_cost_ad
-      stereo_cost #(
-          .NDISP(NDISP)
-      ) cost (
-          .clk(clk),
-          .rst(clear_coordinates),
-          .ce(step),
-          .in_x(x_in),
-          .in_y(y_in),
-          .in_left(left_pixel),
-          .in_right(right_pixel),
-          .out_x(cost_x),
-          .out_y(cost_y),
-          .out_data(cost_data)
-      );
-    end
-  endgenerate
+  stereo_cost_select #(
+      .NDISP(NDISP),
+      .COST (COST)
+  ) cost (
+      .clk(clk),
+      .rst(clear_coordinates),
+      .ce(step),
+      .in_x(x_in),
+      .in_y(y_in),
+      .in_left(left_pixel),
+      .in_right(right_pixel),
+      .out_x(cost_x),
+      .out_y(cost_y),
+      .out_data(cost_data)
+  );
 
   stereo_aggregate #(
       .WIDTH(WIDTH),

@@ -124,10 +124,10 @@ constexpr int hls_pipeline_latency(int width, int window) {
 // The package first, then every module before its first user. One module per file, named after
 // it; the list of modules to lint is this list without the package.
 inline constexpr std::string_view kPackageFile = "fx_pkg.sv";
-inline constexpr std::array<std::string_view, 11> kRtlModules = {
+inline constexpr std::array<std::string_view, 12> kRtlModules = {
     "stereo_coord_reg", "stereo_line_buffer",  "stereo_window3x3", "stereo_ca_plane",
-    "stereo_cost",      "stereo_lcdm_convert", "stereo_cost_lcdm", "stereo_aggregate",
-    "stereo_wta",       "stereo_top",          "stereo_synth_top",
+    "stereo_cost",      "stereo_lcdm_convert", "stereo_cost_lcdm", "stereo_cost_select",
+    "stereo_aggregate", "stereo_wta",          "stereo_top",       "stereo_synth_top",
 };
 
 // ---- Verilated configurations (sim/verilated_configs.cmake) --------------------------------
