@@ -120,24 +120,9 @@ TEST(CostExtremes, ConstantImagesGiveZeroAndTheMaximum) {
 }
 
 TEST(CostExtremes, EveryEdgeAndFaceColourOfTheCube) {
-    // Steps of 15 over the six faces of the RGB cube: every hue sector, every tie of the
-    // maximum, both sides of the lightness fold, the dark floor and grey.
-    Image left(64, 36, 3);
-    for (int y = 0; y < left.height; ++y) {
-        for (int x = 0; x < left.width; ++x) {
-            const int k = y * left.width + x;
-            const int u = 15 * (k % 18);
-            const int v = 15 * ((k / 18) % 18);
-            const int face = (k / (18 * 18)) % 6;
-            const int rows[6][3] = {{u, v, 0},   {u, 0, v},   {0, u, v},
-                                    {u, v, 255}, {u, 255, v}, {255, u, v}};
-            for (int c = 0; c < 3; ++c) {
-                left.at(x, y, c) = static_cast<std::uint8_t>(std::min(rows[face][c], 255));
-            }
-        }
-    }
-    Image right = left;
-    std::reverse(right.pixels.begin(), right.pixels.end());
+    // Every hue sector, every tie of the maximum, both sides of the lightness fold, the dark
+    // floor and grey.
+    const auto [left, right] = test::rgb_cube_pair(64, 36);
     CostDriver driver(test_seed(), 0.2);
     EXPECT_TRUE(same_volume(model_cost(left, right, kDisparities), run_cost(driver, left, right),
                             kDisparities));

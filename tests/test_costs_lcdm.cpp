@@ -49,23 +49,9 @@ TEST(Lcdm, CostVolumeEqualsNaive) {
 }
 
 TEST(Lcdm, EveryGreyAndPrimaryMixEqualsNaive) {
-    // All colours on the edges and faces of the RGB cube in steps of 15, against each other
-    // and against a few fixed colours: covers every hue sector, every tie of the maximum and
-    // both sides of the lightness fold.
-    Image left(18 * 18, 6, 3);
-    for (int x = 0; x < left.width; ++x) {
-        const int u = 15 * (x % 18);
-        const int v = 15 * (x / 18);
-        const int rows[6][3] = {{u, v, 0},   {u, 0, v},   {0, u, v},
-                                {u, v, 255}, {u, 255, v}, {255, u, v}};
-        for (int y = 0; y < 6; ++y) {
-            for (int c = 0; c < 3; ++c) {
-                left.at(x, y, c) = static_cast<std::uint8_t>(std::min(rows[y][c], 255));
-            }
-        }
-    }
-    Image right = left;
-    std::reverse(right.pixels.begin(), right.pixels.end());
+    // The faces of the RGB cube: every hue sector, every tie of the maximum, both sides of the
+    // lightness fold, the dark floor and grey.
+    const auto [left, right] = test::rgb_cube_pair(18 * 18, 6);
     EXPECT_EQ(cost_volume(*make_cost("lcdm"), left, right, 5), lcdm::naive::cost(left, right, 5));
 }
 

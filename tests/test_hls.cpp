@@ -282,21 +282,8 @@ TEST(HlsCostLcdm, EqualsModel) {
         check_cost_lcdm<1>(left, right, rng);
         check_cost_lcdm<16>(left, right, rng);
     }
-    // Every 15th colour of the six faces of the RGB cube (every hue sector, every tie).
-    Image cube(18 * 18, 6, 3);
-    for (int x = 0; x < cube.width; ++x) {
-        const int u = 15 * (x % 18);
-        const int v = 15 * (x / 18);
-        const int rows[6][3] = {{u, v, 0},   {u, 0, v},   {0, u, v},
-                                {u, v, 255}, {u, 255, v}, {255, u, v}};
-        for (int y = 0; y < 6; ++y) {
-            for (int c = 0; c < 3; ++c) {
-                cube.at(x, y, c) = static_cast<std::uint8_t>(std::min(rows[y][c], 255));
-            }
-        }
-    }
-    Image reversed = cube;
-    std::reverse(reversed.pixels.begin(), reversed.pixels.end());
+    // The faces of the RGB cube (every hue sector, every tie).
+    const auto [cube, reversed] = test::rgb_cube_pair(18 * 18, 6);
     check_cost_lcdm<16>(cube, reversed, rng);
 }
 
