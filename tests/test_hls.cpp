@@ -196,9 +196,12 @@ void centred_kernel(int window, double sigma, hls::tap_t (&kernel)[WINDOW]) {
 
 // ---- stage: cost --------------------------------------------------------------------------
 
-template <int NDISP>
-void check_cost(const Image& left, const Image& right, std::mt19937& rng) {
-    const auto stage = std::make_unique<hls::cost<NDISP>>();
+// A cost stage (AD or LCDM kernel) against the model's volume `model`, every lane of every
+// pixel, with garbage flush pixels and two frames back to back through one object (the delay
+// line is never cleared).
+template <class Stage, int NDISP>
+void check_cost_stage(const Image& left, const Image& right, const Dsi& model, std::mt19937& rng) {
+    const auto stage = std::make_unique<Stage>();
     std::uniform_int_distribution<int> garbage(0, 255);
     const auto noise = [&] {
         return hls::Rgb{static_cast<hls::pixel_t>(garbage(rng)),
@@ -222,9 +225,14 @@ void check_cost(const Image& left, const Image& right, std::mt19937& rng) {
                 }
             });
         EXPECT_EQ(flushes + 1, 1) << "latency";
-        EXPECT_TRUE(same_volume(cost(left, right, NDISP), out, NDISP))
+        EXPECT_TRUE(same_volume(model, out, NDISP))
             << left.width << "x" << left.height << "x" << left.channels << ", NDISP " << NDISP;
     }
+}
+
+template <int NDISP>
+void check_cost(const Image& left, const Image& right, std::mt19937& rng) {
+    check_cost_stage<hls::cost<NDISP>, NDISP>(left, right, cost(left, right, NDISP), rng);
 }
 
 TEST(HlsCost, EqualsModelColourAndGrey) {
@@ -240,37 +248,11 @@ TEST(HlsCost, EqualsModelColourAndGrey) {
     }
 }
 
-// The LCDM cost stage against the model's "lcdm" plug-in, every lane of every pixel, with
-// garbage flush pixels and two frames through one object.
+// The LCDM cost stage against the model's "lcdm" plug-in.
 template <int NDISP>
 void check_cost_lcdm(const Image& left, const Image& right, std::mt19937& rng) {
-    const auto stage = std::make_unique<hls::cost_lcdm<NDISP>>();
-    std::uniform_int_distribution<int> garbage(0, 255);
-    const auto noise = [&] {
-        return hls::Rgb{static_cast<hls::pixel_t>(garbage(rng)),
-                        static_cast<hls::pixel_t>(garbage(rng)),
-                        static_cast<hls::pixel_t>(garbage(rng))};
-    };
-    const Dsi model = cost_volume(*make_cost("lcdm"), left, right, NDISP);
-    for (int frame = 0; frame < 2; ++frame) {
-        Dsi out(left.width, left.height, NDISP);
-        const int flushes = stream_frame(
-            *stage, left.width, left.height,
-            [&](int x, int y) {
-                const bool in_frame = y < left.height;
-                stage->step(static_cast<hls::coord_t>(x), static_cast<hls::coord_t>(y),
-                            in_frame ? rgb_at(left, x, y) : noise(),
-                            in_frame ? rgb_at(right, x, y) : noise());
-            },
-            [&](int x, int y) {
-                for (int d = 0; d < NDISP; ++d) {
-                    out.at(x, y, d) = stage->out_data()[d];
-                }
-            });
-        EXPECT_EQ(flushes + 1, 1) << "latency";
-        EXPECT_TRUE(same_volume(model, out, NDISP))
-            << left.width << "x" << left.height << ", NDISP " << NDISP;
-    }
+    check_cost_stage<hls::cost_lcdm<NDISP>, NDISP>(
+        left, right, cost_volume(*make_cost("lcdm"), left, right, NDISP), rng);
 }
 
 TEST(HlsCostLcdm, EqualsModel) {
