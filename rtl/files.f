@@ -4,6 +4,8 @@ stereo_coord_reg.sv
 stereo_line_buffer.sv
 stereo_window3x3.sv
 stereo_ca_plane.sv
+stereo_lcdm_convert.sv
+stereo_lcdm_distance.sv
 stereo_cost.sv
 stereo_aggregate.sv
 stereo_wta.sv

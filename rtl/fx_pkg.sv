@@ -182,6 +182,123 @@ package fx_pkg;
       default: default_tap = 0;
     endcase
   endfunction
+
+  // ---- LCDM cost (model/include/stereo/stages/lcdm.hpp) ----
+  localparam int LCDM_RADIUS_BITS = 9;
+  localparam int LCDM_RADIUS = 512;
+  localparam int LCDM_HUE_STEPS = 256;
+  localparam int LCDM_HUE_COUNT = 1536;
+  localparam int LCDM_HUE_QUARTER = 384;
+  localparam int LCDM_TRIG_BITS = 12;
+  localparam int LCDM_DARK_FLOOR = 8;
+  localparam int LCDM_LIGHT_SUM = 510;
+  localparam int LCDM_COORD_BITS = 11;
+  localparam int LCDM_DIST_SQ_BITS = 24;
+  localparam int LCDM_DIST_BITS = 12;
+  // round(2^LCDM_TRIG_BITS cos(2 pi k / LCDM_HUE_COUNT)), k = 0 .. LCDM_HUE_QUARTER.
+  function automatic logic signed [LCDM_TRIG_BITS+1:0] lcdm_quarter_cos(
+      input logic [8:0] k);
+    case (k)
+      9'd0: lcdm_quarter_cos = 14'sd4096; 9'd1: lcdm_quarter_cos = 14'sd4096; 9'd2: lcdm_quarter_cos = 14'sd4096; 9'd3: lcdm_quarter_cos = 14'sd4096;
+      9'd4: lcdm_quarter_cos = 14'sd4095; 9'd5: lcdm_quarter_cos = 14'sd4095; 9'd6: lcdm_quarter_cos = 14'sd4095; 9'd7: lcdm_quarter_cos = 14'sd4094;
+      9'd8: lcdm_quarter_cos = 14'sd4094; 9'd9: lcdm_quarter_cos = 14'sd4093; 9'd10: lcdm_quarter_cos = 14'sd4093; 9'd11: lcdm_quarter_cos = 14'sd4092;
+      9'd12: lcdm_quarter_cos = 14'sd4091; 9'd13: lcdm_quarter_cos = 14'sd4090; 9'd14: lcdm_quarter_cos = 14'sd4089; 9'd15: lcdm_quarter_cos = 14'sd4088;
+      9'd16: lcdm_quarter_cos = 14'sd4087; 9'd17: lcdm_quarter_cos = 14'sd4086; 9'd18: lcdm_quarter_cos = 14'sd4085; 9'd19: lcdm_quarter_cos = 14'sd4084;
+      9'd20: lcdm_quarter_cos = 14'sd4082; 9'd21: lcdm_quarter_cos = 14'sd4081; 9'd22: lcdm_quarter_cos = 14'sd4079; 9'd23: lcdm_quarter_cos = 14'sd4078;
+      9'd24: lcdm_quarter_cos = 14'sd4076; 9'd25: lcdm_quarter_cos = 14'sd4075; 9'd26: lcdm_quarter_cos = 14'sd4073; 9'd27: lcdm_quarter_cos = 14'sd4071;
+      9'd28: lcdm_quarter_cos = 14'sd4069; 9'd29: lcdm_quarter_cos = 14'sd4067; 9'd30: lcdm_quarter_cos = 14'sd4065; 9'd31: lcdm_quarter_cos = 14'sd4063;
+      9'd32: lcdm_quarter_cos = 14'sd4061; 9'd33: lcdm_quarter_cos = 14'sd4059; 9'd34: lcdm_quarter_cos = 14'sd4056; 9'd35: lcdm_quarter_cos = 14'sd4054;
+      9'd36: lcdm_quarter_cos = 14'sd4052; 9'd37: lcdm_quarter_cos = 14'sd4049; 9'd38: lcdm_quarter_cos = 14'sd4047; 9'd39: lcdm_quarter_cos = 14'sd4044;
+      9'd40: lcdm_quarter_cos = 14'sd4041; 9'd41: lcdm_quarter_cos = 14'sd4039; 9'd42: lcdm_quarter_cos = 14'sd4036; 9'd43: lcdm_quarter_cos = 14'sd4033;
+      9'd44: lcdm_quarter_cos = 14'sd4030; 9'd45: lcdm_quarter_cos = 14'sd4027; 9'd46: lcdm_quarter_cos = 14'sd4024; 9'd47: lcdm_quarter_cos = 14'sd4021;
+      9'd48: lcdm_quarter_cos = 14'sd4017; 9'd49: lcdm_quarter_cos = 14'sd4014; 9'd50: lcdm_quarter_cos = 14'sd4011; 9'd51: lcdm_quarter_cos = 14'sd4007;
+      9'd52: lcdm_quarter_cos = 14'sd4004; 9'd53: lcdm_quarter_cos = 14'sd4000; 9'd54: lcdm_quarter_cos = 14'sd3996; 9'd55: lcdm_quarter_cos = 14'sd3993;
+      9'd56: lcdm_quarter_cos = 14'sd3989; 9'd57: lcdm_quarter_cos = 14'sd3985; 9'd58: lcdm_quarter_cos = 14'sd3981; 9'd59: lcdm_quarter_cos = 14'sd3977;
+      9'd60: lcdm_quarter_cos = 14'sd3973; 9'd61: lcdm_quarter_cos = 14'sd3969; 9'd62: lcdm_quarter_cos = 14'sd3965; 9'd63: lcdm_quarter_cos = 14'sd3961;
+      9'd64: lcdm_quarter_cos = 14'sd3956; 9'd65: lcdm_quarter_cos = 14'sd3952; 9'd66: lcdm_quarter_cos = 14'sd3948; 9'd67: lcdm_quarter_cos = 14'sd3943;
+      9'd68: lcdm_quarter_cos = 14'sd3939; 9'd69: lcdm_quarter_cos = 14'sd3934; 9'd70: lcdm_quarter_cos = 14'sd3929; 9'd71: lcdm_quarter_cos = 14'sd3924;
+      9'd72: lcdm_quarter_cos = 14'sd3920; 9'd73: lcdm_quarter_cos = 14'sd3915; 9'd74: lcdm_quarter_cos = 14'sd3910; 9'd75: lcdm_quarter_cos = 14'sd3905;
+      9'd76: lcdm_quarter_cos = 14'sd3900; 9'd77: lcdm_quarter_cos = 14'sd3894; 9'd78: lcdm_quarter_cos = 14'sd3889; 9'd79: lcdm_quarter_cos = 14'sd3884;
+      9'd80: lcdm_quarter_cos = 14'sd3879; 9'd81: lcdm_quarter_cos = 14'sd3873; 9'd82: lcdm_quarter_cos = 14'sd3868; 9'd83: lcdm_quarter_cos = 14'sd3862;
+      9'd84: lcdm_quarter_cos = 14'sd3857; 9'd85: lcdm_quarter_cos = 14'sd3851; 9'd86: lcdm_quarter_cos = 14'sd3845; 9'd87: lcdm_quarter_cos = 14'sd3839;
+      9'd88: lcdm_quarter_cos = 14'sd3833; 9'd89: lcdm_quarter_cos = 14'sd3828; 9'd90: lcdm_quarter_cos = 14'sd3822; 9'd91: lcdm_quarter_cos = 14'sd3815;
+      9'd92: lcdm_quarter_cos = 14'sd3809; 9'd93: lcdm_quarter_cos = 14'sd3803; 9'd94: lcdm_quarter_cos = 14'sd3797; 9'd95: lcdm_quarter_cos = 14'sd3791;
+      9'd96: lcdm_quarter_cos = 14'sd3784; 9'd97: lcdm_quarter_cos = 14'sd3778; 9'd98: lcdm_quarter_cos = 14'sd3771; 9'd99: lcdm_quarter_cos = 14'sd3765;
+      9'd100: lcdm_quarter_cos = 14'sd3758; 9'd101: lcdm_quarter_cos = 14'sd3751; 9'd102: lcdm_quarter_cos = 14'sd3745; 9'd103: lcdm_quarter_cos = 14'sd3738;
+      9'd104: lcdm_quarter_cos = 14'sd3731; 9'd105: lcdm_quarter_cos = 14'sd3724; 9'd106: lcdm_quarter_cos = 14'sd3717; 9'd107: lcdm_quarter_cos = 14'sd3710;
+      9'd108: lcdm_quarter_cos = 14'sd3703; 9'd109: lcdm_quarter_cos = 14'sd3696; 9'd110: lcdm_quarter_cos = 14'sd3688; 9'd111: lcdm_quarter_cos = 14'sd3681;
+      9'd112: lcdm_quarter_cos = 14'sd3674; 9'd113: lcdm_quarter_cos = 14'sd3666; 9'd114: lcdm_quarter_cos = 14'sd3659; 9'd115: lcdm_quarter_cos = 14'sd3651;
+      9'd116: lcdm_quarter_cos = 14'sd3643; 9'd117: lcdm_quarter_cos = 14'sd3636; 9'd118: lcdm_quarter_cos = 14'sd3628; 9'd119: lcdm_quarter_cos = 14'sd3620;
+      9'd120: lcdm_quarter_cos = 14'sd3612; 9'd121: lcdm_quarter_cos = 14'sd3604; 9'd122: lcdm_quarter_cos = 14'sd3596; 9'd123: lcdm_quarter_cos = 14'sd3588;
+      9'd124: lcdm_quarter_cos = 14'sd3580; 9'd125: lcdm_quarter_cos = 14'sd3572; 9'd126: lcdm_quarter_cos = 14'sd3564; 9'd127: lcdm_quarter_cos = 14'sd3556;
+      9'd128: lcdm_quarter_cos = 14'sd3547; 9'd129: lcdm_quarter_cos = 14'sd3539; 9'd130: lcdm_quarter_cos = 14'sd3530; 9'd131: lcdm_quarter_cos = 14'sd3522;
+      9'd132: lcdm_quarter_cos = 14'sd3513; 9'd133: lcdm_quarter_cos = 14'sd3505; 9'd134: lcdm_quarter_cos = 14'sd3496; 9'd135: lcdm_quarter_cos = 14'sd3487;
+      9'd136: lcdm_quarter_cos = 14'sd3478; 9'd137: lcdm_quarter_cos = 14'sd3469; 9'd138: lcdm_quarter_cos = 14'sd3461; 9'd139: lcdm_quarter_cos = 14'sd3452;
+      9'd140: lcdm_quarter_cos = 14'sd3442; 9'd141: lcdm_quarter_cos = 14'sd3433; 9'd142: lcdm_quarter_cos = 14'sd3424; 9'd143: lcdm_quarter_cos = 14'sd3415;
+      9'd144: lcdm_quarter_cos = 14'sd3406; 9'd145: lcdm_quarter_cos = 14'sd3396; 9'd146: lcdm_quarter_cos = 14'sd3387; 9'd147: lcdm_quarter_cos = 14'sd3378;
+      9'd148: lcdm_quarter_cos = 14'sd3368; 9'd149: lcdm_quarter_cos = 14'sd3358; 9'd150: lcdm_quarter_cos = 14'sd3349; 9'd151: lcdm_quarter_cos = 14'sd3339;
+      9'd152: lcdm_quarter_cos = 14'sd3329; 9'd153: lcdm_quarter_cos = 14'sd3320; 9'd154: lcdm_quarter_cos = 14'sd3310; 9'd155: lcdm_quarter_cos = 14'sd3300;
+      9'd156: lcdm_quarter_cos = 14'sd3290; 9'd157: lcdm_quarter_cos = 14'sd3280; 9'd158: lcdm_quarter_cos = 14'sd3270; 9'd159: lcdm_quarter_cos = 14'sd3260;
+      9'd160: lcdm_quarter_cos = 14'sd3250; 9'd161: lcdm_quarter_cos = 14'sd3239; 9'd162: lcdm_quarter_cos = 14'sd3229; 9'd163: lcdm_quarter_cos = 14'sd3219;
+      9'd164: lcdm_quarter_cos = 14'sd3208; 9'd165: lcdm_quarter_cos = 14'sd3198; 9'd166: lcdm_quarter_cos = 14'sd3187; 9'd167: lcdm_quarter_cos = 14'sd3177;
+      9'd168: lcdm_quarter_cos = 14'sd3166; 9'd169: lcdm_quarter_cos = 14'sd3156; 9'd170: lcdm_quarter_cos = 14'sd3145; 9'd171: lcdm_quarter_cos = 14'sd3134;
+      9'd172: lcdm_quarter_cos = 14'sd3123; 9'd173: lcdm_quarter_cos = 14'sd3112; 9'd174: lcdm_quarter_cos = 14'sd3102; 9'd175: lcdm_quarter_cos = 14'sd3091;
+      9'd176: lcdm_quarter_cos = 14'sd3080; 9'd177: lcdm_quarter_cos = 14'sd3068; 9'd178: lcdm_quarter_cos = 14'sd3057; 9'd179: lcdm_quarter_cos = 14'sd3046;
+      9'd180: lcdm_quarter_cos = 14'sd3035; 9'd181: lcdm_quarter_cos = 14'sd3024; 9'd182: lcdm_quarter_cos = 14'sd3012; 9'd183: lcdm_quarter_cos = 14'sd3001;
+      9'd184: lcdm_quarter_cos = 14'sd2990; 9'd185: lcdm_quarter_cos = 14'sd2978; 9'd186: lcdm_quarter_cos = 14'sd2967; 9'd187: lcdm_quarter_cos = 14'sd2955;
+      9'd188: lcdm_quarter_cos = 14'sd2943; 9'd189: lcdm_quarter_cos = 14'sd2932; 9'd190: lcdm_quarter_cos = 14'sd2920; 9'd191: lcdm_quarter_cos = 14'sd2908;
+      9'd192: lcdm_quarter_cos = 14'sd2896; 9'd193: lcdm_quarter_cos = 14'sd2884; 9'd194: lcdm_quarter_cos = 14'sd2873; 9'd195: lcdm_quarter_cos = 14'sd2861;
+      9'd196: lcdm_quarter_cos = 14'sd2849; 9'd197: lcdm_quarter_cos = 14'sd2836; 9'd198: lcdm_quarter_cos = 14'sd2824; 9'd199: lcdm_quarter_cos = 14'sd2812;
+      9'd200: lcdm_quarter_cos = 14'sd2800; 9'd201: lcdm_quarter_cos = 14'sd2788; 9'd202: lcdm_quarter_cos = 14'sd2775; 9'd203: lcdm_quarter_cos = 14'sd2763;
+      9'd204: lcdm_quarter_cos = 14'sd2751; 9'd205: lcdm_quarter_cos = 14'sd2738; 9'd206: lcdm_quarter_cos = 14'sd2726; 9'd207: lcdm_quarter_cos = 14'sd2713;
+      9'd208: lcdm_quarter_cos = 14'sd2701; 9'd209: lcdm_quarter_cos = 14'sd2688; 9'd210: lcdm_quarter_cos = 14'sd2675; 9'd211: lcdm_quarter_cos = 14'sd2663;
+      9'd212: lcdm_quarter_cos = 14'sd2650; 9'd213: lcdm_quarter_cos = 14'sd2637; 9'd214: lcdm_quarter_cos = 14'sd2624; 9'd215: lcdm_quarter_cos = 14'sd2611;
+      9'd216: lcdm_quarter_cos = 14'sd2598; 9'd217: lcdm_quarter_cos = 14'sd2586; 9'd218: lcdm_quarter_cos = 14'sd2572; 9'd219: lcdm_quarter_cos = 14'sd2559;
+      9'd220: lcdm_quarter_cos = 14'sd2546; 9'd221: lcdm_quarter_cos = 14'sd2533; 9'd222: lcdm_quarter_cos = 14'sd2520; 9'd223: lcdm_quarter_cos = 14'sd2507;
+      9'd224: lcdm_quarter_cos = 14'sd2493; 9'd225: lcdm_quarter_cos = 14'sd2480; 9'd226: lcdm_quarter_cos = 14'sd2467; 9'd227: lcdm_quarter_cos = 14'sd2453;
+      9'd228: lcdm_quarter_cos = 14'sd2440; 9'd229: lcdm_quarter_cos = 14'sd2427; 9'd230: lcdm_quarter_cos = 14'sd2413; 9'd231: lcdm_quarter_cos = 14'sd2399;
+      9'd232: lcdm_quarter_cos = 14'sd2386; 9'd233: lcdm_quarter_cos = 14'sd2372; 9'd234: lcdm_quarter_cos = 14'sd2359; 9'd235: lcdm_quarter_cos = 14'sd2345;
+      9'd236: lcdm_quarter_cos = 14'sd2331; 9'd237: lcdm_quarter_cos = 14'sd2317; 9'd238: lcdm_quarter_cos = 14'sd2303; 9'd239: lcdm_quarter_cos = 14'sd2290;
+      9'd240: lcdm_quarter_cos = 14'sd2276; 9'd241: lcdm_quarter_cos = 14'sd2262; 9'd242: lcdm_quarter_cos = 14'sd2248; 9'd243: lcdm_quarter_cos = 14'sd2234;
+      9'd244: lcdm_quarter_cos = 14'sd2220; 9'd245: lcdm_quarter_cos = 14'sd2205; 9'd246: lcdm_quarter_cos = 14'sd2191; 9'd247: lcdm_quarter_cos = 14'sd2177;
+      9'd248: lcdm_quarter_cos = 14'sd2163; 9'd249: lcdm_quarter_cos = 14'sd2149; 9'd250: lcdm_quarter_cos = 14'sd2134; 9'd251: lcdm_quarter_cos = 14'sd2120;
+      9'd252: lcdm_quarter_cos = 14'sd2106; 9'd253: lcdm_quarter_cos = 14'sd2091; 9'd254: lcdm_quarter_cos = 14'sd2077; 9'd255: lcdm_quarter_cos = 14'sd2062;
+      9'd256: lcdm_quarter_cos = 14'sd2048; 9'd257: lcdm_quarter_cos = 14'sd2033; 9'd258: lcdm_quarter_cos = 14'sd2019; 9'd259: lcdm_quarter_cos = 14'sd2004;
+      9'd260: lcdm_quarter_cos = 14'sd1990; 9'd261: lcdm_quarter_cos = 14'sd1975; 9'd262: lcdm_quarter_cos = 14'sd1960; 9'd263: lcdm_quarter_cos = 14'sd1946;
+      9'd264: lcdm_quarter_cos = 14'sd1931; 9'd265: lcdm_quarter_cos = 14'sd1916; 9'd266: lcdm_quarter_cos = 14'sd1901; 9'd267: lcdm_quarter_cos = 14'sd1886;
+      9'd268: lcdm_quarter_cos = 14'sd1871; 9'd269: lcdm_quarter_cos = 14'sd1857; 9'd270: lcdm_quarter_cos = 14'sd1842; 9'd271: lcdm_quarter_cos = 14'sd1827;
+      9'd272: lcdm_quarter_cos = 14'sd1812; 9'd273: lcdm_quarter_cos = 14'sd1797; 9'd274: lcdm_quarter_cos = 14'sd1781; 9'd275: lcdm_quarter_cos = 14'sd1766;
+      9'd276: lcdm_quarter_cos = 14'sd1751; 9'd277: lcdm_quarter_cos = 14'sd1736; 9'd278: lcdm_quarter_cos = 14'sd1721; 9'd279: lcdm_quarter_cos = 14'sd1706;
+      9'd280: lcdm_quarter_cos = 14'sd1690; 9'd281: lcdm_quarter_cos = 14'sd1675; 9'd282: lcdm_quarter_cos = 14'sd1660; 9'd283: lcdm_quarter_cos = 14'sd1645;
+      9'd284: lcdm_quarter_cos = 14'sd1629; 9'd285: lcdm_quarter_cos = 14'sd1614; 9'd286: lcdm_quarter_cos = 14'sd1598; 9'd287: lcdm_quarter_cos = 14'sd1583;
+      9'd288: lcdm_quarter_cos = 14'sd1567; 9'd289: lcdm_quarter_cos = 14'sd1552; 9'd290: lcdm_quarter_cos = 14'sd1536; 9'd291: lcdm_quarter_cos = 14'sd1521;
+      9'd292: lcdm_quarter_cos = 14'sd1505; 9'd293: lcdm_quarter_cos = 14'sd1490; 9'd294: lcdm_quarter_cos = 14'sd1474; 9'd295: lcdm_quarter_cos = 14'sd1458;
+      9'd296: lcdm_quarter_cos = 14'sd1443; 9'd297: lcdm_quarter_cos = 14'sd1427; 9'd298: lcdm_quarter_cos = 14'sd1411; 9'd299: lcdm_quarter_cos = 14'sd1396;
+      9'd300: lcdm_quarter_cos = 14'sd1380; 9'd301: lcdm_quarter_cos = 14'sd1364; 9'd302: lcdm_quarter_cos = 14'sd1348; 9'd303: lcdm_quarter_cos = 14'sd1332;
+      9'd304: lcdm_quarter_cos = 14'sd1317; 9'd305: lcdm_quarter_cos = 14'sd1301; 9'd306: lcdm_quarter_cos = 14'sd1285; 9'd307: lcdm_quarter_cos = 14'sd1269;
+      9'd308: lcdm_quarter_cos = 14'sd1253; 9'd309: lcdm_quarter_cos = 14'sd1237; 9'd310: lcdm_quarter_cos = 14'sd1221; 9'd311: lcdm_quarter_cos = 14'sd1205;
+      9'd312: lcdm_quarter_cos = 14'sd1189; 9'd313: lcdm_quarter_cos = 14'sd1173; 9'd314: lcdm_quarter_cos = 14'sd1157; 9'd315: lcdm_quarter_cos = 14'sd1141;
+      9'd316: lcdm_quarter_cos = 14'sd1125; 9'd317: lcdm_quarter_cos = 14'sd1109; 9'd318: lcdm_quarter_cos = 14'sd1092; 9'd319: lcdm_quarter_cos = 14'sd1076;
+      9'd320: lcdm_quarter_cos = 14'sd1060; 9'd321: lcdm_quarter_cos = 14'sd1044; 9'd322: lcdm_quarter_cos = 14'sd1028; 9'd323: lcdm_quarter_cos = 14'sd1011;
+      9'd324: lcdm_quarter_cos = 14'sd995; 9'd325: lcdm_quarter_cos = 14'sd979; 9'd326: lcdm_quarter_cos = 14'sd963; 9'd327: lcdm_quarter_cos = 14'sd946;
+      9'd328: lcdm_quarter_cos = 14'sd930; 9'd329: lcdm_quarter_cos = 14'sd914; 9'd330: lcdm_quarter_cos = 14'sd897; 9'd331: lcdm_quarter_cos = 14'sd881;
+      9'd332: lcdm_quarter_cos = 14'sd865; 9'd333: lcdm_quarter_cos = 14'sd848; 9'd334: lcdm_quarter_cos = 14'sd832; 9'd335: lcdm_quarter_cos = 14'sd816;
+      9'd336: lcdm_quarter_cos = 14'sd799; 9'd337: lcdm_quarter_cos = 14'sd783; 9'd338: lcdm_quarter_cos = 14'sd766; 9'd339: lcdm_quarter_cos = 14'sd750;
+      9'd340: lcdm_quarter_cos = 14'sd733; 9'd341: lcdm_quarter_cos = 14'sd717; 9'd342: lcdm_quarter_cos = 14'sd700; 9'd343: lcdm_quarter_cos = 14'sd684;
+      9'd344: lcdm_quarter_cos = 14'sd667; 9'd345: lcdm_quarter_cos = 14'sd651; 9'd346: lcdm_quarter_cos = 14'sd634; 9'd347: lcdm_quarter_cos = 14'sd618;
+      9'd348: lcdm_quarter_cos = 14'sd601; 9'd349: lcdm_quarter_cos = 14'sd584; 9'd350: lcdm_quarter_cos = 14'sd568; 9'd351: lcdm_quarter_cos = 14'sd551;
+      9'd352: lcdm_quarter_cos = 14'sd535; 9'd353: lcdm_quarter_cos = 14'sd518; 9'd354: lcdm_quarter_cos = 14'sd501; 9'd355: lcdm_quarter_cos = 14'sd485;
+      9'd356: lcdm_quarter_cos = 14'sd468; 9'd357: lcdm_quarter_cos = 14'sd451; 9'd358: lcdm_quarter_cos = 14'sd435; 9'd359: lcdm_quarter_cos = 14'sd418;
+      9'd360: lcdm_quarter_cos = 14'sd401; 9'd361: lcdm_quarter_cos = 14'sd385; 9'd362: lcdm_quarter_cos = 14'sd368; 9'd363: lcdm_quarter_cos = 14'sd351;
+      9'd364: lcdm_quarter_cos = 14'sd335; 9'd365: lcdm_quarter_cos = 14'sd318; 9'd366: lcdm_quarter_cos = 14'sd301; 9'd367: lcdm_quarter_cos = 14'sd285;
+      9'd368: lcdm_quarter_cos = 14'sd268; 9'd369: lcdm_quarter_cos = 14'sd251; 9'd370: lcdm_quarter_cos = 14'sd234; 9'd371: lcdm_quarter_cos = 14'sd218;
+      9'd372: lcdm_quarter_cos = 14'sd201; 9'd373: lcdm_quarter_cos = 14'sd184; 9'd374: lcdm_quarter_cos = 14'sd168; 9'd375: lcdm_quarter_cos = 14'sd151;
+      9'd376: lcdm_quarter_cos = 14'sd134; 9'd377: lcdm_quarter_cos = 14'sd117; 9'd378: lcdm_quarter_cos = 14'sd101; 9'd379: lcdm_quarter_cos = 14'sd84;
+      9'd380: lcdm_quarter_cos = 14'sd67; 9'd381: lcdm_quarter_cos = 14'sd50; 9'd382: lcdm_quarter_cos = 14'sd34; 9'd383: lcdm_quarter_cos = 14'sd17;
+      9'd384: lcdm_quarter_cos = 14'sd0;
+      default: lcdm_quarter_cos = '0;
+    endcase
+  endfunction
   /* verilator lint_on UNUSEDPARAM */
 
 endpackage

@@ -1,6 +1,9 @@
-// stereo_cost: absolute-difference matching cost over RGB for all labels at once, over the signed
-// disparity range d = m + k, k = 0 .. NDISP-1, m = cfg_min_disp (model: stereo::cost,
-// docs/fixed-point.md stages 1 and 6).
+// stereo_cost: the matching cost for all labels at once, over the signed disparity range
+// d = m + k, k = 0 .. NDISP-1, m = cfg_min_disp (model: stereo::cost and the cost plug-ins,
+// docs/fixed-point.md stages 1 and 6, "LCDM"). COST = 0: absolute differences over RGB;
+// COST = 1: the LCDM cost (thesis Sec. 3.5), each incoming pixel first converted to its point on
+// the hue-saturation disc (stereo_lcdm_convert), the per-label distance by stereo_lcdm_distance.
+// Below, "pixel" is what the delay lines carry: RGB (24 bits) or the LCDM point (22 bits).
 //
 // The right pixels pass through continuous delay lines (across row boundaries). For a negative m
 // the left pixel must wait for right pixels that arrive later: it is delayed (with its
@@ -9,7 +12,7 @@
 // pre-delay line of MAX_MIN_DISP, and the lanes' delay line of NDISP - 1 holds its history (a
 // lane reading a value picked under the previous frame's P reads a position before the frame,
 // which is outside). The cost of label k is
-//   |Lr - Rr(xr)| + |Lg - Rg(xr)| + |Lb - Rb(xr)|,  xr = x - m - k,
+//   |Lr - Rr(xr)| + |Lg - Rg(xr)| + |Lb - Rb(xr)|  (AD)  or  lcdm(L, R(xr))  (LCDM),  xr = x - m - k,
 // or COST_OUTSIDE where xr lies outside [0, W): exactly where the tap holds a pixel of another
 // row (or none), so nothing is ever cleared. cfg_min_disp must stay within +-MAX_MIN_DISP
 // (stereo_top clamps it) and constant during a frame and its flush.
@@ -18,7 +21,8 @@
 
 module stereo_cost #(
     parameter int NDISP        = 16,                           // labels evaluated in parallel
-    parameter int MAX_MIN_DISP = fx_pkg::DEFAULT_MAX_MIN_DISP  // largest |cfg_min_disp|
+    parameter int MAX_MIN_DISP = fx_pkg::DEFAULT_MAX_MIN_DISP,  // largest |cfg_min_disp|
+    parameter int COST         = 0                             // 0: AD over RGB, 1: LCDM
 ) (
     input  wire logic                               clk,
     input  wire logic                               rst,           // clears coordinates only
@@ -34,6 +38,7 @@ module stereo_cost #(
     output      logic [NDISP*fx_pkg::COST_BITS-1:0] out_data
 );
   localparam int COST_BITS = fx_pkg::COST_BITS;
+  localparam int PIXEL_BITS = (COST == 1) ? 2 * fx_pkg::LCDM_COORD_BITS : fx_pkg::RGB_BITS;
   // Right pixels kept: the pre-delay line, and the lanes' history besides the selected pixel.
   localparam int PRE_DELAY = (MAX_MIN_DISP > 0) ? MAX_MIN_DISP : 1;
   localparam int HISTORY = (NDISP > 1) ? NDISP - 1 : 1;
@@ -42,14 +47,38 @@ module stereo_cost #(
 
   initial begin
     assert (MAX_MIN_DISP >= 0 && MAX_MIN_DISP <= fx_pkg::MAX_MIN_DISPARITY);
+    assert (COST == 0 || COST == 1);
   end
 
-  // right_pre[i*24 +: 24] = the right pixel i + 1 steps before the newest.
-  logic [PRE_DELAY*24-1:0] right_pre;
-  // right_history[i*24 +: 24] = the selected right pixel i + 1 steps ago.
-  logic [HISTORY*24-1:0] right_history;
+  // The pixels the delay lines carry.
+  logic [PIXEL_BITS-1:0] new_left, new_right;
+  generate
+    if (COST == 1) begin : g_lcdm_points
+      logic signed [fx_pkg::LCDM_COORD_BITS-1:0] left_a, left_b, right_a, right_b;
+      stereo_lcdm_convert convert_left (
+          .in_rgb(in_left),
+          .out_a (left_a),
+          .out_b (left_b)
+      );
+      stereo_lcdm_convert convert_right (
+          .in_rgb(in_right),
+          .out_a (right_a),
+          .out_b (right_b)
+      );
+      assign new_left  = {left_a, left_b};
+      assign new_right = {right_a, right_b};
+    end else begin : g_rgb
+      assign new_left  = in_left;
+      assign new_right = in_right;
+    end
+  endgenerate
+
+  // right_pre[i*PIXEL_BITS +: PIXEL_BITS] = the right pixel i + 1 steps before the newest.
+  logic [PRE_DELAY*PIXEL_BITS-1:0] right_pre;
+  // right_history[i*PIXEL_BITS +: PIXEL_BITS] = the selected right pixel i + 1 steps ago.
+  logic [HISTORY*PIXEL_BITS-1:0] right_history;
   // The left pixel and its coordinates, i + 1 steps ago.
-  logic [LEFT_DELAY*24-1:0] left_history;
+  logic [LEFT_DELAY*PIXEL_BITS-1:0] left_history;
   fx_pkg::coord_t left_x_history[LEFT_DELAY];
   fx_pkg::coord_t left_y_history[LEFT_DELAY];
 
@@ -63,24 +92,24 @@ module stereo_cost #(
   end
 
   // The right pixel P steps old.
-  logic [23:0] right_selected;
+  logic [PIXEL_BITS-1:0] right_selected;
   always_comb begin
-    right_selected = in_right;
+    right_selected = new_right;
     for (int p = 1; p <= MAX_MIN_DISP; p++) begin
-      if (32'(right_skip) == p) right_selected = right_pre[(p-1)*24 +: 24];
+      if (32'(right_skip) == p) right_selected = right_pre[(p-1)*PIXEL_BITS +: PIXEL_BITS];
     end
   end
 
   // The left pixel matched at this step.
-  logic [23:0] left_pixel;
+  logic [PIXEL_BITS-1:0] left_pixel;
   fx_pkg::coord_t left_x, left_y;
   always_comb begin
-    left_pixel = in_left;
+    left_pixel = new_left;
     left_x = in_x;
     left_y = in_y;
     for (int i = 1; i <= MAX_MIN_DISP; i++) begin
       if (32'(left_wait) == i) begin
-        left_pixel = left_history[(i-1)*24 +: 24];
+        left_pixel = left_history[(i-1)*PIXEL_BITS +: PIXEL_BITS];
         left_x = left_x_history[i-1];
         left_y = left_y_history[i-1];
       end
@@ -98,23 +127,34 @@ module stereo_cost #(
   logic [NDISP*COST_BITS-1:0] cost_d;
   generate
     for (genvar k = 0; k < NDISP; k++) begin : g_label
-      logic [23:0] right_pixel;
+      logic [PIXEL_BITS-1:0] right_pixel;
       logic signed [17:0] right_x;  // xr = x - m - k
+      logic [COST_BITS-1:0] distance;
       always_comb begin
         // Tap k + P behind the newest right pixel: k behind the selected one.
-        right_pixel = (k == 0) ? right_selected : right_history[(k > 0 ? k - 1 : 0)*24 +: 24];
+        right_pixel = (k == 0) ? right_selected
+                               : right_history[(k > 0 ? k - 1 : 0)*PIXEL_BITS +: PIXEL_BITS];
         right_x = 18'(left_x) - 18'(cfg_min_disp) - 18'(k);
+      end
+      if (COST == 1) begin : g_lcdm
+        stereo_lcdm_distance lcdm (
+            .in_left (left_pixel),
+            .in_right(right_pixel),
+            .out_cost(distance)
+        );
+      end else begin : g_ad
+        assign distance = abs_diff_rgb(24'(left_pixel), 24'(right_pixel));  // PIXEL_BITS = 24 here
       end
       assign cost_d[k*COST_BITS +: COST_BITS] =
           (right_x < 18'sd0 || right_x >= $signed(18'(cfg_width)))
-              ? COST_BITS'(fx_pkg::COST_OUTSIDE) : abs_diff_rgb(left_pixel, right_pixel);
+              ? COST_BITS'(fx_pkg::COST_OUTSIDE) : distance;
     end
   endgenerate
 
   generate
     if (HISTORY > 1) begin : g_shift
       always_ff @(posedge clk) begin
-        if (ce) right_history <= {right_history[(HISTORY-1)*24-1:0], right_selected};
+        if (ce) right_history <= {right_history[(HISTORY-1)*PIXEL_BITS-1:0], right_selected};
       end
     end else begin : g_single
       always_ff @(posedge clk) begin
@@ -123,20 +163,20 @@ module stereo_cost #(
     end
     if (PRE_DELAY > 1) begin : g_pre_shift
       always_ff @(posedge clk) begin
-        if (ce) right_pre <= {right_pre[(PRE_DELAY-1)*24-1:0], in_right};
+        if (ce) right_pre <= {right_pre[(PRE_DELAY-1)*PIXEL_BITS-1:0], new_right};
       end
     end else begin : g_pre_single
       always_ff @(posedge clk) begin
-        if (ce) right_pre <= in_right;
+        if (ce) right_pre <= new_right;
       end
     end
     if (LEFT_DELAY > 1) begin : g_left_shift
       always_ff @(posedge clk) begin
-        if (ce) left_history <= {left_history[(LEFT_DELAY-1)*24-1:0], in_left};
+        if (ce) left_history <= {left_history[(LEFT_DELAY-1)*PIXEL_BITS-1:0], new_left};
       end
     end else begin : g_left_single
       always_ff @(posedge clk) begin
-        if (ce) left_history <= in_left;
+        if (ce) left_history <= new_left;
       end
     end
   endgenerate

@@ -33,7 +33,9 @@ module stereo_top #(
     // be WINDOW/2 (a smaller radius with the full-size constant kernel would not be the model).
     parameter bit RUNTIME_KERNEL = 1'b1,
     // Largest |cfg_min_disp|: sizes the cost stage's delay lines.
-    parameter int MAX_MIN_DISP = fx_pkg::DEFAULT_MAX_MIN_DISP
+    parameter int MAX_MIN_DISP = fx_pkg::DEFAULT_MAX_MIN_DISP,
+    // Matching cost: 0 AD over RGB, 1 LCDM (thesis Sec. 3.5; colour input). Same latency.
+    parameter int COST = 0
 ) (
     input  wire logic                               clk,
     input  wire logic                               rst,
@@ -274,7 +276,8 @@ module stereo_top #(
 
   stereo_cost #(
       .NDISP(NDISP),
-      .MAX_MIN_DISP(MAX_MIN_DISP)
+      .MAX_MIN_DISP(MAX_MIN_DISP),
+      .COST(COST)
   ) cost (
       .clk(clk),
       .rst(clear_coordinates),

@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "stereo/stages/lcdm.hpp"
 #include "stereo_top_sim.hpp"
 
 namespace stereo::sim {
@@ -12,13 +13,18 @@ namespace {
 ValidatedDisparity run_rtl(const Image& left, const Image& right, const MatchParams& params) {
     check_pair(left, right);
     validate(params, left.width, left.height);
-    if (params.cost != "ad") {
-        throw std::invalid_argument("the RTL has only the AD cost");
+    if (params.cost != "ad" && params.cost != "lcdm") {
+        throw std::invalid_argument("the RTL has the ad and lcdm costs, not \"" + params.cost +
+                                    "\"");
     }
-    const TopConfig* config =
-        covering_config(left.width, left.height, params.ndisp, params.window, params.min_disp);
+    const bool lcdm = params.cost == "lcdm";
+    if (lcdm) {
+        lcdm::require_colour(left);
+    }
+    const TopConfig* config = covering_config(left.width, left.height, params.ndisp, params.window,
+                                              params.min_disp, params.cost);
     if (config == nullptr) {
-        const TopConfig& largest = built_top_configs().back();
+        const TopConfig& largest = lcdm ? lcdm_top_config() : built_top_configs().back();
         throw std::invalid_argument(
             "no Verilated configuration covers " + std::to_string(left.width) + "x" +
             std::to_string(left.height) + " ndisp " + std::to_string(params.ndisp) + " window " +

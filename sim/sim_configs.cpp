@@ -5,6 +5,7 @@
 #include <verilated.h>
 #include <verilated_fst_c.h>
 
+#include "Vstereo_top_lcdm.h"
 #include "Vstereo_top_small.h"
 #include "port_bits.hpp"
 #include "stereo/stage_table.hpp"
@@ -163,11 +164,29 @@ const std::vector<TopConfig>& built_top_configs() {
     return configs;
 }
 
-const TopConfig* covering_config(int width, int height, int ndisp, int window, int min_disp) {
+const TopConfig& lcdm_top_config() {
+    static const TopConfig config = top_config(table::verilated("Vstereo_top_lcdm"), "small-lcdm");
+    return config;
+}
+
+namespace {
+
+bool covers(const TopConfig& config, int width, int height, int ndisp, int window, int min_disp) {
+    return width <= config.width && height <= config.height && ndisp <= config.ndisp &&
+           window <= config.window && min_disp <= config.max_min_disp &&
+           -min_disp <= config.max_min_disp;
+}
+
+}  // namespace
+
+const TopConfig* covering_config(int width, int height, int ndisp, int window, int min_disp,
+                                 const std::string& cost) {
+    if (cost == "lcdm") {
+        const TopConfig& config = lcdm_top_config();
+        return covers(config, width, height, ndisp, window, min_disp) ? &config : nullptr;
+    }
     for (const TopConfig& config : built_top_configs()) {
-        if (width <= config.width && height <= config.height && ndisp <= config.ndisp &&
-            window <= config.window && min_disp <= config.max_min_disp &&
-            -min_disp <= config.max_min_disp) {
+        if (covers(config, width, height, ndisp, window, min_disp)) {
             return &config;
         }
     }
@@ -177,6 +196,9 @@ const TopConfig* covering_config(int width, int height, int ndisp, int window, i
 std::unique_ptr<TopSim> make_top_sim(const TopConfig& config) {
     if (config.name == "small") {
         return std::make_unique<VerilatedTop<Vstereo_top_small>>(config);
+    }
+    if (config.name == "small-lcdm") {
+        return std::make_unique<VerilatedTop<Vstereo_top_lcdm>>(config);
     }
 #ifdef STEREO_COSIM_FULL
     if (config.name == "full") {

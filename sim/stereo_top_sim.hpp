@@ -28,8 +28,14 @@ struct TopConfig {
 // The configurations built into this binary, smallest first.
 const std::vector<TopConfig>& built_top_configs();
 
-// The smallest built configuration that covers a request; nullptr when none does.
-const TopConfig* covering_config(int width, int height, int ndisp, int window, int min_disp = 0);
+// stereo_top with the LCDM cost stage (COST = 1) at the small configuration's size; not one of
+// built_top_configs(), which all have the AD cost.
+const TopConfig& lcdm_top_config();
+
+// The smallest built configuration with the cost `cost` ("ad": built_top_configs(), "lcdm":
+// lcdm_top_config()) that covers a request; nullptr when none does.
+const TopConfig* covering_config(int width, int height, int ndisp, int window, int min_disp = 0,
+                                 const std::string& cost = "ad");
 
 // Traffic shaping: each cycle the input is withheld with probability `input_gap` and the
 // output is not ready with probability `output_stall`, from a generator seeded with `seed`.

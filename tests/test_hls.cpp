@@ -17,12 +17,15 @@
 #include "stereo/hls/aggregate.hpp"
 #include "stereo/hls/ca_rule.hpp"
 #include "stereo/hls/cost.hpp"
+#include "stereo/hls/cost_lcdm.hpp"
 #include "stereo/hls/host.hpp"
 #include "stereo/hls/match.hpp"
 #include "stereo/hls/stream.hpp"
 #include "stereo/hls/top.hpp"
 #include "stereo/hls/wta.hpp"
 #include "stereo/pipeline.hpp"
+#include "stereo/search.hpp"
+#include "stereo/stages.hpp"
 #include "stereo_hls_synth_top.hpp"
 #include "stereo_io/data_dir.hpp"
 #include "stereo_io/io.hpp"
@@ -194,9 +197,12 @@ void centred_kernel(int window, double sigma, hls::tap_t (&kernel)[WINDOW]) {
 
 // ---- stage: cost --------------------------------------------------------------------------
 
-template <int NDISP>
-void check_cost(const Image& left, const Image& right, std::mt19937& rng) {
-    const auto stage = std::make_unique<hls::cost<NDISP, table::kDefaultMaxMinDisp>>();
+// A cost stage (AD or LCDM kernel) against the model's volume `model`, every lane of every
+// pixel, with garbage flush pixels and two frames back to back through one object (the delay
+// line is never cleared).
+template <class Stage, int NDISP>
+void check_cost_stage(const Image& left, const Image& right, const Dsi& model, std::mt19937& rng) {
+    const auto stage = std::make_unique<Stage>();
     std::uniform_int_distribution<int> garbage(0, 255);
     const auto noise = [&] {
         return hls::Rgb{static_cast<hls::pixel_t>(garbage(rng)),
@@ -220,9 +226,15 @@ void check_cost(const Image& left, const Image& right, std::mt19937& rng) {
                 }
             });
         EXPECT_EQ(flushes + 1, 1) << "latency";
-        EXPECT_TRUE(same_volume(cost(left, right, NDISP), out, NDISP))
+        EXPECT_TRUE(same_volume(model, out, NDISP))
             << left.width << "x" << left.height << "x" << left.channels << ", NDISP " << NDISP;
     }
+}
+
+template <int NDISP>
+void check_cost(const Image& left, const Image& right, std::mt19937& rng) {
+    check_cost_stage<hls::cost<NDISP, table::kDefaultMaxMinDisp>, NDISP>(
+        left, right, cost(left, right, NDISP), rng);
 }
 
 TEST(HlsCost, EqualsModelColourAndGrey) {
@@ -236,6 +248,27 @@ TEST(HlsCost, EqualsModelColourAndGrey) {
         check_cost<16>(left, right, rng);
         check_cost<64>(left, right, rng);  // more lanes than columns in most frames
     }
+}
+
+// The LCDM cost stage against the model's "lcdm" plug-in.
+template <int NDISP>
+void check_cost_lcdm(const Image& left, const Image& right, std::mt19937& rng) {
+    check_cost_stage<hls::cost_lcdm<NDISP, table::kDefaultMaxMinDisp>, NDISP>(
+        left, right, cost_volume(*make_cost("lcdm"), left, right, NDISP), rng);
+}
+
+TEST(HlsCostLcdm, EqualsModel) {
+    auto rng = seeded(21);
+    for (const auto& [width, height] :
+         {std::pair{37, 23}, std::pair{5, 3}, std::pair{1, 1}, std::pair{70, 9}}) {
+        const Image left = test::random_image(width, height, 3, rng);
+        const Image right = test::random_image(width, height, 3, rng);
+        check_cost_lcdm<1>(left, right, rng);
+        check_cost_lcdm<16>(left, right, rng);
+    }
+    // The faces of the RGB cube (every hue sector, every tie).
+    const auto [cube, reversed] = test::rgb_cube_pair(18 * 18, 6);
+    check_cost_lcdm<16>(cube, reversed, rng);
 }
 
 // ---- stage: aggregate ----------------------------------------------------------------------
@@ -662,6 +695,20 @@ TEST(HlsMatchValidated, EqualsMatchValidatedOverStage6Parameters) {
     }
 }
 
+// The LCDM cost stage shares the AD stage's signed-range delay lines (cost<..., lcdm_measure>).
+TEST(HlsMatchValidated, LcdmCostOverSignedRangesWithStage6) {
+    auto rng = seeded(23);
+    const auto [left, right] = test::shifted_pair(41, 27, 3, -3, 20, rng);
+    for (const int min_disp : {-8, -3, 0, 5}) {
+        MatchParams params = with_stage6(MatchParams{16, 5, fx::kDefaultSigma, true}, min_disp, 15,
+                                         1, true);
+        params.cost = "lcdm";
+        EXPECT_TRUE(same_validated(match_validated(left, right, params),
+                                   hls::match_validated(left, right, params)))
+            << "min_disp " << min_disp;
+    }
+}
+
 TEST(HlsMatchValidated, TheMatcherRegistryRunsStage6) {
     auto rng = seeded(16);
     const auto [left, right] = test::shifted_pair(33, 21, 3, -2, 15, rng);
@@ -727,6 +774,20 @@ TEST(HlsMatch, SmallRandomImagesOverTheParameters) {
             }
         }
     }
+}
+
+TEST(HlsMatch, LcdmCostEqualsModel) {
+    auto rng = seeded(22);
+    const auto [left, right] = test::shifted_pair(61, 37, 3, 4, 8, rng);
+    for (const int window : {1, 5, 11}) {
+        MatchParams params{16, window, fx::kDefaultSigma, window != 1};
+        params.cost = "lcdm";
+        expect_match(left, right, params, "lcdm");
+    }
+    MatchParams params;
+    params.cost = "lcdm";
+    const Image grey = test::random_image(61, 37, 1, rng);
+    EXPECT_THROW((void)hls::match(grey, grey, params), std::invalid_argument);
 }
 
 TEST(HlsMatch, OddSizedRandomCrop631x479) {

@@ -18,6 +18,7 @@ void add_cosim_command(CLI::App& app);
 void add_fis_command(CLI::App& app);
 void add_avoid_command(CLI::App& app);
 void add_distort_command(CLI::App& app);
+void add_relight_command(CLI::App& app);
 void add_slam_command(CLI::App& app);
 
 // All of the above, with one subcommand required: the whole `stereo` application.

@@ -15,6 +15,7 @@ void add_stereo_commands(CLI::App& app) {
     add_fis_command(app);
     add_avoid_command(app);
     add_distort_command(app);
+    add_relight_command(app);
     add_slam_command(app);
 }
 

@@ -107,7 +107,9 @@ void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoi
         command.add_option(name, value, help)->check(CLI::IsMember(choices))->capture_default_str();
     };
     add_choice("--cost", params.cost,
-               "Matching cost: ad (absolute differences over RGB) or census (5x5, Hamming)",
+               "Matching cost: ad (absolute differences over RGB), census (5x5, Hamming), lcdm "
+               "(hue-saturation distance, colour only, thesis Sec. 3.5) or zncc (15x15; use "
+               "with --window 1 --no-ca)",
                cost_names());
     add_choice("--method", options.method,
                "pipeline (1-D, rectified pairs), edges (LoG front end), hierarchical (2-D, "

@@ -13,5 +13,6 @@ void add_sigma_sweep_command(CLI::App& app);        // docs/sigma-sweep.md
 void add_avoid_figures_command(CLI::App& app);      // docs/avoidance.md
 void add_validation_eval_command(CLI::App& app);    // docs/results.md, validated output
 void add_avoid_benchmark_command(CLI::App& app);    // docs/results-avoidance.md
+void add_illumination_command(CLI::App& app);       // docs/results-illumination.md
 
 }  // namespace stereo::experiments

@@ -7,13 +7,15 @@
 #include "stereo/hls/host.hpp"
 #include "stereo/hls/stream.hpp"
 #include "stereo/hls/top.hpp"
+#include "stereo/stages/lcdm.hpp"
 
 namespace stereo::hls {
 namespace {
 
-template <int NDISP, int WINDOW>
+template <int NDISP, int WINDOW, class MEASURE>
 ValidatedDisparity run_variant(const Image& left, const Image& right, const MatchParams& params) {
-    using Pipeline = pipeline<kHostMaxWidth, kHostMaxHeight, NDISP, WINDOW, kHostMaxMinDisp>;
+    using Pipeline =
+        pipeline<kHostMaxWidth, kHostMaxHeight, NDISP, WINDOW, kHostMaxMinDisp, MEASURE>;
     // Megabytes of line buffers: on the heap, never on the stack.
     const auto state = std::make_unique<Pipeline>();
     const FrameConfig<WINDOW> cfg = frame_config<WINDOW>(params, left.width, left.height);
@@ -21,8 +23,8 @@ ValidatedDisparity run_variant(const Image& left, const Image& right, const Matc
     stream<OutputBeat> out("match.out");
     push_frame(left, right, in);
     const status_t status =
-        stereo_hls_top<kHostMaxWidth, kHostMaxHeight, NDISP, WINDOW, kHostMaxMinDisp>(in, out, cfg,
-                                                                                      *state);
+        stereo_hls_top<kHostMaxWidth, kHostMaxHeight, NDISP, WINDOW, kHostMaxMinDisp, MEASURE>(
+            in, out, cfg, *state);
     if (status != 0 || !in.empty()) {
         throw std::logic_error("HLS top reported status " + std::to_string(status) + " with " +
                                std::to_string(in.size()) + " input beats left");
@@ -35,11 +37,18 @@ ValidatedDisparity run_variant(const Image& left, const Image& right, const Matc
     return map;
 }
 
+template <int NDISP, class MEASURE>
+ValidatedDisparity run_cost(const Image& left, const Image& right, const MatchParams& params,
+                            const Variant& variant) {
+    return variant.window == 11 ? run_variant<NDISP, 11, MEASURE>(left, right, params)
+                                : run_variant<NDISP, 31, MEASURE>(left, right, params);
+}
+
 template <int NDISP>
 ValidatedDisparity run_window(const Image& left, const Image& right, const MatchParams& params,
                               const Variant& variant) {
-    return variant.window == 11 ? run_variant<NDISP, 11>(left, right, params)
-                                : run_variant<NDISP, 31>(left, right, params);
+    return params.cost == "lcdm" ? run_cost<NDISP, lcdm_measure>(left, right, params, variant)
+                                 : run_cost<NDISP, ad_measure>(left, right, params, variant);
 }
 
 }  // namespace
@@ -69,8 +78,12 @@ ValidatedDisparity match_validated(const Image& left, const Image& right,
             " is larger than the HLS variants' " + std::to_string(kHostMaxWidth) + "x" +
             std::to_string(kHostMaxHeight));
     }
-    if (params.cost != "ad") {
-        throw std::invalid_argument("the HLS kernels have only the AD cost");
+    if (params.cost != "ad" && params.cost != "lcdm") {
+        throw std::invalid_argument("the HLS kernels have the ad and lcdm costs, not \"" +
+                                    params.cost + "\"");
+    }
+    if (params.cost == "lcdm") {
+        lcdm::require_colour(left);
     }
     const Variant variant = variant_for(params);
     switch (variant.ndisp) {

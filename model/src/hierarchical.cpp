@@ -72,14 +72,14 @@ bool level_valid(int x, int y, int d, int v, int width, int height, int reach) {
 
 LevelMap match_level(const Image& left, const Image& right, const CandidateGrid& grid,
                      const LevelParams& level, bool use_ca, CaNeighbours neighbours,
-                     std::int64_t& count) {
+                     std::int64_t& count, std::string_view cost_name) {
     check_pair(left, right);
     if (grid.width != left.width || grid.height != left.height || grid.cols < 1 || grid.rows < 1) {
         throw std::invalid_argument("candidate grid does not fit the level image");
     }
     const int width = left.width;
     const int height = left.height;
-    const auto cost = make_ad_cost();
+    const auto cost = make_cost(cost_name);
     const auto aggregator =
         make_gaussian_aggregator(gaussian_kernel(level.window, level.sigma), width, height);
     const auto rule1 = make_ca_rule1(width, height);
@@ -139,6 +139,10 @@ void validate(const Params& params, int width, int height) {
                                         std::to_string(value));
         }
     };
+    if (std::find(kCosts.begin(), kCosts.end(), params.cost) == kCosts.end()) {
+        throw std::invalid_argument("the hierarchical search has the ad and lcdm costs, not \"" +
+                                    params.cost + "\"");
+    }
     check_range("ndisp", params.ndisp, fx::kMaxDisparities);
     if (params.vrange < 0) {
         throw std::invalid_argument("vrange must be >= 0 (0 = same as ndisp), got " +
@@ -190,7 +194,7 @@ Result match(const Image& left, const Image& right, const Params& params) {
             level == 0 ? full_grid(level_left.width, level_left.height, range)
                        : refine_grid(levels[l - 1], level_left.width, level_left.height, range);
         levels[l] = match_level(level_left, level_right, grid, params.levels[l], params.use_ca,
-                                params.neighbours, count.level[l]);
+                                params.neighbours, count.level[l], params.cost);
     }
     return finish(std::move(levels), count);
 }
@@ -202,7 +206,7 @@ Result full_search(const Image& left, const Image& right, const Params& params) 
     std::array<LevelMap, kLevels> levels;
     const CandidateGrid grid = full_grid(left.width, left.height, level_range(params, 1));
     levels[kLevels - 1] = match_level(left, right, grid, params.levels[kLevels - 1], params.use_ca,
-                                      params.neighbours, count.level[kLevels - 1]);
+                                      params.neighbours, count.level[kLevels - 1], params.cost);
     return finish(std::move(levels), count);
 }
 

@@ -93,10 +93,8 @@ MatchResult to_match_result(hierarchical::Result result) {
 
 MatcherFactory hierarchical_factory(HierarchicalFunction run) {
     return [run](const MatchConfig& config) -> std::unique_ptr<Matcher> {
-        if (config.pipeline.cost != "ad") {
-            throw std::invalid_argument("the hierarchical search has only the AD cost");
-        }
         hierarchical::Params params;
+        params.cost = config.pipeline.cost;
         params.ndisp = config.pipeline.ndisp;
         params.vrange = config.vrange;
         params.use_ca = config.pipeline.use_ca;

@@ -7,6 +7,8 @@
 #include <string>
 
 #include "stereo/pipeline.hpp"
+#include "stereo/search.hpp"
+#include "stereo/stages.hpp"
 
 namespace stereo::sparse {
 
@@ -31,9 +33,6 @@ void validate(const MatchParams& match, const Params& params, int width, int hei
     MatchParams model = match;
     model.use_ca = false;
     stereo::validate(model, width, height);
-    if (match.cost != "ad") {
-        throw std::invalid_argument("the sparse matcher has only the AD cost");
-    }
     if (match.ndisp < 3) {
         throw std::invalid_argument("the certainty test needs at least 3 disparity labels, got " +
                                     std::to_string(match.ndisp));
@@ -126,8 +125,8 @@ SparseDisparity match(const Image& left, const Image& right, const MatchParams& 
                       const Params& params, ValidationCounts* counts) {
     check_pair(left, right);
     validate(match, params, left.width, left.height);
-    const Dsi aggregated =
-        aggregate(cost(left, right, match.ndisp), gaussian_kernel(match.window, match.sigma));
+    const Dsi aggregated = aggregate(cost_volume(*make_cost(match.cost), left, right, match.ndisp),
+                                     gaussian_kernel(match.window, match.sigma));
     return validate_dsi(aggregated, params, match.window / 2, counts);
 }
 

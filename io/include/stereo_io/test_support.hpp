@@ -80,6 +80,27 @@ struct ConstantPair {
     Image right;
 };
 
+// Colours of the six faces of the RGB cube in steps of 15 (every hue sector, every tie of the
+// maximum, both sides of the lightness fold, greys), in raster order over a width x height RGB
+// image, repeating; and the same image reversed, so that each pixel meets other colours.
+inline std::pair<Image, Image> rgb_cube_pair(int width, int height) {
+    Image left(width, height, 3);
+    for (int k = 0; k < width * height; ++k) {
+        const int u = 15 * (k % 18);
+        const int v = 15 * ((k / 18) % 18);
+        const int face = (k / (18 * 18)) % 6;
+        const int rgb[6][3] = {{u, v, 0},   {u, 0, v},   {0, u, v},
+                               {u, v, 255}, {u, 255, v}, {255, u, v}};
+        for (int c = 0; c < 3; ++c) {
+            left.pixels[static_cast<std::size_t>(k) * 3 + static_cast<std::size_t>(c)] =
+                static_cast<std::uint8_t>(rgb[face][c]);
+        }
+    }
+    Image right = left;
+    std::reverse(right.pixels.begin(), right.pixels.end());
+    return {std::move(left), std::move(right)};
+}
+
 inline std::vector<ConstantPair> constant_pairs(int width, int height, int channels) {
     std::vector<ConstantPair> pairs;
     for (const auto& [l, r] :

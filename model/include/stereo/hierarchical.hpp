@@ -12,6 +12,8 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "stereo/constants.hpp"
@@ -39,7 +41,10 @@ constexpr LevelParams default_level(int window) {
 inline constexpr int kLevels = 3;  // quarter, half, full
 inline constexpr std::array<int, kLevels> kLevelFactor = {4, 2, 1};
 inline constexpr std::array<const char*, kLevels> kLevelNames = {"quarter", "half", "full"};
-inline constexpr int kMaxVerticalRange = 252;  // offsets fit an int8 and 128 + v a PNG byte
+inline constexpr int kMaxVerticalRange = 252;
+// The costs the search (and its naive reference) can use: AD over RGB and LCDM (colour only).
+inline constexpr std::array<const char*, 2> kCosts = {
+    "ad", "lcdm"};  // offsets fit an int8 and 128 + v a PNG byte
 
 struct Params {
     int ndisp = fx::kDefaultDisparities;  // D: horizontal labels 0..D-1 at full size
@@ -48,6 +53,7 @@ struct Params {
                                                default_level(23)};
     bool use_ca = true;
     CaNeighbours neighbours = CaNeighbours::horizontal;
+    std::string cost = "ad";  // one of kCosts
 
     int vertical_range() const { return vrange == 0 ? ndisp : vrange; }
 };
@@ -85,13 +91,13 @@ struct CostCount {
     std::int64_t total() const { return level[0] + level[1] + level[2]; }
 };
 
-// One level: cost (AD over RGB, fx::kCostOutside outside the right image), Gaussian aggregation,
-// [CA rule 1 with `neighbours`, CA rule 2], WTA over the grid with the tie preference, validity.
-// Adds the DSI cells it computes to `count`. Streams over candidate rows, so a large full grid
-// never holds more than three rows of planes.
+// One level: cost (`cost`: AD over RGB or LCDM, fx::kCostOutside outside the right image), Gaussian
+// aggregation, [CA rule 1 with `neighbours`, CA rule 2], WTA over the grid with the tie preference,
+// validity. Adds the DSI cells it computes to `count`. Streams over candidate rows, so a large full
+// grid never holds more than three rows of planes.
 LevelMap match_level(const Image& left, const Image& right, const CandidateGrid& grid,
                      const LevelParams& level, bool use_ca, CaNeighbours neighbours,
-                     std::int64_t& count);
+                     std::int64_t& count, std::string_view cost = "ad");
 
 // Area averaging by an integer factor: floor(W/f) x floor(H/f), each channel the mean of its
 // f x f block rounded half up, (sum + f*f/2) / (f*f).

@@ -36,6 +36,25 @@ Dsi cost(const Image& left, const Image& right, int ndisp, int min_disp = 0);
 
 }  // namespace stereo::census::naive
 
+namespace stereo::lcdm::naive {
+
+// LCDM cost by its definition (docs/fixed-point.md): every pixel converted again for every
+// comparison, the trigonometric table entries from std::cos / std::sin on the spot, an integer
+// square root bit by bit. Throws like the plug-in on a grey image.
+Dsi cost(const Image& left, const Image& right, int ndisp, int dark_floor);
+Dsi cost(const Image& left, const Image& right, int ndisp);
+// The cost of left pixel (x, y) against right pixel (xr, yr), both inside, by the definition.
+int pixel_cost(const Image& left, int x, int y, const Image& right, int xr, int yr, int dark_floor);
+
+}  // namespace stereo::lcdm::naive
+
+namespace stereo::zncc::naive {
+
+// ZNCC cost by its definition: the 15x15 window summed directly for every cell.
+Dsi cost(const Image& left, const Image& right, int ndisp);
+
+}  // namespace stereo::zncc::naive
+
 namespace stereo::floating {
 
 // The same algorithm in double precision: exact normalised Gaussian weights, exact 1/9 and

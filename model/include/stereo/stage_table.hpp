@@ -157,10 +157,11 @@ constexpr int hls_pipeline_latency(int width, int window, int ndisp, int min_dis
 // The package first, then every module before its first user. One module per file, named after
 // it; the list of modules to lint is this list without the package.
 inline constexpr std::string_view kPackageFile = "fx_pkg.sv";
-inline constexpr std::array<std::string_view, 12> kRtlModules = {
-    "stereo_coord_reg", "stereo_line_buffer", "stereo_window3x3", "stereo_ca_plane",
-    "stereo_cost",      "stereo_aggregate",   "stereo_wta",       "stereo_divider",
-    "stereo_validate",  "stereo_lr_check",    "stereo_top",       "stereo_synth_top",
+inline constexpr std::array<std::string_view, 14> kRtlModules = {
+    "stereo_coord_reg",    "stereo_line_buffer",   "stereo_window3x3", "stereo_ca_plane",
+    "stereo_lcdm_convert", "stereo_lcdm_distance", "stereo_cost",      "stereo_aggregate",
+    "stereo_wta",          "stereo_divider",       "stereo_validate",  "stereo_lr_check",
+    "stereo_top",          "stereo_synth_top",
 };
 
 // ---- Verilated configurations (sim/verilated_configs.cmake) --------------------------------
@@ -174,6 +175,7 @@ struct Params {
     int runtime_kernel = kUnset;
     int rule = kUnset;          // stereo_ca_plane's RULE
     int max_min_disp = kUnset;  // stereo_top's and stereo_cost's MAX_MIN_DISP
+    int cost = kUnset;          // stereo_top's and stereo_cost's COST: 0 AD, 1 LCDM
 };
 
 struct VerilatedConfig {
@@ -185,10 +187,18 @@ struct VerilatedConfig {
 
 inline constexpr Params kSmall{64, 48, 16, 5, kUnset};  // the co-simulation point
 inline constexpr Params kFull{640, 480, 64, 11, kUnset};
+// The co-simulation point with the LCDM cost stage (stereo_top COST = 1).
+inline constexpr Params kSmallLcdm{
+    kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window, kUnset, kUnset, kUnset, 1};
 
-inline constexpr std::array<VerilatedConfig, 10> kVerilatedConfigs = {{
+inline constexpr std::array<VerilatedConfig, 12> kVerilatedConfigs = {{
     {"Vstereo_top_small", "stereo_top", kSmall, ""},
     {"Vstereo_cost", "stereo_cost", {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset}, ""},
+    {"Vstereo_top_lcdm", "stereo_top", kSmallLcdm, ""},
+    {"Vstereo_cost_lcdm",
+     "stereo_cost",
+     {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset, kUnset, kUnset, 1},
+     ""},
     {"Vstereo_aggregate",
      "stereo_aggregate",
      {kSmall.width, kUnset, kSmall.ndisp, kSmall.window, kUnset},
@@ -232,11 +242,14 @@ struct LintConfig {
     Params params;
 };
 
-inline constexpr std::array<LintConfig, 8> kExtraLintConfigs = {{
+inline constexpr std::array<LintConfig, 10> kExtraLintConfigs = {{
     // Stage 6 with one label (no delay line, no neighbours) and with odd label counts.
     {"stereo_lr_check", {kUnset, kUnset, 1, kUnset, kUnset}},
     {"stereo_validate", {kUnset, kUnset, 3, kUnset, kUnset}},
     {"stereo_top", {kUnset, kUnset, 1, 3, kUnset}},
+    // The LCDM cost stage, alone with one label and in the top.
+    {"stereo_cost", {kUnset, kUnset, 1, kUnset, kUnset, kUnset, kUnset, 1}},
+    {"stereo_top", kSmallLcdm},
     // The CA skeleton with the other rule.
     {"stereo_ca_plane", {kUnset, kUnset, kUnset, kUnset, kUnset, 2}},
     // The top at other shapes: a 3x3 window, odd label counts, and the full-size configuration.

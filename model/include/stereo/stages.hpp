@@ -93,8 +93,14 @@ std::unique_ptr<CostFunction> make_ad_cost();
 std::unique_ptr<CostFunction> make_truncated_ad_cost(int truncation);
 // 5x5 census transform of the luma, Hamming distance times fx::kCensusWeight (stages/census.hpp).
 std::unique_ptr<CostFunction> make_census_cost();
+// LCDM (thesis Sec. 3.5): distance on the HSL hue-saturation disc, colour only
+// (stages/lcdm.hpp); `dark_floor` is the saturation denominator's floor (lcdm::kDarkFloor).
+std::unique_ptr<CostFunction> make_lcdm_cost(int dark_floor);
+// 1 - ZNCC of the 15x15 luma windows, scaled to [0, fx::kCostMax] (stages/zncc.hpp); meant for
+// aggregation window 1 without CA.
+std::unique_ptr<CostFunction> make_zncc_cost();
 
-// The costs a matcher can be asked for by name: "ad", "census".
+// The costs a matcher can be asked for by name: "ad", "census", "lcdm", "zncc".
 const std::vector<std::string>& cost_names();
 // Throws std::invalid_argument naming the known costs when `name` is not one of them.
 std::unique_ptr<CostFunction> make_cost(std::string_view name);

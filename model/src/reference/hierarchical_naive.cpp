@@ -2,12 +2,16 @@
 // that tests/test_hierarchical.cpp can hold the streaming model against it bit for bit.
 #include <algorithm>
 #include <cstdlib>
+#include <stdexcept>
+#include <string_view>
 #include <tuple>
 #include <utility>
 #include <vector>
 
 #include "stereo/hierarchical_reference.hpp"
 #include "stereo/pipeline.hpp"
+#include "stereo/reference.hpp"
+#include "stereo/stages/lcdm.hpp"
 
 namespace stereo::hierarchical::naive {
 namespace {
@@ -34,12 +38,16 @@ bool agree(std::int64_t neighbour, std::int64_t centre) {
     return 2 * std::abs(neighbour - centre) < centre;
 }
 
-// The AD cost of left pixel (x, y) against right pixel (x - d, y + v).
-std::int64_t pixel_cost(const Image& left, const Image& right, int x, int y, int d, int v) {
+// The cost (AD, or LCDM when `lcdm`) of left pixel (x, y) against right pixel (x - d, y + v).
+std::int64_t pixel_cost(const Image& left, const Image& right, int x, int y, int d, int v,
+                        bool lcdm) {
     const int xr = x - d;
     const int yr = y + v;
     if (xr < 0 || xr >= right.width || yr < 0 || yr >= right.height) {
         return fx::kCostOutside;
+    }
+    if (lcdm) {
+        return lcdm::naive::pixel_cost(left, x, y, right, xr, yr, lcdm::kDarkFloor);
     }
     std::int64_t sum = 0;
     for (int c = 0; c < fx::kChannels; ++c) {
@@ -72,7 +80,12 @@ Image downscale_area(const Image& image, int factor) {
 }
 
 LevelMap match_level(const Image& left, const Image& right, const CandidateGrid& grid,
-                     const LevelParams& level, bool use_ca, CaNeighbours neighbours) {
+                     const LevelParams& level, bool use_ca, CaNeighbours neighbours,
+                     std::string_view cost) {
+    if (cost != "ad" && cost != "lcdm") {
+        throw std::invalid_argument("the naive hierarchical search has only the ad and lcdm costs");
+    }
+    const bool lcdm = cost == "lcdm";
     const int width = left.width;
     const int height = left.height;
     const int planes = grid.cols * grid.rows;
@@ -96,7 +109,7 @@ LevelMap match_level(const Image& left, const Image& right, const CandidateGrid&
                         }
                         const auto [d, v] = displacement(x + i, y + j, k);
                         sum += static_cast<std::int64_t>(kernel[i + r]) * kernel[j + r] *
-                               pixel_cost(left, right, x + i, y + j, d, v);
+                               pixel_cost(left, right, x + i, y + j, d, v, lcdm);
                     }
                 }
                 aggregated.at(x, y, k) = (sum + (1 << (fx::kAggShift - 1))) >> fx::kAggShift;
@@ -250,8 +263,8 @@ Result match(const Image& left, const Image& right, const Params& params) {
             }
         }
         const auto l_index = static_cast<std::size_t>(level);
-        result.levels[l_index] =
-            match_level(l, rt, grid, params.levels[l_index], params.use_ca, params.neighbours);
+        result.levels[l_index] = match_level(l, rt, grid, params.levels[l_index], params.use_ca,
+                                             params.neighbours, params.cost);
         result.cost_evaluations.level[l_index] =
             static_cast<std::int64_t>(size) * grid.cols * grid.rows;
         coarse = &result.levels[l_index];

@@ -149,6 +149,12 @@ Dsi cost_volume(const std::string& name, const Image& left, const Image& right, 
     if (name == "census") {
         return census::naive::cost(left, right, ndisp, min_disp);
     }
+    if (name == "lcdm") {
+        return lcdm::naive::cost(left, right, ndisp);
+    }
+    if (name == "zncc") {
+        return zncc::naive::cost(left, right, ndisp);
+    }
     (void)make_cost(name);  // throws on an unknown name
     return naive::cost(left, right, ndisp, min_disp);
 }

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "stereo/stages.hpp"
+#include "stereo/stages/lcdm.hpp"
 
 namespace stereo {
 
@@ -24,7 +25,7 @@ PlanarImage::PlanarImage(const Image& image)
 }
 
 const std::vector<std::string>& cost_names() {
-    static const std::vector<std::string> names = {"ad", "census"};
+    static const std::vector<std::string> names = {"ad", "census", "lcdm", "zncc"};
     return names;
 }
 
@@ -34,6 +35,12 @@ std::unique_ptr<CostFunction> make_cost(std::string_view name) {
     }
     if (name == "census") {
         return make_census_cost();
+    }
+    if (name == "lcdm") {
+        return make_lcdm_cost(lcdm::kDarkFloor);
+    }
+    if (name == "zncc") {
+        return make_zncc_cost();
     }
     std::string known;
     for (const auto& n : cost_names()) {

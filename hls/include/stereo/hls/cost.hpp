@@ -1,6 +1,8 @@
-// cost: absolute-difference matching cost over RGB, all NDISP labels of one pixel per step, over
-// the signed range d = m + k (model: stereo::cost, docs/fixed-point.md stages 1 and 6; RTL:
-// rtl/stereo_cost.sv).
+// cost: the matching cost, all NDISP labels of one pixel per step, over the signed range d = m + k
+// (model: stereo::cost and the cost plug-ins, docs/fixed-point.md stages 1 and 6; RTL:
+// rtl/stereo_cost.sv). MEASURE says what the delay lines carry and how two of those are compared:
+// ad_measure (RGB, absolute differences; below) or lcdm_measure (cost_lcdm.hpp: the point on the
+// hue-saturation disc, the LCDM distance), like stereo_cost's COST parameter.
 //
 // The right pixels pass through continuous delay lines (across rows): one selection picks the
 // right pixel P = max(m, 0) steps old from a pre-delay line of MAX_MIN_DISP, and the lanes'
@@ -18,7 +20,18 @@
 
 namespace stereo::hls {
 
-template <int NDISP, int MAX_MIN_DISP>
+// The AD cost over RGB: the delay lines carry the pixels themselves.
+struct ad_measure {
+    using feature = Rgb;
+    static feature convert(const Rgb& p) { return p; }
+    static cost_t distance(const Rgb& a, const Rgb& b) {
+#pragma HLS INLINE
+        const auto diff = [](int p, int q) { return p >= q ? p - q : q - p; };
+        return static_cast<cost_t>(diff(a.r, b.r) + diff(a.g, b.g) + diff(a.b, b.b));
+    }
+};
+
+template <int NDISP, int MAX_MIN_DISP, class MEASURE = ad_measure>
 class cost : public lane_output<cost_t, NDISP> {
     static_assert(NDISP >= 1 && NDISP <= fx::kMaxDisparities);
     static_assert(MAX_MIN_DISP >= 0 && MAX_MIN_DISP <= fx::kMaxMinDisparity);
@@ -47,17 +60,19 @@ class cost : public lane_output<cost_t, NDISP> {
 #pragma HLS ARRAY_PARTITION variable = left_x_ complete
 #pragma HLS ARRAY_PARTITION variable = left_y_ complete
 #pragma HLS ARRAY_PARTITION variable = out_data_ complete
+        const Feature new_left = MEASURE::convert(left);
+        const Feature new_right = MEASURE::convert(right);
         const int wait = min_disp < 0 ? -min_disp : 0;  // K
         const int skip = min_disp > 0 ? min_disp : 0;   // P
-        const Rgb matched = wait == 0 ? left : left_[wait - 1];
+        const Feature matched = wait == 0 ? new_left : left_[wait - 1];
         const coord_t x = wait == 0 ? in_x : left_x_[wait - 1];
         const coord_t y = wait == 0 ? in_y : left_y_[wait - 1];
-        const Rgb selected = skip == 0 ? right : pre_[skip - 1];
+        const Feature selected = skip == 0 ? new_right : pre_[skip - 1];
         for (int k = 0; k < NDISP; ++k) {
-            const Rgb& match = k == 0 ? selected : history_[k - 1];
+            const Feature& match = k == 0 ? selected : history_[k - 1];
             const int right_x = x - min_disp - k;
             out_data_[k] = right_x < 0 || right_x >= width ? static_cast<cost_t>(fx::kCostOutside)
-                                                           : rgb_cost(matched, match);
+                                                           : MEASURE::distance(matched, match);
         }
         for (int i = kHistory - 1; i > 0; --i) {
             history_[i] = history_[i - 1];
@@ -66,13 +81,13 @@ class cost : public lane_output<cost_t, NDISP> {
         for (int i = kPreDelay - 1; i > 0; --i) {
             pre_[i] = pre_[i - 1];
         }
-        pre_[0] = right;
+        pre_[0] = new_right;
         for (int i = kLeftDelay - 1; i > 0; --i) {
             left_[i] = left_[i - 1];
             left_x_[i] = left_x_[i - 1];
             left_y_[i] = left_y_[i - 1];
         }
-        left_[0] = left;
+        left_[0] = new_left;
         left_x_[0] = in_x;
         left_y_[0] = in_y;
         out_x_ = x;
@@ -80,19 +95,15 @@ class cost : public lane_output<cost_t, NDISP> {
     }
 
   private:
+    using Feature = typename MEASURE::feature;
     // The lanes' right history, the right pre-delay line, the left pixels kept.
     static constexpr int kHistory = NDISP > 1 ? NDISP - 1 : 1;
     static constexpr int kPreDelay = MAX_MIN_DISP > 0 ? MAX_MIN_DISP : 1;
     static constexpr int kLeftDelay = MAX_MIN_DISP > 0 ? MAX_MIN_DISP : 1;
 
-    static cost_t rgb_cost(const Rgb& a, const Rgb& b) {
-        const auto diff = [](int p, int q) { return p >= q ? p - q : q - p; };
-        return static_cast<cost_t>(diff(a.r, b.r) + diff(a.g, b.g) + diff(a.b, b.b));
-    }
-
-    Rgb history_[kHistory] = {};  // history_[i]: the selected right pixel i + 1 steps ago
-    Rgb pre_[kPreDelay] = {};     // pre_[i]: the right pixel i + 1 steps before the newest
-    Rgb left_[kLeftDelay] = {};   // left_[i]: the left pixel i + 1 steps ago, and its place
+    Feature history_[kHistory] = {};  // history_[i]: the selected right pixel i + 1 steps ago
+    Feature pre_[kPreDelay] = {};     // pre_[i]: the right pixel i + 1 steps before the newest
+    Feature left_[kLeftDelay] = {};   // left_[i]: the left pixel i + 1 steps ago, and its place
     coord_t left_x_[kLeftDelay] = {};
     coord_t left_y_[kLeftDelay] = {};
 };

@@ -16,6 +16,7 @@
 #include "stereo/hls/aggregate.hpp"
 #include "stereo/hls/ca_rule.hpp"
 #include "stereo/hls/cost.hpp"
+#include "stereo/hls/cost_lcdm.hpp"
 #include "stereo/hls/stream.hpp"
 #include "stereo/hls/types.hpp"
 #include "stereo/hls/validate.hpp"
@@ -48,8 +49,10 @@ constexpr int frame_steps(int width, int height, int min_disp = 0) {
 // The state of stereo_hls_top: the stages of rtl/stereo_top.sv. Large (the line buffers are
 // WIDTH columns of whole disparity columns): a static object in a synthesis top, a heap object
 // in C-simulation hosts.
+// MEASURE is the cost stage's measure: ad_measure (AD over RGB) or lcdm_measure (LCDM, thesis
+// Sec. 3.5), as stereo_top's COST parameter; same interface and latency.
 template <int WIDTH, int HEIGHT, int NDISP, int WINDOW,
-          int MAX_MIN_DISP = table::kDefaultMaxMinDisp>
+          int MAX_MIN_DISP = table::kDefaultMaxMinDisp, class MEASURE = ad_measure>
 class pipeline {
     static_assert(WIDTH >= 1 && WIDTH <= kMaxFrameSide && HEIGHT >= 1 && HEIGHT <= kMaxFrameSide);
 
@@ -104,7 +107,7 @@ class pipeline {
     }
 
   private:
-    cost<NDISP, MAX_MIN_DISP> cost_;
+    cost<NDISP, MAX_MIN_DISP, MEASURE> cost_;
     aggregate<WIDTH, NDISP, WINDOW> aggregate_;
     ca_rule1<WIDTH, NDISP> rule1_;
     ca_rule2<WIDTH, NDISP> rule2_;
@@ -143,10 +146,10 @@ FrameConfig<WINDOW> sanitise(const FrameConfig<WINDOW>& requested, status_t& sta
 // One frame: cfg.width * cfg.height beats from `in`, as many to `out`. Returns the status bits.
 // Unlike the RTL, which drops beats until a start of frame, a call reads exactly one frame's
 // beats; misplaced sof/eol flags are reported, not resynchronised on.
-template <int WIDTH, int HEIGHT, int NDISP, int WINDOW, int MAX_MIN_DISP>
+template <int WIDTH, int HEIGHT, int NDISP, int WINDOW, int MAX_MIN_DISP, class MEASURE>
 status_t stereo_hls_top(stream<InputBeat>& in, stream<OutputBeat>& out,
                         const FrameConfig<WINDOW>& requested,
-                        pipeline<WIDTH, HEIGHT, NDISP, WINDOW, MAX_MIN_DISP>& state) {
+                        pipeline<WIDTH, HEIGHT, NDISP, WINDOW, MAX_MIN_DISP, MEASURE>& state) {
 #pragma HLS INLINE
     constexpr int kMaxSteps = frame_steps<NDISP, WINDOW>(WIDTH, HEIGHT, -MAX_MIN_DISP);
     status_t status = 0;

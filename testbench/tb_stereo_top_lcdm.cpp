@@ -1,0 +1,156 @@
+// stereo_top with the LCDM cost stage (COST = 1, Verilated as Vstereo_top_lcdm) against
+// stereo::match with the "lcdm" cost, pixel for pixel through its AXI4-Stream ports: random
+// colour pairs with input gaps and output stalls, a relit pair, a real crop, frames back to back
+// and a reset in the middle of a frame.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <random>
+
+#include "stereo/pipeline.hpp"
+#include "stereo_io/data_dir.hpp"
+#include "stereo_io/io.hpp"
+#include "stereo_io/test_support.hpp"
+#include "stereo_top_sim.hpp"
+#include "tb_compare.hpp"
+#include "tb_options.hpp"
+
+namespace stereo::sim {
+namespace {
+
+using tb::same_map;
+
+MatchParams lcdm_params(int ndisp, int window, bool use_ca) {
+    MatchParams params{ndisp, window, fx::kDefaultSigma, use_ca};
+    params.cost = "lcdm";
+    return params;
+}
+
+class LcdmCosim {
+  public:
+    LcdmCosim() : sim_(make_top_sim(lcdm_top_config())) {
+        if (const std::string path = tb::trace_path(); !path.empty()) {
+            sim_->trace_to(path);
+        }
+        sim_->reset();
+    }
+    TopSim& sim() { return *sim_; }
+
+    ValidatedDisparity run_validated(const Image& left, const Image& right,
+                                     const MatchParams& params, const Traffic& traffic) {
+        sim_->set_params({left.width, left.height, params});
+        const auto beats = frame_beats(left, right);
+        const StreamResult result =
+            sim_->stream(beats, beats.size(), traffic, 50 * beats.size() + 10000);
+        EXPECT_TRUE(result.completed) << "the core stalled";
+        EXPECT_EQ(result.protocol_error, "");
+        EXPECT_EQ(result.status, 0U) << "status bits";
+        return assemble_validated(result.outputs, 0, left.width, left.height);
+    }
+    DisparityMap run(const Image& left, const Image& right, const MatchParams& params,
+                     const Traffic& traffic) {
+        return to_label_map(run_validated(left, right, params, traffic));
+    }
+
+  private:
+    std::unique_ptr<TopSim> sim_;
+};
+
+struct RandomCase {
+    int width, height, ndisp, window;
+    bool use_ca;
+    double gap, stall;
+};
+
+void PrintTo(const RandomCase& c, std::ostream* out) {
+    *out << c.width << "x" << c.height << " ndisp " << c.ndisp << " window " << c.window
+         << (c.use_ca ? " CA" : " no CA") << " gap " << c.gap << " stall " << c.stall;
+}
+
+class LcdmRandomPairs : public ::testing::TestWithParam<RandomCase> {};
+
+TEST_P(LcdmRandomPairs, EveryPixelEqualsTheModel) {
+    const RandomCase c = GetParam();
+    const std::uint32_t seed = tb::test_seed();
+    std::mt19937 rng(seed);
+    const Image left = test::random_image(c.width, c.height, 3, rng);
+    const Image right = test::shifted_copy(left, 3, 25, rng);
+    const MatchParams params = lcdm_params(c.ndisp, c.window, c.use_ca);
+    LcdmCosim cosim;
+    EXPECT_TRUE(same_map(match(left, right, params),
+                         cosim.run(left, right, params, {c.gap, c.stall, seed})));
+}
+
+INSTANTIATE_TEST_SUITE_P(Lcdm, LcdmRandomPairs,
+                         ::testing::Values(RandomCase{64, 48, 16, 5, true, 0.0, 0.0},
+                                           RandomCase{64, 48, 16, 5, true, 0.3, 0.3},
+                                           RandomCase{64, 48, 16, 5, false, 0.2, 0.5},
+                                           RandomCase{37, 23, 9, 3, true, 0.1, 0.1},
+                                           RandomCase{23, 17, 4, 1, false, 0.0, 0.3}));
+
+TEST(LcdmRealPair, TsukubaCropWithTheRightImageDarkened) {
+    const auto dir = io::data_dir() / "middlebury2003" / "tsukuba";
+    if (!std::filesystem::exists(dir / "left.png") || !std::filesystem::exists(dir / "right.png")) {
+        GTEST_SKIP() << "tsukuba not found in " << dir;
+    }
+    const auto pair =
+        io::crop(io::load_pair(dir / "left.png", dir / "right.png"), 150, 100, 64, 48);
+    Image darker = pair.right;
+    for (auto& p : darker.pixels) {
+        p = static_cast<std::uint8_t>(p * 3 / 4);
+    }
+    const MatchParams params = lcdm_params(16, 5, true);
+    const std::uint32_t seed = tb::test_seed();
+    LcdmCosim cosim;
+    EXPECT_TRUE(same_map(match(pair.left, pair.right, params),
+                         cosim.run(pair.left, pair.right, params, {0.2, 0.2, seed})));
+    EXPECT_TRUE(same_map(match(pair.left, darker, params),
+                         cosim.run(pair.left, darker, params, {0.2, 0.2, seed})));
+}
+
+// Stage 6 behind the LCDM cost: signed ranges (the LCDM points wait in the cost stage's left
+// delay line), uniqueness, left-right and sub-pixel output, all three output fields compared.
+TEST(LcdmStage6, SignedRangesWithValidation) {
+    const std::uint32_t seed = tb::test_seed();
+    std::mt19937 rng(seed);
+    const Image left = test::random_image(64, 48, 3, rng);
+    const Image right = test::shifted_copy(left, -2, 20, rng);
+    LcdmCosim cosim;
+    for (const int min_disp : {-8, -4, 0, 3}) {
+        MatchParams params = lcdm_params(16, 5, true);
+        params.min_disp = min_disp;
+        params.validation = ValidationParams::all_on();
+        EXPECT_TRUE(tb::same_validated(match_validated(left, right, params),
+                                       cosim.run_validated(left, right, params, {0.2, 0.2, seed})))
+            << "min_disp " << min_disp;
+    }
+}
+
+TEST(LcdmFraming, BackToBackFramesAndAResetInTheMiddleOfAFrame) {
+    const std::uint32_t seed = tb::test_seed();
+    std::mt19937 rng(seed);
+    const MatchParams params = lcdm_params(16, 5, true);
+    LcdmCosim cosim;
+    for (const auto& [width, height] : {std::pair{64, 48}, std::pair{37, 23}, std::pair{64, 48}}) {
+        const Image left = test::random_image(width, height, 3, rng);
+        const Image right = test::shifted_copy(left, 4, 10, rng);
+        EXPECT_TRUE(
+            same_map(match(left, right, params), cosim.run(left, right, params, {0.1, 0.1, seed})))
+            << width << "x" << height;
+    }
+    const Image left = test::random_image(64, 48, 3, rng);
+    const Image right = test::shifted_copy(left, 5, 15, rng);
+    cosim.sim().set_params({64, 48, params});
+    const auto beats = frame_beats(left, right);
+    const std::vector<InputBeat> half(beats.begin(), beats.begin() + beats.size() / 2);
+    const StreamResult partial = cosim.sim().stream(half, 100, {0.2, 0.2, seed}, 100000);
+    EXPECT_GT(partial.input_beats, 0U);
+    cosim.sim().reset();
+    const Image left2 = test::random_image(64, 48, 3, rng);
+    const Image right2 = test::shifted_copy(left2, 7, 15, rng);
+    EXPECT_TRUE(
+        same_map(match(left2, right2, params), cosim.run(left2, right2, params, {0.2, 0.2, seed})));
+}
+
+}  // namespace
+}  // namespace stereo::sim
