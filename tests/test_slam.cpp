@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -15,6 +16,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "stereo/pipeline.hpp"
+#include "stereo/reference.hpp"
 #include "stereo_io/data_dir.hpp"
 #include "stereo_io/test_support.hpp"
 #include "stereo_robot/slam/dataset.hpp"
@@ -33,73 +35,73 @@ constexpr double kExact = 1e-9;  // "exactly", for floating-point fits on noise-
 
 // ---- front end ------------------------------------------------------------------------------
 
-TEST(Parabola, HandComputedVertices) {
-    // (c- - c+) / (2 (c- - 2 c0 + c+)):
-    EXPECT_DOUBLE_EQ(parabola_offset(10, 4, 6), 0.25);      // 4 / 16
-    EXPECT_DOUBLE_EQ(parabola_offset(6, 4, 10), -0.25);     // mirror image
-    EXPECT_DOUBLE_EQ(parabola_offset(4, 4, 8), -0.5);       // -4 / 8: the minimum between samples
-    EXPECT_DOUBLE_EQ(parabola_offset(40, 10, 12), 0.4375);  // 28 / 64
-    EXPECT_DOUBLE_EQ(parabola_offset(5, 1, 5), 0.0);        // symmetric
-    EXPECT_DOUBLE_EQ(parabola_offset(3, 3, 3), 0.0);        // flat: no vertex
-}
-
-// A 8x1 DSI with 4 labels, every cost 50 except the cells set by hand. With window 1 (reach 0)
-// pixel x has labels 0 .. min(3, x).
-Dsi flat_dsi() {
-    Dsi dsi(8, 1, 4);
-    for (int d = 0; d < 4; ++d) {
-        for (int x = 0; x < 8; ++x) {
-            dsi.at(x, 0, d) = 50;
-        }
-    }
-    // Pixel 5: costs 40, 10, 12, 30 -> d1 = 1, C2 = 30 (d = 3), certainty 2.
-    dsi.at(5, 0, 0) = 40;
-    dsi.at(5, 0, 1) = 10;
-    dsi.at(5, 0, 2) = 12;
-    dsi.at(5, 0, 3) = 30;
-    return dsi;
-}
-
-FrontendParams window_one() {
+FrontendParams small_frontend() {
     FrontendParams p;
-    p.ndisp = 4;
-    p.window = 1;
+    p.ndisp = 16;
+    p.window = 5;
     return p;
 }
 
-TEST(Validation, HandMadeCurveGivesItsSubPixelMinimum) {
-    const SparseDisparity map = validate_dsi(flat_dsi(), window_one(), 0);
-    for (int x = 0; x < 8; ++x) {
-        if (x == 5) {
-            // Right pixel 4 sees C(4,0)=50, C(5,1)=10, C(6,2)=50, C(7,3)=50: dR = 1 = dL.
-            EXPECT_FLOAT_EQ(map.at(x, 0), 1.4375f);  // 1 + 28 / 64
-        } else {
-            EXPECT_FALSE(map.valid(x, 0)) << x;  // flat curves are never certain
+// The front end is stage 6 of the pipeline (no validation code of its own): every pixel equals
+// the naive reference's stage 6 with the front end's thresholds, valid where its reason is 0,
+// at fixed / 16.
+TEST(Frontend, EqualsTheNaiveStage6) {
+    std::mt19937 rng(test::test_seed());
+    for (const int shift : {3, 7}) {
+        const auto [left, right] = test::shifted_pair(61, 29, 1, shift, 25, rng);
+        FrontendParams params = small_frontend();
+        params.uniqueness = 15;
+        MatchParams reference{params.ndisp, params.window, params.sigma, false};
+        reference.validation = {true, params.uniqueness, true, params.lr_tolerance, true};
+        const ValidatedDisparity expected = naive::match_validated(left, right, reference);
+        ValidationCounts counts;
+        const SparseDisparity map = sparse_disparity(left, right, params, &counts);
+        std::size_t valid = 0;
+        for (int y = 0; y < map.height; ++y) {
+            for (int x = 0; x < map.width; ++x) {
+                const std::size_t i = expected.index(x, y);
+                if (expected.valid(i)) {
+                    ++valid;
+                    ASSERT_EQ(map.at(x, y), static_cast<float>(expected.fixed[i]) / 16.0f)
+                        << x << "," << y;
+                } else {
+                    ASSERT_FALSE(map.valid(x, y)) << x << "," << y;
+                }
+            }
         }
+        EXPECT_EQ(counts.valid, valid);
+        EXPECT_EQ(counts.candidates, counts.valid + counts.uncertain + counts.inconsistent);
+        EXPECT_GT(valid, 0U);
     }
 }
 
-TEST(Validation, CertaintyTestRejectsASecondMinimum) {
-    Dsi dsi = flat_dsi();
-    dsi.at(5, 0, 3) = 11;  // C2 = 11: (11 - 10) / 10 = 0.1, not above 0.1
-    EXPECT_FALSE(validate_dsi(dsi, window_one(), 0).valid(5, 0));
-    FrontendParams lenient = window_one();
-    lenient.certainty = 0.09;
-    EXPECT_TRUE(validate_dsi(dsi, lenient, 0).valid(5, 0));
-}
-
-TEST(Validation, LeftRightCheckRejectsAnInconsistentPixel) {
-    Dsi dsi = flat_dsi();
-    // Right pixel 4 now prefers d = 3 (left pixel 7): |3 - 1| = 2 > 1, so pixel 5 fails; pixel 7
-    // (costs 50, 50, 50, 5: d1 = 3, C2 = 50) is consistent and has no right neighbour label.
-    dsi.at(7, 0, 3) = 5;
-    const SparseDisparity map = validate_dsi(dsi, window_one(), 0);
-    EXPECT_FALSE(map.valid(5, 0));
-    EXPECT_FLOAT_EQ(map.at(7, 0), 3.0f);
-    // A right disparity one away is within the tolerance: C(6, 2) = 9 makes dR(4) = 2.
-    Dsi near = flat_dsi();
-    near.at(6, 0, 2) = 9;
-    EXPECT_TRUE(validate_dsi(near, window_one(), 0).valid(5, 0));
+// Two identical constant images: every label costs the same, so wherever a second cost exists
+// C2 = C1 and the pixel is not unique (C1 (100 + U) >= C2 100 for every U >= 0). A second cost
+// needs a label at least 2 away from the winner (d1 = 0, ties to the smaller d) whose match
+// window lies in the image, x - d >= R: so columns R and R + 1 (labels 0, or 0 and 1) have none
+// and stay valid at d = 0 (flat costs: no sub-pixel offset); every other candidate is uncertain.
+TEST(Frontend, ConstantImagesHaveNoUniquePixel) {
+    Image flat(40, 20, 1);
+    std::fill(flat.pixels.begin(), flat.pixels.end(), std::uint8_t{128});
+    FrontendParams params = small_frontend();
+    params.uniqueness = 0;
+    const int reach = params.window / 2;
+    ValidationCounts counts;
+    const SparseDisparity map = sparse_disparity(flat, flat, params, &counts);
+    for (int y = 0; y < map.height; ++y) {
+        for (int x = 0; x < map.width; ++x) {
+            const bool inside = y >= reach && y < map.height - reach;
+            if (inside && (x == reach || x == reach + 1)) {
+                EXPECT_EQ(map.at(x, y), 0.0f) << x << "," << y;
+            } else {
+                EXPECT_FALSE(map.valid(x, y)) << x << "," << y;
+            }
+        }
+    }
+    const std::size_t rows = map.height - 2 * reach;
+    EXPECT_EQ(counts.valid, 2 * rows);
+    EXPECT_EQ(counts.uncertain, counts.candidates - 2 * rows);
+    EXPECT_EQ(counts.inconsistent, 0U);
 }
 
 TEST(Frontend, ShiftedTextureGivesItsShift) {
@@ -129,13 +131,16 @@ TEST(Frontend, ShiftedTextureGivesItsShift) {
 TEST(Frontend, RejectsImpossibleParameters) {
     std::mt19937 rng(1);
     const Image image = test::random_image(32, 16, 1, rng);
-    FrontendParams even = window_one();
+    FrontendParams even = small_frontend();
     even.window = 4;
     EXPECT_THROW(sparse_disparity(image, image, even), std::invalid_argument);
-    FrontendParams negative = window_one();
-    negative.certainty = -0.1;
+    FrontendParams negative = small_frontend();
+    negative.uniqueness = -1;
     EXPECT_THROW(sparse_disparity(image, image, negative), std::invalid_argument);
-    FrontendParams two = window_one();
+    FrontendParams tolerance = small_frontend();
+    tolerance.lr_tolerance = -1;
+    EXPECT_THROW(sparse_disparity(image, image, tolerance), std::invalid_argument);
+    FrontendParams two = small_frontend();
     two.ndisp = 2;
     EXPECT_THROW(sparse_disparity(image, image, two), std::invalid_argument);
 }

@@ -354,7 +354,8 @@ void add_slam_command(CLI::App& app) {
                         {.ndisp = true, .no_ca = false});
     add_number_options(
         *command,
-        {{"--certainty", &p.frontend.certainty, "Minimum (C2 - C1) / C1"},
+        {{"--uniqueness", &p.frontend.uniqueness,
+          "Stage 6 uniqueness ratio U, percent: valid when (C2 - C1) / C1 > U / 100"},
          {"--lr-tolerance", &p.frontend.lr_tolerance, "Maximum |dL - dR|"},
          {"--features", &p.motion.features, "ORB features per image"},
          {"--max-hamming", &p.motion.max_hamming, "Worst accepted ORB match"},

@@ -1,6 +1,7 @@
 // The matcher registry and the model's registrations (stereo/matcher.hpp).
 #include <algorithm>
 #include <stdexcept>
+#include <utility>
 
 #include "stereo/hierarchical.hpp"
 #include "stereo/hierarchical_reference.hpp"
@@ -69,7 +70,7 @@ MatcherFactory edges_factory(EdgeFunction run) {
                 edge_frontend::validate(edges);
             },
             [params, edges, run](const Image& left, const Image& right) {
-                return MatchResult{run(left, right, params, edges), {}, {}, {}, {}};
+                return MatchResult{run(left, right, params, edges), {}, {}, {}, {}, {}};
             });
     };
 }
@@ -80,7 +81,7 @@ using HierarchicalFunction = hierarchical::Result (*)(const Image&, const Image&
                                                       const hierarchical::Params&);
 
 MatchResult to_match_result(hierarchical::Result result) {
-    MatchResult out{std::move(result.disparity), {}, std::move(result.vertical), {}, {}};
+    MatchResult out{std::move(result.disparity), {}, std::move(result.vertical), {}, {}, {}};
     for (std::size_t l = 0; l < result.levels.size(); ++l) {
         if (!result.levels[l].valid.empty()) {
             out.levels.push_back(std::move(result.levels[l]));
@@ -108,6 +109,8 @@ MatcherFactory hierarchical_factory(HierarchicalFunction run) {
 }
 
 // ---- sparse: validated sub-pixel disparities (the SLAM front end, Sec. 4.2.1) ---------------
+// The pipeline without CA and with every stage-6 check (sparse::stage6_params); the result keeps
+// stage 6's full output and adds the sub-pixel disparities and the reason counts.
 
 std::unique_ptr<Matcher> make_sparse(const MatchConfig& config) {
     const MatchParams params = config.pipeline;
@@ -117,16 +120,14 @@ std::unique_ptr<Matcher> make_sparse(const MatchConfig& config) {
             sparse::validate(params, checks, width, height);
         },
         [params, checks](const Image& left, const Image& right) {
+            check_pair(left, right);
+            sparse::validate(params, checks, left.width, left.height);
+            ValidatedDisparity validated =
+                match_validated(left, right, sparse::stage6_params(params, checks));
             sparse::ValidationCounts counts;
-            const sparse::SparseDisparity map = sparse::match(left, right, params, checks, &counts);
-            MatchResult result{DisparityMap(map.width, map.height), map.disparity, {}, {}, {}};
-            for (std::size_t p = 0; p < map.disparity.size(); ++p) {
-                if (map.disparity[p] >= 0.0F) {
-                    result.disparity.valid[p] = 1;
-                    result.disparity.disparity[p] =
-                        static_cast<std::uint8_t>(static_cast<int>(map.disparity[p] + 0.5F));
-                }
-            }
+            const sparse::SparseDisparity map = sparse::from_validated(validated, &counts);
+            MatchResult result{to_label_map(validated), map.disparity, {}, {}, {}, {}};
+            result.validated = std::move(validated);
             result.counts = {{"candidates", static_cast<std::int64_t>(counts.candidates)},
                              {"uncertain", static_cast<std::int64_t>(counts.uncertain)},
                              {"inconsistent", static_cast<std::int64_t>(counts.inconsistent)},
@@ -149,7 +150,7 @@ MatcherFactory pipeline_factory(PipelineFunction run) {
         return std::make_unique<FunctionMatcher>(
             [params](int width, int height) { validate(params, width, height); },
             [params, run](const Image& left, const Image& right) {
-                return MatchResult{run(left, right, params), {}, {}, {}, {}};
+                return MatchResult{run(left, right, params), {}, {}, {}, {}, {}};
             });
     };
 }

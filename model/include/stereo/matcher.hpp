@@ -26,7 +26,7 @@ struct MatchConfig {
     int vrange = 0;        // hierarchical: vertical labels, 0 = ndisp
     CaNeighbours neighbours = CaNeighbours::horizontal;  // hierarchical: CA rule 1 axes
     edge_frontend::EdgeParams edges;                     // edges: LoG and truncation
-    sparse::Params sparse;  // sparse: certainty and left-right tolerance
+    sparse::Params sparse;  // sparse: stage 6 uniqueness ratio and left-right tolerance
 };
 
 struct MatchResult {

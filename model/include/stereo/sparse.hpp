@@ -1,21 +1,24 @@
-// The sparse matcher (the SLAM front end of thesis Sec. 4.2.1): the golden model's
-// Gaussian-aggregated AD costs, then a double validation (certainty of the cost curve, left-right
-// consistency) and a sub-pixel parabola, in floating point on the host. The result is a sparse
-// but reliable disparity map. Thresholds: docs/slam.md. Registered as method "sparse".
+// The sparse matcher (the SLAM front end of thesis Sec. 4.2.1): the 1-D pipeline without the CA
+// rules and with every stage-6 check on (uniqueness, left-right consistency, sub-pixel
+// refinement; docs/fixed-point.md "Stage 6"), its valid pixels as sub-pixel disparities. The
+// result is a sparse but reliable disparity map. Thresholds: docs/slam.md. Registered as method
+// "sparse"; it has no validation code of its own.
 #pragma once
 
 #include <cstddef>
 #include <vector>
 
-#include "stereo/dsi.hpp"
 #include "stereo/image.hpp"
 #include "stereo/pipeline.hpp"
+#include "stereo/validated.hpp"
 
 namespace stereo::sparse {
 
 struct Params {
-    double certainty = 0.1;  // (C2 - C1) / C1 must be larger than this
-    int lr_tolerance = 1;    // |dL - dR| <= this
+    // Stage 6's uniqueness ratio U: invalid when C1 (100 + U) >= C2 100, i.e. valid when
+    // (C2 - C1) / C1 > U / 100 (C2: the best cost outside the winner and its neighbours).
+    int uniqueness = 10;
+    int lr_tolerance = 1;  // stage 6's left-right tolerance: |dL - dR| <= this
 };
 
 inline constexpr float kNoDisparity = -1.0f;
@@ -35,33 +38,25 @@ struct SparseDisparity {
     double valid_fraction() const;
 };
 
-// Vertex of the parabola through (-1, c_minus), (0, c0), (1, c_plus), relative to the middle
-// sample: (c_minus - c_plus) / (2 (c_minus - 2 c0 + c_plus)). When c0 is the smallest of the
-// three the offset lies in [-0.5, 0.5]; a flat or concave triple gives 0.
-double parabola_offset(double c_minus, double c0, double c_plus);
-
-// Why a pixel was rejected, for statistics.
+// Why pixels were rejected, from stage 6's invalid reasons.
 struct ValidationCounts {
-    std::size_t candidates = 0;    // pixels whose window and 3 or more labels lie in the images
-    std::size_t uncertain = 0;     // failed the certainty test
+    std::size_t candidates = 0;    // pixels outside the invalid border
+    std::size_t uncertain = 0;     // failed the uniqueness test
     std::size_t inconsistent = 0;  // failed the left-right check
     std::size_t valid = 0;
 };
 
-// The validation on an aggregated DSI (C(x, y, d) compares L(x) with R(x - d)). `reach` is the
-// aggregation radius: a pixel is a candidate when its window lies in the image and labels
-// 0 .. min(ndisp - 1, x - reach) number at least 3. For the best label d1 (cost C1, ties to the
-// smallest d) and C2 the best cost with |d - d1| >= 2:
-//   certainty: C1 > 0 ? (C2 - C1) / C1 > params.certainty : C2 > 0;
-//   left-right: dR(x - d1) within params.lr_tolerance of d1, where dR(xr) = argmin_d C(xr + d, d)
-//   over the labels whose window lies in the image;
-//   sub-pixel: d1 + parabola_offset(C(d1 - 1), C1, C(d1 + 1)) when both neighbours exist.
-SparseDisparity validate_dsi(const Dsi& aggregated, const Params& params, int reach,
-                             ValidationCounts* counts = nullptr);
+// The pipeline parameters the sparse matcher runs: `match` without the CA rules, minimum
+// disparity 0, uniqueness, left-right check and sub-pixel refinement on with `params`.
+MatchParams stage6_params(const MatchParams& match, const Params& params);
 
-// Model cost and aggregation (stereo::cost, stereo::aggregate; `match.use_ca` is not read), then
-// validate_dsi. Throws std::invalid_argument for impossible parameters (through stereo::validate)
-// or a certainty < 0.
+// The valid pixels of a stage-6 result as disparities (fixed / 16), with the reason counts.
+// The minimum disparity must be 0 (a valid disparity is never negative then).
+SparseDisparity from_validated(const ValidatedDisparity& validated,
+                               ValidationCounts* counts = nullptr);
+
+// stereo::match_validated with stage6_params, then from_validated. Throws
+// std::invalid_argument for impossible parameters.
 SparseDisparity match(const Image& left, const Image& right, const MatchParams& match,
                       const Params& params, ValidationCounts* counts = nullptr);
 

@@ -8,7 +8,7 @@ namespace {
 MatchConfig config_of(const FrontendParams& params) {
     MatchConfig config;
     config.pipeline = {params.ndisp, params.window, params.sigma, false};
-    config.sparse = {params.certainty, params.lr_tolerance};
+    config.sparse = {params.uniqueness, params.lr_tolerance};
     return config;
 }
 
@@ -22,11 +22,6 @@ const MatcherRegistry& registry() {
 }
 
 }  // namespace
-
-SparseDisparity validate_dsi(const Dsi& aggregated, const FrontendParams& params, int reach,
-                             ValidationCounts* counts) {
-    return sparse::validate_dsi(aggregated, config_of(params).sparse, reach, counts);
-}
 
 void validate_frontend(const FrontendParams& params, int width, int height) {
     registry().create("sparse", "model", config_of(params))->validate(width, height);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <future>
 #include <stdexcept>
+#include <string>
 
 #include "stereo_io/io.hpp"
 #include "stereo_robot/bands.hpp"
@@ -29,7 +30,7 @@ Eigen::Vector2d plane(const Eigen::Vector3d& p) {
     return {p.x(), p.z()};
 }
 
-void require(bool condition, const char* message) {
+void require(bool condition, const std::string& message) {
     if (!condition) {
         throw std::invalid_argument(message);
     }
@@ -38,13 +39,15 @@ void require(bool condition, const char* message) {
 }  // namespace
 
 void validate(const SlamParams& params, int width, int height) {
-    validate_frontend(params.frontend, width, height);
     const auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
     // Every bound keeps the work and the memory of a run finite and every value meaningful
     // (docs/reliability.md lists them): 2^31 RANSAC samples or CA passes would run for days.
     const auto within = [](double v, double low, double high) { return v >= low && v <= high; };
-    require(within(params.frontend.certainty, 0.0, 1000.0), "--certainty must be in [0, 1000]");
-    require(within(params.frontend.lr_tolerance, 0, 256), "--lr-tolerance must be in 0..256");
+    require(within(params.frontend.uniqueness, 0, fx::kMaxUniqueness),
+            "--uniqueness must be in 0.." + std::to_string(fx::kMaxUniqueness));
+    require(within(params.frontend.lr_tolerance, 0, fx::kMaxLrTolerance),
+            "--lr-tolerance must be in 0.." + std::to_string(fx::kMaxLrTolerance));
+    validate_frontend(params.frontend, width, height);
     require(within(params.motion.features, 10, 100000), "--features must be in 10..100000");
     require(params.threads >= 1 && params.threads <= 256, "--threads must be in 1..256");
     require(params.motion.max_hamming >= 0 && params.motion.max_hamming <= 256,

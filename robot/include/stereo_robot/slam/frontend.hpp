@@ -9,7 +9,6 @@
 namespace stereo::robot::slam {
 
 using sparse::kNoDisparity;
-using sparse::parabola_offset;
 using sparse::SparseDisparity;
 using sparse::ValidationCounts;
 
@@ -17,13 +16,9 @@ struct FrontendParams {
     int ndisp = 64;          // disparity labels 0 .. ndisp-1
     int window = 11;         // aggregation window (the model's default)
     double sigma = 3.0;      // aggregation Gaussian sigma (the model's default)
-    double certainty = 0.1;  // (C2 - C1) / C1 must be larger than this
+    int uniqueness = 10;     // stage 6's ratio U: (C2 - C1) / C1 must be larger than U / 100
     int lr_tolerance = 1;    // |dL - dR| <= this
 };
-
-// sparse::validate_dsi with the front end's thresholds.
-SparseDisparity validate_dsi(const Dsi& aggregated, const FrontendParams& params, int reach,
-                             ValidationCounts* counts = nullptr);
 
 // The registry's "sparse" matcher on a pair. Throws std::invalid_argument for impossible
 // parameters.
