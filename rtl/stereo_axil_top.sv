@@ -2,8 +2,8 @@
 // (AXI4-Stream, the beat layouts of stereo_top); the configuration lives in registers behind an
 // AXI4-Lite slave instead of ports. Register map (byte offsets; docs/integration.md has the
 // fields, reset values and a driver sequence):
-//   0x00 ID          RO  0x53544552 ("STER")
-//   0x04 VERSION     RO  REGMAP_VERSION
+//   0x00 ID          RO  REGMAP_ID = 0x53544552 ("STER")
+//   0x04 VERSION     RO  REGMAP_VERSION (0xMMMMmmmm)
 //   0x08 MAX_SIZE    RO  [15:0] WIDTH, [31:16] HEIGHT (the largest frame)
 //   0x0C BUILD       RO  [8:0] NDISP, [13:9] WINDOW / 2, [25:14] MAX_MIN_DISP, [26] RUNTIME_KERNEL,
 //                        [27] COST
@@ -70,8 +70,8 @@ module stereo_axil_top #(
 );
   localparam int R = WINDOW / 2;
   localparam int TAP_BITS = fx_pkg::TAP_BITS;
-  localparam logic [31:0] ID = 32'h5354_4552;
-  localparam logic [31:0] REGMAP_VERSION = 32'h0001_0000;
+  localparam logic [31:0] ID = 32'(fx_pkg::REGMAP_ID);
+  localparam logic [31:0] REGMAP_VERSION = 32'(fx_pkg::REGMAP_VERSION);
   localparam int KERNEL_BASE = 'h40;
 
   initial begin

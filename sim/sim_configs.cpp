@@ -7,10 +7,10 @@
 
 #include "Vstereo_top_lcdm.h"
 #include "Vstereo_top_small.h"
+#include "axis_driver.hpp"
 #include "port_bits.hpp"
 #include "stereo/stage_table.hpp"
 #include "stereo_top_sim.hpp"
-#include "axis_driver.hpp"
 #include "verilated_harness.hpp"
 #ifdef STEREO_COSIM_FULL
 #include "Vstereo_top_full.h"
@@ -63,8 +63,7 @@ class VerilatedTop final : public TopSim {
 
     StreamResult stream(const std::vector<InputBeat>& beats, std::size_t expected_outputs,
                         const Traffic& traffic, std::uint64_t max_cycles) override {
-        StreamResult result =
-            stream_axis(harness_, beats, expected_outputs, traffic, max_cycles);
+        StreamResult result = stream_axis(harness_, beats, expected_outputs, traffic, max_cycles);
         idle_inputs();
         result.status = model_->status;
         return result;

@@ -179,8 +179,8 @@ class AxilTop {
 
 TEST(AxilRegisters, ResetValuesAndReadOnlyFields) {
     AxilTop top;
-    EXPECT_EQ(top.read(kId), 0x53544552U);
-    EXPECT_EQ(top.read(kVersion), 0x00010000U);
+    EXPECT_EQ(top.read(kId), 0x53544552U);  // "STER", by hand
+    EXPECT_EQ(top.read(kVersion), table::kRegmapVersion);
     EXPECT_EQ(top.read(kMaxSize), static_cast<std::uint32_t>(kConfig.width | kConfig.height << 16));
     const std::uint32_t build = top.read(kBuild);
     EXPECT_EQ(build & 0x1FFU, static_cast<std::uint32_t>(kConfig.ndisp));
@@ -204,7 +204,7 @@ TEST(AxilRegisters, ResetValuesAndReadOnlyFields) {
     // Writes to read-only words change nothing; unmapped words read 0.
     top.write(kId, 0);
     top.write(kMaxSize, 0);
-    EXPECT_EQ(top.read(kId), 0x53544552U);
+    EXPECT_EQ(top.read(kId), 0x53544552U);  // "STER", by hand
     EXPECT_EQ(top.read(kMaxSize), static_cast<std::uint32_t>(kConfig.width | kConfig.height << 16));
     EXPECT_EQ(top.read(0x3C), 0U);
     EXPECT_EQ(top.read(0xFC), 0U);
@@ -235,8 +235,9 @@ TEST(AxilFrames, RegisterConfigurationsEqualTheModel) {
         bool ca, validation;
     };
     int frames = 0;
-    for (const Case& c : {Case{64, 48, 16, 5, 0, true, false}, Case{37, 23, 12, 3, -4, true, true},
-                          Case{50, 30, 16, 5, 3, false, true}, Case{64, 48, 9, 1, -8, true, true}}) {
+    for (const Case& c :
+         {Case{64, 48, 16, 5, 0, true, false}, Case{37, 23, 12, 3, -4, true, true},
+          Case{50, 30, 16, 5, 3, false, true}, Case{64, 48, 9, 1, -8, true, true}}) {
         const Image left = test::random_image(c.width, c.height, 3, rng);
         const Image right = test::shifted_copy(left, 3, 20, rng);
         MatchParams params{c.ndisp, c.window, c.window == 3 ? 1.0 : fx::kDefaultSigma, c.ca};

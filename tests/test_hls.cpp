@@ -700,8 +700,8 @@ TEST(HlsMatchValidated, LcdmCostOverSignedRangesWithStage6) {
     auto rng = seeded(23);
     const auto [left, right] = test::shifted_pair(41, 27, 3, -3, 20, rng);
     for (const int min_disp : {-8, -3, 0, 5}) {
-        MatchParams params = with_stage6(MatchParams{16, 5, fx::kDefaultSigma, true}, min_disp, 15,
-                                         1, true);
+        MatchParams params =
+            with_stage6(MatchParams{16, 5, fx::kDefaultSigma, true}, min_disp, 15, 1, true);
         params.cost = "lcdm";
         EXPECT_TRUE(same_validated(match_validated(left, right, params),
                                    hls::match_validated(left, right, params)))

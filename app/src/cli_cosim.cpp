@@ -101,9 +101,8 @@ void run_cosim(const CosimOptions& options) {
     const int width = pair.left.width;
     const int height = pair.left.height;
     model->validate(width, height);
-    const sim::TopConfig* config =
-        sim::covering_config(width, height, params.ndisp, params.window, params.min_disp,
-                             params.cost);
+    const sim::TopConfig* config = sim::covering_config(width, height, params.ndisp, params.window,
+                                                        params.min_disp, params.cost);
     if (config == nullptr) {
         const sim::TopConfig& largest =
             params.cost == "lcdm" ? sim::lcdm_top_config() : sim::built_top_configs().back();

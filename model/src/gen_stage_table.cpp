@@ -169,6 +169,9 @@ std::string package_text() {
         {"STATUS_EOL_MISPLACED", t::kStatusEolMisplaced, "tlast not at the row end"},
         {"STATUS_SOF_MISPLACED", t::kStatusSofMisplaced, "tuser inside a frame"},
         {"STATUS_CONFIG_CLAMPED", t::kStatusConfigClamped, "configuration out of range"},
+        {"REGMAP_ID", static_cast<std::int64_t>(t::kRegmapId), "stereo_axil_top's ID register"},
+        {"REGMAP_VERSION", static_cast<std::int64_t>(t::kRegmapVersion),
+         "stereo_axil_top's VERSION register"},
     });
 
     // The CA agreement test (stereo::fx::agrees), shared by rules 1 and 2.
@@ -330,13 +333,45 @@ std::string hls_lcdm_table_text() {
     return out.str();
 }
 
+// FuseSoC CAPI2 description of the core: the sources in compile order, the lint, simulation and
+// synthesis targets. FuseSoC is not in Debian, so nothing here runs it; generating the file keeps
+// its file list equal to rtl/files.f (docs/integration.md).
+std::string fusesoc_text() {
+    std::ostringstream out;
+    out << "CAPI=2:\n# " << kHeader << ".\n"
+        << "name: ::stereo-ca:" << stereo::table::kRegmapVersionText << "\n"
+        << "description: CA-enhanced streaming stereo matcher (AXI4-Stream, AXI4-Lite registers)"
+           "\n\nfilesets:\n  rtl:\n    files:\n"
+        << "      - rtl/" << stereo::table::kPackageFile << "\n";
+    for (const auto module : stereo::table::kRtlModules) {
+        out << "      - rtl/" << module << ".sv\n";
+    }
+    out << "    file_type: systemVerilogSource\n"
+           "  arty_a7:\n    files:\n      - scripts/synth/boards/arty_a7_100t.xdc:\n"
+           "          file_type: xdc\n\n"
+           "targets:\n"
+           "  default: &default\n    filesets: [rtl]\n    toplevel: stereo_axil_top\n"
+           "  lint:\n    <<: *default\n    default_tool: verilator\n"
+           "    tools:\n      verilator:\n        mode: lint-only\n"
+           "        verilator_options: [-Wall]\n"
+           "  sim:\n    <<: *default\n    default_tool: verilator\n"
+           "    tools:\n      verilator:\n        mode: cc\n"
+           "        verilator_options: [--trace-fst, -Wno-fatal]\n"
+           "  synth:\n    <<: *default\n    default_tool: yosys\n"
+           "    tools:\n      yosys:\n        arch: xilinx\n"
+           "  arty_a7:\n    filesets: [rtl, arty_a7]\n    toplevel: stereo_axil_top\n"
+           "    default_tool: vivado\n    tools:\n      vivado:\n        part: xc7a100tcsg324-1\n";
+    return out.str();
+}
+
 // Every generated file: its path under the source root and its text.
 std::vector<std::pair<std::string, std::function<std::string()>>> generated_files() {
     return {{"rtl/fx_pkg.sv", package_text},
             {"rtl/files.f", files_text},
             {"sim/verilated_configs.cmake", cmake_text},
             {"scripts/stage_table.json", json_text},
-            {"hls/include/stereo/hls/lcdm_table.hpp", hls_lcdm_table_text}};
+            {"hls/include/stereo/hls/lcdm_table.hpp", hls_lcdm_table_text},
+            {"stereo.core", fusesoc_text}};
 }
 
 }  // namespace

@@ -49,8 +49,9 @@ SparseDisparity from_validated(const ValidatedDisparity& validated, ValidationCo
         switch (validated.reason[i]) {
             case fx::kReasonValid:
                 if (validated.fixed[i] < 0) {
-                    throw std::invalid_argument("sparse: a negative disparity (minimum disparity "
-                                                "must be 0)");
+                    throw std::invalid_argument(
+                        "sparse: a negative disparity (minimum disparity "
+                        "must be 0)");
                 }
                 out.disparity[i] = static_cast<float>(validated.disparity(i));
                 ++tally.valid;

@@ -164,6 +164,12 @@ inline constexpr std::array<std::string_view, 15> kRtlModules = {
     "stereo_top",          "stereo_axil_top",      "stereo_synth_top",
 };
 
+// ---- SoC wrapper (rtl/stereo_axil_top.sv, docs/integration.md) -------------------------------
+// The register map's version (VERSION register, 0xMMMMmmmm) and the FuseSoC core's version.
+inline constexpr std::uint32_t kRegmapId = 0x5354'4552;  // "STER"
+inline constexpr std::uint32_t kRegmapVersion = 0x0001'0000;
+inline constexpr std::string_view kRegmapVersionText = "1.0.0";
+
 // ---- Verilated configurations (sim/verilated_configs.cmake) --------------------------------
 inline constexpr int kUnset = -1;
 
@@ -188,8 +194,8 @@ struct VerilatedConfig {
 inline constexpr Params kSmall{64, 48, 16, 5, kUnset};  // the co-simulation point
 inline constexpr Params kFull{640, 480, 64, 11, kUnset};
 // The co-simulation point with the LCDM cost stage (stereo_top COST = 1).
-inline constexpr Params kSmallLcdm{
-    kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window, kUnset, kUnset, kUnset, 1};
+inline constexpr Params kSmallLcdm{kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window,
+                                   kUnset,       kUnset,        kUnset,       1};
 
 inline constexpr std::array<VerilatedConfig, 13> kVerilatedConfigs = {{
     {"Vstereo_top_small", "stereo_top", kSmall, ""},

@@ -10,8 +10,8 @@
 
 #include <cstdint>
 
-#include "stereo/hls/lcdm_table.hpp"
 #include "stereo/hls/cost.hpp"
+#include "stereo/hls/lcdm_table.hpp"
 #include "stereo/hls/types.hpp"
 #include "stereo/stages/lcdm.hpp"
 
