@@ -230,7 +230,7 @@ cv::Mat run_sgbm(const Views& views, int min_disp, int ndisp) {
 
 // ---- figures ------------------------------------------------------------------------------
 
-constexpr int kTile = 256;
+constexpr int kTile = 224;
 constexpr int kTitle = 22;
 
 cv::Mat colour_disparity(const cv::Mat& d, double lo, double hi) {
@@ -280,7 +280,7 @@ cv::Mat titled(const cv::Mat& image, const std::string& title) {
     cv::resize(image, small, cv::Size(kTile, kTile), 0, 0, cv::INTER_AREA);
     cv::Mat out(kTile + kTitle, kTile, CV_8UC3, cv::Scalar(255, 255, 255));
     small.copyTo(out(cv::Rect(0, kTitle, kTile, kTile)));
-    cv::putText(out, title, cv::Point(4, 16), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 0, 0),
+    cv::putText(out, title, cv::Point(4, 16), cv::FONT_HERSHEY_SIMPLEX, 0.42, cv::Scalar(0, 0, 0),
                 1, cv::LINE_AA);
     return out;
 }
@@ -344,9 +344,9 @@ cv::Mat montage(const Views& views, const quad::QuadResult& result, const cv::Ma
         masks.setTo(cv::Scalar(90, 90, 90), fused_input.all->mat == 255);
         masks.setTo(cv::Scalar(255, 255, 255), fused_input.nonocc->mat == 255);
         masks.setTo(cv::Scalar(0, 170, 255), fused_input.disc->mat == 255);
-        tiles.push_back(titled(masks, "masks: nonocc, disc (orange)"));
+        tiles.push_back(titled(masks, "nonocc (white), disc (orange)"));
     }
-    tiles.push_back(titled(io::error_map(fused_input), "fused errors > 1 (red, blue)"));
+    tiles.push_back(titled(io::error_map(fused_input), "fused: bad > 1 (red, blue)"));
     constexpr int kColumns = 4;
     const int rows = static_cast<int>((tiles.size() + kColumns - 1) / kColumns);
     cv::Mat grid(rows * (kTile + kTitle), kColumns * kTile, CV_8UC3, cv::Scalar(255, 255, 255));
@@ -366,31 +366,39 @@ cv::Mat montage(const Views& views, const quad::QuadResult& result, const cv::Ma
 }
 
 // The cloud seen from a camera turned by `yaw` about the vertical axis through the cloud's
-// median depth: points projected nearest first (a z-buffer), two-pixel splats.
+// median point, 1.6 median depths away: points projected nearest first (a z-buffer), two-pixel
+// splats.
 cv::Mat render_cloud(const std::vector<io::CloudPoint>& points, int size, double yaw) {
     cv::Mat out(size, size, CV_8UC3, cv::Scalar(30, 30, 30));
     if (points.empty()) {
         return out;
     }
-    std::vector<float> depths;
-    for (const auto& p : points) {
-        depths.push_back(p.z);
-    }
-    std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
-    const double pivot = depths[depths.size() / 2];
+    const auto median = [&](auto member) {
+        std::vector<float> values;
+        values.reserve(points.size());
+        for (const auto& p : points) {
+            values.push_back(p.*member);
+        }
+        std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+        return static_cast<double>(values[values.size() / 2]);
+    };
+    const double mx = median(&io::CloudPoint::x);
+    const double my = median(&io::CloudPoint::y);
+    const double mz = median(&io::CloudPoint::z);
     const double c = std::cos(yaw);
     const double s = std::sin(yaw);
     const double focal = 0.9 * size;
     cv::Mat zbuffer(size, size, CV_32FC1, cv::Scalar(std::numeric_limits<float>::infinity()));
     for (const auto& p : points) {
-        const double z0 = p.z - pivot;
-        const double x = c * p.x + s * z0;
-        const double z = -s * p.x + c * z0 + pivot * 1.4;
+        const double x0 = p.x - mx;
+        const double z0 = p.z - mz;
+        const double x = c * x0 + s * z0;
+        const double z = -s * x0 + c * z0 + 1.6 * mz;
         if (z <= 0) {
             continue;
         }
         const int u = static_cast<int>(size / 2 + focal * x / z);
-        const int v = static_cast<int>(size / 2 + focal * p.y / z);
+        const int v = static_cast<int>(size / 2 + focal * (p.y - my) / z);
         for (int dv = 0; dv < 2; ++dv) {
             for (int du = 0; du < 2; ++du) {
                 const int uu = u + du;
@@ -438,7 +446,7 @@ std::string markdown(const json& report) {
           "ground truth (`experiments/src/quad_eval.cpp`, `make_masks`):\n\n"
        << "* **frame**: a pixel is scored only at least `reach(23 x 23) + max |d|` pixels from "
           "every image edge (the same frame for every row, so that no matcher is scored where "
-          "its window or its search leaves the image; 25 px at n = 4, 19 px at n = 2, given "
+          "its window or its search leaves the image; given "
           "per baseline below).\n"
        << "* **all** = the frame (the ground truth is dense).\n"
        << "* **nonocc** = pixels of `all` visible in all three partner views. Visibility by "
@@ -643,10 +651,9 @@ void run_quad_eval(const Options& options) {
                 io::encode_png(montage(views, result, gt, fused_input, n, min_disp, max_disp),
                                dir / ("quad_montage" + suffix)));
             // The light field's camera constants are not in the data folder: a nominal focal
-            // length of 512 px, one unit of baseline per view step, and the focal plane's
-            // disparity offset set to 3.5 n (just beyond |min g| = 3.13), so the cloud's shape is
-            // right up to that projective choice.
-            const io::CloudGeometry geometry{512.0, static_cast<double>(n), 255.5, 255.5, 3.5 * n};
+            // length of 512 px, one unit of baseline per view step, and a disparity offset of
+            // 8 n (cloud_note), so the cloud's shape is right up to that projective choice.
+            const io::CloudGeometry geometry{512.0, static_cast<double>(n), 255.5, 255.5, 8.0 * n};
             const std::string ply = io::encode_ply(
                 io::disparity_to_points(rows[3].disparity, views.bgr[0], geometry), true);
             const auto points = io::decode_ply(ply, "fused cloud");
@@ -659,8 +666,10 @@ void run_quad_eval(const Options& options) {
             report["cloud_note"] =
                 "The light field's camera constants are not in the data folder, so the cloud uses "
                 "a nominal focal length of 512 px, one unit of baseline per view step and a "
-                "disparity offset of 3.5 n (`--doffs`, just beyond the scene's most negative g): "
-                "the shape is right up to that projective choice. " +
+                "disparity offset of 8 n (`--doffs`; any offset beyond the scene's most negative "
+                "g = -3.13 gives positive depths, 8 keeps the depth range of the bust and the wall "
+                "within a factor of two so that both are visible): the shape is right up to that "
+                "projective choice. " +
                 std::to_string(points.size()) + " points.";
         }
     }

@@ -194,7 +194,15 @@ void validate_pair(Pair pair, const MatchParams& params, int width, int height) 
         validate(params, width, height);
     }
     if (pair != Pair::horizontal) {
-        validate(params, height, width);
+        try {
+            validate(params, height, width);
+        } catch (const std::invalid_argument& error) {
+            // The check ran on the transposed size: say so, the numbers are the columns'.
+            throw std::invalid_argument("the " + std::string(name(pair)) +
+                                        " pair searches along the columns, checked as the "
+                                        "transposed image (height " +
+                                        std::to_string(height) + " as width): " + error.what());
+        }
     }
 }
 
