@@ -7,7 +7,13 @@
 #include <random>
 #include <stdexcept>
 
+#include <cmath>
+#include <cstdio>
+
 #include "stereo/quad.hpp"
+#include "stereo_io/data_dir.hpp"
+#include "stereo_io/disparity_files.hpp"
+#include "stereo_io/io.hpp"
 #include "stereo_io/test_support.hpp"
 
 namespace stereo::quad {
@@ -207,6 +213,48 @@ TEST(QuadMatch, ViewsThatDoNotFitAreRefused) {
     MatchParams census = params;
     census.cost = "census";
     EXPECT_THROW(validate_pair(Pair::vertical, census, 40, 30), std::invalid_argument);
+}
+
+TEST(QuadLightField, EveryPairFollowsTheGridGeometry) {
+    // The sign convention of each pair on real data (data/README.md: d = n * g, the partner n
+    // views right / down / both): on a 96 x 96 crop of antinous at n = 2, most interior pixels
+    // of each pair lie within 1 px of the ground truth. With a wrong sign or axis almost none do.
+    const auto dir = io::data_dir() / "lightfield" / "antinous";
+    if (!std::filesystem::exists(dir / "gt_disp_lowres.pfm")) {
+        GTEST_SKIP() << "antinous not found under " << dir;
+    }
+    constexpr int kN = 2;
+    constexpr int kX0 = 200;
+    constexpr int kY0 = 150;
+    constexpr int kSide = 96;
+    const auto view = [&](int index) {
+        char name[32];
+        std::snprintf(name, sizeof name, "input_Cam%03d.png", index);
+        return io::crop(io::load_image(dir / name), kX0, kY0, kSide, kSide);
+    };
+    const cv::Mat g =
+        io::load_disparity_file(dir / "gt_disp_lowres.pfm", io::DisparityEncoding::pfm, 1.0);
+    const Image reference = view(40);
+    const std::array<Image, 3> partners = {view(40 + kN), view(40 + 9 * kN), view(40 + 10 * kN)};
+    MatchParams params;
+    params.ndisp = 16;
+    params.min_disp = -8;
+    params.window = 13;
+    for (const Pair pair : kPairs) {
+        const auto result =
+            match_pair(pair, reference, partners[static_cast<std::size_t>(pair)], params);
+        int close = 0;
+        int scored = 0;
+        for (int y = 24; y < kSide - 24; ++y) {
+            for (int x = 24; x < kSide - 24; ++x) {
+                const auto i = result.index(x, y);
+                ++scored;
+                const double truth = kN * g.at<float>(kY0 + y, kX0 + x);
+                close += result.valid(i) && std::abs(result.disparity(i) - truth) <= 1.0 ? 1 : 0;
+            }
+        }
+        EXPECT_GT(close, scored * 3 / 4) << name(pair) << ": " << close << " of " << scored;
+    }
 }
 
 }  // namespace
