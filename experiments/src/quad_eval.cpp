@@ -504,7 +504,9 @@ std::string markdown(const json& report) {
               "matcher (sigma 3: "
            << fmt(goals["reduction_vs_23"])
            << " % fewer; sigma scaled: " << fmt(goals["reduction_vs_23_scaled"]) << " % fewer): **"
-           << (goals["reduction_met"].get<bool>() ? "met" : "not met") << "** (against both)\n\n";
+           << (goals["reduction_met"].get<bool>() ? "met" : "not met") << "** (against both)\n"
+           << "* not a goal, for completeness: disc, fused " << fmt(goals["fused_disc"])
+           << " vs best pair " << fmt(goals["best_pair_disc"]) << "\n\n";
     }
     md << "## Reading the tables\n\n"
        << "* Nothing here is tuned to this scene: the window (13 x 13) is the thesis', sigma 3 "
@@ -523,6 +525,11 @@ std::string markdown(const json& report) {
           "two-camera 13 x 13 row with stage 6 shows what `stereo match`'s defaults give on the "
           "same pair (fewer pixels, and here more bad ones, since every invalid pixel counts "
           "as bad). SGBM fills its own holes differently and is shown for reference.\n"
+       << "* For scale, the thesis' Table 3.3 (Tsukuba, bad > 1 nonocc / all / disc): "
+          "horizontal 16.2 / 18.1 / 29.9, vertical 12.5 / 13.8 / 35.1, diagonal 10.7 / 12.4 / "
+          "32.3, fused 10.8 / 12.6 / 31.5, two-camera 23 x 23 15.8 / 17.6 / 33.9 — there the "
+          "fused map was not below the best pair (the diagonal); a different scene, rig and "
+          "masks, so only the pattern compares.\n"
        << "* Times are single runs on a shared two-core machine; the fused row runs three "
           "threads on two cores, so it costs about the sum of the three pairs here and would "
           "cost about one pair with three cores (or three hardware pipelines).\n\n";
@@ -644,7 +651,12 @@ void run_quad_eval(const Options& options) {
         };
         const double red = reduction(r[4]);
         const double red_scaled = reduction(r[5]);
-        block["goals"] = {{"fused_nonocc", fused_nonocc},
+        const double best_disc =
+            std::min({r[0]["bad_disc"].get<double>(), r[1]["bad_disc"].get<double>(),
+                      r[2]["bad_disc"].get<double>()});
+        block["goals"] = {{"fused_disc", r[3]["bad_disc"].get<double>()},
+                          {"best_pair_disc", best_disc},
+                          {"fused_nonocc", fused_nonocc},
                           {"best_pair_nonocc", best_nonocc},
                           {"nonocc_met", fused_nonocc <= best_nonocc},
                           {"fused_all", fused_all},
