@@ -17,6 +17,8 @@ void add_stereo_commands(CLI::App& app) {
     add_distort_command(app);
     add_relight_command(app);
     add_slam_command(app);
+    add_quad_command(app);
+    add_cloud_command(app);
 }
 
 }  // namespace stereo::cli

@@ -14,5 +14,6 @@ void add_avoid_figures_command(CLI::App& app);      // docs/avoidance.md
 void add_validation_eval_command(CLI::App& app);    // docs/results.md, validated output
 void add_avoid_benchmark_command(CLI::App& app);    // docs/results-avoidance.md
 void add_illumination_command(CLI::App& app);       // docs/results-illumination.md
+void add_quad_eval_command(CLI::App& app);          // docs/results-quad.md
 
 }  // namespace stereo::experiments

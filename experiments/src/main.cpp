@@ -14,5 +14,6 @@ int main(int argc, char** argv) {
     stereo::experiments::add_validation_eval_command(app);
     stereo::experiments::add_avoid_benchmark_command(app);
     stereo::experiments::add_illumination_command(app);
+    stereo::experiments::add_quad_eval_command(app);
     return stereo::cli::run(app, argc, argv);
 }

@@ -6,6 +6,7 @@
 #include "stereo/hierarchical.hpp"
 #include "stereo/hierarchical_reference.hpp"
 #include "stereo/matcher.hpp"
+#include "stereo/quad.hpp"
 #include "stereo/reference.hpp"
 
 namespace stereo {
@@ -170,6 +171,31 @@ MatcherFactory pipeline_factory(ValidatedPipelineFunction run) {
     };
 }
 
+namespace {
+
+// A factory for one quad-camera pair geometry (stereo/quad.hpp): `left` is the reference,
+// `right` the partner below (vertical) or below-right (diagonal).
+using PairFunction = ValidatedDisparity (*)(quad::Pair, const Image&, const Image&,
+                                            const MatchParams&);
+MatcherFactory quad_pair_factory(quad::Pair pair, PairFunction run) {
+    return [pair, run](const MatchConfig& config) -> std::unique_ptr<Matcher> {
+        const MatchParams params = config.pipeline;
+        validate_params(params);
+        return std::make_unique<FunctionMatcher>(
+            [pair, params](int width, int height) {
+                quad::validate_pair(pair, params, width, height);
+            },
+            [pair, params, run](const Image& left, const Image& right) {
+                MatchResult result;
+                result.validated = run(pair, left, right, params);
+                result.disparity = to_label_map(result.validated);
+                return result;
+            });
+    };
+}
+
+}  // namespace
+
 void MatcherRegistry::add(MatcherEntry entry) {
     for (const auto& existing : entries_) {
         if (existing.method == entry.method && existing.engine == entry.engine) {
@@ -237,6 +263,15 @@ void register_model_matchers(MatcherRegistry& registry) {
                   hierarchical_factory(&hierarchical::full_search)});
     registry.add(
         {"sparse", "model", "validated sub-pixel disparities (SLAM front end)", &make_sparse});
+    for (const quad::Pair pair : {quad::Pair::vertical, quad::Pair::diagonal}) {
+        const std::string method(quad::name(pair));
+        registry.add({method, "model",
+                      "Sec. 3.2 " + method + " pair (partner below" +
+                          (pair == quad::Pair::diagonal ? "-right" : "") + ")",
+                      quad_pair_factory(pair, &quad::match_pair)});
+        registry.add({method, "naive", method + " pair, naive reference",
+                      quad_pair_factory(pair, &quad::naive::match_pair)});
+    }
 }
 
 }  // namespace stereo

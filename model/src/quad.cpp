@@ -1,0 +1,328 @@
+// Quad-camera matching (docs/quad.md): the three pair geometries and the certainty fusion.
+#include "stereo/quad.hpp"
+
+#include <cstdlib>
+#include <future>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "stereo/stages/validate.hpp"
+
+namespace stereo::quad {
+namespace {
+
+std::string size_text(const Image& image) {
+    return std::to_string(image.width) + "x" + std::to_string(image.height) + "x" +
+           std::to_string(image.channels);
+}
+
+// The partner pixel of (x, y) at disparity d lies inside [lo, hi) on both axes.
+bool partner_inside(Step s, int x, int y, int d, int width, int height, int reach) {
+    const int xs = x - d * s.x;
+    const int ys = y - d * s.y;
+    return xs >= reach && xs < width - reach && ys >= reach && ys < height - reach;
+}
+
+// Stage 1 along the direction: plane k holds d = min_disp + k, kCostOutside where the partner
+// pixel leaves the image. A grey image counts its one channel three times.
+Dsi direction_cost(Step s, const Image& reference, const Image& partner, int ndisp, int min_disp) {
+    const int width = reference.width;
+    const int height = reference.height;
+    const int channels = reference.channels;
+    Dsi dsi(width, height, ndisp);
+    for (int k = 0; k < ndisp; ++k) {
+        const int d = min_disp + k;
+        const auto plane = dsi.plane(k);
+        for (int y = 0; y < height; ++y) {
+            const int ys = y - d * s.y;
+            const bool row_inside = ys >= 0 && ys < height;
+            const std::uint8_t* ref_row =
+                &reference.pixels[static_cast<std::size_t>(y) * width * channels];
+            for (int x = 0; x < width; ++x) {
+                const int xs = x - d * s.x;
+                Dsi::Value& cell = plane[static_cast<std::size_t>(y) * width + x];
+                if (!row_inside || xs < 0 || xs >= width) {
+                    cell = fx::kCostOutside;
+                    continue;
+                }
+                const std::uint8_t* a = ref_row + static_cast<std::size_t>(x) * channels;
+                const std::uint8_t* b =
+                    &partner.pixels[(static_cast<std::size_t>(ys) * width + xs) * channels];
+                int sum = 0;
+                if (channels == 3) {
+                    sum = std::abs(a[0] - b[0]) + std::abs(a[1] - b[1]) + std::abs(a[2] - b[2]);
+                } else {
+                    sum = 3 * std::abs(a[0] - b[0]);
+                }
+                cell = static_cast<Dsi::Value>(sum);
+            }
+        }
+    }
+    return dsi;
+}
+
+// Stage 6 over a final volume, plane by plane: winner, second cost, right-referenced winner of
+// every partner pixel (the left pixels that see it, along the direction), then per pixel.
+ValidatedDisparity direction_validate(const Dsi& volume, Step s, int min_disp,
+                                      const ValidationParams& params, const InvalidBorder& border) {
+    const int width = volume.width();
+    const int height = volume.height();
+    const int ndisp = volume.ndisp();
+    const std::size_t size = volume.plane_size();
+    std::vector<int> best(size, fx::kNoSecondCost + 1);
+    std::vector<int> label(size, 0);
+    for (int k = 0; k < ndisp; ++k) {
+        const auto plane = volume.plane(k);
+        for (std::size_t p = 0; p < size; ++p) {
+            if (plane[p] < best[p]) {
+                best[p] = plane[p];
+                label[p] = k;
+            }
+        }
+    }
+    std::vector<int> second(size, fx::kNoSecondCost);
+    for (int k = 0; k < ndisp; ++k) {
+        const auto plane = volume.plane(k);
+        for (std::size_t p = 0; p < size; ++p) {
+            if (std::abs(k - label[p]) > 1 && plane[p] < second[p]) {
+                second[p] = plane[p];
+            }
+        }
+    }
+    std::vector<int> right_best;
+    std::vector<int> right_label;
+    if (params.left_right) {
+        right_best.assign(size, fx::kNoSecondCost + 1);
+        right_label.assign(size, 0);
+        for (int k = 0; k < ndisp; ++k) {
+            const int d = min_disp + k;
+            const auto plane = volume.plane(k);
+            for (int y = 0; y < height; ++y) {
+                for (int x = 0; x < width; ++x) {
+                    if (!partner_inside(s, x, y, d, width, height, 0)) {
+                        continue;
+                    }
+                    const std::size_t q =
+                        static_cast<std::size_t>(y - d * s.y) * width + (x - d * s.x);
+                    const int cost = plane[static_cast<std::size_t>(y) * width + x];
+                    if (cost < right_best[q]) {
+                        right_best[q] = cost;
+                        right_label[q] = k;
+                    }
+                }
+            }
+        }
+    }
+    ValidatedDisparity out(width, height);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const std::size_t p = out.index(x, y);
+            const int k1 = label[p];
+            const int c1 = best[p];
+            const int c2 = second[p];
+            out.certainty[p] = static_cast<std::uint8_t>(validation::certainty(c1, c2));
+            const int d = min_disp + k1;
+            if (!border.window_inside(x, y, width, height) ||
+                !partner_inside(s, x, y, d, width, height, border.reach)) {
+                out.reason[p] = fx::kReasonBorder;
+                continue;
+            }
+            if (params.uniqueness && !validation::unique(c1, c2, params.uniqueness_ratio)) {
+                out.reason[p] = fx::kReasonUniqueness;
+                continue;
+            }
+            if (params.left_right) {
+                const std::size_t q = static_cast<std::size_t>(y - d * s.y) * width + (x - d * s.x);
+                if (std::abs(k1 - right_label[q]) > params.lr_tolerance) {
+                    out.reason[p] = fx::kReasonLeftRight;
+                    continue;
+                }
+            }
+            out.reason[p] = fx::kReasonValid;
+            int offset = 0;
+            if (params.subpixel && k1 > 0 && k1 < ndisp - 1) {
+                offset = validation::subpixel_offset(volume.plane(k1 - 1)[p], c1,
+                                                     volume.plane(k1 + 1)[p]);
+            }
+            out.fixed[p] = static_cast<std::int16_t>(fx::kSubpixelScale * d + offset);
+        }
+    }
+    return out;
+}
+
+void check_views(const QuadViews& views) {
+    const std::array<std::pair<const char*, const Image*>, 3> partners = {{
+        {"horizontal", &views.horizontal},
+        {"vertical", &views.vertical},
+        {"diagonal", &views.diagonal},
+    }};
+    for (const auto& [label, image] : partners) {
+        if (image->width != views.reference.width || image->height != views.reference.height ||
+            image->channels != views.reference.channels) {
+            throw std::invalid_argument(std::string("the ") + label + " view is " +
+                                        size_text(*image) + " but the reference is " +
+                                        size_text(views.reference) +
+                                        " (the four views must have one size and channel count)");
+        }
+    }
+}
+
+}  // namespace
+
+std::string_view name(Pair pair) {
+    switch (pair) {
+        case Pair::horizontal:
+            return "horizontal";
+        case Pair::vertical:
+            return "vertical";
+        case Pair::diagonal:
+            return "diagonal";
+    }
+    return "horizontal";
+}
+
+void validate_pair(Pair pair, const MatchParams& params, int width, int height) {
+    validate_params(params);
+    if (pair != Pair::horizontal && params.cost != "ad") {
+        throw std::invalid_argument("the " + std::string(name(pair)) +
+                                    " pair supports the ad cost only, not " + params.cost);
+    }
+    // The disparity range runs along the search axis: the width for the horizontal pair, the
+    // height for the vertical pair, both for the diagonal.
+    if (pair != Pair::vertical) {
+        validate(params, width, height);
+    }
+    if (pair != Pair::horizontal) {
+        try {
+            validate(params, height, width);
+        } catch (const std::invalid_argument& error) {
+            // The check ran on the transposed size: say so, the numbers are the columns'.
+            throw std::invalid_argument("the " + std::string(name(pair)) +
+                                        " pair searches along the columns, checked as the "
+                                        "transposed image (height " +
+                                        std::to_string(height) + " as width): " + error.what());
+        }
+    }
+}
+
+Image transpose(const Image& image) {
+    Image out(image.height, image.width, image.channels);
+    for (int y = 0; y < image.height; ++y) {
+        for (int x = 0; x < image.width; ++x) {
+            for (int c = 0; c < image.channels; ++c) {
+                out.at(y, x, c) = image.at(x, y, c);
+            }
+        }
+    }
+    return out;
+}
+
+ValidatedDisparity transpose(const ValidatedDisparity& map) {
+    ValidatedDisparity out(map.height, map.width);
+    for (int y = 0; y < map.height; ++y) {
+        for (int x = 0; x < map.width; ++x) {
+            const std::size_t from = map.index(x, y);
+            const std::size_t to = out.index(y, x);
+            out.fixed[to] = map.fixed[from];
+            out.reason[to] = map.reason[from];
+            out.certainty[to] = map.certainty[from];
+        }
+    }
+    return out;
+}
+
+ValidatedDisparity match_pair_volume(Pair pair, const Image& reference, const Image& partner,
+                                     const MatchParams& params) {
+    check_pair(reference, partner);
+    validate_pair(pair, params, reference.width, reference.height);
+    const Step s = step(pair);
+    Dsi volume = aggregate(direction_cost(s, reference, partner, params.ndisp, params.min_disp),
+                           gaussian_kernel(params.window, params.sigma));
+    if (params.use_ca) {
+        volume = ca_rule2(ca_rule1(volume));
+    }
+    return direction_validate(volume, s, params.min_disp, params.validation,
+                              invalid_border(params));
+}
+
+ValidatedDisparity match_pair(Pair pair, const Image& reference, const Image& partner,
+                              const MatchParams& params) {
+    check_pair(reference, partner);
+    validate_pair(pair, params, reference.width, reference.height);
+    switch (pair) {
+        case Pair::horizontal:
+            return match_validated(reference, partner, params);
+        case Pair::vertical:
+            return transpose(match_validated(transpose(reference), transpose(partner), params));
+        case Pair::diagonal:
+            return match_pair_volume(pair, reference, partner, params);
+    }
+    throw std::invalid_argument("unknown pair");
+}
+
+QuadResult fuse(std::array<ValidatedDisparity, 3> pairs) {
+    const int width = pairs[0].width;
+    const int height = pairs[0].height;
+    for (const auto& map : pairs) {
+        if (map.width != width || map.height != height) {
+            throw std::invalid_argument("the three pair maps must have one size");
+        }
+    }
+    QuadResult result;
+    result.fused = ValidatedDisparity(width, height);
+    result.source.assign(static_cast<std::size_t>(width) * height, kSourceNone);
+    for (std::size_t i = 0; i < result.source.size(); ++i) {
+        int winner = -1;
+        for (int p = 0; p < 3; ++p) {
+            if (pairs[p].valid(i) &&
+                (winner < 0 || pairs[p].certainty[i] > pairs[winner].certainty[i])) {
+                winner = p;
+            }
+        }
+        if (winner < 0) {
+            result.fused.reason[i] = pairs[0].reason[i];
+            continue;
+        }
+        result.fused.fixed[i] = pairs[winner].fixed[i];
+        result.fused.reason[i] = fx::kReasonValid;
+        result.fused.certainty[i] = pairs[winner].certainty[i];
+        result.source[i] = source_code(static_cast<Pair>(winner));
+    }
+    result.pairs = std::move(pairs);
+    return result;
+}
+
+void validate_quad(const QuadViews& views, const MatchParams& params) {
+    check_views(views);
+    for (const Pair pair : kPairs) {
+        validate_pair(pair, params, views.reference.width, views.reference.height);
+    }
+}
+
+QuadResult match_quad(const QuadViews& views, const MatchParams& params, bool threads) {
+    validate_quad(views, params);
+    const std::array<const Image*, 3> partners = {&views.horizontal, &views.vertical,
+                                                  &views.diagonal};
+    std::array<ValidatedDisparity, 3> maps;
+    if (!threads) {
+        for (const Pair pair : kPairs) {
+            const auto p = static_cast<std::size_t>(pair);
+            maps[p] = match_pair(pair, views.reference, *partners[p], params);
+        }
+        return fuse(std::move(maps));
+    }
+    std::array<std::future<ValidatedDisparity>, 3> jobs;
+    for (const Pair pair : kPairs) {
+        const auto p = static_cast<std::size_t>(pair);
+        jobs[p] = std::async(std::launch::async, [&views, &params, pair, partner = partners[p]] {
+            return match_pair(pair, views.reference, *partner, params);
+        });
+    }
+    for (std::size_t p = 0; p < jobs.size(); ++p) {
+        maps[p] = jobs[p].get();
+    }
+    return fuse(std::move(maps));
+}
+
+}  // namespace stereo::quad
