@@ -11,8 +11,12 @@
 //
 // All stages advance together on one clock enable (a "pixel step", docs/rtl.md): a step happens
 // when there is something to push (an input pixel, or a flush step after the frame's last
-// pixel) and the output register is free or being read. A stalled m_axis_tready therefore stalls
-// everything without losing or duplicating a pixel. After the last input pixel of a frame the
+// pixel) and the output skid register is empty. The skid register takes the output register's
+// beat when a step would overwrite it while m_axis_tready is low; m_axis shows the skid register
+// while it is full. So the clock enable and s_axis_tready depend on a register only, never
+// combinationally on m_axis_tready (which would fan out into every stage's enable), and a
+// stalled m_axis_tready still stalls everything without losing or duplicating a pixel. Without
+// stalls the skid register stays empty: latency and throughput are unchanged. After the last input pixel of a frame the
 // core steps on its own (s_axis_tready low) until the frame's last output has left the WTA, so
 // a frame never waits for the next one. Cycles per frame without stalls:
 //   W*H + (R + 2)*W + R + 11 + NDISP + K, R = WINDOW/2, K = max(0, -cfg_min_disp)
@@ -185,8 +189,9 @@ module stereo_top #(
   fx_pkg::coord_t final_x, final_y;  // the pixel entering the output register at a step
   logic last_output_entering;  // this step moves pixel (W-1, H-1) into the output register
 
+  logic skid_full;  // the skid register holds the oldest beat not yet taken
   always_comb begin
-    can_step = !output_pending || m_axis_tready;
+    can_step = !skid_full;
     start_of_frame = state == IDLE && s_axis_tvalid && s_axis_tuser;
     unique case (state)
       IDLE: begin
@@ -454,15 +459,42 @@ module stereo_top #(
       output_pending <= 1'b0;
     end else if (step) begin
       output_pending <= entering_in_frame;
-    end else if (m_axis_tready) begin
+    end else if (m_axis_tready && !skid_full) begin
       output_pending <= 1'b0;
     end
   end
 
-  assign m_axis_tvalid = output_pending;
-  assign m_axis_tdata = out_beat;
-  assign m_axis_tuser = out_x == 0 && out_y == 0;
-  assign m_axis_tlast = 32'(out_x) == $signed(32'(frame_width)) - 1;
+  // The output register's beat with its framing.
+  logic out_user, out_last;
+  assign out_user = out_x == 0 && out_y == 0;
+  assign out_last = 32'(out_x) == $signed(32'(frame_width)) - 1;
+
+  // The skid register: filled when a step moves a new beat into the output register while its
+  // beat is on m_axis and not taken (a step needs it empty, so it never overflows); emptied when
+  // m_axis takes its beat.
+  fx_pkg::out_beat_t skid_beat;
+  logic skid_user, skid_last;
+  always_ff @(posedge clk) begin
+    if (rst) begin
+      skid_full <= 1'b0;
+    end else if (skid_full) begin
+      if (m_axis_tready) skid_full <= 1'b0;
+    end else if (step && output_pending && !m_axis_tready) begin
+      skid_full <= 1'b1;
+    end
+  end
+  always_ff @(posedge clk) begin
+    if (!skid_full) begin
+      skid_beat <= out_beat;
+      skid_user <= out_user;
+      skid_last <= out_last;
+    end
+  end
+
+  assign m_axis_tvalid = skid_full || output_pending;
+  assign m_axis_tdata = skid_full ? skid_beat : out_beat;
+  assign m_axis_tuser = skid_full ? skid_user : out_user;
+  assign m_axis_tlast = skid_full ? skid_last : out_last;
 endmodule
 
 `default_nettype wire

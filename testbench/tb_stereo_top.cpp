@@ -146,26 +146,31 @@ TEST_P(Stage6Pairs, EveryPixelEqualsTheModel) {
     const Stage6Case c = GetParam();
     const std::uint32_t seed = tb::test_seed();
     std::mt19937 rng(seed);
-    const auto [left, right] = test::shifted_pair(c.width, c.height, 3, c.shift, 25, rng);
     const MatchParams params = stage6_params(c);
+    // The comparison must have something to compare: the checks it enables reject some pixels,
+    // and sub-pixel refinement moves some disparities off the integer grid (with more than 3
+    // labels; with one label nothing can fail). A noisy random pair almost always does both; the
+    // rare one that does not (tolerance 0 on a clean shift, say) is redrawn, a few times at most.
+    const auto exercises = [&](const ValidatedDisparity& model) {
+        std::size_t rejected = 0;
+        std::size_t fractional = 0;
+        for (std::size_t i = 0; i < model.fixed.size(); ++i) {
+            rejected += model.reason[i] > fx::kReasonBorder ? 1 : 0;
+            fractional += model.fixed[i] % fx::kSubpixelScale != 0 ? 1 : 0;
+        }
+        return (!(c.uniqueness >= 0 || c.lr >= 0) || c.ndisp <= 3 || rejected > 0) &&
+               (!c.subpixel || c.ndisp <= 2 || fractional > 0);
+    };
+    io::ImagePair pair = test::shifted_pair(c.width, c.height, 3, c.shift, 25, rng);
+    ValidatedDisparity model = expected(pair.left, pair.right, params);
+    for (int draw = 1; draw < 5 && !exercises(model); ++draw) {
+        pair = test::shifted_pair(c.width, c.height, 3, c.shift, 25, rng);
+        model = expected(pair.left, pair.right, params);
+    }
+    EXPECT_TRUE(exercises(model)) << "no pair of five exercised the enabled checks";
     Cosim cosim;
-    const ValidatedDisparity model = expected(left, right, params);
-    EXPECT_TRUE(same_validated(model, cosim.run(left, right, params, {c.gap, c.stall, seed})));
-    // The comparison must have something to compare: the checks it enables reject some pixels
-    // of a noisy pair, and sub-pixel refinement moves some disparities off the integer grid
-    // (with more than 3 labels; with one label nothing can fail).
-    std::size_t rejected = 0;
-    std::size_t fractional = 0;
-    for (std::size_t i = 0; i < model.fixed.size(); ++i) {
-        rejected += model.reason[i] > fx::kReasonBorder ? 1 : 0;
-        fractional += model.fixed[i] % fx::kSubpixelScale != 0 ? 1 : 0;
-    }
-    if ((c.uniqueness >= 0 || c.lr >= 0) && c.ndisp > 3) {
-        EXPECT_GT(rejected, 0U) << "no pixel failed the enabled checks";
-    }
-    if (c.subpixel && c.ndisp > 2) {
-        EXPECT_GT(fractional, 0U) << "no sub-pixel disparity";
-    }
+    EXPECT_TRUE(
+        same_validated(model, cosim.run(pair.left, pair.right, params, {c.gap, c.stall, seed})));
 }
 
 constexpr int kMaxMin = table::kDefaultMaxMinDisp;
