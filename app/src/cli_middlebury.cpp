@@ -25,6 +25,7 @@
 #include "stereo_io/io.hpp"
 #include "stereo_io/middlebury.hpp"
 #include "stereo_io/output.hpp"
+#include "stereo_io/versioned_json.hpp"
 
 namespace stereo::cli {
 namespace {
@@ -223,7 +224,7 @@ void run_report(const Options& options) {
         files.emplace_back(options.markdown, report);
     }
     if (!options.json.empty()) {
-        files.emplace_back(options.json, json.dump(2) + '\n');
+        files.emplace_back(options.json, io::versioned({{"scenes", json}}).dump(2) + '\n');
     }
     if (!options.figures.empty()) {
         fs::create_directories(options.figures);

@@ -21,6 +21,7 @@
 #include "cli_matcher_options.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/output.hpp"
+#include "stereo_io/versioned_json.hpp"
 #include "stereo_robot/bands.hpp"
 #include "stereo_robot/slam/dataset.hpp"
 #include "stereo_robot/slam/evaluation.hpp"
@@ -290,7 +291,7 @@ void run_slam(SlamOptions o) {
     io::write_files_atomic(files);
 
     if (o.json) {
-        std::cout << summary.dump() << std::endl;
+        std::cout << io::versioned(summary).dump() << std::endl;
         return;
     }
     std::printf(
