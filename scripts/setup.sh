@@ -13,6 +13,8 @@ packages=(
   nextpnr-ice40 python3            # place and route, synthesis reports (scripts/synth/synth.py)
   clang-format
   clang                            # libFuzzer harnesses (fuzz/, scripts/fuzz.sh)
+  pybind11-dev python3-dev         # the Python module (python/)
+  python3-numpy python3-pytest     # its arrays and tests (ctest label python)
 )
 
 missing=()

@@ -264,6 +264,14 @@ void add_cosim_command(CLI::App& app) {
     const auto [command, options] = add_command<CosimOptions>(
         app, "cosim",
         "Stream a pair through the Verilated RTL and compare it with the golden model.", run_cosim);
+    // The configurations this binary has (-DSTEREO_COSIM_CONFIGS, docs/gtkwave.md).
+    std::string built = "Verilated configurations in this build (the smallest covering one runs):";
+    for (const sim::TopConfig& config : sim::built_top_configs()) {
+        built += "\n  " + config.name + ": " + config_text(config) + ", cost ad";
+    }
+    built += "\n  " + sim::lcdm_top_config().name + ": " + config_text(sim::lcdm_top_config()) +
+             ", cost lcdm\nMore: -DSTEREO_COSIM_CONFIGS=full (docs/gtkwave.md).";
+    command->footer(built);
     command->add_option("LEFT", options->left, "Left image")->required();
     command->add_option("RIGHT", options->right, "Right image, same size as LEFT")->required();
     // The smallest Verilated configurations cover these; larger ones need a full build.
