@@ -21,6 +21,7 @@
 #include "cli.hpp"
 #include "cli_command.hpp"
 #include "cli_matcher_options.hpp"
+#include "cli_progress.hpp"
 #include "stereo_io/data_dir.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/middlebury.hpp"
@@ -145,7 +146,11 @@ void run_report(const Options& options) {
     nlohmann::json json = nlohmann::json::array();
     int scenes_found = 0;
 
-    for (const auto& scene : io::middlebury2003_scenes()) {
+    const auto& scenes = io::middlebury2003_scenes();
+    const ProgressBar progress("middlebury", static_cast<int>(scenes.size()));
+    int scenes_done = 0;
+    for (const auto& scene : scenes) {
+        progress.update(scenes_done++, scene.name);
         const auto data = io::load_scene(data_dir, scene);
         if (!data) {
             std::cerr << "stereo middlebury: " << scene.name << " not found under "
