@@ -5,7 +5,7 @@ truth beside it on the same colour scale and an error map with a legend and the 
 percentage.
 
     disparity_figure.py DISP.pfm --out FIG.png [--gt GT.png|GT.pfm] [--gt-scale S]
-                        [--threshold T] [--title TEXT]
+                        [--gt-downscale F] [--threshold T] [--title TEXT]
 
 DISP: a PFM (what `stereo match -o disp.pfm` writes: pixels, +inf invalid) or a PNG holding
 disparity x --scale (0 invalid). GT: a PFM or a PNG holding disparity x --gt-scale (0 unknown).
@@ -55,6 +55,8 @@ def main(argv=None):
     parser.add_argument("--scale", type=float, default=1.0, help="PNG disparity holds d x S")
     parser.add_argument("--gt", help="ground truth (PFM, or PNG with --gt-scale)")
     parser.add_argument("--gt-scale", type=float, default=1.0)
+    parser.add_argument("--gt-downscale", type=int, default=1,
+                        help="GT at F times the disparity's size: every F-th pixel, divided by F")
     parser.add_argument("--threshold", type=float, default=1.0, help="bad when |d - gt| > T")
     parser.add_argument("--title", default=None)
     args = parser.parse_args(argv)
@@ -67,6 +69,9 @@ def main(argv=None):
 
     disp = read_disparity(args.disparity, args.scale)
     gt = read_disparity(args.gt, args.gt_scale) if args.gt else None
+    if gt is not None and args.gt_downscale > 1:
+        f = args.gt_downscale
+        gt = gt[: gt.shape[0] // f * f : f, : gt.shape[1] // f * f : f] / f
     if gt is not None and gt.shape != disp.shape:
         raise ValueError(f"ground truth is {gt.shape[1]}x{gt.shape[0]}, the disparity "
                          f"{disp.shape[1]}x{disp.shape[0]}")
