@@ -158,7 +158,8 @@ MatchOptions match_options(const std::string& method, const std::string& engine,
                            int window, double sigma, bool ca, const std::string& cost, int min_disp,
                            std::optional<int> uniqueness, std::optional<int> lr_check,
                            bool subpixel, int vrange, const std::string& neighbours, int log_window,
-                           double log_sigma, int truncation, int sparse_uniqueness, int sparse_lr) {
+                           double log_sigma, int edge_value, int truncation, int sparse_uniqueness,
+                           int sparse_lr) {
     MatchOptions o{method, engine, {}};
     stereo::MatchParams& p = o.config.pipeline;
     p.ndisp = ndisp;
@@ -183,6 +184,7 @@ MatchOptions match_options(const std::string& method, const std::string& engine,
     }
     o.config.edges.log_window = log_window;
     o.config.edges.log_sigma = log_sigma;
+    o.config.edges.edge_value = edge_value;
     o.config.edges.truncation = truncation;
     o.config.sparse.uniqueness = sparse_uniqueness;
     o.config.sparse.lr_tolerance = sparse_lr;
@@ -226,6 +228,10 @@ py::dict fuzzy_decision(double left, double centre, double right) {
 }
 
 #ifdef STEREO_WITH_RTL
+// The defaults of the options cosim() does not expose (they do not reach the pipeline).
+const stereo::edge_frontend::EdgeParams kEdges{};
+const stereo::sparse::Params kSparse{};
+
 // One frame through the smallest built stereo_top that covers it, with random input gaps and
 // output stalls, compared pixel by pixel with the model (fixed, reason, certainty).
 py::dict cosim(const py::array& left, const py::array& right, const MatchOptions& options,
@@ -324,12 +330,13 @@ PYBIND11_MODULE(stereo, m) {
            const std::string& engine, int ndisp, int window, double sigma, bool ca,
            const std::string& cost, int min_disp, std::optional<int> uniqueness,
            std::optional<int> lr_check, bool subpixel, int vrange, const std::string& neighbours,
-           int log_window, double log_sigma, int truncation, int sparse_uniqueness, int sparse_lr) {
+           int log_window, double log_sigma, int edge_value, int truncation, int sparse_uniqueness,
+           int sparse_lr) {
             return run_match(
                 left, right,
                 match_options(method, engine, ndisp, window, sigma, ca, cost, min_disp, uniqueness,
                               lr_check, subpixel, vrange, neighbours, log_window, log_sigma,
-                              truncation, sparse_uniqueness, sparse_lr));
+                              edge_value, truncation, sparse_uniqueness, sparse_lr));
         },
         py::arg("left"), py::arg("right"), py::kw_only(), py::arg("method") = "pipeline",
         py::arg("engine") = "model", py::arg("ndisp") = defaults.ndisp,
@@ -338,8 +345,8 @@ PYBIND11_MODULE(stereo, m) {
         py::arg("min_disp") = defaults.min_disp, py::arg("uniqueness") = py::none(),
         py::arg("lr_check") = py::none(), py::arg("subpixel") = false, py::arg("vrange") = 0,
         py::arg("neighbours") = "horizontal", py::arg("log_window") = edges.log_window,
-        py::arg("log_sigma") = edges.log_sigma, py::arg("truncation") = edges.truncation,
-        py::arg("sparse_uniqueness") = sparse.uniqueness,
+        py::arg("log_sigma") = edges.log_sigma, py::arg("edge_value") = edges.edge_value,
+        py::arg("truncation") = edges.truncation, py::arg("sparse_uniqueness") = sparse.uniqueness,
         py::arg("sparse_lr") = sparse.lr_tolerance,
         "Match a pair with (method, engine) of stereo.matchers(). Returns a dict: disparity "
         "(uint8 labels), valid (bool), and for the pipeline stage 6's disparity_px (float32, NaN "
@@ -370,11 +377,12 @@ PYBIND11_MODULE(stereo, m) {
            bool ca, const std::string& cost, int min_disp, std::optional<int> uniqueness,
            std::optional<int> lr_check, bool subpixel, double stall, double gap, std::uint32_t seed,
            const std::string& trace) {
-            return cosim(
-                left, right,
-                match_options("pipeline", "model", ndisp, window, sigma, ca, cost, min_disp,
-                              uniqueness, lr_check, subpixel, 0, "horizontal", 7, 1.0, 0, 10, 1),
-                stall, gap, seed, trace);
+            return cosim(left, right,
+                         match_options("pipeline", "model", ndisp, window, sigma, ca, cost,
+                                       min_disp, uniqueness, lr_check, subpixel, 0, "horizontal",
+                                       kEdges.log_window, kEdges.log_sigma, kEdges.edge_value,
+                                       kEdges.truncation, kSparse.uniqueness, kSparse.lr_tolerance),
+                         stall, gap, seed, trace);
         },
         py::arg("left"), py::arg("right"), py::kw_only(), py::arg("ndisp") = 16,
         py::arg("window") = 5, py::arg("sigma") = defaults.sigma, py::arg("ca") = true,

@@ -97,6 +97,17 @@ def test_model_equals_naive_reference():
         assert np.array_equal(model["fixed"], naive["fixed"]), options
 
 
+def test_edge_options_reach_the_matcher():
+    left, right = shifted_pair()
+    options = {"method": "edges", "ndisp": 16, "window": 5, "log_window": 5, "log_sigma": 0.8,
+               "edge_value": 200, "truncation": 120}
+    model = stereo.match(left, right, **options)
+    naive = stereo.match(left, right, engine="naive", **options)
+    assert np.array_equal(model["disparity"], naive["disparity"])
+    default = stereo.match(left, right, method="edges", ndisp=16, window=5)
+    assert not np.array_equal(model["disparity"], default["disparity"])
+
+
 def test_shift_is_found():
     left, right = shifted_pair(shift=5)
     result = stereo.match(left, right, ndisp=16, window=5)
