@@ -13,4 +13,5 @@ stereo_divider.sv
 stereo_validate.sv
 stereo_lr_check.sv
 stereo_top.sv
+stereo_axil_top.sv
 stereo_synth_top.sv

@@ -12,6 +12,7 @@
 #include "port_bits.hpp"
 #include "stereo/stage_table.hpp"
 #include "stereo_top_sim.hpp"
+#include "axis_driver.hpp"
 #include "verilated_harness.hpp"
 #ifdef STEREO_COSIM_FULL
 #include "Vstereo_top_full.h"
@@ -64,69 +65,10 @@ class VerilatedTop final : public TopSim {
 
     StreamResult stream(const std::vector<InputBeat>& beats, std::size_t expected_outputs,
                         const Traffic& traffic, std::uint64_t max_cycles) override {
-        StreamResult result;
-        std::mt19937 rng(traffic.seed);
-        std::bernoulli_distribution gap(traffic.input_gap);
-        std::bernoulli_distribution stall(traffic.output_stall);
-        std::size_t next = 0;
-        bool offering = false;     // s_axis_tvalid is up and must stay up until taken
-        bool held_output = false;  // m_axis_tvalid was up without tready last cycle
-        std::uint32_t held_data = 0;
-        bool held_last = false;
-        bool held_user = false;
-        std::uint64_t cycle = 0;
-        bool started = false;
-        for (; cycle < max_cycles && result.outputs.size() < expected_outputs; ++cycle) {
-            if (!offering && next < beats.size() && !gap(rng)) {
-                offering = true;
-            }
-            model_->s_axis_tvalid = offering ? 1 : 0;
-            if (offering) {
-                model_->s_axis_tdata = beats[next].data;
-                model_->s_axis_tlast = beats[next].last ? 1 : 0;
-                model_->s_axis_tuser = beats[next].user ? 1 : 0;
-            }
-            model_->m_axis_tready = stall(rng) ? 0 : 1;
-            model_->clk = 0;
-            model_->eval();  // combinational outputs for this cycle's inputs
-            harness_.dump();
-
-            // AXI4-Stream: data and framing stay stable while valid waits for ready.
-            if (held_output && result.protocol_error.empty()) {
-                if (!model_->m_axis_tvalid) {
-                    result.protocol_error = "m_axis_tvalid dropped before the beat was taken";
-                } else if (model_->m_axis_tdata != held_data || model_->m_axis_tlast != held_last ||
-                           model_->m_axis_tuser != held_user) {
-                    result.protocol_error = "m_axis data changed while waiting for tready";
-                }
-            }
-            const bool input_taken = offering && model_->s_axis_tready;
-            const bool output_taken = model_->m_axis_tvalid && model_->m_axis_tready;
-            held_output = model_->m_axis_tvalid && !model_->m_axis_tready;
-            held_data = model_->m_axis_tdata;
-            held_last = model_->m_axis_tlast != 0;
-            held_user = model_->m_axis_tuser != 0;
-            if (output_taken) {
-                result.outputs.push_back(
-                    {model_->m_axis_tdata, model_->m_axis_tlast != 0, model_->m_axis_tuser != 0});
-            }
-            if (input_taken) {
-                started = true;
-                ++result.input_beats;
-                ++next;
-                offering = false;
-            }
-            model_->clk = 1;
-            model_->eval();
-            harness_.dump();
-            if (!started) {
-                --cycle;  // count from the first accepted beat
-            }
-        }
+        StreamResult result =
+            stream_axis(harness_, beats, expected_outputs, traffic, max_cycles);
         idle_inputs();
-        result.cycles = cycle;
         result.status = model_->status;
-        result.completed = result.outputs.size() == expected_outputs;
         return result;
     }
 

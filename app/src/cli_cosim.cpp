@@ -108,9 +108,11 @@ void run_cosim(const CosimOptions& options) {
     const int height = pair.left.height;
     model->validate(width, height);
     const sim::TopConfig* config =
-        sim::covering_config(width, height, params.ndisp, params.window, params.min_disp);
+        sim::covering_config(width, height, params.ndisp, params.window, params.min_disp,
+                             params.cost);
     if (config == nullptr) {
-        const sim::TopConfig& largest = sim::built_top_configs().back();
+        const sim::TopConfig& largest =
+            params.cost == "lcdm" ? sim::lcdm_top_config() : sim::built_top_configs().back();
         throw std::invalid_argument(
             "no co-simulation model covers " + std::to_string(width) + "x" +
             std::to_string(height) + " with ndisp " + std::to_string(params.ndisp) + ", window " +
@@ -278,6 +280,11 @@ void add_cosim_command(CLI::App& app) {
     options->matcher.config.pipeline.ndisp = 16;
     options->matcher.config.pipeline.window = 5;
     add_matcher_options(*command, options->matcher, MatcherChoice::fixed, {.validation = true});
+    command
+        ->add_option("--cost", options->matcher.config.pipeline.cost,
+                     "Cost stage of the core: ad (COST = 0) or lcdm (COST = 1, colour pairs)")
+        ->check(CLI::IsMember({"ad", "lcdm"}))
+        ->capture_default_str();
     command->add_option("--downscale", options->downscale, "Shrink both images by integer F")
         ->capture_default_str();
     command->add_option("--crop", options->crop, "Use the region WxH+X+Y (after --downscale)");

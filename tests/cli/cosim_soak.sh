@@ -3,7 +3,9 @@
 #   1. FRAMES frames of the pair through the Verilated core, each under its own random input gaps
 #      and output stalls (traffic seed SEED + frame), every pixel compared with the model;
 #   2. RESETS runs, each resetting the core in the middle of a frame at a random beat (bash's
-#      RANDOM seeded with SEED) with random traffic, then streaming 3 whole frames.
+#      RANDOM seeded with SEED) with random traffic, then streaming 3 whole frames; each run
+#      draws its own stage-6 configuration (minimum disparity -8..8, uniqueness 0..40 %,
+#      left-right tolerance 0..2 or off, sub-pixel on or off) and cost stage (AD or LCDM).
 # Fails on any mismatch, stall or protocol error (stereo cosim exits non-zero).
 set -euo pipefail
 stereo=$1 left=$2 right=$3 frames=$4 resets=$5 seed=${6:-1}
@@ -18,9 +20,16 @@ for ((r = 0; r < resets; ++r)); do
     traffic_seed=$((seed * 1000 + r))
     stall=0.$((RANDOM % 6))
     gap=0.$((RANDOM % 6))
-    out=$("$stereo" cosim "$left" "$right" "${common[@]}" --frames 3 --reset-at "$at" \
-          --stall "$stall" --gap "$gap" --seed "$traffic_seed") ||
-        { echo "FAIL: reset at $at, stall $stall, gap $gap, seed $traffic_seed: $out"; exit 1; }
+    stage6=(--min-disp $((RANDOM % 17 - 8)) --uniqueness $((RANDOM % 41)))
+    lr=$((RANDOM % 4))
+    [ "$lr" -lt 3 ] && stage6+=(--lr-check "$lr")
+    [ $((RANDOM % 2)) -eq 0 ] && stage6+=(--subpixel)
+    costs=(ad lcdm)
+    stage6+=(--cost "${costs[$((RANDOM % 2))]}")
+    out=$("$stereo" cosim "$left" "$right" "${common[@]}" "${stage6[@]}" --frames 3 \
+          --reset-at "$at" --stall "$stall" --gap "$gap" --seed "$traffic_seed") ||
+        { echo "FAIL: reset at $at, stall $stall, gap $gap, seed $traffic_seed, ${stage6[*]}: $out"
+          exit 1; }
     echo "$out" | grep -q '"mismatches":0,' || { echo "FAIL: $out"; exit 1; }
 done
-echo "soak: $frames frames under stalls and $resets mid-frame resets (x3 frames each): 0 mismatches"
+echo "soak: $frames frames under stalls and $resets mid-frame resets (x3 frames each, random stage-6 settings and cost stage): 0 mismatches"

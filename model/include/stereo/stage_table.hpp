@@ -157,11 +157,11 @@ constexpr int hls_pipeline_latency(int width, int window, int ndisp, int min_dis
 // The package first, then every module before its first user. One module per file, named after
 // it; the list of modules to lint is this list without the package.
 inline constexpr std::string_view kPackageFile = "fx_pkg.sv";
-inline constexpr std::array<std::string_view, 14> kRtlModules = {
+inline constexpr std::array<std::string_view, 15> kRtlModules = {
     "stereo_coord_reg",    "stereo_line_buffer",   "stereo_window3x3", "stereo_ca_plane",
     "stereo_lcdm_convert", "stereo_lcdm_distance", "stereo_cost",      "stereo_aggregate",
     "stereo_wta",          "stereo_divider",       "stereo_validate",  "stereo_lr_check",
-    "stereo_top",          "stereo_synth_top",
+    "stereo_top",          "stereo_axil_top",      "stereo_synth_top",
 };
 
 // ---- Verilated configurations (sim/verilated_configs.cmake) --------------------------------
@@ -191,7 +191,7 @@ inline constexpr Params kFull{640, 480, 64, 11, kUnset};
 inline constexpr Params kSmallLcdm{
     kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window, kUnset, kUnset, kUnset, 1};
 
-inline constexpr std::array<VerilatedConfig, 12> kVerilatedConfigs = {{
+inline constexpr std::array<VerilatedConfig, 13> kVerilatedConfigs = {{
     {"Vstereo_top_small", "stereo_top", kSmall, ""},
     {"Vstereo_cost", "stereo_cost", {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset}, ""},
     {"Vstereo_top_lcdm", "stereo_top", kSmallLcdm, ""},
@@ -220,6 +220,8 @@ inline constexpr std::array<VerilatedConfig, 12> kVerilatedConfigs = {{
     {"Vstereo_wta", "stereo_wta", {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset}, ""},
     {"Vstereo_validate", "stereo_validate", {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset}, ""},
     {"Vstereo_lr_check", "stereo_lr_check", {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset}, ""},
+    // The SoC wrapper (AXI4-Lite registers around stereo_top) at the co-simulation point.
+    {"Vstereo_axil_top", "stereo_axil_top", kSmall, ""},
     // Its C++ takes minutes to compile: only with -DSTEREO_COSIM_FULL=ON.
     {"Vstereo_top_full", "stereo_top", kFull, "STEREO_COSIM_FULL"},
 }};

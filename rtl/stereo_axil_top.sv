@@ -1,0 +1,308 @@
+// stereo_axil_top: stereo_top for SoC integration. The video streams pass straight through
+// (AXI4-Stream, the beat layouts of stereo_top); the configuration lives in registers behind an
+// AXI4-Lite slave instead of ports. Register map (byte offsets; docs/integration.md has the
+// fields, reset values and a driver sequence):
+//   0x00 ID          RO  0x53544552 ("STER")
+//   0x04 VERSION     RO  REGMAP_VERSION
+//   0x08 MAX_SIZE    RO  [15:0] WIDTH, [31:16] HEIGHT (the largest frame)
+//   0x0C BUILD       RO  [8:0] NDISP, [13:9] WINDOW / 2, [25:14] MAX_MIN_DISP, [26] RUNTIME_KERNEL,
+//                        [27] COST
+//   0x10 FRAME       RW  [15:0] width, [31:16] height           reset WIDTH, HEIGHT
+//   0x14 MATCH       RW  [8:0] ndisp, [20:16] radius, [24] use_ca  reset NDISP, WINDOW / 2, 1
+//   0x18 STAGE6      RW  [11:0] min_disp (signed), [12] uniqueness enable, [13] left-right enable,
+//                        [14] sub-pixel enable                  reset 0
+//   0x1C THRESHOLDS  RW  [7:0] uniqueness ratio (percent), [15:8] left-right tolerance
+//                                                               reset 20, 0 (the model's defaults)
+//   0x20 STATUS      RO  [2:0] stereo_top's sticky status (cleared by CONTROL.soft_reset)
+//   0x24 CONTROL     WO  [0] soft_reset: one-cycle reset of the core and the counters
+//   0x28 FRAMES_IN   RO  input start-of-frame beats accepted
+//   0x2C FRAMES_OUT  RO  output start-of-frame beats delivered
+//   0x30 STALLS      RO  cycles with m_axis_tvalid high and m_axis_tready low
+//   0x40 + 4 i KERNEL[i] RW [8:0] tap i of WINDOW (used when RUNTIME_KERNEL = 1; reset: the
+//                        model's default kernel for WINDOW)
+// Writes to RO registers and reads of unmapped offsets complete with OKAY and read 0. The core
+// samples the configuration with each start-of-frame beat (stereo_top), so register writes take
+// effect from the next frame. One outstanding transaction per direction; the write address and
+// data may arrive in either order.
+`default_nettype none
+
+module stereo_axil_top #(
+    parameter int WIDTH          = 64,
+    parameter int HEIGHT         = 48,
+    parameter int NDISP          = 16,
+    parameter int WINDOW         = 5,
+    parameter bit RUNTIME_KERNEL = 1'b1,
+    parameter int MAX_MIN_DISP   = fx_pkg::DEFAULT_MAX_MIN_DISP,
+    parameter int COST           = 0,
+    parameter int ADDR_BITS      = 8                               // AXI4-Lite address width
+) (
+    input  wire logic                            clk,
+    input  wire logic                            rst,
+    // AXI4-Lite slave (32-bit data).
+    input  wire logic [ADDR_BITS-1:0]            s_axil_awaddr,
+    input  wire logic                            s_axil_awvalid,
+    output      logic                            s_axil_awready,
+    input  wire logic [31:0]                     s_axil_wdata,
+    input  wire logic [3:0]                      s_axil_wstrb,
+    input  wire logic                            s_axil_wvalid,
+    output      logic                            s_axil_wready,
+    output      logic [1:0]                      s_axil_bresp,
+    output      logic                            s_axil_bvalid,
+    input  wire logic                            s_axil_bready,
+    input  wire logic [ADDR_BITS-1:0]            s_axil_araddr,
+    input  wire logic                            s_axil_arvalid,
+    output      logic                            s_axil_arready,
+    output      logic [31:0]                     s_axil_rdata,
+    output      logic [1:0]                      s_axil_rresp,
+    output      logic                            s_axil_rvalid,
+    input  wire logic                            s_axil_rready,
+    // Video in and out: stereo_top's streams.
+    input  wire logic [fx_pkg::IN_BEAT_BITS-1:0] s_axis_tdata,
+    input  wire logic                            s_axis_tvalid,
+    output      logic                            s_axis_tready,
+    input  wire logic                            s_axis_tlast,
+    input  wire logic                            s_axis_tuser,
+    output      fx_pkg::out_beat_t               m_axis_tdata,
+    output      logic                            m_axis_tvalid,
+    input  wire logic                            m_axis_tready,
+    output      logic                            m_axis_tlast,
+    output      logic                            m_axis_tuser
+);
+  localparam int R = WINDOW / 2;
+  localparam int TAP_BITS = fx_pkg::TAP_BITS;
+  localparam logic [31:0] ID = 32'h5354_4552;
+  localparam logic [31:0] REGMAP_VERSION = 32'h0001_0000;
+  localparam int KERNEL_BASE = 'h40;
+
+  initial begin
+    assert (ADDR_BITS >= 8 && ADDR_BITS <= 32);
+    assert (KERNEL_BASE + 4 * WINDOW <= (1 << ADDR_BITS));
+  end
+
+  // ---- registers ------------------------------------------------------------------------------
+  fx_pkg::cfg_size_t reg_width, reg_height;
+  fx_pkg::cfg_ndisp_t reg_ndisp;
+  fx_pkg::cfg_radius_t reg_radius;
+  logic reg_use_ca;
+  fx_pkg::cfg_min_disp_t reg_min_disp;
+  logic reg_uniqueness_en, reg_lr_en, reg_subpixel_en;
+  fx_pkg::cfg_uniqueness_t reg_uniqueness;
+  fx_pkg::cfg_lr_tolerance_t reg_lr_tolerance;
+  logic [WINDOW*TAP_BITS-1:0] reg_kernel;
+  logic [31:0] frames_in, frames_out, stalls;
+  logic soft_reset;
+  logic [fx_pkg::STATUS_BITS-1:0] core_status;
+
+  function automatic logic [WINDOW*TAP_BITS-1:0] default_kernel();
+    for (int i = 0; i < WINDOW; i++) begin
+      default_kernel[i*TAP_BITS+:TAP_BITS] = TAP_BITS'(fx_pkg::default_tap(WINDOW, i));
+    end
+  endfunction
+
+  // A 32-bit register word with the write strobes applied.
+  function automatic logic [31:0] merge(input logic [31:0] old, input logic [31:0] data,
+                                        input logic [3:0] strobe);
+    for (int b = 0; b < 4; b++) begin
+      merge[b*8+:8] = strobe[b] ? data[b*8+:8] : old[b*8+:8];
+    end
+  endfunction
+
+  // ---- AXI4-Lite write: address and data in either order, one response at a time -------------
+  logic [ADDR_BITS-1:0] write_addr;
+  logic write_addr_held, write_data_held;
+  logic [31:0] write_data;
+  logic [3:0] write_strobe;
+  assign s_axil_awready = !write_addr_held && !s_axil_bvalid;
+  assign s_axil_wready = !write_data_held && !s_axil_bvalid;
+  assign s_axil_bresp = 2'b00;  // OKAY
+
+  logic write_now;  // both halves present this cycle
+  logic [ADDR_BITS-1:0] write_addr_now;
+  logic [31:0] write_data_now;
+  logic [3:0] write_strobe_now;
+  always_comb begin
+    write_addr_now = write_addr_held ? write_addr : s_axil_awaddr;
+    write_data_now = write_data_held ? write_data : s_axil_wdata;
+    write_strobe_now = write_data_held ? write_strobe : s_axil_wstrb;
+    write_now = (write_addr_held || (s_axil_awvalid && s_axil_awready)) &&
+                (write_data_held || (s_axil_wvalid && s_axil_wready));
+  end
+
+  // The register word at a word offset, for reads and for merging partial writes.
+  function automatic logic [31:0] register_word(input logic [ADDR_BITS-1:0] addr);
+    logic [ADDR_BITS-1:0] word;
+    word = addr & ~ADDR_BITS'(3);
+    register_word = '0;
+    case (32'(word))
+      'h00: register_word = ID;
+      'h04: register_word = REGMAP_VERSION;
+      'h08: register_word = {16'(HEIGHT), 16'(WIDTH)};
+      'h0C:
+      register_word = {
+        4'b0, 1'(COST), RUNTIME_KERNEL, 12'(MAX_MIN_DISP), 5'(R), 9'(NDISP)
+      };
+      'h10: register_word = {reg_height, reg_width};
+      'h14: register_word = {7'b0, reg_use_ca, 3'b0, reg_radius, 7'b0, reg_ndisp};
+      'h18:
+      register_word = {
+        17'b0, reg_subpixel_en, reg_lr_en, reg_uniqueness_en, reg_min_disp
+      };
+      'h1C: register_word = {16'b0, reg_lr_tolerance, reg_uniqueness};
+      'h20: register_word = 32'(core_status);
+      'h28: register_word = frames_in;
+      'h2C: register_word = frames_out;
+      'h30: register_word = stalls;
+      default: begin
+        for (int i = 0; i < WINDOW; i++) begin
+          if (32'(word) == KERNEL_BASE + 4 * i) begin
+            register_word = 32'(reg_kernel[i*TAP_BITS+:TAP_BITS]);
+          end
+        end
+      end
+    endcase
+  endfunction
+
+  // The word written this cycle: its offset and its value with the strobes applied.
+  logic [ADDR_BITS-1:0] write_word;
+  logic [31:0] write_value;
+  always_comb begin
+    write_word = write_addr_now & ~ADDR_BITS'(3);
+    write_value = merge(register_word(write_addr_now), write_data_now, write_strobe_now);
+  end
+
+  always_ff @(posedge clk) begin
+    soft_reset <= 1'b0;
+    if (rst) begin
+      write_addr_held <= 1'b0;
+      write_data_held <= 1'b0;
+      s_axil_bvalid <= 1'b0;
+      write_addr <= '0;
+      write_data <= '0;
+      write_strobe <= '0;
+      reg_width <= fx_pkg::CFG_SIZE_BITS'(WIDTH);
+      reg_height <= fx_pkg::CFG_SIZE_BITS'(HEIGHT);
+      reg_ndisp <= fx_pkg::CFG_NDISP_BITS'(NDISP);
+      reg_radius <= fx_pkg::CFG_RADIUS_BITS'(R);
+      reg_use_ca <= 1'b1;
+      reg_min_disp <= '0;
+      reg_uniqueness_en <= 1'b0;
+      reg_lr_en <= 1'b0;
+      reg_subpixel_en <= 1'b0;
+      reg_uniqueness <= fx_pkg::CFG_UNIQUENESS_BITS'(20);
+      reg_lr_tolerance <= '0;
+      reg_kernel <= default_kernel();
+    end else begin
+      if (s_axil_bvalid && s_axil_bready) s_axil_bvalid <= 1'b0;
+      if (write_now) begin
+        write_addr_held <= 1'b0;
+        write_data_held <= 1'b0;
+        s_axil_bvalid <= 1'b1;
+        begin
+          case (32'(write_word))
+            'h10: {reg_height, reg_width} <= write_value;
+            'h14: begin
+              reg_ndisp <= write_value[8:0];
+              reg_radius <= write_value[20:16];
+              reg_use_ca <= write_value[24];
+            end
+            'h18: begin
+              reg_min_disp <= write_value[11:0];
+              reg_uniqueness_en <= write_value[12];
+              reg_lr_en <= write_value[13];
+              reg_subpixel_en <= write_value[14];
+            end
+            'h1C: begin
+              reg_uniqueness <= write_value[7:0];
+              reg_lr_tolerance <= write_value[15:8];
+            end
+            'h24: soft_reset <= write_strobe_now[0] && write_data_now[0];
+            default: begin
+              for (int i = 0; i < WINDOW; i++) begin
+                if (32'(write_word) == KERNEL_BASE + 4 * i) begin
+                  reg_kernel[i*TAP_BITS+:TAP_BITS] <= write_value[TAP_BITS-1:0];
+                end
+              end
+            end
+          endcase
+        end
+      end else begin
+        if (s_axil_awvalid && s_axil_awready) begin
+          write_addr_held <= 1'b1;
+          write_addr <= s_axil_awaddr;
+        end
+        if (s_axil_wvalid && s_axil_wready) begin
+          write_data_held <= 1'b1;
+          write_data <= s_axil_wdata;
+          write_strobe <= s_axil_wstrb;
+        end
+      end
+    end
+  end
+
+  // ---- AXI4-Lite read -------------------------------------------------------------------------
+  assign s_axil_arready = !s_axil_rvalid;
+  assign s_axil_rresp = 2'b00;  // OKAY
+  always_ff @(posedge clk) begin
+    if (rst) begin
+      s_axil_rvalid <= 1'b0;
+      s_axil_rdata <= '0;
+    end else if (s_axil_arvalid && s_axil_arready) begin
+      s_axil_rvalid <= 1'b1;
+      s_axil_rdata <= register_word(s_axil_araddr);
+    end else if (s_axil_rready) begin
+      s_axil_rvalid <= 1'b0;
+    end
+  end
+
+  // ---- counters -------------------------------------------------------------------------------
+  always_ff @(posedge clk) begin
+    if (rst || soft_reset) begin
+      frames_in <= '0;
+      frames_out <= '0;
+      stalls <= '0;
+    end else begin
+      if (s_axis_tvalid && s_axis_tready && s_axis_tuser) frames_in <= frames_in + 1;
+      if (m_axis_tvalid && m_axis_tready && m_axis_tuser) frames_out <= frames_out + 1;
+      if (m_axis_tvalid && !m_axis_tready) stalls <= stalls + 1;
+    end
+  end
+
+  // ---- the core -------------------------------------------------------------------------------
+  stereo_top #(
+      .WIDTH(WIDTH),
+      .HEIGHT(HEIGHT),
+      .NDISP(NDISP),
+      .WINDOW(WINDOW),
+      .RUNTIME_KERNEL(RUNTIME_KERNEL),
+      .MAX_MIN_DISP(MAX_MIN_DISP),
+      .COST(COST)
+  ) core (
+      .clk(clk),
+      .rst(rst || soft_reset),
+      .cfg_width(reg_width),
+      .cfg_height(reg_height),
+      .cfg_ndisp(reg_ndisp),
+      .cfg_radius(reg_radius),
+      .cfg_kernel(reg_kernel),
+      .cfg_use_ca(reg_use_ca),
+      .cfg_min_disp(reg_min_disp),
+      .cfg_uniqueness_en(reg_uniqueness_en),
+      .cfg_uniqueness(reg_uniqueness),
+      .cfg_lr_en(reg_lr_en),
+      .cfg_lr_tolerance(reg_lr_tolerance),
+      .cfg_subpixel_en(reg_subpixel_en),
+      .s_axis_tdata(s_axis_tdata),
+      .s_axis_tvalid(s_axis_tvalid),
+      .s_axis_tready(s_axis_tready),
+      .s_axis_tlast(s_axis_tlast),
+      .s_axis_tuser(s_axis_tuser),
+      .m_axis_tdata(m_axis_tdata),
+      .m_axis_tvalid(m_axis_tvalid),
+      .m_axis_tready(m_axis_tready),
+      .m_axis_tlast(m_axis_tlast),
+      .m_axis_tuser(m_axis_tuser),
+      .status(core_status)
+  );
+endmodule
+
+`default_nettype wire
