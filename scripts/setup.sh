@@ -13,6 +13,10 @@ packages=(
   nextpnr-ice40 python3            # place and route, synthesis reports (scripts/synth/synth.py)
   clang-format
   clang                            # libFuzzer harnesses (fuzz/, scripts/fuzz.sh)
+  pybind11-dev python3-dev         # the Python module (python/)
+  python3-numpy python3-pytest     # its arrays and tests (ctest label python)
+  python3-matplotlib               # figures with colour bars (scripts/figures/)
+  gtkwave                          # waveform viewer, fst2vcd (docs/gtkwave.md, cli.gtkw_layout_signals)
 )
 
 missing=()

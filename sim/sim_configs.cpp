@@ -1,5 +1,7 @@
 // The Verilated stereo_top configurations behind the TopSim interface.
 #include <algorithm>
+#include <cctype>
+#include <filesystem>
 #include <stdexcept>
 
 #include <verilated.h>
@@ -69,7 +71,10 @@ class VerilatedTop final : public TopSim {
         return result;
     }
 
-    void trace_to(const std::string& path) override { harness_.trace_to(path); }
+    void trace_to(const std::string& path) override {
+        check_trace_path(path);
+        harness_.trace_to(path);
+    }
 
   private:
     void idle_inputs() {
@@ -132,6 +137,25 @@ const TopConfig* covering_config(int width, int height, int ndisp, int window, i
         }
     }
     return nullptr;
+}
+
+void check_trace_path(const std::string& path) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    for (char& c : extension) {
+        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    }
+    if (extension == ".fst") {
+        return;
+    }
+    if (extension == ".vcd") {
+        throw std::invalid_argument(
+            "--trace " + path +
+            ": VCD is not built in (the co-simulation models trace FST only); write a .fst and "
+            "convert it with `fst2vcd TRACE.fst > TRACE.vcd` (Debian gtkwave) if a VCD is needed");
+    }
+    throw std::invalid_argument("--trace " + path +
+                                ": the trace format is chosen by the extension and only .fst "
+                                "(FST, GTKWave's format) is built in");
 }
 
 std::unique_ptr<TopSim> make_top_sim(const TopConfig& config) {

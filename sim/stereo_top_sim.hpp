@@ -87,9 +87,14 @@ class TopSim {
     // output beats, or stops after `max_cycles`.
     virtual StreamResult stream(const std::vector<InputBeat>& beats, std::size_t expected_outputs,
                                 const Traffic& traffic, std::uint64_t max_cycles) = 0;
-    // Starts writing an FST waveform of everything that follows.
+    // Starts writing an FST waveform of everything that follows; check_trace_path(path) first.
     virtual void trace_to(const std::string& path) = 0;
 };
+
+// Throws std::invalid_argument unless `path` ends in .fst (any case): the models are verilated
+// with FST tracing only (Verilator builds one trace format into a model), so a .vcd or any other
+// name is refused instead of silently receiving FST bytes. docs/gtkwave.md: fst2vcd converts.
+void check_trace_path(const std::string& path);
 
 std::unique_ptr<TopSim> make_top_sim(const TopConfig& config);
 

@@ -19,6 +19,7 @@
 #include "cli_matcher_options.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/output.hpp"
+#include "stereo_io/versioned_json.hpp"
 #include "stereo_robot/bands.hpp"
 #include "stereo_robot/calibration.hpp"
 #include "stereo_robot/decision.hpp"
@@ -247,7 +248,7 @@ void run_avoid(const AvoidOptions& o) {
                                                   {"intercept", ground->line.intercept}}
                                  : nlohmann::json(nullptr);
         if (sequence || o.json) {
-            std::cout << frame.dump() << std::endl;
+            std::cout << io::versioned(frame).dump() << std::endl;
         } else {
             print_text(left_path.filename().string(), frame);
         }

@@ -15,8 +15,10 @@
 #include "cli.hpp"
 #include "cli_command.hpp"
 #include "cli_matcher_options.hpp"
+#include "stereo_io/disparity_files.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/output.hpp"
+#include "stereo_io/versioned_json.hpp"
 #include "stereo_top_sim.hpp"
 
 namespace stereo::cli {
@@ -95,6 +97,10 @@ void run_cosim(const CosimOptions& options) {
         if (!output.empty()) {
             io::check_writable_location(output);
         }
+    }
+    const auto output_encoding = io::output_encoding(options.output, io::DisparityEncoding::scaled);
+    if (!options.trace.empty()) {
+        sim::check_trace_path(options.trace);  // .fst only: refused before any work
     }
     const io::ImagePair pair =
         apply_crop(io::load_pair(options.left, options.right, options.downscale), options.crop);
@@ -180,7 +186,10 @@ void run_cosim(const CosimOptions& options) {
             }
         }
         if (frame + 1 == options.frames && !options.output.empty()) {
-            io::write_png(options.output, io::disparity_to_mat(to_label_map(rtl), params.ndisp, 1));
+            // The format by the extension, as `stereo match -o` (PFM: stage 6's pixels).
+            io::write_file_atomic(
+                options.output,
+                io::encode_disparity(rtl, output_encoding, params.ndisp, 1, options.output));
         }
     }
     const double seconds =
@@ -216,7 +225,7 @@ void run_cosim(const CosimOptions& options) {
             {"sim_seconds", seconds},
             {"sim_cycles_per_second", total_cycles / seconds},
         };
-        std::cout << summary.dump() << '\n';
+        std::cout << io::versioned(summary).dump() << '\n';
     } else {
         std::printf(
             "%dx%d ndisp %d window %d ca %s min-disp %d uniqueness %d lr-check %d subpixel %s on "
@@ -256,6 +265,14 @@ void add_cosim_command(CLI::App& app) {
     const auto [command, options] = add_command<CosimOptions>(
         app, "cosim",
         "Stream a pair through the Verilated RTL and compare it with the golden model.", run_cosim);
+    // The configurations this binary has (-DSTEREO_COSIM_CONFIGS, docs/gtkwave.md).
+    std::string built = "Verilated configurations in this build (the smallest covering one runs):";
+    for (const sim::TopConfig& config : sim::built_top_configs()) {
+        built += "\n  " + config.name + ": " + config_text(config) + ", cost ad";
+    }
+    built += "\n  " + sim::lcdm_top_config().name + ": " + config_text(sim::lcdm_top_config()) +
+             ", cost lcdm\nMore: -DSTEREO_COSIM_CONFIGS=full (docs/gtkwave.md).";
+    command->footer(built);
     command->add_option("LEFT", options->left, "Left image")->required();
     command->add_option("RIGHT", options->right, "Right image, same size as LEFT")->required();
     // The smallest Verilated configurations cover these; larger ones need a full build.
@@ -283,7 +300,9 @@ void add_cosim_command(CLI::App& app) {
         ->capture_default_str();
     command->add_option("--reset-at", options->reset_at,
                         "Before each frame, stream this many of its beats and reset mid-frame");
-    command->add_option("--trace", options->trace, "Write an FST waveform of the run");
+    command->add_option("--trace", options->trace,
+                        "Write an FST waveform of the run (TRACE.fst; other "
+                        "extensions, .vcd included, are refused)");
     command->add_flag("--json", options->json,
                       "Print one JSON object (mismatches, cycles, pixels, ...)");
 }

@@ -17,6 +17,7 @@
 #include "stereo_io/io.hpp"
 #include "stereo_io/metrics.hpp"
 #include "stereo_io/output.hpp"
+#include "stereo_io/versioned_json.hpp"
 
 namespace stereo::cli {
 
@@ -159,7 +160,7 @@ void run_eval(const EvalOptions& options) {
     }
     if (options.json) {
         const nlohmann::json json = result;
-        std::cout << json.dump() << '\n';
+        std::cout << io::versioned(json).dump() << '\n';
     } else {
         print_text(result);
     }

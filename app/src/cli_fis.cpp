@@ -8,6 +8,7 @@
 
 #include "cli.hpp"
 #include "cli_command.hpp"
+#include "stereo_io/versioned_json.hpp"
 #include "stereo_robot/decision.hpp"
 
 namespace stereo::cli {
@@ -29,7 +30,7 @@ void run_fis(const FisOptions& options) {
         const nlohmann::json out = {{"angle_deg", result.angle_deg},
                                     {"backwards", result.backwards},
                                     {"decision", robot::to_string(result.decision)}};
-        std::cout << out.dump() << '\n';
+        std::cout << io::versioned(out).dump() << '\n';
     } else {
         std::printf("angle_deg %.3f backwards %.4f decision %s\n", result.angle_deg,
                     result.backwards, robot::to_string(result.decision).c_str());

@@ -18,6 +18,7 @@
 #include "stereo_io/disparity_files.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/output.hpp"
+#include "stereo_io/versioned_json.hpp"
 
 namespace stereo::cli {
 
@@ -101,21 +102,10 @@ void run_match(const MatchOptions& options) {
         throw std::invalid_argument("--downscale must be >= 1, got " +
                                     std::to_string(options.downscale));
     }
+    // No extension is a PNG, as before; a folder or device fails the file checks (exit 1).
     const auto output_encoding =
-        io::encoding_of(options.output, options.png16 ? io::DisparityEncoding::offset16
-                                                      : io::DisparityEncoding::scaled);
-    {
-        std::string extension = std::filesystem::path(options.output).extension().string();
-        for (char& c : extension) {
-            c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-        }
-        // No extension is a PNG, as before; a folder or device fails the file checks (exit 1).
-        if (!extension.empty() && extension != ".png" && extension != ".pfm") {
-            throw std::invalid_argument(
-                "-o must name a .png or .pfm file (or have no extension), got '" + options.output +
-                "'");
-        }
-    }
+        io::output_encoding(options.output, options.png16 ? io::DisparityEncoding::offset16
+                                                          : io::DisparityEncoding::scaled);
     if (output_encoding != io::DisparityEncoding::scaled && method != "pipeline") {
         throw std::invalid_argument(
             "PFM and --png16 outputs hold the pipeline's validated disparities: use --method "
@@ -244,7 +234,7 @@ void run_match(const MatchOptions& options) {
     }
     summary["ms"] = elapsed.count();
     if (options.json) {
-        std::cout << summary.dump() << '\n';
+        std::cout << io::versioned(summary).dump() << '\n';
         return;
     }
     std::printf("%dx%d ndisp %d %s: %.1f%% valid, %.1f ms%s\n", map.width, map.height, ndisp,

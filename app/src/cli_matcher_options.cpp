@@ -5,7 +5,9 @@
 #include <CLI/CLI.hpp>
 
 #include "stereo/hls/match.hpp"
+#ifdef STEREO_WITH_RTL
 #include "stereo_top_sim.hpp"
+#endif
 
 namespace stereo::cli {
 
@@ -14,7 +16,17 @@ const MatcherRegistry& matchers() {
         MatcherRegistry r;
         register_model_matchers(r);
         hls::register_matchers(r);
+#ifdef STEREO_WITH_RTL
         sim::register_matchers(r);
+#else
+        // Listed, so that --engine rtl explains itself instead of failing as an unknown name.
+        r.add({"pipeline", "rtl", "the Verilated RTL (not built)",
+               [](const MatchConfig&) -> std::unique_ptr<Matcher> {
+                   throw std::invalid_argument(
+                       "engine rtl: this stereo was built without the RTL "
+                       "(-DSTEREO_WITH_RTL=OFF); rebuild with Verilator to co-simulate");
+               }});
+#endif
         return r;
     }();
     return registry;

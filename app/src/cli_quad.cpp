@@ -19,6 +19,7 @@
 #include "stereo_io/disparity_files.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/output.hpp"
+#include "stereo_io/versioned_json.hpp"
 
 namespace stereo::cli {
 namespace {
@@ -119,7 +120,7 @@ void run_quad(const QuadOptions& options) {
     }
     summary["source"]["none"] = sources[quad::kSourceNone];
     if (options.json) {
-        std::cout << summary.dump() << '\n';
+        std::cout << io::versioned(summary).dump() << '\n';
         return;
     }
     std::printf(

@@ -19,8 +19,10 @@
 #include "cli.hpp"
 #include "cli_command.hpp"
 #include "cli_matcher_options.hpp"
+#include "cli_progress.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/output.hpp"
+#include "stereo_io/versioned_json.hpp"
 #include "stereo_robot/bands.hpp"
 #include "stereo_robot/slam/dataset.hpp"
 #include "stereo_robot/slam/evaluation.hpp"
@@ -49,34 +51,6 @@ struct SlamOptions {
     int ca_passes = 1;
     slam::SlamParams params;
     MatcherOptions matcher;  // --ndisp, --window, --sigma of the front end (params.frontend)
-};
-
-// A one-line bar on stderr, only when stderr is a terminal; cleared when done or on error.
-class ProgressBar {
-  public:
-    explicit ProgressBar(int total) : total_(total), enabled_(isatty(STDERR_FILENO) != 0) {}
-    ~ProgressBar() {
-        if (enabled_) {
-            std::fprintf(stderr, "\r%60s\r", "");
-        }
-    }
-    ProgressBar(const ProgressBar&) = delete;
-    ProgressBar& operator=(const ProgressBar&) = delete;
-
-    void update(int done) const {
-        if (!enabled_) {
-            return;
-        }
-        constexpr int kWidth = 30;
-        const int filled = total_ > 0 ? done * kWidth / total_ : kWidth;
-        std::fprintf(stderr, "\rslam [%s%s] %d/%d", std::string(filled, '#').c_str(),
-                     std::string(kWidth - filled, ' ').c_str(), done, total_);
-        std::fflush(stderr);
-    }
-
-  private:
-    int total_;
-    bool enabled_;
 };
 
 nlohmann::json errors_json(const slam::TrajectoryErrors& e) {
@@ -171,7 +145,7 @@ void run_slam(SlamOptions o) {
     slam::Slam slam(camera, o.params);
     Totals totals;
     cv::Mat vdisparity_picture;
-    const ProgressBar progress(frames);
+    const ProgressBar progress("slam", frames);
     const auto start = std::chrono::steady_clock::now();
     for (int i = 0; i < frames; ++i) {
         const auto load_start = std::chrono::steady_clock::now();
@@ -290,7 +264,7 @@ void run_slam(SlamOptions o) {
     io::write_files_atomic(files);
 
     if (o.json) {
-        std::cout << summary.dump() << std::endl;
+        std::cout << io::versioned(summary).dump() << std::endl;
         return;
     }
     std::printf(

@@ -33,6 +33,7 @@
 #include "stereo_io/metrics.hpp"
 #include "stereo_io/output.hpp"
 #include "stereo_io/point_cloud.hpp"
+#include "stereo_io/versioned_json.hpp"
 
 namespace stereo::experiments {
 namespace {
@@ -715,7 +716,7 @@ void run_quad_eval(const Options& options) {
         files.emplace_back(options.markdown, md);
     }
     if (!options.json_path.empty()) {
-        files.emplace_back(options.json_path, report.dump(2) + '\n');
+        files.emplace_back(options.json_path, io::versioned(report).dump(2) + '\n');
     }
     io::write_files_atomic(files);
 }

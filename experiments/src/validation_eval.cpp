@@ -27,6 +27,7 @@
 #include "stereo_io/io.hpp"
 #include "stereo_io/middlebury.hpp"
 #include "stereo_io/output.hpp"
+#include "stereo_io/versioned_json.hpp"
 
 namespace stereo::experiments {
 namespace {
@@ -318,7 +319,7 @@ void run_validation_eval(const EvalOptions& options) {
         files.emplace_back(options.markdown, md);
     }
     if (!options.json_path.empty()) {
-        files.emplace_back(options.json_path, report.dump(2) + '\n');
+        files.emplace_back(options.json_path, io::versioned(report).dump(2) + '\n');
     }
     if (!options.figure.empty()) {
         files.emplace_back(options.figure, io::encode_png(curve_figure(report), options.figure));

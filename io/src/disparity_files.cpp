@@ -168,6 +168,32 @@ DisparityEncoding encoding_of(const std::filesystem::path& path, DisparityEncodi
     return extension == ".pfm" ? DisparityEncoding::pfm : png_encoding;
 }
 
+DisparityEncoding output_encoding(const std::filesystem::path& path, DisparityEncoding png_encoding,
+                                  const std::string& option) {
+    std::string extension = path.extension().string();
+    for (char& c : extension) {
+        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    }
+    if (!extension.empty() && extension != ".png" && extension != ".pfm") {
+        throw std::invalid_argument(
+            option + " must name a .png or .pfm file (or have no extension), got " + quoted(path));
+    }
+    return encoding_of(path, png_encoding);
+}
+
+std::string encode_disparity(const ValidatedDisparity& validated, DisparityEncoding encoding,
+                             int ndisp, int scale, const std::filesystem::path& path) {
+    switch (encoding) {
+        case DisparityEncoding::pfm:
+            return encode_pfm(to_float_disparity(validated));
+        case DisparityEncoding::offset16:
+            return encode_png(to_offset16(validated), path);
+        case DisparityEncoding::scaled:
+            break;
+    }
+    return encode_png(disparity_to_mat(to_label_map(validated), ndisp, scale), path);
+}
+
 cv::Mat load_disparity_file(const std::filesystem::path& path, DisparityEncoding encoding,
                             double scale) {
     if (encoding == DisparityEncoding::pfm) {

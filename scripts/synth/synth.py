@@ -93,15 +93,23 @@ def chparam(config):
             f"-set NDISP {config['ndisp']} -set WINDOW {config['window']} {TOP}")
 
 
+def progress(message):
+    """One progress line on stderr: synthesis and place and route take minutes."""
+    print(f"synth.py: {message}", file=sys.stderr, flush=True)
+
+
 def run_yosys(script, log_path):
     start = time.monotonic()
+    progress(f"yosys running (log {log_path})")
     result = subprocess.run(["yosys", "-q", "-l", str(log_path), "-p", script],
                             capture_output=True, text=True)
     if result.returncode != 0:
         tail = "\n".join(Path(log_path).read_text().splitlines()[-15:]) if Path(
             log_path).exists() else result.stderr
         raise ReportError(f"yosys failed (log {log_path}):\n{tail}")
-    return time.monotonic() - start
+    seconds = time.monotonic() - start
+    progress(f"yosys done in {seconds:.0f} s")
+    return seconds
 
 
 def load_stat_json(path):
@@ -259,6 +267,7 @@ def ice40_report(config, args, work):
     if fits and not args.no_pnr:
         start = time.monotonic()
         pnr_json = work / "nextpnr.json"
+        progress(f"nextpnr-ice40 running (log {work / 'nextpnr.log'})")
         result = subprocess.run(
             ["nextpnr-ice40", f"--{args.device}", "--package", device["package"],
              "--json", str(netlist), "--freq", str(args.freq), "--timing-allow-fail",

@@ -34,6 +34,17 @@ cv::Mat decode_pfm(std::string_view bytes, const std::string& name);
 // The encoding a path implies: .pfm -> pfm; otherwise `png_encoding`.
 DisparityEncoding encoding_of(const std::filesystem::path& path, DisparityEncoding png_encoding);
 
+// The encoding an output path asks for: .pfm -> pfm, .png or no extension -> `png_encoding`.
+// Throws std::invalid_argument naming `option` for any other extension (.tiff, .ply, ...), so
+// that no tool writes PNG bytes under another format's name.
+DisparityEncoding output_encoding(const std::filesystem::path& path, DisparityEncoding png_encoding,
+                                  const std::string& option = "-o");
+
+// The file bytes of stage 6's output in `encoding`: PFM (pixels, +inf invalid), offset16 PNG, or
+// the scaled 8-bit PNG of its label map (labels x scale, `ndisp` labels).
+std::string encode_disparity(const ValidatedDisparity& validated, DisparityEncoding encoding,
+                             int ndisp, int scale, const std::filesystem::path& path);
+
 // Reads a disparity file in `encoding` into CV_32FC1 with NaN where invalid / unknown; `scale`
 // applies to the scaled encoding only.
 cv::Mat load_disparity_file(const std::filesystem::path& path, DisparityEncoding encoding,

@@ -1,0 +1,35 @@
+# The installable package (issue 23): `cmake --install build --prefix P` puts the libraries
+# stereo_model, stereo_io and stereo_robot, their public headers and the `stereo` tool under P,
+# with P/lib/cmake/stereo/stereo-config.cmake so that a consumer writes
+#   find_package(stereo 0.1 REQUIRED)
+#   target_link_libraries(app PRIVATE stereo::io)   # or stereo::model, stereo::robot
+# examples/consumer/ is such a consumer; the test install.consumer builds it against a fresh
+# install. The Verilated RTL (stereo_sim) is not exported: its headers are generated into the
+# build tree; FPGA integrators take the RTL from rtl/ (docs/install.md).
+include(CMakePackageConfigHelpers)
+
+set(STEREO_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/stereo)
+
+set_target_properties(stereo_model PROPERTIES EXPORT_NAME model)
+set_target_properties(stereo_io PROPERTIES EXPORT_NAME io)
+set_target_properties(stereo_robot PROPERTIES EXPORT_NAME robot)
+
+install(TARGETS stereo_model stereo_io stereo_robot
+        EXPORT stereo-targets
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
+install(TARGETS stereo RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(DIRECTORY ${CMAKE_SOURCE_DIR}/model/include/ ${CMAKE_SOURCE_DIR}/io/include/
+                  ${CMAKE_SOURCE_DIR}/robot/include/
+        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(FILES ${CMAKE_BINARY_DIR}/generated/include/stereo/version.hpp
+        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/stereo)
+install(EXPORT stereo-targets NAMESPACE stereo:: DESTINATION ${STEREO_INSTALL_CMAKEDIR})
+
+configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/stereo-config.cmake.in
+                              ${CMAKE_BINARY_DIR}/stereo-config.cmake
+                              INSTALL_DESTINATION ${STEREO_INSTALL_CMAKEDIR})
+write_basic_package_version_file(${CMAKE_BINARY_DIR}/stereo-config-version.cmake
+                                 VERSION ${PROJECT_VERSION} COMPATIBILITY SameMinorVersion)
+install(FILES ${CMAKE_BINARY_DIR}/stereo-config.cmake ${CMAKE_BINARY_DIR}/stereo-config-version.cmake
+        DESTINATION ${STEREO_INSTALL_CMAKEDIR})

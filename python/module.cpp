@@ -1,0 +1,396 @@
+// The Python module `stereo`: the matcher registry, evaluation, the fuzzy decision and the
+// co-simulation of the Verilated RTL on numpy arrays (docs/python.md). Images are uint8 arrays
+// of shape (H, W) or (H, W, 3) in RGB order (the model's); results are dicts of numpy arrays
+// that own the C++ buffers they came from (no copy on the way out).
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+
+#include "stereo/hls/match.hpp"
+#include "stereo/matcher.hpp"
+#include "stereo/validated.hpp"
+#include "stereo_io/disparity_files.hpp"
+#include "stereo_io/io.hpp"
+#include "stereo_io/metrics.hpp"
+#include "stereo_robot/decision.hpp"
+#ifdef STEREO_WITH_RTL
+#include "stereo_top_sim.hpp"
+#endif
+
+namespace py = pybind11;
+
+namespace {
+
+using stereo::Image;
+using stereo::MatchConfig;
+using stereo::MatcherRegistry;
+
+const MatcherRegistry& registry() {
+    static const MatcherRegistry r = [] {
+        MatcherRegistry built;
+        stereo::register_model_matchers(built);
+        stereo::hls::register_matchers(built);
+#ifdef STEREO_WITH_RTL
+        stereo::sim::register_matchers(built);
+#endif
+        return built;
+    }();
+    return r;
+}
+
+// A numpy array of shape `shape` over `values`, which it takes over (freed with the array).
+template <typename T>
+py::array_t<T> adopt(std::vector<T>&& values, std::vector<py::ssize_t> shape) {
+    auto owner = std::make_unique<std::vector<T>>(std::move(values));
+    T* data = owner->data();
+    py::capsule free_owner(owner.get(), [](void* p) {
+        std::unique_ptr<std::vector<T>>(static_cast<std::vector<T>*>(p));
+    });
+    owner.release();  // the capsule owns it now
+    return py::array_t<T>(std::move(shape), data, free_owner);
+}
+
+// A uint8 (H, W) or (H, W, 3) array as the model's Image (one copy: Image owns its pixels).
+Image to_image(const py::array& array, const char* name) {
+    const auto u8 =
+        py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>::ensure(array);
+    if (!u8 || !(u8.ndim() == 2 || (u8.ndim() == 3 && (u8.shape(2) == 3 || u8.shape(2) == 1)))) {
+        throw std::invalid_argument(std::string(name) +
+                                    " must be a uint8 array of shape (H, W) or (H, W, 3)");
+    }
+    if (array.dtype().kind() != 'u' || array.dtype().itemsize() != 1) {
+        throw std::invalid_argument(std::string(name) + " must have dtype uint8, got " +
+                                    std::string(py::str(array.dtype())));
+    }
+    const int channels = u8.ndim() == 2 ? 1 : static_cast<int>(u8.shape(2));
+    Image image(static_cast<int>(u8.shape(1)), static_cast<int>(u8.shape(0)), channels);
+    std::copy_n(u8.data(), image.pixels.size(), image.pixels.begin());
+    return image;
+}
+
+// A float32 (H, W) array as CV_32FC1 (a view: the array outlives the call).
+cv::Mat float_view(const py::array_t<float, py::array::c_style | py::array::forcecast>& array,
+                   const char* name) {
+    if (array.ndim() != 2) {
+        throw std::invalid_argument(std::string(name) + " must be a 2-D float array");
+    }
+    return cv::Mat(static_cast<int>(array.shape(0)), static_cast<int>(array.shape(1)), CV_32FC1,
+                   const_cast<float*>(array.data()));
+}
+
+cv::Mat mask_view(const py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>& array,
+                  const char* name) {
+    if (array.ndim() != 2) {
+        throw std::invalid_argument(std::string(name) + " must be a 2-D uint8 array");
+    }
+    return cv::Mat(static_cast<int>(array.shape(0)), static_cast<int>(array.shape(1)), CV_8UC1,
+                   const_cast<std::uint8_t*>(array.data()));
+}
+
+py::object json_to_python(const nlohmann::json& json) {
+    return py::module_::import("json").attr("loads")(json.dump());
+}
+
+struct MatchOptions {
+    std::string method;
+    std::string engine;
+    MatchConfig config;
+};
+
+// Stage 6's outputs as arrays: fixed (int16, disparity x 16), reason, certainty, and the
+// disparity in pixels (float32, NaN where invalid).
+void add_validated(py::dict& out, stereo::ValidatedDisparity&& v) {
+    const std::vector<py::ssize_t> shape{v.height, v.width};
+    const cv::Mat pixels = stereo::io::to_float_disparity(v);
+    std::vector<float> floats(pixels.begin<float>(), pixels.end<float>());
+    out["disparity_px"] = adopt(std::move(floats), shape);
+    out["fixed"] = adopt(std::move(v.fixed), shape);
+    out["reason"] = adopt(std::move(v.reason), shape);
+    out["certainty"] = adopt(std::move(v.certainty), shape);
+}
+
+py::dict run_match(const py::array& left, const py::array& right, const MatchOptions& options) {
+    const Image l = to_image(left, "left");
+    const Image r = to_image(right, "right");
+    const auto matcher = registry().create(options.method, options.engine, options.config);
+    matcher->validate(l.width, l.height);
+    stereo::MatchResult result;
+    {
+        py::gil_scoped_release release;
+        result = matcher->compute(l, r);
+    }
+    py::dict out;
+    const int w = result.disparity.width;
+    const int h = result.disparity.height;
+    const std::vector<py::ssize_t> shape{h, w};
+    out["disparity"] = adopt(std::move(result.disparity.disparity), shape);
+    auto valid = adopt(std::move(result.disparity.valid), shape);
+    out["valid"] = valid.attr("astype")("bool");
+    if (!result.validated.fixed.empty()) {
+        add_validated(out, std::move(result.validated));
+    }
+    if (!result.subpixel.empty()) {
+        out["subpixel"] = adopt(std::move(result.subpixel), shape);
+    }
+    if (!result.vertical.empty()) {
+        out["vertical"] = adopt(std::move(result.vertical), shape);
+    }
+    py::dict counts;
+    for (const auto& [name, value] : result.counts) {
+        counts[py::str(name)] = value;
+    }
+    out["counts"] = counts;
+    return out;
+}
+
+MatchOptions match_options(const std::string& method, const std::string& engine, int ndisp,
+                           int window, double sigma, bool ca, const std::string& cost, int min_disp,
+                           std::optional<int> uniqueness, std::optional<int> lr_check,
+                           bool subpixel, int vrange, const std::string& neighbours, int log_window,
+                           double log_sigma, int edge_value, int truncation, int sparse_uniqueness,
+                           int sparse_lr) {
+    MatchOptions o{method, engine, {}};
+    stereo::MatchParams& p = o.config.pipeline;
+    p.ndisp = ndisp;
+    p.window = window;
+    p.sigma = sigma;
+    p.use_ca = ca;
+    p.cost = cost;
+    p.min_disp = min_disp;
+    p.validation.uniqueness = uniqueness.has_value();
+    p.validation.uniqueness_ratio = uniqueness.value_or(p.validation.uniqueness_ratio);
+    p.validation.left_right = lr_check.has_value();
+    p.validation.lr_tolerance = lr_check.value_or(p.validation.lr_tolerance);
+    p.validation.subpixel = subpixel;
+    o.config.vrange = vrange;
+    if (neighbours == "horizontal") {
+        o.config.neighbours = stereo::CaNeighbours::horizontal;
+    } else if (neighbours == "both") {
+        o.config.neighbours = stereo::CaNeighbours::horizontal_and_vertical;
+    } else {
+        throw std::invalid_argument("neighbours must be \"horizontal\" or \"both\", got \"" +
+                                    neighbours + "\"");
+    }
+    o.config.edges.log_window = log_window;
+    o.config.edges.log_sigma = log_sigma;
+    o.config.edges.edge_value = edge_value;
+    o.config.edges.truncation = truncation;
+    o.config.sparse.uniqueness = sparse_uniqueness;
+    o.config.sparse.lr_tolerance = sparse_lr;
+    return o;
+}
+
+py::dict evaluate(const py::array_t<float, py::array::c_style | py::array::forcecast>& disparity,
+                  const py::array_t<float, py::array::c_style | py::array::forcecast>& ground_truth,
+                  double threshold, std::optional<py::array> nonocc, std::optional<py::array> all,
+                  std::optional<py::array> disc, bool zero_is_invalid) {
+    using U8 = py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>;
+    stereo::io::EvalInput input;
+    input.disparity = {float_view(disparity, "disparity"), "disparity"};
+    input.ground_truth = {float_view(ground_truth, "ground_truth"), "ground_truth"};
+    // The masks are converted once and kept alive here while evaluate() reads them.
+    std::vector<U8> masks;
+    const auto add_mask = [&](const std::optional<py::array>& mask, const char* name,
+                              std::optional<stereo::io::NamedMat>& slot) {
+        if (mask) {
+            masks.push_back(U8::ensure(*mask));
+            slot = stereo::io::NamedMat{mask_view(masks.back(), name), name};
+        }
+    };
+    masks.reserve(3);
+    add_mask(nonocc, "nonocc", input.nonocc);
+    add_mask(all, "all", input.all);
+    add_mask(disc, "disc", input.disc);
+    input.threshold = threshold;
+    input.zero_is_invalid = zero_is_invalid;
+    nlohmann::json json = stereo::io::evaluate(input);
+    return json_to_python(json);
+}
+
+py::dict fuzzy_decision(double left, double centre, double right) {
+    const stereo::robot::FisResult r = stereo::robot::evaluate_fis(left, centre, right);
+    py::dict out;
+    out["angle_deg"] = r.angle_deg;
+    out["backwards"] = r.backwards;
+    out["decision"] = stereo::robot::to_string(r.decision);
+    return out;
+}
+
+#ifdef STEREO_WITH_RTL
+// The defaults of the options cosim() does not expose (they do not reach the pipeline).
+const stereo::edge_frontend::EdgeParams kEdges{};
+const stereo::sparse::Params kSparse{};
+
+// One frame through the smallest built stereo_top that covers it, with random input gaps and
+// output stalls, compared pixel by pixel with the model (fixed, reason, certainty).
+py::dict cosim(const py::array& left, const py::array& right, const MatchOptions& options,
+               double stall, double gap, std::uint32_t seed, const std::string& trace) {
+    const Image l = to_image(left, "left");
+    const Image r = to_image(right, "right");
+    const stereo::MatchParams& params = options.config.pipeline;
+    const auto model = registry().create("pipeline", "model", options.config);
+    model->validate(l.width, l.height);
+    if (l.width != r.width || l.height != r.height) {
+        throw std::invalid_argument("left and right differ in size");
+    }
+    const stereo::sim::TopConfig* config = stereo::sim::covering_config(
+        l.width, l.height, params.ndisp, params.window, params.min_disp, params.cost);
+    if (config == nullptr) {
+        throw std::invalid_argument(
+            "no built co-simulation configuration covers this pair and "
+            "these parameters (stereo.cosim_configs())");
+    }
+    stereo::ValidatedDisparity expected;
+    stereo::ValidatedDisparity actual;
+    stereo::sim::StreamResult result;
+    {
+        py::gil_scoped_release release;
+        expected = model->compute(l, r).validated;
+        const auto top = stereo::sim::make_top_sim(*config);
+        if (!trace.empty()) {
+            top->trace_to(trace);
+        }
+        top->reset();
+        top->set_params({l.width, l.height, params});
+        const auto beats = stereo::sim::frame_beats(l, r);
+        result = top->stream(beats, beats.size(), {gap, stall, seed}, 100 * beats.size() + 100000);
+        if (!result.completed || !result.protocol_error.empty()) {
+            throw std::runtime_error("the RTL did not complete the frame: " +
+                                     (result.protocol_error.empty() ? std::string("it stalled")
+                                                                    : result.protocol_error));
+        }
+        actual = stereo::sim::assemble_validated(result.outputs, 0, l.width, l.height);
+    }
+    std::size_t mismatches = 0;
+    for (std::size_t i = 0; i < expected.fixed.size(); ++i) {
+        mismatches += expected.fixed[i] != actual.fixed[i] ||
+                      expected.reason[i] != actual.reason[i] ||
+                      expected.certainty[i] != actual.certainty[i];
+    }
+    py::dict out;
+    out["config"] = config->name;
+    out["mismatches"] = mismatches;
+    out["cycles"] = result.cycles;
+    add_validated(out, std::move(actual));
+    return out;
+}
+#endif
+
+}  // namespace
+
+PYBIND11_MODULE(stereo, m) {
+    m.doc() = "Stereo matching with the bit-exact golden model of the FPGA stereo accelerator";
+    m.attr("__version__") = STEREO_VERSION;
+#ifdef STEREO_WITH_RTL
+    m.attr("has_rtl") = true;
+#else
+    m.attr("has_rtl") = false;
+#endif
+
+    m.def(
+        "matchers",
+        [] {
+            std::vector<std::tuple<std::string, std::string, std::string>> out;
+            for (const auto& e : registry().entries()) {
+                out.emplace_back(e.method, e.engine, e.description);
+            }
+            return out;
+        },
+        "Every (method, engine, description) of the matcher registry.");
+
+    m.def(
+        "load_image",
+        [](const std::string& path) {
+            Image image = stereo::io::load_image(path);
+            std::vector<py::ssize_t> shape{image.height, image.width};
+            if (image.channels == 3) {
+                shape.push_back(3);
+            }
+            return adopt(std::move(image.pixels), std::move(shape));
+        },
+        py::arg("path"), "An image file as uint8 (H, W) or (H, W, 3) RGB, as the CLI reads it.");
+
+    const auto defaults = stereo::MatchParams{};
+    const auto edges = stereo::edge_frontend::EdgeParams{};
+    const auto sparse = stereo::sparse::Params{};
+    m.def(
+        "match",
+        [](const py::array& left, const py::array& right, const std::string& method,
+           const std::string& engine, int ndisp, int window, double sigma, bool ca,
+           const std::string& cost, int min_disp, std::optional<int> uniqueness,
+           std::optional<int> lr_check, bool subpixel, int vrange, const std::string& neighbours,
+           int log_window, double log_sigma, int edge_value, int truncation, int sparse_uniqueness,
+           int sparse_lr) {
+            return run_match(
+                left, right,
+                match_options(method, engine, ndisp, window, sigma, ca, cost, min_disp, uniqueness,
+                              lr_check, subpixel, vrange, neighbours, log_window, log_sigma,
+                              edge_value, truncation, sparse_uniqueness, sparse_lr));
+        },
+        py::arg("left"), py::arg("right"), py::kw_only(), py::arg("method") = "pipeline",
+        py::arg("engine") = "model", py::arg("ndisp") = defaults.ndisp,
+        py::arg("window") = defaults.window, py::arg("sigma") = defaults.sigma,
+        py::arg("ca") = defaults.use_ca, py::arg("cost") = defaults.cost,
+        py::arg("min_disp") = defaults.min_disp, py::arg("uniqueness") = py::none(),
+        py::arg("lr_check") = py::none(), py::arg("subpixel") = false, py::arg("vrange") = 0,
+        py::arg("neighbours") = "horizontal", py::arg("log_window") = edges.log_window,
+        py::arg("log_sigma") = edges.log_sigma, py::arg("edge_value") = edges.edge_value,
+        py::arg("truncation") = edges.truncation, py::arg("sparse_uniqueness") = sparse.uniqueness,
+        py::arg("sparse_lr") = sparse.lr_tolerance,
+        "Match a pair with (method, engine) of stereo.matchers(). Returns a dict: disparity "
+        "(uint8 labels), valid (bool), and for the pipeline stage 6's disparity_px (float32, NaN "
+        "invalid), fixed (int16, x16), reason, certainty; subpixel (sparse), vertical (2-D "
+        "methods), counts. uniqueness / lr_check: None = that stage off.");
+
+    m.def("evaluate", &evaluate, py::arg("disparity"), py::arg("ground_truth"), py::kw_only(),
+          py::arg("threshold") = 1.0, py::arg("nonocc") = py::none(), py::arg("all") = py::none(),
+          py::arg("disc") = py::none(), py::arg("zero_is_invalid") = true,
+          "Middlebury scores of a float disparity against float ground truth (0 = unknown), "
+          "the same dict as `stereo eval --json`; masks are uint8 with 255 = scored.");
+
+    m.def("fuzzy_decision", &fuzzy_decision, py::arg("left"), py::arg("centre"), py::arg("right"),
+          "The fuzzy obstacle-avoidance decision on three window occupancies in [0, 1] "
+          "(stereo fis).");
+
+#ifdef STEREO_WITH_RTL
+    m.def("cosim_configs", [] {
+        std::vector<std::string> names;
+        for (const auto& c : stereo::sim::built_top_configs()) {
+            names.push_back(c.name);
+        }
+        return names;
+    });
+    m.def(
+        "cosim",
+        [](const py::array& left, const py::array& right, int ndisp, int window, double sigma,
+           bool ca, const std::string& cost, int min_disp, std::optional<int> uniqueness,
+           std::optional<int> lr_check, bool subpixel, double stall, double gap, std::uint32_t seed,
+           const std::string& trace) {
+            return cosim(left, right,
+                         match_options("pipeline", "model", ndisp, window, sigma, ca, cost,
+                                       min_disp, uniqueness, lr_check, subpixel, 0, "horizontal",
+                                       kEdges.log_window, kEdges.log_sigma, kEdges.edge_value,
+                                       kEdges.truncation, kSparse.uniqueness, kSparse.lr_tolerance),
+                         stall, gap, seed, trace);
+        },
+        py::arg("left"), py::arg("right"), py::kw_only(), py::arg("ndisp") = 16,
+        py::arg("window") = 5, py::arg("sigma") = defaults.sigma, py::arg("ca") = true,
+        py::arg("cost") = "ad", py::arg("min_disp") = 0, py::arg("uniqueness") = py::none(),
+        py::arg("lr_check") = py::none(), py::arg("subpixel") = false, py::arg("stall") = 0.0,
+        py::arg("gap") = 0.0, py::arg("seed") = 1u, py::arg("trace") = "",
+        "Stream the pair through the Verilated stereo_top (random output stalls and input gaps) "
+        "and compare it with the model: dict with mismatches, cycles, config and the RTL's "
+        "stage-6 arrays.");
+#endif
+}

@@ -1,0 +1,188 @@
+"""Tests of the Python module `stereo` (ctest label "python"; python/CMakeLists.txt).
+
+The expected values come from elsewhere: the `stereo` CLI run as a subprocess (its PFM parsed
+here with numpy, not by the module), the naive reference engine, or arithmetic in numpy.
+"""
+import json
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import stereo
+
+CLI = os.environ.get("STEREO_CLI", "stereo")
+FIXTURES = os.environ.get("STEREO_FIXTURES", "")
+SEED = int(os.environ.get("STEREO_SEED", "7"))
+
+
+def read_pfm(path):
+    """A grey PFM as float32 (H, W), top row first; independent of the module's decoder."""
+    with open(path, "rb") as f:
+        data = f.read()
+    header, rest = data.split(b"\n", 1)
+    assert header == b"Pf"
+    size, rest = rest.split(b"\n", 1)
+    width, height = map(int, size.split())
+    scale, rest = rest.split(b"\n", 1)
+    dtype = "<f4" if float(scale) < 0 else ">f4"
+    rows = np.frombuffer(rest[: width * height * 4], dtype=dtype).reshape(height, width)
+    return rows[::-1].astype(np.float32)
+
+
+def shifted_pair(width=64, height=48, shift=4, seed=SEED):
+    """A random RGB texture and its copy shifted left by `shift` pixels (printed seed)."""
+    print(f"STEREO_SEED={seed}")
+    rng = np.random.default_rng(seed)
+    left = rng.integers(0, 256, size=(height, width, 3), dtype=np.uint8)
+    right = np.empty_like(left)
+    right[:, : width - shift] = left[:, shift:]
+    right[:, width - shift :] = rng.integers(0, 256, size=(height, shift, 3), dtype=np.uint8)
+    return left, right
+
+
+@pytest.fixture
+def fixture_pair():
+    if not FIXTURES or not os.path.exists(os.path.join(FIXTURES, "left.png")):
+        pytest.skip("the CLI fixtures (ctest fixture stereo_cli_images) are absent")
+    return os.path.join(FIXTURES, "left.png"), os.path.join(FIXTURES, "right.png")
+
+
+def test_version_matches_cli():
+    out = subprocess.run([CLI, "--version"], capture_output=True, text=True, check=True)
+    assert stereo.__version__ in out.stdout
+
+
+def test_match_equals_cli_bit_for_bit(fixture_pair, tmp_path):
+    left_path, right_path = fixture_pair
+    pfm = tmp_path / "cli.pfm"
+    # The CLI's defaults: every stage-6 step on (uniqueness 20, left-right 0, sub-pixel).
+    subprocess.run([CLI, "match", left_path, right_path, "--ndisp", "16", "-o", str(pfm)],
+                   check=True, capture_output=True)
+    expected = read_pfm(pfm)
+    left = stereo.load_image(left_path)
+    right = stereo.load_image(right_path)
+    result = stereo.match(left, right, ndisp=16, uniqueness=20, lr_check=0, subpixel=True)
+    got = result["disparity_px"]
+    assert got.shape == expected.shape
+    expected_valid = np.isfinite(expected)
+    assert np.array_equal(np.isfinite(got), expected_valid)
+    assert np.array_equal(got[expected_valid], expected[expected_valid])
+    assert expected_valid.any()
+    assert np.array_equal(result["valid"], expected_valid)
+
+
+def test_match_labels_equal_cli_without_validation(fixture_pair, tmp_path):
+    left_path, right_path = fixture_pair
+    pfm = tmp_path / "plain.pfm"
+    subprocess.run([CLI, "match", left_path, right_path, "--ndisp", "12", "--window", "3",
+                    "--no-validation", "-o", str(pfm)], check=True, capture_output=True)
+    expected = read_pfm(pfm)
+    result = stereo.match(stereo.load_image(left_path), stereo.load_image(right_path),
+                          ndisp=12, window=3)
+    labels = np.where(result["valid"], result["disparity"].astype(np.float32), np.nan)
+    both = np.isfinite(expected)
+    assert np.array_equal(np.isfinite(labels), both)
+    assert np.array_equal(labels[both], expected[both])
+
+
+def test_model_equals_naive_reference():
+    left, right = shifted_pair()
+    for options in ({}, {"uniqueness": 10, "lr_check": 1, "subpixel": True},
+                    {"cost": "census"}, {"min_disp": -2, "ca": False}):
+        model = stereo.match(left, right, ndisp=16, window=5, **options)
+        naive = stereo.match(left, right, ndisp=16, window=5, engine="naive", **options)
+        assert np.array_equal(model["disparity"], naive["disparity"]), options
+        assert np.array_equal(model["fixed"], naive["fixed"]), options
+
+
+def test_edge_options_reach_the_matcher():
+    left, right = shifted_pair()
+    options = {"method": "edges", "ndisp": 16, "window": 5, "log_window": 5, "log_sigma": 0.8,
+               "edge_value": 200, "truncation": 120}
+    model = stereo.match(left, right, **options)
+    naive = stereo.match(left, right, engine="naive", **options)
+    assert np.array_equal(model["disparity"], naive["disparity"])
+    default = stereo.match(left, right, method="edges", ndisp=16, window=5)
+    assert not np.array_equal(model["disparity"], default["disparity"])
+
+
+def test_shift_is_found():
+    left, right = shifted_pair(shift=5)
+    result = stereo.match(left, right, ndisp=16, window=5)
+    # Columns right of the search range: every left pixel has its match in the right image.
+    valid = result["valid"][:, 20:]
+    assert valid.sum() > 0.5 * valid.size
+    assert np.mean(result["disparity"][:, 20:][valid] == 5) > 0.95
+
+
+def test_every_registered_matcher_runs():
+    left, right = shifted_pair()
+    grey_l = left[:, :, 0].copy()
+    grey_r = right[:, :, 0].copy()
+    names = stereo.matchers()
+    assert ("pipeline", "model") in [(m, e) for m, e, _ in names]
+    for method, engine, _ in names:
+        if engine == "rtl" and not stereo.has_rtl:
+            with pytest.raises(ValueError):
+                stereo.match(left, right, method=method, engine=engine, ndisp=16, window=5)
+            continue
+        for l, r in ((left, right), (grey_l, grey_r)):
+            try:
+                result = stereo.match(l, r, method=method, engine=engine, ndisp=16, window=5)
+            except ValueError as error:  # a documented refusal (e.g. the lcdm cost needs colour)
+                assert str(error), (method, engine)
+                continue
+            assert result["disparity"].shape == (48, 64), (method, engine)
+            assert result["valid"].dtype == np.bool_
+
+
+def test_bad_inputs_raise():
+    left, right = shifted_pair()
+    with pytest.raises(ValueError):
+        stereo.match(left.astype(np.float32), right, ndisp=16)
+    with pytest.raises(ValueError):
+        stereo.match(left, right[:, :32], ndisp=16)
+    with pytest.raises(ValueError):
+        stereo.match(left, right, ndisp=16, window=4)
+    with pytest.raises(ValueError):
+        stereo.match(left, right, method="nope")
+
+
+def test_evaluate_counts_bad_pixels():
+    rng = np.random.default_rng(SEED)
+    gt = rng.uniform(1, 30, size=(20, 30)).astype(np.float32)
+    disparity = gt.copy()
+    wrong = rng.random(gt.shape) < 0.2
+    disparity[wrong] += 3.0
+    gt[0, :] = 0  # unknown
+    known = gt > 0
+    expected_bad = 100.0 * np.count_nonzero(wrong & known) / np.count_nonzero(known)
+    scores = stereo.evaluate(disparity, gt, threshold=1.0)
+    assert scores["bad_all"] == pytest.approx(expected_bad)
+
+
+def test_fuzzy_decision_equals_cli():
+    for occupancy in ((0.0, 0.0, 0.0), (0.1, 0.9, 0.8), (0.9, 0.8, 0.05), (0.9, 0.95, 0.9)):
+        out = subprocess.run([CLI, "fis", "--left", str(occupancy[0]), "--center",
+                              str(occupancy[1]), "--right", str(occupancy[2]), "--json"],
+                             capture_output=True, text=True, check=True)
+        expected = json.loads(out.stdout)
+        got = stereo.fuzzy_decision(*occupancy)
+        assert got["decision"] == expected["decision"]
+        assert got["angle_deg"] == pytest.approx(expected["angle_deg"])
+        assert got["backwards"] == pytest.approx(expected["backwards"])
+
+
+@pytest.mark.skipif(not stereo.has_rtl, reason="built with -DSTEREO_WITH_RTL=OFF")
+def test_cosim_equals_model_under_stalls():
+    left, right = shifted_pair()
+    result = stereo.cosim(left, right, ndisp=16, window=5, uniqueness=10, lr_check=1,
+                          stall=0.3, gap=0.2, seed=SEED)
+    assert result["mismatches"] == 0
+    model = stereo.match(left, right, ndisp=16, window=5, uniqueness=10, lr_check=1)
+    assert np.array_equal(result["fixed"], model["fixed"])
+    assert np.array_equal(result["reason"], model["reason"])
+    assert result["cycles"] >= 64 * 48
+    assert result["config"] in stereo.cosim_configs()
