@@ -9,6 +9,7 @@
 
 #include "stereo/dsi.hpp"
 #include "stereo/pipeline.hpp"
+#include "stereo_io/test_compare.hpp"
 
 namespace stereo::tb {
 
@@ -67,34 +68,6 @@ inline ::testing::AssertionResult same_map(const DisparityMap& model, const Disp
 }
 
 // Stage 6's output of every pixel: fixed disparity, reason and certainty.
-inline ::testing::AssertionResult same_validated(const ValidatedDisparity& model,
-                                                 const ValidatedDisparity& rtl) {
-    if (model.width != rtl.width || model.height != rtl.height) {
-        return ::testing::AssertionFailure() << "sizes differ";
-    }
-    std::size_t mismatches = 0;
-    std::string first;
-    for (int y = 0; y < model.height; ++y) {
-        for (int x = 0; x < model.width; ++x) {
-            const auto i = model.index(x, y);
-            if ((model.fixed[i] != rtl.fixed[i] || model.reason[i] != rtl.reason[i] ||
-                 model.certainty[i] != rtl.certainty[i]) &&
-                mismatches++ < 5) {
-                first += " (x=" + std::to_string(x) + ", y=" + std::to_string(y) +
-                         "): model fixed=" + std::to_string(model.fixed[i]) +
-                         " reason=" + std::to_string(model.reason[i]) +
-                         " certainty=" + std::to_string(model.certainty[i]) +
-                         ", rtl fixed=" + std::to_string(rtl.fixed[i]) +
-                         " reason=" + std::to_string(rtl.reason[i]) +
-                         " certainty=" + std::to_string(rtl.certainty[i]) + ";";
-            }
-        }
-    }
-    if (mismatches == 0) {
-        return ::testing::AssertionSuccess();
-    }
-    return ::testing::AssertionFailure()
-           << mismatches << " of " << model.fixed.size() << " pixels differ, first:" << first;
-}
+using test::same_validated;
 
 }  // namespace stereo::tb

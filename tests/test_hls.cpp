@@ -30,6 +30,7 @@
 #include "stereo_io/data_dir.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/middlebury.hpp"
+#include "stereo_io/test_compare.hpp"
 #include "stereo_io/test_support.hpp"
 
 namespace stereo {
@@ -634,30 +635,7 @@ void expect_match(const Image& left, const Image& right, const MatchParams& para
 }
 
 // Stage 6: fixed disparity, reason and certainty of every pixel against the golden model.
-testing::AssertionResult same_validated(const ValidatedDisparity& expected,
-                                        const ValidatedDisparity& actual) {
-    if (expected.width != actual.width || expected.height != actual.height) {
-        return testing::AssertionFailure() << "sizes differ";
-    }
-    std::size_t mismatches = 0;
-    std::string first;
-    for (std::size_t i = 0; i < expected.fixed.size(); ++i) {
-        if ((expected.fixed[i] != actual.fixed[i] || expected.reason[i] != actual.reason[i] ||
-             expected.certainty[i] != actual.certainty[i]) &&
-            mismatches++ < 5) {
-            first += " [" + std::to_string(i % expected.width) + "," +
-                     std::to_string(i / expected.width) + "] model " +
-                     std::to_string(expected.fixed[i]) + "/" + std::to_string(expected.reason[i]) +
-                     "/" + std::to_string(expected.certainty[i]) + " hls " +
-                     std::to_string(actual.fixed[i]) + "/" + std::to_string(actual.reason[i]) +
-                     "/" + std::to_string(actual.certainty[i]) + ";";
-        }
-    }
-    if (mismatches == 0) {
-        return testing::AssertionSuccess();
-    }
-    return testing::AssertionFailure() << mismatches << " pixels differ:" << first;
-}
+using test::same_validated;
 
 MatchParams with_stage6(MatchParams params, int min_disp, int uniqueness, int lr, bool subpixel) {
     params.min_disp = min_disp;

@@ -14,32 +14,13 @@
 #include "stereo_io/data_dir.hpp"
 #include "stereo_io/disparity_files.hpp"
 #include "stereo_io/io.hpp"
+#include "stereo_io/test_compare.hpp"
 #include "stereo_io/test_support.hpp"
 
 namespace stereo::quad {
 namespace {
 
-::testing::AssertionResult same_validated(const ValidatedDisparity& expected,
-                                          const ValidatedDisparity& actual) {
-    if (expected.width != actual.width || expected.height != actual.height) {
-        return ::testing::AssertionFailure() << "shapes differ";
-    }
-    for (int y = 0; y < expected.height; ++y) {
-        for (int x = 0; x < expected.width; ++x) {
-            const auto i = expected.index(x, y);
-            if (expected.fixed[i] != actual.fixed[i] || expected.reason[i] != actual.reason[i] ||
-                expected.certainty[i] != actual.certainty[i]) {
-                return ::testing::AssertionFailure()
-                       << "first mismatch at (" << x << ", " << y << "): expected fixed "
-                       << expected.fixed[i] << " reason " << int(expected.reason[i])
-                       << " certainty " << int(expected.certainty[i]) << ", got fixed "
-                       << actual.fixed[i] << " reason " << int(actual.reason[i]) << " certainty "
-                       << int(actual.certainty[i]);
-            }
-        }
-    }
-    return ::testing::AssertionSuccess();
-}
+using test::same_validated;
 
 // A window of `big` at (ox, oy): crops of one random image at offsets (d * step) make a pair
 // whose true disparity is d everywhere, with no clamped or invented pixels.
