@@ -93,7 +93,13 @@ int scene_disparity(int v) {
 io::ImagePair road_scene(std::uint32_t seed) {
     std::mt19937 rng(seed);
     std::uniform_int_distribution<int> grey(0, 255);
-    const int wide = kWidth + kNdisp;
+    // Wide enough for the right image's shift too: the last row used to read past the texture
+    // (found by ASan).
+    int largest_disparity = 0;
+    for (int v = 0; v < kHeight; ++v) {
+        largest_disparity = std::max(largest_disparity, scene_disparity(v));
+    }
+    const int wide = kWidth + kNdisp + largest_disparity;
     std::vector<std::uint8_t> texture(static_cast<std::size_t>(wide) * kHeight);
     for (auto& t : texture) {
         t = static_cast<std::uint8_t>(grey(rng));
