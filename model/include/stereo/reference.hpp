@@ -21,6 +21,13 @@ Dsi cost_volume(const std::string& name, const Image& left, const Image& right, 
 DisparityMap match(const Image& left, const Image& right, const MatchParams& params);
 // Stage 6 by its definition over a whole final volume: every label scanned for the winner, the
 // second-best cost and the right image's winner; the parabola vertex in double precision.
+// Stage 6 along a search direction: label k of pixel (x, y) compares it with the partner pixel
+// (x - d step_x, y - d step_y), d = min_disp + k; the border rule keeps both pixels `reach` inside
+// the image, and the left-right check finds the partner pixel's own winner among the reference
+// pixels that see it. validate() below is the horizontal case (1, 0); the quad pairs use (0, 1)
+// and (1, 1).
+ValidatedDisparity validate_along(const Dsi& dsi, int step_x, int step_y, int min_disp,
+                                  const ValidationParams& params, int reach);
 ValidatedDisparity validate(const Dsi& dsi, int min_disp, const ValidationParams& params,
                             const InvalidBorder& border);
 ValidatedDisparity match_validated(const Image& left, const Image& right,

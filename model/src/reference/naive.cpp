@@ -196,8 +196,11 @@ DisparityMap match(const Image& left, const Image& right, const MatchParams& par
     return naive::wta(final_volume(left, right, params), invalid_border(params));
 }
 
-ValidatedDisparity validate(const Dsi& dsi, int min_disp, const ValidationParams& params,
-                            const InvalidBorder& border) {
+ValidatedDisparity validate_along(const Dsi& dsi, int step_x, int step_y, int min_disp,
+                                  const ValidationParams& params, int reach) {
+    const auto inside = [](int x, int y, int width, int height, int margin) {
+        return x >= margin && y >= margin && x < width - margin && y < height - margin;
+    };
     const int width = dsi.width();
     const int height = dsi.height();
     const int ndisp = dsi.ndisp();
@@ -214,10 +217,9 @@ ValidatedDisparity validate(const Dsi& dsi, int min_disp, const ValidationParams
             const std::size_t q = out.index(x, y);
             out.certainty[q] = static_cast<std::uint8_t>((c2 - c1) * 256 / (c2 + 1));
             const int d = min_disp + winner;
-            const int r = border.reach;
-            const bool inside = x >= r && y >= r && x < width - r && y < height - r && x - d >= r &&
-                                x - d < width - r;
-            if (!inside) {
+            const int xs = x - d * step_x;
+            const int ys = y - d * step_y;
+            if (!inside(x, y, width, height, reach) || !inside(xs, ys, width, height, reach)) {
                 out.reason[q] = fx::kReasonBorder;
                 continue;
             }
@@ -227,12 +229,18 @@ ValidatedDisparity validate(const Dsi& dsi, int min_disp, const ValidationParams
                 continue;
             }
             if (params.left_right) {
-                // The right pixel's own winner: the first minimum over the left pixels that see it.
-                const int xr = x - d;
+                // The partner pixel's own winner: the first minimum over the reference pixels
+                // that see it, (xs + d' * step.x, ys + d' * step.y).
                 const int right_winner = first_minimum(
                     ndisp,
-                    [&](int k) { return xr + min_disp + k >= 0 && xr + min_disp + k < width; },
-                    [&](int k) { return static_cast<int>(dsi.at(xr + min_disp + k, y, k)); });
+                    [&](int k) {
+                        const int dd = min_disp + k;
+                        return inside(xs + dd * step_x, ys + dd * step_y, width, height, 0);
+                    },
+                    [&](int k) {
+                        const int dd = min_disp + k;
+                        return static_cast<int>(dsi.at(xs + dd * step_x, ys + dd * step_y, k));
+                    });
                 if (std::abs(winner - right_winner) > params.lr_tolerance) {
                     out.reason[q] = fx::kReasonLeftRight;
                     continue;
@@ -253,6 +261,11 @@ ValidatedDisparity validate(const Dsi& dsi, int min_disp, const ValidationParams
         }
     }
     return out;
+}
+
+ValidatedDisparity validate(const Dsi& dsi, int min_disp, const ValidationParams& params,
+                            const InvalidBorder& border) {
+    return validate_along(dsi, 1, 0, min_disp, params, border.reach);
 }
 
 ValidatedDisparity match_validated(const Image& left, const Image& right,

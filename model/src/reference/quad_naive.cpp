@@ -39,81 +39,6 @@ Dsi cost(Step s, const Image& reference, const Image& partner, int ndisp, int mi
     return dsi;
 }
 
-// The first label with the smallest cost among those `accept` takes; -1 when none.
-template <typename Accept, typename CostOf>
-int first_minimum(int ndisp, Accept accept, CostOf cost_of) {
-    int best = -1;
-    for (int k = 0; k < ndisp; ++k) {
-        if (accept(k) && (best < 0 || cost_of(k) < cost_of(best))) {
-            best = k;
-        }
-    }
-    return best;
-}
-
-ValidatedDisparity validate(const Dsi& dsi, Step s, int min_disp, const ValidationParams& params,
-                            int reach) {
-    const int width = dsi.width();
-    const int height = dsi.height();
-    const int ndisp = dsi.ndisp();
-    ValidatedDisparity out(width, height);
-    for (int y = 0; y < height; ++y) {
-        for (int x = 0; x < width; ++x) {
-            const auto cost = [&](int k) { return static_cast<int>(dsi.at(x, y, k)); };
-            const int winner = first_minimum(
-                ndisp, [](int) { return true; }, cost);
-            const int second = first_minimum(
-                ndisp, [&](int k) { return k < winner - 1 || k > winner + 1; }, cost);
-            const std::int64_t c1 = cost(winner);
-            const std::int64_t c2 = second < 0 ? fx::kNoSecondCost : cost(second);
-            const std::size_t q = out.index(x, y);
-            out.certainty[q] = static_cast<std::uint8_t>((c2 - c1) * 256 / (c2 + 1));
-            const int d = min_disp + winner;
-            const int xs = x - d * s.x;
-            const int ys = y - d * s.y;
-            if (!inside(x, y, width, height, reach) || !inside(xs, ys, width, height, reach)) {
-                out.reason[q] = fx::kReasonBorder;
-                continue;
-            }
-            if (params.uniqueness && second >= 0 &&
-                c1 * (100 + params.uniqueness_ratio) >= c2 * 100) {
-                out.reason[q] = fx::kReasonUniqueness;
-                continue;
-            }
-            if (params.left_right) {
-                // The partner pixel's own winner: the first minimum over the reference pixels
-                // that see it, (xs + d' * step.x, ys + d' * step.y).
-                const int right_winner = first_minimum(
-                    ndisp,
-                    [&](int k) {
-                        const int dd = min_disp + k;
-                        return inside(xs + dd * s.x, ys + dd * s.y, width, height, 0);
-                    },
-                    [&](int k) {
-                        const int dd = min_disp + k;
-                        return static_cast<int>(dsi.at(xs + dd * s.x, ys + dd * s.y, k));
-                    });
-                if (std::abs(winner - right_winner) > params.lr_tolerance) {
-                    out.reason[q] = fx::kReasonLeftRight;
-                    continue;
-                }
-            }
-            out.reason[q] = fx::kReasonValid;
-            double offset = 0.0;
-            if (params.subpixel && winner > 0 && winner < ndisp - 1) {
-                const double before = cost(winner - 1);
-                const double after = cost(winner + 1);
-                const double curvature = before + after - 2.0 * static_cast<double>(c1);
-                if (curvature > 0) {
-                    offset = std::round(8.0 * (before - after) / curvature);
-                }
-            }
-            out.fixed[q] = static_cast<std::int16_t>(16 * d + static_cast<int>(offset));
-        }
-    }
-    return out;
-}
-
 }  // namespace
 
 ValidatedDisparity match_pair(Pair pair, const Image& reference, const Image& partner,
@@ -126,7 +51,8 @@ ValidatedDisparity match_pair(Pair pair, const Image& reference, const Image& pa
     if (params.use_ca) {
         dsi = stereo::naive::ca_rule2(stereo::naive::ca_rule1(dsi));
     }
-    return validate(dsi, s, params.min_disp, params.validation, invalid_border(params).reach);
+    return stereo::naive::validate_along(dsi, s.x, s.y, params.min_disp, params.validation,
+                                         invalid_border(params).reach);
 }
 
 QuadResult fuse(std::array<ValidatedDisparity, 3> pairs) {
