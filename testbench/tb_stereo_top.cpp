@@ -17,6 +17,7 @@
 #include "stereo_io/test_support.hpp"
 #include "stereo_top_sim.hpp"
 #include "tb_compare.hpp"
+#include "tb_cosim.hpp"
 #include "tb_options.hpp"
 
 namespace stereo::sim {
@@ -44,36 +45,10 @@ ValidatedDisparity frame_of(const StreamResult& result, std::size_t first, int w
     return assemble_validated(result.outputs, first, width, height);
 }
 
-class Cosim {
+// The small configuration, frame by frame (tb_cosim.hpp).
+class Cosim : public tb::Cosim {
   public:
-    Cosim() : sim_(make_top_sim(small())) {
-        if (const std::string path = tb::trace_path(); !path.empty()) {
-            sim_->trace_to(path);
-        }
-        sim_->reset();
-    }
-    TopSim& sim() { return *sim_; }
-
-    // Streams one frame and returns the RTL's result, checking completion and protocol.
-    ValidatedDisparity run(const Image& left, const Image& right, const MatchParams& params,
-                           const Traffic& traffic, StreamResult* result_out = nullptr) {
-        sim_->set_params({left.width, left.height, params});
-        const auto beats = frame_beats(left, right);
-        StreamResult result = sim_->stream(beats, beats.size(), traffic, 50 * beats.size() + 10000);
-        EXPECT_TRUE(result.completed) << "the core stalled: " << result.outputs.size() << " of "
-                                      << beats.size() << " outputs";
-        EXPECT_EQ(result.protocol_error, "");
-        EXPECT_EQ(result.status, 0U) << "status bits";
-        const ValidatedDisparity map =
-            assemble_validated(result.outputs, 0, left.width, left.height);
-        if (result_out != nullptr) {
-            *result_out = std::move(result);
-        }
-        return map;
-    }
-
-  private:
-    std::unique_ptr<TopSim> sim_;
+    Cosim() : tb::Cosim(small()) {}
 };
 
 struct RandomCase {

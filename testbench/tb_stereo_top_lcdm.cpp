@@ -13,6 +13,7 @@
 #include "stereo_io/test_support.hpp"
 #include "stereo_top_sim.hpp"
 #include "tb_compare.hpp"
+#include "tb_cosim.hpp"
 #include "tb_options.hpp"
 
 namespace stereo::sim {
@@ -26,34 +27,18 @@ MatchParams lcdm_params(int ndisp, int window, bool use_ca) {
     return params;
 }
 
-class LcdmCosim {
+// The LCDM configuration, frame by frame (tb_cosim.hpp); run() as an 8-bit map.
+class LcdmCosim : public tb::Cosim {
   public:
-    LcdmCosim() : sim_(make_top_sim(lcdm_top_config())) {
-        if (const std::string path = tb::trace_path(); !path.empty()) {
-            sim_->trace_to(path);
-        }
-        sim_->reset();
-    }
-    TopSim& sim() { return *sim_; }
-
+    LcdmCosim() : tb::Cosim(lcdm_top_config()) {}
     ValidatedDisparity run_validated(const Image& left, const Image& right,
                                      const MatchParams& params, const Traffic& traffic) {
-        sim_->set_params({left.width, left.height, params});
-        const auto beats = frame_beats(left, right);
-        const StreamResult result =
-            sim_->stream(beats, beats.size(), traffic, 50 * beats.size() + 10000);
-        EXPECT_TRUE(result.completed) << "the core stalled";
-        EXPECT_EQ(result.protocol_error, "");
-        EXPECT_EQ(result.status, 0U) << "status bits";
-        return assemble_validated(result.outputs, 0, left.width, left.height);
+        return tb::Cosim::run(left, right, params, traffic);
     }
     DisparityMap run(const Image& left, const Image& right, const MatchParams& params,
                      const Traffic& traffic) {
         return to_label_map(run_validated(left, right, params, traffic));
     }
-
-  private:
-    std::unique_ptr<TopSim> sim_;
 };
 
 struct RandomCase {
