@@ -85,6 +85,7 @@ void run_match(const MatchOptions& options) {
     const std::string method = options.matcher.resolved_method();
     const std::string& engine = options.matcher.engine;
     const bool two_d = method == "hierarchical";
+    const bool stage6 = method == "pipeline" || method == "asw";  // the methods with stage 6
     if (!two_d && (options.matcher.config.vrange != 0 || !options.vertical.empty() ||
                    !options.dump_levels.empty())) {
         throw std::invalid_argument(
@@ -106,17 +107,19 @@ void run_match(const MatchOptions& options) {
     const auto output_encoding =
         io::output_encoding(options.output, options.png16 ? io::DisparityEncoding::offset16
                                                           : io::DisparityEncoding::scaled);
-    if (output_encoding != io::DisparityEncoding::scaled && method != "pipeline") {
+    if (output_encoding != io::DisparityEncoding::scaled && !stage6) {
         throw std::invalid_argument(
             "PFM and --png16 outputs hold the pipeline's validated disparities: use --method "
-            "pipeline");
+            "pipeline or asw");
     }
     MatchConfig config = options.matcher.resolved();
-    if (method != "pipeline") {
-        // Stage 6 belongs to the 1-D pipeline; the other methods validate in their own way.
+    if (!stage6) {
+        // Stage 6 belongs to the 1-D pipeline and ASW; the other methods validate in their own
+        // way.
         if (options.matcher.explicit_validation() || config.pipeline.min_disp != 0) {
             throw std::invalid_argument(
-                "--min-disp, --uniqueness, --lr-check and --subpixel need --method pipeline");
+                "--min-disp, --uniqueness, --lr-check and --subpixel need --method pipeline or "
+                "asw");
         }
         config.pipeline.validation = {};
     }
@@ -183,7 +186,7 @@ void run_match(const MatchOptions& options) {
 
     const double valid = valid_fraction(map);
     const MatchParams& params = config.pipeline;
-    const bool ca = params.use_ca && method != "edges" && method != "sparse";
+    const bool ca = params.use_ca && method != "edges" && method != "sparse" && method != "asw";
     nlohmann::json summary = {
         {"width", map.width}, {"height", map.height}, {"method", method},       {"ndisp", ndisp},
         {"ca", ca},           {"engine", engine},     {"valid_fraction", valid}};
@@ -227,10 +230,30 @@ void run_match(const MatchOptions& options) {
         summary["invalid"] = {{"border", reasons[fx::kReasonBorder]},
                               {"uniqueness", reasons[fx::kReasonUniqueness]},
                               {"left_right", reasons[fx::kReasonLeftRight]}};
-        std::snprintf(settings, sizeof settings,
-                      "window %d sigma %g cost %s ca %s method %s engine %s", params.window,
-                      params.sigma, params.cost.c_str(), ca ? "on" : "off", method.c_str(),
-                      engine.c_str());
+        if (method == "asw") {
+            const asw::Params& weights = config.asw;
+            summary["window"] = weights.diameter;
+            summary.erase("sigma");
+            summary["asw"] = {{"diameter", weights.diameter},
+                              {"response", options.matcher.asw_response},
+                              {"shape", options.matcher.asw_shape},
+                              {"continuity", weights.continuity},
+                              {"right_weights", weights.right_weights},
+                              {"separable", weights.separable}};
+            std::snprintf(settings, sizeof settings,
+                          "asw diameter %d %s %s%s%s%s cost %s method %s engine %s",
+                          weights.diameter, options.matcher.asw_response.c_str(),
+                          options.matcher.asw_shape.c_str(),
+                          weights.continuity ? " continuity" : "",
+                          weights.right_weights ? " both-weights" : " left-weights",
+                          weights.separable ? " separable" : "", params.cost.c_str(),
+                          method.c_str(), engine.c_str());
+        } else {
+            std::snprintf(settings, sizeof settings,
+                          "window %d sigma %g cost %s ca %s method %s engine %s", params.window,
+                          params.sigma, params.cost.c_str(), ca ? "on" : "off", method.c_str(),
+                          engine.c_str());
+        }
     }
     summary["ms"] = elapsed.count();
     if (options.json) {

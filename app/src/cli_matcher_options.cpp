@@ -37,6 +37,16 @@ bool MatcherOptions::window_given() const {
 }
 
 std::string MatcherOptions::resolved_method() const {
+    if (aggregation == "asw") {
+        if (method != "pipeline" && method != "asw") {
+            throw std::invalid_argument("--aggregation asw runs only with --method pipeline");
+        }
+        if (frontend != "model") {
+            throw std::invalid_argument("--aggregation asw and --frontend " + frontend +
+                                        " contradict");
+        }
+        return "asw";
+    }
     if (frontend == "model") {
         return method;
     }
@@ -64,6 +74,14 @@ MatchConfig MatcherOptions::resolved() const {
         validation.uniqueness || (uniqueness != nullptr && uniqueness->count() > 0);
     validation.left_right = validation.left_right || (lr_check != nullptr && lr_check->count() > 0);
     validation.subpixel = validation.subpixel || subpixel;
+    asw::Params& weights = resolved_config.asw;
+    if (window != nullptr && window->count() > 0) {
+        weights.diameter = config.pipeline.window;
+    }
+    weights.response = asw_response == "exp" ? asw::Response::exp : asw::Response::log;
+    weights.shape = asw_shape == "square" ? asw::Shape::square : asw::Shape::circle;
+    weights.continuity = weights.continuity && !asw_no_continuity;
+    weights.right_weights = weights.right_weights && !asw_left_weights_only;
     return resolved_config;
 }
 
@@ -133,6 +151,26 @@ void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoi
                matchers().engines());
     add_choice("--frontend", options.frontend, "model, or edges (the same as --method edges)",
                {"model", "edges"});
+    add_choice("--aggregation", options.aggregation,
+               "gaussian (the Sec. 3.1 window and CA rules) or asw (adaptive support weights, "
+               "Sec. 3.4: --window is the circle's diameter, 55 when not given; the same as "
+               "--method asw)",
+               {"gaussian", "asw"});
+    asw::Params& weights = options.config.asw;
+    command.add_flag("--no-continuity", options.asw_no_continuity,
+                     "ASW: one pass, without the continuity (preliminary disparity) weight");
+    add_choice("--response", options.asw_response,
+               "ASW: log (Weber-Fechner, the thesis) or exp (Yoon-Kweon's exponentials)",
+               {"log", "exp"});
+    add_choice("--shape", options.asw_shape,
+               "ASW: circle of diameter --window, or square of the same pixel count",
+               {"circle", "square"});
+    command.add_flag("--separable", weights.separable,
+                     "ASW: the hardware-friendly variant (a vertical then a horizontal 1-D pass)");
+    command.add_flag("--left-weights-only", options.asw_left_weights_only,
+                     "ASW: colour similarity in the left image only (not in the right too)");
+    command.add_option("--threads", weights.threads, "ASW: worker threads, 0 = every core")
+        ->capture_default_str();
 }
 
 void add_number_options(CLI::App& command, std::initializer_list<NumberOption> options) {

@@ -25,7 +25,12 @@ struct MatcherOptions {
     bool no_ca = false;
     std::string method = "pipeline";
     std::string engine = "model";
-    std::string frontend = "model";  // "edges": the same as --method edges (kept for scripts)
+    std::string frontend = "model";        // "edges": the same as --method edges (kept for scripts)
+    std::string aggregation = "gaussian";  // "asw": the same as --method asw
+    std::string asw_response = "log";
+    std::string asw_shape = "circle";
+    bool asw_no_continuity = false;
+    bool asw_left_weights_only = false;
     CLI::Option* window = nullptr;
     CLI::Option* sigma = nullptr;
     CLI::Option* uniqueness = nullptr;
@@ -35,11 +40,13 @@ struct MatcherOptions {
 
     // --window or --sigma was given on the command line.
     bool window_given() const;
-    // The method after --frontend; throws std::invalid_argument when the two contradict.
+    // The method after --frontend and --aggregation; throws std::invalid_argument when they
+    // contradict.
     std::string resolved_method() const;
     // --uniqueness, --lr-check or --subpixel was given on the command line.
     bool explicit_validation() const;
-    // The configuration with --no-ca and the stage 6 switches applied.
+    // The configuration with --no-ca, the stage 6 switches and the ASW options applied (with
+    // --aggregation asw, --window is the support region's diameter, 55 when not given).
     MatchConfig resolved() const;
 };
 

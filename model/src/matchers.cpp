@@ -194,6 +194,56 @@ MatcherFactory quad_pair_factory(quad::Pair pair, PairFunction run) {
     };
 }
 
+// ---- asw: adaptive support weights (Sec. 3.4) --------------------------------------------
+// The pipeline's cost, min_disp and stage 6 with the ASW aggregator instead of the Gaussian
+// window and the CA rules (pipeline.window, sigma and use_ca are not read).
+using AswFunction = ValidatedDisparity (*)(const Image&, const Image&, const MatchParams&,
+                                           const asw::Params&);
+MatchParams asw_checked(MatchParams params) {
+    params.window = 1;
+    params.use_ca = false;
+    return params;
+}
+MatcherFactory asw_factory(AswFunction run) {
+    return [run](const MatchConfig& config) -> std::unique_ptr<Matcher> {
+        const MatchParams params = asw_checked(config.pipeline);
+        const asw::Params weights = config.asw;
+        validate_params(params);
+        return std::make_unique<FunctionMatcher>(
+            [params, weights](int width, int height) {
+                validate(params, width, height);
+                asw::validate(weights, width, height);
+            },
+            [params, weights, run](const Image& left, const Image& right) {
+                MatchResult result;
+                result.validated = run(left, right, params, weights);
+                result.disparity = to_label_map(result.validated);
+                return result;
+            });
+    };
+}
+MatcherFactory asw_floating_factory() {
+    return [](const MatchConfig& config) -> std::unique_ptr<Matcher> {
+        const MatchParams params = asw_checked(config.pipeline);
+        const asw::Params weights = config.asw;
+        validate_params(params);
+        if (params.min_disp != 0 || params.validation != ValidationParams{}) {
+            throw std::invalid_argument(
+                "engine float of asw has no minimum disparity or validation stages (use "
+                "--no-validation, or --engine model or naive)");
+        }
+        return std::make_unique<FunctionMatcher>(
+            [params, weights](int width, int height) {
+                validate(params, width, height);
+                asw::validate(weights, width, height);
+            },
+            [params, weights](const Image& left, const Image& right) {
+                return MatchResult{
+                    asw::match_floating(left, right, params, weights), {}, {}, {}, {}, {}};
+            });
+    };
+}
+
 }  // namespace
 
 void MatcherRegistry::add(MatcherEntry entry) {
@@ -272,6 +322,12 @@ void register_model_matchers(MatcherRegistry& registry) {
         registry.add({method, "naive", method + " pair, naive reference",
                       quad_pair_factory(pair, &quad::naive::match_pair)});
     }
+    registry.add({"asw", "model", "Sec. 3.4 adaptive support weights (gestalt, log response)",
+                  asw_factory(&asw::match)});
+    registry.add({"asw", "naive", "adaptive support weights, naive reference",
+                  asw_factory(&asw::match_naive)});
+    registry.add(
+        {"asw", "float", "adaptive support weights in double precision", asw_floating_factory()});
 }
 
 }  // namespace stereo

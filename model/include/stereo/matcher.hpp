@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "stereo/asw.hpp"
 #include "stereo/edge_frontend.hpp"
 #include "stereo/image.hpp"
 #include "stereo/pipeline.hpp"
@@ -27,6 +28,7 @@ struct MatchConfig {
     CaNeighbours neighbours = CaNeighbours::horizontal;  // hierarchical: CA rule 1 axes
     edge_frontend::EdgeParams edges;                     // edges: LoG and truncation
     sparse::Params sparse;  // sparse: stage 6 uniqueness ratio and left-right tolerance
+    asw::Params asw;        // asw: support region, responses, ablation switches
 };
 
 struct MatchResult {
@@ -114,7 +116,7 @@ using ValidatedPipelineFunction = ValidatedDisparity (*)(const Image&, const Ima
 MatcherFactory pipeline_factory(ValidatedPipelineFunction run);
 
 // The model's matchers: pipeline (model, naive, float), edges (model, naive), hierarchical
-// (model, naive, full-search), sparse (model).
+// (model, naive, full-search), sparse (model), asw (model, naive, float).
 void register_model_matchers(MatcherRegistry& registry);
 
 }  // namespace stereo

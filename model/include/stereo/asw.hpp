@@ -1,0 +1,118 @@
+// Adaptive support weights with gestalt laws and a logarithmic response (thesis Sec. 3.4): an
+// aggregator of the cost volume, bit-exact in fixed point. docs/asw.md gives the formulas, the
+// bit widths and a worked example; docs/results-asw.md the measured accuracy.
+//
+// The aggregated cost of pixel p at disparity d is the weighted mean over the support region
+// (offsets o of a circle of diameter w) of the costs C(p + o, d):
+//   A(p, d) = 16 * sum_o W(p, o, d) C(p + o, d) / sum_o W(p, o, d), rounded,
+// where the 8-bit support weight W is the rounded product of the gestalt responses: proximity
+// (|o| / w), colour similarity in the left image (L(p) against L(p + o)), continuity (label of
+// p against label of p + o in a preliminary map, so two passes) and colour similarity in the
+// right image (R(p - d) against R(p + o - d)), each an 8-bit response from a table.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "stereo/dsi.hpp"
+#include "stereo/image.hpp"
+#include "stereo/pipeline.hpp"
+#include "stereo/validated.hpp"
+
+namespace stereo::asw {
+
+// How a normalised stimulus S in [1/w, 1] becomes a response in [0, 1] (scaled to 0..255).
+enum class Response {
+    log,  // Weber-Fechner: -ln S / ln w (the thesis)
+    exp,  // Yoon and Kweon's exponential: exp(-difference / gamma) (the ablation)
+};
+
+enum class Shape {
+    circle,  // offsets with dx^2 + dy^2 <= r^2, r = (w - 1) / 2 (the thesis)
+    square,  // the odd square of (nearly) the same pixel count (the ablation)
+};
+
+inline constexpr int kDefaultDiameter = 55;  // thesis Sec. 3.4
+inline constexpr int kMinDiameter = 3;
+inline constexpr int kMaxDiameter = 127;  // keeps every sum inside 32 bits (docs/asw.md)
+inline constexpr int kResponseBits = 8;   // every response and the support weight: 0 .. 255
+inline constexpr int kResponseMax = (1 << kResponseBits) - 1;
+inline constexpr int kMaxColourDifference = 765;  // |dR| + |dG| + |dB|
+inline constexpr int kOutputFracBits = 4;         // A(p, d) carries 4 fraction bits, like stage 2
+// Exponential ablation: Yoon and Kweon's gamma_p is the window radius; these two are ours.
+inline constexpr double kExpColourGamma = 14.0;     // in units of |dR| + |dG| + |dB|
+inline constexpr double kExpContinuityGamma = 2.0;  // in disparity labels
+
+struct Params {
+    int diameter = kDefaultDiameter;  // w: odd, kMinDiameter .. kMaxDiameter
+    Response response = Response::log;
+    Shape shape = Shape::circle;
+    bool continuity = true;     // second pass weighted by the first pass' disparities
+    bool right_weights = true;  // colour similarity in the right image too (Yoon and Kweon)
+    bool separable = false;     // the hardware-friendly variant: a vertical then a horizontal pass
+    // Stimulus normalisers (docs/asw.md): a colour difference of colour_range or more, a label
+    // difference of disparity_range or more, is the largest stimulus (S = 1).
+    int colour_range = 255;
+    int disparity_range = 255;
+    int threads = 0;  // worker threads, 0 = every hardware thread (results do not depend on it)
+    bool operator==(const Params&) const = default;
+};
+
+// One offset of the support region with its proximity response.
+struct Offset {
+    int dx = 0;
+    int dy = 0;
+    std::uint8_t proximity = 0;
+};
+
+// The support region in raster order (dy, then dx). The separable variant's two 1-D regions
+// are the offsets of this list with dx == 0 and with dy == 0.
+std::vector<Offset> support_region(const Params& params);
+
+// Responses indexed by stimulus: colour by |dR| + |dG| + |dB| (0 .. 765), continuity by the
+// label difference (0 .. 255), proximity by the squared distance dx^2 + dy^2.
+struct ResponseTables {
+    std::vector<std::uint8_t> colour;
+    std::vector<std::uint8_t> continuity;
+    std::vector<std::uint8_t> proximity;
+};
+ResponseTables response_tables(const Params& params);
+
+// round(a * b / 255) for two 8-bit responses, the only way weights are combined.
+constexpr int combine(int a, int b) {
+    return (a * b + 127) / kResponseMax;
+}
+
+// |dR| + |dG| + |dB| of two pixels; grey pixels count as (g, g, g).
+int colour_difference(const Image& a, int ax, int ay, const Image& b, int bx, int by);
+
+// Throws std::invalid_argument (one line) for an even, too small or too large diameter, a
+// support region that does not fit the image, or normalisers outside [1, 765] / [1, 255].
+void validate(const Params& params, int width, int height);
+
+// How far the support region reaches from its centre (the invalid border).
+int reach(const Params& params);
+
+// The aggregated volume (plane k: d = min_disp + k) of `cost`, weighted by `left`, `right` and,
+// with params.continuity, by `labels` (a preliminary label map, width x height, labels k).
+Dsi aggregate(const Dsi& cost, const Image& left, const Image& right, int min_disp,
+              const Params& params, const std::vector<std::int16_t>& labels);
+
+// The whole matcher: cost (match.cost), pass 1 without continuity, its winners as the
+// preliminary map, pass 2 with continuity (when on), then stage 6 (match.min_disp,
+// match.validation) with the support region's reach as the invalid border. match.window,
+// sigma and use_ca are not read.
+ValidatedDisparity match(const Image& left, const Image& right, const MatchParams& match,
+                         const Params& params);
+
+// Independent references: the same integers from the definitions, one pixel and one
+// disparity at a time (naive), and the real-valued algorithm with exact logarithms (floating).
+Dsi aggregate_naive(const Dsi& cost, const Image& left, const Image& right, int min_disp,
+                    const Params& params, const std::vector<std::int16_t>& labels);
+ValidatedDisparity match_naive(const Image& left, const Image& right, const MatchParams& match,
+                               const Params& params);
+DisparityMap match_floating(const Image& left, const Image& right, const MatchParams& match,
+                            const Params& params);
+
+}  // namespace stereo::asw

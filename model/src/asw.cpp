@@ -1,0 +1,367 @@
+// Adaptive support weights (stereo/asw.hpp, docs/asw.md): the fast fixed-point model. Rows are
+// shared among threads; within a row the loop runs offset, then disparity, then x, so that the
+// left weights of an offset are computed once for every disparity and the innermost loop walks
+// contiguous memory (it vectorises).
+#include "stereo/asw.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+#include "stereo/search.hpp"
+#include "stereo/stages.hpp"
+#include "stereo/stages/validate.hpp"
+
+namespace stereo::asw {
+namespace {
+
+int round_response(double value) {
+    return std::clamp(static_cast<int>(std::floor(value * kResponseMax + 0.5)), 0, kResponseMax);
+}
+
+// -ln S / ln w for S clamped to [1/w, 1]: 1 at (or below) the truncation, 0 at S = 1.
+double log_response(double stimulus, int diameter) {
+    const double floor = 1.0 / diameter;
+    const double s = std::clamp(stimulus, floor, 1.0);
+    return -std::log(s) / std::log(static_cast<double>(diameter));
+}
+
+int square_side(int diameter) {
+    // The odd side whose square is nearest the circle's pixel count (smaller side on a tie).
+    Params circle;
+    circle.diameter = diameter;
+    const auto count = static_cast<double>(support_region(circle).size());
+    int best = 1;
+    for (int side = 1; side <= diameter; side += 2) {
+        if (std::abs(side * side - count) < std::abs(best * best - count)) {
+            best = side;
+        }
+    }
+    return best;
+}
+
+// One image as three 8-bit planes (a grey image three times), so colour differences vectorise.
+struct Planes {
+    int width = 0;
+    std::vector<std::uint8_t> data[3];
+    explicit Planes(const Image& image) : width(image.width) {
+        const std::size_t size = static_cast<std::size_t>(image.width) * image.height;
+        for (int c = 0; c < 3; ++c) {
+            data[c].resize(size);
+            const int source = image.channels == 3 ? c : 0;
+            for (std::size_t i = 0; i < size; ++i) {
+                data[c][i] = image.pixels[i * image.channels + source];
+            }
+        }
+    }
+    const std::uint8_t* row(int c, int y) const {
+        return data[c].data() + static_cast<std::size_t>(y) * width;
+    }
+};
+
+// |dR| + |dG| + |dB| between row y and row qy shifted by dx, for x in [x0, x1).
+void colour_row(const Planes& image, int y, int qy, int dx, int x0, int x1, std::uint16_t* out) {
+    for (int x = x0; x < x1; ++x) {
+        out[x] = 0;
+    }
+    for (int c = 0; c < 3; ++c) {
+        const std::uint8_t* a = image.row(c, y);
+        const std::uint8_t* b = image.row(c, qy) + dx;
+        for (int x = x0; x < x1; ++x) {
+            out[x] = static_cast<std::uint16_t>(out[x] + std::abs(int{a[x]} - int{b[x]}));
+        }
+    }
+}
+
+struct Volume {
+    const Dsi& cost;
+    int min_disp;
+};
+
+// One pass over `offsets` (all of them, or one axis of the separable variant): out =
+// round((sum W * in) << out_shift / sum W). Rows y in [first, height) step `step`.
+void aggregate_rows(const Volume& in, const Planes& left, const Planes& right,
+                    const std::vector<Offset>& offsets, const ResponseTables& tables,
+                    const Params& params, const std::vector<std::int16_t>& labels, int out_shift,
+                    int first, int step, Dsi& out) {
+    const int width = in.cost.width();
+    const int height = in.cost.height();
+    const int ndisp = in.cost.ndisp();
+    const bool continuity = params.continuity && !labels.empty();
+    // Right responses are read at x - d for every d: pad the row so that every such index is
+    // inside, with the response of a pixel outside the right image (kResponseMax).
+    const int lowest = -(in.min_disp + ndisp - 1);  // smallest x - d
+    const int highest = width - 1 - in.min_disp;    // largest x - d
+    const int pad_before = std::max(0, -lowest);
+    const std::size_t padded = static_cast<std::size_t>(pad_before) + std::max(width, highest + 1);
+    std::vector<std::uint16_t> right_response(padded);
+    std::vector<std::uint16_t> left_weight(width);
+    std::vector<std::uint16_t> difference(width);
+    std::vector<std::uint32_t> num(static_cast<std::size_t>(ndisp) * width);
+    std::vector<std::uint32_t> den(static_cast<std::size_t>(ndisp) * width);
+
+    for (int y = first; y < height; y += step) {
+        std::fill(num.begin(), num.end(), 0U);
+        std::fill(den.begin(), den.end(), 0U);
+        for (const Offset& o : offsets) {
+            const int qy = y + o.dy;
+            if (qy < 0 || qy >= height) {
+                continue;  // outside the image: no contribution
+            }
+            const int x0 = std::max(0, -o.dx);
+            const int x1 = std::min(width, width - o.dx);
+            if (x0 >= x1) {
+                continue;
+            }
+            colour_row(left, y, qy, o.dx, x0, x1, difference.data());
+            const std::int16_t* label_p =
+                continuity ? labels.data() + std::size_t(y) * width : nullptr;
+            const std::int16_t* label_q =
+                continuity ? labels.data() + std::size_t(qy) * width + o.dx : nullptr;
+            for (int x = x0; x < x1; ++x) {
+                int w = combine(o.proximity, tables.colour[difference[x]]);
+                if (continuity) {
+                    w = combine(w, tables.continuity[static_cast<std::size_t>(
+                                       std::abs(label_p[x] - label_q[x]))]);
+                }
+                left_weight[x] = static_cast<std::uint16_t>(w);
+            }
+            std::fill(right_response.begin(), right_response.end(),
+                      static_cast<std::uint16_t>(kResponseMax));
+            if (params.right_weights) {
+                colour_row(right, y, qy, o.dx, x0, x1, difference.data());
+                for (int x = x0; x < x1; ++x) {
+                    right_response[static_cast<std::size_t>(pad_before + x)] =
+                        tables.colour[difference[x]];
+                }
+            }
+            for (int k = 0; k < ndisp; ++k) {
+                const int d = in.min_disp + k;
+                const CostValue* c =
+                    in.cost.plane(k).data() + static_cast<std::size_t>(qy) * width + o.dx;
+                std::uint32_t* n = num.data() + static_cast<std::size_t>(k) * width;
+                std::uint32_t* s = den.data() + static_cast<std::size_t>(k) * width;
+                if (params.right_weights) {
+                    const std::uint16_t* r = right_response.data() + pad_before - d;
+                    for (int x = x0; x < x1; ++x) {
+                        const std::uint32_t w =
+                            (std::uint32_t{left_weight[x]} * r[x] + 128U) >> kResponseBits;
+                        n[x] += w * c[x];
+                        s[x] += w;
+                    }
+                } else {
+                    for (int x = x0; x < x1; ++x) {
+                        n[x] += std::uint32_t{left_weight[x]} * c[x];
+                        s[x] += left_weight[x];
+                    }
+                }
+            }
+        }
+        for (int k = 0; k < ndisp; ++k) {
+            CostValue* row = out.plane(k).data() + static_cast<std::size_t>(y) * width;
+            const std::uint32_t* n = num.data() + static_cast<std::size_t>(k) * width;
+            const std::uint32_t* s = den.data() + static_cast<std::size_t>(k) * width;
+            for (int x = 0; x < width; ++x) {
+                row[x] =
+                    static_cast<CostValue>(((std::uint64_t{n[x]} << out_shift) + s[x] / 2) / s[x]);
+            }
+        }
+    }
+}
+
+int thread_count(const Params& params, int rows) {
+    int threads =
+        params.threads > 0 ? params.threads : static_cast<int>(std::thread::hardware_concurrency());
+    return std::clamp(threads, 1, std::max(1, rows));
+}
+
+Dsi aggregate_pass(const Volume& in, const Planes& left, const Planes& right,
+                   const std::vector<Offset>& offsets, const ResponseTables& tables,
+                   const Params& params, const std::vector<std::int16_t>& labels, int out_shift) {
+    Dsi out(in.cost.width(), in.cost.height(), in.cost.ndisp());
+    const int threads = thread_count(params, in.cost.height());
+    if (threads == 1) {
+        aggregate_rows(in, left, right, offsets, tables, params, labels, out_shift, 0, 1, out);
+        return out;
+    }
+    std::vector<std::jthread> workers;
+    workers.reserve(static_cast<std::size_t>(threads));
+    for (int t = 0; t < threads; ++t) {
+        workers.emplace_back([&, t] {
+            aggregate_rows(in, left, right, offsets, tables, params, labels, out_shift, t, threads,
+                           out);
+        });
+    }
+    workers.clear();  // joins
+    return out;
+}
+
+std::vector<Offset> axis(const std::vector<Offset>& region, bool vertical) {
+    std::vector<Offset> line;
+    for (const Offset& o : region) {
+        if ((vertical && o.dx == 0) || (!vertical && o.dy == 0)) {
+            line.push_back(o);
+        }
+    }
+    return line;
+}
+
+void check_inputs(const Dsi& cost, const Image& left, const Image& right, const Params& params,
+                  const std::vector<std::int16_t>& labels) {
+    check_pair(left, right);
+    if (cost.width() != left.width || cost.height() != left.height) {
+        throw std::invalid_argument("the cost volume and the images differ in size");
+    }
+    if (params.continuity && !labels.empty() &&
+        labels.size() != static_cast<std::size_t>(left.width) * left.height) {
+        throw std::invalid_argument("the preliminary map and the images differ in size");
+    }
+}
+
+std::vector<std::int16_t> winners_of(const Dsi& volume, int min_disp) {
+    const auto grid =
+        CandidateGrid::horizontal(volume.width(), volume.height(), volume.ndisp(), min_disp);
+    WinnerTakesAll selector(grid);
+    for (int k = 0; k < volume.ndisp(); ++k) {
+        selector.update(volume.plane(k).data(), k, 0);
+    }
+    return selector.winners().disparity;
+}
+
+}  // namespace
+
+std::vector<Offset> support_region(const Params& params) {
+    const ResponseTables tables = response_tables(params);
+    const int radius = params.shape == Shape::circle ? (params.diameter - 1) / 2
+                                                     : square_side(params.diameter) / 2;
+    std::vector<Offset> region;
+    for (int dy = -radius; dy <= radius; ++dy) {
+        for (int dx = -radius; dx <= radius; ++dx) {
+            const int squared = dx * dx + dy * dy;
+            if (params.shape == Shape::circle && squared > radius * radius) {
+                continue;
+            }
+            region.push_back({dx, dy, tables.proximity[static_cast<std::size_t>(squared)]});
+        }
+    }
+    return region;
+}
+
+ResponseTables response_tables(const Params& params) {
+    const int w = params.diameter;
+    ResponseTables tables;
+    tables.colour.resize(kMaxColourDifference + 1);
+    tables.continuity.resize(256);
+    // Squared distances up to the square's corner (the square is never wider than w).
+    const int radius = (w - 1) / 2;
+    tables.proximity.resize(static_cast<std::size_t>(2 * radius * radius) + 1);
+    const bool log = params.response == Response::log;
+    for (std::size_t i = 0; i < tables.colour.size(); ++i) {
+        const double v = static_cast<double>(i);
+        tables.colour[i] = static_cast<std::uint8_t>(round_response(
+            log ? log_response(v / params.colour_range, w) : std::exp(-v / kExpColourGamma)));
+    }
+    for (std::size_t i = 0; i < tables.continuity.size(); ++i) {
+        const double v = static_cast<double>(i);
+        tables.continuity[i] = static_cast<std::uint8_t>(
+            round_response(log ? log_response(v / params.disparity_range, w)
+                               : std::exp(-v / kExpContinuityGamma)));
+    }
+    for (std::size_t i = 0; i < tables.proximity.size(); ++i) {
+        const double distance = std::sqrt(static_cast<double>(i));
+        tables.proximity[i] = static_cast<std::uint8_t>(round_response(
+            log ? log_response(distance / w, w) : std::exp(-distance / std::max(1, radius))));
+    }
+    return tables;
+}
+
+int colour_difference(const Image& a, int ax, int ay, const Image& b, int bx, int by) {
+    int sum = 0;
+    for (int c = 0; c < 3; ++c) {
+        const int va = a.at(ax, ay, a.channels == 3 ? c : 0);
+        const int vb = b.at(bx, by, b.channels == 3 ? c : 0);
+        sum += std::abs(va - vb);
+    }
+    return sum;
+}
+
+int reach(const Params& params) {
+    return params.shape == Shape::circle ? (params.diameter - 1) / 2
+                                         : square_side(params.diameter) / 2;
+}
+
+void validate(const Params& params, int width, int height) {
+    if (params.diameter < kMinDiameter || params.diameter > kMaxDiameter ||
+        params.diameter % 2 == 0) {
+        throw std::invalid_argument(
+            "ASW window (diameter) must be odd and in [" + std::to_string(kMinDiameter) + ", " +
+            std::to_string(kMaxDiameter) + "], got " + std::to_string(params.diameter));
+    }
+    if (params.colour_range < 1 || params.colour_range > kMaxColourDifference) {
+        throw std::invalid_argument("ASW colour range must be in [1, 765], got " +
+                                    std::to_string(params.colour_range));
+    }
+    if (params.disparity_range < 1 || params.disparity_range > 255) {
+        throw std::invalid_argument("ASW disparity range must be in [1, 255], got " +
+                                    std::to_string(params.disparity_range));
+    }
+    if (params.threads < 0) {
+        throw std::invalid_argument("ASW threads must be >= 0, got " +
+                                    std::to_string(params.threads));
+    }
+    const int r = reach(params);
+    if (width <= 2 * r || height <= 2 * r) {
+        throw std::invalid_argument("image " + std::to_string(width) + "x" +
+                                    std::to_string(height) + " is too small for ASW window " +
+                                    std::to_string(params.diameter) + ": no pixel would be valid");
+    }
+}
+
+Dsi aggregate(const Dsi& cost, const Image& left, const Image& right, int min_disp,
+              const Params& params, const std::vector<std::int16_t>& labels) {
+    check_inputs(cost, left, right, params, labels);
+    validate(params, left.width, left.height);
+    const ResponseTables tables = response_tables(params);
+    const std::vector<Offset> region = support_region(params);
+    const Planes left_planes(left);
+    const Planes right_planes(right);
+    const Volume volume{cost, min_disp};
+    if (!params.separable) {
+        return aggregate_pass(volume, left_planes, right_planes, region, tables, params, labels,
+                              kOutputFracBits);
+    }
+    const Dsi vertical = aggregate_pass(volume, left_planes, right_planes, axis(region, true),
+                                        tables, params, labels, kOutputFracBits);
+    return aggregate_pass({vertical, min_disp}, left_planes, right_planes, axis(region, false),
+                          tables, params, labels, 0);
+}
+
+ValidatedDisparity match(const Image& left, const Image& right, const MatchParams& match,
+                         const Params& params) {
+    check_pair(left, right);
+    validate(params, left.width, left.height);
+    MatchParams checked = match;
+    checked.window = 1;  // the Gaussian window is not used; its checks must not reject
+    checked.use_ca = false;
+    stereo::validate(checked, left.width, left.height);
+    const Dsi cost = cost_volume(*make_cost(match.cost), left, right, match.ndisp, match.min_disp);
+    Params first = params;
+    first.continuity = false;
+    std::vector<std::int16_t> labels;
+    Dsi aggregated = aggregate(cost, left, right, match.min_disp, first, labels);
+    if (params.continuity) {
+        labels = winners_of(aggregated, match.min_disp);
+        aggregated = aggregate(cost, left, right, match.min_disp, params, labels);
+    }
+    ValidatingSelector selector(left.width, left.height, match.ndisp, match.min_disp,
+                                match.validation, InvalidBorder{0});
+    for (int k = 0; k < match.ndisp; ++k) {
+        selector.update(aggregated.plane(k).data(), k, 0);
+    }
+    return selector.result();
+}
+
+}  // namespace stereo::asw
