@@ -79,9 +79,11 @@ struct ResponseTables {
 };
 ResponseTables response_tables(const Params& params);
 
-// round(a * b / 255) for two 8-bit responses, the only way weights are combined.
+// (a * b + 128) >> 8 for two 8-bit responses, the only way weights are combined: a rounded
+// product in units of 1/256 (a shift in hardware, not a division by 255), so each factor
+// below 255 costs at most one count more than the exact product.
 constexpr int combine(int a, int b) {
-    return (a * b + 127) / kResponseMax;
+    return (a * b + 128) >> kResponseBits;
 }
 
 // |dR| + |dG| + |dB| of two pixels; grey pixels count as (g, g, g).

@@ -259,7 +259,6 @@ DisparityMap match_floating(const Image& left, const Image& right, const MatchPa
     const auto winners =
         real_winners(aggregated, left.width, left.height, match.ndisp, match.min_disp);
     DisparityMap map(left.width, left.height);
-    const int r = reach(params);
     for (int y = 0; y < left.height; ++y) {
         for (int x = 0; x < left.width; ++x) {
             const std::size_t i = map.index(x, y);

@@ -1,0 +1,312 @@
+// Adaptive support weights (thesis Sec. 3.4, stereo/asw.hpp): response tables and support
+// regions against hand calculations, the fast aggregator and matcher against the naive reference
+// bit for bit (every ablation switch, the separable variant, signed ranges, grey images, real
+// pixels), the fixed-point model against the real-valued reference, and the bad-input errors.
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "stereo/asw.hpp"
+#include "stereo/matcher.hpp"
+#include "stereo/search.hpp"
+#include "stereo/stages.hpp"
+#include "stereo_io/data_dir.hpp"
+#include "stereo_io/io.hpp"
+#include "stereo_io/test_support.hpp"
+
+namespace stereo {
+namespace {
+
+asw::Params small(int diameter = 7) {
+    asw::Params params;
+    params.diameter = diameter;
+    return params;
+}
+
+std::vector<std::int16_t> random_labels(int width, int height, int lowest, int count,
+                                        std::mt19937& rng) {
+    std::uniform_int_distribution<int> label(lowest, lowest + count - 1);
+    std::vector<std::int16_t> labels(static_cast<std::size_t>(width) * height);
+    for (auto& l : labels) {
+        l = static_cast<std::int16_t>(label(rng));
+    }
+    return labels;
+}
+
+// ---- Tables and regions, by hand -----------------------------------------------------------
+
+TEST(AswTables, LogResponsesMatchHandCalculation) {
+    const asw::ResponseTables t = asw::response_tables(asw::Params{});  // w = 55
+    // Identical colours and every difference up to 255 / 55 = 4.6 sit at the truncation.
+    EXPECT_EQ(t.colour[0], 255);
+    EXPECT_EQ(t.colour[4], 255);
+    // 5: -ln(5 / 255) / ln 55 = 3.9318 / 4.0073 = 0.98115 -> 250.19 -> 250.
+    EXPECT_EQ(t.colour[5], 250);
+    // 128: ln(255 / 128) / ln 55 = 0.68923 / 4.00733 = 0.17199 -> 43.86 -> 44.
+    EXPECT_EQ(t.colour[128], 44);
+    EXPECT_EQ(t.colour[255], 0);
+    EXPECT_EQ(t.colour[765], 0);
+    // Proximity at the rim of the circle, r = 27: -ln(27 / 55) / ln 55 = 0.17755 -> 45.27 -> 45.
+    EXPECT_EQ(t.proximity[27 * 27], 45);
+    EXPECT_EQ(t.proximity[0], 255);
+    EXPECT_EQ(t.proximity[1], 255);  // r = 1 is the truncation 1/w itself
+    // Continuity: label jumps up to 4 are at the truncation; 60: ln(255/60)/ln 55 = 0.36108 -> 92.
+    EXPECT_EQ(t.continuity[4], 255);
+    EXPECT_EQ(t.continuity[60], 92);
+}
+
+TEST(AswTables, ExpResponsesMatchHandCalculation) {
+    asw::Params params;
+    params.response = asw::Response::exp;
+    const asw::ResponseTables t = asw::response_tables(params);
+    EXPECT_EQ(t.colour[0], 255);
+    // exp(-14 / 14) * 255 = 93.81 -> 94; exp(-2 / 2) * 255 -> 94.
+    EXPECT_EQ(t.colour[14], 94);
+    EXPECT_EQ(t.continuity[2], 94);
+    // Proximity gamma is the radius 27: exp(-1) at r = 27.
+    EXPECT_EQ(t.proximity[27 * 27], 94);
+}
+
+TEST(AswRegion, CircleCountsMatchHandCount) {
+    // r = 1: the centre and its 4 neighbours; r = 2: 13 (5 + 3 + 3 + 1 + 1).
+    EXPECT_EQ(asw::support_region(small(3)).size(), 5U);
+    EXPECT_EQ(asw::support_region(small(5)).size(), 13U);
+    // The square of the ablation has (nearly) the circle's pixel count and an odd side.
+    for (const int w : {5, 15, 55}) {
+        asw::Params square = small(w);
+        square.shape = asw::Shape::square;
+        const auto circle_count = static_cast<double>(asw::support_region(small(w)).size());
+        const auto square_count = static_cast<double>(asw::support_region(square).size());
+        const int side = 2 * asw::reach(square) + 1;
+        EXPECT_EQ(side * side, square_count);
+        EXPECT_LE(std::abs(square_count - circle_count),
+                  std::abs((side + 2) * (side + 2) - circle_count));
+        EXPECT_LE(std::abs(square_count - circle_count),
+                  std::abs((side - 2) * (side - 2) - circle_count));
+    }
+}
+
+TEST(AswWeights, SumsFitTheProvedWidths) {
+    // The numerator's largest value: every weight 255 times the largest cost over the largest
+    // square a diameter allows; docs/asw.md.
+    const std::uint64_t largest =
+        std::uint64_t{asw::kResponseMax} * fx::kCostMax * asw::kMaxDiameter * asw::kMaxDiameter;
+    EXPECT_LT(largest, std::uint64_t{1} << 32);
+    // The output: a weighted mean of costs with 4 fraction bits fits a DSI cell.
+    EXPECT_LE(fx::kCostMax << asw::kOutputFracBits, 0xFFFF);
+}
+
+// ---- Fast model against the naive reference ------------------------------------------------
+
+// The first cell where two volumes differ, for a readable failure.
+std::string first_difference(const Dsi& a, const Dsi& b) {
+    for (int k = 0; k < a.ndisp(); ++k) {
+        for (int y = 0; y < a.height(); ++y) {
+            for (int x = 0; x < a.width(); ++x) {
+                if (a.at(x, y, k) != b.at(x, y, k)) {
+                    return "(" + std::to_string(x) + ", " + std::to_string(y) + ", " +
+                           std::to_string(k) + "): " + std::to_string(a.at(x, y, k)) + " vs " +
+                           std::to_string(b.at(x, y, k));
+                }
+            }
+        }
+    }
+    return "none";
+}
+
+struct Variant {
+    const char* name;
+    asw::Params params;
+};
+
+std::vector<Variant> variants() {
+    std::vector<Variant> all;
+    all.push_back({"presented", small()});
+    asw::Params p = small();
+    p.continuity = false;
+    all.push_back({"no continuity", p});
+    p = small();
+    p.response = asw::Response::exp;
+    all.push_back({"exp", p});
+    p = small(9);
+    p.shape = asw::Shape::square;
+    all.push_back({"square", p});
+    p = small();
+    p.right_weights = false;
+    all.push_back({"left weights only", p});
+    p = small(9);
+    p.separable = true;
+    all.push_back({"separable", p});
+    p = small(5);
+    p.colour_range = 40;
+    p.disparity_range = 3;
+    all.push_back({"narrow ranges", p});
+    return all;
+}
+
+TEST(AswAggregate, EqualsNaiveForEveryVariant) {
+    std::mt19937 rng(test::test_seed());
+    for (const int min_disp : {0, -3}) {
+        for (const int channels : {3, 1}) {
+            const auto [left, right] = test::shifted_pair(29, 21, channels, 2, 12, rng);
+            const int ndisp = 6;
+            const Dsi cost = cost_volume(*make_cost("ad"), left, right, ndisp, min_disp);
+            const auto labels = random_labels(29, 21, min_disp, ndisp, rng);
+            for (const Variant& v : variants()) {
+                const Dsi fast = asw::aggregate(cost, left, right, min_disp, v.params, labels);
+                const Dsi naive =
+                    asw::aggregate_naive(cost, left, right, min_disp, v.params, labels);
+                EXPECT_TRUE(fast == naive)
+                    << v.name << ", min_disp " << min_disp << ", " << channels
+                    << " channel(s), first difference " << first_difference(fast, naive);
+            }
+        }
+    }
+}
+
+TEST(AswAggregate, ResultDoesNotDependOnThreads) {
+    std::mt19937 rng(test::test_seed() + 1);
+    const auto [left, right] = test::shifted_pair(40, 33, 3, 3, 10, rng);
+    const Dsi cost = cost_volume(*make_cost("ad"), left, right, 8);
+    const auto labels = random_labels(40, 33, 0, 8, rng);
+    asw::Params one = small(11);
+    one.threads = 1;
+    asw::Params many = one;
+    many.threads = 5;
+    EXPECT_EQ(asw::aggregate(cost, left, right, 0, one, labels),
+              asw::aggregate(cost, left, right, 0, many, labels));
+}
+
+TEST(AswMatch, EqualsNaiveWithStageSixAndLcdm) {
+    std::mt19937 rng(test::test_seed() + 2);
+    const auto [left, right] = test::shifted_pair(34, 22, 3, 3, 8, rng);
+    for (const char* cost : {"ad", "lcdm"}) {
+        MatchParams match;
+        match.ndisp = 7;
+        match.min_disp = -1;
+        match.cost = cost;
+        match.validation = ValidationParams::all_on();
+        for (const Variant& v : variants()) {
+            EXPECT_EQ(asw::match(left, right, match, v.params),
+                      asw::match_naive(left, right, match, v.params))
+                << v.name << ", cost " << cost;
+        }
+    }
+}
+
+TEST(AswMatch, FindsTheShiftOfATexturedPair) {
+    // A random texture shifted by 4: every pixel away from the edges gets 4 (shifted_copy clamps
+    // the last 4 right columns, which makes the right edge ambiguous).
+    std::mt19937 rng(test::test_seed() + 3);
+    const auto [left, right] = test::shifted_pair(48, 30, 3, 4, 0, rng);
+    MatchParams match;
+    match.ndisp = 8;
+    const ValidatedDisparity out = asw::match(left, right, match, small(9));
+    int checked = 0;
+    for (int y = 0; y < 30; ++y) {
+        for (int x = 8; x < 40; ++x) {
+            const std::size_t i = out.index(x, y);
+            ASSERT_TRUE(out.valid(i)) << x << "," << y;
+            EXPECT_EQ(out.fixed[i], 4 * fx::kSubpixelScale) << x << "," << y;
+            ++checked;
+        }
+    }
+    EXPECT_EQ(checked, 32 * 30);
+}
+
+class AswReal : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        const auto dir = io::data_dir() / "middlebury2003" / "tsukuba";
+        if (!std::filesystem::exists(dir / "left.png")) {
+            GTEST_SKIP() << "Middlebury tsukuba not found under " << dir;
+        }
+        pair_ = io::crop(io::load_pair(dir / "left.png", dir / "right.png"), 120, 90, 80, 60);
+    }
+    io::ImagePair pair_;
+};
+
+TEST_F(AswReal, CropEqualsNaive) {
+    MatchParams match;
+    match.ndisp = 16;
+    match.validation = ValidationParams::all_on();
+    for (asw::Params params : {small(11), small(9)}) {
+        EXPECT_EQ(asw::match(pair_.left, pair_.right, match, params),
+                  asw::match_naive(pair_.left, pair_.right, match, params));
+        params.separable = true;
+        EXPECT_EQ(asw::match(pair_.left, pair_.right, match, params),
+                  asw::match_naive(pair_.left, pair_.right, match, params));
+    }
+}
+
+TEST_F(AswReal, FixedPointAgreesWithRealValuedReference) {
+    // The 8-bit responses and weights change the winner of few pixels: 6 of 4800 (0.13 %)
+    // differ by more than one label on this crop (w = 15, measured); the bound is 1 %.
+    MatchParams match;
+    match.ndisp = 16;
+    const asw::Params params = small(15);
+    const DisparityMap fixed = to_label_map(asw::match(pair_.left, pair_.right, match, params));
+    const DisparityMap real = asw::match_floating(pair_.left, pair_.right, match, params);
+    int differ = 0;
+    for (std::size_t i = 0; i < fixed.disparity.size(); ++i) {
+        if (fixed.valid[i] != real.valid[i] ||
+            std::abs(fixed.disparity[i] - real.disparity[i]) > 1) {
+            ++differ;
+        }
+    }
+    std::cout << differ << " of " << fixed.disparity.size() << " pixels differ\n";
+    EXPECT_LT(differ, static_cast<int>(fixed.disparity.size()) / 100) << differ << " pixels";
+}
+
+// ---- Bad input -----------------------------------------------------------------------------
+
+TEST(AswErrors, ImpossibleWindowsAreClearErrors) {
+    for (const int diameter : {-1, 0, 1, 2, 4, 54, 129, 1001}) {
+        EXPECT_THROW(asw::validate(small(diameter), 300, 300), std::invalid_argument) << diameter;
+    }
+    EXPECT_NO_THROW(asw::validate(small(3), 300, 300));
+    EXPECT_NO_THROW(asw::validate(small(127), 300, 300));
+    // Too large for the image: no pixel of a 40 x 30 image has its circle of 31 inside.
+    EXPECT_THROW(asw::validate(small(31), 40, 30), std::invalid_argument);
+    asw::Params bad = small();
+    bad.colour_range = 0;
+    EXPECT_THROW(asw::validate(bad, 300, 300), std::invalid_argument);
+    bad = small();
+    bad.disparity_range = 256;
+    EXPECT_THROW(asw::validate(bad, 300, 300), std::invalid_argument);
+    bad = small();
+    bad.threads = -1;
+    EXPECT_THROW(asw::validate(bad, 300, 300), std::invalid_argument);
+}
+
+TEST(AswErrors, MismatchedPairsAndRegistryChecks) {
+    std::mt19937 rng(test::test_seed() + 4);
+    const Image left = test::random_image(30, 20, 3, rng);
+    const Image narrower = test::random_image(29, 20, 3, rng);
+    MatchParams match;
+    match.ndisp = 4;
+    EXPECT_THROW(asw::match(left, narrower, match, small()), std::invalid_argument);
+    EXPECT_THROW(asw::match(left, test::random_image(30, 20, 1, rng), match, small()),
+                 std::invalid_argument);
+
+    MatcherRegistry registry;
+    register_model_matchers(registry);
+    MatchConfig config;
+    config.pipeline.ndisp = 4;
+    config.asw.diameter = 8;
+    const auto matcher = registry.create("asw", "model", config);
+    EXPECT_THROW(matcher->validate(30, 20), std::invalid_argument);
+    config.asw.diameter = 7;
+    EXPECT_NO_THROW(registry.create("asw", "model", config)->validate(30, 20));
+    config.pipeline.validation = ValidationParams::all_on();
+    EXPECT_THROW(registry.create("asw", "float", config), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace stereo
