@@ -10,6 +10,10 @@
 //   --json-summary FILE   also write the per-benchmark numbers and the ratios as JSON
 // Environment:
 //   STEREO_DATA_DIR       data folder, overrides the one baked in at build time
+//
+// It also times adaptive support weights (docs/asw.md) at 60 disparities on two threads, the full
+// circle and the separable variant, against the budget of 10x single-threaded StereoSGBM;
+// those verdicts are printed (docs/results-asw.md) but do not change the exit status.
 
 #include <benchmark/benchmark.h>
 
@@ -37,8 +41,10 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "stereo/asw.hpp"
 #include "stereo/pipeline.hpp"
 #include "stereo/stage_table.hpp"
+#include "stereo/stages/validate.hpp"
 #include "stereo_io/data_dir.hpp"
 #include "stereo_io/io.hpp"
 
@@ -77,6 +83,12 @@ const std::string kModelMatchNoCa = "BM_ModelMatchNoCa";
 const std::string kStagePrefix = "BM_ModelStage/";
 const std::string kOpenCvBm = "BM_OpenCvStereoBM";
 const std::string kOpenCvSgbm = "BM_OpenCvStereoSGBM";
+const std::string kAswFull = "BM_AswFull2Threads";
+const std::string kAswSeparable = "BM_AswSeparable2Threads";
+const std::string kAswSeparableOne = "BM_AswSeparable1Thread";
+constexpr int kAswDisparities = 60;  // the Teddy range
+constexpr int kAswThreads = 2;
+constexpr double kAswBudgetRatio = 10.0;  // ASW on 2 threads < 10x StereoSGBM on 1
 // The hardware stages in pipeline order, from the stage table
 // (model/include/stereo/stage_table.hpp).
 const std::vector<std::string> kStageNames = [] {
@@ -270,10 +282,31 @@ void bm_opencv_sgbm(benchmark::State& state, const StereoPair& pair) {
               pair.left_bgr, pair.right_bgr);
 }
 
+void bm_asw(benchmark::State& state, const StereoPair& pair, const stereo::asw::Params& params) {
+    const stereo::MatchParams match{.ndisp = kAswDisparities};
+    for (auto _ : state) {
+        auto map = stereo::asw::match(pair.left_rgb, pair.right_rgb, match, params);
+        benchmark::DoNotOptimize(map);
+    }
+    set_throughput(state, pair);
+}
+
 void register_benchmarks(const StereoPair& pair, StageInputCache& cache) {
     const auto configure = [](benchmark::internal::Benchmark* bench) {
         bench->UseRealTime()->Unit(benchmark::kMillisecond);
     };
+    stereo::asw::Params full;
+    full.threads = kAswThreads;
+    stereo::asw::Params separable = full;
+    separable.separable = true;
+    stereo::asw::Params separable_one = separable;
+    separable_one.threads = 1;
+    for (const auto& [name, params] :
+         {std::pair{kAswFull, full}, std::pair{kAswSeparable, separable},
+          std::pair{kAswSeparableOne, separable_one}}) {
+        configure(benchmark::RegisterBenchmark(
+            name.c_str(), [&pair, params](auto& state) { bm_asw(state, pair, params); }));
+    }
     const stereo::MatchParams with_ca{.ndisp = kDisparities};
     const stereo::MatchParams without_ca{.ndisp = kDisparities, .use_ca = false};
 
@@ -309,6 +342,24 @@ void register_benchmarks(const StereoPair& pair, StageInputCache& cache) {
             register_stage(found->second);
         } else if (name == "wta") {
             register_stage(wta);
+        } else if (name == "validate" || name == "lr_check") {
+            // Stage 6 over the final volume: the model's selector runs the hardware's two stages
+            // in one; "validate" times it with uniqueness and sub-pixel on, "lr_check" with the
+            // left-right check alone.
+            stereo::ValidationParams steps;
+            if (name == "validate") {
+                steps.uniqueness = steps.subpixel = true;
+            } else {
+                steps.left_right = true;
+            }
+            register_stage([steps](const StageInputs& in) {
+                stereo::ValidatingSelector selector(in.rule2.width(), in.rule2.height(),
+                                                    in.rule2.ndisp(), 0, steps, in.border);
+                for (int d = 0; d < in.rule2.ndisp(); ++d) {
+                    selector.update(in.rule2.plane(d).data(), d, 0);
+                }
+                return selector.result();
+            });
         } else {
             throw std::logic_error("no benchmark for stage " + name);
         }
@@ -403,6 +454,9 @@ std::vector<std::string> registration_order() {
     }
     names.push_back(kOpenCvBm);
     names.push_back(kOpenCvSgbm);
+    names.push_back(kAswFull);
+    names.push_back(kAswSeparable);
+    names.push_back(kAswSeparableOne);
     return names;
 }
 
@@ -467,6 +521,14 @@ int summarise(const std::map<std::string, Measurement>& results, bool any_error,
         << "\nmodel_match_no_ca / StereoSGBM time ratio = " << format_ratio(no_ca_over_sgbm)
         << "\n";
 
+    for (const std::string& name : {kAswFull, kAswSeparable}) {
+        const std::optional<double> ratio = time_ratio(results, name, kOpenCvSgbm);
+        if (ratio) {
+            out << name << " / StereoSGBM (1 thread) = " << format_ratio(ratio) << " (ASW budget "
+                << std::setprecision(1) << kAswBudgetRatio << ": "
+                << (*ratio <= kAswBudgetRatio ? "PASS" : "FAIL") << ", not in the exit status)\n";
+        }
+    }
     const auto rate = [&](const std::string& name) -> std::optional<double> {
         const auto found = results.find(name);
         return found == results.end() ? std::nullopt
@@ -530,7 +592,13 @@ int summarise(const std::map<std::string, Measurement>& results, bool any_error,
             {"ratios",
              {{"model_match_over_sgbm", optional_json(over_sgbm)},
               {"model_match_over_bm", optional_json(over_bm)},
-              {"model_match_no_ca_over_sgbm", optional_json(no_ca_over_sgbm)}}},
+              {"model_match_no_ca_over_sgbm", optional_json(no_ca_over_sgbm)},
+              {"asw_full_2threads_over_sgbm",
+               optional_json(time_ratio(results, kAswFull, kOpenCvSgbm))},
+              {"asw_separable_2threads_over_sgbm",
+               optional_json(time_ratio(results, kAswSeparable, kOpenCvSgbm))},
+              {"asw_separable_1thread_over_sgbm",
+               optional_json(time_ratio(results, kAswSeparableOne, kOpenCvSgbm))}}},
             {"budget",
              {{"max_model_match_over_sgbm", kBudgetRatio},
               {"checked", checked},

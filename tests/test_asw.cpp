@@ -73,6 +73,27 @@ TEST(AswTables, ExpResponsesMatchHandCalculation) {
     EXPECT_EQ(t.proximity[27 * 27], 94);
 }
 
+TEST(AswTables, WorkedExampleOfTheDocs) {
+    // docs/asw.md: w = 55, offset (3, 4), colour differences 25 (left) and 70 (right), label
+    // jump 2; the hand-computed responses and products.
+    const asw::ResponseTables t = asw::response_tables(asw::Params{});
+    EXPECT_EQ(t.proximity[25], 153);
+    EXPECT_EQ(t.colour[25], 148);
+    EXPECT_EQ(t.continuity[2], 255);
+    EXPECT_EQ(t.colour[70], 82);
+    EXPECT_EQ(asw::combine(153, 148), 88);
+    EXPECT_EQ(asw::combine(88, 255), 88);
+    EXPECT_EQ(asw::combine(88, 82), 28);
+    EXPECT_EQ(asw::combine(asw::combine(asw::combine(255, 255), 255), 255), 252);
+    // The circle of radius 27 row by row: 2 floor(sqrt(27^2 - dy^2)) + 1 pixels in row dy.
+    std::size_t circle = 0;
+    for (int dy = -27; dy <= 27; ++dy) {
+        circle += 2 * static_cast<std::size_t>(std::floor(std::sqrt(729.0 - dy * dy))) + 1;
+    }
+    EXPECT_EQ(circle, 2289U);
+    EXPECT_EQ(asw::support_region(asw::Params{}).size(), circle);
+}
+
 TEST(AswRegion, CircleCountsMatchHandCount) {
     // r = 1: the centre and its 4 neighbours; r = 2: 13 (5 + 3 + 3 + 1 + 1).
     EXPECT_EQ(asw::support_region(small(3)).size(), 5U);

@@ -82,7 +82,11 @@ struct Volume {
 };
 
 // One pass over `offsets` (all of them, or one axis of the separable variant): out =
-// round((sum W * in) << out_shift / sum W). Rows y in [first, height) step `step`.
+// round((sum W * in) << out_shift / sum W). Rows y in [first, height) step `step`. Each row is
+// cut into tiles of kTile pixels whose sums (ndisp x kTile) stay in the L1 cache while every
+// offset is added; the weights of a tile are computed once per offset for every disparity.
+constexpr int kTile = 64;
+
 void aggregate_rows(const Volume& in, const Planes& left, const Planes& right,
                     const std::vector<Offset>& offsets, const ResponseTables& tables,
                     const Params& params, const std::vector<std::int16_t>& labels, int out_shift,
@@ -91,82 +95,97 @@ void aggregate_rows(const Volume& in, const Planes& left, const Planes& right,
     const int height = in.cost.height();
     const int ndisp = in.cost.ndisp();
     const bool continuity = params.continuity && !labels.empty();
-    // Right responses are read at x - d for every d: pad the row so that every such index is
-    // inside, with the response of a pixel outside the right image (kResponseMax).
-    const int lowest = -(in.min_disp + ndisp - 1);  // smallest x - d
-    const int highest = width - 1 - in.min_disp;    // largest x - d
-    const int pad_before = std::max(0, -lowest);
-    const std::size_t padded = static_cast<std::size_t>(pad_before) + std::max(width, highest + 1);
-    std::vector<std::uint16_t> right_response(padded);
-    std::vector<std::uint16_t> left_weight(width);
-    std::vector<std::uint16_t> difference(width);
-    std::vector<std::uint32_t> num(static_cast<std::size_t>(ndisp) * width);
-    std::vector<std::uint32_t> den(static_cast<std::size_t>(ndisp) * width);
+    const int d_low = in.min_disp;
+    const int d_high = in.min_disp + ndisp - 1;
+    // Right responses of a tile [t0, t1) are read at x - d, i.e. in [t0 - d_high, t1 - d_low);
+    // the buffer holds that span, kResponseMax (a pixel outside the right image) where the pair
+    // of right pixels is not inside.
+    std::vector<std::uint16_t> right_response(static_cast<std::size_t>(kTile + ndisp));
+    std::vector<std::uint16_t> left_weight(kTile);
+    std::vector<std::uint16_t> difference(static_cast<std::size_t>(kTile + ndisp));
+    std::vector<std::uint32_t> num(static_cast<std::size_t>(ndisp) * kTile);
+    std::vector<std::uint32_t> den(static_cast<std::size_t>(ndisp) * kTile);
 
     for (int y = first; y < height; y += step) {
-        std::fill(num.begin(), num.end(), 0U);
-        std::fill(den.begin(), den.end(), 0U);
-        for (const Offset& o : offsets) {
-            const int qy = y + o.dy;
-            if (qy < 0 || qy >= height) {
-                continue;  // outside the image: no contribution
-            }
-            const int x0 = std::max(0, -o.dx);
-            const int x1 = std::min(width, width - o.dx);
-            if (x0 >= x1) {
-                continue;
-            }
-            colour_row(left, y, qy, o.dx, x0, x1, difference.data());
-            const std::int16_t* label_p =
-                continuity ? labels.data() + std::size_t(y) * width : nullptr;
-            const std::int16_t* label_q =
-                continuity ? labels.data() + std::size_t(qy) * width + o.dx : nullptr;
-            for (int x = x0; x < x1; ++x) {
-                int w = combine(o.proximity, tables.colour[difference[x]]);
-                if (continuity) {
-                    w = combine(w, tables.continuity[static_cast<std::size_t>(
-                                       std::abs(label_p[x] - label_q[x]))]);
+        for (int t0 = 0; t0 < width; t0 += kTile) {
+            const int t1 = std::min(width, t0 + kTile);
+            std::fill(num.begin(), num.end(), 0U);
+            std::fill(den.begin(), den.end(), 0U);
+            for (const Offset& o : offsets) {
+                const int qy = y + o.dy;
+                if (qy < 0 || qy >= height) {
+                    continue;  // outside the image: no contribution
                 }
-                left_weight[x] = static_cast<std::uint16_t>(w);
-            }
-            std::fill(right_response.begin(), right_response.end(),
-                      static_cast<std::uint16_t>(kResponseMax));
-            if (params.right_weights) {
-                colour_row(right, y, qy, o.dx, x0, x1, difference.data());
+                // Pixels of the tile whose neighbour p + o lies inside the image.
+                const int x0 = std::max(t0, -o.dx);
+                const int x1 = std::min(t1, width - o.dx);
+                if (x0 >= x1) {
+                    continue;
+                }
+                colour_row(left, y, qy, o.dx, x0, x1, difference.data() - t0);
+                const std::int16_t* label_p =
+                    continuity ? labels.data() + std::size_t(y) * width : nullptr;
+                const std::int16_t* label_q =
+                    continuity ? labels.data() + std::size_t(qy) * width + o.dx : nullptr;
                 for (int x = x0; x < x1; ++x) {
-                    right_response[static_cast<std::size_t>(pad_before + x)] =
-                        tables.colour[difference[x]];
+                    int w = combine(o.proximity, tables.colour[difference[x - t0]]);
+                    if (continuity) {
+                        w = combine(w, tables.continuity[static_cast<std::size_t>(
+                                           std::abs(label_p[x] - label_q[x]))]);
+                    }
+                    left_weight[x - t0] = static_cast<std::uint16_t>(w);
+                }
+                // span[i] is the right response at x' = span0 + i.
+                const int span0 = x0 - d_high;
+                const int span1 = x1 - d_low;
+                if (params.right_weights) {
+                    std::fill(right_response.begin(), right_response.begin() + (span1 - span0),
+                              static_cast<std::uint16_t>(kResponseMax));
+                    const int r0 = std::max({span0, 0, -o.dx});
+                    const int r1 = std::min({span1, width, width - o.dx});
+                    if (r0 < r1) {
+                        colour_row(right, y, qy, o.dx, r0, r1, difference.data() - r0);
+                        for (int x = r0; x < r1; ++x) {
+                            right_response[static_cast<std::size_t>(x - span0)] =
+                                tables.colour[difference[x - r0]];
+                        }
+                    }
+                }
+                for (int k = 0; k < ndisp; ++k) {
+                    const int d = d_low + k;
+                    const CostValue* c =
+                        in.cost.plane(k).data() + static_cast<std::size_t>(qy) * width + o.dx;
+                    std::uint32_t* n = num.data() + static_cast<std::size_t>(k) * kTile - t0;
+                    std::uint32_t* s = den.data() + static_cast<std::size_t>(k) * kTile - t0;
+                    const std::uint16_t* lw = left_weight.data() - t0;
+                    if (params.right_weights) {
+                        // r[x] = response at x - d.
+                        const std::uint16_t* r = right_response.data() - span0 - d;
+                        for (int x = x0; x < x1; ++x) {
+                            // lw * r + 128 <= 65153: the product fits 16 bits, so it
+                            // vectorises as 16-bit lanes.
+                            const auto product =
+                                static_cast<std::uint16_t>(lw[x] * r[x] + 128U);
+                            const auto w = static_cast<std::uint16_t>(product >> kResponseBits);
+                            n[x] += std::uint32_t{w} * c[x];
+                            s[x] += w;
+                        }
+                    } else {
+                        for (int x = x0; x < x1; ++x) {
+                            n[x] += std::uint32_t{lw[x]} * c[x];
+                            s[x] += lw[x];
+                        }
+                    }
                 }
             }
             for (int k = 0; k < ndisp; ++k) {
-                const int d = in.min_disp + k;
-                const CostValue* c =
-                    in.cost.plane(k).data() + static_cast<std::size_t>(qy) * width + o.dx;
-                std::uint32_t* n = num.data() + static_cast<std::size_t>(k) * width;
-                std::uint32_t* s = den.data() + static_cast<std::size_t>(k) * width;
-                if (params.right_weights) {
-                    const std::uint16_t* r = right_response.data() + pad_before - d;
-                    for (int x = x0; x < x1; ++x) {
-                        const std::uint32_t w =
-                            (std::uint32_t{left_weight[x]} * r[x] + 128U) >> kResponseBits;
-                        n[x] += w * c[x];
-                        s[x] += w;
-                    }
-                } else {
-                    for (int x = x0; x < x1; ++x) {
-                        n[x] += std::uint32_t{left_weight[x]} * c[x];
-                        s[x] += left_weight[x];
-                    }
+                CostValue* row = out.plane(k).data() + static_cast<std::size_t>(y) * width;
+                const std::uint32_t* n = num.data() + static_cast<std::size_t>(k) * kTile - t0;
+                const std::uint32_t* s = den.data() + static_cast<std::size_t>(k) * kTile - t0;
+                for (int x = t0; x < t1; ++x) {
+                    row[x] = static_cast<CostValue>(
+                        ((std::uint64_t{n[x]} << out_shift) + s[x] / 2) / s[x]);
                 }
-            }
-        }
-        for (int k = 0; k < ndisp; ++k) {
-            CostValue* row = out.plane(k).data() + static_cast<std::size_t>(y) * width;
-            const std::uint32_t* n = num.data() + static_cast<std::size_t>(k) * width;
-            const std::uint32_t* s = den.data() + static_cast<std::size_t>(k) * width;
-            for (int x = 0; x < width; ++x) {
-                row[x] =
-                    static_cast<CostValue>(((std::uint64_t{n[x]} << out_shift) + s[x] / 2) / s[x]);
             }
         }
     }
