@@ -85,7 +85,7 @@ struct Volume {
 // round((sum W * in) << out_shift / sum W). Rows y in [first, height) step `step`. Each row is
 // cut into tiles of kTile pixels whose sums (ndisp x kTile) stay in the L1 cache while every
 // offset is added; the weights of a tile are computed once per offset for every disparity.
-constexpr int kTile = 64;
+constexpr int kTile = 128;
 
 void aggregate_rows(const Volume& in, const Planes& left, const Planes& right,
                     const std::vector<Offset>& offsets, const ResponseTables& tables,
