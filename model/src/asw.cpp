@@ -5,6 +5,7 @@
 #include "stereo/asw.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
@@ -86,6 +87,18 @@ struct Volume {
 // cut into tiles of kTile pixels whose sums (ndisp x kTile) stay in the L1 cache while every
 // offset is added; the weights of a tile are computed once per offset for every disparity.
 constexpr int kTile = 128;
+// Offsets whose weights are computed before any of them is summed: the sums then read weights
+// whose (scalar) stores have long retired, instead of stalling on store forwarding.
+constexpr std::size_t kChunk = 32;
+
+// One offset of a chunk, clipped to the tile and the image.
+struct Prepared {
+    int dx = 0;
+    int qy = 0;
+    int x0 = 0;
+    int x1 = 0;
+    int span0 = 0;  // the first right-image column whose response the sums read
+};
 
 void aggregate_rows(const Volume& in, const Planes& left, const Planes& right,
                     const std::vector<Offset>& offsets, const ResponseTables& tables,
@@ -100,8 +113,10 @@ void aggregate_rows(const Volume& in, const Planes& left, const Planes& right,
     // Right responses of a tile [t0, t1) are read at x - d, i.e. in [t0 - d_high, t1 - d_low);
     // the buffer holds that span, kResponseMax (a pixel outside the right image) where the pair
     // of right pixels is not inside.
-    std::vector<std::uint16_t> right_response(static_cast<std::size_t>(kTile + ndisp));
-    std::vector<std::uint16_t> left_weight(kTile);
+    const std::size_t span = static_cast<std::size_t>(kTile + ndisp);
+    std::vector<std::uint16_t> right_response(kChunk * span);
+    std::vector<std::uint16_t> left_weight(kChunk * kTile);
+    std::array<Prepared, kChunk> prep_list{};
     std::vector<std::uint16_t> difference(static_cast<std::size_t>(kTile + ndisp));
     std::vector<std::uint32_t> num(static_cast<std::size_t>(ndisp) * kTile);
     std::vector<std::uint32_t> den(static_cast<std::size_t>(ndisp) * kTile);
@@ -111,69 +126,88 @@ void aggregate_rows(const Volume& in, const Planes& left, const Planes& right,
             const int t1 = std::min(width, t0 + kTile);
             std::fill(num.begin(), num.end(), 0U);
             std::fill(den.begin(), den.end(), 0U);
-            for (const Offset& o : offsets) {
-                const int qy = y + o.dy;
-                if (qy < 0 || qy >= height) {
-                    continue;  // outside the image: no contribution
-                }
-                // Pixels of the tile whose neighbour p + o lies inside the image.
-                const int x0 = std::max(t0, -o.dx);
-                const int x1 = std::min(t1, width - o.dx);
-                if (x0 >= x1) {
-                    continue;
-                }
-                colour_row(left, y, qy, o.dx, x0, x1, difference.data() - t0);
-                const std::int16_t* label_p =
-                    continuity ? labels.data() + std::size_t(y) * width : nullptr;
-                const std::int16_t* label_q =
-                    continuity ? labels.data() + std::size_t(qy) * width + o.dx : nullptr;
-                for (int x = x0; x < x1; ++x) {
-                    int w = combine(o.proximity, tables.colour[difference[x - t0]]);
-                    if (continuity) {
-                        w = combine(w, tables.continuity[static_cast<std::size_t>(
-                                           std::abs(label_p[x] - label_q[x]))]);
+            for (std::size_t chunk = 0; chunk < offsets.size(); chunk += kChunk) {
+                // Phase 1: the weights of up to kChunk offsets (table look-ups, scalar stores).
+                int prepared = 0;
+                for (std::size_t i = chunk; i < std::min(offsets.size(), chunk + kChunk); ++i) {
+                    const Offset& o = offsets[i];
+                    const int qy = y + o.dy;
+                    // Pixels of the tile whose neighbour p + o lies inside the image.
+                    const int x0 = std::max(t0, -o.dx);
+                    const int x1 = std::min(t1, width - o.dx);
+                    if (qy < 0 || qy >= height || x0 >= x1) {
+                        continue;  // outside the image: no contribution
                     }
-                    left_weight[x - t0] = static_cast<std::uint16_t>(w);
-                }
-                // span[i] is the right response at x' = span0 + i.
-                const int span0 = x0 - d_high;
-                const int span1 = x1 - d_low;
-                if (params.right_weights) {
-                    std::fill(right_response.begin(), right_response.begin() + (span1 - span0),
-                              static_cast<std::uint16_t>(kResponseMax));
-                    const int r0 = std::max({span0, 0, -o.dx});
-                    const int r1 = std::min({span1, width, width - o.dx});
-                    if (r0 < r1) {
-                        colour_row(right, y, qy, o.dx, r0, r1, difference.data() - r0);
-                        for (int x = r0; x < r1; ++x) {
-                            right_response[static_cast<std::size_t>(x - span0)] =
-                                tables.colour[difference[x - r0]];
+                    Prepared& prep = prep_list[static_cast<std::size_t>(prepared)];
+                    prep = {o.dx, qy, x0, x1, x0 - d_high};
+                    std::uint16_t* lw = left_weight.data() + std::size_t(prepared) * kTile - t0;
+                    colour_row(left, y, qy, o.dx, x0, x1, difference.data() - t0);
+                    const std::int16_t* label_p =
+                        continuity ? labels.data() + std::size_t(y) * width : nullptr;
+                    const std::int16_t* label_q =
+                        continuity ? labels.data() + std::size_t(qy) * width + o.dx : nullptr;
+                    for (int x = x0; x < x1; ++x) {
+                        int w = combine(o.proximity, tables.colour[difference[x - t0]]);
+                        if (continuity) {
+                            w = combine(w, tables.continuity[static_cast<std::size_t>(
+                                               std::abs(label_p[x] - label_q[x]))]);
+                        }
+                        lw[x] = static_cast<std::uint16_t>(w);
+                    }
+                    if (params.right_weights) {
+                        // rr[i] is the right response at x' = span0 + i, x' in
+                        // [x0 - d_high, x1 - d_low).
+                        std::uint16_t* rr = right_response.data() + std::size_t(prepared) * span;
+                        const int span1 = x1 - d_low;
+                        std::fill(rr, rr + (span1 - prep.span0),
+                                  static_cast<std::uint16_t>(kResponseMax));
+                        const int r0 = std::max({prep.span0, 0, -o.dx});
+                        const int r1 = std::min({span1, width, width - o.dx});
+                        if (r0 < r1) {
+                            colour_row(right, y, qy, o.dx, r0, r1, difference.data() - r0);
+                            for (int x = r0; x < r1; ++x) {
+                                rr[x - prep.span0] = tables.colour[difference[x - r0]];
+                            }
                         }
                     }
+                    ++prepared;
                 }
+                // Phase 2: the weighted sums, vectorised over x. Disparity outside, offset
+                // inside: the sums of one disparity stay in registers / L1 while the chunk's
+                // offsets walk the rows of one cost plane in order (the prefetcher follows).
                 for (int k = 0; k < ndisp; ++k) {
                     const int d = d_low + k;
-                    const CostValue* c =
-                        in.cost.plane(k).data() + static_cast<std::size_t>(qy) * width + o.dx;
-                    std::uint32_t* n = num.data() + static_cast<std::size_t>(k) * kTile - t0;
-                    std::uint32_t* s = den.data() + static_cast<std::size_t>(k) * kTile - t0;
-                    const std::uint16_t* lw = left_weight.data() - t0;
-                    if (params.right_weights) {
-                        // r[x] = response at x - d.
-                        const std::uint16_t* r = right_response.data() - span0 - d;
-                        for (int x = x0; x < x1; ++x) {
-                            // lw * r + 128 <= 65153: the product fits 16 bits, so it
-                            // vectorises as 16-bit lanes.
-                            const auto product =
-                                static_cast<std::uint16_t>(lw[x] * r[x] + 128U);
-                            const auto w = static_cast<std::uint16_t>(product >> kResponseBits);
-                            n[x] += std::uint32_t{w} * c[x];
-                            s[x] += w;
-                        }
-                    } else {
-                        for (int x = x0; x < x1; ++x) {
-                            n[x] += std::uint32_t{lw[x]} * c[x];
-                            s[x] += lw[x];
+                    // Distinct buffers: __restrict spares the vectoriser its run-time overlap
+                    // checks on these short (one tile) loops.
+                    std::uint32_t* __restrict n =
+                        num.data() + static_cast<std::size_t>(k) * kTile - t0;
+                    std::uint32_t* __restrict s =
+                        den.data() + static_cast<std::size_t>(k) * kTile - t0;
+                    const CostValue* plane = in.cost.plane(k).data();
+                    for (int i = 0; i < prepared; ++i) {
+                        const Prepared& prep = prep_list[static_cast<std::size_t>(i)];
+                        const std::uint16_t* __restrict lw =
+                            left_weight.data() + std::size_t(i) * kTile - t0;
+                        const CostValue* __restrict c =
+                            plane + static_cast<std::size_t>(prep.qy) * width + prep.dx;
+                        if (params.right_weights) {
+                            // r[x] = right response at x - d.
+                            const std::uint16_t* __restrict r =
+                                right_response.data() + std::size_t(i) * span - prep.span0 - d;
+                            for (int x = prep.x0; x < prep.x1; ++x) {
+                                // lw * r + 128 <= 65153: the product fits 16 bits, so it
+                                // vectorises as 16-bit lanes.
+                                const auto product =
+                                    static_cast<std::uint16_t>(lw[x] * r[x] + 128U);
+                                const auto w = static_cast<std::uint16_t>(product >> kResponseBits);
+                                n[x] += std::uint32_t{w} * c[x];
+                                s[x] += w;
+                            }
+                        } else {
+                            for (int x = prep.x0; x < prep.x1; ++x) {
+                                n[x] += std::uint32_t{lw[x]} * c[x];
+                                s[x] += lw[x];
+                            }
                         }
                     }
                 }
@@ -183,8 +217,14 @@ void aggregate_rows(const Volume& in, const Planes& left, const Planes& right,
                 const std::uint32_t* n = num.data() + static_cast<std::size_t>(k) * kTile - t0;
                 const std::uint32_t* s = den.data() + static_cast<std::size_t>(k) * kTile - t0;
                 for (int x = t0; x < t1; ++x) {
-                    row[x] = static_cast<CostValue>(
-                        ((std::uint64_t{n[x]} << out_shift) + s[x] / 2) / s[x]);
+                    // floor((n << shift + s / 2) / s) in double precision, which vectorises
+                    // where the 64-bit integer division does not: the numerator (< 2^37) and the
+                    // denominator (< 2^22) are exact doubles, and a quotient that is not an
+                    // integer lies at least 1/s > 2^-22 from one, far beyond the rounding error
+                    // of the division (< 2^14 * 2^-53), so truncation gives the exact floor.
+                    const auto numerator =
+                        static_cast<double>((std::uint64_t{n[x]} << out_shift) + s[x] / 2);
+                    row[x] = static_cast<CostValue>(numerator / static_cast<double>(s[x]));
                 }
             }
         }
