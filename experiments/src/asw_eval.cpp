@@ -464,7 +464,10 @@ io::SceneData relit(const io::SceneData& data, double percent) {
 }
 
 std::string figure_png(const io::SceneData& data, const cv::Mat& ours, const fs::path& path) {
-    cv::Mat zero_invalid = ours.clone();  // the figures' convention: 0 = invalid
+    // The figures' convention is 0 = invalid: a valid 0 (the winner at the left border, where
+    // no match exists) becomes a tiny disparity so that it shows as wrong, not as invalid.
+    cv::Mat zero_invalid = ours.clone();
+    zero_invalid.setTo(1e-3F, zero_invalid == 0.0F);
     zero_invalid.setTo(0.0F, zero_invalid != zero_invalid);
     cv::Mat strip = io::scene_strip(data, zero_invalid, "ours (ASW, AD)");
     std::string png = io::encode_png(strip, path);
