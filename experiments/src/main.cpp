@@ -15,5 +15,6 @@ int main(int argc, char** argv) {
     stereo::experiments::add_avoid_benchmark_command(app);
     stereo::experiments::add_illumination_command(app);
     stereo::experiments::add_quad_eval_command(app);
+    stereo::experiments::add_asw_eval_command(app);
     return stereo::cli::run(app, argc, argv);
 }
