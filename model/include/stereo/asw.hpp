@@ -103,8 +103,9 @@ Dsi aggregate(const Dsi& cost, const Image& left, const Image& right, int min_di
 
 // The whole matcher: cost (match.cost), pass 1 without continuity, its winners as the
 // preliminary map, pass 2 with continuity (when on), then stage 6 (match.min_disp,
-// match.validation) with the support region's reach as the invalid border. match.window,
-// sigma and use_ca are not read.
+// match.validation). The support region is clipped at the image border, so the only invalid
+// border is a match outside the right image (0 <= x - d < width). match.window, sigma and use_ca
+// are not read.
 ValidatedDisparity match(const Image& left, const Image& right, const MatchParams& match,
                          const Params& params);
 
