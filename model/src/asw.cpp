@@ -100,6 +100,9 @@ struct Prepared {
     int span0 = 0;  // the first right-image column whose response the sums read
 };
 
+// Den: the type of the weight sums, std::uint16_t when they cannot exceed it (at most 257
+// offsets of weight <= 255: the separable passes), which halves their memory traffic.
+template <typename Den>
 void aggregate_rows(const Volume& in, const Planes& left, const Planes& right,
                     const std::vector<Offset>& offsets, const ResponseTables& tables,
                     const Params& params, const std::vector<std::int16_t>& labels, int out_shift,
@@ -119,13 +122,13 @@ void aggregate_rows(const Volume& in, const Planes& left, const Planes& right,
     std::array<Prepared, kChunk> prep_list{};
     std::vector<std::uint16_t> difference(static_cast<std::size_t>(kTile + ndisp));
     std::vector<std::uint32_t> num(static_cast<std::size_t>(ndisp) * kTile);
-    std::vector<std::uint32_t> den(static_cast<std::size_t>(ndisp) * kTile);
+    std::vector<Den> den(static_cast<std::size_t>(ndisp) * kTile);
 
     for (int y = first; y < height; y += step) {
         for (int t0 = 0; t0 < width; t0 += kTile) {
             const int t1 = std::min(width, t0 + kTile);
             std::fill(num.begin(), num.end(), 0U);
-            std::fill(den.begin(), den.end(), 0U);
+            std::fill(den.begin(), den.end(), Den{0});
             for (std::size_t chunk = 0; chunk < offsets.size(); chunk += kChunk) {
                 // Phase 1: the weights of up to kChunk offsets (table look-ups, scalar stores).
                 int prepared = 0;
@@ -181,8 +184,7 @@ void aggregate_rows(const Volume& in, const Planes& left, const Planes& right,
                     // checks on these short (one tile) loops.
                     std::uint32_t* __restrict n =
                         num.data() + static_cast<std::size_t>(k) * kTile - t0;
-                    std::uint32_t* __restrict s =
-                        den.data() + static_cast<std::size_t>(k) * kTile - t0;
+                    Den* __restrict s = den.data() + static_cast<std::size_t>(k) * kTile - t0;
                     const CostValue* plane = in.cost.plane(k).data();
                     for (int i = 0; i < prepared; ++i) {
                         const Prepared& prep = prep_list[static_cast<std::size_t>(i)];
@@ -201,12 +203,12 @@ void aggregate_rows(const Volume& in, const Planes& left, const Planes& right,
                                     static_cast<std::uint16_t>(lw[x] * r[x] + 128U);
                                 const auto w = static_cast<std::uint16_t>(product >> kResponseBits);
                                 n[x] += std::uint32_t{w} * c[x];
-                                s[x] += w;
+                                s[x] = static_cast<Den>(s[x] + w);
                             }
                         } else {
                             for (int x = prep.x0; x < prep.x1; ++x) {
                                 n[x] += std::uint32_t{lw[x]} * c[x];
-                                s[x] += lw[x];
+                                s[x] = static_cast<Den>(s[x] + lw[x]);
                             }
                         }
                     }
@@ -215,7 +217,7 @@ void aggregate_rows(const Volume& in, const Planes& left, const Planes& right,
             for (int k = 0; k < ndisp; ++k) {
                 CostValue* row = out.plane(k).data() + static_cast<std::size_t>(y) * width;
                 const std::uint32_t* n = num.data() + static_cast<std::size_t>(k) * kTile - t0;
-                const std::uint32_t* s = den.data() + static_cast<std::size_t>(k) * kTile - t0;
+                const Den* s = den.data() + static_cast<std::size_t>(k) * kTile - t0;
                 for (int x = t0; x < t1; ++x) {
                     // floor((n << shift + s / 2) / s) in double precision, which vectorises
                     // where the 64-bit integer division does not: the numerator (< 2^37) and the
@@ -242,17 +244,24 @@ Dsi aggregate_pass(const Volume& in, const Planes& left, const Planes& right,
                    const Params& params, const std::vector<std::int16_t>& labels, int out_shift) {
     Dsi out(in.cost.width(), in.cost.height(), in.cost.ndisp());
     const int threads = thread_count(params, in.cost.height());
+    const bool narrow = offsets.size() * kResponseMax <= 0xFFFF;
+    const auto rows = [&](int first, int step) {
+        if (narrow) {
+            aggregate_rows<std::uint16_t>(in, left, right, offsets, tables, params, labels,
+                                          out_shift, first, step, out);
+        } else {
+            aggregate_rows<std::uint32_t>(in, left, right, offsets, tables, params, labels,
+                                          out_shift, first, step, out);
+        }
+    };
     if (threads == 1) {
-        aggregate_rows(in, left, right, offsets, tables, params, labels, out_shift, 0, 1, out);
+        rows(0, 1);
         return out;
     }
     std::vector<std::jthread> workers;
     workers.reserve(static_cast<std::size_t>(threads));
     for (int t = 0; t < threads; ++t) {
-        workers.emplace_back([&, t] {
-            aggregate_rows(in, left, right, offsets, tables, params, labels, out_shift, t, threads,
-                           out);
-        });
+        workers.emplace_back([&, t] { rows(t, threads); });
     }
     workers.clear();  // joins
     return out;
@@ -288,6 +297,27 @@ std::vector<std::int16_t> winners_of(const Dsi& volume, int min_disp) {
         selector.update(volume.plane(k).data(), k, 0);
     }
     return selector.winners().disparity;
+}
+
+// stereo::cost_volume with the planes shared among the threads (same cells).
+Dsi parallel_cost_volume(const CostFunction& cost, const Image& left, const Image& right,
+                         const MatchParams& match, const Params& params) {
+    const PlanarImage left_planes = cost.prepare(left);
+    const PlanarImage right_planes = cost.prepare(right);
+    const auto grid =
+        CandidateGrid::horizontal(left.width, left.height, match.ndisp, match.min_disp);
+    Dsi dsi(left.width, left.height, match.ndisp);
+    const int threads = thread_count(params, match.ndisp);
+    std::vector<std::jthread> workers;
+    for (int t = 0; t < threads; ++t) {
+        workers.emplace_back([&, t] {
+            for (int k = t; k < match.ndisp; k += threads) {
+                cost_plane(cost, left_planes, right_planes, grid, k, 0, dsi.plane(k).data());
+            }
+        });
+    }
+    workers.clear();  // joins
+    return dsi;
 }
 
 }  // namespace
@@ -406,7 +436,7 @@ ValidatedDisparity match(const Image& left, const Image& right, const MatchParam
     checked.window = 1;  // the Gaussian window is not used; its checks must not reject
     checked.use_ca = false;
     stereo::validate(checked, left.width, left.height);
-    const Dsi cost = cost_volume(*make_cost(match.cost), left, right, match.ndisp, match.min_disp);
+    const Dsi cost = parallel_cost_volume(*make_cost(match.cost), left, right, match, params);
     Params first = params;
     first.continuity = false;
     std::vector<std::int16_t> labels;
