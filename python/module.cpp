@@ -159,7 +159,7 @@ MatchOptions match_options(const std::string& method, const std::string& engine,
                            std::optional<int> uniqueness, std::optional<int> lr_check,
                            bool subpixel, int vrange, const std::string& neighbours, int log_window,
                            double log_sigma, int edge_value, int truncation, int sparse_uniqueness,
-                           int sparse_lr) {
+                           int sparse_lr, const std::optional<py::dict>& asw = std::nullopt) {
     MatchOptions o{method, engine, {}};
     stereo::MatchParams& p = o.config.pipeline;
     p.ndisp = ndisp;
@@ -188,6 +188,40 @@ MatchOptions match_options(const std::string& method, const std::string& engine,
     o.config.edges.truncation = truncation;
     o.config.sparse.uniqueness = sparse_uniqueness;
     o.config.sparse.lr_tolerance = sparse_lr;
+    if (asw) {
+        // method "asw": the keys of stereo::asw::Params (docs/asw.md), each optional.
+        stereo::asw::Params& a = o.config.asw;
+        for (const auto& [key_object, value] : *asw) {
+            const auto key = key_object.cast<std::string>();
+            if (key == "diameter") {
+                a.diameter = value.cast<int>();
+            } else if (key == "response") {
+                const auto text = value.cast<std::string>();
+                if (text != "log" && text != "exp") {
+                    throw std::invalid_argument("asw response must be \"log\" or \"exp\"");
+                }
+                a.response = text == "exp" ? stereo::asw::Response::exp : stereo::asw::Response::log;
+            } else if (key == "shape") {
+                const auto text = value.cast<std::string>();
+                if (text != "circle" && text != "square") {
+                    throw std::invalid_argument("asw shape must be \"circle\" or \"square\"");
+                }
+                a.shape = text == "square" ? stereo::asw::Shape::square : stereo::asw::Shape::circle;
+            } else if (key == "continuity") {
+                a.continuity = value.cast<bool>();
+            } else if (key == "right_weights") {
+                a.right_weights = value.cast<bool>();
+            } else if (key == "separable") {
+                a.separable = value.cast<bool>();
+            } else if (key == "threads") {
+                a.threads = value.cast<int>();
+            } else {
+                throw std::invalid_argument("unknown asw key \"" + key +
+                                            "\" (diameter, response, shape, continuity, "
+                                            "right_weights, separable, threads)");
+            }
+        }
+    }
     return o;
 }
 
@@ -331,12 +365,12 @@ PYBIND11_MODULE(stereo, m) {
            const std::string& cost, int min_disp, std::optional<int> uniqueness,
            std::optional<int> lr_check, bool subpixel, int vrange, const std::string& neighbours,
            int log_window, double log_sigma, int edge_value, int truncation, int sparse_uniqueness,
-           int sparse_lr) {
+           int sparse_lr, const std::optional<py::dict>& asw) {
             return run_match(
                 left, right,
                 match_options(method, engine, ndisp, window, sigma, ca, cost, min_disp, uniqueness,
                               lr_check, subpixel, vrange, neighbours, log_window, log_sigma,
-                              edge_value, truncation, sparse_uniqueness, sparse_lr));
+                              edge_value, truncation, sparse_uniqueness, sparse_lr, asw));
         },
         py::arg("left"), py::arg("right"), py::kw_only(), py::arg("method") = "pipeline",
         py::arg("engine") = "model", py::arg("ndisp") = defaults.ndisp,
@@ -347,11 +381,13 @@ PYBIND11_MODULE(stereo, m) {
         py::arg("neighbours") = "horizontal", py::arg("log_window") = edges.log_window,
         py::arg("log_sigma") = edges.log_sigma, py::arg("edge_value") = edges.edge_value,
         py::arg("truncation") = edges.truncation, py::arg("sparse_uniqueness") = sparse.uniqueness,
-        py::arg("sparse_lr") = sparse.lr_tolerance,
+        py::arg("sparse_lr") = sparse.lr_tolerance, py::arg("asw") = py::none(),
         "Match a pair with (method, engine) of stereo.matchers(). Returns a dict: disparity "
-        "(uint8 labels), valid (bool), and for the pipeline stage 6's disparity_px (float32, NaN "
-        "invalid), fixed (int16, x16), reason, certainty; subpixel (sparse), vertical (2-D "
-        "methods), counts. uniqueness / lr_check: None = that stage off.");
+        "(uint8 labels), valid (bool), and for the pipeline and asw stage 6's disparity_px "
+        "(float32, NaN invalid), fixed (int16, x16), reason, certainty; subpixel (sparse), "
+        "vertical (2-D methods), counts. uniqueness / lr_check: None = that stage off. asw: a "
+        "dict of method asw's options (diameter, response, shape, continuity, right_weights, "
+        "separable, threads), defaults as stereo match --aggregation asw.");
 
     m.def("evaluate", &evaluate, py::arg("disparity"), py::arg("ground_truth"), py::kw_only(),
           py::arg("threshold") = 1.0, py::arg("nonocc") = py::none(), py::arg("all") = py::none(),
