@@ -443,6 +443,7 @@ ValidatedDisparity match(const Image& left, const Image& right, const MatchParam
     Dsi aggregated = aggregate(cost, left, right, match.min_disp, first, labels);
     if (params.continuity) {
         labels = winners_of(aggregated, match.min_disp);
+        aggregated = Dsi();  // at most two volumes alive: the cost and one aggregate
         aggregated = aggregate(cost, left, right, match.min_disp, params, labels);
     }
     ValidatingSelector selector(left.width, left.height, match.ndisp, match.min_disp,
