@@ -196,17 +196,9 @@ MatchOptions match_options(const std::string& method, const std::string& engine,
             if (key == "diameter") {
                 a.diameter = value.cast<int>();
             } else if (key == "response") {
-                const auto text = value.cast<std::string>();
-                if (text != "log" && text != "exp") {
-                    throw std::invalid_argument("asw response must be \"log\" or \"exp\"");
-                }
-                a.response = text == "exp" ? stereo::asw::Response::exp : stereo::asw::Response::log;
+                a.response = stereo::asw::response_from_name(value.cast<std::string>());
             } else if (key == "shape") {
-                const auto text = value.cast<std::string>();
-                if (text != "circle" && text != "square") {
-                    throw std::invalid_argument("asw shape must be \"circle\" or \"square\"");
-                }
-                a.shape = text == "square" ? stereo::asw::Shape::square : stereo::asw::Shape::circle;
+                a.shape = stereo::asw::shape_from_name(value.cast<std::string>());
             } else if (key == "continuity") {
                 a.continuity = value.cast<bool>();
             } else if (key == "right_weights") {

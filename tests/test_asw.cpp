@@ -306,6 +306,19 @@ TEST(AswErrors, ImpossibleWindowsAreClearErrors) {
     EXPECT_THROW(asw::validate(bad, 300, 300), std::invalid_argument);
 }
 
+TEST(AswErrors, NamesOfResponsesAndShapes) {
+    EXPECT_EQ(asw::response_from_name("log"), asw::Response::log);
+    EXPECT_EQ(asw::response_from_name("exp"), asw::Response::exp);
+    EXPECT_EQ(asw::shape_from_name("circle"), asw::Shape::circle);
+    EXPECT_EQ(asw::shape_from_name("square"), asw::Shape::square);
+    for (const char* bad : {"", "LOG", "linear", "exp "}) {
+        EXPECT_THROW(asw::response_from_name(bad), std::invalid_argument) << bad;
+    }
+    for (const char* bad : {"", "disc", "Square"}) {
+        EXPECT_THROW(asw::shape_from_name(bad), std::invalid_argument) << bad;
+    }
+}
+
 TEST(AswErrors, MismatchedPairsAndRegistryChecks) {
     std::mt19937 rng(test::test_seed() + 4);
     const Image left = test::random_image(30, 20, 3, rng);

@@ -78,8 +78,8 @@ MatchConfig MatcherOptions::resolved() const {
     if (window != nullptr && window->count() > 0) {
         weights.diameter = config.pipeline.window;
     }
-    weights.response = asw_response == "exp" ? asw::Response::exp : asw::Response::log;
-    weights.shape = asw_shape == "square" ? asw::Shape::square : asw::Shape::circle;
+    weights.response = asw::response_from_name(asw_response);
+    weights.shape = asw::shape_from_name(asw_shape);
     weights.continuity = weights.continuity && !asw_no_continuity;
     weights.right_weights = weights.right_weights && !asw_left_weights_only;
     return resolved_config;

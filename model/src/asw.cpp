@@ -322,6 +322,22 @@ Dsi parallel_cost_volume(const CostFunction& cost, const Image& left, const Imag
 
 }  // namespace
 
+Response response_from_name(std::string_view name) {
+    if (name == "log" || name == "exp") {
+        return name == "exp" ? Response::exp : Response::log;
+    }
+    throw std::invalid_argument("ASW response must be \"log\" or \"exp\", got \"" +
+                                std::string(name) + "\"");
+}
+
+Shape shape_from_name(std::string_view name) {
+    if (name == "circle" || name == "square") {
+        return name == "square" ? Shape::square : Shape::circle;
+    }
+    throw std::invalid_argument("ASW shape must be \"circle\" or \"square\", got \"" +
+                                std::string(name) + "\"");
+}
+
 std::vector<Offset> support_region(const Params& params) {
     const ResponseTables tables = response_tables(params);
     const int radius = params.shape == Shape::circle ? (params.diameter - 1) / 2

@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "stereo/dsi.hpp"
@@ -32,6 +33,11 @@ enum class Shape {
     circle,  // offsets with dx^2 + dy^2 <= r^2, r = (w - 1) / 2 (the thesis)
     square,  // the odd square of (nearly) the same pixel count (the ablation)
 };
+
+// "log" / "exp" and "circle" / "square", the names the CLI and the Python module take; throw
+// std::invalid_argument naming the choices for anything else.
+Response response_from_name(std::string_view name);
+Shape shape_from_name(std::string_view name);
 
 inline constexpr int kDefaultDiameter = 55;  // thesis Sec. 3.4
 inline constexpr int kMinDiameter = 3;
