@@ -425,23 +425,58 @@ void validate(const Params& params, int width, int height) {
     }
 }
 
+namespace {
+
+// The inputs of the passes, prepared once per pair: tables, regions and colour planes.
+class Passes {
+  public:
+    Passes(const Dsi& cost, const Image& left, const Image& right, int min_disp,
+           const Params& params)
+        : cost_(cost),
+          min_disp_(min_disp),
+          params_(params),
+          tables_(response_tables(params)),
+          region_(support_region(params)),
+          left_(left),
+          right_(right) {}
+
+    // The whole support region (the full variant).
+    Dsi full(const std::vector<std::int16_t>& labels) const {
+        return aggregate_pass({cost_, min_disp_}, left_, right_, region_, tables_, params_, labels,
+                              kOutputFracBits);
+    }
+    // The separable variant's vertical pass: no continuity factor (docs/asw.md), so both passes
+    // of the two-pass scheme share it.
+    Dsi vertical() const {
+        Params no_continuity = params_;
+        no_continuity.continuity = false;
+        return aggregate_pass({cost_, min_disp_}, left_, right_, axis(region_, true), tables_,
+                              no_continuity, {}, kOutputFracBits);
+    }
+    // The separable variant's horizontal pass over the vertical pass' output.
+    Dsi horizontal(const Dsi& vertical, const std::vector<std::int16_t>& labels) const {
+        return aggregate_pass({vertical, min_disp_}, left_, right_, axis(region_, false), tables_,
+                              params_, labels, 0);
+    }
+
+  private:
+    const Dsi& cost_;
+    int min_disp_;
+    Params params_;
+    ResponseTables tables_;
+    std::vector<Offset> region_;
+    Planes left_;
+    Planes right_;
+};
+
+}  // namespace
+
 Dsi aggregate(const Dsi& cost, const Image& left, const Image& right, int min_disp,
               const Params& params, const std::vector<std::int16_t>& labels) {
     check_inputs(cost, left, right, params, labels);
     validate(params, left.width, left.height);
-    const ResponseTables tables = response_tables(params);
-    const std::vector<Offset> region = support_region(params);
-    const Planes left_planes(left);
-    const Planes right_planes(right);
-    const Volume volume{cost, min_disp};
-    if (!params.separable) {
-        return aggregate_pass(volume, left_planes, right_planes, region, tables, params, labels,
-                              kOutputFracBits);
-    }
-    const Dsi vertical = aggregate_pass(volume, left_planes, right_planes, axis(region, true),
-                                        tables, params, labels, kOutputFracBits);
-    return aggregate_pass({vertical, min_disp}, left_planes, right_planes, axis(region, false),
-                          tables, params, labels, 0);
+    const Passes passes(cost, left, right, min_disp, params);
+    return params.separable ? passes.horizontal(passes.vertical(), labels) : passes.full(labels);
 }
 
 ValidatedDisparity match(const Image& left, const Image& right, const MatchParams& match,
@@ -453,14 +488,24 @@ ValidatedDisparity match(const Image& left, const Image& right, const MatchParam
     checked.use_ca = false;
     stereo::validate(checked, left.width, left.height);
     const Dsi cost = parallel_cost_volume(*make_cost(match.cost), left, right, match, params);
-    Params first = params;
-    first.continuity = false;
-    std::vector<std::int16_t> labels;
-    Dsi aggregated = aggregate(cost, left, right, match.min_disp, first, labels);
-    if (params.continuity) {
-        labels = winners_of(aggregated, match.min_disp);
-        aggregated = Dsi();  // at most two volumes alive: the cost and one aggregate
-        aggregated = aggregate(cost, left, right, match.min_disp, params, labels);
+    const Passes passes(cost, left, right, match.min_disp, params);
+    Dsi aggregated;
+    if (params.separable) {
+        // One vertical pass serves both horizontal passes.
+        const Dsi vertical = passes.vertical();
+        aggregated = passes.horizontal(vertical, {});
+        if (params.continuity) {
+            const auto labels = winners_of(aggregated, match.min_disp);
+            aggregated = Dsi();  // release before the second pass
+            aggregated = passes.horizontal(vertical, labels);
+        }
+    } else {
+        aggregated = passes.full({});
+        if (params.continuity) {
+            const auto labels = winners_of(aggregated, match.min_disp);
+            aggregated = Dsi();  // at most two volumes alive: the cost and one aggregate
+            aggregated = passes.full(labels);
+        }
     }
     ValidatingSelector selector(left.width, left.height, match.ndisp, match.min_disp,
                                 match.validation, InvalidBorder{0});

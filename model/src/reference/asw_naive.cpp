@@ -111,8 +111,11 @@ Dsi aggregate_naive(const Dsi& cost, const Image& left, const Image& right, int 
             row.push_back(o);
         }
     }
-    const Dsi vertical =
-        naive_pass(cost, left, right, min_disp, column, tables, params, labels, kOutputFracBits);
+    // The vertical pass has no continuity factor (docs/asw.md).
+    Params vertical_params = params;
+    vertical_params.continuity = false;
+    const Dsi vertical = naive_pass(cost, left, right, min_disp, column, tables, vertical_params,
+                                    {}, kOutputFracBits);
     return naive_pass(vertical, left, right, min_disp, row, tables, params, labels, 0);
 }
 
@@ -235,7 +238,10 @@ std::vector<double> real_aggregate(const std::vector<double>& cost, const Image&
         (o.dx == 0 ? column : row).push_back(o);
     }
     std::erase_if(row, [](const Offset& o) { return o.dy != 0; });
-    const auto vertical = real_pass(cost, left, right, ndisp, min_disp, column, params, labels);
+    Params vertical_params = params;
+    vertical_params.continuity = false;  // the vertical pass has no continuity factor
+    const auto vertical =
+        real_pass(cost, left, right, ndisp, min_disp, column, vertical_params, {});
     return real_pass(vertical, left, right, ndisp, min_disp, row, params, labels);
 }
 
