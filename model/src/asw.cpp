@@ -419,9 +419,15 @@ void validate(const Params& params, int width, int height) {
     }
     const int r = reach(params);
     if (width <= 2 * r || height <= 2 * r) {
-        throw std::invalid_argument("image " + std::to_string(width) + "x" +
-                                    std::to_string(height) + " is too small for ASW window " +
-                                    std::to_string(params.diameter) + ": no pixel would be valid");
+        // The largest odd circle that fits: diameter <= the smaller side.
+        const int side = std::min(width, height);
+        const int largest = side % 2 == 1 ? side : side - 1;
+        throw std::invalid_argument("the ASW window (diameter " + std::to_string(params.diameter) +
+                                    ") must be smaller than the image " + std::to_string(width) +
+                                    "x" + std::to_string(height) +
+                                    (largest >= kMinDiameter
+                                         ? ": use --window " + std::to_string(largest) + " or less"
+                                         : ""));
     }
 }
 

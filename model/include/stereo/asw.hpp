@@ -56,7 +56,9 @@ struct Params {
     Shape shape = Shape::circle;
     bool continuity = true;     // second pass weighted by the first pass' disparities
     bool right_weights = true;  // colour similarity in the right image too (Yoon and Kweon)
-    bool separable = false;     // the hardware-friendly variant: a vertical then a horizontal pass
+    // The hardware-friendly variant: a vertical pass (no continuity factor, shared by both
+    // passes of the two-pass scheme) then a horizontal pass (docs/asw.md).
+    bool separable = false;
     // Stimulus normalisers (docs/asw.md): a colour difference of colour_range or more, a label
     // difference of disparity_range or more, is the largest stimulus (S = 1).
     int colour_range = 255;
