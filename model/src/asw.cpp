@@ -1,7 +1,7 @@
 // Adaptive support weights (stereo/asw.hpp, docs/asw.md): the fast fixed-point model. Rows are
-// shared among threads; within a row the loop runs offset, then disparity, then x, so that the
-// left weights of an offset are computed once for every disparity and the innermost loop walks
-// contiguous memory (it vectorises).
+// shared among threads; a row is cut into tiles, and for each tile the weights of a chunk of
+// offsets are computed once (for every disparity), then summed disparity by disparity, offset by
+// offset, with the innermost loop over the tile's contiguous pixels (it vectorises).
 #include "stereo/asw.hpp"
 
 #include <algorithm>
@@ -87,8 +87,8 @@ struct Volume {
 // cut into tiles of kTile pixels whose sums (ndisp x kTile) stay in the L1 cache while every
 // offset is added; the weights of a tile are computed once per offset for every disparity.
 constexpr int kTile = 128;
-// Offsets whose weights are computed before any of them is summed: the sums then read weights
-// whose (scalar) stores have long retired, instead of stalling on store forwarding.
+// Offsets whose weights are computed before any of them is summed, so that the sums can run
+// disparity by disparity over the whole chunk (the rows of one cost plane in order).
 constexpr std::size_t kChunk = 32;
 
 // One offset of a chunk, clipped to the tile and the image.
