@@ -3,7 +3,11 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
+#include <utility>
 #include <vector>
+
+#include <nlohmann/json_fwd.hpp>
 
 #include "stereo_io/middlebury.hpp"
 
@@ -26,5 +30,14 @@ void add_asw_eval_command(CLI::App& app);           // docs/results-asw-tables.m
 // (with their masks), Reindeer (2005), Cloth3 and Wood2 (2006) at half size, and Aloe at half
 // size (no masks). Absent scenes are skipped; present but broken ones throw.
 std::vector<io::SceneData> load_ground_truth_scenes(const std::filesystem::path& root);
+
+// Files a subcommand writes together with io::write_files_atomic (all or nothing).
+using OutputFiles = std::vector<std::pair<std::filesystem::path, std::string>>;
+
+// Appends the report files a subcommand was asked for: `markdown` to markdown_path and the
+// versioned `report` (io::versioned, indented) to json_path; an empty path is not written.
+void add_report_files(OutputFiles& files, const std::string& markdown_path,
+                      const std::string& markdown, const std::string& json_path,
+                      const nlohmann::json& report);
 
 }  // namespace stereo::experiments

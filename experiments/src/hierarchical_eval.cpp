@@ -424,13 +424,8 @@ void run_eval(const EvalOptions& options) {
 
     const std::string md = markdown_report(report);
     // Reports and figures together, all or nothing, before the tables are printed.
-    std::vector<std::pair<fs::path, std::string>> files;
-    if (!options.markdown.empty()) {
-        files.emplace_back(options.markdown, md);
-    }
-    if (!options.json_path.empty()) {
-        files.emplace_back(options.json_path, io::versioned(report).dump(2) + '\n');
-    }
+    OutputFiles files;
+    add_report_files(files, options.markdown, md, options.json_path, report);
     if (!options.figures.empty()) {
         const fs::path dir(options.figures);
         const fs::path sweep = dir / "nmse_vs_distortion.png";

@@ -557,7 +557,7 @@ void run_quad_eval(const Options& options) {
     }
     const cv::Mat g = io::load_disparity_file(gt_path, io::DisparityEncoding::pfm, 1.0);
     json report = {{"baselines", json::array()}};
-    std::vector<std::pair<fs::path, std::string>> files;
+    OutputFiles files;
     for (const int n : options.baselines) {
         std::cerr << "quad-eval: n = " << n << '\n';
         const Views views = load_views(folder, n);
@@ -712,12 +712,7 @@ void run_quad_eval(const Options& options) {
     }
     const std::string md = markdown(report);
     std::cout << md;
-    if (!options.markdown.empty()) {
-        files.emplace_back(options.markdown, md);
-    }
-    if (!options.json_path.empty()) {
-        files.emplace_back(options.json_path, io::versioned(report).dump(2) + '\n');
-    }
+    add_report_files(files, options.markdown, md, options.json_path, report);
     io::write_files_atomic(files);
 }
 

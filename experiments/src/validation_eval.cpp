@@ -270,13 +270,8 @@ void run_validation_eval(const EvalOptions& options) {
     }
     const std::string md = markdown(report);
     std::cout << md;
-    std::vector<std::pair<fs::path, std::string>> files;
-    if (!options.markdown.empty()) {
-        files.emplace_back(options.markdown, md);
-    }
-    if (!options.json_path.empty()) {
-        files.emplace_back(options.json_path, io::versioned(report).dump(2) + '\n');
-    }
+    OutputFiles files;
+    add_report_files(files, options.markdown, md, options.json_path, report);
     if (!options.figure.empty()) {
         files.emplace_back(options.figure, io::encode_png(curve_figure(report), options.figure));
     }

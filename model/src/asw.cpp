@@ -267,16 +267,6 @@ Dsi aggregate_pass(const Volume& in, const Planes& left, const Planes& right,
     return out;
 }
 
-std::vector<Offset> axis(const std::vector<Offset>& region, bool vertical) {
-    std::vector<Offset> line;
-    for (const Offset& o : region) {
-        if ((vertical && o.dx == 0) || (!vertical && o.dy == 0)) {
-            line.push_back(o);
-        }
-    }
-    return line;
-}
-
 void check_inputs(const Dsi& cost, const Image& left, const Image& right, const Params& params,
                   const std::vector<std::int16_t>& labels) {
     check_pair(left, right);
@@ -321,6 +311,16 @@ Dsi parallel_cost_volume(const CostFunction& cost, const Image& left, const Imag
 }
 
 }  // namespace
+
+std::vector<Offset> axis_offsets(const std::vector<Offset>& region, bool vertical) {
+    std::vector<Offset> line;
+    for (const Offset& o : region) {
+        if ((vertical && o.dx == 0) || (!vertical && o.dy == 0)) {
+            line.push_back(o);
+        }
+    }
+    return line;
+}
 
 Response response_from_name(std::string_view name) {
     if (name == "log" || name == "exp") {
@@ -456,13 +456,13 @@ class Passes {
     Dsi vertical() const {
         Params no_continuity = params_;
         no_continuity.continuity = false;
-        return aggregate_pass({cost_, min_disp_}, left_, right_, axis(region_, true), tables_,
-                              no_continuity, {}, kOutputFracBits);
+        return aggregate_pass({cost_, min_disp_}, left_, right_, axis_offsets(region_, true),
+                              tables_, no_continuity, {}, kOutputFracBits);
     }
     // The separable variant's horizontal pass over the vertical pass' output.
     Dsi horizontal(const Dsi& vertical, const std::vector<std::int16_t>& labels) const {
-        return aggregate_pass({vertical, min_disp_}, left_, right_, axis(region_, false), tables_,
-                              params_, labels, 0);
+        return aggregate_pass({vertical, min_disp_}, left_, right_, axis_offsets(region_, false),
+                              tables_, params_, labels, 0);
     }
 
   private:

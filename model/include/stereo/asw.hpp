@@ -77,6 +77,9 @@ struct Offset {
 // The support region in raster order (dy, then dx). The separable variant's two 1-D regions
 // are the offsets of this list with dx == 0 and with dy == 0.
 std::vector<Offset> support_region(const Params& params);
+// The separable variant's 1-D regions: the offsets of `region` with dx == 0 (vertical) or
+// dy == 0 (horizontal), the centre in both.
+std::vector<Offset> axis_offsets(const std::vector<Offset>& region, bool vertical);
 
 // Responses indexed by stimulus: colour by |dR| + |dG| + |dB| (0 .. 765), continuity by the
 // label difference (0 .. 255), proximity by the squared distance dx^2 + dy^2.

@@ -101,16 +101,8 @@ Dsi aggregate_naive(const Dsi& cost, const Image& left, const Image& right, int 
         return naive_pass(cost, left, right, min_disp, region, tables, params, labels,
                           kOutputFracBits);
     }
-    std::vector<Offset> column;
-    std::vector<Offset> row;
-    for (const Offset& o : region) {
-        if (o.dx == 0) {
-            column.push_back(o);
-        }
-        if (o.dy == 0) {
-            row.push_back(o);
-        }
-    }
+    const std::vector<Offset> column = axis_offsets(region, true);
+    const std::vector<Offset> row = axis_offsets(region, false);
     // The vertical pass has no continuity factor (docs/asw.md).
     Params vertical_params = params;
     vertical_params.continuity = false;
@@ -232,12 +224,8 @@ std::vector<double> real_aggregate(const std::vector<double>& cost, const Image&
     if (!params.separable) {
         return real_pass(cost, left, right, ndisp, min_disp, region, params, labels);
     }
-    std::vector<Offset> column;
-    std::vector<Offset> row;
-    for (const Offset& o : region) {
-        (o.dx == 0 ? column : row).push_back(o);
-    }
-    std::erase_if(row, [](const Offset& o) { return o.dy != 0; });
+    const std::vector<Offset> column = axis_offsets(region, true);
+    const std::vector<Offset> row = axis_offsets(region, false);
     Params vertical_params = params;
     vertical_params.continuity = false;  // the vertical pass has no continuity factor
     const auto vertical =
