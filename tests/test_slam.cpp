@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 
+#include <opencv2/features2d.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "stereo/pipeline.hpp"
@@ -238,6 +239,65 @@ TEST(Ransac, MinimumInlierRuleRefusesAWeakConsensus) {
     EXPECT_FALSE(ransac_rigid(src, dst, euclidean_residual(src, dst), params).ok);
     params.min_inliers = 12;
     EXPECT_TRUE(ransac_rigid(src, dst, euclidean_residual(src, dst), params).ok);
+}
+
+// ---- descriptor matching ----------------------------------------------------------------------
+
+// The reference is OpenCV's brute-force matcher with cross-check, an independent implementation.
+void expect_same_matches(const cv::Mat& query, const cv::Mat& train) {
+    std::vector<cv::DMatch> expected;
+    cv::BFMatcher(cv::NORM_HAMMING, true).match(query, train, expected);
+    const std::vector<cv::DMatch> got = match_mutual_nearest(query, train);
+    ASSERT_EQ(got.size(), expected.size());
+    for (std::size_t m = 0; m < got.size(); ++m) {
+        EXPECT_EQ(got[m].queryIdx, expected[m].queryIdx) << m;
+        EXPECT_EQ(got[m].trainIdx, expected[m].trainIdx) << m;
+        EXPECT_EQ(got[m].distance, expected[m].distance) << m;
+    }
+}
+
+TEST(MutualNearest, EqualsOpenCvCrossCheckWithManyTies) {
+    std::mt19937 rng(5);
+    for (const int bits_per_byte : {1, 8}) {
+        // Sparse bits make equal distances common, so the tie rules are exercised.
+        cv::Mat query(300, 32, CV_8UC1);
+        cv::Mat train(257, 32, CV_8UC1);
+        for (cv::Mat* m : {&query, &train}) {
+            for (int r = 0; r < m->rows; ++r) {
+                for (int c = 0; c < m->cols; ++c) {
+                    const unsigned byte = rng() & 0xFFU;
+                    m->at<std::uint8_t>(r, c) = static_cast<std::uint8_t>(
+                        bits_per_byte == 1 ? (byte < 32 ? 1U << (byte & 7U) : 0U) : byte);
+                }
+            }
+        }
+        expect_same_matches(query, train);
+        expect_same_matches(train, query);
+    }
+}
+
+TEST(MutualNearest, EqualsOpenCvOnRealOrbFeatures) {
+    const fs::path dir = io::aloe_dir();
+    const cv::Mat left = cv::imread((dir / "aloeL.jpg").string(), cv::IMREAD_GRAYSCALE);
+    const cv::Mat right = cv::imread((dir / "aloeR.jpg").string(), cv::IMREAD_GRAYSCALE);
+    if (left.empty() || right.empty()) {
+        GTEST_SKIP() << "the Aloe pair is not installed (opencv-doc)";
+    }
+    const MotionParams params;
+    const Features a = detect_features(left, params);
+    const Features b = detect_features(right, params);
+    ASSERT_GT(a.descriptors.rows, 500);
+    expect_same_matches(a.descriptors, b.descriptors);
+}
+
+TEST(MutualNearest, EmptyAndMismatchedInputs) {
+    const cv::Mat some(4, 32, CV_8UC1, cv::Scalar(7));
+    EXPECT_TRUE(match_mutual_nearest(cv::Mat(), some).empty());
+    EXPECT_TRUE(match_mutual_nearest(some, cv::Mat()).empty());
+    EXPECT_THROW(match_mutual_nearest(some, cv::Mat(4, 16, CV_8UC1, cv::Scalar(7))),
+                 std::invalid_argument);
+    EXPECT_THROW(match_mutual_nearest(some, cv::Mat(4, 32, CV_32FC1, cv::Scalar(7))),
+                 std::invalid_argument);
 }
 
 TEST(Camera, DownscaleAndLiftByHand) {

@@ -1,6 +1,7 @@
 // Stage 6: the validating winner-takes-all selector (stereo/stages/validate.hpp).
 #include "stereo/stages/validate.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <limits>
 #include <stdexcept>
@@ -21,8 +22,7 @@ ValidatingSelector::ValidatingSelector(int width, int height, int ndisp, int min
       params_(params),
       border_(border),
       size_(static_cast<std::size_t>(width) * height),
-      best_cost_(size_ * kKept, kUnset),
-      best_label_(size_ * kKept, 0),
+      kept_(size_ * kKept, key(kUnset, 0)),
       before_(size_, kUnset),
       after_(size_, kUnset),
       previous_(size_, kUnset),
@@ -31,34 +31,60 @@ ValidatingSelector::ValidatingSelector(int width, int height, int ndisp, int min
     static_assert(fx::kAggMax < kUnset);
 }
 
+// Branchless on purpose (vectorised across pixels): a new winner (c < best cost; equal costs keep
+// the smaller k) takes the previous plane's cost as its "before" and clears "after"; the label
+// right after the standing winner sets "after"; (c, k) is inserted by min/max. The arrays are
+// distinct: __restrict parameters let the compiler vectorise without run-time overlap checks.
+void ValidatingSelector::update_kept(std::size_t size, int k, const CostValue* __restrict costs,
+                                     Key* __restrict slot0, Key* __restrict slot1,
+                                     Key* __restrict slot2, Key* __restrict slot3,
+                                     CostValue* __restrict before, CostValue* __restrict after,
+                                     CostValue* __restrict previous) {
+    for (std::size_t q = 0; q < size; ++q) {
+        const CostValue c = costs[q];
+        const Key incoming = key(c, k);
+        const Key best = slot0[q];
+        const bool new_winner = incoming < best;
+        const bool next_to_winner = key_label(best) + 1 == k && key_cost(best) != kUnset;
+        const CostValue before_value = k > 0 ? previous[q] : kUnset;
+        before[q] = new_winner ? before_value : before[q];
+        after[q] = new_winner ? kUnset : (next_to_winner ? c : after[q]);
+        Key carry = incoming;
+        Key kept = slot0[q];
+        slot0[q] = std::min(kept, carry);
+        carry = std::max(kept, carry);
+        kept = slot1[q];
+        slot1[q] = std::min(kept, carry);
+        carry = std::max(kept, carry);
+        kept = slot2[q];
+        slot2[q] = std::min(kept, carry);
+        carry = std::max(kept, carry);
+        slot3[q] = std::min(slot3[q], carry);
+        previous[q] = c;
+    }
+}
+
+void ValidatingSelector::update_right(std::size_t size, std::uint16_t label,
+                                      const CostValue* __restrict costs,
+                                      CostValue* __restrict right_cost,
+                                      std::uint16_t* __restrict right_label) {
+    for (std::size_t x = 0; x < size; ++x) {
+        const CostValue c = costs[x];
+        const bool better = c < right_cost[x];
+        right_cost[x] = better ? c : right_cost[x];
+        right_label[x] = better ? label : right_label[x];
+    }
+}
+
 void ValidatingSelector::update(const CostValue* plane, int i, int j) {
     if (j != 0 || i < 0 || i >= ndisp_) {
         throw std::invalid_argument("the validating selector runs the 1-D search only");
     }
-    const auto k = static_cast<std::uint16_t>(i);
-    for (std::size_t q = 0; q < size_; ++q) {
-        const CostValue c = plane[q];
-        CostValue* cost = &best_cost_[q * kKept];
-        std::uint16_t* label = &best_label_[q * kKept];
-        if (c < cost[0]) {  // a new winner (strict: ties keep the smaller k)
-            before_[q] = k > 0 ? previous_[q] : kUnset;
-            after_[q] = kUnset;
-        } else if (k == label[0] + 1 && cost[0] != kUnset) {
-            after_[q] = c;
-        }
-        // Insert (c, k) into the ascending list; an equal cost stays behind the earlier k.
-        if (c < cost[kKept - 1]) {
-            int slot = kKept - 1;
-            while (slot > 0 && c < cost[slot - 1]) {
-                cost[slot] = cost[slot - 1];
-                label[slot] = label[slot - 1];
-                --slot;
-            }
-            cost[slot] = c;
-            label[slot] = k;
-        }
-        previous_[q] = c;
-    }
+    static_assert(fx::kMaxDisparities <= 0xFFFF, "a label must fit the key's low half");
+    const int k = i;
+    Key* const slots = kept_.data();
+    update_kept(size_, k, plane, slots, slots + size_, slots + 2 * size_, slots + 3 * size_,
+                before_.data(), after_.data(), previous_.data());
     if (params_.left_right) {
         // Right pixel xr = x - d meets left pixel x at this label; planes arrive in increasing k,
         // so a strict comparison keeps the smaller k on ties.
@@ -67,13 +93,11 @@ void ValidatingSelector::update(const CostValue* plane, int i, int j) {
             const std::size_t row = static_cast<std::size_t>(y) * width_;
             const int x_begin = std::max(0, d);
             const int x_end = std::min(width_, width_ + d);
-            for (int x = x_begin; x < x_end; ++x) {
-                const std::size_t r = row + static_cast<std::size_t>(x - d);
-                const CostValue c = plane[row + static_cast<std::size_t>(x)];
-                if (c < right_cost_[r]) {
-                    right_cost_[r] = c;
-                    right_label_[r] = k;
-                }
+            if (x_end > x_begin) {
+                const std::size_t right_begin = row + static_cast<std::size_t>(x_begin - d);
+                update_right(static_cast<std::size_t>(x_end - x_begin), static_cast<std::uint16_t>(i),
+                             plane + row + static_cast<std::size_t>(x_begin),
+                             right_cost_.data() + right_begin, right_label_.data() + right_begin);
             }
         }
     }
@@ -84,14 +108,14 @@ ValidatedDisparity ValidatingSelector::result() const {
     for (int y = 0; y < height_; ++y) {
         for (int x = 0; x < width_; ++x) {
             const std::size_t q = out.index(x, y);
-            const CostValue* cost = &best_cost_[q * kKept];
-            const std::uint16_t* label = &best_label_[q * kKept];
-            const int winner = label[0];
-            const int c1 = cost[0];
+            const Key best = kept_[q];
+            const int winner = key_label(best);
+            const int c1 = key_cost(best);
             int c2 = fx::kNoSecondCost;
             for (int slot = 1; slot < kKept; ++slot) {
-                if (cost[slot] != kUnset && std::abs(label[slot] - winner) > 1) {
-                    c2 = cost[slot];
+                const Key candidate = kept_[static_cast<std::size_t>(slot) * size_ + q];
+                if (key_cost(candidate) != kUnset && std::abs(key_label(candidate) - winner) > 1) {
+                    c2 = key_cost(candidate);
                     break;
                 }
             }

@@ -1,6 +1,9 @@
 #include "stereo_robot/slam/motion.hpp"
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <cstring>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -159,6 +162,68 @@ Features detect_features(const cv::Mat& grey, const MotionParams& params) {
     return features;
 }
 
+namespace {
+
+// One descriptor row as 64-bit words, zero-padded (ORB's 32 bytes are four words).
+std::vector<std::uint64_t> pack_rows(const cv::Mat& descriptors, int words) {
+    std::vector<std::uint64_t> packed(static_cast<std::size_t>(descriptors.rows) * words, 0);
+    for (int row = 0; row < descriptors.rows; ++row) {
+        std::memcpy(&packed[static_cast<std::size_t>(row) * words], descriptors.ptr(row),
+                    static_cast<std::size_t>(descriptors.cols));
+    }
+    return packed;
+}
+
+}  // namespace
+
+std::vector<cv::DMatch> match_mutual_nearest(const cv::Mat& query, const cv::Mat& train) {
+    std::vector<cv::DMatch> matches;
+    if (query.empty() || train.empty()) {
+        return matches;
+    }
+    if (query.type() != CV_8UC1 || train.type() != CV_8UC1 || query.cols != train.cols) {
+        throw std::invalid_argument("binary descriptors must be CV_8U rows of equal length");
+    }
+    const int words = (query.cols + 7) / 8;
+    const std::vector<std::uint64_t> q = pack_rows(query, words);
+    const std::vector<std::uint64_t> t = pack_rows(train, words);
+    constexpr int kNone = std::numeric_limits<int>::max();
+    std::vector<int> query_best(static_cast<std::size_t>(query.rows), kNone);
+    std::vector<int> query_best_index(static_cast<std::size_t>(query.rows), -1);
+    std::vector<int> train_best(static_cast<std::size_t>(train.rows), kNone);
+    std::vector<int> train_best_index(static_cast<std::size_t>(train.rows), -1);
+    for (int i = 0; i < query.rows; ++i) {
+        const std::uint64_t* a = &q[static_cast<std::size_t>(i) * words];
+        int best = kNone;
+        int best_index = -1;
+        for (int j = 0; j < train.rows; ++j) {
+            const std::uint64_t* b = &t[static_cast<std::size_t>(j) * words];
+            int distance = 0;
+            for (int w = 0; w < words; ++w) {
+                distance += std::popcount(a[w] ^ b[w]);
+            }
+            // Strict comparisons: the lower index wins ties (i and j both ascend).
+            if (distance < best) {
+                best = distance;
+                best_index = j;
+            }
+            if (distance < train_best[static_cast<std::size_t>(j)]) {
+                train_best[static_cast<std::size_t>(j)] = distance;
+                train_best_index[static_cast<std::size_t>(j)] = i;
+            }
+        }
+        query_best[static_cast<std::size_t>(i)] = best;
+        query_best_index[static_cast<std::size_t>(i)] = best_index;
+    }
+    for (int i = 0; i < query.rows; ++i) {
+        const int j = query_best_index[static_cast<std::size_t>(i)];
+        if (j >= 0 && train_best_index[static_cast<std::size_t>(j)] == i) {
+            matches.emplace_back(i, j, static_cast<float>(query_best[static_cast<std::size_t>(i)]));
+        }
+    }
+    return matches;
+}
+
 double rotation_deg(const Eigen::Isometry3d& transform) {
     const Eigen::AngleAxisd angle_axis(transform.rotation());
     return std::abs(angle_axis.angle()) * 180.0 / std::numbers::pi;
@@ -246,8 +311,8 @@ MotionEstimate estimate_motion(const Features& previous, const SparseDisparity& 
     if (previous.descriptors.empty() || current.descriptors.empty()) {
         return refuse("no features");
     }
-    std::vector<cv::DMatch> matches;
-    cv::BFMatcher(cv::NORM_HAMMING, true).match(previous.descriptors, current.descriptors, matches);
+    const std::vector<cv::DMatch> matches =
+        match_mutual_nearest(previous.descriptors, current.descriptors);
     estimate.matches = static_cast<int>(matches.size());
 
     const double min_disparity = camera.focal * camera.baseline / params.max_depth;

@@ -3,6 +3,7 @@
 // selector that runs it over the 1-D search.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -60,6 +61,23 @@ class ValidatingSelector final : public Selector {
 
   private:
     static constexpr int kKept = 4;  // enough for the best outside the winner's neighbours
+    // A kept candidate as one ordered key, cost << 16 | k: planes arrive in increasing k, so
+    // comparing keys compares costs with ties to the smaller k, and keeping the list sorted is a
+    // branchless min/max network the compiler vectorises across pixels.
+    using Key = std::uint32_t;
+    static constexpr Key key(CostValue cost, int k) {
+        return static_cast<Key>(cost) << 16 | static_cast<Key>(k);
+    }
+    static constexpr CostValue key_cost(Key key) { return static_cast<CostValue>(key >> 16); }
+    static constexpr int key_label(Key key) { return static_cast<int>(key & 0xFFFFU); }
+    static void update_kept(std::size_t size, int k, const CostValue* __restrict costs,
+                            Key* __restrict slot0, Key* __restrict slot1, Key* __restrict slot2,
+                            Key* __restrict slot3, CostValue* __restrict before,
+                            CostValue* __restrict after, CostValue* __restrict previous);
+    // Right pixel r meets the left pixel r + d at label k: keeps its smallest cost and label.
+    static void update_right(std::size_t size, std::uint16_t label,
+                             const CostValue* __restrict costs, CostValue* __restrict right_cost,
+                             std::uint16_t* __restrict right_label);
     int width_;
     int height_;
     int ndisp_;
@@ -67,8 +85,7 @@ class ValidatingSelector final : public Selector {
     ValidationParams params_;
     InvalidBorder border_;
     std::size_t size_;
-    std::vector<CostValue> best_cost_;       // kKept per pixel, ascending (cost, k)
-    std::vector<std::uint16_t> best_label_;  // kKept per pixel
+    std::vector<Key> kept_;                  // kKept planes of size_ keys, ascending per pixel
     std::vector<CostValue> before_;          // cost at winner - 1
     std::vector<CostValue> after_;           // cost at winner + 1
     std::vector<CostValue> previous_;        // the previous plane
