@@ -13,9 +13,12 @@
 //
 // The left results (stereo_validate's register, one pixel behind the accumulators' input) pass
 // through a delay line of NDISP - 1 steps; then kR(x - m - k1) = hist[k1]. At the delay line's
-// input: certainty = floor(((C2 - C1) << 8) / (C2 + 1)) (stereo_divider) and the uniqueness test
-// C1 (100 + U) >= C2 100 (no C2: unique). At its output: the left-right test |k1 - kR| > T and the
-// reason, the first failing of border, uniqueness, left-right; fixed is 0 where invalid.
+// input: the uniqueness test C1 (100 + U) >= C2 100 (no C2: unique) and the certainty
+// floor(((C2 - C1) << 8) / (C2 + 1)), whose divider (stereo_divider) is pipelined beside the
+// first min(NDISP - 1, 3) places of the delay line, so its rows are split over up to four steps
+// at no extra latency (at one label the division stays combinational). At the line's output: the
+// left-right test |k1 - kR| > T and the reason, the first failing of border, uniqueness,
+// left-right; fixed is 0 where invalid.
 // Latency: NDISP pixel steps (the delay line and the output register), which is the output
 // register of stereo_top.
 `default_nettype none
@@ -102,15 +105,37 @@ module stereo_lr_check #(
   end
 
   // ---- left results: certainty and uniqueness, then the delay line ----------------------------
-  logic [fx_pkg::CERTAINTY_BITS-1:0] certainty;
+  // The divider's pipeline runs beside the delay line's first DIVIDER_STAGES - 1 places; its
+  // quotient then waits CERTAINTY_DELAY more steps to leave with its pixel.
+  localparam int DIVIDER_STAGES = (DELAY < 3 ? DELAY : 3) + 1;
+  localparam int CERTAINTY_DELAY = DELAY - (DIVIDER_STAGES - 1);
+  logic [fx_pkg::CERTAINTY_BITS-1:0] certainty;  // of the pixel DIVIDER_STAGES - 1 steps in
   stereo_divider #(
       .DIVISOR_BITS (BITS + 1),
-      .QUOTIENT_BITS(fx_pkg::CERTAINTY_BITS)
+      .QUOTIENT_BITS(fx_pkg::CERTAINTY_BITS),
+      .STAGES       (DIVIDER_STAGES)
   ) divider (
+      .clk(clk),
+      .ce(ce),
       .dividend((BITS + 1)'(in_second - in_cost)),
       .divisor((BITS + 1)'(in_second) + (BITS + 1)'(1)),
       .quotient(certainty)
   );
+  logic [fx_pkg::CERTAINTY_BITS-1:0] leaving_certainty;
+  generate
+    if (CERTAINTY_DELAY > 0) begin : g_certainty_delay
+      logic [fx_pkg::CERTAINTY_BITS-1:0] certainty_line[CERTAINTY_DELAY];
+      always_ff @(posedge clk) begin
+        if (ce) begin
+          certainty_line[0] <= certainty;
+          for (int i = 1; i < CERTAINTY_DELAY; i++) certainty_line[i] <= certainty_line[i-1];
+        end
+      end
+      assign leaving_certainty = certainty_line[CERTAINTY_DELAY-1];
+    end else begin : g_certainty_direct
+      assign leaving_certainty = certainty;
+    end
+  endgenerate
   logic not_unique;
   always_comb begin
     logic [PRODUCT_BITS-1:0] scaled_best, scaled_second;
@@ -127,17 +152,15 @@ module stereo_lr_check #(
     logic [DISP_BITS-1:0] label;
     logic border;
     logic not_unique;
-    logic [fx_pkg::CERTAINTY_BITS-1:0] certainty;
     logic signed [fx_pkg::FIXED_BITS-1:0] fixed;
   } result_t;
-  localparam int RESULT_BITS = DISP_BITS + 2 + fx_pkg::CERTAINTY_BITS + fx_pkg::FIXED_BITS;
+  localparam int RESULT_BITS = DISP_BITS + 2 + fx_pkg::FIXED_BITS;
   result_t entering, leaving;
   fx_pkg::coord_t leaving_x, leaving_y;
   always_comb begin
     entering.label = in_label;
     entering.border = in_border;
     entering.not_unique = not_unique;
-    entering.certainty = certainty;
     entering.fixed = in_fixed;
   end
 
@@ -200,7 +223,7 @@ module stereo_lr_check #(
     logic [DISP_BITS-1:0] distance;
     distance = (leaving.label >= right_label) ? leaving.label - right_label
                                               : right_label - leaving.label;
-    beat.certainty = leaving.certainty;
+    beat.certainty = leaving_certainty;
     beat.pad = '0;
     if (!leaving.border) beat.reason = fx_pkg::REASON_BITS'(fx_pkg::REASON_BORDER);
     else if (leaving.not_unique) beat.reason = fx_pkg::REASON_BITS'(fx_pkg::REASON_UNIQUENESS);

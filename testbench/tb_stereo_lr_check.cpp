@@ -7,6 +7,7 @@
 // frames of different sizes back to back.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <string>
 
@@ -215,10 +216,17 @@ void PrintTo(const Case& c, std::ostream* out) {
          << c.noise << " ce_low " << c.ce_low;
 }
 
+// The cases are written for 16 labels; a build with fewer searches what it has (cfg_ndisp is
+// clamped to NDISP in stereo_top), so the same cases run at any Verilated NDISP.
+Case within_build(Case c) {
+    c.config.ndisp = std::min(c.config.ndisp, kDisparities);
+    return c;
+}
+
 class Volumes : public ::testing::TestWithParam<Case> {};
 
 TEST_P(Volumes, EveryPixelEqualsTheNaiveReference) {
-    const Case c = GetParam();
+    const Case c = within_build(GetParam());
     const std::uint32_t seed = test_seed();
     std::mt19937 rng(seed);
     Driver driver(seed, c.ce_low);
@@ -231,7 +239,7 @@ TEST_P(Volumes, EveryPixelEqualsTheNaiveReference) {
             left_right += reason == fx::kReasonLeftRight ? 1 : 0;
         }
     }
-    if (c.config.validation.left_right && c.config.ndisp > 1 && c.noise > 300) {
+    if (c.config.validation.left_right && c.config.ndisp > 2 && c.noise > 300) {
         EXPECT_GT(left_right, 0U) << "the left-right check rejected nothing";
     }
 }
@@ -256,7 +264,8 @@ TEST(LrCheckFraming, BackToBackFrames) {
                           {17, 19, {8, 3, 1, {false, 10, true, 0, false}}, 6, 1500, 0},
                           {32, 12, {16, 0, 0, {true, 5, true, 3, true}}, 7, 2000, 0},
                           {6, 4, {4, -2, 0, {true, 10, true, 0, true}}, -1, 800, 0}};
-    for (const Case& c : cases) {
+    for (const Case& written : cases) {
+        const Case c = within_build(written);
         const Dsi volume = make_volume(c.width, c.height, c.config.min_disp, c.truth, c.noise, rng);
         EXPECT_TRUE(same_validated(expected(volume, c.config), driver.run(volume, c.config)))
             << ::testing::PrintToString(c);
