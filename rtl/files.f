@@ -15,3 +15,6 @@ stereo_lr_check.sv
 stereo_top.sv
 stereo_axil_top.sv
 stereo_synth_top.sv
+stereo_uart_rx.sv
+stereo_uart_tx.sv
+stereo_board_top.sv
