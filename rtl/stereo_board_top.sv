@@ -16,7 +16,7 @@
 //                        (fx_pkg::out_beat_t: fixed[7:0], fixed[15:8], reason, certainty)
 //   'R' (0x52) clear     resets the core and every sticky status bit, dropping the beats
 //                        still in the core (the way out of an abandoned frame)
-//                        reply: 0x5A, status
+//                        reply: 0x5A, status before the clear
 // Multi-byte fields are little-endian. Replies to 'I', 'C' and 'R' wait until every output beat
 // of the frames before has been sent, so they never interleave with a frame's beats; a new
 // command should wait for the reply of the one before, and a frame for the last beat of the
@@ -358,7 +358,8 @@ module stereo_board_top #(
                        (drained || reply_kind == REPLY_CLEAR);
   assign reply_last = reply_index == 5'(reply_kind == REPLY_ID ? ID_REPLY_BYTES - 1 :
                                                                   ACK_REPLY_BYTES - 1);
-  assign soft_reset = reply_taken && reply_kind == REPLY_CLEAR && reply_index == 0;
+  // The clear happens with the reply's last byte, so the reply shows the status before it.
+  assign soft_reset = reply_taken && reply_kind == REPLY_CLEAR && reply_last;
   assign status_byte = {
     2'b00, overrun, framing_error, protocol_error, core_status[2] | radius_clamped, core_status[1:0]
   };
@@ -402,7 +403,8 @@ module stereo_board_top #(
     end
   end
 
-  assign m_axis_tready = !beat_held && !soft_reset;  // a clear drops what the core holds
+  // The core's beats wait while a clear is answered (it then drops them with the core's reset).
+  assign m_axis_tready = !beat_held && reply_kind != REPLY_CLEAR;
 
   always_ff @(posedge clk) begin
     if (fifo_push) fifo[fifo_write[FIFO_BITS-1:0]] <= fifo_in;
