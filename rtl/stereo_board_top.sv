@@ -83,24 +83,17 @@ module stereo_board_top #(
     assert (TX_FIFO_DEPTH >= 2 && (1 << FIFO_BITS) == TX_FIFO_DEPTH);
     assert (WIDTH < 65536 && HEIGHT < 65536 && NDISP < 65536 && WINDOW < 256);
     assert (fx_pkg::DEFAULT_MAX_MIN_DISP < 256);
-    assert (POR_BITS >= 1);
   end
 
   // ---- reset: power-on counter, restarted by the button ----------------------------------------
-  logic [POR_BITS:0] por_count = '0;
-  logic button_meta = 1'b1;
-  logic button_sync = 1'b1;
   logic rst;
-  always_ff @(posedge clk) begin
-    button_meta <= button_n;
-    button_sync <= button_meta;
-    if (!button_sync) begin
-      por_count <= '0;
-    end else if (!por_count[POR_BITS]) begin
-      por_count <= por_count + 1'b1;
-    end
-  end
-  assign rst = !por_count[POR_BITS];
+  stereo_power_on_reset #(
+      .POR_BITS(POR_BITS)
+  ) power_on_reset (
+      .clk(clk),
+      .button_n(button_n),
+      .rst(rst)
+  );
 
   // ---- UART ------------------------------------------------------------------------------------
   logic [7:0] rx_data;

@@ -4,7 +4,8 @@
 // bit. Frames of a real crop (Aloe) and of random images, under random gaps between the host's
 // bytes, are compared beat for beat with stereo::match_validated; the identify reply, an
 // out-of-range configuration (clamped, status bit), the clear command, a garbage byte, a UART
-// framing error and an abandoned frame (idle timeout, then clear) are checked too.
+// framing error and an abandoned frame (idle timeout, then clear) are checked too; and the link
+// test build (stereo_uart_echo_top) echoes every byte.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -20,6 +21,7 @@
 #include <verilated_fst_c.h>
 
 #include "Vstereo_board_top.h"
+#include "Vstereo_uart_echo_top.h"
 #include "stereo/pipeline.hpp"
 #include "stereo/stage_table.hpp"
 #include "stereo_io/board_protocol.hpp"
@@ -39,14 +41,17 @@ constexpr int kClocksPerBit = kConfig.clks_per_bit;
 constexpr std::uint64_t kPowerOnClocks = 1U << 8;
 constexpr std::uint64_t kTimeoutClocks = static_cast<std::uint64_t>(kClocksPerBit) << 14;
 
-class BoardSim {
+// A Verilated board design (stereo_board_top, or its link test stereo_uart_echo_top) with the
+// host's UART on its pins.
+template <class Model>
+class UartSim {
   public:
-    explicit BoardSim(std::uint32_t seed = 1, double gap = 0.0)
-        : harness_("stereo_board_top"), rng_(seed), gap_(gap) {
+    explicit UartSim(std::uint32_t seed = 1, double gap = 0.0)
+        : harness_("board"), rng_(seed), gap_(gap) {
         if (const std::string path = tb::trace_path(); !path.empty()) {
             harness_.trace_to(path);
         }
-        Vstereo_board_top& m = harness_.model();
+        Model& m = harness_.model();
         m.uart_rx = 1;
         m.button_n = 1;
         idle(kPowerOnClocks + 10);
@@ -122,14 +127,14 @@ class BoardSim {
 
     // One clock: the host's transmitter sets uart_rx, the host's receiver samples uart_tx.
     void step() {
-        Vstereo_board_top& m = harness_.model();
+        Model& m = harness_.model();
         drive_line();
         harness_.tick();
         sample_line(m.uart_tx != 0);
     }
 
     void drive_line() {
-        Vstereo_board_top& m = harness_.model();
+        Model& m = harness_.model();
         if (!sending_) {
             if (to_board_.empty()) {
                 m.uart_rx = 1;
@@ -190,7 +195,7 @@ class BoardSim {
         }
     }
 
-    VerilatedHarness<Vstereo_board_top> harness_;
+    VerilatedHarness<Model> harness_;
     std::mt19937 rng_;
     double gap_;
     std::deque<Byte> to_board_;
@@ -204,6 +209,8 @@ class BoardSim {
     int host_framing_errors_ = 0;
     std::vector<std::uint8_t> received_;
 };
+
+using BoardSim = UartSim<Vstereo_board_top>;
 
 MatchParams board_params(int ndisp, bool use_ca) {
     return {ndisp, kConfig.window, fx::kDefaultSigma, use_ca};
@@ -356,6 +363,26 @@ TEST(BoardErrors, AbandonedFrameTimesOutAndClearRecovers) {
     EXPECT_EQ(board.identify().status, 0);
     EXPECT_TRUE(tb::same_validated(match_validated(left, right, params), board.frame(left, right)));
     EXPECT_EQ(board.identify().status, 0);
+}
+
+// The link test: every byte comes back, back to back and with gaps; a broken stop bit lights
+// the red LED.
+TEST(UartEcho, EveryByteComesBack) {
+    const std::uint32_t seed = tb::test_seed();
+    std::mt19937 rng(seed);
+    UartSim<Vstereo_uart_echo_top> echo(seed, 0.2);
+    std::vector<std::uint8_t> bytes(300);
+    for (std::uint8_t& byte : bytes) {
+        byte = static_cast<std::uint8_t>(rng());
+    }
+    echo.send(bytes);
+    EXPECT_EQ(echo.receive(bytes.size(), 20'000 * kClocksPerBit), bytes);
+    EXPECT_EQ(echo.host_framing_errors(), 0);
+    EXPECT_FALSE(echo.red_led());
+    echo.send({0x55}, false);
+    EXPECT_EQ(echo.receive(1, 40 * kClocksPerBit), std::vector<std::uint8_t>{0x55});
+    EXPECT_TRUE(echo.red_led());
+    EXPECT_EQ(echo.unexpected_bytes(), 0U);
 }
 
 }  // namespace

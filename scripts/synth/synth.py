@@ -296,6 +296,8 @@ def ice40_report(config, args, work):
 
 
 BOARD_TOP = "stereo_board_top"
+# The link test (UART echo, no core) with the same pins: `board --top stereo_uart_echo_top`.
+ECHO_TOP = "stereo_uart_echo_top"
 BOARD_PCF = Path(__file__).resolve().parent / "boards" / "icebreaker.pcf"
 BOARD_CLOCK_MHZ = 12.0  # the iCEBreaker's oscillator
 # Bytes on the UART per pixel (docs/board.md): 6 in (the pixel pair), 4 out (the beat); each
@@ -316,17 +318,23 @@ def board_uart_fps(config, baud):
 
 
 def board_report(config, args, work):
-    """stereo_board_top through synth_ice40, nextpnr-ice40 (UP5K sg48, the board's pins) and
-    icepack: resources, Fmax, and the .bin."""
+    """stereo_board_top (or the link test, args.top) through synth_ice40, nextpnr-ice40 (UP5K
+    sg48, the board's pins) and icepack: resources, Fmax, and the .bin. The link test has no
+    core: its config is None and it has no frame rates."""
+    top = args.top
+    if top == ECHO_TOP:
+        config = None
     device = ICE40_DEVICES["up5k"]
     work = Path(work or tempfile.mkdtemp(prefix="stereo_board_"))
     work.mkdir(parents=True, exist_ok=True)
     netlist, stat = work / "netlist.json", work / "stat.json"
     clks_per_bit = round(BOARD_CLOCK_MHZ * 1e6 / args.baud)
-    params = " ".join(f"-set {name} {value}" for name, value in (
-        ("WIDTH", config["width"]), ("HEIGHT", config["height"]), ("NDISP", config["ndisp"]),
-        ("WINDOW", config["window"]), ("CLKS_PER_BIT", clks_per_bit)))
-    read = f"read_verilog -sv {' '.join(rtl_sources())}; chparam {params} {BOARD_TOP}"
+    settings = [("CLKS_PER_BIT", clks_per_bit)]
+    if config is not None:
+        settings += [("WIDTH", config["width"]), ("HEIGHT", config["height"]),
+                     ("NDISP", config["ndisp"]), ("WINDOW", config["window"])]
+    params = " ".join(f"-set {name} {value}" for name, value in settings)
+    read = f"read_verilog -sv {' '.join(rtl_sources())}; chparam {params} {top}"
     finish = f"chformal -remove; opt_clean; write_json {netlist}; tee -q -o {stat} stat -json"
     spram = "-spram " if args.spram else ""
     dsp_threshold = None
@@ -334,17 +342,17 @@ def board_report(config, args, work):
         # synth_ice40 -dsp maps every multiplier; the UP5K has 8 SB_MAC16. Map the widest
         # products only, as many as fit (dsp_selection), the rest stay LUT logic.
         yosys_seconds, dsp_threshold, script = board_dsp_script(read, finish, spram, work,
-                                                                args.dsp_limit)
+                                                                args.dsp_limit, top)
         yosys_seconds += run_yosys(script, work / "yosys.log")
     else:
-        yosys_seconds = run_yosys(f"{read}; synth_ice40 {spram}-top {BOARD_TOP}; {finish}",
+        yosys_seconds = run_yosys(f"{read}; synth_ice40 {spram}-top {top}; {finish}",
                                   work / "yosys.log")
-    cells = read_stat_json_top(stat, BOARD_TOP)
+    cells = read_stat_json_top(stat, top)
     resources = resources_ice40(cells)
     resources["sprams"] = count(cells, r"SB_SPRAM256KA")
     report = {
         "target": "ice40_board", "board": "icebreaker", "device": "up5k",
-        "package": device["package"], "top": BOARD_TOP, "config": config,
+        "package": device["package"], "top": top, "config": config,
         "clock_mhz": BOARD_CLOCK_MHZ, "baud": round(BOARD_CLOCK_MHZ * 1e6 / clks_per_bit),
         "clks_per_bit": clks_per_bit, "pcf": str(BOARD_PCF), "resources": resources,
         "dsp_min_product_width": dsp_threshold,
@@ -394,9 +402,12 @@ def board_report(config, args, work):
             report["bin"] = str(binary.resolve())
             report["bin_bytes"] = binary.stat().st_size
     # The core's own rate at 12 MHz (one pixel per clock) and the UART's (the real limit).
-    core_fps, _ = throughput(config, BOARD_CLOCK_MHZ)
-    report["core_frames_per_second_at_12mhz"] = core_fps
-    report["uart_frames_per_second"] = board_uart_fps(config, report["baud"])
+    if config is None:
+        report["core_frames_per_second_at_12mhz"] = None
+        report["uart_frames_per_second"] = None
+    else:
+        report["core_frames_per_second_at_12mhz"] = throughput(config, BOARD_CLOCK_MHZ)[0]
+        report["uart_frames_per_second"] = board_uart_fps(config, report["baud"])
     return report
 
 
@@ -442,17 +453,17 @@ def dsp_selection(muls, limit):
     return None
 
 
-def board_dsp_script(read, finish, spram, work, limit):
+def board_dsp_script(read, finish, spram, work, limit, top=BOARD_TOP):
     """Runs synth_ice40 up to its DSP mapping, lists the multipliers, and returns (seconds, the
     Y width from which products go to SB_MAC16, the script that finishes the synthesis)."""
     dump, saved = work / "muls.il", work / "pre_dsp.il"
-    seconds = run_yosys(f"{read}; synth_ice40 {spram}-top {BOARD_TOP} -run begin:coarse; "
+    seconds = run_yosys(f"{read}; synth_ice40 {spram}-top {top} -run begin:coarse; "
                         f"{ICE40_COARSE_BEFORE_DSP}; tee -q -o {dump} dump t:$mul; "
                         f"write_rtlil {saved}", work / "yosys_coarse.log")
     threshold = dsp_selection(parse_mul_dump(dump.read_text()), limit)
     mapped = f"{ICE40_DSP_MAP} t:$mul r:Y_WIDTH>={threshold} %i; " if threshold else ""
     script = (f"read_rtlil {saved}; {mapped}{ICE40_COARSE_AFTER_DSP}; "
-              f"synth_ice40 {spram}-top {BOARD_TOP} -run map_ram:; {finish}")
+              f"synth_ice40 {spram}-top {top} -run map_ram:; {finish}")
     return seconds, threshold, script
 
 
@@ -475,7 +486,7 @@ def command_board(args):
     write_report(report, args.out)
     if not report["placed"]:
         reason = report.get("pnr_error") or "over the UP5K's capacity after synthesis"
-        message = f"{report['config']} does not fit the iCEBreaker: {reason}"
+        message = f"{report['config'] or report['top']} does not fit the iCEBreaker: {reason}"
         if not args.allow_no_fit:
             raise ReportError(message)
         progress(message)
@@ -885,7 +896,10 @@ def command_check(args):
     missing = [key for key in REQUIRED[target] if key not in report]
     if missing:
         raise ReportError(f"report lacks {', '.join(missing)}")
-    for key in ("width", "height", "ndisp", "window"):
+    link_test = target == "ice40_board" and report.get("top") == ECHO_TOP
+    if link_test and report["config"] is not None:
+        raise ReportError("the link test has no core, but the report has a config")
+    for key in () if link_test else ("width", "height", "ndisp", "window"):
         if not isinstance(report["config"].get(key), int):
             raise ReportError(f"config.{key} is not an integer")
     resources = report["resources"]
@@ -916,8 +930,8 @@ def command_check(args):
                               "bytes")
         if report["bin_bytes"] == 0:
             raise ReportError("the bitstream is empty")
-        if abs(board_uart_fps(report["config"], report["baud"]) -
-               report["uart_frames_per_second"]) > 1e-3:
+        if not link_test and abs(board_uart_fps(report["config"], report["baud"]) -
+                                 report["uart_frames_per_second"]) > 1e-3:
             raise ReportError("uart_frames_per_second does not follow from the baud and config")
     elif args.expect_placed:
         if not report.get("placed") or not isinstance(report.get("fmax_mhz"), (int, float)):
@@ -969,6 +983,9 @@ def main():
     board.add_argument("--baud", type=float, default=115200.0,
                        help="UART baud rate (CLKS_PER_BIT = 12 MHz / baud, rounded)")
     board.add_argument("--seed", type=int, default=1)
+    board.add_argument("--top", choices=[BOARD_TOP, ECHO_TOP], default=BOARD_TOP,
+                       help=f"{ECHO_TOP}: the link test (UART echo, no core; the size options "
+                       "are ignored)")
     board.add_argument("--dsp", action="store_true",
                        help="map the widest multipliers to SB_MAC16, at most --dsp-limit blocks")
     board.add_argument("--dsp-limit", type=int, default=ICE40_DEVICES["up5k"]["dsps"])

@@ -338,6 +338,17 @@ class Board(unittest.TestCase):
         with self.assertRaises(synth.ReportError):
             self.check(self.board_report(), expect_placed=True)
 
+    def test_link_test_report_has_no_config(self):
+        with tempfile.TemporaryDirectory() as folder:
+            binary = Path(folder) / "echo.bin"
+            binary.write_bytes(b"\xff" * 10)
+            echo = self.board_report(top=synth.ECHO_TOP, config=None, placed=True, fmax_mhz=70.0,
+                                     bin=str(binary), bin_bytes=10, pnr_error=None,
+                                     uart_frames_per_second=None)
+            self.check(echo, expect_placed=True)
+            with self.assertRaises(synth.ReportError):
+                self.check(dict(echo, config={"width": 1}), expect_placed=True)
+
     def test_placed_report_needs_its_bitstream(self):
         with tempfile.TemporaryDirectory() as folder:
             binary = Path(folder) / "board.bin"

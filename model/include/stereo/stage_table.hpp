@@ -157,12 +157,12 @@ constexpr int hls_pipeline_latency(int width, int window, int ndisp, int min_dis
 // The package first, then every module before its first user. One module per file, named after
 // it; the list of modules to lint is this list without the package.
 inline constexpr std::string_view kPackageFile = "fx_pkg.sv";
-inline constexpr std::array<std::string_view, 18> kRtlModules = {
-    "stereo_coord_reg",    "stereo_line_buffer",   "stereo_window3x3", "stereo_ca_plane",
-    "stereo_lcdm_convert", "stereo_lcdm_distance", "stereo_cost",      "stereo_aggregate",
-    "stereo_wta",          "stereo_divider",       "stereo_validate",  "stereo_lr_check",
-    "stereo_top",          "stereo_axil_top",      "stereo_synth_top", "stereo_uart_rx",
-    "stereo_uart_tx",      "stereo_board_top",
+inline constexpr std::array<std::string_view, 20> kRtlModules = {
+    "stereo_coord_reg",    "stereo_line_buffer",    "stereo_window3x3", "stereo_ca_plane",
+    "stereo_lcdm_convert", "stereo_lcdm_distance",  "stereo_cost",      "stereo_aggregate",
+    "stereo_wta",          "stereo_divider",        "stereo_validate",  "stereo_lr_check",
+    "stereo_top",          "stereo_axil_top",       "stereo_synth_top", "stereo_uart_rx",
+    "stereo_uart_tx",      "stereo_power_on_reset", "stereo_board_top", "stereo_uart_echo_top",
 };
 
 // ---- SoC wrapper (rtl/stereo_axil_top.sv, docs/integration.md) -------------------------------
@@ -204,7 +204,7 @@ inline constexpr Params kSmallLcdm{kSmall.width, kSmall.height, kSmall.ndisp, kS
 inline constexpr Params kSmallBoard{
     kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window, kUnset, kUnset, kUnset, kUnset, 4};
 
-inline constexpr std::array<VerilatedConfig, 14> kVerilatedConfigs = {{
+inline constexpr std::array<VerilatedConfig, 15> kVerilatedConfigs = {{
     {"Vstereo_top_small", "stereo_top", kSmall, ""},
     {"Vstereo_cost", "stereo_cost", {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset}, ""},
     {"Vstereo_top_lcdm", "stereo_top", kSmallLcdm, ""},
@@ -237,6 +237,11 @@ inline constexpr std::array<VerilatedConfig, 14> kVerilatedConfigs = {{
     {"Vstereo_axil_top", "stereo_axil_top", kSmall, ""},
     // The iCEBreaker top: UART protocol, configuration registers and stereo_top.
     {"Vstereo_board_top", "stereo_board_top", kSmallBoard, ""},
+    // Its link test (UART echo, no core) with the same UART speed.
+    {"Vstereo_uart_echo_top",
+     "stereo_uart_echo_top",
+     {kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, kSmallBoard.clks_per_bit},
+     ""},
     // Its C++ takes minutes to compile: only with -DSTEREO_COSIM_FULL=ON.
     {"Vstereo_top_full", "stereo_top", kFull, "STEREO_COSIM_FULL"},
 }};
