@@ -42,11 +42,12 @@ using namespace std::chrono_literals;
 
 // A board on a pseudo-terminal: the protocol of rtl/stereo_board_top.sv with the golden model
 // in place of the core, including its clamping of out-of-range configurations. `mute`: a device
-// that takes bytes and never answers.
+// that takes bytes and never answers. `stuck`: a board whose core an earlier host left inside a
+// frame: like the RTL, it answers nothing but the clear command until it has been cleared.
 class EmulatedBoard {
   public:
-    explicit EmulatedBoard(board::Identity identity, bool mute = false)
-        : identity_(identity), mute_(mute) {
+    explicit EmulatedBoard(board::Identity identity, bool mute = false, bool stuck = false)
+        : identity_(identity), mute_(mute), stuck_(stuck) {
         if (::openpty(&master_, &slave_, nullptr, nullptr, nullptr) != 0) {
             throw std::runtime_error("openpty failed");
         }
@@ -115,6 +116,9 @@ class EmulatedBoard {
                 return;
             case State::opcode:
                 state_ = State::header;
+                if (stuck_ && byte != board::kOpClear) {
+                    return;  // waits for beats that never come
+                }
                 if (byte == board::kOpIdentify) {
                     board::Identity identity = identity_;
                     identity.status = status_;
@@ -122,6 +126,7 @@ class EmulatedBoard {
                 } else if (byte == board::kOpClear) {
                     reply(board::ack_reply(status_));
                     status_ = 0;
+                    stuck_ = false;
                 } else if (byte == board::kOpConfigure) {
                     state_ = State::config;
                     payload_.clear();
@@ -181,6 +186,7 @@ class EmulatedBoard {
 
     board::Identity identity_;
     bool mute_;
+    bool stuck_;
     int master_ = -1;
     int slave_ = -1;
     std::string slave_path_;
@@ -417,6 +423,21 @@ TEST_F(BoardCli, JsonSummaryAndTheBoardsWindowByDefault) {
     EXPECT_EQ(summary["board"]["ndisp"], 12);
     EXPECT_EQ(summary["bytes_sent"], 2 + 14 + 2 + 6 * 32 * 24 + 2);
     EXPECT_GT(summary["valid_fraction"].get<double>(), 0.5);
+}
+
+// An earlier run stopped half way through a frame: the board answers only the clear command,
+// which `stereo board` sends when the identify command gets no answer.
+TEST_F(BoardCli, BoardLeftInsideAFrameIsClearedFirst) {
+    const EmulatedBoard device(small_board(), false, true);
+    const Outcome board =
+        run_stereo({"board", path("left.png"), path("right.png"), "--port", device.path(),
+                    "--ndisp", "12", "--timeout", "300", "-o", path("board.png")});
+    ASSERT_EQ(board.exit_code, 0) << board.err;
+    const Outcome match = run_stereo({"match", path("left.png"), path("right.png"), "--ndisp", "12",
+                                      "--window", "5", "-o", path("match.png")});
+    ASSERT_EQ(match.exit_code, 0) << match.err;
+    EXPECT_EQ(file_bytes(path("board.png")), file_bytes(path("match.png")));
+    EXPECT_EQ(device.frames(), 1);
 }
 
 TEST_F(BoardCli, ErrorsExitNonZeroWithOneLine) {

@@ -78,7 +78,16 @@ void run_board(const BoardOptions& options) {
 
     io::SerialPort port(options.port, options.baud);
     board::Client client(port, std::chrono::milliseconds(options.timeout_ms));
-    const board::Identity identity = client.identify();
+    // A board left inside an abandoned frame (an earlier run stopped half way) answers only the
+    // clear command: clear it and ask again; a board that answers neither is not there.
+    const board::Identity identity = [&client] {
+        try {
+            return client.identify();
+        } catch (const board::NoAnswer&) {
+            (void)client.clear();
+            return client.identify();
+        }
+    }();
     // The board's kernel is fixed: without --window the board's window is used; a --sigma other
     // than the default kernel's is refused.
     MatchParams& params = config.pipeline;

@@ -18,10 +18,10 @@ std::vector<std::uint8_t> Client::exchange(const std::vector<std::uint8_t>& comm
         received_ += reply.size();
         return reply;
     } catch (const io::SerialTimeout& timeout) {
-        throw std::runtime_error(std::string("the board did not answer the ") + what +
-                                 " command: " + timeout.what() +
-                                 "; is it an iCEBreaker flashed with stereo_board_top, at this "
-                                 "baud rate? (docs/board.md)");
+        throw NoAnswer(std::string("the board did not answer the ") + what +
+                       " command: " + timeout.what() +
+                       "; is it an iCEBreaker flashed with stereo_board_top, at this "
+                       "baud rate? (docs/board.md)");
     }
 }
 

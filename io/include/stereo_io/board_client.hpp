@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <stdexcept>
 
 #include "stereo/image.hpp"
 #include "stereo/validated.hpp"
@@ -13,13 +14,20 @@
 
 namespace stereo::board {
 
+// The board did not answer a command within the timeout.
+class NoAnswer : public std::runtime_error {
+  public:
+    using std::runtime_error::runtime_error;
+};
+
 class Client {
   public:
     // `timeout`: the longest silence of the board inside a command's reply.
     Client(io::SerialPort& port, std::chrono::milliseconds timeout);
 
-    // The identify reply; throws std::runtime_error when the board does not answer (naming the
-    // port) or answers with another ID than fx_pkg::REGMAP_ID.
+    // The identify reply; throws NoAnswer when the board does not answer (naming the port),
+    // std::runtime_error when it answers with another ID than fx_pkg::REGMAP_ID. A board whose
+    // core was left inside an abandoned frame answers only clear() (docs/board.md).
     Identity identify();
     // Writes the configuration registers; returns the status of the acknowledgement.
     std::uint8_t configure(const Config& config);
