@@ -15,3 +15,8 @@ stereo_lr_check.sv
 stereo_top.sv
 stereo_axil_top.sv
 stereo_synth_top.sv
+stereo_uart_rx.sv
+stereo_uart_tx.sv
+stereo_power_on_reset.sv
+stereo_board_top.sv
+stereo_uart_echo_top.sv

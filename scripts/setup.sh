@@ -11,6 +11,7 @@ packages=(
   libyaml-cpp-dev                  # EuRoC rectification YAML (robot/src/slam/dataset.cpp)
   verilator zlib1g-dev yosys       # RTL co-simulation (FST traces need zlib), synthesis check
   nextpnr-ice40 python3            # place and route, synthesis reports (scripts/synth/synth.py)
+  fpga-icestorm                    # icepack / iceprog: the iCEBreaker bitstream (docs/board.md)
   clang-format
   clang                            # libFuzzer harnesses (fuzz/, scripts/fuzz.sh)
   pybind11-dev python3-dev         # the Python module (python/)

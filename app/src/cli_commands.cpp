@@ -24,6 +24,7 @@ void add_stereo_commands(CLI::App& app) {
     add_slam_command(app);
     add_quad_command(app);
     add_cloud_command(app);
+    add_board_command(app);
 }
 
 }  // namespace stereo::cli

@@ -3,6 +3,8 @@
 
 Subcommands (each writes one JSON report; run with -h for the options):
   ice40     Yosys synth_ice40 + nextpnr-ice40 place and route: resources and Fmax.
+  board     the iCEBreaker build of stereo_board_top: synth_ice40, nextpnr-ice40 on the UP5K
+            with the board's pins (boards/icebreaker.pcf), icepack to a flashable .bin.
   estimate  Yosys synth_xilinx (7-series) or synth_ecp5 resource estimate, no place and route.
   fit       the largest configuration that places and routes on an iCE40 device.
   sweep     estimates over a list of configurations, one JSON with every point.
@@ -10,7 +12,8 @@ Subcommands (each writes one JSON report; run with -h for the options):
   table     markdown tables of sweeps and estimate reports (docs/synthesis.md).
   check     validates a report's fields (used by the ctest of label `synth`).
 
-Only the Python standard library is used. Tools: yosys, nextpnr-ice40 (Debian packages).
+Only the Python standard library is used. Tools: yosys, nextpnr-ice40, and icepack for `board`
+(Debian packages yosys, nextpnr-ice40, fpga-icestorm).
 """
 import argparse
 import json
@@ -289,6 +292,204 @@ def ice40_report(config, args, work):
     fps, mdes = throughput(config, report["fmax_mhz"])
     report["frames_per_second"] = fps
     report["mde_per_second"] = mdes
+    return report
+
+
+BOARD_TOP = "stereo_board_top"
+# The link test (UART echo, no core) with the same pins: `board --top stereo_uart_echo_top`.
+ECHO_TOP = "stereo_uart_echo_top"
+BOARD_PCF = Path(__file__).resolve().parent / "boards" / "icebreaker.pcf"
+BOARD_CLOCK_MHZ = 12.0  # the iCEBreaker's oscillator
+# Bytes on the UART per pixel (docs/board.md): 6 in (the pixel pair), 4 out (the beat); each
+# byte is 10 bit times (8N1). Input and output overlap (full duplex), so the input sets the rate.
+BOARD_BYTES_IN_PER_PIXEL = 6
+BOARD_BYTES_OUT_PER_PIXEL = 4
+
+
+def board_uart_fps(config, baud):
+    """Frames per second the UART allows: the frame's input bytes at `baud` (8N1), plus its
+    command (2 bytes) and the pipeline's tail of output beats after the last input pixel."""
+    pixels = config["width"] * config["height"]
+    r = config["window"] // 2
+    tail = (r + 2) * config["width"] + r + 11 + config["ndisp"]
+    bits = 10 * (2 + BOARD_BYTES_IN_PER_PIXEL * pixels + BOARD_BYTES_OUT_PER_PIXEL * min(tail,
+                                                                                          pixels))
+    return round(baud / bits, 3)
+
+
+def board_report(config, args, work):
+    """stereo_board_top (or the link test, args.top) through synth_ice40, nextpnr-ice40 (UP5K
+    sg48, the board's pins) and icepack: resources, Fmax, and the .bin. The link test has no
+    core: its config is None and it has no frame rates."""
+    top = args.top
+    if top == ECHO_TOP:
+        config = None
+    device = ICE40_DEVICES["up5k"]
+    work = Path(work or tempfile.mkdtemp(prefix="stereo_board_"))
+    work.mkdir(parents=True, exist_ok=True)
+    netlist, stat = work / "netlist.json", work / "stat.json"
+    clks_per_bit = round(BOARD_CLOCK_MHZ * 1e6 / args.baud)
+    settings = [("CLKS_PER_BIT", clks_per_bit)]
+    if config is not None:
+        settings += [("WIDTH", config["width"]), ("HEIGHT", config["height"]),
+                     ("NDISP", config["ndisp"]), ("WINDOW", config["window"])]
+    params = " ".join(f"-set {name} {value}" for name, value in settings)
+    read = f"read_verilog -sv {' '.join(rtl_sources())}; chparam {params} {top}"
+    finish = f"chformal -remove; opt_clean; write_json {netlist}; tee -q -o {stat} stat -json"
+    spram = "-spram " if args.spram else ""
+    dsp_threshold = None
+    if args.dsp:
+        # synth_ice40 -dsp maps every multiplier; the UP5K has 8 SB_MAC16. Map the widest
+        # products only, as many as fit (dsp_selection), the rest stay LUT logic.
+        yosys_seconds, dsp_threshold, script = board_dsp_script(read, finish, spram, work,
+                                                                args.dsp_limit, top)
+        yosys_seconds += run_yosys(script, work / "yosys.log")
+    else:
+        yosys_seconds = run_yosys(f"{read}; synth_ice40 {spram}-top {top}; {finish}",
+                                  work / "yosys.log")
+    cells = read_stat_json_top(stat, top)
+    resources = resources_ice40(cells)
+    resources["sprams"] = count(cells, r"SB_SPRAM256KA")
+    report = {
+        "target": "ice40_board", "board": "icebreaker", "device": "up5k",
+        "package": device["package"], "top": top, "config": config,
+        "clock_mhz": BOARD_CLOCK_MHZ, "baud": round(BOARD_CLOCK_MHZ * 1e6 / clks_per_bit),
+        "clks_per_bit": clks_per_bit, "pcf": str(BOARD_PCF), "resources": resources,
+        "dsp_min_product_width": dsp_threshold,
+        "capacity": {k: device[k] for k in ("luts", "brams", "dsps")} | {"sprams": 4},
+        "yosys_seconds": round(yosys_seconds, 1),
+        "tools": {"yosys": tool_version(["yosys", "-V"]),
+                  "nextpnr": tool_version(["nextpnr-ice40", "--version"]),
+                  "icepack": "icepack (fpga-icestorm)"},
+    }
+    fits = (resources["luts"] <= device["luts"] and resources["brams"] <= device["brams"] and
+            resources["dsps"] <= device["dsps"] and resources["sprams"] <= 4)
+    report["fits_after_synthesis"] = fits
+    report["placed"] = False
+    report["fmax_mhz"] = None
+    report["bin"] = None
+    report["bin_bytes"] = None
+    if fits:
+        start = time.monotonic()
+        asc, pnr_json, log_path = work / "board.asc", work / "nextpnr.json", work / "nextpnr.log"
+        progress(f"nextpnr-ice40 running (log {log_path})")
+        result = subprocess.run(
+            ["nextpnr-ice40", "--up5k", "--package", device["package"], "--json", str(netlist),
+             "--pcf", str(BOARD_PCF), "--asc", str(asc), "--freq", str(BOARD_CLOCK_MHZ),
+             "--seed", str(args.seed), "--report", str(pnr_json), "--quiet",
+             "--log", str(log_path)],
+            capture_output=True, text=True)
+        report["nextpnr_seconds"] = round(time.monotonic() - start, 1)
+        log = log_path.read_text() if log_path.exists() else ""
+        demand = re.search(r"ICESTORM_LC:\s+(\d+)/\s*(\d+)", log)
+        report["logic_cells"] = int(demand.group(1)) if demand else None
+        report["logic_cells_capacity"] = int(demand.group(2)) if demand else None
+        if result.returncode != 0:
+            errors = [line for line in (log + result.stderr).splitlines() if "ERROR" in line]
+            report["pnr_error"] = (errors or result.stderr.strip().splitlines() or ["failed"])[0]
+        else:
+            report["placed"] = True
+            fmax, critical = parse_nextpnr_log(log)
+            report["fmax_mhz"] = fmax
+            report["meets_12mhz"] = fmax is not None and fmax >= BOARD_CLOCK_MHZ
+            report["critical_path"] = critical
+            report["utilisation"] = json.loads(pnr_json.read_text()).get("utilization", {})
+            binary = Path(args.bin) if args.bin else work / "stereo_board.bin"
+            packed = subprocess.run(["icepack", str(asc), str(binary)], capture_output=True,
+                                    text=True)
+            if packed.returncode != 0:
+                raise ReportError(f"icepack failed: {packed.stderr.strip()}")
+            report["bin"] = str(binary.resolve())
+            report["bin_bytes"] = binary.stat().st_size
+    # The core's own rate at 12 MHz (one pixel per clock) and the UART's (the real limit).
+    if config is None:
+        report["core_frames_per_second_at_12mhz"] = None
+        report["uart_frames_per_second"] = None
+    else:
+        report["core_frames_per_second_at_12mhz"] = throughput(config, BOARD_CLOCK_MHZ)[0]
+        report["uart_frames_per_second"] = board_uart_fps(config, report["baud"])
+    return report
+
+
+# synth_ice40's coarse step up to its DSP mapping (Yosys 0.23, `help synth_ice40`), and after it.
+ICE40_COARSE_BEFORE_DSP = ("opt_expr; opt_clean; check; opt -nodffe -nosdff; fsm; opt; wreduce; "
+                           "peepopt; opt_clean; share; techmap -map +/cmp2lut.v -D LUT_WIDTH=4; "
+                           "opt_expr; opt_clean; memory_dff; wreduce t:$mul")
+ICE40_DSP_MAP = ("techmap -map +/mul2dsp.v -map +/ice40/dsp_map.v -D DSP_A_MAXWIDTH=16 "
+                 "-D DSP_B_MAXWIDTH=16 -D DSP_A_MINWIDTH=2 -D DSP_B_MINWIDTH=2 "
+                 "-D DSP_Y_MINWIDTH=11 -D DSP_NAME=$__MUL16X16")
+# The products left out stay $__soft_mul through ice40_dsp (which would map any $mul).
+ICE40_COARSE_AFTER_DSP = ("select a:mul2dsp; setattr -unset mul2dsp; opt_expr -fine; wreduce; "
+                          "select -clear; chtype -set $__soft_mul t:$mul; ice40_dsp; "
+                          "chtype -set $mul t:$__soft_mul; alumacc; opt; memory -nomap; opt_clean")
+
+
+def parse_mul_dump(text):
+    """(A_WIDTH, B_WIDTH, Y_WIDTH) of every $mul cell in an RTLIL `dump`."""
+    cells, current = [], None
+    for line in text.splitlines():
+        words = line.split()
+        if words[:2] == ["cell", "$mul"]:
+            current = {}
+        elif current is not None and words[:1] == ["parameter"] and len(words) == 3:
+            current[words[1].lstrip("\\")] = int(words[2])
+        elif current is not None and words[:1] == ["end"]:
+            cells.append((current.get("A_WIDTH", 0), current.get("B_WIDTH", 0),
+                          current.get("Y_WIDTH", 0)))
+            current = None
+    return cells
+
+
+def dsp_selection(muls, limit):
+    """The smallest Y width w such that the multipliers with Y_WIDTH >= w need at most `limit`
+    SB_MAC16 (a 16x16 block each: ceil(A/16) * ceil(B/16); products under 11 bits stay in LUTs
+    as with synth_ice40 -dsp), or None when not even the widest fits."""
+    def blocks(a, b):
+        return -(-a // 16) * -(-b // 16)
+    eligible = [m for m in muls if m[2] >= 11 and m[0] >= 2 and m[1] >= 2]
+    for width in sorted({m[2] for m in eligible}):
+        if sum(blocks(a, b) for a, b, y in eligible if y >= width) <= limit:
+            return width
+    return None
+
+
+def board_dsp_script(read, finish, spram, work, limit, top=BOARD_TOP):
+    """Runs synth_ice40 up to its DSP mapping, lists the multipliers, and returns (seconds, the
+    Y width from which products go to SB_MAC16, the script that finishes the synthesis)."""
+    dump, saved = work / "muls.il", work / "pre_dsp.il"
+    seconds = run_yosys(f"{read}; synth_ice40 {spram}-top {top} -run begin:coarse; "
+                        f"{ICE40_COARSE_BEFORE_DSP}; tee -q -o {dump} dump t:$mul; "
+                        f"write_rtlil {saved}", work / "yosys_coarse.log")
+    threshold = dsp_selection(parse_mul_dump(dump.read_text()), limit)
+    mapped = f"{ICE40_DSP_MAP} t:$mul r:Y_WIDTH>={threshold} %i; " if threshold else ""
+    script = (f"read_rtlil {saved}; {mapped}{ICE40_COARSE_AFTER_DSP}; "
+              f"synth_ice40 {spram}-top {top} -run map_ram:; {finish}")
+    return seconds, threshold, script
+
+
+def read_stat_json_top(path, top):
+    """Cell counts of the whole design under `top` (read_stat_json for another top)."""
+    data = load_stat_json(path)
+    if "design" in data:
+        return data["design"].get("num_cells_by_type", {})
+    modules = data["modules"]
+    if len(modules) == 1:
+        return next(iter(modules.values())).get("num_cells_by_type", {})
+    for key in (top, "\\" + top):
+        if key in modules:
+            return hierarchy_totals(modules)[key]
+    raise ReportError(f"stat -json: no module {top} in {path}")
+
+
+def command_board(args):
+    report = board_report(config_from_args(args), args, args.work)
+    write_report(report, args.out)
+    if not report["placed"]:
+        reason = report.get("pnr_error") or "over the UP5K's capacity after synthesis"
+        message = f"{report['config'] or report['top']} does not fit the iCEBreaker: {reason}"
+        if not args.allow_no_fit:
+            raise ReportError(message)
+        progress(message)
     return report
 
 
@@ -677,6 +878,9 @@ def write_report(report, out):
 
 
 REQUIRED = {
+    "ice40_board": ["target", "board", "device", "config", "resources", "fits_after_synthesis",
+                    "placed", "fmax_mhz", "bin", "bin_bytes", "baud", "uart_frames_per_second",
+                    "tools"],
     "ice40": ["target", "device", "config", "resources", "fits_after_synthesis", "placed",
               "fmax_mhz", "frames_per_second", "mde_per_second", "tools"],
     "xilinx": ["target", "config", "resources", "tools"],
@@ -692,7 +896,10 @@ def command_check(args):
     missing = [key for key in REQUIRED[target] if key not in report]
     if missing:
         raise ReportError(f"report lacks {', '.join(missing)}")
-    for key in ("width", "height", "ndisp", "window"):
+    link_test = target == "ice40_board" and report.get("top") == ECHO_TOP
+    if link_test and report["config"] is not None:
+        raise ReportError("the link test has no core, but the report has a config")
+    for key in () if link_test else ("width", "height", "ndisp", "window"):
         if not isinstance(report["config"].get(key), int):
             raise ReportError(f"config.{key} is not an integer")
     resources = report["resources"]
@@ -704,7 +911,29 @@ def command_check(args):
     if args.expect_bram and resources["brams"] == 0:
         raise ReportError("the line buffers were not mapped to block RAM")
     check_stages(report)
-    if args.expect_placed:
+    if target == "ice40_board" and not report["placed"]:
+        over = not report["fits_after_synthesis"] or (
+            isinstance(report.get("logic_cells"), int) and
+            report["logic_cells"] > report.get("logic_cells_capacity", 0))
+        if not report.get("pnr_error") and report["fits_after_synthesis"]:
+            raise ReportError("the board did not place, and the report does not say why")
+        if report["fits_after_synthesis"] and not over:
+            raise ReportError("the board did not place but the logic cells are under capacity")
+        if report["bin"] is not None or report["fmax_mhz"] is not None:
+            raise ReportError("an unplaced board report has a bitstream or an Fmax")
+    if target == "ice40_board" and args.expect_placed:
+        if not report.get("placed") or not isinstance(report.get("fmax_mhz"), (int, float)):
+            raise ReportError("the board was not placed and routed, or has no Fmax")
+        binary = Path(report["bin"] or "")
+        if not binary.is_file() or binary.stat().st_size != report["bin_bytes"]:
+            raise ReportError(f"the bitstream {binary} is missing or not {report['bin_bytes']} "
+                              "bytes")
+        if report["bin_bytes"] == 0:
+            raise ReportError("the bitstream is empty")
+        if not link_test and abs(board_uart_fps(report["config"], report["baud"]) -
+                                 report["uart_frames_per_second"]) > 1e-3:
+            raise ReportError("uart_frames_per_second does not follow from the baud and config")
+    elif args.expect_placed:
         if not report.get("placed") or not isinstance(report.get("fmax_mhz"), (int, float)):
             raise ReportError("the design was not placed and routed, or has no Fmax")
         fps, _ = throughput(report["config"], report["fmax_mhz"])
@@ -749,6 +978,23 @@ def main():
     ice40.add_argument("--dsp", action="store_true", help="map multipliers to SB_MAC16")
     ice40.add_argument("--no-pnr", action="store_true", help="synthesis only")
     ice40.set_defaults(handler=command_ice40)
+    board = sub.add_parser("board", help="iCEBreaker: stereo_board_top to a flashable .bin")
+    add_config_arguments(board, width=32, height=24, ndisp=1, window=3)
+    board.add_argument("--baud", type=float, default=115200.0,
+                       help="UART baud rate (CLKS_PER_BIT = 12 MHz / baud, rounded)")
+    board.add_argument("--seed", type=int, default=1)
+    board.add_argument("--top", choices=[BOARD_TOP, ECHO_TOP], default=BOARD_TOP,
+                       help=f"{ECHO_TOP}: the link test (UART echo, no core; the size options "
+                       "are ignored)")
+    board.add_argument("--dsp", action="store_true",
+                       help="map the widest multipliers to SB_MAC16, at most --dsp-limit blocks")
+    board.add_argument("--dsp-limit", type=int, default=ICE40_DEVICES["up5k"]["dsps"])
+    board.add_argument("--spram", action="store_true",
+                       help="let synth_ice40 map memories to SB_SPRAM256KA")
+    board.add_argument("--bin", help="bitstream path (default: <work>/stereo_board.bin)")
+    board.add_argument("--allow-no-fit", action="store_true",
+                       help="exit 0 with the report when the design does not place")
+    board.set_defaults(handler=command_board)
     fit = sub.add_parser("fit", help="most disparities that place and route on an iCE40")
     add_config_arguments(fit, ndisp=1)
     fit.add_argument("--device", choices=sorted(ICE40_DEVICES), default="hx8k")

@@ -266,5 +266,102 @@ class Configs(unittest.TestCase):
                 synth.config_from_args(args)
 
 
+# An RTLIL `dump` of three $mul cells as Yosys writes it (the connections elided).
+MUL_DUMP = """
+  attribute \\src "rtl/a.sv:1"
+  cell $mul $flatten\\core.$mul$a
+    parameter \\A_SIGNED 0
+    parameter \\A_WIDTH 14
+    parameter \\B_SIGNED 0
+    parameter \\B_WIDTH 17
+    parameter \\Y_WIDTH 31
+    connect \\A \\x
+  end
+  cell $mul $flatten\\core.$mul$b
+    parameter \\A_WIDTH 20
+    parameter \\B_WIDTH 4
+    parameter \\Y_WIDTH 24
+  end
+  cell $mul $flatten\\core.$mul$c
+    parameter \\A_WIDTH 8
+    parameter \\B_WIDTH 2
+    parameter \\Y_WIDTH 10
+  end
+"""
+
+
+class Board(unittest.TestCase):
+    def test_mul_dump(self):
+        self.assertEqual(synth.parse_mul_dump(MUL_DUMP), [(14, 17, 31), (20, 4, 24), (8, 2, 10)])
+
+    def test_dsp_selection(self):
+        muls = synth.parse_mul_dump(MUL_DUMP)
+        # 14x17 needs 1 * 2 blocks of 16x16, 20x4 needs 2 * 1; the 10-bit product stays in LUTs.
+        self.assertEqual(synth.dsp_selection(muls, 4), 24)
+        self.assertEqual(synth.dsp_selection(muls, 3), 31)
+        self.assertEqual(synth.dsp_selection(muls, 2), 31)
+        self.assertIsNone(synth.dsp_selection(muls, 1))
+
+    def test_uart_frame_rate(self):
+        # 8x4, window 3, 1 label: 32 pixels of 6 bytes, a 2-byte command, and the pipeline's
+        # tail: (1 + 2) * 8 + 1 + 11 + 1 = 37 beats, more than the 32 pixels, so 32 of 4 bytes.
+        # (2 + 192 + 128) bytes * 10 bits at 9600 baud: 9600 / 3220 frames per second.
+        config = {"width": 8, "height": 4, "ndisp": 1, "window": 3}
+        self.assertAlmostEqual(synth.board_uart_fps(config, 9600), round(9600 / 3220, 3))
+
+    def board_report(self, **fields):
+        report = {"target": "ice40_board", "board": "icebreaker", "device": "up5k",
+                  "config": {"width": 16, "height": 8, "ndisp": 1, "window": 1},
+                  "resources": {"luts": 4000, "ffs": 1500, "brams": 4, "dsps": 0},
+                  "fits_after_synthesis": True, "placed": False, "fmax_mhz": None, "bin": None,
+                  "bin_bytes": None, "baud": 115385, "uart_frames_per_second": 1.0,
+                  "tools": {}, "pnr_error": "ERROR: Failed to expand region",
+                  "logic_cells": 7000, "logic_cells_capacity": 5280}
+        report.update(fields)
+        return report
+
+    def check(self, report, expect_placed=False):
+        with tempfile.TemporaryDirectory() as folder:
+            path = Path(folder) / "board.json"
+            path.write_text(json.dumps(report))
+            synth.command_check(SimpleNamespace(report=str(path), expect_bram=False,
+                                                expect_placed=expect_placed))
+
+    def test_unplaced_report_must_say_why(self):
+        self.check(self.board_report())
+        with self.assertRaises(synth.ReportError):
+            self.check(self.board_report(pnr_error=None))
+        with self.assertRaises(synth.ReportError):
+            self.check(self.board_report(logic_cells=5000))
+        with self.assertRaises(synth.ReportError):
+            self.check(self.board_report(fmax_mhz=20.0))
+        with self.assertRaises(synth.ReportError):
+            self.check(self.board_report(), expect_placed=True)
+
+    def test_link_test_report_has_no_config(self):
+        with tempfile.TemporaryDirectory() as folder:
+            binary = Path(folder) / "echo.bin"
+            binary.write_bytes(b"\xff" * 10)
+            echo = self.board_report(top=synth.ECHO_TOP, config=None, placed=True, fmax_mhz=70.0,
+                                     bin=str(binary), bin_bytes=10, pnr_error=None,
+                                     uart_frames_per_second=None)
+            self.check(echo, expect_placed=True)
+            with self.assertRaises(synth.ReportError):
+                self.check(dict(echo, config={"width": 1}), expect_placed=True)
+
+    def test_placed_report_needs_its_bitstream(self):
+        with tempfile.TemporaryDirectory() as folder:
+            binary = Path(folder) / "board.bin"
+            binary.write_bytes(b"\xff" * 100)
+            config = {"width": 16, "height": 8, "ndisp": 1, "window": 1}
+            placed = self.board_report(placed=True, fmax_mhz=25.0, bin=str(binary),
+                                       bin_bytes=100, pnr_error=None, config=config,
+                                       uart_frames_per_second=synth.board_uart_fps(config,
+                                                                                   115385))
+            self.check(placed, expect_placed=True)
+            with self.assertRaises(synth.ReportError):
+                self.check(dict(placed, bin_bytes=99), expect_placed=True)
+
+
 if __name__ == "__main__":
     unittest.main()

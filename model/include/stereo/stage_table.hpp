@@ -157,11 +157,12 @@ constexpr int hls_pipeline_latency(int width, int window, int ndisp, int min_dis
 // The package first, then every module before its first user. One module per file, named after
 // it; the list of modules to lint is this list without the package.
 inline constexpr std::string_view kPackageFile = "fx_pkg.sv";
-inline constexpr std::array<std::string_view, 15> kRtlModules = {
-    "stereo_coord_reg",    "stereo_line_buffer",   "stereo_window3x3", "stereo_ca_plane",
-    "stereo_lcdm_convert", "stereo_lcdm_distance", "stereo_cost",      "stereo_aggregate",
-    "stereo_wta",          "stereo_divider",       "stereo_validate",  "stereo_lr_check",
-    "stereo_top",          "stereo_axil_top",      "stereo_synth_top",
+inline constexpr std::array<std::string_view, 20> kRtlModules = {
+    "stereo_coord_reg",    "stereo_line_buffer",    "stereo_window3x3", "stereo_ca_plane",
+    "stereo_lcdm_convert", "stereo_lcdm_distance",  "stereo_cost",      "stereo_aggregate",
+    "stereo_wta",          "stereo_divider",        "stereo_validate",  "stereo_lr_check",
+    "stereo_top",          "stereo_axil_top",       "stereo_synth_top", "stereo_uart_rx",
+    "stereo_uart_tx",      "stereo_power_on_reset", "stereo_board_top", "stereo_uart_echo_top",
 };
 
 // ---- SoC wrapper (rtl/stereo_axil_top.sv, docs/integration.md) -------------------------------
@@ -182,6 +183,7 @@ struct Params {
     int rule = kUnset;          // stereo_ca_plane's RULE
     int max_min_disp = kUnset;  // stereo_top's and stereo_cost's MAX_MIN_DISP
     int cost = kUnset;          // stereo_top's and stereo_cost's COST: 0 AD, 1 LCDM
+    int clks_per_bit = kUnset;  // the UART's CLKS_PER_BIT (stereo_board_top)
 };
 
 struct VerilatedConfig {
@@ -197,7 +199,12 @@ inline constexpr Params kFull{640, 480, 64, 11, kUnset};
 inline constexpr Params kSmallLcdm{kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window,
                                    kUnset,       kUnset,        kUnset,       1};
 
-inline constexpr std::array<VerilatedConfig, 13> kVerilatedConfigs = {{
+// The iCEBreaker top (rtl/stereo_board_top.sv, docs/board.md) at the co-simulation point, with
+// a UART of 4 clocks per bit so that a frame simulates in a few seconds.
+inline constexpr Params kSmallBoard{
+    kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window, kUnset, kUnset, kUnset, kUnset, 4};
+
+inline constexpr std::array<VerilatedConfig, 15> kVerilatedConfigs = {{
     {"Vstereo_top_small", "stereo_top", kSmall, ""},
     {"Vstereo_cost", "stereo_cost", {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset}, ""},
     {"Vstereo_top_lcdm", "stereo_top", kSmallLcdm, ""},
@@ -228,6 +235,13 @@ inline constexpr std::array<VerilatedConfig, 13> kVerilatedConfigs = {{
     {"Vstereo_lr_check", "stereo_lr_check", {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset}, ""},
     // The SoC wrapper (AXI4-Lite registers around stereo_top) at the co-simulation point.
     {"Vstereo_axil_top", "stereo_axil_top", kSmall, ""},
+    // The iCEBreaker top: UART protocol, configuration registers and stereo_top.
+    {"Vstereo_board_top", "stereo_board_top", kSmallBoard, ""},
+    // Its link test (UART echo, no core) with the same UART speed.
+    {"Vstereo_uart_echo_top",
+     "stereo_uart_echo_top",
+     {kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, kSmallBoard.clks_per_bit},
+     ""},
     // Its C++ takes minutes to compile: only with -DSTEREO_COSIM_FULL=ON.
     {"Vstereo_top_full", "stereo_top", kFull, "STEREO_COSIM_FULL"},
 }};
@@ -250,7 +264,7 @@ struct LintConfig {
     Params params;
 };
 
-inline constexpr std::array<LintConfig, 10> kExtraLintConfigs = {{
+inline constexpr std::array<LintConfig, 11> kExtraLintConfigs = {{
     // Stage 6 with one label (no delay line, no neighbours) and with odd label counts.
     {"stereo_lr_check", {kUnset, kUnset, 1, kUnset, kUnset}},
     {"stereo_validate", {kUnset, kUnset, 3, kUnset, kUnset}},
@@ -266,6 +280,8 @@ inline constexpr std::array<LintConfig, 10> kExtraLintConfigs = {{
     {"stereo_top", kFull},
     // The FPGA build (constant kernel) at the full-size configuration.
     {"stereo_synth_top", kFull},
+    // The board top at its co-simulation point (the defaults are the UP5K build).
+    {"stereo_board_top", kSmallBoard},
 }};
 
 }  // namespace stereo::table
