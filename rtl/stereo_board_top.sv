@@ -52,7 +52,11 @@ module stereo_board_top #(
     parameter int CLKS_PER_BIT = 104,  // clock / baud: 104 is 115200 baud at 12 MHz
     parameter int TX_FIFO_DEPTH = 16,  // bytes waiting for the transmitter (a power of 2)
     parameter int POR_BITS     = 8,    // power-on reset: 2^POR_BITS clocks
-    parameter int TIMEOUT_BITS = 14    // idle timeout inside a command: 2^TIMEOUT_BITS bit times
+    parameter int TIMEOUT_BITS = 14,   // idle timeout inside a command: 2^TIMEOUT_BITS bit times
+    // Largest |min_disp| (stereo_top's delay lines for shifted ranges). 0 keeps only the
+    // classic range 0 .. ndisp-1 and saves about 760 LUT4 and 1,280 flip-flops of the cost stage
+    // at one label, which is what lets the core place on the UP5K (docs/board.md).
+    parameter int MAX_MIN_DISP = fx_pkg::DEFAULT_MAX_MIN_DISP
 ) (
     input  wire logic clk,          // 12 MHz oscillator
     input  wire logic uart_rx,      // from the FTDI (host to board)
@@ -82,7 +86,7 @@ module stereo_board_top #(
   initial begin
     assert (TX_FIFO_DEPTH >= 2 && (1 << FIFO_BITS) == TX_FIFO_DEPTH);
     assert (WIDTH < 65536 && HEIGHT < 65536 && NDISP < 65536 && WINDOW < 256);
-    assert (fx_pkg::DEFAULT_MAX_MIN_DISP < 256);
+    assert (MAX_MIN_DISP >= 0 && MAX_MIN_DISP < 256);
   end
 
   // ---- reset: power-on counter, restarted by the button ----------------------------------------
@@ -377,7 +381,7 @@ module stereo_board_top #(
         5'd13: reply_byte = 8'(NDISP);
         5'd14: reply_byte = 8'(NDISP >> 8);
         5'd15: reply_byte = 8'(WINDOW);
-        5'd16: reply_byte = 8'(fx_pkg::DEFAULT_MAX_MIN_DISP);
+        5'd16: reply_byte = 8'(MAX_MIN_DISP);
         default: reply_byte = status_byte;
       endcase
     end else if (reply_index != 0) begin
@@ -440,7 +444,8 @@ module stereo_board_top #(
       .HEIGHT(HEIGHT),
       .NDISP(NDISP),
       .WINDOW(WINDOW),
-      .RUNTIME_KERNEL(1'b0)
+      .RUNTIME_KERNEL(1'b0),
+      .MAX_MIN_DISP(MAX_MIN_DISP)
   ) core (
       .clk(clk),
       .rst(rst || soft_reset),

@@ -332,7 +332,9 @@ def board_report(config, args, work):
     settings = [("CLKS_PER_BIT", clks_per_bit)]
     if config is not None:
         settings += [("WIDTH", config["width"]), ("HEIGHT", config["height"]),
-                     ("NDISP", config["ndisp"]), ("WINDOW", config["window"])]
+                     ("NDISP", config["ndisp"]), ("WINDOW", config["window"]),
+                     ("MAX_MIN_DISP", args.max_min_disp)]
+        config = config | {"max_min_disp": args.max_min_disp}
     params = " ".join(f"-set {name} {value}" for name, value in settings)
     read = f"read_verilog -sv {' '.join(rtl_sources())}; chparam {params} {top}"
     finish = f"chformal -remove; opt_clean; write_json {netlist}; tee -q -o {stat} stat -json"
@@ -559,6 +561,9 @@ def estimate(config, target, work=None, use_dsp=True):
 
 # Stage names in pipeline order; each is also the name of the stage's instance in stereo_top.
 STAGES = tuple(stage["name"] for stage in STAGE_TABLE["stages"])
+# stereo_top's MAX_MIN_DISP default, read from the generated package (one definition).
+DEFAULT_MAX_MIN_DISP = int(re.search(r"DEFAULT_MAX_MIN_DISP\s*=\s*(\d+)",
+                                     (REPO / "rtl" / "fx_pkg.sv").read_text()).group(1))
 
 
 def module_kind(name):
@@ -991,6 +996,9 @@ def main():
     board.add_argument("--dsp-limit", type=int, default=ICE40_DEVICES["up5k"]["dsps"])
     board.add_argument("--spram", action="store_true",
                        help="let synth_ice40 map memories to SB_SPRAM256KA")
+    board.add_argument("--max-min-disp", type=int, default=DEFAULT_MAX_MIN_DISP,
+                       help="largest |min_disp| the core supports (MAX_MIN_DISP); 0: the range "
+                       "0..ndisp-1 only, about 760 LUT4 smaller at one label")
     board.add_argument("--bin", help="bitstream path (default: <work>/stereo_board.bin)")
     board.add_argument("--allow-no-fit", action="store_true",
                        help="exit 0 with the report when the design does not place")
