@@ -232,7 +232,8 @@ std::vector<std::pair<std::string, int>> assignments(const stereo::table::Params
                                                {"RUNTIME_KERNEL", params.runtime_kernel},
                                                {"RULE", params.rule},
                                                {"MAX_MIN_DISP", params.max_min_disp},
-                                               {"COST", params.cost}};
+                                               {"COST", params.cost},
+                                               {"LANES", params.lanes}};
     for (const auto& [name, value] : all) {
         if (value != stereo::table::kUnset) {
             out.emplace_back(name, value);
