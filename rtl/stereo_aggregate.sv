@@ -7,6 +7,16 @@
 // AGG_SHIFT. Taps whose row or column lies outside the frame read 0 (zero padding).
 // Output pixel = input pixel moved back R rows and R columns, R = WINDOW/2.
 // Latency: R*W + R + 2 pixel steps. Throughput: one pixel per ce.
+//
+// Time-multiplexed lanes (LANES < NDISP, docs/rtl.md): a pixel step takes G = NDISP / LANES
+// clocks, and the clock of label group g (`group`, 0 .. G-1, from stereo_top; the step, ce, comes
+// at group G-1) computes labels [g*LANES +: LANES] only, on LANES copies of the vertical and
+// horizontal multiply-adds. The line buffer has G words per column, one group each; the
+// vertical sums and their history (the horizontal window) of the G groups circulate in a ring
+// of G slots that advances one slot per group, so the group being computed is always at its
+// head; the group results are shifted into an assembly register, and out_data (all NDISP
+// labels) updates with ce, so the interface is the same as with LANES = NDISP, which is the
+// all-parallel stage (G = 1: the advance is ce, the ring one register).
 `default_nettype none
 
 module stereo_aggregate #(
@@ -16,11 +26,15 @@ module stereo_aggregate #(
     // 1: the taps come from cfg_kernel at run time (generic multipliers). 0: the taps are the
     // model's default kernel for WINDOW (fx_pkg::default_tap), constants that synthesis turns
     // into shifts and adds; cfg_kernel is then ignored.
-    parameter bit RUNTIME_KERNEL = 1'b1
+    parameter bit RUNTIME_KERNEL = 1'b1,
+    parameter int LANES = NDISP  // labels computed per clock (divides NDISP)
 ) (
     input  wire logic                               clk,
     input  wire logic                               rst,  // clears coordinates only
-    input  wire logic                               ce,
+    input  wire logic                               ce,   // the pixel step (at group G-1)
+    /* verilator lint_off UNUSEDSIGNAL */  // LANES = NDISP: always 0
+    input  wire logic [((NDISP / LANES > 1) ? $clog2(NDISP / LANES) : 1)-1:0] group,
+    /* verilator lint_on UNUSEDSIGNAL */
     input  wire fx_pkg::coord_t                     in_x,
     input  wire fx_pkg::coord_t                     in_y,
     input  wire logic [NDISP*fx_pkg::COST_BITS-1:0] in_data,
@@ -40,8 +54,30 @@ module stereo_aggregate #(
   localparam int AGG_BITS = fx_pkg::AGG_BITS;
   localparam int AGG_SHIFT = fx_pkg::AGG_SHIFT;
   localparam int R = WINDOW / 2;
-  localparam int COLUMN_BITS = NDISP * COST_BITS;  // one pixel's costs
-  localparam int V_BITS = NDISP * VSUM_BITS;       // one pixel's vertical sums
+  localparam int GROUPS = NDISP / LANES;           // clocks per pixel step
+  localparam int COLUMN_BITS = LANES * COST_BITS;  // one group's costs
+  localparam int V_BITS = LANES * VSUM_BITS;       // one group's vertical sums
+  localparam int OUT_BITS = LANES * AGG_BITS;      // one group's results
+
+  initial begin
+    assert (LANES >= 1 && NDISP % LANES == 0);
+  end
+
+  // The group of this clock; G = 1: 0 whatever the port carries (stage testbenches leave it open).
+  logic [((GROUPS > 1) ? $clog2(GROUPS) : 1)-1:0] group_now;
+  assign group_now = (GROUPS > 1) ? group : '0;
+  // A clock that processes a group: every group below the last, and the last at the step.
+  logic advance;
+  assign advance = ce || 32'(group_now) != GROUPS - 1;
+  // This clock's group of the input costs.
+  logic [COLUMN_BITS-1:0] group_costs;
+  generate
+    if (GROUPS > 1) begin : g_select_group
+      assign group_costs = in_data[32'(group_now)*COLUMN_BITS +: COLUMN_BITS];
+    end else begin : g_all_labels
+      assign group_costs = in_data;
+    end
+  endgenerate
 
   logic [WINDOW*TAP_BITS-1:0] kernel;
   generate
@@ -66,13 +102,15 @@ module stereo_aggregate #(
       stereo_line_buffer #(
           .WIDTH(WIDTH),
           .DATA_BITS(COLUMN_BITS),
-          .ROWS(2 * R)
+          .ROWS(2 * R),
+          .GROUPS(GROUPS)
       ) line_buffer (
           .clk(clk),
-          .ce(ce),
+          .ce(advance),
           .in_x(in_x),
+          .group(group_now),
           .cfg_width(cfg_width),
-          .in_data(in_data),
+          .in_data(group_costs),
           .rows_above(rows_above)
       );
     end else begin : g_no_line_buffer
@@ -91,13 +129,13 @@ module stereo_aggregate #(
 
   logic [V_BITS-1:0] vertical_d;
   generate
-    for (genvar d = 0; d < NDISP; d++) begin : g_vertical
+    for (genvar d = 0; d < LANES; d++) begin : g_vertical
       // Tap j covers row in_y - 2R + j, i.e. the row 2R - j above the incoming one.
       logic [WINDOW*COST_BITS-1:0] tap_cost;  // cost of tap j, 0 when its row is outside
       always_comb begin
         for (int j = 0; j < WINDOW; j++) begin
           logic [COST_BITS-1:0] cost;
-          if (j == 2 * R) cost = in_data[d*COST_BITS +: COST_BITS];
+          if (j == 2 * R) cost = group_costs[d*COST_BITS +: COST_BITS];
           else cost = rows_above[(2*R-1-j)*COLUMN_BITS + d*COST_BITS +: COST_BITS];
           tap_cost[j*COST_BITS +: COST_BITS] = row_inside[j] ? cost : '0;
         end
@@ -130,24 +168,34 @@ module stereo_aggregate #(
     end
   endgenerate
 
-  // Vertical sums of the incoming column, for centre row in_y - R.
-  logic [V_BITS-1:0] vertical_q;
-  always_ff @(posedge clk) begin
-    if (ce) vertical_q <= vertical_d;
-  end
-
   // ---- horizontal pass -----------------------------------------------------------------
-  // history[k] = vertical sums of the k+1-th column before the newest (same row, or masked).
+  // The state of one group: its vertical sums of the incoming column (vertical_q, for centre
+  // row in_y - R) in the low V_BITS and above them history[k] = the vertical sums of the k+1-th
+  // column before the newest (same row, or masked), k = 0 .. 2R-1. ring[0] is the state of the
+  // group being computed; each advance moves ring[k+1] to ring[k] and puts the head's next state
+  // (vertical_d in, the oldest history out) into ring[G-1], so after G advances (one step) every
+  // group is back at its place, one column further.
+  localparam int STATE_BITS = WINDOW * V_BITS;
+  logic [STATE_BITS-1:0] ring[GROUPS];
+  logic [STATE_BITS-1:0] next_state;
+  logic [V_BITS-1:0] vertical_q;
   logic [((R > 0) ? 2 * R : 1)*V_BITS-1:0] history;
+  assign vertical_q = ring[0][0+:V_BITS];
   generate
-    if (R > 0) begin : g_history_shift
-      always_ff @(posedge clk) begin
-        if (ce) history <= {history[(2*R-1)*V_BITS-1:0], vertical_q};
-      end
+    if (R > 0) begin : g_history
+      assign history = ring[0][V_BITS+:2*R*V_BITS];
+      assign next_state = {ring[0][0+:2*R*V_BITS], vertical_d};
     end else begin : g_no_history
       assign history = '0;
+      assign next_state = vertical_d;
     end
   endgenerate
+  always_ff @(posedge clk) begin
+    if (advance) begin
+      for (int k = 0; k + 1 < GROUPS; k++) ring[k] <= ring[k+1];
+      ring[GROUPS-1] <= next_state;
+    end
+  end
 
   // Geometry of the horizontal window whose newest column enters vertical_q at this step:
   // its centre is R pixels behind (in_x, in_y - R) in raster order, wrapping to earlier rows
@@ -186,9 +234,9 @@ module stereo_aggregate #(
     end
   end
 
-  logic [NDISP*AGG_BITS-1:0] aggregate_d;
+  logic [OUT_BITS-1:0] aggregate_d;  // this clock's group
   generate
-    for (genvar d = 0; d < NDISP; d++) begin : g_horizontal
+    for (genvar d = 0; d < LANES; d++) begin : g_horizontal
       // Tap i covers column centre_x - R + i, i.e. 2R - i columns behind the newest.
       logic [WINDOW*VSUM_BITS-1:0] tap_sum;  // vertical sum of tap i, 0 when outside
       always_comb begin
@@ -221,9 +269,30 @@ module stereo_aggregate #(
     end
   endgenerate
 
-  always_ff @(posedge clk) begin
-    if (ce) out_data <= aggregate_d;
-  end
+  // Groups 0 .. G-2 of the step are collected in `assembled` (group 0 lowest after G-1 shifts);
+  // the step puts them with the last group into out_data.
+  generate
+    if (GROUPS > 1) begin : g_assemble
+      logic [(GROUPS-1)*OUT_BITS-1:0] assembled;
+      if (GROUPS > 2) begin : g_shift
+        always_ff @(posedge clk) begin
+          if (!(32'(group_now) == GROUPS - 1))
+            assembled <= {aggregate_d, assembled[(GROUPS-1)*OUT_BITS-1:OUT_BITS]};
+        end
+      end else begin : g_one
+        always_ff @(posedge clk) begin
+          if (!(32'(group_now) == GROUPS - 1)) assembled <= aggregate_d;
+        end
+      end
+      always_ff @(posedge clk) begin
+        if (ce) out_data <= {aggregate_d, assembled};
+      end
+    end else begin : g_parallel
+      always_ff @(posedge clk) begin
+        if (ce) out_data <= aggregate_d;
+      end
+    end
+  endgenerate
   stereo_coord_reg coordinates (
       .in_x(centre_x),
       .in_y(centre_y),

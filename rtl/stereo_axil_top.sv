@@ -34,6 +34,7 @@ module stereo_axil_top #(
     parameter bit RUNTIME_KERNEL = 1'b1,
     parameter int MAX_MIN_DISP   = fx_pkg::DEFAULT_MAX_MIN_DISP,
     parameter int COST           = 0,
+    parameter int LANES          = NDISP,  // labels per clock: NDISP / LANES clocks per pixel
     parameter int ADDR_BITS      = 8                               // AXI4-Lite address width
 ) (
     input  wire logic                            clk,
@@ -275,7 +276,8 @@ module stereo_axil_top #(
       .WINDOW(WINDOW),
       .RUNTIME_KERNEL(RUNTIME_KERNEL),
       .MAX_MIN_DISP(MAX_MIN_DISP),
-      .COST(COST)
+      .COST(COST),
+      .LANES(LANES)
   ) core (
       .clk(clk),
       .rst(rst || soft_reset),

@@ -12,16 +12,27 @@
 // Output pixel = input pixel moved back one row and one column. Latency: W + 3 pixel steps
 // (the window's input register, the centre one row and one column back, the result register).
 // stereo_top instantiates it twice: as ca_rule1 (RULE 1) and ca_rule2 (RULE 2).
+//
+// Time-multiplexed lanes (LANES < NDISP, docs/rtl.md): the clock of label group g (`group`; the
+// step, ce, at group G-1) computes labels d = g*LANES + l, l < LANES, on LANES copies of the
+// rule. Rule 1's neighbours across the group boundary: d-1 of the first lane is the previous
+// group's last centre, kept in a register when that group advanced; d+1 of the last lane is the
+// next group's first centre (stereo_window3x3 next_centre). The group results are shifted into
+// an assembly register and out_data (all labels) updates with ce.
 `default_nettype none
 
 module stereo_ca_plane #(
     parameter int WIDTH = 64,  // longest row
     parameter int NDISP = 16,  // disparities in parallel
-    parameter int RULE  = 1    // 1 or 2
+    parameter int RULE  = 1,   // 1 or 2
+    parameter int LANES = NDISP  // labels computed per clock (divides NDISP)
 ) (
     input  wire logic                              clk,
     input  wire logic                              rst,  // clears coordinates only
-    input  wire logic                              ce,
+    input  wire logic                              ce,   // the pixel step (at group G-1)
+    /* verilator lint_off UNUSEDSIGNAL */  // LANES = NDISP: always 0
+    input  wire logic [((NDISP / LANES > 1) ? $clog2(NDISP / LANES) : 1)-1:0] group,
+    /* verilator lint_on UNUSEDSIGNAL */
     input  wire fx_pkg::coord_t                    in_x,
     input  wire fx_pkg::coord_t                    in_y,
     input  wire logic [NDISP*fx_pkg::AGG_BITS-1:0] in_data,
@@ -38,24 +49,36 @@ module stereo_ca_plane #(
 );
   localparam int BITS = fx_pkg::AGG_BITS;
   localparam int SUM_BITS = fx_pkg::CA_SUM_BITS;
-  localparam int COLUMN = NDISP * BITS;
+  localparam int GROUPS = NDISP / LANES;
+  localparam int COLUMN = LANES * BITS;  // one group of one window position
   localparam int CENTRE = 4;  // slot of (0, 0)
 
   initial begin
     assert (RULE == 1 || RULE == 2);
+    assert (LANES >= 1 && NDISP % LANES == 0);
   end
 
   fx_pkg::coord_t centre_x, centre_y;
+  // The group of this clock; G = 1: 0 whatever the port carries (stage testbenches leave it open).
+  logic [((GROUPS > 1) ? $clog2(GROUPS) : 1)-1:0] group_now;
+  assign group_now = (GROUPS > 1) ? group : '0;
+
   logic [9*COLUMN-1:0] window;
   logic [8:0] in_frame;
+  /* verilator lint_off UNUSEDSIGNAL */  // rule 2 and G = 1 do not look across groups
+  logic [BITS-1:0] next_centre;  // centre of label (group+1)*LANES
+  /* verilator lint_on UNUSEDSIGNAL */
   stereo_window3x3 #(
       .WIDTH(WIDTH),
       .BITS (BITS),
-      .NDISP(NDISP)
+      .NDISP(NDISP),
+      .LANES(LANES)
   ) neighbourhood (
       .clk(clk),
       .rst(rst),
       .ce(ce),
+      .group(group_now),
+      .next_centre(next_centre),
       .in_x(in_x),
       .in_y(in_y),
       .in_data(in_data),
@@ -67,21 +90,44 @@ module stereo_ca_plane #(
       .in_frame(in_frame)
   );
 
+  // Rule 1: the previous group's last centre, label group*LANES - 1.
+  /* verilator lint_off UNUSEDSIGNAL */  // rule 2 and G = 1 do not look across groups
+  logic [BITS-1:0] previous_centre;
+  /* verilator lint_on UNUSEDSIGNAL */
+  generate
+    if (GROUPS > 1 && RULE == 1) begin : g_previous_centre
+      // Kept at every clock that processes a group (as in stereo_window3x3).
+      always_ff @(posedge clk) begin
+        if (ce || 32'(group_now) != GROUPS - 1)
+          previous_centre <= window[CENTRE*COLUMN + (LANES-1)*BITS +: BITS];
+      end
+    end else begin : g_no_previous_centre
+      assign previous_centre = '0;
+    end
+  endgenerate
+
   logic [COLUMN-1:0] result;
   generate
-    for (genvar d = 0; d < NDISP; d++) begin : g_disparity
+    for (genvar d = 0; d < LANES; d++) begin : g_disparity
+      // Lane d computes label group*LANES + d.
       logic [BITS-1:0] centre;
       assign centre = window[CENTRE*COLUMN + d*BITS +: BITS];
       if (RULE == 1) begin : g_rule1
         logic below_agrees, above_agrees;
         if (d > 0) begin : g_below
           assign below_agrees = fx_pkg::agrees(window[CENTRE*COLUMN + (d-1)*BITS +: BITS], centre);
+        end else if (GROUPS > 1) begin : g_below_previous_group
+          assign below_agrees = group_now != '0 && fx_pkg::agrees(previous_centre, centre);
         end else begin : g_no_below
           assign below_agrees = 1'b0;
         end
-        if (d + 1 < NDISP) begin : g_above
-          assign above_agrees = d + 1 < $signed(32'(cfg_ndisp)) &&
+        if (d + 1 < LANES) begin : g_above
+          assign above_agrees = 32'(group_now) * LANES + d + 1 < $signed(32'(cfg_ndisp)) &&
                                 fx_pkg::agrees(window[CENTRE*COLUMN + (d+1)*BITS +: BITS], centre);
+        end else if (GROUPS > 1) begin : g_above_next_group
+          assign above_agrees = 32'(group_now) + 1 < GROUPS &&
+                                32'(group_now) * LANES + d + 1 < $signed(32'(cfg_ndisp)) &&
+                                fx_pkg::agrees(next_centre, centre);
         end else begin : g_no_above
           assign above_agrees = 1'b0;
         end
@@ -116,9 +162,30 @@ module stereo_ca_plane #(
     end
   endgenerate
 
-  always_ff @(posedge clk) begin
-    if (ce) out_data <= result;
-  end
+  // Groups 0 .. G-2 of the step are collected in `assembled` (group 0 lowest after G-1 shifts);
+  // the step puts them with the last group into out_data.
+  generate
+    if (GROUPS > 1) begin : g_assemble
+      logic [(GROUPS-1)*COLUMN-1:0] assembled;
+      if (GROUPS > 2) begin : g_shift
+        always_ff @(posedge clk) begin
+          if (!(32'(group_now) == GROUPS - 1))
+            assembled <= {result, assembled[(GROUPS-1)*COLUMN-1:COLUMN]};
+        end
+      end else begin : g_one
+        always_ff @(posedge clk) begin
+          if (!(32'(group_now) == GROUPS - 1)) assembled <= result;
+        end
+      end
+      always_ff @(posedge clk) begin
+        if (ce) out_data <= {result, assembled};
+      end
+    end else begin : g_parallel
+      always_ff @(posedge clk) begin
+        if (ce) out_data <= result;
+      end
+    end
+  endgenerate
   stereo_coord_reg coordinates (
       .in_x(centre_x),
       .in_y(centre_y),

@@ -10,24 +10,38 @@
 // width exceeds 1; at width 1 the next column is the one being written, so the word being
 // stored is taken from a bypass register instead of the RAM.
 // Rows above the image hold stale data: the stages mask them by coordinates.
+//
+// GROUPS > 1 (time-multiplexed lanes, docs/rtl.md): a pixel step takes GROUPS clocks, and at the
+// clock of label group g (`group`) the buffer shows and stores group g of the column: in_data and
+// rows_above are one group wide, and the RAM has GROUPS words per column (address x*GROUPS + g),
+// so one read per clock returns one group. `ce` then means "advance": a clock of a group below
+// GROUPS-1, or the step itself (the stage passes ce || group != GROUPS-1). At group g the RAM
+// reads group g+1 of the same column, at the last group (the step) group 0 of the next column;
+// its output register holds the last group while the step waits. Read and write addresses
+// always differ (no bypass needed, whatever the width).
 `default_nettype none
 
 module stereo_line_buffer #(
     parameter int WIDTH     = 64,  // longest row
     parameter int DATA_BITS = 8,   // one pixel's data
-    parameter int ROWS      = 2    // rows kept
+    parameter int ROWS      = 2,   // rows kept
+    parameter int GROUPS    = 1    // label groups per column, one per clock (see above)
 ) (
     input  wire logic                      clk,
-    input  wire logic                      ce,         // advance one pixel step
+    input  wire logic                      ce,         // advance one pixel step (one group)
     input  wire fx_pkg::coord_t            in_x,       // column of this step, 0 .. cfg_width-1
+    /* verilator lint_off UNUSEDSIGNAL */  // GROUPS = 1: always 0
+    input  wire logic [((GROUPS > 1) ? $clog2(GROUPS) : 1)-1:0] group,  // label group now
+    /* verilator lint_on UNUSEDSIGNAL */
     input  wire fx_pkg::cfg_size_t         cfg_width,
     input  wire logic [DATA_BITS-1:0]      in_data,
     output      logic [ROWS*DATA_BITS-1:0] rows_above  // row y-1-k at [k*DATA_BITS +: DATA_BITS]
 );
-  localparam int ADDR_BITS = (WIDTH > 1) ? $clog2(WIDTH) : 1;
+  localparam int DEPTH = WIDTH * GROUPS;
+  localparam int ADDR_BITS = (DEPTH > 1) ? $clog2(DEPTH) : 1;
   localparam int WORD_BITS = ROWS * DATA_BITS;
 
-  logic [WORD_BITS-1:0] memory[WIDTH];
+  logic [WORD_BITS-1:0] memory[DEPTH];
   logic [WORD_BITS-1:0] stored;
   logic [WORD_BITS-1:0] memory_q;  // the RAM's output register
   logic [WORD_BITS-1:0] bypass_q;  // the word stored at the previous step (width 1)
@@ -35,10 +49,21 @@ module stereo_line_buffer #(
   logic [ADDR_BITS-1:0] write_address;
   logic [ADDR_BITS-1:0] read_address;
 
-  always_comb begin
-    write_address = ADDR_BITS'(in_x);
-    read_address = (32'(in_x) + 1 >= 32'(cfg_width)) ? '0 : ADDR_BITS'(in_x + 16'sd1);
-  end
+  generate
+    if (GROUPS > 1) begin : g_grouped_address
+      always_comb begin
+        write_address = ADDR_BITS'(32'(in_x) * GROUPS + 32'(group));
+        if (32'(group) + 1 < GROUPS) read_address = write_address + 1'b1;
+        else if (32'(in_x) + 1 >= 32'(cfg_width)) read_address = '0;
+        else read_address = ADDR_BITS'((32'(in_x) + 1) * GROUPS);
+      end
+    end else begin : g_address
+      always_comb begin
+        write_address = ADDR_BITS'(in_x);
+        read_address = (32'(in_x) + 1 >= 32'(cfg_width)) ? '0 : ADDR_BITS'(in_x + 16'sd1);
+      end
+    end
+  endgenerate
 
   generate
     if (ROWS > 1) begin : g_shift
@@ -55,12 +80,19 @@ module stereo_line_buffer #(
     end
   end
 
-  always_ff @(posedge clk) begin
-    if (ce) begin
-      bypass_q <= stored;
-      width_is_one <= cfg_width == 16'd1;
+  generate
+    if (GROUPS > 1) begin : g_no_bypass
+      assign bypass_q = '0;
+      assign width_is_one = 1'b0;
+    end else begin : g_bypass
+      always_ff @(posedge clk) begin
+        if (ce) begin
+          bypass_q <= stored;
+          width_is_one <= cfg_width == 16'd1;
+        end
+      end
     end
-  end
+  endgenerate
   assign rows_above = width_is_one ? bypass_q : memory_q;
 endmodule
 

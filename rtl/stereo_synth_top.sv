@@ -13,7 +13,8 @@ module stereo_synth_top #(
     parameter int WIDTH  = 64,  // largest frame width
     parameter int HEIGHT = 48,  // largest frame height
     parameter int NDISP  = 16,  // disparities evaluated in parallel (largest cfg_ndisp)
-    parameter int WINDOW = 5    // aggregation window (odd), fixed by the constant kernel
+    parameter int WINDOW = 5,   // aggregation window (odd), fixed by the constant kernel
+    parameter int LANES  = NDISP  // labels computed per clock: NDISP / LANES clocks per pixel
 ) (
     input  wire logic                            clk,
     input  wire logic                            rst,
@@ -44,7 +45,8 @@ module stereo_synth_top #(
       .HEIGHT(HEIGHT),
       .NDISP(NDISP),
       .WINDOW(WINDOW),
-      .RUNTIME_KERNEL(1'b0)
+      .RUNTIME_KERNEL(1'b0),
+      .LANES(LANES)
   ) core (
       .clk(clk),
       .rst(rst),

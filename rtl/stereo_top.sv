@@ -19,8 +19,12 @@
 // stalls the skid register stays empty: latency and throughput are unchanged. After the last input pixel of a frame the
 // core steps on its own (s_axis_tready low) until the frame's last output has left the WTA, so
 // a frame never waits for the next one. Cycles per frame without stalls:
-//   W*H + (R + 2)*W + R + 11 + NDISP + K, R = WINDOW/2, K = max(0, -cfg_min_disp)
-// (stage_table.hpp, docs/rtl.md).
+//   G * S - 2 * (G - 1), S = W*H + (R + 2)*W + R + 11 + NDISP + K pixel steps,
+//   R = WINDOW/2, K = max(0, -cfg_min_disp), G = NDISP / LANES clocks per step
+// (stage_table.hpp frame_cycles, docs/rtl.md; G = 1: S).
+// LANES < NDISP: a step every G clocks, s_axis_tready only at a clock where a step can take the
+// beat; the aggregation, both CA rules and the WTA compute LANES labels per clock (group
+// counter below), the other stages all labels at the step.
 // Input before the first start of frame is dropped. Status bits (sticky until reset; the
 // indices are fx_pkg::STATUS_*):
 //   [0] tlast not at the row end, [1] tuser inside a frame, [2] configuration out of range
@@ -39,7 +43,11 @@ module stereo_top #(
     // Largest |cfg_min_disp|: sizes the cost stage's delay lines.
     parameter int MAX_MIN_DISP = fx_pkg::DEFAULT_MAX_MIN_DISP,
     // Matching cost: 0 AD over RGB, 1 LCDM (thesis Sec. 3.5; colour input). Same latency.
-    parameter int COST = 0
+    parameter int COST = 0,
+    // Labels computed per clock (divides NDISP). A pixel step takes G = NDISP / LANES clocks;
+    // the converted stages compute LANES labels per clock on shared arithmetic (docs/rtl.md,
+    // "Time-multiplexed lanes"). LANES = NDISP: one pixel per clock, every label in parallel.
+    parameter int LANES = NDISP
 ) (
     input  wire logic                               clk,
     input  wire logic                               rst,
@@ -77,10 +85,13 @@ module stereo_top #(
   localparam int AGG_BITS = fx_pkg::AGG_BITS;
   localparam int DISP_BITS = fx_pkg::DISP_BITS;
   localparam int FIXED_BITS = fx_pkg::FIXED_BITS;
+  localparam int GROUPS = NDISP / LANES;  // clocks per pixel step
+  localparam int GROUP_BITS = (GROUPS > 1) ? $clog2(GROUPS) : 1;
 
   initial begin
     assert (WINDOW % 2 == 1 && WINDOW <= fx_pkg::MAX_WINDOW);
     assert (NDISP >= 1 && NDISP <= 256);
+    assert (LANES >= 1 && LANES <= NDISP && NDISP % LANES == 0);
     assert (MAX_MIN_DISP >= 0 && MAX_MIN_DISP <= fx_pkg::MAX_MIN_DISPARITY);
     assert (WIDTH >= 1 && WIDTH <= fx_pkg::MAX_FRAME_SIDE && HEIGHT >= 1 &&
             HEIGHT <= fx_pkg::MAX_FRAME_SIDE);
@@ -190,12 +201,35 @@ module stereo_top #(
   logic last_output_entering;  // this step moves pixel (W-1, H-1) into the output register
 
   logic skid_full;  // the skid register holds the oldest beat not yet taken
+
+  // ---- label groups: G = NDISP / LANES clocks per pixel step ----------------------------------
+  // After a step, `group` counts 0, 1, ..., G-1, one per clock, and stays at G-1 until the next
+  // step: at clock `group` the converted stages compute labels [group*LANES +: LANES] of the
+  // pixel their input register holds (stable from one step to the next), and the step itself
+  // can only happen at group G-1 (round_done), where they compute the last group and update
+  // their output registers. Reset leaves group at G-1, so a step may follow at once. G = 1:
+  // group is always 0 = G-1, and a step may happen at every clock.
+  logic [GROUP_BITS-1:0] group;
+  logic round_done;
+  assign round_done = group == GROUP_BITS'(GROUPS - 1);
+  generate
+    if (GROUPS > 1) begin : g_group_counter
+      always_ff @(posedge clk) begin
+        if (rst) group <= GROUP_BITS'(GROUPS - 1);
+        else if (step) group <= '0;
+        else if (!round_done) group <= group + 1'b1;
+      end
+    end else begin : g_one_group
+      assign group = '0;
+    end
+  endgenerate
+
   always_comb begin
-    can_step = !skid_full;
+    can_step = !skid_full && round_done;
     start_of_frame = state == IDLE && s_axis_tvalid && s_axis_tuser;
     unique case (state)
       IDLE: begin
-        s_axis_tready = can_step;  // beats before a start of frame are dropped
+        s_axis_tready = can_step;  // beats before a start of frame are dropped (at a step's pace)
         step = can_step && start_of_frame;
       end
       RUN: begin
@@ -302,11 +336,13 @@ module stereo_top #(
       .WIDTH(WIDTH),
       .NDISP(NDISP),
       .WINDOW(WINDOW),
-      .RUNTIME_KERNEL(RUNTIME_KERNEL)
+      .RUNTIME_KERNEL(RUNTIME_KERNEL),
+      .LANES(LANES)
   ) aggregate (
       .clk(clk),
       .rst(clear_coordinates),
       .ce(step),
+      .group(group),
       .in_x(cost_x),
       .in_y(cost_y),
       .in_data(cost_data),
@@ -322,11 +358,13 @@ module stereo_top #(
   stereo_ca_plane #(
       .WIDTH(WIDTH),
       .NDISP(NDISP),
-      .RULE (1)
+      .RULE (1),
+      .LANES(LANES)
   ) ca_rule1 (
       .clk(clk),
       .rst(clear_coordinates),
       .ce(step),
+      .group(group),
       .in_x(agg_x),
       .in_y(agg_y),
       .in_data(agg_data),
@@ -342,11 +380,13 @@ module stereo_top #(
   stereo_ca_plane #(
       .WIDTH(WIDTH),
       .NDISP(NDISP),
-      .RULE (2)
+      .RULE (2),
+      .LANES(LANES)
   ) ca_rule2 (
       .clk(clk),
       .rst(clear_coordinates),
       .ce(step),
+      .group(group),
       .in_x(rule1_x),
       .in_y(rule1_y),
       .in_data(rule1_data),
@@ -367,11 +407,13 @@ module stereo_top #(
   logic [NDISP*AGG_BITS-1:0] wta_data;
   logic signed [FIXED_BITS-1:0] validate_fixed;
   stereo_wta #(
-      .NDISP(NDISP)
+      .NDISP(NDISP),
+      .LANES(LANES)
   ) wta (
       .clk(clk),
       .rst(clear_coordinates),
       .ce(step),
+      .group(group),
       .in_x(wta_in_x),
       .in_y(wta_in_y),
       .in_data(rule2_data),

@@ -6,16 +6,28 @@
 // NDISP*BITS wide; in_frame[slot] says whether that position lies in the frame (outside positions
 // must be read as zero padding). Every output comes from a register (window_data partly through
 // the line buffer's RAM output register); the rule modules register their results.
+//
+// Time-multiplexed lanes (LANES < NDISP, docs/rtl.md): at the clock of label group g (`group`;
+// the step, ce, comes at group G-1, G = NDISP / LANES) window_data holds labels [g*LANES +:
+// LANES] of the window: the input register keeps all labels (selected by group), the line buffer
+// has G words per column, and the two column registers of the G groups circulate in a ring of G
+// slots that advances one slot per group (ce || group != G-1), its head being the group of the
+// clock. next_centre is the centre value of label (g+1)*LANES (the next group's first, not yet
+// advanced), for rule 1's d+1 across the group boundary.
 `default_nettype none
 
 module stereo_window3x3 #(
     parameter int WIDTH = 64,  // longest row
     parameter int BITS  = 14,  // one DSI value
-    parameter int NDISP = 16   // disparities in parallel
+    parameter int NDISP = 16,  // disparities
+    parameter int LANES = NDISP  // labels per clock (divides NDISP)
 ) (
     input  wire logic                    clk,
     input  wire logic                    rst,  // clears coordinates only
-    input  wire logic                    ce,
+    input  wire logic                    ce,   // the pixel step (at group G-1)
+    /* verilator lint_off UNUSEDSIGNAL */  // LANES = NDISP: always 0
+    input  wire logic [((NDISP / LANES > 1) ? $clog2(NDISP / LANES) : 1)-1:0] group,
+    /* verilator lint_on UNUSEDSIGNAL */
     input  wire fx_pkg::coord_t          in_x,
     input  wire fx_pkg::coord_t          in_y,
     input  wire logic [NDISP*BITS-1:0]   in_data,
@@ -23,10 +35,19 @@ module stereo_window3x3 #(
     input  wire fx_pkg::cfg_size_t       cfg_height,
     output      fx_pkg::coord_t          centre_x,
     output      fx_pkg::coord_t          centre_y,
-    output      logic [9*NDISP*BITS-1:0] window_data,
+    output      logic [9*LANES*BITS-1:0] window_data,  // this clock's group
+    output      logic [BITS-1:0]         next_centre,  // centre of label (group+1)*LANES; 0 if G = 1
     output      logic [8:0]              in_frame
 );
-  localparam int COLUMN = NDISP * BITS;
+  localparam int GROUPS = NDISP / LANES;
+  localparam int COLUMN = LANES * BITS;  // one group of one position
+
+  // The group of this clock; G = 1: 0 whatever the port carries.
+  logic [((GROUPS > 1) ? $clog2(GROUPS) : 1)-1:0] group_now;
+  assign group_now = (GROUPS > 1) ? group : '0;
+  // A clock that processes a group: every group below the last, and the last at the step.
+  logic advance;
+  assign advance = ce || 32'(group_now) != GROUPS - 1;
 
   // ---- input register --------------------------------------------------------------------
   // The incoming pixel is registered first, and the geometry of the window it completes (its
@@ -35,38 +56,60 @@ module stereo_window3x3 #(
   // arithmetic no longer runs in front of their comparisons and sums (the critical path before,
   // docs/synthesis.md). Cost: one pixel step of latency.
   fx_pkg::coord_t x_q;  // addresses the line buffer; the geometry is registered below
-  logic [COLUMN-1:0] data_q;
+  logic [NDISP*BITS-1:0] pixel_q;
   always_ff @(posedge clk) begin
     if (ce) begin
       x_q <= in_x;
-      data_q <= in_data;
+      pixel_q <= in_data;
     end
   end
+  logic [COLUMN-1:0] data_q;  // this clock's group of the registered pixel
+  generate
+    if (GROUPS > 1) begin : g_select_group
+      assign data_q = pixel_q[32'(group_now)*COLUMN +: COLUMN];
+    end else begin : g_all_labels
+      assign data_q = pixel_q;
+    end
+  endgenerate
 
   logic [2*COLUMN-1:0] rows_above;  // rows y-1 (slot 0) and y-2 (slot 1) of the registered pixel
   stereo_line_buffer #(
       .WIDTH(WIDTH),
       .DATA_BITS(COLUMN),
-      .ROWS(2)
+      .ROWS(2),
+      .GROUPS(GROUPS)
   ) line_buffer (
       .clk(clk),
-      .ce(ce),
+      .ce(advance),
       .in_x(x_q),
+      .group(group_now),
       .cfg_width(cfg_width),
       .in_data(data_q),
       .rows_above(rows_above)
   );
 
-  // The registered column, rows y-2 (top) .. y (bottom), and the two columns before it.
+  // The registered column, rows y-2 (top) .. y (bottom), and the two columns before it: one
+  // group's, the head of the ring (ring[k+1] moves to ring[k] at each advance, the head's next
+  // columns go to ring[G-1]; G = 1: one register, stepped with ce).
   logic [3*COLUMN-1:0] column_new, column_1, column_2;  // slot 0 = top row
   assign column_new = {data_q, rows_above[0 +: COLUMN], rows_above[COLUMN +: COLUMN]};
 
+  logic [6*COLUMN-1:0] ring[GROUPS];  // {column_2, column_1} of each group
+  assign column_1 = ring[0][0+:3*COLUMN];
+  assign column_2 = ring[0][3*COLUMN+:3*COLUMN];
   always_ff @(posedge clk) begin
-    if (ce) begin
-      column_1 <= column_new;
-      column_2 <= column_1;
+    if (advance) begin
+      for (int k = 0; k + 1 < GROUPS; k++) ring[k] <= ring[k+1];
+      ring[GROUPS-1] <= {column_1, column_new};
     end
   end
+  generate
+    if (GROUPS > 1) begin : g_next_centre
+      assign next_centre = ring[1][COLUMN+:BITS];  // column_1, middle row, first lane
+    end else begin : g_no_next_centre
+      assign next_centre = '0;
+    end
+  endgenerate
 
   // Centre of the window the incoming pixel completes: (x-1, y-1), wrapping to the previous row.
   // Coordinates are 18-bit signed: 16-bit positions, the no-pixel code and the wrap fit.

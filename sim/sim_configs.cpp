@@ -7,7 +7,10 @@
 #include <verilated.h>
 #include <verilated_fst_c.h>
 
+#include "Vstereo_top_lanes1.h"
+#include "Vstereo_top_lanes4.h"
 #include "Vstereo_top_lcdm.h"
+#include "Vstereo_top_ndisp8_lanes2.h"
 #include "Vstereo_top_small.h"
 #include "axis_driver.hpp"
 #include "port_bits.hpp"
@@ -93,9 +96,13 @@ class VerilatedTop final : public TopSim {
 // A stereo_top configuration of the stage table (stage_table.hpp).
 TopConfig top_config(const table::VerilatedConfig& config, const char* name) {
     const table::Params& p = config.params;
-    return {name,     p.width,
-            p.height, p.ndisp,
-            p.window, p.max_min_disp == table::kUnset ? table::kDefaultMaxMinDisp : p.max_min_disp};
+    return {name,
+            p.width,
+            p.height,
+            p.ndisp,
+            p.window,
+            p.max_min_disp == table::kUnset ? table::kDefaultMaxMinDisp : p.max_min_disp,
+            p.lanes == table::kUnset ? p.ndisp : p.lanes};
 }
 
 }  // namespace
@@ -113,6 +120,29 @@ const std::vector<TopConfig>& built_top_configs() {
 const TopConfig& lcdm_top_config() {
     static const TopConfig config = top_config(table::verilated("Vstereo_top_lcdm"), "small-lcdm");
     return config;
+}
+
+const std::vector<TopConfig>& lanes_top_configs() {
+    static const std::vector<TopConfig> configs = {
+        top_config(table::verilated("Vstereo_top_lanes4"), "lanes4"),
+        top_config(table::verilated("Vstereo_top_lanes1"), "lanes1"),
+        top_config(table::verilated("Vstereo_top_ndisp8_lanes2"), "ndisp8-lanes2"),
+    };
+    return configs;
+}
+
+const TopConfig& top_config_named(const std::string& name) {
+    if (name == lcdm_top_config().name) {
+        return lcdm_top_config();
+    }
+    for (const auto* list : {&built_top_configs(), &lanes_top_configs()}) {
+        for (const TopConfig& config : *list) {
+            if (config.name == name) {
+                return config;
+            }
+        }
+    }
+    throw std::invalid_argument("no co-simulation model named '" + name + "' was built");
 }
 
 namespace {
@@ -164,6 +194,15 @@ std::unique_ptr<TopSim> make_top_sim(const TopConfig& config) {
     }
     if (config.name == "small-lcdm") {
         return std::make_unique<VerilatedTop<Vstereo_top_lcdm>>(config);
+    }
+    if (config.name == "lanes4") {
+        return std::make_unique<VerilatedTop<Vstereo_top_lanes4>>(config);
+    }
+    if (config.name == "lanes1") {
+        return std::make_unique<VerilatedTop<Vstereo_top_lanes1>>(config);
+    }
+    if (config.name == "ndisp8-lanes2") {
+        return std::make_unique<VerilatedTop<Vstereo_top_ndisp8_lanes2>>(config);
     }
 #ifdef STEREO_COSIM_FULL
     if (config.name == "full") {

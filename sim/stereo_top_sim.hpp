@@ -23,6 +23,7 @@ struct TopConfig {
     int ndisp;         // largest cfg_ndisp
     int window;        // largest window
     int max_min_disp;  // largest |cfg_min_disp| (MAX_MIN_DISP)
+    int lanes;         // labels computed per clock (LANES): NDISP / lanes clocks per pixel step
 };
 
 // The configurations built into this binary, smallest first.
@@ -31,6 +32,14 @@ const std::vector<TopConfig>& built_top_configs();
 // stereo_top with the LCDM cost stage (COST = 1) at the small configuration's size; not one of
 // built_top_configs(), which all have the AD cost.
 const TopConfig& lcdm_top_config();
+
+// stereo_top with time-multiplexed lanes (LANES < NDISP), AD cost: "lanes4" (16 labels, 4 per
+// clock), "lanes1" (16, 1), "ndisp8-lanes2" (8, 2). Not among built_top_configs().
+const std::vector<TopConfig>& lanes_top_configs();
+
+// Any built stereo_top configuration by name (small, small-lcdm, full, the lanes ones); throws
+// std::invalid_argument for an unknown name.
+const TopConfig& top_config_named(const std::string& name);
 
 // The smallest built configuration with the cost `cost` ("ad": built_top_configs(), "lcdm":
 // lcdm_top_config()) that covers a request; nullptr when none does.

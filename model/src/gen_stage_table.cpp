@@ -233,6 +233,7 @@ std::vector<std::pair<std::string, int>> assignments(const stereo::table::Params
                                                {"RULE", params.rule},
                                                {"MAX_MIN_DISP", params.max_min_disp},
                                                {"COST", params.cost},
+                                               {"LANES", params.lanes},
                                                {"CLKS_PER_BIT", params.clks_per_bit}};
     for (const auto& [name, value] : all) {
         if (value != stereo::table::kUnset) {

@@ -82,18 +82,32 @@ def tool_version(command):
 def config_from_args(args):
     config = {"width": args.width, "height": args.height, "ndisp": args.ndisp,
               "window": args.window}
+    # stereo_top's LANES (labels per clock, NDISP / LANES clocks per pixel): recorded only when
+    # given, so reports of the all-parallel core keep their shape.
+    if getattr(args, "lanes", None) is not None:
+        config["lanes"] = args.lanes
     if config["window"] % 2 != 1 or not 1 <= config["window"] <= 31:
         raise ReportError(f"window must be odd and in 1..31, got {config['window']}")
     if not 1 <= config["ndisp"] <= 256:
         raise ReportError(f"ndisp must be in 1..256, got {config['ndisp']}")
     if config["width"] < 1 or config["height"] < 1:
         raise ReportError("width and height must be positive")
+    lanes = config.get("lanes", config["ndisp"])
+    if lanes < 1 or config["ndisp"] % lanes != 0:
+        raise ReportError(f"lanes must divide ndisp {config['ndisp']}, got {lanes}")
     return config
 
 
+def clocks_per_step(config):
+    """Clocks per pixel step, NDISP / LANES (stage_table.hpp clocks_per_step)."""
+    return config["ndisp"] // config.get("lanes", config["ndisp"])
+
+
 def chparam(config):
+    lanes = config.get("lanes", config["ndisp"])
     return (f"chparam -set WIDTH {config['width']} -set HEIGHT {config['height']} "
-            f"-set NDISP {config['ndisp']} -set WINDOW {config['window']} {TOP}")
+            f"-set NDISP {config['ndisp']} -set WINDOW {config['window']} "
+            f"-set LANES {lanes} {TOP}")
 
 
 def progress(message):
@@ -213,7 +227,8 @@ def throughput(config, fmax_mhz):
     if fmax_mhz is None:
         return None, None
     r = config["window"] // 2
-    cycles = config["width"] * config["height"] + (r + 2) * config["width"] + r + 10
+    cycles = (config["width"] * config["height"] + (r + 2) * config["width"] + r + 10) * \
+        clocks_per_step(config)
     fps = fmax_mhz * 1e6 / cycles
     mdes = fps * config["width"] * config["height"] * config["ndisp"] / 1e6
     return round(fps, 2), round(mdes, 1)
@@ -503,6 +518,9 @@ def command_fit(args):
     attempts, largest = [], None
     for ndisp in range(1, args.max_ndisp + 1):
         config = dict(base, ndisp=ndisp)
+        if "lanes" in base:  # --lanes L: the label counts that L divides, L per clock
+            if ndisp % base["lanes"] != 0:
+                continue
         print(f"ice40 {args.device} {config}", file=sys.stderr, flush=True)
         report = ice40_report(config, args, work / f"ndisp{ndisp}")
         attempts.append({"ndisp": ndisp, "placed": report["placed"],
@@ -967,6 +985,9 @@ def add_config_arguments(parser, width=64, height=48, ndisp=4, window=5):
     parser.add_argument("--height", type=int, default=height)
     parser.add_argument("--ndisp", type=int, default=ndisp)
     parser.add_argument("--window", type=int, default=window)
+    parser.add_argument("--lanes", type=int, default=None,
+                        help="stereo_top LANES: labels computed per clock, divides ndisp "
+                             "(default: ndisp, all in parallel; `fit`: every ndisp it divides)")
     parser.add_argument("--work", help="folder for netlists and logs (default: a temp folder)")
     parser.add_argument("--out", help="JSON report file (default: stdout)")
 

@@ -153,6 +153,16 @@ class Throughput(unittest.TestCase):
         self.assertEqual(synth.throughput({"width": 1, "height": 1, "ndisp": 1, "window": 1},
                                           None), (None, None))
 
+    def test_lanes_divide_the_frame_rate(self):
+        # LANES = 8 of 64 labels: 8 clocks per pixel step, 311695 * 8 cycles per frame.
+        fps, mdes = synth.throughput({"width": 640, "height": 480, "ndisp": 64, "window": 11,
+                                      "lanes": 8}, 100.0)
+        self.assertEqual(fps, 40.1)
+        self.assertEqual(mdes, 788.5)
+        with self.assertRaises(synth.ReportError):
+            synth.config_from_args(type("Args", (), {"width": 64, "height": 48, "ndisp": 6,
+                                                     "window": 5, "lanes": 4})())
+
     def test_nextpnr_log(self):
         log = ("Info: Max frequency for clock 'clk$SB_IO_IN_$glb_clk': 20.00 MHz (PASS at 12 MHz)\n"
                "Info: Critical path report for clock 'clk$SB_IO_IN_$glb_clk' (posedge -> posedge):\n"

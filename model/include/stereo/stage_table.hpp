@@ -134,14 +134,34 @@ inline constexpr std::array<Stage, 7> kStages = {{
 }};
 
 // Pixel steps from a pixel entering stereo_top's cost stage to its output beat:
-// (R + 2) * W + R + 11 + N + K (N = NDISP, K = max(0, -min_disp)). stereo_top streams one frame
-// in W*H + this many cycles without stalls (checked by tb_stereo_top's Throughput test).
+// (R + 2) * W + R + 11 + N + K (N = NDISP, K = max(0, -min_disp)). With LANES = NDISP stereo_top
+// streams one frame in W*H + this many cycles without stalls (frame_cycles; checked by
+// tb_stereo_top's Throughput test).
 constexpr int pipeline_latency(int width, int window, int ndisp, int min_disp = 0) {
     int steps = 0;
     for (const Stage& stage : kStages) {
         steps += stage.rtl.at(width, window, ndisp, min_disp);
     }
     return steps;
+}
+
+// Clocks per pixel step of stereo_top with LANES labels computed per clock (LANES divides NDISP):
+// G = NDISP / LANES (docs/rtl.md, "Time-multiplexed lanes").
+constexpr int clocks_per_step(int ndisp, int lanes) {
+    return ndisp / lanes;
+}
+
+// Clock cycles from a frame's first input beat to its last output beat without stalls:
+// S = W*H + pipeline_latency steps, a step every G clocks, the first beat taken at the first
+// clock of the count and the last output visible the clock after its step:
+//   G * S - 2 * (G - 1)   (G = 1: W*H + latency).
+// Back to back, frames follow each other every G * S clocks.
+constexpr long long frame_cycles(int width, int height, int window, int ndisp, int lanes,
+                                 int min_disp = 0) {
+    const long long g = clocks_per_step(ndisp, lanes);
+    const long long steps =
+        static_cast<long long>(width) * height + pipeline_latency(width, window, ndisp, min_disp);
+    return g * steps - 2 * (g - 1);
 }
 
 // The same for the HLS pipeline (stereo_hls_top): (R + 2) * W + R + 9 + N + K.
@@ -183,6 +203,7 @@ struct Params {
     int rule = kUnset;          // stereo_ca_plane's RULE
     int max_min_disp = kUnset;  // stereo_top's and stereo_cost's MAX_MIN_DISP
     int cost = kUnset;          // stereo_top's and stereo_cost's COST: 0 AD, 1 LCDM
+    int lanes = kUnset;         // stereo_top's LANES (unset: NDISP, every label in parallel)
     int clks_per_bit = kUnset;  // the UART's CLKS_PER_BIT (stereo_board_top)
 };
 
@@ -202,10 +223,23 @@ inline constexpr Params kSmallLcdm{kSmall.width, kSmall.height, kSmall.ndisp, kS
 // The iCEBreaker top (rtl/stereo_board_top.sv, docs/board.md) at the co-simulation point, with
 // a UART of 4 clocks per bit so that a frame simulates in a few seconds.
 inline constexpr Params kSmallBoard{
-    kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window, kUnset, kUnset, kUnset, kUnset, 4};
+    kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window, kUnset,
+    kUnset,       kUnset,        kUnset,       kUnset,        4};
 
-inline constexpr std::array<VerilatedConfig, 15> kVerilatedConfigs = {{
+// Time-multiplexed lanes (stereo_top LANES < NDISP): NDISP / LANES clocks per pixel step.
+// tb_stereo_top runs all its checks on each of these as well as on the small configuration.
+inline constexpr Params kSmallLanes4{
+    kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window, kUnset, kUnset, kUnset, kUnset, 4};
+inline constexpr Params kSmallLanes1{
+    kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window, kUnset, kUnset, kUnset, kUnset, 1};
+inline constexpr Params kNdisp8Lanes2{kSmall.width, kSmall.height, 8, kSmall.window, kUnset, kUnset,
+                                      kUnset,       kUnset,        2};
+
+inline constexpr std::array<VerilatedConfig, 18> kVerilatedConfigs = {{
     {"Vstereo_top_small", "stereo_top", kSmall, ""},
+    {"Vstereo_top_lanes4", "stereo_top", kSmallLanes4, ""},
+    {"Vstereo_top_lanes1", "stereo_top", kSmallLanes1, ""},
+    {"Vstereo_top_ndisp8_lanes2", "stereo_top", kNdisp8Lanes2, ""},
     {"Vstereo_cost", "stereo_cost", {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset}, ""},
     {"Vstereo_top_lcdm", "stereo_top", kSmallLcdm, ""},
     {"Vstereo_cost_lcdm",
@@ -240,7 +274,8 @@ inline constexpr std::array<VerilatedConfig, 15> kVerilatedConfigs = {{
     // Its link test (UART echo, no core) with the same UART speed.
     {"Vstereo_uart_echo_top",
      "stereo_uart_echo_top",
-     {kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, kSmallBoard.clks_per_bit},
+     {kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, kUnset,
+      kSmallBoard.clks_per_bit},
      ""},
     // Its C++ takes minutes to compile: only with -DSTEREO_COSIM_FULL=ON.
     {"Vstereo_top_full", "stereo_top", kFull, "STEREO_COSIM_FULL"},
@@ -264,7 +299,12 @@ struct LintConfig {
     Params params;
 };
 
-inline constexpr std::array<LintConfig, 11> kExtraLintConfigs = {{
+inline constexpr std::array<LintConfig, 14> kExtraLintConfigs = {{
+    // Time-multiplexed lanes: one label per clock, an odd group count, the FPGA build at full size.
+    {"stereo_top", {kUnset, kUnset, 3, 3, kUnset, kUnset, kUnset, kUnset, 1}},
+    {"stereo_top", {100, 75, 12, 7, kUnset, kUnset, kUnset, kUnset, 4}},
+    {"stereo_synth_top",
+     {kFull.width, kFull.height, kFull.ndisp, kFull.window, kUnset, kUnset, kUnset, kUnset, 8}},
     // Stage 6 with one label (no delay line, no neighbours) and with odd label counts.
     {"stereo_lr_check", {kUnset, kUnset, 1, kUnset, kUnset}},
     {"stereo_validate", {kUnset, kUnset, 3, kUnset, kUnset}},
