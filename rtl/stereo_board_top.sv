@@ -56,7 +56,9 @@ module stereo_board_top #(
     // Largest |min_disp| (stereo_top's delay lines for shifted ranges). 0 keeps only the
     // classic range 0 .. ndisp-1 and saves about 760 LUT4 and 1,280 flip-flops of the cost stage
     // at one label, which is what lets the core place on the UP5K (docs/board.md).
-    parameter int MAX_MIN_DISP = fx_pkg::DEFAULT_MAX_MIN_DISP
+    parameter int MAX_MIN_DISP = fx_pkg::DEFAULT_MAX_MIN_DISP,
+    // Labels computed per clock (stereo_top LANES, divides NDISP): NDISP / LANES clocks a pixel.
+    parameter int LANES = NDISP
 ) (
     input  wire logic clk,          // 12 MHz oscillator
     input  wire logic uart_rx,      // from the FTDI (host to board)
@@ -445,7 +447,8 @@ module stereo_board_top #(
       .NDISP(NDISP),
       .WINDOW(WINDOW),
       .RUNTIME_KERNEL(1'b0),
-      .MAX_MIN_DISP(MAX_MIN_DISP)
+      .MAX_MIN_DISP(MAX_MIN_DISP),
+      .LANES(LANES)
   ) core (
       .clk(clk),
       .rst(rst || soft_reset),

@@ -348,7 +348,8 @@ def board_report(config, args, work):
     if config is not None:
         settings += [("WIDTH", config["width"]), ("HEIGHT", config["height"]),
                      ("NDISP", config["ndisp"]), ("WINDOW", config["window"]),
-                     ("MAX_MIN_DISP", args.max_min_disp)]
+                     ("MAX_MIN_DISP", args.max_min_disp),
+                     ("LANES", config.get("lanes", config["ndisp"]))]
         config = config | {"max_min_disp": args.max_min_disp}
     params = " ".join(f"-set {name} {value}" for name, value in settings)
     read = f"read_verilog -sv {' '.join(rtl_sources())}; chparam {params} {top}"
