@@ -55,7 +55,9 @@ module stereo_validate #(
         logic away;  // |k - k1| > 1
         assign away = (k + 1 < $signed(32'(in_label))) || (k > $signed(32'(in_label)) + 1);
         assign node[(LEAVES-1+k)*BITS +: BITS] =
-            (away && k < $signed(32'(cfg_ndisp))) ? in_data[k*BITS +: BITS]
+            // A shift, not a part-select: Verilator's lint of several tops at once (different
+            // NDISP) checks this select against another instance's width.
+            (away && k < $signed(32'(cfg_ndisp))) ? BITS'(in_data >> (k * BITS))
                                                    : BITS'(fx_pkg::NO_SECOND_COST);
       end else begin : g_padding
         assign node[(LEAVES-1+k)*BITS +: BITS] = BITS'(fx_pkg::NO_SECOND_COST);

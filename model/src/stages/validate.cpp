@@ -95,7 +95,8 @@ void ValidatingSelector::update(const CostValue* plane, int i, int j) {
             const int x_end = std::min(width_, width_ + d);
             if (x_end > x_begin) {
                 const std::size_t right_begin = row + static_cast<std::size_t>(x_begin - d);
-                update_right(static_cast<std::size_t>(x_end - x_begin), static_cast<std::uint16_t>(i),
+                update_right(static_cast<std::size_t>(x_end - x_begin),
+                             static_cast<std::uint16_t>(i),
                              plane + row + static_cast<std::size_t>(x_begin),
                              right_cost_.data() + right_begin, right_label_.data() + right_begin);
             }

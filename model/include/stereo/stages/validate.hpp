@@ -85,11 +85,11 @@ class ValidatingSelector final : public Selector {
     ValidationParams params_;
     InvalidBorder border_;
     std::size_t size_;
-    std::vector<Key> kept_;                  // kKept planes of size_ keys, ascending per pixel
-    std::vector<CostValue> before_;          // cost at winner - 1
-    std::vector<CostValue> after_;           // cost at winner + 1
-    std::vector<CostValue> previous_;        // the previous plane
-    std::vector<CostValue> right_cost_;      // left-right: best cost per right pixel
+    std::vector<Key> kept_;              // kKept planes of size_ keys, ascending per pixel
+    std::vector<CostValue> before_;      // cost at winner - 1
+    std::vector<CostValue> after_;       // cost at winner + 1
+    std::vector<CostValue> previous_;    // the previous plane
+    std::vector<CostValue> right_cost_;  // left-right: best cost per right pixel
     std::vector<std::uint16_t> right_label_;
 };
 
