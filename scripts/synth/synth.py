@@ -165,18 +165,18 @@ def hierarchy_totals(modules):
     return totals
 
 
-def read_stat_json(path):
-    """Cell counts of the whole design: the one flattened module, or the top's hierarchy total."""
+def read_stat_json(path, top=TOP):
+    """Cell counts of the whole design: the one flattened module, or `top`'s hierarchy total."""
     data = load_stat_json(path)
     if "design" in data:
         return data["design"].get("num_cells_by_type", {})
     modules = data["modules"]
     if len(modules) == 1:
         return next(iter(modules.values())).get("num_cells_by_type", {})
-    for key in (TOP, "\\" + TOP):
+    for key in (top, "\\" + top):
         if key in modules:
             return hierarchy_totals(modules)[key]
-    raise ReportError(f"stat -json: no module {TOP} in {path}")
+    raise ReportError(f"stat -json: no module {top} in {path}")
 
 
 def count(cells, *patterns):
@@ -365,7 +365,7 @@ def board_report(config, args, work):
     else:
         yosys_seconds = run_yosys(f"{read}; synth_ice40 {spram}-top {top}; {finish}",
                                   work / "yosys.log")
-    cells = read_stat_json_top(stat, top)
+    cells = read_stat_json(stat, top)
     resources = resources_ice40(cells)
     resources["sprams"] = count(cells, r"SB_SPRAM256KA")
     report = {
@@ -483,20 +483,6 @@ def board_dsp_script(read, finish, spram, work, limit, top=BOARD_TOP):
     script = (f"read_rtlil {saved}; {mapped}{ICE40_COARSE_AFTER_DSP}; "
               f"synth_ice40 {spram}-top {top} -run map_ram:; {finish}")
     return seconds, threshold, script
-
-
-def read_stat_json_top(path, top):
-    """Cell counts of the whole design under `top` (read_stat_json for another top)."""
-    data = load_stat_json(path)
-    if "design" in data:
-        return data["design"].get("num_cells_by_type", {})
-    modules = data["modules"]
-    if len(modules) == 1:
-        return next(iter(modules.values())).get("num_cells_by_type", {})
-    for key in (top, "\\" + top):
-        if key in modules:
-            return hierarchy_totals(modules)[key]
-    raise ReportError(f"stat -json: no module {top} in {path}")
 
 
 def command_board(args):
