@@ -14,7 +14,9 @@ module stereo_synth_top #(
     parameter int HEIGHT = 48,  // largest frame height
     parameter int NDISP  = 16,  // disparities evaluated in parallel (largest cfg_ndisp)
     parameter int WINDOW = 5,   // aggregation window (odd), fixed by the constant kernel
-    parameter int LANES  = NDISP  // labels computed per clock: NDISP / LANES clocks per pixel
+    parameter int LANES  = NDISP,  // labels computed per clock: NDISP / LANES clocks per pixel
+    // Largest |cfg_min_disp| (stereo_top's cost delay lines); 0: the range 0 .. ndisp-1 only.
+    parameter int MAX_MIN_DISP = fx_pkg::DEFAULT_MAX_MIN_DISP
 ) (
     input  wire logic                            clk,
     input  wire logic                            rst,
@@ -46,6 +48,7 @@ module stereo_synth_top #(
       .NDISP(NDISP),
       .WINDOW(WINDOW),
       .RUNTIME_KERNEL(1'b0),
+      .MAX_MIN_DISP(MAX_MIN_DISP),
       .LANES(LANES)
   ) core (
       .clk(clk),

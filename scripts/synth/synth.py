@@ -105,9 +105,10 @@ def clocks_per_step(config):
 
 def chparam(config):
     lanes = config.get("lanes", config["ndisp"])
+    extra = (f"-set MAX_MIN_DISP {config['max_min_disp']} " if "max_min_disp" in config else "")
     return (f"chparam -set WIDTH {config['width']} -set HEIGHT {config['height']} "
             f"-set NDISP {config['ndisp']} -set WINDOW {config['window']} "
-            f"-set LANES {lanes} {TOP}")
+            f"-set LANES {lanes} {extra}{TOP}")
 
 
 def progress(message):
@@ -529,6 +530,8 @@ def command_fit(args):
 
 def command_estimate(args):
     config = config_from_args(args)
+    if args.max_min_disp is not None:
+        config["max_min_disp"] = args.max_min_disp
     report = estimate(config, args.target, args.work, use_dsp=not args.no_dsp)
     write_report(report, args.out)
     return report
@@ -542,7 +545,8 @@ def estimate(config, target, work=None, use_dsp=True):
     stat = work / "stat.json"
     nodsp = "" if use_dsp else " -nodsp"
     synth = {"xilinx": f"synth_xilinx -family xc7{nodsp} -top {TOP}",
-             "ecp5": f"synth_ecp5 -noflatten{nodsp} -top {TOP}"}[target]
+             "ecp5": f"synth_ecp5 -noflatten{nodsp} -top {TOP}",
+             "ice40": f"synth_ice40 -noflatten -top {TOP}"}[target]  # no DSPs: the HX parts have none
     # Each stage's module, found through its instance in stereo_top (two stages can share a
     # module with different parameters: the CA rules are both stereo_ca_plane).
     instances = {name: work / f"stage_{name}.txt" for name in STAGES}
@@ -553,7 +557,8 @@ def estimate(config, target, work=None, use_dsp=True):
               "; ".join(f"tee -q -o {path} {stage_module_query(name)}"
                         for name, path in instances.items()))
     seconds = run_yosys(script, work / "yosys.log")
-    resources_of = resources_xilinx if target == "xilinx" else resources_ecp5
+    resources_of = {"xilinx": resources_xilinx, "ecp5": resources_ecp5,
+                    "ice40": resources_ice40}[target]
     cells = read_stat_json(stat)
     modules = stage_modules({name: path.read_text() for name, path in instances.items()})
     stages = {name: resources_of(stage_cells) for name, stage_cells in
@@ -1021,8 +1026,12 @@ def main():
     fit.set_defaults(handler=command_fit, no_pnr=False)
     est = sub.add_parser("estimate", help="synth_xilinx / synth_ecp5 resource estimate")
     add_config_arguments(est)
-    est.add_argument("--target", choices=["xilinx", "ecp5"], required=True)
+    est.add_argument("--target", choices=["xilinx", "ecp5", "ice40"], required=True,
+                     help="ice40: synth_ice40 with the hierarchy kept, for the per-stage split "
+                     "(use `ice40` or `board` for place and route)")
     est.add_argument("--no-dsp", action="store_true", help="multipliers in LUTs, not DSPs")
+    est.add_argument("--max-min-disp", type=int, default=None,
+                     help="stereo_top MAX_MIN_DISP (default: the RTL's default)")
     est.set_defaults(handler=command_estimate)
     sweep = sub.add_parser("sweep", help="estimates over the docs' configurations")
     sweep.add_argument("--targets", default="xilinx,ecp5")
