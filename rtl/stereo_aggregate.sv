@@ -174,28 +174,31 @@ module stereo_aggregate #(
   // column before the newest (same row, or masked), k = 0 .. 2R-1. ring[0] is the state of the
   // group being computed; each advance moves ring[k+1] to ring[k] and puts the head's next state
   // (vertical_d in, the oldest history out) into ring[G-1], so after G advances (one step) every
-  // group is back at its place, one column further.
+  // group is back at its place, one column further. The ring is a RAM (stereo_group_ring).
   localparam int STATE_BITS = WINDOW * V_BITS;
-  logic [STATE_BITS-1:0] ring[GROUPS];
+  logic [STATE_BITS-1:0] head_state;  // ring[0], the head of stereo_group_ring
   logic [STATE_BITS-1:0] next_state;
   logic [V_BITS-1:0] vertical_q;
   logic [((R > 0) ? 2 * R : 1)*V_BITS-1:0] history;
-  assign vertical_q = ring[0][0+:V_BITS];
+  assign vertical_q = head_state[0+:V_BITS];
   generate
     if (R > 0) begin : g_history
-      assign history = ring[0][V_BITS+:2*R*V_BITS];
-      assign next_state = {ring[0][0+:2*R*V_BITS], vertical_d};
+      assign history = head_state[V_BITS+:2*R*V_BITS];
+      assign next_state = {head_state[0+:2*R*V_BITS], vertical_d};
     end else begin : g_no_history
       assign history = '0;
       assign next_state = vertical_d;
     end
   endgenerate
-  always_ff @(posedge clk) begin
-    if (advance) begin
-      for (int k = 0; k + 1 < GROUPS; k++) ring[k] <= ring[k+1];
-      ring[GROUPS-1] <= next_state;
-    end
-  end
+  stereo_group_ring #(
+      .BITS  (STATE_BITS),
+      .GROUPS(GROUPS)
+  ) group_ring (
+      .clk(clk),
+      .advance(advance),
+      .next_state(next_state),
+      .head(head_state)
+  );
 
   // Geometry of the horizontal window whose newest column enters vertical_q at this step:
   // its centre is R pixels behind (in_x, in_y - R) in raster order, wrapping to earlier rows

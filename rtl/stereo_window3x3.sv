@@ -12,7 +12,7 @@
 // LANES] of the window: the input register keeps all labels (selected by group), the line buffer
 // has G words per column, and the two column registers of the G groups circulate in a ring of G
 // slots that advances one slot per group (ce || group != G-1), its head being the group of the
-// clock. next_centre is the centre value of label (g+1)*LANES (the next group's first, not yet
+// clock; the ring is a RAM (stereo_group_ring), not G registers. next_centre is the centre value of label (g+1)*LANES (the next group's first, not yet
 // advanced), for rule 1's d+1 across the group boundary.
 `default_nettype none
 
@@ -88,24 +88,38 @@ module stereo_window3x3 #(
       .rows_above(rows_above)
   );
 
-  // The registered column, rows y-2 (top) .. y (bottom), and the two columns before it: one
-  // group's, the head of the ring (ring[k+1] moves to ring[k] at each advance, the head's next
-  // columns go to ring[G-1]; G = 1: one register, stepped with ce).
+  // The registered column, rows y-2 (top) .. y (bottom), and the two columns before it (one
+  // group's, from the ring below).
   logic [3*COLUMN-1:0] column_new, column_1, column_2;  // slot 0 = top row
   assign column_new = {data_q, rows_above[0 +: COLUMN], rows_above[COLUMN +: COLUMN]};
 
-  logic [6*COLUMN-1:0] ring[GROUPS];  // {column_2, column_1} of each group
-  assign column_1 = ring[0][0+:3*COLUMN];
-  assign column_2 = ring[0][3*COLUMN+:3*COLUMN];
-  always_ff @(posedge clk) begin
-    if (advance) begin
-      for (int k = 0; k + 1 < GROUPS; k++) ring[k] <= ring[k+1];
-      ring[GROUPS-1] <= {column_1, column_new};
-    end
-  end
+  // {column_2, column_1} of the group of this clock, the head of stereo_group_ring (G = 1: one
+  // register, stepped with ce); the advance stores the group's next columns.
+  logic [6*COLUMN-1:0] columns_q;
+  stereo_group_ring #(
+      .BITS  (6 * COLUMN),
+      .GROUPS(GROUPS)
+  ) column_ring (
+      .clk(clk),
+      .advance(advance),
+      .next_state({column_1, column_new}),
+      .head(columns_q)
+  );
+  assign column_1 = columns_q[0+:3*COLUMN];
+  assign column_2 = columns_q[3*COLUMN+:3*COLUMN];
   generate
     if (GROUPS > 1) begin : g_next_centre
-      assign next_centre = ring[1][COLUMN+:BITS];  // column_1, middle row, first lane
+      // The next group's column_1 middle row, first lane, in a register ring of its own (the
+      // RAM ring shows only the head): one value per group, rule 1 only (rule 2 leaves it
+      // unused and synthesis removes it).
+      logic [BITS-1:0] centre_ring[GROUPS];
+      always_ff @(posedge clk) begin
+        if (advance) begin
+          for (int k = 0; k + 1 < GROUPS; k++) centre_ring[k] <= centre_ring[k+1];
+          centre_ring[GROUPS-1] <= column_new[COLUMN+:BITS];
+        end
+      end
+      assign next_centre = centre_ring[1];
     end else begin : g_no_next_centre
       assign next_centre = '0;
     end
