@@ -651,6 +651,83 @@ def command_sweep(args):
     return points
 
 
+def parse_lane_points(text):
+    """[(ndisp, lanes)] from "16:1,16:4,64:8" (each lanes must divide its ndisp)."""
+    points = []
+    for item in text.split(","):
+        try:
+            ndisp, lanes = (int(v) for v in item.split(":"))
+        except ValueError:
+            raise ReportError(f"lane point {item!r} is not NDISP:LANES") from None
+        if ndisp < 1 or lanes < 1 or ndisp % lanes:
+            raise ReportError(f"lane point {item!r}: LANES must divide NDISP")
+        points.append((ndisp, lanes))
+    return points
+
+
+def command_lanes_sweep(args):
+    """Estimates over (NDISP, LANES) at one frame size and window (resumable, like `sweep`)."""
+    out = Path(args.out)
+    points = json.loads(out.read_text()).get("points", []) if out.exists() else []
+    done = {(p["target"], p["config"]["ndisp"], p["config"].get("lanes", p["config"]["ndisp"]))
+            for p in points if p["config"]["width"] == args.width and
+            p["config"]["window"] == args.window}
+    for ndisp, lanes in parse_lane_points(args.points):
+        if (args.target, ndisp, lanes) in done:
+            continue
+        config = {"width": args.width, "height": args.height, "ndisp": ndisp,
+                  "window": args.window, "lanes": lanes}
+        progress(f"{args.target} {config}")
+        points.append(estimate(config, args.target))
+        out.write_text(json.dumps({"points": points}, indent=2) + "\n")
+    return points
+
+
+def plot_lanes(points, target):
+    """Resources against NDISP, one line per clock count G = NDISP / LANES."""
+    chosen = [p for p in points if p["target"] == target]
+    by_clocks = {}
+    for point in chosen:
+        config = point["config"]
+        clocks = config["ndisp"] // config.get("lanes", config["ndisp"])
+        by_clocks.setdefault(clocks, []).append((config["ndisp"], point))
+    palette = ("#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2")
+    colours = {g: palette[i % len(palette)] for i, g in enumerate(sorted(by_clocks))}
+    panel_w, panel_h, margin_l, margin_t, gap_x = 250, 170, 70, 70, 60
+    width = margin_l + len(PLOT_METRICS) * (panel_w + gap_x)
+    height = margin_t + panel_h + 60
+    config = chosen[0]["config"] if chosen else {"width": 0, "height": 0, "window": 0}
+    parts = [svg_text(width / 2, 22, f"{target}: stereo_synth_top {config['width']}x"
+                      f"{config['height']}, {config['window']}x{config['window']}, by "
+                      "disparities and clocks per pixel G = NDISP / LANES (Yosys estimate)", 14)]
+    legend_x = margin_l
+    for clocks, colour in colours.items():
+        parts.append(f'<rect x="{legend_x}" y="34" width="14" height="4" fill="{colour}"/>')
+        parts.append(svg_text(legend_x + 18, 40, f"G = {clocks}" +
+                              (" (all parallel)" if clocks == 1 else ""), 11, "start"))
+        legend_x += 130 if clocks == 1 else 70
+    for column, (metric, metric_name) in enumerate(PLOT_METRICS):
+        lines = [(colours[g], [(n, p["resources"][metric]) for n, p in sorted(values,
+                                                                             key=lambda v: v[0])])
+                 for g, values in sorted(by_clocks.items())]
+        parts += line_panel(margin_l + column * (panel_w + gap_x), margin_t, panel_w, panel_h,
+                            metric_name, "disparities", lines)
+    return svg_document(width, height, parts)
+
+
+def command_plot_lanes(args):
+    points = json.loads(Path(args.sweep).read_text()).get("points", [])
+    targets = sorted({p["target"] for p in points})
+    if not targets:
+        raise ReportError(f"{args.sweep} holds no points")
+    out = Path(args.out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    for target in targets:
+        path = out / f"synth_lanes_{target}.svg"
+        path.write_text(plot_lanes(points, target))
+        print(path)
+
+
 # ---- plots (SVG, standard library only) -------------------------------------------------------
 PLOT_METRICS = [("luts", "LUTs"), ("ffs", "flip-flops"), ("bram_kbits", "block RAM (Kib)"),
                 ("dsps", "DSPs")]
@@ -1033,6 +1110,19 @@ def main():
     est.add_argument("--max-min-disp", type=int, default=None,
                      help="stereo_top MAX_MIN_DISP (default: the RTL's default)")
     est.set_defaults(handler=command_estimate)
+    lanes_sweep = sub.add_parser("lanes-sweep", help="estimates over (NDISP, LANES) points")
+    lanes_sweep.add_argument("--target", choices=["xilinx", "ecp5", "ice40"], default="xilinx")
+    lanes_sweep.add_argument("--width", type=int, default=640)
+    lanes_sweep.add_argument("--height", type=int, default=480)
+    lanes_sweep.add_argument("--window", type=int, default=11)
+    lanes_sweep.add_argument("--points", default="16:16,16:4,16:1,32:32,32:4,64:8,64:4",
+                             help="NDISP:LANES,... (LANES divides NDISP)")
+    lanes_sweep.add_argument("--out", required=True, help="JSON (points are appended; resumes)")
+    lanes_sweep.set_defaults(handler=command_lanes_sweep)
+    plot_lanes_parser = sub.add_parser("plot-lanes", help="SVG of a lanes-sweep JSON")
+    plot_lanes_parser.add_argument("sweep")
+    plot_lanes_parser.add_argument("--out-dir", required=True)
+    plot_lanes_parser.set_defaults(handler=command_plot_lanes)
     sweep = sub.add_parser("sweep", help="estimates over the docs' configurations")
     sweep.add_argument("--targets", default="xilinx,ecp5")
     sweep.add_argument("--max-ndisp", type=int, default=64)

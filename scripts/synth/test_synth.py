@@ -218,6 +218,34 @@ class Plots(unittest.TestCase):
                 synth.command_plot(SimpleNamespace(sweep=str(sweep), out_dir=folder))
 
 
+class LanePlots(unittest.TestCase):
+    def test_lane_points(self):
+        self.assertEqual(synth.parse_lane_points("16:1,64:8"), [(16, 1), (64, 8)])
+        for bad in ("16:3", "16", "a:b", "0:1"):
+            with self.assertRaises(synth.ReportError):
+                synth.parse_lane_points(bad)
+
+    def test_one_line_per_clock_count_and_metric(self):
+        def point(ndisp, lanes):
+            return {"target": "xilinx",
+                    "config": {"width": 640, "height": 480, "ndisp": ndisp, "window": 11,
+                               "lanes": lanes},
+                    "resources": {"luts": 100 * lanes + ndisp, "ffs": 1, "bram_kbits": 18,
+                                  "dsps": 0}}
+        # G = 1 (16:16, 32:32), G = 4 (16:4, 32:8), G = 16 (16:1): three lines per metric
+        points = [point(16, 16), point(32, 32), point(16, 4), point(32, 8), point(16, 1)]
+        with tempfile.TemporaryDirectory() as folder:
+            sweep = Path(folder) / "lanes.json"
+            sweep.write_text(json.dumps({"points": points}))
+            synth.command_plot_lanes(SimpleNamespace(sweep=str(sweep), out_dir=folder))
+            svg = ElementTree.parse(Path(folder) / "synth_lanes_xilinx.svg").getroot()
+            lines = svg.findall("{http://www.w3.org/2000/svg}polyline")
+            self.assertEqual(len(lines), 3 * len(synth.PLOT_METRICS))
+            # the G = 4 LUT line passes through two points
+            self.assertEqual(sum(len(line.get("points").split()) for line in lines),
+                             5 * len(synth.PLOT_METRICS))
+
+
 class Tables(unittest.TestCase):
     @staticmethod
     def point(ndisp, luts, dsps, use_dsp):
