@@ -27,7 +27,8 @@ module stereo_aggregate #(
     // model's default kernel for WINDOW (fx_pkg::default_tap), constants that synthesis turns
     // into shifts and adds; cfg_kernel is then ignored.
     parameter bit RUNTIME_KERNEL = 1'b1,
-    parameter int LANES = NDISP  // labels computed per clock (divides NDISP)
+    parameter int LANES = NDISP,  // labels computed per clock (divides NDISP)
+    parameter bit RING_BLOCK_RAM = 1'b0  // stereo_group_ring BLOCK_RAM (stereo_top)
 ) (
     input  wire logic                               clk,
     input  wire logic                               rst,  // clears coordinates only
@@ -191,8 +192,9 @@ module stereo_aggregate #(
     end
   endgenerate
   stereo_group_ring #(
-      .BITS  (STATE_BITS),
-      .GROUPS(GROUPS)
+      .BITS     (STATE_BITS),
+      .GROUPS   (GROUPS),
+      .BLOCK_RAM(RING_BLOCK_RAM)
   ) group_ring (
       .clk(clk),
       .advance(advance),

@@ -448,7 +448,8 @@ module stereo_board_top #(
       .WINDOW(WINDOW),
       .RUNTIME_KERNEL(1'b0),
       .MAX_MIN_DISP(MAX_MIN_DISP),
-      .LANES(LANES)
+      .LANES(LANES),
+      .RING_BLOCK_RAM(1'b1)  // the iCE40: flip-flops are logic cells
   ) core (
       .clk(clk),
       .rst(rst || soft_reset),

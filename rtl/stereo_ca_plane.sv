@@ -25,7 +25,8 @@ module stereo_ca_plane #(
     parameter int WIDTH = 64,  // longest row
     parameter int NDISP = 16,  // disparities in parallel
     parameter int RULE  = 1,   // 1 or 2
-    parameter int LANES = NDISP  // labels computed per clock (divides NDISP)
+    parameter int LANES = NDISP,  // labels computed per clock (divides NDISP)
+    parameter bit RING_BLOCK_RAM = 1'b0  // stereo_group_ring BLOCK_RAM (stereo_top)
 ) (
     input  wire logic                              clk,
     input  wire logic                              rst,  // clears coordinates only
@@ -72,7 +73,8 @@ module stereo_ca_plane #(
       .WIDTH(WIDTH),
       .BITS (BITS),
       .NDISP(NDISP),
-      .LANES(LANES)
+      .LANES(LANES),
+      .RING_BLOCK_RAM(RING_BLOCK_RAM)
   ) neighbourhood (
       .clk(clk),
       .rst(rst),
@@ -106,6 +108,17 @@ module stereo_ca_plane #(
     end
   endgenerate
 
+  // The factored constant products below hold only for these reciprocals (fx_pkg, generated
+  // from the model's stage table): elaboration stops if they ever change.
+  generate
+    if (fx_pkg::MEAN9_MUL != 7 * 4161) begin : g_mean9_factors_changed
+      stereo_ca_plane_mean9_mul_is_not_7_times_4161 mean9_factors_changed ();
+    end
+    if (fx_pkg::DIV13_MUL != 25 * 4033) begin : g_div13_factors_changed
+      stereo_ca_plane_div13_mul_is_not_25_times_4033 div13_factors_changed ();
+    end
+  endgenerate
+
   logic [COLUMN-1:0] result;
   generate
     for (genvar d = 0; d < LANES; d++) begin : g_disparity
@@ -133,19 +146,22 @@ module stereo_ca_plane #(
         end
         always_comb begin
           logic [SUM_BITS-1:0] sum;
-          logic [31:0] product;
+          logic [31:0] sum7, product;
           sum = '0;
           for (int slot = 0; slot < 9; slot++) begin
             if (in_frame[slot]) sum = sum + SUM_BITS'(window[slot*COLUMN + d*BITS +: BITS]);
           end
-          product = 32'(sum) * 32'(fx_pkg::MEAN9_MUL) + 32'(1 << (fx_pkg::MEAN9_SHIFT - 1));
+          // sum * MEAN9_MUL with MEAN9_MUL = 29127 = 7 * (2^12 + 2^6 + 1): three adders instead
+          // of one per set bit (nine), exactly the same integer (checked at elaboration below).
+          sum7 = (32'(sum) << 3) - 32'(sum);
+          product = sum7 + (sum7 << 6) + (sum7 << 12) + 32'(1 << (fx_pkg::MEAN9_SHIFT - 1));
           result[d*BITS +: BITS] = (cfg_use_ca && (below_agrees || above_agrees))
                                        ? BITS'(product >> fx_pkg::MEAN9_SHIFT) : centre;
         end
       end else begin : g_rule2
         always_comb begin
           logic [3:0] count;
-          logic [31:0] product;
+          logic [31:0] centre25, product;
           count = '0;
           for (int slot = 0; slot < 9; slot++) begin
             // A neighbour outside the frame is zero padding, and zero never agrees.
@@ -154,7 +170,11 @@ module stereo_ca_plane #(
               count = count + 4'd1;
             end
           end
-          product = 32'(centre) * 32'(fx_pkg::DIV13_MUL) + 32'(1 << (fx_pkg::DIV13_SHIFT - 1));
+          // centre * DIV13_MUL with DIV13_MUL = 100825 = 25 * (2^12 - 2^6 + 1): four adders
+          // instead of one per set bit (nine), the same integer (checked at elaboration below).
+          centre25 = (32'(centre) << 4) + (32'(centre) << 3) + 32'(centre);
+          product = (centre25 << 12) - (centre25 << 6) + centre25 +
+                    32'(1 << (fx_pkg::DIV13_SHIFT - 1));
           result[d*BITS +: BITS] = (cfg_use_ca && $signed(32'(count)) >= fx_pkg::RULE2_MIN_COUNT)
                                        ? BITS'(product >> fx_pkg::DIV13_SHIFT) : centre;
         end

@@ -16,7 +16,9 @@ module stereo_synth_top #(
     parameter int WINDOW = 5,   // aggregation window (odd), fixed by the constant kernel
     parameter int LANES  = NDISP,  // labels computed per clock: NDISP / LANES clocks per pixel
     // Largest |cfg_min_disp| (stereo_top's cost delay lines); 0: the range 0 .. ndisp-1 only.
-    parameter int MAX_MIN_DISP = fx_pkg::DEFAULT_MAX_MIN_DISP
+    parameter int MAX_MIN_DISP = fx_pkg::DEFAULT_MAX_MIN_DISP,
+    // stereo_top RING_BLOCK_RAM: 1 for the iCE40 (synth.py sets it there).
+    parameter bit RING_BLOCK_RAM = 1'b0
 ) (
     input  wire logic                            clk,
     input  wire logic                            rst,
@@ -49,7 +51,8 @@ module stereo_synth_top #(
       .WINDOW(WINDOW),
       .RUNTIME_KERNEL(1'b0),
       .MAX_MIN_DISP(MAX_MIN_DISP),
-      .LANES(LANES)
+      .LANES(LANES),
+      .RING_BLOCK_RAM(RING_BLOCK_RAM)
   ) core (
       .clk(clk),
       .rst(rst),

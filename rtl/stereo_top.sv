@@ -47,7 +47,11 @@ module stereo_top #(
     // Labels computed per clock (divides NDISP). A pixel step takes G = NDISP / LANES clocks;
     // the converted stages compute LANES labels per clock on shared arithmetic (docs/rtl.md,
     // "Time-multiplexed lanes"). LANES = NDISP: one pixel per clock, every label in parallel.
-    parameter int LANES = NDISP
+    parameter int LANES = NDISP,
+    // 1: the per-group state rings of the converted stages (stereo_group_ring) in block RAM at
+    // any group count; for the iCE40, whose flip-flops are logic cells (it has no LUT RAM).
+    // 0: block or LUT RAM from 8 groups on, registers below, as synthesis sees fit.
+    parameter bit RING_BLOCK_RAM = 1'b0
 ) (
     input  wire logic                               clk,
     input  wire logic                               rst,
@@ -337,7 +341,8 @@ module stereo_top #(
       .NDISP(NDISP),
       .WINDOW(WINDOW),
       .RUNTIME_KERNEL(RUNTIME_KERNEL),
-      .LANES(LANES)
+      .LANES(LANES),
+      .RING_BLOCK_RAM(RING_BLOCK_RAM)
   ) aggregate (
       .clk(clk),
       .rst(clear_coordinates),
@@ -359,7 +364,8 @@ module stereo_top #(
       .WIDTH(WIDTH),
       .NDISP(NDISP),
       .RULE (1),
-      .LANES(LANES)
+      .LANES(LANES),
+      .RING_BLOCK_RAM(RING_BLOCK_RAM)
   ) ca_rule1 (
       .clk(clk),
       .rst(clear_coordinates),
@@ -381,7 +387,8 @@ module stereo_top #(
       .WIDTH(WIDTH),
       .NDISP(NDISP),
       .RULE (2),
-      .LANES(LANES)
+      .LANES(LANES),
+      .RING_BLOCK_RAM(RING_BLOCK_RAM)
   ) ca_rule2 (
       .clk(clk),
       .rst(clear_coordinates),

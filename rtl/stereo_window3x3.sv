@@ -20,7 +20,8 @@ module stereo_window3x3 #(
     parameter int WIDTH = 64,  // longest row
     parameter int BITS  = 14,  // one DSI value
     parameter int NDISP = 16,  // disparities
-    parameter int LANES = NDISP  // labels per clock (divides NDISP)
+    parameter int LANES = NDISP,  // labels per clock (divides NDISP)
+    parameter bit RING_BLOCK_RAM = 1'b0  // stereo_group_ring BLOCK_RAM
 ) (
     input  wire logic                    clk,
     input  wire logic                    rst,  // clears coordinates only
@@ -97,8 +98,9 @@ module stereo_window3x3 #(
   // register, stepped with ce); the advance stores the group's next columns.
   logic [6*COLUMN-1:0] columns_q;
   stereo_group_ring #(
-      .BITS  (6 * COLUMN),
-      .GROUPS(GROUPS)
+      .BITS     (6 * COLUMN),
+      .GROUPS   (GROUPS),
+      .BLOCK_RAM(RING_BLOCK_RAM)
   ) column_ring (
       .clk(clk),
       .advance(advance),

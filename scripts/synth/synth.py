@@ -86,6 +86,9 @@ def config_from_args(args):
     # given, so reports of the all-parallel core keep their shape.
     if getattr(args, "lanes", None) is not None:
         config["lanes"] = args.lanes
+    # stereo_top's MAX_MIN_DISP, likewise recorded only when given.
+    if getattr(args, "max_min_disp", None) is not None and getattr(args, "command", None) != "board":
+        config["max_min_disp"] = args.max_min_disp
     if config["window"] % 2 != 1 or not 1 <= config["window"] <= 31:
         raise ReportError(f"window must be odd and in 1..31, got {config['window']}")
     if not 1 <= config["ndisp"] <= 256:
@@ -103,12 +106,14 @@ def clocks_per_step(config):
     return config["ndisp"] // config.get("lanes", config["ndisp"])
 
 
-def chparam(config):
+def chparam(config, ice40=False):
+    """chparam of stereo_synth_top; ice40: the group rings in block RAM (RING_BLOCK_RAM, the
+    iCE40 has no LUT RAM and its flip-flops are logic cells)."""
     lanes = config.get("lanes", config["ndisp"])
     extra = (f"-set MAX_MIN_DISP {config['max_min_disp']} " if "max_min_disp" in config else "")
     return (f"chparam -set WIDTH {config['width']} -set HEIGHT {config['height']} "
             f"-set NDISP {config['ndisp']} -set WINDOW {config['window']} "
-            f"-set LANES {lanes} {extra}{TOP}")
+            f"-set LANES {lanes} {extra}{'-set RING_BLOCK_RAM 1 ' if ice40 else ''}{TOP}")
 
 
 def progress(message):
@@ -264,7 +269,7 @@ def ice40_report(config, args, work):
     work = Path(work or tempfile.mkdtemp(prefix="stereo_ice40_"))
     work.mkdir(parents=True, exist_ok=True)
     netlist, stat = work / "netlist.json", work / "stat.json"
-    script = (f"read_verilog -sv {' '.join(rtl_sources())}; {chparam(config)}; "
+    script = (f"read_verilog -sv {' '.join(rtl_sources())}; {chparam(config, ice40=True)}; "
               f"synth_ice40 {'-dsp ' if args.dsp else ''}-top {TOP}; "
               f"chformal -remove; opt_clean; write_json {netlist}; tee -q -o {stat} stat -json")
     yosys_seconds = run_yosys(script, work / "yosys.log")
@@ -530,8 +535,6 @@ def command_fit(args):
 
 def command_estimate(args):
     config = config_from_args(args)
-    if args.max_min_disp is not None:
-        config["max_min_disp"] = args.max_min_disp
     report = estimate(config, args.target, args.work, use_dsp=not args.no_dsp)
     write_report(report, args.out)
     return report
@@ -551,7 +554,7 @@ def estimate(config, target, work=None, use_dsp=True):
     # module with different parameters: the CA rules are both stereo_ca_plane).
     instances = {name: work / f"stage_{name}.txt" for name in STAGES}
     # chparam leaves the top as a derived "$paramod...stereo_synth_top": name it back for stat.
-    script = (f"read_verilog -sv {' '.join(rtl_sources())}; {chparam(config)}; "
+    script = (f"read_verilog -sv {' '.join(rtl_sources())}; {chparam(config, ice40=target == 'ice40')}; "
               f"{synth}; chformal -remove; opt_clean; rename -top {TOP}; "
               f"tee -q -o {stat} stat -json; " +
               "; ".join(f"tee -q -o {path} {stage_module_query(name)}"
@@ -1071,6 +1074,8 @@ def main():
     ice40.add_argument("--freq", type=float, default=30.0, help="target MHz for nextpnr")
     ice40.add_argument("--seed", type=int, default=1)
     ice40.add_argument("--dsp", action="store_true", help="map multipliers to SB_MAC16")
+    ice40.add_argument("--max-min-disp", type=int, default=None,
+                       help="stereo_top MAX_MIN_DISP (default: the RTL's default)")
     ice40.add_argument("--no-pnr", action="store_true", help="synthesis only")
     ice40.set_defaults(handler=command_ice40)
     board = sub.add_parser("board", help="iCEBreaker: stereo_board_top to a flashable .bin")
@@ -1099,6 +1104,8 @@ def main():
     fit.add_argument("--freq", type=float, default=30.0, help="target MHz for nextpnr")
     fit.add_argument("--seed", type=int, default=1)
     fit.add_argument("--dsp", action="store_true", help="map multipliers to SB_MAC16")
+    fit.add_argument("--max-min-disp", type=int, default=None,
+                       help="stereo_top MAX_MIN_DISP (default: the RTL's default)")
     fit.add_argument("--max-ndisp", type=int, default=16)
     fit.set_defaults(handler=command_fit, no_pnr=False)
     est = sub.add_parser("estimate", help="synth_xilinx / synth_ecp5 resource estimate")
