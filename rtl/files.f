@@ -3,6 +3,7 @@ fx_pkg.sv
 stereo_coord_reg.sv
 stereo_line_buffer.sv
 stereo_group_ring.sv
+stereo_group_assembly.sv
 stereo_window3x3.sv
 stereo_ca_plane.sv
 stereo_lcdm_convert.sv
