@@ -20,5 +20,6 @@ stereo_synth_top.sv
 stereo_uart_rx.sv
 stereo_uart_tx.sv
 stereo_power_on_reset.sv
+stereo_board_link.sv
 stereo_board_top.sv
 stereo_uart_echo_top.sv

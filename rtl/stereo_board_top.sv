@@ -91,41 +91,27 @@ module stereo_board_top #(
     assert (MAX_MIN_DISP >= 0 && MAX_MIN_DISP < 256);
   end
 
-  // ---- reset: power-on counter, restarted by the button ----------------------------------------
+  // ---- reset (power-on counter, restarted by the button) and the UART ---------------------------
   logic rst;
-  stereo_power_on_reset #(
-      .POR_BITS(POR_BITS)
-  ) power_on_reset (
-      .clk(clk),
-      .button_n(button_n),
-      .rst(rst)
-  );
-
-  // ---- UART ------------------------------------------------------------------------------------
   logic [7:0] rx_data;
   logic rx_valid, rx_framing_error;
-  stereo_uart_rx #(
-      .CLKS_PER_BIT(CLKS_PER_BIT)
-  ) receiver (
-      .clk(clk),
-      .rst(rst),
-      .rx(uart_rx),
-      .data(rx_data),
-      .valid(rx_valid),
-      .framing_error(rx_framing_error)
-  );
-
   logic [7:0] tx_data;
   logic tx_valid, tx_ready;
-  stereo_uart_tx #(
-      .CLKS_PER_BIT(CLKS_PER_BIT)
-  ) transmitter (
+  stereo_board_link #(
+      .CLKS_PER_BIT(CLKS_PER_BIT),
+      .POR_BITS(POR_BITS)
+  ) link (
       .clk(clk),
+      .button_n(button_n),
+      .uart_rx(uart_rx),
+      .uart_tx(uart_tx),
       .rst(rst),
-      .data(tx_data),
-      .valid(tx_valid),
-      .ready(tx_ready),
-      .tx(uart_tx)
+      .rx_data(rx_data),
+      .rx_valid(rx_valid),
+      .rx_framing_error(rx_framing_error),
+      .tx_data(tx_data),
+      .tx_valid(tx_valid),
+      .tx_ready(tx_ready)
   );
 
   // ---- configuration registers (reset: the largest frame, all labels, CA on, stage 6 off) -----

@@ -22,38 +22,23 @@ module stereo_uart_echo_top #(
     output      logic led_green_n   // active low: running
 );
   logic rst;
-  stereo_power_on_reset #(
+  logic [7:0] rx_data, held;
+  logic rx_valid, rx_framing_error, held_valid, tx_ready, dropped, framing_error;
+  stereo_board_link #(
+      .CLKS_PER_BIT(CLKS_PER_BIT),
       .POR_BITS(POR_BITS)
-  ) power_on_reset (
+  ) link (
       .clk(clk),
       .button_n(button_n),
-      .rst(rst)
-  );
-
-  logic [7:0] rx_data;
-  logic rx_valid, rx_framing_error;
-  stereo_uart_rx #(
-      .CLKS_PER_BIT(CLKS_PER_BIT)
-  ) receiver (
-      .clk(clk),
+      .uart_rx(uart_rx),
+      .uart_tx(uart_tx),
       .rst(rst),
-      .rx(uart_rx),
-      .data(rx_data),
-      .valid(rx_valid),
-      .framing_error(rx_framing_error)
-  );
-
-  logic [7:0] held;
-  logic held_valid, tx_ready, dropped, framing_error;
-  stereo_uart_tx #(
-      .CLKS_PER_BIT(CLKS_PER_BIT)
-  ) transmitter (
-      .clk(clk),
-      .rst(rst),
-      .data(held),
-      .valid(held_valid),
-      .ready(tx_ready),
-      .tx(uart_tx)
+      .rx_data(rx_data),
+      .rx_valid(rx_valid),
+      .rx_framing_error(rx_framing_error),
+      .tx_data(held),
+      .tx_valid(held_valid),
+      .tx_ready(tx_ready)
   );
 
   always_ff @(posedge clk) begin
