@@ -40,25 +40,14 @@ module stereo_group_ring #(
     if (GROUPS > 1 && (BLOCK_RAM || GROUPS >= 8)) begin : g_ram
       logic [POINTER_BITS-1:0] pointer, after;  // the head's word, the next head's
       assign after = (32'(pointer) == GROUPS - 1) ? '0 : pointer + 1'b1;
-      if (BLOCK_RAM) begin : g_block
-        (* ram_style = "block" *) logic [BITS-1:0] memory[GROUPS];
-        always_ff @(posedge clk) begin
-          if (advance) begin
-            memory[pointer] <= next_state;
-            head <= memory[after];
-          end
-        end
-      end else begin : g_auto
-        logic [BITS-1:0] memory[GROUPS];
-        always_ff @(posedge clk) begin
-          if (advance) begin
-            memory[pointer] <= next_state;
-            head <= memory[after];
-          end
-        end
-      end
+      // "auto" leaves the choice to synthesis (block RAM on the iCE40, LUT RAM elsewhere).
+      (* ram_style = (BLOCK_RAM ? "block" : "auto") *) logic [BITS-1:0] memory[GROUPS];
       always_ff @(posedge clk) begin
-        if (advance) pointer <= after;
+        if (advance) begin
+          memory[pointer] <= next_state;
+          head <= memory[after];
+          pointer <= after;
+        end
       end
     end else if (GROUPS > 1) begin : g_registers
       // slots[k + 1] moves to slots[k]; the head's next state enters slots[G - 1].
