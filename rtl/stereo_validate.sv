@@ -6,7 +6,9 @@
 //        whose leaves are masked by the winner; a masked leaf holds all ones = NO_SECOND_COST,
 //        which is what the tree yields when no label lies away from the winner. LANES < NDISP
 //        (time-multiplexed lanes, docs/rtl.md): stereo_wta computes C2 while it scans the label
-//        groups (in_second); in_data is unused and this stage has no comparator tree.
+//        groups (in_second); in_data is unused and this stage has no comparator tree. NDISP <= 2:
+//        no label can lie away from the winner, so C2 is the constant NO_SECOND_COST (not even
+//        registered: stereo_lr_check's certainty divider then folds into a shift).
 //   fixed = 16 (m + k1) + offset, offset = sign(a - b) floor((16 |a - b| + den) / (2 den)),
 //        a = E(k1 - 1), b = E(k1 + 1), den = a + b - 2 C1 > 0, when cfg_subpixel_en and
 //        0 < k1 < cfg_ndisp - 1; else 0. Since |offset| <= 8 (den >= |a - b|), a 4-bit
@@ -52,7 +54,11 @@ module stereo_validate #(
   // ---- C2: the minimum over labels away from the winner --------------------------------------
   logic [BITS-1:0] second;
   generate
-    if (LANES < NDISP) begin : g_streamed
+    if (NDISP <= 2) begin : g_no_second
+      // No label lies away from the winner: C2 is a constant (no register, so that stage 6's
+      // certainty divider folds into a shift).
+      assign second = BITS'(fx_pkg::NO_SECOND_COST);
+    end else if (LANES < NDISP) begin : g_streamed
       assign second = in_second;
     end else begin : g_tree
       localparam int LEVELS = (NDISP > 1) ? $clog2(NDISP) : 1;
@@ -131,10 +137,18 @@ module stereo_validate #(
       out_label <= in_label;
       out_border <= in_border;
       out_cost <= in_cost;
-      out_second <= second;
       out_fixed <= fixed;
     end
   end
+  generate
+    if (NDISP <= 2) begin : g_second_constant
+      assign out_second = second;
+    end else begin : g_second_register
+      always_ff @(posedge clk) begin
+        if (ce) out_second <= second;
+      end
+    end
+  endgenerate
   stereo_coord_reg coordinates (.*);
 endmodule
 
