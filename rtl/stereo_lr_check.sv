@@ -13,31 +13,54 @@
 //
 // The left results (stereo_validate's register, one pixel behind the accumulators' input) pass
 // through a delay line of NDISP - 1 steps; then kR(x - m - k1) = hist[k1]. At the delay line's
-// input: the uniqueness test C1 (100 + U) >= C2 100 (no C2: unique) and the certainty
-// floor(((C2 - C1) << 8) / (C2 + 1)), whose divider (stereo_divider) is pipelined beside the
-// first min(NDISP - 1, 3) places of the delay line, so its rows are split over up to four steps
-// at no extra latency (at one label the division stays combinational). At the line's output: the
-// left-right test |k1 - kR| > T and the reason, the first failing of border, uniqueness,
-// left-right; fixed is 0 where invalid.
+// input: the uniqueness test C1 (100 + U) >= C2 100, computed as C1 U >= 100 (C2 - C1) (signed;
+// no C2: unique), and the certainty floor(((C2 - C1) << 8) / (C2 + 1)) (stereo_divider). At the
+// line's output: the left-right test |k1 - kR| > T and the reason, the first failing of border,
+// uniqueness, left-right; fixed is 0 where invalid.
+//
+// LANES = NDISP (G = 1): all NDISP accumulators update at the step; the divider is pipelined
+// beside the first min(NDISP - 1, 3) places of the delay line (its rows split over up to four
+// steps at no extra latency; at one label it stays combinational); the product C1 U is one
+// multiplier.
+// Time-multiplexed lanes (LANES < NDISP, G = NDISP / LANES, docs/rtl.md): the accumulators are a
+// ring (a shift register of G words of LANES entries) that advances one word at each clock that
+// processes a group (`ce || group != G-1`); at group g its head word holds accumulators
+// [g*LANES +: LANES], LANES lanes compare them (and the previous word's last entry, kept in a
+// carry register) with labels [g*LANES +: LANES], acc_group, and the results enter at the tail.
+// The costs are those of stereo_wta's input pixel (its group multiplexer; the WTA keeps no cost
+// vector register), one step ahead of LANES = NDISP, so the completed label, out of the last
+// group at the step, is one step early: kR(x - m - k1) = hist[k1 + 1] of NDISP + 1. The divider iterates over the G
+// clocks of the step (ceil(8 / G) rows per clock, the last rows at the step clock) and the product
+// C1 U takes ceil(8 / G) bits of U per clock, so both are ready at the step as with G = 1.
 // Latency: NDISP pixel steps (the delay line and the output register), which is the output
 // register of stereo_top.
 `default_nettype none
 
 module stereo_lr_check #(
-    parameter int NDISP = 16  // labels in parallel
+    parameter int NDISP = 16,  // disparities
+    parameter int LANES = NDISP  // labels compared per clock (divides NDISP)
 ) (
     input  wire logic                                 clk,
     input  wire logic                                 rst,         // clears the delay line's coordinates
     input  wire logic                                 rst_output,  // clears the output's coordinates
-    input  wire logic                                 ce,
-    // The cost vector and its pixel (stereo_wta's register).
+    input  wire logic                                 ce,  // the pixel step (at group G-1)
+    /* verilator lint_off UNUSEDSIGNAL */  // LANES = NDISP: always 0
+    input  wire logic [((NDISP / LANES > 1) ? $clog2(NDISP / LANES) : 1)-1:0] group,
+    /* verilator lint_on UNUSEDSIGNAL */
+    // The cost vector and its pixel: LANES = NDISP: stereo_wta's register (acc_data);
+    // LANES < NDISP: stereo_wta's input, one step ahead, whose group of this clock is acc_group.
     input  wire fx_pkg::coord_t                       acc_x,
     input  wire fx_pkg::coord_t                       acc_y,
+    /* verilator lint_off UNUSEDSIGNAL */  // one of the two, by LANES
     input  wire logic [NDISP*fx_pkg::AGG_BITS-1:0]    acc_data,
+    input  wire logic [LANES*fx_pkg::AGG_BITS-1:0]    acc_group,
+    /* verilator lint_on UNUSEDSIGNAL */
     // The left result (stereo_validate's register): the pixel before acc_x in raster order.
     input  wire fx_pkg::coord_t                       in_x,
     input  wire fx_pkg::coord_t                       in_y,
+    /* verilator lint_off UNUSEDSIGNAL */  // k1 < NDISP: the low LABEL_BITS bits
     input  wire logic [fx_pkg::DISP_BITS-1:0]         in_label,
+    /* verilator lint_on UNUSEDSIGNAL */
     input  wire logic                                 in_border,
     input  wire logic [fx_pkg::AGG_BITS-1:0]          in_cost,
     input  wire logic [fx_pkg::AGG_BITS-1:0]          in_second,
@@ -58,65 +81,145 @@ module stereo_lr_check #(
     output      fx_pkg::out_beat_t                    out_beat
 );
   localparam int BITS = fx_pkg::AGG_BITS;
-  localparam int DISP_BITS = fx_pkg::DISP_BITS;
+  localparam int LABEL_BITS = (NDISP > 1) ? $clog2(NDISP) : 1;  // labels 0 .. NDISP-1
+  localparam int GROUPS = NDISP / LANES;  // clocks per pixel step
   localparam int DELAY = NDISP - 1;  // delay line steps
-  localparam int PRODUCT_BITS = BITS + 10;  // C1 * (100 + 255) < 2^23, C2 * 100 < 2^21
+  localparam int U_BITS = fx_pkg::CFG_UNIQUENESS_BITS;
+  localparam int PRODUCT_BITS = BITS + U_BITS + 1;  // signed: C1 U < 2^22, |100 (C2 - C1)| < 2^21
   localparam logic [BITS-1:0] UNSET = {BITS{1'b1}};  // above every cost
 
+  initial begin
+    assert (LANES >= 1 && NDISP % LANES == 0);
+  end
+
+  // The group of this clock; G = 1: 0 whatever the port carries (stage testbenches leave it open).
+  /* verilator lint_off UNUSEDSIGNAL */  // G = 1: not needed
+  logic [((GROUPS > 1) ? $clog2(GROUPS) : 1)-1:0] group_now;
+  /* verilator lint_on UNUSEDSIGNAL */
+  assign group_now = (GROUPS > 1) ? group : '0;
+
   // ---- right-referenced winners ---------------------------------------------------------------
-  logic [BITS-1:0] acc_cost[NDISP];
-  logic [DISP_BITS-1:0] acc_label[NDISP];
-  logic [BITS-1:0] next_cost[NDISP];
-  logic [DISP_BITS-1:0] next_label[NDISP];
-  logic [DISP_BITS-1:0] hist[NDISP];  // hist[i]: kR completed i + 1 steps ago
+  // Lane l of this clock's group takes label j = g*LANES + l: when x is a frame pixel, j is below
+  // cfg_ndisp and xr = x - m - j lies in [0, W), i.e. diagonal >= l and diagonal - W < l.
   logic acc_in_frame;
   assign acc_in_frame = acc_x >= 0 && 32'(acc_x) < $signed(32'(cfg_width)) && acc_y >= 0 &&
                         32'(acc_y) < $signed(32'(cfg_height));
+  logic signed [17:0] diagonal;  // xr of lane 0: x - m - g*LANES (18-bit signed arithmetic)
+  logic signed [17:0] beyond;  // diagonal - W
+  assign diagonal = 18'(acc_x) - 18'(cfg_min_disp) - 18'(32'(group_now) * LANES);
+  assign beyond = diagonal - $signed(18'(cfg_width));
+  logic [LANES-1:0] take;
+  logic [LANES*BITS-1:0] lane_cost;  // E(x, g*LANES + l) at [l*BITS +: BITS]
   always_comb begin
-    for (int j = 0; j < NDISP; j++) begin
-      logic signed [17:0] right_x;  // xr = x - m - j
-      logic take;
-      logic [BITS-1:0] cost;
-      right_x = 18'(acc_x) - 18'(cfg_min_disp) - 18'(j);
-      take = acc_in_frame && j < $signed(32'(cfg_ndisp)) && right_x >= 18'sd0 &&
-             right_x < $signed(18'(cfg_width));
-      cost = acc_data[j*BITS +: BITS];
-      if (j == 0) begin
-        next_cost[j] = take ? cost : UNSET;
-        next_label[j] = '0;
-      end else if (take && cost < acc_cost[j-1]) begin
-        next_cost[j] = cost;
-        next_label[j] = DISP_BITS'(j);
-      end else begin
-        next_cost[j] = acc_cost[j-1];
-        next_label[j] = acc_label[j-1];
-      end
+    for (int l = 0; l < LANES; l++) begin
+      take[l] = acc_in_frame && $signed(32'(group_now) * LANES + l) < $signed(32'(cfg_ndisp)) &&
+                diagonal >= $signed(18'(l)) && beyond < $signed(18'(l));
     end
   end
+  logic [LABEL_BITS-1:0] completed;  // kR leaving the accumulators at this step
+  generate
+    if (GROUPS > 1) begin : g_ring
+      assign lane_cost = acc_group;  // stereo_wta's multiplexer
+      // ring_*[w]: G words of LANES accumulators; at group g, word 0 holds [g*LANES +: LANES].
+      logic [LANES*BITS-1:0] ring_cost[GROUPS];
+      logic [LANES*LABEL_BITS-1:0] ring_label[GROUPS];
+      logic [BITS-1:0] carry_cost;  // accumulator g*LANES - 1 (the previous word's last)
+      logic [LABEL_BITS-1:0] carry_label;
+      logic [LANES*BITS-1:0] new_cost;
+      logic [LANES*LABEL_BITS-1:0] new_label;
+      always_comb begin
+        for (int l = 0; l < LANES; l++) begin
+          logic [BITS-1:0] previous_cost;  // accumulator j - 1 (accumulator 0: a fresh one)
+          logic [LABEL_BITS-1:0] previous_label;
+          if (l == 0) begin
+            previous_cost = (group_now == '0) ? UNSET : carry_cost;
+            previous_label = (group_now == '0) ? '0 : carry_label;
+          end else begin
+            previous_cost = ring_cost[0][(l-1)*BITS +: BITS];
+            previous_label = ring_label[0][(l-1)*LABEL_BITS +: LABEL_BITS];
+          end
+          if (take[l] && lane_cost[l*BITS +: BITS] < previous_cost) begin
+            new_cost[l*BITS +: BITS] = lane_cost[l*BITS +: BITS];
+            new_label[l*LABEL_BITS +: LABEL_BITS] = LABEL_BITS'(32'(group_now) * LANES + l);
+          end else begin
+            new_cost[l*BITS +: BITS] = previous_cost;
+            new_label[l*LABEL_BITS +: LABEL_BITS] = previous_label;
+          end
+        end
+      end
+      always_ff @(posedge clk) begin
+        if (ce || 32'(group_now) != GROUPS - 1) begin  // a clock that processes a group
+          for (int w = 0; w < GROUPS - 1; w++) begin
+            ring_cost[w] <= ring_cost[w+1];
+            ring_label[w] <= ring_label[w+1];
+          end
+          ring_cost[GROUPS-1] <= new_cost;
+          ring_label[GROUPS-1] <= new_label;
+          carry_cost <= ring_cost[0][(LANES-1)*BITS +: BITS];
+          carry_label <= ring_label[0][(LANES-1)*LABEL_BITS +: LABEL_BITS];
+        end
+      end
+      assign completed = new_label[(LANES-1)*LABEL_BITS +: LABEL_BITS];
+    end else begin : g_parallel
+      assign lane_cost = acc_data;
+      logic [BITS-1:0] acc_cost[NDISP];
+      logic [LABEL_BITS-1:0] acc_label[NDISP];
+      logic [BITS-1:0] next_cost[NDISP];
+      logic [LABEL_BITS-1:0] next_label[NDISP];
+      always_comb begin
+        for (int j = 0; j < NDISP; j++) begin
+          logic [BITS-1:0] cost;
+          cost = lane_cost[j*BITS +: BITS];
+          if (j == 0) begin
+            next_cost[j] = take[j] ? cost : UNSET;
+            next_label[j] = '0;
+          end else if (take[j] && cost < acc_cost[j-1]) begin
+            next_cost[j] = cost;
+            next_label[j] = LABEL_BITS'(j);
+          end else begin
+            next_cost[j] = acc_cost[j-1];
+            next_label[j] = acc_label[j-1];
+          end
+        end
+      end
+      always_ff @(posedge clk) begin
+        if (ce) begin
+          for (int j = 0; j < NDISP; j++) begin
+            acc_cost[j] <= next_cost[j];
+            acc_label[j] <= next_label[j];
+          end
+        end
+      end
+      assign completed = next_label[NDISP-1];
+    end
+  endgenerate
+  // hist[i]: kR completed i + 1 steps ago. With LANES < NDISP the accumulators run one step
+  // ahead, so kR(x - m - k1) is hist[k1 + 1] of NDISP + 1 (AHEAD = 1).
+  localparam int AHEAD = (GROUPS > 1) ? 1 : 0;
+  logic [LABEL_BITS-1:0] hist[NDISP+AHEAD];
   always_ff @(posedge clk) begin
     if (ce) begin
-      for (int j = 0; j < NDISP; j++) begin
-        acc_cost[j] <= next_cost[j];
-        acc_label[j] <= next_label[j];
-      end
-      hist[0] <= next_label[NDISP-1];
-      for (int i = 1; i < NDISP; i++) hist[i] <= hist[i-1];
+      hist[0] <= completed;
+      for (int i = 1; i < NDISP + AHEAD; i++) hist[i] <= hist[i-1];
     end
   end
 
   // ---- left results: certainty and uniqueness, then the delay line ----------------------------
-  // The divider's pipeline runs beside the delay line's first DIVIDER_STAGES - 1 places; its
-  // quotient then waits CERTAINTY_DELAY more steps to leave with its pixel.
-  localparam int DIVIDER_STAGES = (DELAY < 3 ? DELAY : 3) + 1;
+  // G = 1: the divider's pipeline runs beside the delay line's first DIVIDER_STAGES - 1 places;
+  // G > 1: it iterates over the step's clocks, done at the step. Its quotient then waits
+  // CERTAINTY_DELAY more steps to leave with its pixel.
+  localparam int DIVIDER_STAGES = (GROUPS > 1) ? 1 : (DELAY < 3 ? DELAY : 3) + 1;
   localparam int CERTAINTY_DELAY = DELAY - (DIVIDER_STAGES - 1);
   logic [fx_pkg::CERTAINTY_BITS-1:0] certainty;  // of the pixel DIVIDER_STAGES - 1 steps in
   stereo_divider #(
       .DIVISOR_BITS (BITS + 1),
       .QUOTIENT_BITS(fx_pkg::CERTAINTY_BITS),
-      .STAGES       (DIVIDER_STAGES)
+      .STAGES       (DIVIDER_STAGES),
+      .CLOCKS       (GROUPS)
   ) divider (
       .clk(clk),
       .ce(ce),
+      .index(group_now),
       .dividend((BITS + 1)'(in_second - in_cost)),
       .divisor((BITS + 1)'(in_second) + (BITS + 1)'(1)),
       .quotient(certainty)
@@ -136,29 +239,57 @@ module stereo_lr_check #(
       assign leaving_certainty = certainty;
     end
   endgenerate
+
+  // Uniqueness: C1 (100 + U) >= 100 C2 <=> C1 U >= 100 (C2 - C1) (signed, exact).
+  logic [PRODUCT_BITS-1:0] scaled_best;  // C1 U
+  generate
+    if (GROUPS > 1) begin : g_product_iterative
+      // Horner over U's bits, most significant first, CHUNK bits per clock from group 0 on.
+      localparam int CHUNK = (U_BITS + GROUPS - 1) / GROUPS;
+      localparam int CHUNKS = (U_BITS + CHUNK - 1) / CHUNK;
+      logic [CHUNKS*CHUNK-1:0] factor;
+      logic [PRODUCT_BITS-1:0] partial;  // registered: the chunks of the clocks before
+      logic [CHUNK-1:0] chunk;
+      assign factor = (CHUNKS * CHUNK)'(cfg_uniqueness);
+      always_comb begin
+        chunk = '0;
+        for (int c = 0; c < CHUNKS; c++) begin
+          if (32'(group_now) == c) chunk = factor[(CHUNKS-1-c)*CHUNK +: CHUNK];
+        end
+        if (32'(group_now) >= CHUNKS) scaled_best = partial;
+        else
+          scaled_best = (((group_now == '0) ? '0 : partial) << CHUNK) +
+                        PRODUCT_BITS'(in_cost) * PRODUCT_BITS'(chunk);
+      end
+      always_ff @(posedge clk) begin
+        if (ce || 32'(group_now) != GROUPS - 1) partial <= scaled_best;
+      end
+    end else begin : g_product
+      assign scaled_best = PRODUCT_BITS'(in_cost) * PRODUCT_BITS'(cfg_uniqueness);
+    end
+  endgenerate
   logic not_unique;
   always_comb begin
-    logic [PRODUCT_BITS-1:0] scaled_best, scaled_second;
-    scaled_best = PRODUCT_BITS'(in_cost) *
-                  (PRODUCT_BITS'(fx_pkg::UNIQUENESS_BASE) + PRODUCT_BITS'(cfg_uniqueness));
-    scaled_second = PRODUCT_BITS'(in_second) * PRODUCT_BITS'(fx_pkg::UNIQUENESS_BASE);
+    logic signed [PRODUCT_BITS-1:0] scaled_margin;  // 100 (C2 - C1)
+    scaled_margin = (PRODUCT_BITS'(in_second) - PRODUCT_BITS'(in_cost)) *
+                    PRODUCT_BITS'(fx_pkg::UNIQUENESS_BASE);
     not_unique = cfg_uniqueness_en && in_second != BITS'(fx_pkg::NO_SECOND_COST) &&
-                 scaled_best >= scaled_second;
+                 $signed(scaled_best) >= scaled_margin;
   end
 
   // A left result in the delay line; its coordinates travel beside it in registers of their own
   // (reset to "no pixel"; the data has no reset).
   typedef struct packed {
-    logic [DISP_BITS-1:0] label;
+    logic [LABEL_BITS-1:0] label;  // k1 < NDISP
     logic border;
     logic not_unique;
     logic signed [fx_pkg::FIXED_BITS-1:0] fixed;
   } result_t;
-  localparam int RESULT_BITS = DISP_BITS + 2 + fx_pkg::FIXED_BITS;
+  localparam int RESULT_BITS = LABEL_BITS + 2 + fx_pkg::FIXED_BITS;
   result_t entering, leaving;
   fx_pkg::coord_t leaving_x, leaving_y;
   always_comb begin
-    entering.label = in_label;
+    entering.label = LABEL_BITS'(in_label);
     entering.border = in_border;
     entering.not_unique = not_unique;
     entering.fixed = in_fixed;
@@ -211,16 +342,16 @@ module stereo_lr_check #(
   endgenerate
 
   // ---- the left-right test and the output register ---------------------------------------------
-  logic [DISP_BITS-1:0] right_label;  // kR(x - m - k1)
+  logic [LABEL_BITS-1:0] right_label;  // kR(x - m - k1)
   always_comb begin
     right_label = '0;
     for (int i = 0; i < NDISP; i++) begin
-      if (32'(leaving.label) == i) right_label = hist[i];
+      if (32'(leaving.label) == i) right_label = hist[i+AHEAD];
     end
   end
   fx_pkg::out_beat_t beat;
   always_comb begin
-    logic [DISP_BITS-1:0] distance;
+    logic [LABEL_BITS-1:0] distance;
     distance = (leaving.label >= right_label) ? leaving.label - right_label
                                               : right_label - leaving.label;
     beat.certainty = leaving_certainty;

@@ -410,8 +410,10 @@ module stereo_top #(
   fx_pkg::coord_t wta_x, wta_y, validate_x, validate_y, out_x, out_y;
   logic [DISP_BITS-1:0] wta_label, validate_label;
   logic wta_border, validate_border;
-  logic [AGG_BITS-1:0] wta_cost, wta_before, wta_after, validate_cost, validate_second;
+  logic [AGG_BITS-1:0] wta_cost, wta_before, wta_after, wta_second, validate_cost,
+      validate_second;
   logic [NDISP*AGG_BITS-1:0] wta_data;
+  logic [LANES*AGG_BITS-1:0] wta_group;
   logic signed [FIXED_BITS-1:0] validate_fixed;
   stereo_wta #(
       .NDISP(NDISP),
@@ -437,11 +439,14 @@ module stereo_top #(
       .out_cost(wta_cost),
       .out_before(wta_before),
       .out_after(wta_after),
-      .out_data(wta_data)
+      .out_data(wta_data),
+      .out_second(wta_second),
+      .out_group(wta_group)
   );
 
   stereo_validate #(
-      .NDISP(NDISP)
+      .NDISP(NDISP),
+      .LANES(LANES)
   ) validate (
       .clk(clk),
       .rst(clear_coordinates),
@@ -454,6 +459,7 @@ module stereo_top #(
       .in_before(wta_before),
       .in_after(wta_after),
       .in_data(wta_data),
+      .in_second(wta_second),
       .cfg_ndisp(use_ndisp),
       .cfg_min_disp(use_min_disp),
       .cfg_subpixel_en(use_subpixel_en),
@@ -468,15 +474,19 @@ module stereo_top #(
 
   fx_pkg::out_beat_t out_beat;
   stereo_lr_check #(
-      .NDISP(NDISP)
+      .NDISP(NDISP),
+      .LANES(LANES)
   ) lr_check (
       .clk(clk),
       .rst(clear_coordinates),
       .rst_output(rst),
       .ce(step),
-      .acc_x(wta_x),
-      .acc_y(wta_y),
+      .group(group),
+      // LANES < NDISP: the WTA's input pixel and its group of this clock (one step ahead).
+      .acc_x(GROUPS > 1 ? wta_in_x : wta_x),
+      .acc_y(GROUPS > 1 ? wta_in_y : wta_y),
       .acc_data(wta_data),
+      .acc_group(wta_group),
       .in_x(validate_x),
       .in_y(validate_y),
       .in_label(validate_label),
