@@ -11,7 +11,8 @@
 // Time-multiplexed lanes (LANES < NDISP, docs/rtl.md): a pixel step takes G = NDISP / LANES
 // clocks, and the clock of label group g (`group`, 0 .. G-1, from stereo_top; the step, ce, comes
 // at group G-1) computes labels [g*LANES +: LANES] only, on LANES copies of the vertical and
-// horizontal multiply-adds. The line buffer has G words per column, one group each; the
+// horizontal multiply-adds; in_data carries that group's costs (stereo_cost computes them in the
+// same clock). The line buffer has G words per column, one group each; the
 // vertical sums and their history (the horizontal window) of the G groups circulate in a ring
 // of G slots that advances one slot per group, so the group being computed is always at its
 // head; the group results are shifted into an assembly register, and out_data (all NDISP
@@ -38,7 +39,7 @@ module stereo_aggregate #(
     /* verilator lint_on UNUSEDSIGNAL */
     input  wire fx_pkg::coord_t                     in_x,
     input  wire fx_pkg::coord_t                     in_y,
-    input  wire logic [NDISP*fx_pkg::COST_BITS-1:0] in_data,
+    input  wire logic [LANES*fx_pkg::COST_BITS-1:0] in_data,  // labels [group*LANES +: LANES]
     input  wire fx_pkg::cfg_size_t                  cfg_width,
     input  wire fx_pkg::cfg_size_t                  cfg_height,
     /* verilator lint_off UNUSEDSIGNAL */  // ignored with RUNTIME_KERNEL = 0
@@ -70,15 +71,9 @@ module stereo_aggregate #(
   // A clock that processes a group: every group below the last, and the last at the step.
   logic advance;
   assign advance = ce || 32'(group_now) != GROUPS - 1;
-  // This clock's group of the input costs.
+  // This clock's group of the input costs: stereo_cost computes it for this clock's group.
   logic [COLUMN_BITS-1:0] group_costs;
-  generate
-    if (GROUPS > 1) begin : g_select_group
-      assign group_costs = in_data[32'(group_now)*COLUMN_BITS +: COLUMN_BITS];
-    end else begin : g_all_labels
-      assign group_costs = in_data;
-    end
-  endgenerate
+  assign group_costs = in_data;
 
   logic [WINDOW*TAP_BITS-1:0] kernel;
   generate

@@ -1,32 +1,46 @@
-// stereo_cost: the matching cost for all labels at once, over the signed disparity range
-// d = m + k, k = 0 .. NDISP-1, m = cfg_min_disp (model: stereo::cost and the cost plug-ins,
-// docs/fixed-point.md stages 1 and 6, "LCDM"). COST = 0: absolute differences over RGB;
-// COST = 1: the LCDM cost (thesis Sec. 3.5), each incoming pixel first converted to its point on
-// the hue-saturation disc (stereo_lcdm_convert), the per-label distance by stereo_lcdm_distance.
+// stereo_cost: the matching cost over the signed disparity range d = m + k, k = 0 .. NDISP-1,
+// m = cfg_min_disp (model: stereo::cost and the cost plug-ins, docs/fixed-point.md stages 1 and 6,
+// "LCDM"). COST = 0: absolute differences over RGB; COST = 1: the LCDM cost (thesis Sec. 3.5),
+// each incoming pixel first converted to its point on the hue-saturation disc
+// (stereo_lcdm_convert), the per-label distance by stereo_lcdm_distance.
 // Below, "pixel" is what the delay lines carry: RGB (24 bits) or the LCDM point (22 bits).
 //
 // The right pixels pass through continuous delay lines (across row boundaries). For a negative m
 // the left pixel must wait for right pixels that arrive later: it is delayed (with its
 // coordinates) by K = max(0, -m) steps. The right sample of label k sits k + P positions behind
 // the newest right pixel, P = max(m, 0): one multiplexer picks the right pixel P steps old from a
-// pre-delay line of MAX_MIN_DISP, and the lanes' delay line of NDISP - 1 holds its history (a
-// lane reading a value picked under the previous frame's P reads a position before the frame,
-// which is outside). The cost of label k is
+// pre-delay line of MAX_MIN_DISP, and the lanes' delay line holds its history (a lane reading a
+// value picked under the previous frame's P reads a position before the frame, which is
+// outside). The cost of label k is
 //   |Lr - Rr(xr)| + |Lg - Rg(xr)| + |Lb - Rb(xr)|  (AD)  or  lcdm(L, R(xr))  (LCDM),  xr = x - m - k,
 // or COST_OUTSIDE where xr lies outside [0, W): exactly where the tap holds a pixel of another
 // row (or none), so nothing is ever cleared. cfg_min_disp must stay within +-MAX_MIN_DISP
 // (stereo_top clamps it) and constant during a frame and its flush.
+//
+// LANES = NDISP (the all-parallel stage): NDISP distance units compute every label at the step
+// from the selected right pixel and a history of NDISP - 1; out_data (all labels) is registered.
+// Time-multiplexed lanes (LANES < NDISP, docs/rtl.md): the register is in front of the
+// arithmetic. The step registers the matched left pixel, its coordinates and the selected right
+// pixel into a history of NDISP (label k's right pixel at entry k); during the clock of label
+// group g (`group` from stereo_top, 0 .. G-1, G = NDISP / LANES; the step, ce, comes at G-1)
+// LANES distance units compute labels [g*LANES +: LANES] combinationally (a G:1 multiplexer per
+// lane picks its right pixel), and out_data carries that group only (LANES costs). The stage's
+// output is thus the same pixel's costs between two steps as with LANES = NDISP.
 // Latency: 1 + K pixel steps. Throughput: one pixel per ce.
 `default_nettype none
 
 module stereo_cost #(
-    parameter int NDISP        = 16,                           // labels evaluated in parallel
+    parameter int NDISP        = 16,                           // labels
     parameter int MAX_MIN_DISP = fx_pkg::DEFAULT_MAX_MIN_DISP,  // largest |cfg_min_disp|
-    parameter int COST         = 0                             // 0: AD over RGB, 1: LCDM
+    parameter int COST         = 0,                            // 0: AD over RGB, 1: LCDM
+    parameter int LANES        = NDISP  // labels computed per clock (divides NDISP)
 ) (
     input  wire logic                               clk,
     input  wire logic                               rst,           // clears coordinates only
-    input  wire logic                               ce,            // advance one pixel step
+    input  wire logic                               ce,            // the pixel step (at group G-1)
+    /* verilator lint_off UNUSEDSIGNAL */  // LANES = NDISP: always 0
+    input  wire logic [((NDISP / LANES > 1) ? $clog2(NDISP / LANES) : 1)-1:0] group,
+    /* verilator lint_on UNUSEDSIGNAL */
     input  wire fx_pkg::coord_t                     in_x,
     input  wire fx_pkg::coord_t                     in_y,
     input  wire logic [23:0]                        in_left,       // {R, G, B}
@@ -35,19 +49,23 @@ module stereo_cost #(
     input  wire fx_pkg::cfg_min_disp_t              cfg_min_disp,
     output      fx_pkg::coord_t                     out_x,
     output      fx_pkg::coord_t                     out_y,
-    output      logic [NDISP*fx_pkg::COST_BITS-1:0] out_data
+    // LANES = NDISP: all labels, registered; else labels [group*LANES +: LANES], combinational.
+    output      logic [LANES*fx_pkg::COST_BITS-1:0] out_data
 );
   localparam int COST_BITS = fx_pkg::COST_BITS;
   localparam int PIXEL_BITS = (COST == 1) ? 2 * fx_pkg::LCDM_COORD_BITS : fx_pkg::RGB_BITS;
-  // Right pixels kept: the pre-delay line, and the lanes' history besides the selected pixel.
+  localparam int GROUPS = NDISP / LANES;  // clocks per pixel step
+  // Right pixels kept: the pre-delay line, and the lanes' history (LANES = NDISP: besides the
+  // selected pixel; else including it, as it was at the last step).
   localparam int PRE_DELAY = (MAX_MIN_DISP > 0) ? MAX_MIN_DISP : 1;
-  localparam int HISTORY = (NDISP > 1) ? NDISP - 1 : 1;
+  localparam int HISTORY = (GROUPS > 1) ? NDISP : ((NDISP > 1) ? NDISP - 1 : 1);
   localparam int LEFT_DELAY = (MAX_MIN_DISP > 0) ? MAX_MIN_DISP : 1;  // left pixels kept
   localparam int SHIFT_BITS = $clog2(MAX_MIN_DISP + 1) + 1;
 
   initial begin
     assert (MAX_MIN_DISP >= 0 && MAX_MIN_DISP <= fx_pkg::MAX_MIN_DISPARITY);
     assert (COST == 0 || COST == 1);
+    assert (LANES >= 1 && NDISP % LANES == 0);
   end
 
   // The pixels the delay lines carry.
@@ -75,8 +93,11 @@ module stereo_cost #(
 
   // right_pre[i*PIXEL_BITS +: PIXEL_BITS] = the right pixel i + 1 steps before the newest.
   logic [PRE_DELAY*PIXEL_BITS-1:0] right_pre;
-  // right_history[i*PIXEL_BITS +: PIXEL_BITS] = the selected right pixel i + 1 steps ago.
+  // right_history[i*PIXEL_BITS +: PIXEL_BITS] = the selected right pixel i + 1 steps ago
+  // (LANES < NDISP: i steps before the last step).
+  /* verilator lint_off UNUSEDSIGNAL */  // NDISP = 1: not needed
   logic [HISTORY*PIXEL_BITS-1:0] right_history;
+  /* verilator lint_on UNUSEDSIGNAL */
   // The left pixel and its coordinates, i + 1 steps ago.
   logic [LEFT_DELAY*PIXEL_BITS-1:0] left_history;
   fx_pkg::coord_t left_x_history[LEFT_DELAY];
@@ -124,28 +145,60 @@ module stereo_cost #(
     abs_diff_rgb = COST_BITS'(dr) + COST_BITS'(dg) + COST_BITS'(db);
   endfunction
 
-  logic [NDISP*COST_BITS-1:0] cost_d;
+  // What the LANES distance units compare: the left pixel, each lane's right pixel, and each
+  // lane's xr + l (lane l's xr is lane_base_x - l).
+  logic [PIXEL_BITS-1:0] lane_left;
+  logic [LANES*PIXEL_BITS-1:0] lane_right;
+  logic signed [17:0] lane_base_x;
   generate
-    for (genvar k = 0; k < NDISP; k++) begin : g_label
-      logic [PIXEL_BITS-1:0] right_pixel;
-      logic signed [17:0] right_x;  // xr = x - m - k
-      logic [COST_BITS-1:0] distance;
-      always_comb begin
-        // Tap k + P behind the newest right pixel: k behind the selected one.
-        right_pixel = (k == 0) ? right_selected
-                               : right_history[(k > 0 ? k - 1 : 0)*PIXEL_BITS +: PIXEL_BITS];
-        right_x = 18'(left_x) - 18'(cfg_min_disp) - 18'(k);
+    if (GROUPS > 1) begin : g_lanes
+      // The pixel of the last step: the left pixel, and the selected right pixel as entry 0 of
+      // the history (label k's right pixel at entry k).
+      logic [PIXEL_BITS-1:0] left_q;
+      always_ff @(posedge clk) begin
+        if (ce) left_q <= left_pixel;
       end
+      assign lane_left = left_q;
+      // xr = x - m - k with the registered coordinates, k = group*LANES + l.
+      assign lane_base_x = 18'(out_x) - 18'(cfg_min_disp) - 18'(32'(group) * LANES);
+      for (genvar l = 0; l < LANES; l++) begin : g_pick
+        always_comb begin  // G:1: entry g*LANES + l at group g
+          lane_right[l*PIXEL_BITS +: PIXEL_BITS] = right_history[l*PIXEL_BITS +: PIXEL_BITS];
+          for (int g = 1; g < GROUPS; g++) begin
+            if (32'(group) == g)
+              lane_right[l*PIXEL_BITS +: PIXEL_BITS] =
+                  right_history[(g*LANES+l)*PIXEL_BITS +: PIXEL_BITS];
+          end
+        end
+      end
+    end else begin : g_parallel
+      assign lane_left = left_pixel;
+      assign lane_base_x = 18'(left_x) - 18'(cfg_min_disp);
+      // Tap k + P behind the newest right pixel: k behind the selected one.
+      if (NDISP > 1) begin : g_history
+        assign lane_right = {right_history[(NDISP-1)*PIXEL_BITS-1:0], right_selected};
+      end else begin : g_selected
+        assign lane_right = right_selected;
+      end
+    end
+  endgenerate
+
+  logic [LANES*COST_BITS-1:0] cost_d;
+  generate
+    for (genvar l = 0; l < LANES; l++) begin : g_label
+      logic signed [17:0] right_x;  // xr
+      logic [COST_BITS-1:0] distance;
+      assign right_x = lane_base_x - 18'(l);
       if (COST == 1) begin : g_lcdm
         stereo_lcdm_distance lcdm (
-            .in_left (left_pixel),
-            .in_right(right_pixel),
+            .in_left (lane_left),
+            .in_right(lane_right[l*PIXEL_BITS +: PIXEL_BITS]),
             .out_cost(distance)
         );
-      end else begin : g_ad
-        assign distance = abs_diff_rgb(24'(left_pixel), 24'(right_pixel));  // PIXEL_BITS = 24 here
+      end else begin : g_ad  // PIXEL_BITS = 24 here
+        assign distance = abs_diff_rgb(24'(lane_left), 24'(lane_right[l*PIXEL_BITS +: PIXEL_BITS]));
       end
-      assign cost_d[k*COST_BITS +: COST_BITS] =
+      assign cost_d[l*COST_BITS +: COST_BITS] =
           (right_x < 18'sd0 || right_x >= $signed(18'(cfg_width)))
               ? COST_BITS'(fx_pkg::COST_OUTSIDE) : distance;
     end
@@ -198,9 +251,15 @@ module stereo_cost #(
     end
   end
 
-  always_ff @(posedge clk) begin
-    if (ce) out_data <= cost_d;
-  end
+  generate
+    if (GROUPS > 1) begin : g_group_out
+      assign out_data = cost_d;  // this clock's group of the registered pixel
+    end else begin : g_registered_out
+      always_ff @(posedge clk) begin
+        if (ce) out_data <= cost_d;
+      end
+    end
+  endgenerate
 
   stereo_coord_reg coordinates (
       .clk(clk),

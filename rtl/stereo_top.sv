@@ -23,8 +23,8 @@
 //   R = WINDOW/2, K = max(0, -cfg_min_disp), G = NDISP / LANES clocks per step
 // (stage_table.hpp frame_cycles, docs/rtl.md; G = 1: S).
 // LANES < NDISP: a step every G clocks, s_axis_tready only at a clock where a step can take the
-// beat; the aggregation, both CA rules and the WTA compute LANES labels per clock (group
-// counter below), the other stages all labels at the step.
+// beat; the cost, the aggregation, both CA rules and the WTA compute LANES labels per clock
+// (group counter below), the other stages all labels at the step.
 // Input before the first start of frame is dropped. Status bits (sticky until reset; the
 // indices are fx_pkg::STATUS_*):
 //   [0] tlast not at the row end, [1] tuser inside a frame, [2] configuration out of range
@@ -314,17 +314,19 @@ module stereo_top #(
   assign right_pixel = (state == FLUSH) ? '0 : s_axis_tdata[fx_pkg::IN_RIGHT_LSB +: fx_pkg::RGB_BITS];
 
   fx_pkg::coord_t cost_x, cost_y, agg_x, agg_y, rule1_x, rule1_y, wta_in_x, wta_in_y;
-  logic [NDISP*COST_BITS-1:0] cost_data;
+  logic [LANES*COST_BITS-1:0] cost_data;  // LANES < NDISP: this clock's group of labels
   logic [NDISP*AGG_BITS-1:0] agg_data, rule1_data, rule2_data;
 
   stereo_cost #(
       .NDISP(NDISP),
       .MAX_MIN_DISP(MAX_MIN_DISP),
-      .COST(COST)
+      .COST(COST),
+      .LANES(LANES)
   ) cost (
       .clk(clk),
       .rst(clear_coordinates),
       .ce(step),
+      .group(group),
       .in_x(x_in),
       .in_y(y_in),
       .in_left(left_pixel),

@@ -10,6 +10,7 @@
 #include "Vstereo_top_lanes1.h"
 #include "Vstereo_top_lanes4.h"
 #include "Vstereo_top_lcdm.h"
+#include "Vstereo_top_lcdm_lanes4.h"
 #include "Vstereo_top_ndisp8_lanes2.h"
 #include "Vstereo_top_small.h"
 #include "axis_driver.hpp"
@@ -122,6 +123,12 @@ const TopConfig& lcdm_top_config() {
     return config;
 }
 
+const TopConfig& lcdm_lanes_top_config() {
+    static const TopConfig config =
+        top_config(table::verilated("Vstereo_top_lcdm_lanes4"), "lcdm-lanes4");
+    return config;
+}
+
 const std::vector<TopConfig>& lanes_top_configs() {
     static const std::vector<TopConfig> configs = {
         top_config(table::verilated("Vstereo_top_lanes4"), "lanes4"),
@@ -134,6 +141,9 @@ const std::vector<TopConfig>& lanes_top_configs() {
 const TopConfig& top_config_named(const std::string& name) {
     if (name == lcdm_top_config().name) {
         return lcdm_top_config();
+    }
+    if (name == lcdm_lanes_top_config().name) {
+        return lcdm_lanes_top_config();
     }
     for (const auto* list : {&built_top_configs(), &lanes_top_configs()}) {
         for (const TopConfig& config : *list) {
@@ -194,6 +204,9 @@ std::unique_ptr<TopSim> make_top_sim(const TopConfig& config) {
     }
     if (config.name == "small-lcdm") {
         return std::make_unique<VerilatedTop<Vstereo_top_lcdm>>(config);
+    }
+    if (config.name == "lcdm-lanes4") {
+        return std::make_unique<VerilatedTop<Vstereo_top_lcdm_lanes4>>(config);
     }
     if (config.name == "lanes4") {
         return std::make_unique<VerilatedTop<Vstereo_top_lanes4>>(config);

@@ -33,12 +33,16 @@ const std::vector<TopConfig>& built_top_configs();
 // built_top_configs(), which all have the AD cost.
 const TopConfig& lcdm_top_config();
 
+// The same with time-multiplexed lanes (LANES = 4): "lcdm-lanes4". Not among
+// built_top_configs() or lanes_top_configs().
+const TopConfig& lcdm_lanes_top_config();
+
 // stereo_top with time-multiplexed lanes (LANES < NDISP), AD cost: "lanes4" (16 labels, 4 per
 // clock), "lanes1" (16, 1), "ndisp8-lanes2" (8, 2). Not among built_top_configs().
 const std::vector<TopConfig>& lanes_top_configs();
 
-// Any built stereo_top configuration by name (small, small-lcdm, full, the lanes ones); throws
-// std::invalid_argument for an unknown name.
+// Any built stereo_top configuration by name (small, small-lcdm, lcdm-lanes4, full, the lanes
+// ones); throws std::invalid_argument for an unknown name.
 const TopConfig& top_config_named(const std::string& name);
 
 // The smallest built configuration with the cost `cost` ("ad": built_top_configs(), "lcdm":

@@ -1,7 +1,8 @@
 // stereo_top with the LCDM cost stage (COST = 1, Verilated as Vstereo_top_lcdm) against
 // stereo::match with the "lcdm" cost, pixel for pixel through its AXI4-Stream ports: random
 // colour pairs with input gaps and output stalls, a relit pair, a real crop, frames back to back
-// and a reset in the middle of a frame.
+// and a reset in the middle of a frame. Built once per LCDM configuration (STEREO_TB_LCDM_CONFIG
+// names it, testbench/CMakeLists.txt): small-lcdm and lcdm-lanes4 (LANES < NDISP).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -21,6 +22,10 @@ namespace {
 
 using tb::same_map;
 
+#ifndef STEREO_TB_LCDM_CONFIG
+#define STEREO_TB_LCDM_CONFIG "small-lcdm"
+#endif
+
 MatchParams lcdm_params(int ndisp, int window, bool use_ca) {
     MatchParams params{ndisp, window, fx::kDefaultSigma, use_ca};
     params.cost = "lcdm";
@@ -30,7 +35,7 @@ MatchParams lcdm_params(int ndisp, int window, bool use_ca) {
 // The LCDM configuration, frame by frame (tb_cosim.hpp); run() as an 8-bit map.
 class LcdmCosim : public tb::Cosim {
   public:
-    LcdmCosim() : tb::Cosim(lcdm_top_config()) {}
+    LcdmCosim() : tb::Cosim(top_config_named(STEREO_TB_LCDM_CONFIG)) {}
     ValidatedDisparity run_validated(const Image& left, const Image& right,
                                      const MatchParams& params, const Traffic& traffic) {
         return tb::Cosim::run(left, right, params, traffic);

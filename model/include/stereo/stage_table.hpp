@@ -204,7 +204,7 @@ struct Params {
     int rule = kUnset;          // stereo_ca_plane's RULE
     int max_min_disp = kUnset;  // stereo_top's and stereo_cost's MAX_MIN_DISP
     int cost = kUnset;          // stereo_top's and stereo_cost's COST: 0 AD, 1 LCDM
-    int lanes = kUnset;         // stereo_top's LANES (unset: NDISP, every label in parallel)
+    int lanes = kUnset;         // stereo_top's and stereo_cost's LANES (unset: NDISP)
     int clks_per_bit = kUnset;  // the UART's CLKS_PER_BIT (stereo_board_top)
 };
 
@@ -233,16 +233,20 @@ inline constexpr Params kSmallLanes4{
     kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window, kUnset, kUnset, kUnset, kUnset, 4};
 inline constexpr Params kSmallLanes1{
     kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window, kUnset, kUnset, kUnset, kUnset, 1};
+// The LCDM cost stage with lanes: its G:1 right-pixel multiplexers and LANES LCDM distance units.
+inline constexpr Params kSmallLcdmLanes4{
+    kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window, kUnset, kUnset, kUnset, 1, 4};
 inline constexpr Params kNdisp8Lanes2{kSmall.width, kSmall.height, 8, kSmall.window, kUnset, kUnset,
                                       kUnset,       kUnset,        2};
 
-inline constexpr std::array<VerilatedConfig, 18> kVerilatedConfigs = {{
+inline constexpr std::array<VerilatedConfig, 19> kVerilatedConfigs = {{
     {"Vstereo_top_small", "stereo_top", kSmall, ""},
     {"Vstereo_top_lanes4", "stereo_top", kSmallLanes4, ""},
     {"Vstereo_top_lanes1", "stereo_top", kSmallLanes1, ""},
     {"Vstereo_top_ndisp8_lanes2", "stereo_top", kNdisp8Lanes2, ""},
     {"Vstereo_cost", "stereo_cost", {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset}, ""},
     {"Vstereo_top_lcdm", "stereo_top", kSmallLcdm, ""},
+    {"Vstereo_top_lcdm_lanes4", "stereo_top", kSmallLcdmLanes4, ""},
     {"Vstereo_cost_lcdm",
      "stereo_cost",
      {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset, kUnset, kUnset, 1},
@@ -300,7 +304,7 @@ struct LintConfig {
     Params params;
 };
 
-inline constexpr std::array<LintConfig, 14> kExtraLintConfigs = {{
+inline constexpr std::array<LintConfig, 15> kExtraLintConfigs = {{
     // Time-multiplexed lanes: one label per clock, an odd group count, the FPGA build at full size.
     {"stereo_top", {kUnset, kUnset, 3, 3, kUnset, kUnset, kUnset, kUnset, 1}},
     {"stereo_top", {100, 75, 12, 7, kUnset, kUnset, kUnset, kUnset, 4}},
@@ -312,6 +316,8 @@ inline constexpr std::array<LintConfig, 14> kExtraLintConfigs = {{
     {"stereo_top", {kUnset, kUnset, 1, 3, kUnset}},
     // The LCDM cost stage, alone with one label and in the top.
     {"stereo_cost", {kUnset, kUnset, 1, kUnset, kUnset, kUnset, kUnset, 1}},
+    // The LCDM cost stage alone with lanes (LANES < NDISP: the group port, G:1 multiplexers).
+    {"stereo_cost", {kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, 1, 4}},
     {"stereo_top", kSmallLcdm},
     // The CA skeleton with the other rule.
     {"stereo_ca_plane", {kUnset, kUnset, kUnset, kUnset, kUnset, 2}},
