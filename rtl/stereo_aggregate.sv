@@ -269,30 +269,17 @@ module stereo_aggregate #(
     end
   endgenerate
 
-  // Groups 0 .. G-2 of the step are collected in `assembled` (group 0 lowest after G-1 shifts);
-  // the step puts them with the last group into out_data.
-  generate
-    if (GROUPS > 1) begin : g_assemble
-      logic [(GROUPS-1)*OUT_BITS-1:0] assembled;
-      if (GROUPS > 2) begin : g_shift
-        always_ff @(posedge clk) begin
-          if (!(32'(group_now) == GROUPS - 1))
-            assembled <= {aggregate_d, assembled[(GROUPS-1)*OUT_BITS-1:OUT_BITS]};
-        end
-      end else begin : g_one
-        always_ff @(posedge clk) begin
-          if (!(32'(group_now) == GROUPS - 1)) assembled <= aggregate_d;
-        end
-      end
-      always_ff @(posedge clk) begin
-        if (ce) out_data <= {aggregate_d, assembled};
-      end
-    end else begin : g_parallel
-      always_ff @(posedge clk) begin
-        if (ce) out_data <= aggregate_d;
-      end
-    end
-  endgenerate
+  // Groups 0 .. G-2 are collected, the step hands all labels on (G = 1: a plain register).
+  stereo_group_assembly #(
+      .GROUP_BITS(OUT_BITS),
+      .GROUPS    (GROUPS)
+  ) assembly (
+      .clk(clk),
+      .ce(ce),
+      .group(group_now),
+      .in_group(aggregate_d),
+      .out_data(out_data)
+  );
   stereo_coord_reg coordinates (
       .in_x(centre_x),
       .in_y(centre_y),

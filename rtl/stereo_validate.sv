@@ -122,8 +122,11 @@ module stereo_validate #(
         steps[r] = 1'b1;
       end
     end
-    refine = cfg_subpixel_en && in_label != '0 && 32'(in_label) + 1 < 32'(cfg_ndisp) &&
-             denominator != '0;
+    // NDISP <= 2: no label has both neighbours (0 < k1 < cfg_ndisp - 1 <= 1 is empty), so the
+    // offset is never applied and the division above folds away (it was the one- and two-label
+    // cores' critical path).
+    refine = NDISP > 2 && cfg_subpixel_en && in_label != '0 &&
+             32'(in_label) + 1 < 32'(cfg_ndisp) && denominator != '0;
     fixed = (fx_pkg::FIXED_BITS'(cfg_min_disp) + fx_pkg::FIXED_BITS'(in_label))
             <<< fx_pkg::SUBPIXEL_BITS;
     if (refine) begin

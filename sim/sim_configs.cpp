@@ -134,6 +134,8 @@ const std::vector<TopConfig>& lanes_top_configs() {
         top_config(table::verilated("Vstereo_top_lanes4"), "lanes4"),
         top_config(table::verilated("Vstereo_top_lanes1"), "lanes1"),
         top_config(table::verilated("Vstereo_top_ndisp8_lanes2"), "ndisp8-lanes2"),
+        top_config(table::verilated("Vstereo_top_ndisp2_lanes1"), "ndisp2-lanes1"),
+        top_config(table::verilated("Vstereo_top_ndisp1"), "ndisp1"),
     };
     return configs;
 }

@@ -236,14 +236,21 @@ inline constexpr Params kSmallLanes1{
 // The LCDM cost stage with lanes: its G:1 right-pixel multiplexers and LANES LCDM distance units.
 inline constexpr Params kSmallLcdmLanes4{
     kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window, kUnset, kUnset, kUnset, 1, 4};
+// The iCE40 cores: one label (no delay line, C2 a constant, the certainty divider folded away)
+// and two labels one per clock (C2 a constant in the lanes mode too).
+inline constexpr Params kNdisp1{kSmall.width, kSmall.height, 1, kSmall.window, kUnset};
+inline constexpr Params kNdisp2Lanes1{kSmall.width, kSmall.height, 2, kSmall.window, kUnset, kUnset,
+                                      kUnset,       kUnset,        1};
 inline constexpr Params kNdisp8Lanes2{kSmall.width, kSmall.height, 8, kSmall.window, kUnset, kUnset,
                                       kUnset,       kUnset,        2};
 
-inline constexpr std::array<VerilatedConfig, 19> kVerilatedConfigs = {{
+inline constexpr std::array<VerilatedConfig, 21> kVerilatedConfigs = {{
     {"Vstereo_top_small", "stereo_top", kSmall, ""},
     {"Vstereo_top_lanes4", "stereo_top", kSmallLanes4, ""},
     {"Vstereo_top_lanes1", "stereo_top", kSmallLanes1, ""},
     {"Vstereo_top_ndisp8_lanes2", "stereo_top", kNdisp8Lanes2, ""},
+    {"Vstereo_top_ndisp2_lanes1", "stereo_top", kNdisp2Lanes1, ""},
+    {"Vstereo_top_ndisp1", "stereo_top", kNdisp1, ""},
     {"Vstereo_cost", "stereo_cost", {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset}, ""},
     {"Vstereo_top_lcdm", "stereo_top", kSmallLcdm, ""},
     {"Vstereo_top_lcdm_lanes4", "stereo_top", kSmallLcdmLanes4, ""},
