@@ -11,6 +11,8 @@
 #include "Vstereo_top_lanes4.h"
 #include "Vstereo_top_lcdm.h"
 #include "Vstereo_top_lcdm_lanes4.h"
+#include "Vstereo_top_ndisp1.h"
+#include "Vstereo_top_ndisp2_lanes1.h"
 #include "Vstereo_top_ndisp8_lanes2.h"
 #include "Vstereo_top_small.h"
 #include "axis_driver.hpp"
@@ -218,6 +220,12 @@ std::unique_ptr<TopSim> make_top_sim(const TopConfig& config) {
     }
     if (config.name == "ndisp8-lanes2") {
         return std::make_unique<VerilatedTop<Vstereo_top_ndisp8_lanes2>>(config);
+    }
+    if (config.name == "ndisp2-lanes1") {
+        return std::make_unique<VerilatedTop<Vstereo_top_ndisp2_lanes1>>(config);
+    }
+    if (config.name == "ndisp1") {
+        return std::make_unique<VerilatedTop<Vstereo_top_ndisp1>>(config);
     }
 #ifdef STEREO_COSIM_FULL
     if (config.name == "full") {

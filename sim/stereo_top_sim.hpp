@@ -38,7 +38,8 @@ const TopConfig& lcdm_top_config();
 const TopConfig& lcdm_lanes_top_config();
 
 // stereo_top with time-multiplexed lanes (LANES < NDISP), AD cost: "lanes4" (16 labels, 4 per
-// clock), "lanes1" (16, 1), "ndisp8-lanes2" (8, 2). Not among built_top_configs().
+// clock), "lanes1" (16, 1), "ndisp8-lanes2" (8, 2), "ndisp2-lanes1" (2, 1), and the one-label
+// core "ndisp1". Not among built_top_configs().
 const std::vector<TopConfig>& lanes_top_configs();
 
 // Any built stereo_top configuration by name (small, small-lcdm, lcdm-lanes4, full, the lanes

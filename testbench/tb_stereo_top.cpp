@@ -414,7 +414,7 @@ TEST(Framing, BackToBackFramesWithoutIdle) {
 TEST(Framing, BackToBackFramesOfDifferentSizes) {
     const std::uint32_t seed = tb::test_seed();
     std::mt19937 rng(seed);
-    const MatchParams params{8, 5, fx::kDefaultSigma, true};
+    const MatchParams params{labels(8), 5, fx::kDefaultSigma, true};
     Cosim cosim;
     for (const auto& [width, height] : {std::pair{32, 12}, std::pair{32, 24}, std::pair{20, 30},
                                         std::pair{64, 48}, std::pair{13, 9}}) {
@@ -451,7 +451,7 @@ TEST(BadInput, BeatsBeforeTheFirstStartOfFrameAreDropped) {
     std::mt19937 rng(tb::test_seed());
     const Image left = test::random_image(32, 24, 3, rng);
     const Image right = test::shifted_copy(left, 3, 5, rng);
-    const MatchParams params{8, 5, fx::kDefaultSigma, true};
+    const MatchParams params{labels(8), 5, fx::kDefaultSigma, true};
     Cosim cosim;
     cosim.sim().set_params({32, 24, params});
     auto beats = frame_beats(left, right);
@@ -468,7 +468,7 @@ TEST(BadInput, MisplacedTlastAndTuserSetStatusBitsAndTheFrameStillCompletes) {
     const Image left = test::random_image(32, 24, 3, rng);
     const Image right = test::shifted_copy(left, 3, 5, rng);
     Cosim cosim;
-    cosim.sim().set_params({32, 24, {8, 5, fx::kDefaultSigma, true}});
+    cosim.sim().set_params({32, 24, {labels(8), 5, fx::kDefaultSigma, true}});
     auto beats = frame_beats(left, right);
     beats[40].last = true;   // not a row end
     beats[100].user = true;  // start of frame inside a frame
@@ -482,7 +482,7 @@ TEST(BadInput, AStreamThatEndsEarlyNeverProducesAPartialFrameAndResetRecovers) {
     std::mt19937 rng(tb::test_seed());
     const Image left = test::random_image(32, 24, 3, rng);
     const Image right = test::shifted_copy(left, 3, 5, rng);
-    const MatchParams params{8, 5, fx::kDefaultSigma, true};
+    const MatchParams params{labels(8), 5, fx::kDefaultSigma, true};
     Cosim cosim;
     cosim.sim().set_params({32, 24, params});
     const auto beats = frame_beats(left, right);
