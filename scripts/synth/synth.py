@@ -687,32 +687,34 @@ def command_lanes_sweep(args):
 
 
 def plot_lanes(points, target):
-    """Resources against NDISP, one line per clock count G = NDISP / LANES."""
+    """Resources against NDISP: one line for the all-parallel core (LANES = NDISP) and one per
+    fixed LANES below NDISP (its slope is what a label costs at that many lanes)."""
     chosen = [p for p in points if p["target"] == target]
-    by_clocks = {}
+    series = {}
     for point in chosen:
         config = point["config"]
-        clocks = config["ndisp"] // config.get("lanes", config["ndisp"])
-        by_clocks.setdefault(clocks, []).append((config["ndisp"], point))
+        lanes = config.get("lanes", config["ndisp"])
+        key = 0 if lanes == config["ndisp"] else lanes  # 0: all parallel
+        series.setdefault(key, []).append((config["ndisp"], point))
     palette = ("#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2")
-    colours = {g: palette[i % len(palette)] for i, g in enumerate(sorted(by_clocks))}
+    colours = {key: palette[i % len(palette)] for i, key in enumerate(sorted(series))}
     panel_w, panel_h, margin_l, margin_t, gap_x = 250, 170, 70, 70, 60
     width = margin_l + len(PLOT_METRICS) * (panel_w + gap_x)
     height = margin_t + panel_h + 60
     config = chosen[0]["config"] if chosen else {"width": 0, "height": 0, "window": 0}
     parts = [svg_text(width / 2, 22, f"{target}: stereo_synth_top {config['width']}x"
                       f"{config['height']}, {config['window']}x{config['window']}, by "
-                      "disparities and clocks per pixel G = NDISP / LANES (Yosys estimate)", 14)]
+                      "disparities and labels per clock (Yosys estimate)", 14)]
     legend_x = margin_l
-    for clocks, colour in colours.items():
+    for key, colour in colours.items():
+        label = "LANES = NDISP (1 clock per pixel)" if key == 0 else f"LANES = {key}"
         parts.append(f'<rect x="{legend_x}" y="34" width="14" height="4" fill="{colour}"/>')
-        parts.append(svg_text(legend_x + 18, 40, f"G = {clocks}" +
-                              (" (all parallel)" if clocks == 1 else ""), 11, "start"))
-        legend_x += 130 if clocks == 1 else 70
+        parts.append(svg_text(legend_x + 18, 40, label, 11, "start"))
+        legend_x += 230 if key == 0 else 100
     for column, (metric, metric_name) in enumerate(PLOT_METRICS):
-        lines = [(colours[g], [(n, p["resources"][metric]) for n, p in sorted(values,
-                                                                             key=lambda v: v[0])])
-                 for g, values in sorted(by_clocks.items())]
+        lines = [(colours[key], [(n, p["resources"][metric])
+                                 for n, p in sorted(values, key=lambda v: v[0])])
+                 for key, values in sorted(series.items())]
         parts += line_panel(margin_l + column * (panel_w + gap_x), margin_t, panel_w, panel_h,
                             metric_name, "disparities", lines)
     return svg_document(width, height, parts)

@@ -225,15 +225,15 @@ class LanePlots(unittest.TestCase):
             with self.assertRaises(synth.ReportError):
                 synth.parse_lane_points(bad)
 
-    def test_one_line_per_clock_count_and_metric(self):
+    def test_one_line_per_lane_count_and_metric(self):
         def point(ndisp, lanes):
             return {"target": "xilinx",
                     "config": {"width": 640, "height": 480, "ndisp": ndisp, "window": 11,
                                "lanes": lanes},
                     "resources": {"luts": 100 * lanes + ndisp, "ffs": 1, "bram_kbits": 18,
                                   "dsps": 0}}
-        # G = 1 (16:16, 32:32), G = 4 (16:4, 32:8), G = 16 (16:1): three lines per metric
-        points = [point(16, 16), point(32, 32), point(16, 4), point(32, 8), point(16, 1)]
+        # all parallel (16:16, 32:32), LANES 4 (16:4, 32:4), LANES 1 (16:1): three lines a metric
+        points = [point(16, 16), point(32, 32), point(16, 4), point(32, 4), point(16, 1)]
         with tempfile.TemporaryDirectory() as folder:
             sweep = Path(folder) / "lanes.json"
             sweep.write_text(json.dumps({"points": points}))
@@ -241,7 +241,7 @@ class LanePlots(unittest.TestCase):
             svg = ElementTree.parse(Path(folder) / "synth_lanes_xilinx.svg").getroot()
             lines = svg.findall("{http://www.w3.org/2000/svg}polyline")
             self.assertEqual(len(lines), 3 * len(synth.PLOT_METRICS))
-            # the G = 4 LUT line passes through two points
+            # the lines pass through the five points in all
             self.assertEqual(sum(len(line.get("points").split()) for line in lines),
                              5 * len(synth.PLOT_METRICS))
 
