@@ -3,6 +3,8 @@
 #include <cctype>
 #include <filesystem>
 #include <stdexcept>
+#include <string_view>
+#include <utility>
 
 #include <verilated.h>
 #include <verilated_fst_c.h>
@@ -202,36 +204,38 @@ void check_trace_path(const std::string& path) {
                                 "(FST, GTKWave's format) is built in");
 }
 
-std::unique_ptr<TopSim> make_top_sim(const TopConfig& config) {
-    if (config.name == "small") {
-        return std::make_unique<VerilatedTop<Vstereo_top_small>>(config);
-    }
-    if (config.name == "small-lcdm") {
-        return std::make_unique<VerilatedTop<Vstereo_top_lcdm>>(config);
-    }
-    if (config.name == "lcdm-lanes4") {
-        return std::make_unique<VerilatedTop<Vstereo_top_lcdm_lanes4>>(config);
-    }
-    if (config.name == "lanes4") {
-        return std::make_unique<VerilatedTop<Vstereo_top_lanes4>>(config);
-    }
-    if (config.name == "lanes1") {
-        return std::make_unique<VerilatedTop<Vstereo_top_lanes1>>(config);
-    }
-    if (config.name == "ndisp8-lanes2") {
-        return std::make_unique<VerilatedTop<Vstereo_top_ndisp8_lanes2>>(config);
-    }
-    if (config.name == "ndisp2-lanes1") {
-        return std::make_unique<VerilatedTop<Vstereo_top_ndisp2_lanes1>>(config);
-    }
-    if (config.name == "ndisp1") {
-        return std::make_unique<VerilatedTop<Vstereo_top_ndisp1>>(config);
-    }
+namespace {
+
+template <class Model>
+std::unique_ptr<TopSim> make_verilated(const TopConfig& config) {
+    return std::make_unique<VerilatedTop<Model>>(config);
+}
+
+// The Verilated class behind each configuration name (one per kVerilatedConfigs entry of
+// stereo_top that this library links).
+using TopFactory = std::unique_ptr<TopSim> (*)(const TopConfig&);
+const std::pair<std::string_view, TopFactory> kFactories[] = {
+    {"small", &make_verilated<Vstereo_top_small>},
+    {"small-lcdm", &make_verilated<Vstereo_top_lcdm>},
+    {"lcdm-lanes4", &make_verilated<Vstereo_top_lcdm_lanes4>},
+    {"lanes4", &make_verilated<Vstereo_top_lanes4>},
+    {"lanes1", &make_verilated<Vstereo_top_lanes1>},
+    {"ndisp8-lanes2", &make_verilated<Vstereo_top_ndisp8_lanes2>},
+    {"ndisp2-lanes1", &make_verilated<Vstereo_top_ndisp2_lanes1>},
+    {"ndisp1", &make_verilated<Vstereo_top_ndisp1>},
 #ifdef STEREO_COSIM_FULL
-    if (config.name == "full") {
-        return std::make_unique<VerilatedTop<Vstereo_top_full>>(config);
-    }
+    {"full", &make_verilated<Vstereo_top_full>},
 #endif
+};
+
+}  // namespace
+
+std::unique_ptr<TopSim> make_top_sim(const TopConfig& config) {
+    for (const auto& [name, factory] : kFactories) {
+        if (config.name == name) {
+            return factory(config);
+        }
+    }
     throw std::invalid_argument("no co-simulation model named '" + config.name + "' was built");
 }
 
