@@ -23,8 +23,8 @@
 //   R = WINDOW/2, K = max(0, -cfg_min_disp), G = NDISP / LANES clocks per step
 // (stage_table.hpp frame_cycles, docs/rtl.md; G = 1: S).
 // LANES < NDISP: a step every G clocks, s_axis_tready only at a clock where a step can take the
-// beat; the cost, the aggregation, both CA rules and the WTA compute LANES labels per clock
-// (group counter below), the other stages all labels at the step.
+// beat; every stage computes LANES labels per clock (group counter below), the per-group state
+// of the aggregation and the CA windows in stereo_group_ring.
 // Input before the first start of frame is dropped. Status bits (sticky until reset; the
 // indices are fx_pkg::STATUS_*):
 //   [0] tlast not at the row end, [1] tuser inside a frame, [2] configuration out of range
