@@ -39,6 +39,9 @@ module stereo_aggregate #(
     /* verilator lint_on UNUSEDSIGNAL */
     input  wire fx_pkg::coord_t                     in_x,
     input  wire fx_pkg::coord_t                     in_y,
+    // The in_y of the next step (stereo_top: stereo_cost's out_next_y, what its coordinate
+    // register takes at this ce): the row flags are computed from it and registered.
+    input  wire fx_pkg::coord_t                     in_next_y,
     input  wire logic [LANES*fx_pkg::COST_BITS-1:0] in_data,  // labels [group*LANES +: LANES]
     input  wire fx_pkg::cfg_size_t                  cfg_width,
     input  wire fx_pkg::cfg_size_t                  cfg_height,
@@ -114,13 +117,26 @@ module stereo_aggregate #(
     end
   endgenerate
 
-  // Which of the WINDOW rows of the incoming column lie inside the frame (shared by all d).
-  logic [WINDOW-1:0] row_inside;
-  always_comb begin
-    for (int j = 0; j < WINDOW; j++) begin
-      row_inside[j] = 18'(in_y) + 18'(j - 2 * R) >= 18'sd0 &&
-                      18'(in_y) + 18'(j - 2 * R) < $signed(18'(cfg_height));
-    end
+  // Which of the WINDOW rows of the incoming column lie inside the frame (shared by all d): row
+  // in_y - 2R + j at j (stereo_border_flags: one subtraction, not two comparisons per row). They
+  // are computed a step ahead, from in_next_y, and registered, so the subtraction and the tests
+  // do not run in front of the masks and the vertical sums (the one-label iCE40 core's critical
+  // path, docs/synthesis.md "Border flags"). A reset clears them: the first step's in_y is then
+  // "no pixel" (stereo_top), whose rows all lie outside. Where in_y does not continue as
+  // in_next_y said (a new frame; a stage testbench's first step), the flags are those of another
+  // row for one step, which only concerns the output row in_y - R, not a frame row there.
+  logic [WINDOW-1:0] next_row_inside, row_inside;
+  stereo_border_flags #(
+      .OFFSET_LO(-2 * R),
+      .OFFSET_HI(0)
+  ) row_flags (
+      .position(18'(in_next_y)),
+      .limit(cfg_height),
+      .in_frame(next_row_inside)
+  );
+  always_ff @(posedge clk) begin
+    if (rst) row_inside <= '0;
+    else if (ce) row_inside <= next_row_inside;
   end
 
   logic [V_BITS-1:0] vertical_d;
@@ -214,11 +230,15 @@ module stereo_aggregate #(
         next_centre_y = next_centre_y - 18'sd1;
       end
     end
-    for (int i = 0; i < WINDOW; i++) begin
-      next_column_inside[i] = next_centre_x + 18'(i - R) >= 18'sd0 &&
-                              next_centre_x + 18'(i - R) < $signed(18'(cfg_width));
-    end
   end
+  stereo_border_flags #(
+      .OFFSET_LO(-R),
+      .OFFSET_HI(R)
+  ) column_flags (
+      .position(next_centre_x),
+      .limit(cfg_width),
+      .in_frame(next_column_inside)
+  );
 
   fx_pkg::coord_t centre_x, centre_y;
   logic [WINDOW-1:0] column_inside;

@@ -119,6 +119,29 @@ module stereo_ca_plane #(
     end
   endgenerate
 
+  // How many of eight flags are set, as boolean full and half adders: logic a few LUTs deep. A
+  // running `count + 1` over the neighbours was eight small carry chains in a row, the one-label
+  // iCE40 core's critical path (docs/synthesis.md).
+  function automatic logic [3:0] count_ones8(input logic [7:0] f);
+    logic s1, c1, s2, c2, s3, c3, s4, c4, s5, c5, s6, c6;
+    // weight 1: f0+f1+f2, f3+f4+f5, f6+f7
+    s1 = f[0] ^ f[1] ^ f[2];
+    c1 = (f[0] & f[1]) | (f[0] & f[2]) | (f[1] & f[2]);
+    s2 = f[3] ^ f[4] ^ f[5];
+    c2 = (f[3] & f[4]) | (f[3] & f[5]) | (f[4] & f[5]);
+    s3 = f[6] ^ f[7];
+    c3 = f[6] & f[7];
+    s4 = s1 ^ s2 ^ s3;  // bit 0
+    c4 = (s1 & s2) | (s1 & s3) | (s2 & s3);
+    // weight 2: c1 + c2 + c3 + c4
+    s5 = c1 ^ c2 ^ c3;
+    c5 = (c1 & c2) | (c1 & c3) | (c2 & c3);
+    s6 = s5 ^ c4;  // bit 1
+    c6 = s5 & c4;
+    // weight 4: c5 + c6 (at most 8 in all, so at most one of them)
+    count_ones8 = {c5 & c6, c5 ^ c6, s6, s4};
+  endfunction
+
   logic [COLUMN-1:0] result;
   generate
     for (genvar d = 0; d < LANES; d++) begin : g_disparity
@@ -147,10 +170,15 @@ module stereo_ca_plane #(
         always_comb begin
           logic [SUM_BITS-1:0] sum;
           logic [31:0] sum7, product;
-          sum = '0;
+          logic [SUM_BITS-1:0] term[9];
           for (int slot = 0; slot < 9; slot++) begin
-            if (in_frame[slot]) sum = sum + SUM_BITS'(window[slot*COLUMN + d*BITS +: BITS]);
+            term[slot] = in_frame[slot] ? SUM_BITS'(window[slot*COLUMN + d*BITS +: BITS]) : '0;
           end
+          // A balanced tree, four adders deep (a running sum was eight: the one-label core's
+          // critical path once rule 2's count was a tree); the same integer, SUM_BITS holds 9
+          // times the largest value.
+          sum = ((term[0] + term[1]) + (term[2] + term[3])) +
+                ((term[4] + term[5]) + (term[6] + term[7])) + term[8];
           // sum * MEAN9_MUL with MEAN9_MUL = 29127 = 7 * (2^12 + 2^6 + 1): three adders instead
           // of one per set bit (nine), exactly the same integer (checked at elaboration below).
           sum7 = (32'(sum) << 3) - 32'(sum);
@@ -160,16 +188,17 @@ module stereo_ca_plane #(
         end
       end else begin : g_rule2
         always_comb begin
+          logic [7:0] agreeing;
           logic [3:0] count;
           logic [31:0] centre25, product;
-          count = '0;
-          for (int slot = 0; slot < 9; slot++) begin
-            // A neighbour outside the frame is zero padding, and zero never agrees.
-            if (slot != CENTRE && in_frame[slot] &&
-                fx_pkg::agrees(window[slot*COLUMN + d*BITS +: BITS], centre)) begin
-              count = count + 4'd1;
-            end
+          for (int n = 0; n < 8; n++) begin
+            // Neighbour n is slot n, then n + 1 past the centre. A neighbour outside the frame
+            // is zero padding, and zero never agrees.
+            agreeing[n] = in_frame[(n < CENTRE) ? n : n + 1] &&
+                          fx_pkg::agrees(window[((n < CENTRE) ? n : n + 1)*COLUMN + d*BITS +: BITS],
+                                         centre);
           end
+          count = count_ones8(agreeing);
           // centre * DIV13_MUL with DIV13_MUL = 100825 = 25 * (2^12 - 2^6 + 1): four adders
           // instead of one per set bit (nine), the same integer (checked at elaboration below).
           centre25 = (32'(centre) << 4) + (32'(centre) << 3) + 32'(centre);

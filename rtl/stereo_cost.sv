@@ -49,6 +49,9 @@ module stereo_cost #(
     input  wire fx_pkg::cfg_min_disp_t              cfg_min_disp,
     output      fx_pkg::coord_t                     out_x,
     output      fx_pkg::coord_t                     out_y,
+    // The row out_y takes at this step (the coordinate register's input): the aggregation
+    // computes its row flags a step ahead from it (stereo_aggregate in_next_y).
+    output      fx_pkg::coord_t                     out_next_y,
     // LANES = NDISP: all labels, registered; else labels [group*LANES +: LANES], combinational.
     output      logic [LANES*fx_pkg::COST_BITS-1:0] out_data
 );
@@ -261,6 +264,7 @@ module stereo_cost #(
     end
   endgenerate
 
+  assign out_next_y = left_y;
   stereo_coord_reg coordinates (
       .clk(clk),
       .rst(rst),

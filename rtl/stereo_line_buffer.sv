@@ -49,18 +49,33 @@ module stereo_line_buffer #(
   logic [ADDR_BITS-1:0] write_address;
   logic [ADDR_BITS-1:0] read_address;
 
+  // in_x is the last column of the row (or outside it): in_x + 1 >= cfg_width, with in_x read as
+  // an unsigned 32-bit number as the address arithmetic below did before (one subtraction in
+  // stereo_border_flags instead of two 32-bit adders; the same truth for every 16-bit in_x).
+  logic next_inside;
+  logic row_end;
+  stereo_border_flags #(
+      .OFFSET_LO(1),
+      .OFFSET_HI(1)
+  ) next_column (
+      .position(18'(in_x)),
+      .limit(cfg_width),
+      .in_frame(next_inside)
+  );
+  assign row_end = !next_inside;
+
   generate
     if (GROUPS > 1) begin : g_grouped_address
       always_comb begin
         write_address = ADDR_BITS'(32'(in_x) * GROUPS + 32'(group));
         if (32'(group) + 1 < GROUPS) read_address = write_address + 1'b1;
-        else if (32'(in_x) + 1 >= 32'(cfg_width)) read_address = '0;
+        else if (row_end) read_address = '0;
         else read_address = ADDR_BITS'((32'(in_x) + 1) * GROUPS);
       end
     end else begin : g_address
       always_comb begin
         write_address = ADDR_BITS'(in_x);
-        read_address = (32'(in_x) + 1 >= 32'(cfg_width)) ? '0 : ADDR_BITS'(in_x + 16'sd1);
+        read_address = row_end ? '0 : ADDR_BITS'(in_x + 16'sd1);
       end
     end
   endgenerate

@@ -314,6 +314,7 @@ module stereo_top #(
   assign right_pixel = (state == FLUSH) ? '0 : s_axis_tdata[fx_pkg::IN_RIGHT_LSB +: fx_pkg::RGB_BITS];
 
   fx_pkg::coord_t cost_x, cost_y, agg_x, agg_y, rule1_x, rule1_y, wta_in_x, wta_in_y;
+  fx_pkg::coord_t cost_next_y;  // the row cost_y takes at this step
   logic [LANES*COST_BITS-1:0] cost_data;  // LANES < NDISP: this clock's group of labels
   logic [NDISP*AGG_BITS-1:0] agg_data, rule1_data, rule2_data;
 
@@ -335,6 +336,7 @@ module stereo_top #(
       .cfg_min_disp(use_min_disp),
       .out_x(cost_x),
       .out_y(cost_y),
+      .out_next_y(cost_next_y),
       .out_data(cost_data)
   );
 
@@ -352,6 +354,7 @@ module stereo_top #(
       .group(group),
       .in_x(cost_x),
       .in_y(cost_y),
+      .in_next_y(cost_next_y),
       .in_data(cost_data),
       .cfg_width(use_width),
       .cfg_height(use_height),

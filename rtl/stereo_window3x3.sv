@@ -130,7 +130,6 @@ module stereo_window3x3 #(
   // Centre of the window the incoming pixel completes: (x-1, y-1), wrapping to the previous row.
   // Coordinates are 18-bit signed: 16-bit positions, the no-pixel code and the wrap fit.
   logic signed [17:0] cx, cy;
-  logic [2:0] row_inside, column_inside;
   always_comb begin
     cx = 18'(in_x) - 18'sd1;
     cy = 18'(in_y) - 18'sd1;
@@ -138,12 +137,26 @@ module stereo_window3x3 #(
       cx = cx + $signed(18'(cfg_width));
       cy = cy - 18'sd1;
     end
-    // Which rows and columns of that window lie inside the frame.
-    for (int k = 0; k < 3; k++) begin
-      column_inside[k] = cx + 18'(k - 1) >= 18'sd0 && cx + 18'(k - 1) < $signed(18'(cfg_width));
-      row_inside[k] = cy + 18'(k - 1) >= 18'sd0 && cy + 18'(k - 1) < $signed(18'(cfg_height));
-    end
   end
+  // Which rows and columns of that window lie inside the frame (one subtraction each, not two
+  // comparisons per position: stereo_border_flags).
+  logic [2:0] row_inside, column_inside;
+  stereo_border_flags #(
+      .OFFSET_LO(-1),
+      .OFFSET_HI(1)
+  ) column_flags (
+      .position(cx),
+      .limit(cfg_width),
+      .in_frame(column_inside)
+  );
+  stereo_border_flags #(
+      .OFFSET_LO(-1),
+      .OFFSET_HI(1)
+  ) row_flags (
+      .position(cy),
+      .limit(cfg_height),
+      .in_frame(row_inside)
+  );
 
   logic [2:0] row_inside_q, column_inside_q;
   always_ff @(posedge clk) begin

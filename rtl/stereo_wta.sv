@@ -154,6 +154,18 @@ module stereo_wta #(
           running_pending <= scan_pending;
         end
       end
+    end else if (NDISP == 1) begin : g_single_label
+      // One label: it wins (a cost of all ones when cfg_ndisp is 0), no comparator, so the
+      // border rule below does not wait for one (it did on the one-label iCE40 core).
+      assign winner = '0;
+      assign winner_cost = (cfg_ndisp != '0) ? in_data[0 +: BITS] : {BITS{1'b1}};
+      assign cost_before = '0;
+      assign cost_after = '0;
+      assign out_second = '0;
+      assign out_group = in_data;
+      always_ff @(posedge clk) begin
+        if (ce) out_data <= in_data;
+      end
     end else begin : g_tree
       // Heap-ordered tree: node n has children 2n+1 and 2n+2; leaf LEAVES-1+d holds label d.
       // split_var lets Verilator schedule the nodes one by one (the vector is a tree, not a loop).

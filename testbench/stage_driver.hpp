@@ -200,6 +200,12 @@ class StageDriver {
             } else {
                 Stage::scramble(*model_, rng_);  // flush: garbage that must stay masked
             }
+            if constexpr (kAnnouncesNextRow) {
+                // The row of the following step in the raster (the driver's next frame starts
+                // at row 0 instead: that only concerns outputs above the frame, see the stage).
+                Stage::announce_next_row(
+                    *model_, coordinate_port(next_x + 1 == width ? next_y + 1 : next_y));
+            }
             tick();
             ++stats.steps;
             if (++next_x == width) {
@@ -226,6 +232,10 @@ class StageDriver {
 
   private:
     static constexpr int kListed = 5;
+    // Stages whose row flags are computed a step ahead (stereo_aggregate's in_next_y).
+    static constexpr bool kAnnouncesNextRow = requires(Model & model) {
+        Stage::announce_next_row(model, std::uint16_t{0});
+    };
 
     void scramble_inputs() {
         model_->in_x = static_cast<std::uint16_t>(rng_());

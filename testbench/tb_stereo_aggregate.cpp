@@ -31,10 +31,13 @@ struct AggregatePorts {
     static constexpr const char* kName = "stereo_aggregate";
     static void scramble(Model& model, std::mt19937& rng) {
         randomize_bits(model.in_data, kDisparities * fx::kCostBits, rng);
+        model.in_next_y = static_cast<std::uint16_t>(rng());  // only taken at a step
     }
     static std::vector<std::uint32_t> outputs(const Model& model) {
         return port_words(model.out_data);
     }
+    // in_next_y: the row of the step after this one (stereo_top: the cost stage's out_next_y).
+    static void announce_next_row(Model& model, std::uint16_t next_y) { model.in_next_y = next_y; }
 };
 
 using AggregateDriver = StageDriver<AggregatePorts<Vstereo_aggregate>>;

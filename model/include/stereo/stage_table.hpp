@@ -177,8 +177,8 @@ constexpr int hls_pipeline_latency(int width, int window, int ndisp, int min_dis
 // The package first, then every module before its first user. One module per file, named after
 // it; the list of modules to lint is this list without the package.
 inline constexpr std::string_view kPackageFile = "fx_pkg.sv";
-inline constexpr std::array<std::string_view, 23> kRtlModules = {
-    "stereo_coord_reg",  "stereo_line_buffer", "stereo_group_ring",    "stereo_group_assembly",
+inline constexpr std::array<std::string_view, 24> kRtlModules = {
+    "stereo_coord_reg",  "stereo_border_flags", "stereo_line_buffer", "stereo_group_ring",    "stereo_group_assembly",
     "stereo_window3x3",  "stereo_ca_plane",    "stereo_lcdm_convert",  "stereo_lcdm_distance",
     "stereo_cost",       "stereo_aggregate",   "stereo_wta",           "stereo_divider",
     "stereo_validate",   "stereo_lr_check",    "stereo_top",           "stereo_axil_top",
@@ -244,13 +244,15 @@ inline constexpr Params kNdisp2Lanes1{kSmall.width, kSmall.height, 2, kSmall.win
 inline constexpr Params kNdisp8Lanes2{kSmall.width, kSmall.height, 8, kSmall.window, kUnset, kUnset,
                                       kUnset,       kUnset,        2};
 
-inline constexpr std::array<VerilatedConfig, 21> kVerilatedConfigs = {{
+inline constexpr std::array<VerilatedConfig, 22> kVerilatedConfigs = {{
     {"Vstereo_top_small", "stereo_top", kSmall, ""},
     {"Vstereo_top_lanes4", "stereo_top", kSmallLanes4, ""},
     {"Vstereo_top_lanes1", "stereo_top", kSmallLanes1, ""},
     {"Vstereo_top_ndisp8_lanes2", "stereo_top", kNdisp8Lanes2, ""},
     {"Vstereo_top_ndisp2_lanes1", "stereo_top", kNdisp2Lanes1, ""},
     {"Vstereo_top_ndisp1", "stereo_top", kNdisp1, ""},
+    // The frame-border test of every window stage, at its default offsets (-2 .. 2).
+    {"Vstereo_border_flags", "stereo_border_flags", {}, ""},
     {"Vstereo_cost", "stereo_cost", {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset}, ""},
     {"Vstereo_top_lcdm", "stereo_top", kSmallLcdm, ""},
     {"Vstereo_top_lcdm_lanes4", "stereo_top", kSmallLcdmLanes4, ""},
