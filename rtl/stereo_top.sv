@@ -16,14 +16,17 @@
 // while it is full. So the clock enable and s_axis_tready depend on a register only, never
 // combinationally on m_axis_tready (which would fan out into every stage's enable), and a
 // stalled m_axis_tready still stalls everything without losing or duplicating a pixel. Without
-// stalls the skid register stays empty: latency and throughput are unchanged. After the last input pixel of a frame the
-// core steps on its own (s_axis_tready low) until the frame's last output has left the WTA, so
-// a frame never waits for the next one. Cycles per frame without stalls:
-//   G * S - 2 * (G - 1), S = W*H + (R + 2)*W + R + 11 + NDISP + K pixel steps,
+// stalls the skid register stays empty: latency and throughput are unchanged. The input side
+// has a register slice (below): a step waits on its main register, not on s_axis_tvalid, and
+// s_axis_tready is a register. After the last input pixel of a frame the core steps on its own
+// (taking no input; the slice holds up to two beats of the next frame) until the frame's last
+// output has left the WTA, so a frame never waits for the next one. Cycles per frame without
+// stalls:
+//   G * S - 2 * (G - 1) + 1, S = W*H + (R + 2)*W + R + 11 + NDISP + K pixel steps,
 //   R = WINDOW/2, K = max(0, -cfg_min_disp), G = NDISP / LANES clocks per step
-// (stage_table.hpp frame_cycles, docs/rtl.md; G = 1: S).
-// LANES < NDISP: a step every G clocks, s_axis_tready only at a clock where a step can take the
-// beat; every stage computes LANES labels per clock (group counter below), the per-group state
+// (stage_table.hpp frame_cycles, docs/rtl.md; G = 1: S + 1).
+// LANES < NDISP: a step every G clocks (the slice fills and s_axis_tready falls between steps);
+// every stage computes LANES labels per clock (group counter below), the per-group state
 // of the aggregation and the CA windows in stereo_group_ring.
 // Input before the first start of frame is dropped. Status bits (sticky until reset; the
 // indices are fx_pkg::STATUS_*):
@@ -228,20 +231,56 @@ module stereo_top #(
     end
   endgenerate
 
+  // ---- input register slice ------------------------------------------------------------------
+  // The step waits on a register (the main beat), not on s_axis_tvalid, and s_axis_tready is a
+  // register (the spare is empty): the input port reaches no stage's clock enable. Two beats of
+  // storage: the core takes the main beat, the spare catches the beat that arrives in a clock
+  // where the main one could not be taken. Without stalls the spare stays empty and a beat
+  // waits one clock in the main register (frame_cycles counts it); during a flush the slice
+  // takes the next frame's first beats, so frames back to back are not slowed.
+  typedef struct packed {
+    logic [fx_pkg::IN_BEAT_BITS-1:0] data;
+    logic last;
+    logic user;
+  } in_beat_t;
+  in_beat_t in_main, in_spare, in_port;
+  logic in_main_full, in_spare_full;
+  logic in_take;  // the core takes (steps on, or drops) the main beat at this clock
+  assign in_port = {s_axis_tdata, s_axis_tlast, s_axis_tuser};
+  assign s_axis_tready = !in_spare_full;
+  always_ff @(posedge clk) begin
+    if (rst) begin
+      in_main_full <= 1'b0;
+      in_spare_full <= 1'b0;
+    end else if (!in_main_full || in_take) begin
+      if (in_spare_full) begin
+        in_main <= in_spare;
+        in_main_full <= 1'b1;
+        in_spare_full <= 1'b0;
+      end else begin
+        in_main <= in_port;
+        in_main_full <= s_axis_tvalid;
+      end
+    end else if (s_axis_tvalid && !in_spare_full) begin
+      in_spare <= in_port;
+      in_spare_full <= 1'b1;
+    end
+  end
+
   always_comb begin
     can_step = !skid_full && round_done;
-    start_of_frame = state == IDLE && s_axis_tvalid && s_axis_tuser;
+    start_of_frame = state == IDLE && in_main_full && in_main.user;
     unique case (state)
       IDLE: begin
-        s_axis_tready = can_step;  // beats before a start of frame are dropped (at a step's pace)
+        in_take = can_step && in_main_full;  // beats before a start of frame are dropped (at a step's pace)
         step = can_step && start_of_frame;
       end
       RUN: begin
-        s_axis_tready = can_step;
-        step = can_step && s_axis_tvalid;
+        in_take = can_step && in_main_full;
+        step = in_take;
       end
       default: begin  // FLUSH
-        s_axis_tready = 1'b0;
+        in_take = 1'b0;
         step = can_step;
       end
     endcase
@@ -277,9 +316,9 @@ module stereo_top #(
           if (port_cfg_error) status[fx_pkg::STATUS_CONFIG_CLAMPED] <= 1'b1;
         end
         if (state != FLUSH) begin
-          if (s_axis_tlast != (x_in == fx_pkg::COORD_BITS'($signed(32'(use_width)) - 1)))
+          if (in_main.last != (x_in == fx_pkg::COORD_BITS'($signed(32'(use_width)) - 1)))
             status[fx_pkg::STATUS_EOL_MISPLACED] <= 1'b1;
-          if (state == RUN && s_axis_tuser) status[fx_pkg::STATUS_SOF_MISPLACED] <= 1'b1;
+          if (state == RUN && in_main.user) status[fx_pkg::STATUS_SOF_MISPLACED] <= 1'b1;
         end
         if (x_in == fx_pkg::COORD_BITS'($signed(32'(use_width)) - 1)) begin
           x_in <= '0;
@@ -310,8 +349,8 @@ module stereo_top #(
   assign clear_coordinates = rst || (state == FLUSH && last_output_entering);
 
   logic [fx_pkg::RGB_BITS-1:0] left_pixel, right_pixel;
-  assign left_pixel = (state == FLUSH) ? '0 : s_axis_tdata[fx_pkg::IN_LEFT_LSB +: fx_pkg::RGB_BITS];
-  assign right_pixel = (state == FLUSH) ? '0 : s_axis_tdata[fx_pkg::IN_RIGHT_LSB +: fx_pkg::RGB_BITS];
+  assign left_pixel = (state == FLUSH) ? '0 : in_main.data[fx_pkg::IN_LEFT_LSB +: fx_pkg::RGB_BITS];
+  assign right_pixel = (state == FLUSH) ? '0 : in_main.data[fx_pkg::IN_RIGHT_LSB +: fx_pkg::RGB_BITS];
 
   fx_pkg::coord_t cost_x, cost_y, agg_x, agg_y, rule1_x, rule1_y, wta_in_x, wta_in_y;
   fx_pkg::coord_t cost_next_y;  // the row cost_y takes at this step

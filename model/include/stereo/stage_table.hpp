@@ -135,8 +135,8 @@ inline constexpr std::array<Stage, 7> kStages = {{
 
 // Pixel steps from a pixel entering stereo_top's cost stage to its output beat:
 // (R + 2) * W + R + 11 + N + K (N = NDISP, K = max(0, -min_disp)). With LANES = NDISP stereo_top
-// streams one frame in W*H + this many cycles without stalls (frame_cycles; checked by
-// tb_stereo_top's Throughput test).
+// streams one frame in W*H + this many cycles + 1 (the input register slice) without stalls
+// (frame_cycles; checked by tb_stereo_top's Throughput test).
 constexpr int pipeline_latency(int width, int window, int ndisp, int min_disp = 0) {
     int steps = 0;
     for (const Stage& stage : kStages) {
@@ -152,16 +152,18 @@ constexpr int clocks_per_step(int ndisp, int lanes) {
 }
 
 // Clock cycles from a frame's first input beat to its last output beat without stalls:
-// S = W*H + pipeline_latency steps, a step every G clocks, the first beat taken at the first
-// clock of the count and the last output visible the clock after its step:
-//   G * S - 2 * (G - 1)   (G = 1: W*H + latency).
-// Back to back, frames follow each other every G * S clocks.
+// S = W*H + pipeline_latency steps, a step every G clocks, the first beat taken into the input
+// register slice at the first clock of the count and stepped on one clock later, the last
+// output visible the clock after its step:
+//   G * S - 2 * (G - 1) + 1   (G = 1: W*H + latency + 1).
+// Back to back, frames follow each other every G * S clocks (the slice takes the next frame's
+// first beat during the flush).
 constexpr long long frame_cycles(int width, int height, int window, int ndisp, int lanes,
                                  int min_disp = 0) {
     const long long g = clocks_per_step(ndisp, lanes);
     const long long steps =
         static_cast<long long>(width) * height + pipeline_latency(width, window, ndisp, min_disp);
-    return g * steps - 2 * (g - 1);
+    return g * steps - 2 * (g - 1) + 1;
 }
 
 // The same for the HLS pipeline (stereo_hls_top): (R + 2) * W + R + 9 + N + K.
