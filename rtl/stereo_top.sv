@@ -170,15 +170,23 @@ module stereo_top #(
   logic use_uniqueness_en, use_lr_en, use_subpixel_en;
   fx_pkg::cfg_uniqueness_t use_uniqueness;
   fx_pkg::cfg_lr_tolerance_t use_lr_tolerance;
+  // A setting whose clamped range is one value is that constant for the stages (the one-label
+  // core: cfg_ndisp is 1; MAX_MIN_DISP = 0: cfg_min_disp is 0), so no multiplexer from the frame
+  // state runs in front of their logic (the one-label iCE40 core's critical path). The clamps
+  // and the status bit still see the ports.
+  fx_pkg::cfg_ndisp_t mux_ndisp;
+  fx_pkg::cfg_min_disp_t mux_min_disp;
+  assign use_ndisp = (NDISP == 1) ? fx_pkg::CFG_NDISP_BITS'(1) : mux_ndisp;
+  assign use_min_disp = (MAX_MIN_DISP == 0) ? '0 : mux_min_disp;
   always_comb begin
     if (state == IDLE) begin
       use_width = port_width;
       use_height = port_height;
-      use_ndisp = port_ndisp;
+      mux_ndisp = port_ndisp;
       use_radius = port_radius;
       use_kernel = cfg_kernel;
       use_ca = cfg_use_ca;
-      use_min_disp = port_min_disp;
+      mux_min_disp = port_min_disp;
       use_uniqueness_en = cfg_uniqueness_en;
       use_uniqueness = cfg_uniqueness;
       use_lr_en = cfg_lr_en;
@@ -187,11 +195,11 @@ module stereo_top #(
     end else begin
       use_width = frame_width;
       use_height = frame_height;
-      use_ndisp = frame_ndisp;
+      mux_ndisp = frame_ndisp;
       use_radius = frame_radius;
       use_kernel = frame_kernel;
       use_ca = frame_use_ca;
-      use_min_disp = frame_min_disp;
+      mux_min_disp = frame_min_disp;
       use_uniqueness_en = frame_uniqueness_en;
       use_uniqueness = frame_uniqueness;
       use_lr_en = frame_lr_en;

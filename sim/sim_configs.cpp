@@ -9,6 +9,8 @@
 #include <verilated.h>
 #include <verilated_fst_c.h>
 
+#include "Vstereo_synth_top_ice40_ndisp1.h"
+#include "Vstereo_synth_top_ice40_ndisp4_lanes1.h"
 #include "Vstereo_top_lanes1.h"
 #include "Vstereo_top_lanes4.h"
 #include "Vstereo_top_lcdm.h"
@@ -53,7 +55,6 @@ class VerilatedTop final : public TopSim {
         model_->cfg_width = static_cast<std::uint16_t>(params.width);
         model_->cfg_height = static_cast<std::uint16_t>(params.height);
         model_->cfg_ndisp = static_cast<std::uint16_t>(params.match.ndisp);
-        model_->cfg_radius = static_cast<std::uint8_t>(params.match.window / 2);
         model_->cfg_use_ca = params.match.use_ca ? 1 : 0;
         // Two's complement in the port's kCfgMinDispBits.
         model_->cfg_min_disp = static_cast<std::uint16_t>(
@@ -65,9 +66,25 @@ class VerilatedTop final : public TopSim {
         model_->cfg_lr_tolerance = static_cast<std::uint8_t>(v.lr_tolerance);
         model_->cfg_subpixel_en = v.subpixel ? 1 : 0;
         const auto taps = centred_kernel(params.match, config_.window);
-        for (int i = 0; i < config_.window; ++i) {
-            put_bits(model_->cfg_kernel, i * table::kTapBits, table::kTapBits,
-                     static_cast<std::uint64_t>(taps[static_cast<std::size_t>(i)]));
+        if constexpr (requires(Model & m) { m.cfg_kernel; }) {
+            model_->cfg_radius = static_cast<std::uint8_t>(params.match.window / 2);
+            for (int i = 0; i < config_.window; ++i) {
+                put_bits(model_->cfg_kernel, i * table::kTapBits, table::kTapBits,
+                         static_cast<std::uint64_t>(taps[static_cast<std::size_t>(i)]));
+            }
+        } else {
+            // stereo_synth_top: the default kernel of its window is a constant and the radius is
+            // WINDOW/2, so only that matching can be compared.
+            if (params.match.window != config_.window ||
+                taps != centred_kernel(MatchParams{params.match.ndisp, config_.window,
+                                                   fx::kDefaultSigma, true},
+                                       config_.window)) {
+                throw std::invalid_argument(
+                    "co-simulation model '" + config_.name + "' has the constant default " +
+                    std::to_string(config_.window) + "x" + std::to_string(config_.window) +
+                    " kernel (sigma " + std::to_string(fx::kDefaultSigma) + "); asked for window " +
+                    std::to_string(params.match.window));
+            }
         }
     }
 
@@ -144,6 +161,15 @@ const std::vector<TopConfig>& lanes_top_configs() {
     return configs;
 }
 
+const std::vector<TopConfig>& fpga_top_configs() {
+    static const std::vector<TopConfig> configs = {
+        top_config(table::verilated("Vstereo_synth_top_ice40_ndisp1"), "ice40-ndisp1"),
+        top_config(table::verilated("Vstereo_synth_top_ice40_ndisp4_lanes1"),
+                   "ice40-ndisp4-lanes1"),
+    };
+    return configs;
+}
+
 const TopConfig& top_config_named(const std::string& name) {
     if (name == lcdm_top_config().name) {
         return lcdm_top_config();
@@ -151,7 +177,7 @@ const TopConfig& top_config_named(const std::string& name) {
     if (name == lcdm_lanes_top_config().name) {
         return lcdm_lanes_top_config();
     }
-    for (const auto* list : {&built_top_configs(), &lanes_top_configs()}) {
+    for (const auto* list : {&built_top_configs(), &lanes_top_configs(), &fpga_top_configs()}) {
         for (const TopConfig& config : *list) {
             if (config.name == name) {
                 return config;
@@ -223,6 +249,8 @@ const std::pair<std::string_view, TopFactory> kFactories[] = {
     {"ndisp8-lanes2", &make_verilated<Vstereo_top_ndisp8_lanes2>},
     {"ndisp2-lanes1", &make_verilated<Vstereo_top_ndisp2_lanes1>},
     {"ndisp1", &make_verilated<Vstereo_top_ndisp1>},
+    {"ice40-ndisp1", &make_verilated<Vstereo_synth_top_ice40_ndisp1>},
+    {"ice40-ndisp4-lanes1", &make_verilated<Vstereo_synth_top_ice40_ndisp4_lanes1>},
 #ifdef STEREO_COSIM_FULL
     {"full", &make_verilated<Vstereo_top_full>},
 #endif

@@ -34,16 +34,19 @@ const std::vector<TopConfig>& built_top_configs();
 const TopConfig& lcdm_top_config();
 
 // The same with time-multiplexed lanes (LANES = 4): "lcdm-lanes4". Not among
-// built_top_configs() or lanes_top_configs().
+// built_top_configs(), lanes_top_configs() or fpga_top_configs().
 const TopConfig& lcdm_lanes_top_config();
 
 // stereo_top with time-multiplexed lanes (LANES < NDISP), AD cost: "lanes4" (16 labels, 4 per
 // clock), "lanes1" (16, 1), "ndisp8-lanes2" (8, 2), "ndisp2-lanes1" (2, 1), and the one-label
 // core "ndisp1". Not among built_top_configs().
 const std::vector<TopConfig>& lanes_top_configs();
+// The FPGA builds (stereo_synth_top: constant default kernel, MAX_MIN_DISP = 0) that
+// tb_stereo_synth_top co-simulates: "ice40-ndisp1", "ice40-ndisp4-lanes1".
+const std::vector<TopConfig>& fpga_top_configs();
 
-// Any built stereo_top configuration by name (small, small-lcdm, lcdm-lanes4, full, the lanes
-// ones); throws std::invalid_argument for an unknown name.
+// Any built stereo_top configuration by name (small, small-lcdm, lcdm-lanes4, full, the lanes and
+// FPGA ones); throws std::invalid_argument for an unknown name.
 const TopConfig& top_config_named(const std::string& name);
 
 // The smallest built configuration with the cost `cost` ("ad": built_top_configs(), "lcdm":

@@ -43,7 +43,7 @@ int labels(int ndisp) {
 }
 
 // Cycles of one frame without stalls: the stage table's formula (stage_table.hpp, docs/rtl.md),
-// G (W*H + (R + 2) * W + R + 11 + N + K) - 2 (G - 1), G = NDISP / LANES; the Throughput tests
+// G (W*H + (R + 2) * W + R + 11 + N + K) - 2 (G - 1) + 1, G = NDISP / LANES; the Throughput tests
 // below measure it on the RTL.
 std::uint64_t documented_cycles(int width, int height, int window, int min_disp) {
     return static_cast<std::uint64_t>(

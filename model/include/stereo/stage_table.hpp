@@ -246,7 +246,14 @@ inline constexpr Params kNdisp2Lanes1{kSmall.width, kSmall.height, 2, kSmall.win
 inline constexpr Params kNdisp8Lanes2{kSmall.width, kSmall.height, 8, kSmall.window, kUnset, kUnset,
                                       kUnset,       kUnset,        2};
 
-inline constexpr std::array<VerilatedConfig, 22> kVerilatedConfigs = {{
+// The FPGA builds as synthesised (stereo_synth_top: the constant default kernel, the radius
+// WINDOW/2, MAX_MIN_DISP = 0): the HX8K's one-label 3x3 core and its 4-label 5x5 core at one
+// label per clock (docs/synthesis.md). tb_stereo_synth_top co-simulates both.
+inline constexpr Params kIce40Ndisp1{kSmall.width, kSmall.height, 1, 3, kUnset, kUnset, 0};
+inline constexpr Params kIce40Ndisp4Lanes1{
+    kSmall.width, kSmall.height, 4, 5, kUnset, kUnset, 0, kUnset, 1};
+
+inline constexpr std::array<VerilatedConfig, 24> kVerilatedConfigs = {{
     {"Vstereo_top_small", "stereo_top", kSmall, ""},
     {"Vstereo_top_lanes4", "stereo_top", kSmallLanes4, ""},
     {"Vstereo_top_lanes1", "stereo_top", kSmallLanes1, ""},
@@ -283,6 +290,8 @@ inline constexpr std::array<VerilatedConfig, 22> kVerilatedConfigs = {{
     {"Vstereo_wta", "stereo_wta", {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset}, ""},
     {"Vstereo_validate", "stereo_validate", {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset}, ""},
     {"Vstereo_lr_check", "stereo_lr_check", {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset}, ""},
+    {"Vstereo_synth_top_ice40_ndisp1", "stereo_synth_top", kIce40Ndisp1, ""},
+    {"Vstereo_synth_top_ice40_ndisp4_lanes1", "stereo_synth_top", kIce40Ndisp4Lanes1, ""},
     // The SoC wrapper (AXI4-Lite registers around stereo_top) at the co-simulation point.
     {"Vstereo_axil_top", "stereo_axil_top", kSmall, ""},
     // The iCEBreaker top: UART protocol, configuration registers and stereo_top.
