@@ -138,7 +138,7 @@ module stereo_ca_plane #(
     c5 = (c1 & c2) | (c1 & c3) | (c2 & c3);
     s6 = s5 ^ c4;  // bit 1
     c6 = s5 & c4;
-    // weight 4: c5 + c6 (at most 8 in all, so at most one of them)
+    // weight 4: c5 + c6 (both set only when all eight flags are: 8)
     count_ones8 = {c5 & c6, c5 ^ c6, s6, s4};
   endfunction
 
