@@ -58,7 +58,7 @@ module stereo_top #(
 ) (
     input  wire logic                               clk,
     input  wire logic                               rst,
-    // Configuration, sampled with the start-of-frame beat.
+    // Configuration, sampled when the core takes the start-of-frame beat from the input slice.
     input  wire fx_pkg::cfg_size_t                  cfg_width,
     input  wire fx_pkg::cfg_size_t                  cfg_height,
     input  wire fx_pkg::cfg_ndisp_t                 cfg_ndisp,
