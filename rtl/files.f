@@ -4,7 +4,6 @@ stereo_coord_reg.sv
 stereo_border_flags.sv
 stereo_line_buffer.sv
 stereo_group_ring.sv
-stereo_group_assembly.sv
 stereo_window3x3.sv
 stereo_ca_plane.sv
 stereo_lcdm_convert.sv

@@ -15,9 +15,9 @@
 // same clock). The line buffer has G words per column, one group each; the
 // vertical sums and their history (the horizontal window) of the G groups circulate in a ring
 // of G slots that advances one slot per group, so the group being computed is always at its
-// head; the group results are shifted into an assembly register, and out_data (all NDISP
-// labels) updates with ce, so the interface is the same as with LANES = NDISP, which is the
-// all-parallel stage (G = 1: the advance is ce, the ring one register).
+// head; out_data is this clock's group result, unregistered (the next stage, stereo_ca_plane,
+// delays it in its input ring), while out_x/out_y step with ce. LANES = NDISP is the
+// all-parallel stage (G = 1: the advance is ce, the ring one register, out_data a register).
 `default_nettype none
 
 module stereo_aggregate #(
@@ -50,7 +50,8 @@ module stereo_aggregate #(
     /* verilator lint_on UNUSEDSIGNAL */
     output      fx_pkg::coord_t                     out_x,
     output      fx_pkg::coord_t                     out_y,
-    output      logic [NDISP*fx_pkg::AGG_BITS-1:0]  out_data
+    // G = 1: all labels, registered at ce; G > 1: this clock's group, combinational.
+    output      logic [LANES*fx_pkg::AGG_BITS-1:0]  out_data
 );
   localparam int COST_BITS = fx_pkg::COST_BITS;
   localparam int TAP_BITS = fx_pkg::TAP_BITS;
@@ -289,17 +290,17 @@ module stereo_aggregate #(
     end
   endgenerate
 
-  // Groups 0 .. G-2 are collected, the step hands all labels on (G = 1: a plain register).
-  stereo_group_assembly #(
-      .GROUP_BITS(OUT_BITS),
-      .GROUPS    (GROUPS)
-  ) assembly (
-      .clk(clk),
-      .ce(ce),
-      .group(group_now),
-      .in_group(aggregate_d),
-      .out_data(out_data)
-  );
+  // G > 1: the group goes on as computed (the consumer's input ring registers it); G = 1: the
+  // output register.
+  generate
+    if (GROUPS > 1) begin : g_group_out
+      assign out_data = aggregate_d;
+    end else begin : g_register_out
+      always_ff @(posedge clk) begin
+        if (ce) out_data <= aggregate_d;
+      end
+    end
+  endgenerate
   stereo_coord_reg coordinates (
       .in_x(centre_x),
       .in_y(centre_y),

@@ -17,8 +17,11 @@
 // step, ce, at group G-1) computes labels d = g*LANES + l, l < LANES, on LANES copies of the
 // rule. Rule 1's neighbours across the group boundary: d-1 of the first lane is the previous
 // group's last centre, kept in a register when that group advanced; d+1 of the last lane is the
-// next group's first centre (stereo_window3x3 next_centre). The group results are shifted into
-// an assembly register and out_data (all labels) updates with ce.
+// next group's first centre (stereo_window3x3 next_centre). The stage hands on one group per
+// clock: in_data is the producer's result of this clock's group, which the window delays by 2G
+// group clocks in a RAM ring, and out_data is this clock's result, unregistered (the consumer
+// delays it); out_x/out_y still step with ce. G = 1: in_data and out_data carry all labels and
+// out_data is a register stepped with ce, as before lanes.
 `default_nettype none
 
 module stereo_ca_plane #(
@@ -36,7 +39,8 @@ module stereo_ca_plane #(
     /* verilator lint_on UNUSEDSIGNAL */
     input  wire fx_pkg::coord_t                    in_x,
     input  wire fx_pkg::coord_t                    in_y,
-    input  wire logic [NDISP*fx_pkg::AGG_BITS-1:0] in_data,
+    // G = 1: the pixel's NDISP values; G > 1: the producer's result of this clock's group.
+    input  wire logic [LANES*fx_pkg::AGG_BITS-1:0] in_data,
     input  wire fx_pkg::cfg_size_t                 cfg_width,
     input  wire fx_pkg::cfg_size_t                 cfg_height,
     // Rule 2 does not look across planes.
@@ -46,7 +50,8 @@ module stereo_ca_plane #(
     input  wire logic                              cfg_use_ca,
     output      fx_pkg::coord_t                    out_x,
     output      fx_pkg::coord_t                    out_y,
-    output      logic [NDISP*fx_pkg::AGG_BITS-1:0] out_data
+    // G = 1: all labels, registered at ce; G > 1: this clock's group, combinational.
+    output      logic [LANES*fx_pkg::AGG_BITS-1:0] out_data
 );
   localparam int BITS = fx_pkg::AGG_BITS;
   localparam int SUM_BITS = fx_pkg::CA_SUM_BITS;
@@ -211,17 +216,17 @@ module stereo_ca_plane #(
     end
   endgenerate
 
-  // Groups 0 .. G-2 are collected, the step hands all labels on (G = 1: a plain register).
-  stereo_group_assembly #(
-      .GROUP_BITS(COLUMN),
-      .GROUPS    (GROUPS)
-  ) assembly (
-      .clk(clk),
-      .ce(ce),
-      .group(group_now),
-      .in_group(result),
-      .out_data(out_data)
-  );
+  // G > 1: the group goes on as computed (the consumer's input ring registers it); G = 1: the
+  // output register.
+  generate
+    if (GROUPS > 1) begin : g_group_out
+      assign out_data = result;
+    end else begin : g_register_out
+      always_ff @(posedge clk) begin
+        if (ce) out_data <= result;
+      end
+    end
+  endgenerate
   stereo_coord_reg coordinates (
       .in_x(centre_x),
       .in_y(centre_y),

@@ -12,10 +12,10 @@
 // pixel is in the row. The last NDISP completed labels are kept (hist[i] = kR(xr - i)).
 //
 // The left results (stereo_validate's register, one pixel behind the accumulators' input) pass
-// through a delay line of NDISP - 1 steps; then kR(x - m - k1) = hist[k1]. At the delay line's
-// input: the uniqueness test C1 (100 + U) >= C2 100, computed as C1 U >= 100 (C2 - C1) (signed;
-// no C2: unique), and the certainty floor(((C2 - C1) << 8) / (C2 + 1)) (stereo_divider). At the
-// line's output: the left-right test |k1 - kR| > T and the reason, the first failing of border,
+// through a delay line of NDISP - 1 steps (a RAM ring); then kR(x - m - k1) = hist[k1]. At the
+// delay line's input: the uniqueness test C1 (100 + U) >= C2 100, computed as C1 U >= 100
+// (C2 - C1) (signed; no C2: unique), and the certainty floor(((C2 - C1) << 8) / (C2 + 1))
+// (stereo_divider). At the line's output: the left-right test |k1 - kR| > T and the reason, the first failing of border,
 // uniqueness, left-right; fixed is 0 where invalid.
 //
 // LANES = NDISP (G = 1): all NDISP accumulators update at the step; the divider is pipelined
@@ -23,14 +23,14 @@
 // steps at no extra latency; at one label it stays combinational); the product C1 U is one
 // multiplier.
 // Time-multiplexed lanes (LANES < NDISP, G = NDISP / LANES, docs/rtl.md): the accumulators are a
-// ring (a shift register of G words of LANES entries) that advances one word at each clock that
-// processes a group (`ce || group != G-1`); at group g its head word holds accumulators
+// ring of G words of LANES entries (in RAM, stereo_group_ring) that advances one word at each
+// clock that processes a group (`ce || group != G-1`); at group g its head word holds accumulators
 // [g*LANES +: LANES], LANES lanes compare them (and the previous word's last entry, kept in a
 // carry register) with labels [g*LANES +: LANES], acc_group, and the results enter at the tail.
-// The costs are those of stereo_wta's input pixel (its group multiplexer; the WTA keeps no cost
+// The costs are those of stereo_wta's input pixel (its input ring's head; the WTA keeps no cost
 // vector register), one step ahead of LANES = NDISP, so the completed label, out of the last
-// group at the step, is one step early: kR(x - m - k1) = hist[k1 + 1] of NDISP + 1. The divider iterates over the G
-// clocks of the step (ceil(8 / G) rows per clock, the last rows at the step clock) and the product
+// group at the step, is one step early: kR(x - m - k1) = hist[k1 + 1] of NDISP + 1. The divider
+// iterates over the G clocks of the step (ceil(8 / G) rows per clock, the last rows at the step clock) and the product
 // C1 U takes ceil(8 / G) bits of U per clock, so both are ready at the step as with G = 1.
 // Latency: NDISP pixel steps (the delay line and the output register), which is the output
 // register of stereo_top.
@@ -38,7 +38,8 @@
 
 module stereo_lr_check #(
     parameter int NDISP = 16,  // disparities
-    parameter int LANES = NDISP  // labels compared per clock (divides NDISP)
+    parameter int LANES = NDISP,  // labels compared per clock (divides NDISP)
+    parameter bit RING_BLOCK_RAM = 1'b0  // stereo_group_ring BLOCK_RAM (stereo_top)
 ) (
     input  wire logic                                 clk,
     input  wire logic                                 rst,         // clears the delay line's coordinates
@@ -120,13 +121,27 @@ module stereo_lr_check #(
   generate
     if (GROUPS > 1) begin : g_ring
       assign lane_cost = acc_group;  // stereo_wta's multiplexer
-      // ring_*[w]: G words of LANES accumulators; at group g, word 0 holds [g*LANES +: LANES].
-      logic [LANES*BITS-1:0] ring_cost[GROUPS];
-      logic [LANES*LABEL_BITS-1:0] ring_label[GROUPS];
+      // G words of LANES accumulators (cost, label), a ring in RAM (stereo_group_ring) that
+      // advances at each clock that processes a group: at group g its head holds accumulators
+      // [g*LANES +: LANES], and the advance stores the group's new accumulators.
+      logic advance;
+      assign advance = ce || 32'(group_now) != GROUPS - 1;
+      logic [LANES*BITS-1:0] head_cost;
+      logic [LANES*LABEL_BITS-1:0] head_label;
       logic [BITS-1:0] carry_cost;  // accumulator g*LANES - 1 (the previous word's last)
       logic [LABEL_BITS-1:0] carry_label;
       logic [LANES*BITS-1:0] new_cost;
       logic [LANES*LABEL_BITS-1:0] new_label;
+      stereo_group_ring #(
+          .BITS     (LANES * (BITS + LABEL_BITS)),
+          .GROUPS   (GROUPS),
+          .BLOCK_RAM(RING_BLOCK_RAM)
+      ) accumulators (
+          .clk(clk),
+          .advance(advance),
+          .next_state({new_label, new_cost}),
+          .head({head_label, head_cost})
+      );
       always_comb begin
         for (int l = 0; l < LANES; l++) begin
           logic [BITS-1:0] previous_cost;  // accumulator j - 1 (accumulator 0: a fresh one)
@@ -135,8 +150,8 @@ module stereo_lr_check #(
             previous_cost = (group_now == '0) ? UNSET : carry_cost;
             previous_label = (group_now == '0) ? '0 : carry_label;
           end else begin
-            previous_cost = ring_cost[0][(l-1)*BITS +: BITS];
-            previous_label = ring_label[0][(l-1)*LABEL_BITS +: LABEL_BITS];
+            previous_cost = head_cost[(l-1)*BITS +: BITS];
+            previous_label = head_label[(l-1)*LABEL_BITS +: LABEL_BITS];
           end
           if (take[l] && lane_cost[l*BITS +: BITS] < previous_cost) begin
             new_cost[l*BITS +: BITS] = lane_cost[l*BITS +: BITS];
@@ -148,15 +163,9 @@ module stereo_lr_check #(
         end
       end
       always_ff @(posedge clk) begin
-        if (ce || 32'(group_now) != GROUPS - 1) begin  // a clock that processes a group
-          for (int w = 0; w < GROUPS - 1; w++) begin
-            ring_cost[w] <= ring_cost[w+1];
-            ring_label[w] <= ring_label[w+1];
-          end
-          ring_cost[GROUPS-1] <= new_cost;
-          ring_label[GROUPS-1] <= new_label;
-          carry_cost <= ring_cost[0][(LANES-1)*BITS +: BITS];
-          carry_label <= ring_label[0][(LANES-1)*LABEL_BITS +: LABEL_BITS];
+        if (advance) begin
+          carry_cost <= head_cost[(LANES-1)*BITS +: BITS];
+          carry_label <= head_label[(LANES-1)*LABEL_BITS +: LABEL_BITS];
         end
       end
       assign completed = new_label[(LANES-1)*LABEL_BITS +: LABEL_BITS];
@@ -297,38 +306,32 @@ module stereo_lr_check #(
 
   generate
     if (DELAY > 0) begin : g_delay
-      // One flat vector, entry i at [i*RESULT_BITS +: RESULT_BITS] (Yosys 0.23 loses an
-      // unpacked array of structs).
-      logic [DELAY*RESULT_BITS-1:0] line;
-      fx_pkg::coord_t line_x[DELAY];
-      fx_pkg::coord_t line_y[DELAY];
-      if (DELAY > 1) begin : g_shift
-        always_ff @(posedge clk) begin
-          if (ce) line <= {line[(DELAY-1)*RESULT_BITS-1:0], entering};
-        end
-      end else begin : g_single
-        always_ff @(posedge clk) begin
-          if (ce) line <= entering;
-        end
-      end
+      // DELAY steps of results and their coordinates, a ring in RAM (stereo_group_ring, one word
+      // a step; block RAM on the iCE40, LUT RAM elsewhere from 8 steps on) instead of a shift
+      // register. A RAM cannot be reset, so the "no pixel" that a reset (or the end-of-frame
+      // clear) puts into the whole line comes from a count of the steps since: until DELAY
+      // steps have entered, what leaves is not a pixel, as the cleared registers were.
+      localparam int COUNT_BITS = $clog2(DELAY + 1);
+      logic [COUNT_BITS-1:0] filled;  // steps entered since rst, up to DELAY
+      logic [RESULT_BITS-1:0] head_result;
+      fx_pkg::coord_t head_x, head_y;
+      stereo_group_ring #(
+          .BITS     (RESULT_BITS + 2 * fx_pkg::COORD_BITS),
+          .GROUPS   (DELAY),
+          .BLOCK_RAM(RING_BLOCK_RAM)
+      ) line (
+          .clk(clk),
+          .advance(ce),
+          .next_state({entering, in_x, in_y}),
+          .head({head_result, head_x, head_y})
+      );
       always_ff @(posedge clk) begin
-        if (rst) begin
-          for (int i = 0; i < DELAY; i++) begin
-            line_x[i] <= '0;
-            line_y[i] <= fx_pkg::NO_PIXEL;
-          end
-        end else if (ce) begin
-          line_x[0] <= in_x;
-          line_y[0] <= in_y;
-          for (int i = 1; i < DELAY; i++) begin
-            line_x[i] <= line_x[i-1];
-            line_y[i] <= line_y[i-1];
-          end
-        end
+        if (rst) filled <= '0;
+        else if (ce && 32'(filled) != DELAY) filled <= filled + 1'b1;
       end
-      assign leaving = line[(DELAY-1)*RESULT_BITS +: RESULT_BITS];
-      assign leaving_x = line_x[DELAY-1];
-      assign leaving_y = line_y[DELAY-1];
+      assign leaving = head_result;
+      assign leaving_x = (32'(filled) == DELAY) ? head_x : '0;
+      assign leaving_y = (32'(filled) == DELAY) ? head_y : fx_pkg::NO_PIXEL;
     end else begin : g_direct
       assign leaving = entering;
       assign leaving_x = in_x;

@@ -363,7 +363,8 @@ module stereo_top #(
   fx_pkg::coord_t cost_x, cost_y, agg_x, agg_y, rule1_x, rule1_y, wta_in_x, wta_in_y;
   fx_pkg::coord_t cost_next_y;  // the row cost_y takes at this step
   logic [LANES*COST_BITS-1:0] cost_data;  // LANES < NDISP: this clock's group of labels
-  logic [NDISP*AGG_BITS-1:0] agg_data, rule1_data, rule2_data;
+  // G = 1: all labels of a pixel, registered; G > 1: the group each stage computes in this clock.
+  logic [LANES*AGG_BITS-1:0] agg_data, rule1_data, rule2_data;
 
   stereo_cost #(
       .NDISP(NDISP),
@@ -469,7 +470,8 @@ module stereo_top #(
   logic signed [FIXED_BITS-1:0] validate_fixed;
   stereo_wta #(
       .NDISP(NDISP),
-      .LANES(LANES)
+      .LANES(LANES),
+      .RING_BLOCK_RAM(RING_BLOCK_RAM)
   ) wta (
       .clk(clk),
       .rst(clear_coordinates),
@@ -527,7 +529,8 @@ module stereo_top #(
   fx_pkg::out_beat_t out_beat;
   stereo_lr_check #(
       .NDISP(NDISP),
-      .LANES(LANES)
+      .LANES(LANES),
+      .RING_BLOCK_RAM(RING_BLOCK_RAM)
   ) lr_check (
       .clk(clk),
       .rst(clear_coordinates),

@@ -9,8 +9,10 @@
 //
 // Time-multiplexed lanes (LANES < NDISP, docs/rtl.md): at the clock of label group g (`group`;
 // the step, ce, comes at group G-1, G = NDISP / LANES) window_data holds labels [g*LANES +:
-// LANES] of the window: the input register keeps all labels (selected by group), the line buffer
-// has G words per column, and the two column registers of the G groups circulate in a ring of G
+// LANES] of the window: in_data is the producer's result of this clock's group (it hands on
+// one group per clock, unregistered), delayed by 2G group clocks in a RAM ring (stereo_group_ring;
+// where the all-parallel stage has the producer's output register and this input register, two
+// steps), the line buffer has G words per column, and the two column registers of the G groups circulate in a ring of G
 // slots that advances one slot per group (ce || group != G-1), its head being the group of the
 // clock; the ring is a RAM (stereo_group_ring), not G registers. next_centre is the centre value of label (g+1)*LANES (the next group's first, not yet
 // advanced), for rule 1's d+1 across the group boundary.
@@ -31,7 +33,8 @@ module stereo_window3x3 #(
     /* verilator lint_on UNUSEDSIGNAL */
     input  wire fx_pkg::coord_t          in_x,
     input  wire fx_pkg::coord_t          in_y,
-    input  wire logic [NDISP*BITS-1:0]   in_data,
+    // G = 1: the pixel's NDISP values; G > 1: the producer's result of this clock's group.
+    input  wire logic [LANES*BITS-1:0]   in_data,
     input  wire fx_pkg::cfg_size_t       cfg_width,
     input  wire fx_pkg::cfg_size_t       cfg_height,
     output      fx_pkg::coord_t          centre_x,
@@ -57,19 +60,29 @@ module stereo_window3x3 #(
   // arithmetic no longer runs in front of their comparisons and sums (the critical path before,
   // docs/synthesis.md). Cost: one pixel step of latency.
   fx_pkg::coord_t x_q;  // addresses the line buffer; the geometry is registered below
-  logic [NDISP*BITS-1:0] pixel_q;
   always_ff @(posedge clk) begin
-    if (ce) begin
-      x_q <= in_x;
-      pixel_q <= in_data;
-    end
+    if (ce) x_q <= in_x;
   end
   logic [COLUMN-1:0] data_q;  // this clock's group of the registered pixel
   generate
-    if (GROUPS > 1) begin : g_select_group
-      assign data_q = pixel_q[32'(group_now)*COLUMN +: COLUMN];
-    end else begin : g_all_labels
-      assign data_q = pixel_q;
+    if (GROUPS > 1) begin : g_input_ring
+      // The group the producer computed 2G advances ago: the pixel whose coordinates x_q holds.
+      // In flip-flops that would be the producer's G-1 assembly and G output words and this
+      // stage's G input words; here 2G words of RAM (block RAM on the iCE40).
+      stereo_group_ring #(
+          .BITS     (COLUMN),
+          .GROUPS   (2 * GROUPS),
+          .BLOCK_RAM(RING_BLOCK_RAM)
+      ) input_ring (
+          .clk(clk),
+          .advance(advance),
+          .next_state(in_data),
+          .head(data_q)
+      );
+    end else begin : g_input_register
+      always_ff @(posedge clk) begin
+        if (ce) data_q <= in_data;
+      end
     end
   endgenerate
 

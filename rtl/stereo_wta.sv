@@ -19,7 +19,8 @@
 // multiplexers on k1; out_second is not computed (0; stereo_validate computes C2 from out_data).
 // out_group is in_data.
 // Time-multiplexed lanes (LANES < NDISP, docs/rtl.md): the clock of label group g (`group`; the
-// step, ce, at group G-1, G = NDISP / LANES) scans labels [g*LANES +: LANES] in label order, one
+// step, ce, at group G-1, G = NDISP / LANES; in_data is the previous stage's result of the
+// clock's group, held G group clocks in a RAM ring) scans labels [g*LANES +: LANES] in label order, one
 // lane after the other, updating a running state that groups 0 .. G-2 register and group 0
 // restarts: the winner (cost, label; a label replaces it only with a strictly smaller cost, so
 // ties go to the smallest label), its neighbours' costs (E(k1 - 1) is the last label's cost when
@@ -31,7 +32,8 @@
 
 module stereo_wta #(
     parameter int NDISP = 16,  // disparities
-    parameter int LANES = NDISP  // labels compared per clock (divides NDISP)
+    parameter int LANES = NDISP,  // labels compared per clock (divides NDISP)
+    parameter bit RING_BLOCK_RAM = 1'b0  // stereo_group_ring BLOCK_RAM (stereo_top)
 ) (
     input  wire logic                              clk,
     input  wire logic                              rst,  // clears coordinates only
@@ -41,7 +43,8 @@ module stereo_wta #(
     /* verilator lint_on UNUSEDSIGNAL */
     input  wire fx_pkg::coord_t                    in_x,
     input  wire fx_pkg::coord_t                    in_y,
-    input  wire logic [NDISP*fx_pkg::AGG_BITS-1:0] in_data,
+    // G = 1: the pixel's NDISP costs; G > 1: the producer's result of this clock's group.
+    input  wire logic [LANES*fx_pkg::AGG_BITS-1:0] in_data,
     input  wire fx_pkg::cfg_size_t                 cfg_width,
     input  wire fx_pkg::cfg_size_t                 cfg_height,
     input  wire fx_pkg::cfg_ndisp_t                cfg_ndisp,
@@ -58,7 +61,7 @@ module stereo_wta #(
     // LANES = NDISP: the cost vector, as it came (LANES < NDISP: 0).
     output      logic [NDISP*fx_pkg::AGG_BITS-1:0] out_data,
     output      logic [fx_pkg::AGG_BITS-1:0]       out_second,  // C2 (LANES < NDISP only)
-    // LANES < NDISP: labels [group*LANES +: LANES] of in_data (LANES = NDISP: in_data).
+    // LANES < NDISP: labels [group*LANES +: LANES] of the input pixel (LANES = NDISP: in_data).
     output      logic [LANES*fx_pkg::AGG_BITS-1:0] out_group
 );
   localparam int BITS = fx_pkg::AGG_BITS;
@@ -79,16 +82,23 @@ module stereo_wta #(
   logic [BITS-1:0] winner_cost, cost_before, cost_after;
   generate
     if (GROUPS > 1) begin : g_scan
-      // This clock's group of the costs, and its first label.
-      // A multiplexer on the group (an indexed part-select would be a barrel shifter in Yosys).
+      // This clock's group of the costs, and its first label: what the previous stage computed
+      // for this group G advances ago (where the all-parallel stage has that stage's output
+      // register), from a RAM ring of G words.
       logic [LANES*BITS-1:0] group_costs;
       logic [31:0] first_label;
-      always_comb begin
-        group_costs = '0;
-        for (int g = 0; g < GROUPS; g++) begin
-          if (32'(group_now) == g) group_costs = in_data[g*LANES*BITS +: LANES*BITS];
-        end
-      end
+      logic advance;  // a clock that processes a group
+      assign advance = ce || 32'(group_now) != GROUPS - 1;
+      stereo_group_ring #(
+          .BITS     (LANES * BITS),
+          .GROUPS   (GROUPS),
+          .BLOCK_RAM(RING_BLOCK_RAM)
+      ) input_ring (
+          .clk(clk),
+          .advance(advance),
+          .next_state(in_data),
+          .head(group_costs)
+      );
       assign first_label = 32'(group_now) * LANES;
       assign out_group = group_costs;
       // The running state (registered after groups 0 .. G-2; group 0 does not read it).
