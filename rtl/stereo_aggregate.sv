@@ -29,7 +29,8 @@ module stereo_aggregate #(
     // into shifts and adds; cfg_kernel is then ignored.
     parameter bit RUNTIME_KERNEL = 1'b1,
     parameter int LANES = NDISP,  // labels computed per clock (divides NDISP)
-    parameter bit RING_BLOCK_RAM = 1'b0  // stereo_group_ring BLOCK_RAM (stereo_top)
+    parameter bit RING_BLOCK_RAM = 1'b0,  // stereo_group_ring BLOCK_RAM (stereo_top)
+    parameter int RING_BLOCK_MIN_FILL = 50  // stereo_group_ring BLOCK_MIN_FILL
 ) (
     input  wire logic                               clk,
     input  wire logic                               rst,  // clears coordinates only
@@ -206,7 +207,8 @@ module stereo_aggregate #(
   stereo_group_ring #(
       .BITS     (STATE_BITS),
       .GROUPS   (GROUPS),
-      .BLOCK_RAM(RING_BLOCK_RAM)
+      .BLOCK_RAM(RING_BLOCK_RAM),
+      .BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
   ) group_ring (
       .clk(clk),
       .advance(advance),

@@ -58,7 +58,9 @@ module stereo_board_top #(
     // at one label, which is what lets the core place on the UP5K (docs/board.md).
     parameter int MAX_MIN_DISP = fx_pkg::DEFAULT_MAX_MIN_DISP,
     // Labels computed per clock (stereo_top LANES, divides NDISP): NDISP / LANES clocks a pixel.
-    parameter int LANES = NDISP
+    parameter int LANES = NDISP,
+    // stereo_top RING_BLOCK_MIN_FILL: which group rings go to block RAM (stereo_group_ring).
+    parameter int RING_BLOCK_MIN_FILL = 50
 ) (
     input  wire logic clk,          // 12 MHz oscillator
     input  wire logic uart_rx,      // from the FTDI (host to board)
@@ -435,7 +437,8 @@ module stereo_board_top #(
       .RUNTIME_KERNEL(1'b0),
       .MAX_MIN_DISP(MAX_MIN_DISP),
       .LANES(LANES),
-      .RING_BLOCK_RAM(1'b1)  // the iCE40: flip-flops are logic cells
+      .RING_BLOCK_RAM(1'b1),  // the iCE40: flip-flops are logic cells
+      .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
   ) core (
       .clk(clk),
       .rst(rst || soft_reset),

@@ -29,7 +29,8 @@ module stereo_ca_plane #(
     parameter int NDISP = 16,  // disparities in parallel
     parameter int RULE  = 1,   // 1 or 2
     parameter int LANES = NDISP,  // labels computed per clock (divides NDISP)
-    parameter bit RING_BLOCK_RAM = 1'b0  // stereo_group_ring BLOCK_RAM (stereo_top)
+    parameter bit RING_BLOCK_RAM = 1'b0,  // stereo_group_ring BLOCK_RAM (stereo_top)
+    parameter int RING_BLOCK_MIN_FILL = 50  // stereo_group_ring BLOCK_MIN_FILL
 ) (
     input  wire logic                              clk,
     input  wire logic                              rst,  // clears coordinates only
@@ -79,7 +80,8 @@ module stereo_ca_plane #(
       .BITS (BITS),
       .NDISP(NDISP),
       .LANES(LANES),
-      .RING_BLOCK_RAM(RING_BLOCK_RAM)
+      .RING_BLOCK_RAM(RING_BLOCK_RAM),
+      .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
   ) neighbourhood (
       .clk(clk),
       .rst(rst),

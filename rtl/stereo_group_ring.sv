@@ -17,14 +17,20 @@
 // Where the RAM goes: Yosys maps a ring of 8 or more words to block RAM on the iCE40 (no LUT RAM
 // there) and to LUT RAM on the 7-series and ECP5, but implements a shallower one in flip-flops
 // plus a read multiplexer, more than the register ring, which is kept below 8 groups.
-// BLOCK_RAM = 1 asks for block RAM at any depth (`ram_style`): right for the iCE40, where
-// flip-flops are logic cells, wasteful on parts with LUT RAM (a block per 36 bits of width).
+// BLOCK_RAM = 1 asks for block RAM (`ram_style`): right for the iCE40, where flip-flops are
+// logic cells, wasteful on parts with LUT RAM (a block per 36 bits of width). Even on the iCE40
+// a block (4 Kib, at most 16 bits wide) is only worth it when it saves enough flip-flops: with
+// BLOCK_RAM = 1 the ring goes to block RAM when its GROUPS x BITS bits fill each of the
+// ceil(BITS / 16) block columns it needs with at least BLOCK_MIN_FILL bits (docs/rtl.md; 50 by
+// default: a ring of four words of 84 bits or eight of 14 goes to block RAM, four words of 14
+// bits or three of 52 stay in flip-flops, at any depth).
 `default_nettype none
 
 module stereo_group_ring #(
     parameter int BITS   = 8,  // one group's state
     parameter int GROUPS = 2,  // label groups per pixel step
-    parameter bit BLOCK_RAM = 1'b0  // 1: block RAM at any depth (see above)
+    parameter bit BLOCK_RAM = 1'b0,  // 1: block RAM when it is filled enough (see above)
+    parameter int BLOCK_MIN_FILL = 50  // bits per 16-bit block column (see above)
 ) (
     input  wire logic            clk,
     input  wire logic            advance,     // a group clock (or the step at the last group)
@@ -36,12 +42,14 @@ module stereo_group_ring #(
   end
 
   localparam int POINTER_BITS = (GROUPS > 1) ? $clog2(GROUPS) : 1;
+  localparam int FILL = GROUPS * BITS / ((BITS + 15) / 16);  // bits per block column
+  localparam bit USE_BLOCK = BLOCK_RAM && FILL >= BLOCK_MIN_FILL;
   generate
-    if (GROUPS > 1 && (BLOCK_RAM || GROUPS >= 8)) begin : g_ram
+    if (GROUPS > 1 && (BLOCK_RAM ? USE_BLOCK : GROUPS >= 8)) begin : g_ram
       logic [POINTER_BITS-1:0] pointer, after;  // the head's word, the next head's
       assign after = (32'(pointer) == GROUPS - 1) ? '0 : pointer + 1'b1;
       // "auto" leaves the choice to synthesis (block RAM on the iCE40, LUT RAM elsewhere).
-      (* ram_style = (BLOCK_RAM ? "block" : "auto") *) logic [BITS-1:0] memory[GROUPS];
+      (* ram_style = (USE_BLOCK ? "block" : "auto") *) logic [BITS-1:0] memory[GROUPS];
       always_ff @(posedge clk) begin
         if (advance) begin
           memory[pointer] <= next_state;

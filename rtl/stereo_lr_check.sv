@@ -39,7 +39,8 @@
 module stereo_lr_check #(
     parameter int NDISP = 16,  // disparities
     parameter int LANES = NDISP,  // labels compared per clock (divides NDISP)
-    parameter bit RING_BLOCK_RAM = 1'b0  // stereo_group_ring BLOCK_RAM (stereo_top)
+    parameter bit RING_BLOCK_RAM = 1'b0,  // stereo_group_ring BLOCK_RAM (stereo_top)
+    parameter int RING_BLOCK_MIN_FILL = 50  // stereo_group_ring BLOCK_MIN_FILL
 ) (
     input  wire logic                                 clk,
     input  wire logic                                 rst,         // clears the delay line's coordinates
@@ -135,7 +136,8 @@ module stereo_lr_check #(
       stereo_group_ring #(
           .BITS     (LANES * (BITS + LABEL_BITS)),
           .GROUPS   (GROUPS),
-          .BLOCK_RAM(RING_BLOCK_RAM)
+          .BLOCK_RAM(RING_BLOCK_RAM),
+          .BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
       ) accumulators (
           .clk(clk),
           .advance(advance),
@@ -318,7 +320,8 @@ module stereo_lr_check #(
       stereo_group_ring #(
           .BITS     (RESULT_BITS + 2 * fx_pkg::COORD_BITS),
           .GROUPS   (DELAY),
-          .BLOCK_RAM(RING_BLOCK_RAM)
+          .BLOCK_RAM(RING_BLOCK_RAM),
+          .BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
       ) line (
           .clk(clk),
           .advance(ce),

@@ -18,7 +18,8 @@ module stereo_synth_top #(
     // Largest |cfg_min_disp| (stereo_top's cost delay lines); 0: the range 0 .. ndisp-1 only.
     parameter int MAX_MIN_DISP = fx_pkg::DEFAULT_MAX_MIN_DISP,
     // stereo_top RING_BLOCK_RAM: 1 for the iCE40 (synth.py sets it there).
-    parameter bit RING_BLOCK_RAM = 1'b0
+    parameter bit RING_BLOCK_RAM = 1'b0,
+    parameter int RING_BLOCK_MIN_FILL = 50  // stereo_group_ring BLOCK_MIN_FILL
 ) (
     input  wire logic                            clk,
     input  wire logic                            rst,
@@ -52,7 +53,8 @@ module stereo_synth_top #(
       .RUNTIME_KERNEL(1'b0),
       .MAX_MIN_DISP(MAX_MIN_DISP),
       .LANES(LANES),
-      .RING_BLOCK_RAM(RING_BLOCK_RAM)
+      .RING_BLOCK_RAM(RING_BLOCK_RAM),
+      .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
   ) core (
       .clk(clk),
       .rst(rst),

@@ -54,7 +54,8 @@ module stereo_top #(
     // 1: the per-group state rings of the converted stages (stereo_group_ring) in block RAM at
     // any group count; for the iCE40, whose flip-flops are logic cells (it has no LUT RAM).
     // 0: block or LUT RAM from 8 groups on, registers below, as synthesis sees fit.
-    parameter bit RING_BLOCK_RAM = 1'b0
+    parameter bit RING_BLOCK_RAM = 1'b0,
+    parameter int RING_BLOCK_MIN_FILL = 50  // stereo_group_ring BLOCK_MIN_FILL
 ) (
     input  wire logic                               clk,
     input  wire logic                               rst,
@@ -394,7 +395,8 @@ module stereo_top #(
       .WINDOW(WINDOW),
       .RUNTIME_KERNEL(RUNTIME_KERNEL),
       .LANES(LANES),
-      .RING_BLOCK_RAM(RING_BLOCK_RAM)
+      .RING_BLOCK_RAM(RING_BLOCK_RAM),
+      .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
   ) aggregate (
       .clk(clk),
       .rst(clear_coordinates),
@@ -418,7 +420,8 @@ module stereo_top #(
       .NDISP(NDISP),
       .RULE (1),
       .LANES(LANES),
-      .RING_BLOCK_RAM(RING_BLOCK_RAM)
+      .RING_BLOCK_RAM(RING_BLOCK_RAM),
+      .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
   ) ca_rule1 (
       .clk(clk),
       .rst(clear_coordinates),
@@ -441,7 +444,8 @@ module stereo_top #(
       .NDISP(NDISP),
       .RULE (2),
       .LANES(LANES),
-      .RING_BLOCK_RAM(RING_BLOCK_RAM)
+      .RING_BLOCK_RAM(RING_BLOCK_RAM),
+      .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
   ) ca_rule2 (
       .clk(clk),
       .rst(clear_coordinates),
@@ -471,7 +475,8 @@ module stereo_top #(
   stereo_wta #(
       .NDISP(NDISP),
       .LANES(LANES),
-      .RING_BLOCK_RAM(RING_BLOCK_RAM)
+      .RING_BLOCK_RAM(RING_BLOCK_RAM),
+      .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
   ) wta (
       .clk(clk),
       .rst(clear_coordinates),
@@ -530,7 +535,8 @@ module stereo_top #(
   stereo_lr_check #(
       .NDISP(NDISP),
       .LANES(LANES),
-      .RING_BLOCK_RAM(RING_BLOCK_RAM)
+      .RING_BLOCK_RAM(RING_BLOCK_RAM),
+      .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
   ) lr_check (
       .clk(clk),
       .rst(clear_coordinates),

@@ -23,7 +23,8 @@ module stereo_window3x3 #(
     parameter int BITS  = 14,  // one DSI value
     parameter int NDISP = 16,  // disparities
     parameter int LANES = NDISP,  // labels per clock (divides NDISP)
-    parameter bit RING_BLOCK_RAM = 1'b0  // stereo_group_ring BLOCK_RAM
+    parameter bit RING_BLOCK_RAM = 1'b0,  // stereo_group_ring BLOCK_RAM
+    parameter int RING_BLOCK_MIN_FILL = 50  // stereo_group_ring BLOCK_MIN_FILL
 ) (
     input  wire logic                    clk,
     input  wire logic                    rst,  // clears coordinates only
@@ -72,7 +73,8 @@ module stereo_window3x3 #(
       stereo_group_ring #(
           .BITS     (COLUMN),
           .GROUPS   (2 * GROUPS),
-          .BLOCK_RAM(RING_BLOCK_RAM)
+          .BLOCK_RAM(RING_BLOCK_RAM),
+          .BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
       ) input_ring (
           .clk(clk),
           .advance(advance),
@@ -113,7 +115,8 @@ module stereo_window3x3 #(
   stereo_group_ring #(
       .BITS     (6 * COLUMN),
       .GROUPS   (GROUPS),
-      .BLOCK_RAM(RING_BLOCK_RAM)
+      .BLOCK_RAM(RING_BLOCK_RAM),
+      .BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
   ) column_ring (
       .clk(clk),
       .advance(advance),

@@ -33,7 +33,8 @@
 module stereo_wta #(
     parameter int NDISP = 16,  // disparities
     parameter int LANES = NDISP,  // labels compared per clock (divides NDISP)
-    parameter bit RING_BLOCK_RAM = 1'b0  // stereo_group_ring BLOCK_RAM (stereo_top)
+    parameter bit RING_BLOCK_RAM = 1'b0,  // stereo_group_ring BLOCK_RAM (stereo_top)
+    parameter int RING_BLOCK_MIN_FILL = 50  // stereo_group_ring BLOCK_MIN_FILL
 ) (
     input  wire logic                              clk,
     input  wire logic                              rst,  // clears coordinates only
@@ -92,7 +93,8 @@ module stereo_wta #(
       stereo_group_ring #(
           .BITS     (LANES * BITS),
           .GROUPS   (GROUPS),
-          .BLOCK_RAM(RING_BLOCK_RAM)
+          .BLOCK_RAM(RING_BLOCK_RAM),
+          .BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
       ) input_ring (
           .clk(clk),
           .advance(advance),

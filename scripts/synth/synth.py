@@ -86,6 +86,9 @@ def config_from_args(args):
     # given, so reports of the all-parallel core keep their shape.
     if getattr(args, "lanes", None) is not None:
         config["lanes"] = args.lanes
+    # stereo_top's RING_BLOCK_MIN_FILL (which group rings go to block RAM on the iCE40), likewise.
+    if getattr(args, "ring_min_fill", None) is not None:
+        config["ring_block_min_fill"] = args.ring_min_fill
     # stereo_top's MAX_MIN_DISP, likewise recorded only when given.
     if getattr(args, "max_min_disp", None) is not None and getattr(args, "command", None) != "board":
         config["max_min_disp"] = args.max_min_disp
@@ -111,6 +114,8 @@ def chparam(config, ice40=False):
     iCE40 has no LUT RAM and its flip-flops are logic cells)."""
     lanes = config.get("lanes", config["ndisp"])
     extra = (f"-set MAX_MIN_DISP {config['max_min_disp']} " if "max_min_disp" in config else "")
+    if "ring_block_min_fill" in config:
+        extra += f"-set RING_BLOCK_MIN_FILL {config['ring_block_min_fill']} "
     return (f"chparam -set WIDTH {config['width']} -set HEIGHT {config['height']} "
             f"-set NDISP {config['ndisp']} -set WINDOW {config['window']} "
             f"-set LANES {lanes} {extra}{'-set RING_BLOCK_RAM 1 ' if ice40 else ''}{TOP}")
@@ -356,6 +361,8 @@ def board_report(config, args, work):
                      ("NDISP", config["ndisp"]), ("WINDOW", config["window"]),
                      ("MAX_MIN_DISP", args.max_min_disp),
                      ("LANES", config.get("lanes", config["ndisp"]))]
+        if "ring_block_min_fill" in config:
+            settings.append(("RING_BLOCK_MIN_FILL", config["ring_block_min_fill"]))
         config = config | {"max_min_disp": args.max_min_disp}
     params = " ".join(f"-set {name} {value}" for name, value in settings)
     read = f"read_verilog -sv {' '.join(rtl_sources())}; chparam {params} {top}"
@@ -1062,6 +1069,10 @@ def add_config_arguments(parser, width=64, height=48, ndisp=4, window=5):
     parser.add_argument("--lanes", type=int, default=None,
                         help="stereo_top LANES: labels computed per clock, divides ndisp "
                              "(default: ndisp, all in parallel; `fit`: every ndisp it divides)")
+    parser.add_argument("--ring-min-fill", type=int, default=None,
+                        help="stereo_top RING_BLOCK_MIN_FILL (iCE40): a group ring goes to block "
+                             "RAM when it fills each 16-bit block column with at least this many "
+                             "bits (default: the RTL's, 50)")
     parser.add_argument("--work", help="folder for netlists and logs (default: a temp folder)")
     parser.add_argument("--out", help="JSON report file (default: stdout)")
 
