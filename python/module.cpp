@@ -23,6 +23,7 @@
 #include "stereo_io/disparity_files.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/metrics.hpp"
+#include "stereo_io/output.hpp"
 #include "stereo_robot/decision.hpp"
 #ifdef STEREO_WITH_RTL
 #include "stereo_top_sim.hpp"
@@ -283,14 +284,24 @@ py::dict cosim(const py::array& left, const py::array& right, const MatchOptions
     {
         py::gil_scoped_release release;
         expected = model->compute(l, r).validated;
-        const auto top = stereo::sim::make_top_sim(*config);
+        // The waveform lands atomically, once the tracer closed it (stereo_io/output.hpp).
+        std::optional<stereo::io::StagedOutput> trace_file;
         if (!trace.empty()) {
-            top->trace_to(trace);
+            stereo::sim::check_trace_path(trace);
+            trace_file.emplace(trace);
+        }
+        auto top = stereo::sim::make_top_sim(*config);
+        if (trace_file) {
+            top->trace_to(trace_file->path().string());
         }
         top->reset();
         top->set_params({l.width, l.height, params});
         const auto beats = stereo::sim::frame_beats(l, r);
         result = top->stream(beats, beats.size(), {gap, stall, seed}, 100 * beats.size() + 100000);
+        top.reset();  // closes the waveform
+        if (trace_file) {
+            trace_file->commit();
+        }
         if (!result.completed || !result.protocol_error.empty()) {
             throw std::runtime_error("the RTL did not complete the frame: " +
                                      (result.protocol_error.empty() ? std::string("it stalled")

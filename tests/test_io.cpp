@@ -466,6 +466,53 @@ TEST(Limits, JpegFrameBehindGarbageIsFound) {
     EXPECT_EQ(*size, std::make_pair(std::int64_t{0x3A24}, std::int64_t{0xFF20}));
 }
 
+// TIFF and WebP sizes, from OpenCV's encoders (both byte orders for TIFF by hand), and a file of
+// a format whose size is not read is refused before it is decoded.
+TEST(Limits, DeclaredSizeOfTiffAndWebp) {
+    const cv::Mat image(23, 37, CV_8UC3, cv::Scalar(10, 20, 30));
+    for (const char* extension : {".tiff", ".webp"}) {
+        std::vector<uchar> bytes;
+        if (!cv::haveImageWriter(extension)) {
+            continue;
+        }
+        ASSERT_TRUE(cv::imencode(extension, image, bytes));
+        const auto size = declared_size(
+            std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+        ASSERT_TRUE(size.has_value()) << extension;
+        EXPECT_EQ(*size, std::make_pair(std::int64_t{37}, std::int64_t{23})) << extension;
+    }
+    // Big-endian TIFF by hand: IFD at 8 with two entries, width SHORT 300, height LONG 70000.
+    const std::string big("MM\0*\0\0\0\x08\0\x02"
+                          "\x01\x00\0\x03\0\0\0\x01\x01\x2c\0\0"
+                          "\x01\x01\0\x04\0\0\0\x01\0\x01\x11\x70",
+                          34);
+    const auto big_size = declared_size(big);
+    ASSERT_TRUE(big_size.has_value());
+    EXPECT_EQ(*big_size, std::make_pair(std::int64_t{300}, std::int64_t{70000}));
+    EXPECT_FALSE(declared_size(big.substr(0, 30)).has_value());  // directory cut off
+    EXPECT_FALSE(declared_size(std::string("II+\0\x08\0\0\0", 8)).has_value());  // BigTIFF
+}
+
+TEST(Limits, HugeTiffAndUnknownFormatsAreRefusedBeforeDecoding) {
+    const TempDir dir;
+    // A little-endian TIFF directory declaring 40000 x 40000 (1.6 Gpixel) and nothing else.
+    const std::string huge("II*\0\x08\0\0\0\x02\0"
+                           "\x00\x01\x04\0\x01\0\0\0\x40\x9c\0\0"
+                           "\x01\x01\x04\0\x01\0\0\0\x40\x9c\0\0",
+                           34);
+    std::ofstream(dir.file("huge.tif"), std::ios::binary) << huge;
+    expect_error<std::invalid_argument>([&] { (void)load_image(dir.file("huge.tif")); },
+                                        "declares 40000x40000 pixels");
+    // Radiance HDR, a format OpenCV decodes but whose header is not read here.
+    std::vector<uchar> hdr;
+    ASSERT_TRUE(cv::imencode(".hdr", cv::Mat(4, 4, CV_32FC3, cv::Scalar(1, 1, 1)), hdr));
+    std::ofstream(dir.file("a.hdr"), std::ios::binary)
+        .write(reinterpret_cast<const char*>(hdr.data()), static_cast<std::streamsize>(hdr.size()));
+    ASSERT_FALSE(cv::imdecode(hdr, cv::IMREAD_UNCHANGED).empty());  // OpenCV would decode it
+    expect_error<std::runtime_error>([&] { (void)load_image(dir.file("a.hdr")); },
+                                     "a.hdr': not an image in a format whose size is checked");
+}
+
 TEST(Limits, LimitIsSettableAndChecked) {
     const std::int64_t before = max_image_pixels();
     EXPECT_THROW(set_max_image_pixels(0), std::invalid_argument);

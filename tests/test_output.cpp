@@ -131,6 +131,56 @@ TEST_F(Output, FailedWriteLeavesThePreviousFile) {
     EXPECT_EQ(files_in_folder(), 1U);
 }
 
+// A file written by another library by name (the FST tracer): a hidden temporary with the
+// destination's extension, renamed over the destination only on commit.
+TEST_F(Output, StagedOutputReplacesOnlyOnCommit) {
+    const fs::path file = folder_ / "run.fst";
+    write(file, "previous trace");
+    {
+        StagedOutput staged(file);
+        EXPECT_EQ(staged.path().parent_path(), folder_);
+        EXPECT_EQ(staged.path().extension(), ".fst");
+        EXPECT_EQ(staged.path().filename().string().rfind(".run.", 0), 0U);
+        write(staged.path(), "new trace");
+        EXPECT_EQ(read(file), "previous trace");  // not before the commit
+        staged.commit();
+        EXPECT_THROW(staged.commit(), std::logic_error);
+    }
+    EXPECT_EQ(read(file), "new trace");
+    EXPECT_EQ(files_in_folder(), 1U);
+}
+
+TEST_F(Output, StagedOutputNotCommittedLeavesTheDestination) {
+    const fs::path file = folder_ / "run.fst";
+    write(file, "previous trace");
+    {
+        StagedOutput staged(file);
+        write(staged.path(), "half a trace");
+    }  // an error before the commit: the temporary goes, the old trace stays
+    EXPECT_EQ(read(file), "previous trace");
+    EXPECT_EQ(files_in_folder(), 1U);
+    {
+        StagedOutput staged(folder_ / "new.fst");
+    }
+    EXPECT_FALSE(fs::exists(folder_ / "new.fst"));
+    EXPECT_EQ(files_in_folder(), 1U);
+}
+
+TEST_F(Output, StagedOutputRefusesWhatItCannotReplace) {
+    EXPECT_THROW(StagedOutput(folder_ / "none" / "t.fst"), std::runtime_error);
+    const fs::path fifo = folder_ / "pipe.fst";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    EXPECT_THROW(StagedOutput{fifo}, std::runtime_error);
+    EXPECT_EQ(files_in_folder(), 1U);
+    if (::geteuid() != 0) {
+        const fs::path file = folder_ / "ro.fst";
+        write(file, "keep me");
+        fs::permissions(file, fs::perms::owner_read);
+        EXPECT_THROW(StagedOutput{file}, std::runtime_error);
+        EXPECT_EQ(read(file), "keep me");
+    }
+}
+
 TEST_F(Output, SeveralFilesAllOrNothing) {
     const fs::path a = folder_ / "a.png";
     write(a, "old a");

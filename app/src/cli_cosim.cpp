@@ -6,6 +6,7 @@
 #include <iostream>
 #include <memory>
 #include <regex>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -123,9 +124,16 @@ void run_cosim(const CosimOptions& options) {
     // Stage 6's full output: fixed disparity, reason and certainty of every pixel.
     const ValidatedDisparity expected = model->compute(pair.left, pair.right).validated;
 
-    const auto sim = sim::make_top_sim(*config);
+    // The waveform goes to a temporary file beside the destination and replaces it only once
+    // the run is over and the tracer closed (io::StagedOutput): a failed or killed run leaves an
+    // existing trace as it was.
+    std::optional<io::StagedOutput> trace_file;
     if (!options.trace.empty()) {
-        sim->trace_to(options.trace);
+        trace_file.emplace(options.trace);
+    }
+    auto sim = sim::make_top_sim(*config);
+    if (trace_file) {
+        sim->trace_to(trace_file->path().string());
     }
     const auto beats = sim::frame_beats(pair.left, pair.right);
     if (options.reset_at >= static_cast<int>(beats.size())) {
@@ -141,6 +149,7 @@ void run_cosim(const CosimOptions& options) {
     sim::StreamResult result;
     std::uint64_t total_cycles = 0;
     const auto start = std::chrono::steady_clock::now();
+    std::string failure;
     for (int frame = 0; frame < options.frames; ++frame) {
         const sim::Traffic traffic{options.gap, options.stall,
                                    options.seed + static_cast<std::uint32_t>(frame)};
@@ -156,13 +165,16 @@ void run_cosim(const CosimOptions& options) {
         }
         result = sim->stream(beats, beats.size(), traffic, 100 * beats.size() + 100000);
         total_cycles += result.cycles;
+        // A stall or a protocol error ends the run; the waveform up to it is still written.
         if (!result.completed) {
-            throw std::runtime_error("the core stalled in frame " + std::to_string(frame) + ": " +
-                                     std::to_string(result.outputs.size()) + " of " +
-                                     std::to_string(beats.size()) + " outputs arrived");
+            failure = "the core stalled in frame " + std::to_string(frame) + ": " +
+                      std::to_string(result.outputs.size()) + " of " +
+                      std::to_string(beats.size()) + " outputs arrived";
+            break;
         }
         if (!result.protocol_error.empty()) {
-            throw std::runtime_error("AXI4-Stream protocol error: " + result.protocol_error);
+            failure = "AXI4-Stream protocol error: " + result.protocol_error;
+            break;
         }
         const ValidatedDisparity rtl = sim::assemble_validated(result.outputs, 0, width, height);
         for (int y = 0; y < height; ++y) {
@@ -194,6 +206,13 @@ void run_cosim(const CosimOptions& options) {
     }
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    sim.reset();  // closes the waveform
+    if (trace_file) {
+        trace_file->commit();
+    }
+    if (!failure.empty()) {
+        throw std::runtime_error(failure);
+    }
 
     const std::size_t pixels = beats.size();
     const double per_pixel = static_cast<double>(result.cycles) / pixels;

@@ -481,10 +481,7 @@ std::string figure_png(const io::SceneData& data, const cv::Mat& ours, const fs:
 }
 
 void run_asw_eval(const AswEvalOptions& options) {
-    io::check_outputs_distinct({options.markdown, options.json_path}, {});
-    if (!options.figures.empty() && !fs::is_directory(options.figures)) {
-        throw std::runtime_error("figure folder '" + options.figures + "' does not exist");
-    }
+    check_report_outputs({options.markdown, options.json_path}, {options.figures});
     std::vector<io::SceneData> scenes = load_ground_truth_scenes(options.data_dir);
     if (options.quick) {
         std::erase_if(scenes, [](const io::SceneData& data) {

@@ -40,4 +40,10 @@ void add_report_files(OutputFiles& files, const std::string& markdown_path,
                       const std::string& markdown, const std::string& json_path,
                       const nlohmann::json& report);
 
+// Before any work: the output files (empty = not asked for) must be distinct and creatable
+// (io::check_outputs_distinct, io::check_writable_location) and each figure folder must exist,
+// so a run of many minutes does not end in an unwritable path.
+void check_report_outputs(const std::vector<std::string>& files,
+                          const std::vector<std::string>& folders = {});
+
 }  // namespace stereo::experiments

@@ -465,6 +465,7 @@ void speed(const std::vector<io::SceneData>& scenes) {
 }
 
 void run_illumination(const IlluminationOptions& options) {
+    check_report_outputs({options.figure});
     const auto has = [&](const char* part) {
         return std::find(options.parts.begin(), options.parts.end(), part) != options.parts.end();
     };

@@ -550,6 +550,7 @@ std::string markdown(const json& report) {
 }
 
 void run_quad_eval(const Options& options) {
+    check_report_outputs({options.markdown, options.json_path}, {options.figures});
     const fs::path folder = fs::path(options.data_dir) / "lightfield" / "antinous";
     const fs::path gt_path = folder / "gt_disp_lowres.pfm";
     if (!fs::exists(gt_path)) {

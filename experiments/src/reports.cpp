@@ -1,6 +1,11 @@
 #include <nlohmann/json.hpp>
 
+#include <filesystem>
+#include <stdexcept>
+
 #include "experiments.hpp"
+#include "stereo_io/io.hpp"
+#include "stereo_io/output.hpp"
 #include "stereo_io/versioned_json.hpp"
 
 namespace stereo::experiments {
@@ -13,6 +18,22 @@ void add_report_files(OutputFiles& files, const std::string& markdown_path,
     }
     if (!json_path.empty()) {
         files.emplace_back(json_path, io::versioned(report).dump(2) + '\n');
+    }
+}
+
+void check_report_outputs(const std::vector<std::string>& files,
+                          const std::vector<std::string>& folders) {
+    std::vector<std::filesystem::path> outputs(files.begin(), files.end());
+    io::check_outputs_distinct(outputs, {});
+    for (const std::string& file : files) {
+        if (!file.empty()) {
+            io::check_writable_location(file);
+        }
+    }
+    for (const std::string& folder : folders) {
+        if (!folder.empty() && !std::filesystem::is_directory(folder)) {
+            throw std::runtime_error("figure folder '" + folder + "' does not exist");
+        }
     }
 }
 

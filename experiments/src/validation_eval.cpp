@@ -232,7 +232,7 @@ void run_validation_eval(const EvalOptions& options) {
             validate_params(check);
         }
     }
-    io::check_outputs_distinct({options.markdown, options.json_path, options.figure}, {});
+    check_report_outputs({options.markdown, options.json_path, options.figure});
     const std::vector<io::SceneData> scenes = load_ground_truth_scenes(options.data_dir);
     if (scenes.empty()) {
         throw std::runtime_error("no scene with ground truth under '" + options.data_dir + "'");

@@ -93,8 +93,14 @@ cv::Mat decode(const fs::path& path, int flags = cv::IMREAD_UNCHANGED) {
     // The declared size, checked before the decoder allocates it.
     const auto declared =
         declared_size(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+    if (!declared) {
+        throw std::runtime_error("cannot read " + quoted(path) +
+                                 ": not an image in a format whose size is checked before "
+                                 "decoding (PNG, JPEG, PNM, BMP, TIFF, WebP), or its header is "
+                                 "corrupt");
+    }
     const std::int64_t limit = max_image_pixels();
-    if (declared && declared->first > 0 && declared->second > limit / declared->first) {
+    if (declared->first > 0 && declared->second > limit / declared->first) {
         throw std::invalid_argument(
             "image " + quoted(path) + " declares " + std::to_string(declared->first) + "x" +
             std::to_string(declared->second) + " pixels, more than the limit of " +
@@ -103,9 +109,7 @@ cv::Mat decode(const fs::path& path, int flags = cv::IMREAD_UNCHANGED) {
     cv::Mat mat;
     try {
         const SilencedStderr quiet;
-        if (!bytes.empty()) {
-            mat = cv::imdecode(bytes, flags);
-        }
+        mat = cv::imdecode(bytes, flags);
     } catch (const cv::Exception&) {
         mat.release();  // reported below, with the file name, as one line
     }

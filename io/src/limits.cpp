@@ -106,6 +106,82 @@ std::optional<std::pair<std::int64_t, std::int64_t>> pnm_size(std::string_view b
     return std::make_pair(numbers[0], numbers[1]);
 }
 
+    return value;
+}
+
+// TIFF: the first image file directory's ImageWidth (256) and ImageLength (257) entries, SHORT
+// or LONG, in the file's byte order. The first page is the one OpenCV decodes. BigTIFF and a
+// directory that does not name both are not told (the file is then refused).
+std::optional<std::pair<std::int64_t, std::int64_t>> tiff_size(std::string_view bytes) {
+    const bool little = bytes.substr(0, 4) == std::string_view("II*\0", 4);
+    const bool big = bytes.substr(0, 4) == std::string_view("MM\0*", 4);
+    if ((!little && !big) || bytes.size() < 8) {
+        return std::nullopt;
+    }
+    const auto read = [&](std::size_t at, int count) {
+        return little ? little_endian(bytes, at, count) : big_endian(bytes, at, count);
+    };
+    const auto directory = static_cast<std::size_t>(read(4, 4));
+    if (directory > bytes.size() || bytes.size() - directory < 2) {
+        return std::nullopt;
+    }
+    const auto entries = static_cast<std::size_t>(read(directory, 2));
+    std::int64_t width = -1;
+    std::int64_t height = -1;
+    for (std::size_t i = 0; i < entries; ++i) {
+        const std::size_t entry = directory + 2 + 12 * i;
+        if (entry + 12 > bytes.size()) {
+            return std::nullopt;
+        }
+        const std::int64_t tag = read(entry, 2);
+        const std::int64_t type = read(entry + 2, 2);
+        if (tag != 256 && tag != 257) {
+            continue;
+        }
+        std::int64_t value = 0;
+        if (type == 3) {  // SHORT, left-justified in the value field
+            value = read(entry + 8, 2);
+        } else if (type == 4) {  // LONG
+            value = read(entry + 8, 4);
+        } else {
+            return std::nullopt;
+        }
+        (tag == 256 ? width : height) = value;
+    }
+    if (width < 0 || height < 0) {
+        return std::nullopt;
+    }
+    return std::make_pair(width, height);
+}
+
+// WebP: the RIFF container's first chunk, lossy ("VP8 ": 14-bit sizes after the start code),
+// lossless ("VP8L": 14-bit sizes minus one after the signature) or extended ("VP8X": 24-bit
+// canvas sizes minus one).
+std::optional<std::pair<std::int64_t, std::int64_t>> webp_size(std::string_view bytes) {
+    if (bytes.size() < 30 || bytes.substr(0, 4) != "RIFF" || bytes.substr(8, 4) != "WEBP") {
+        return std::nullopt;
+    }
+    const std::string_view chunk = bytes.substr(12, 4);
+    if (chunk == "VP8 ") {
+        if (bytes.substr(23, 3) != "\x9d\x01\x2a") {
+            return std::nullopt;
+        }
+        return std::make_pair(little_endian(bytes, 26, 2) & 0x3FFF,
+                              little_endian(bytes, 28, 2) & 0x3FFF);
+    }
+    if (chunk == "VP8L") {
+        if (static_cast<unsigned char>(bytes[20]) != 0x2F) {
+            return std::nullopt;
+        }
+        const std::int64_t bits = little_endian(bytes, 21, 4);
+        return std::make_pair((bits & 0x3FFF) + 1, ((bits >> 14) & 0x3FFF) + 1);
+    }
+    if (chunk == "VP8X") {
+        return std::make_pair(little_endian(bytes, 24, 3) + 1, little_endian(bytes, 27, 3) + 1);
+    }
+    return std::nullopt;
+}
+
 }  // namespace
 
 std::int64_t max_image_pixels() {
@@ -142,7 +218,14 @@ std::optional<std::pair<std::int64_t, std::int64_t>> declared_size(std::string_v
         const std::int64_t height = as_signed(little_endian(bytes, 22, 4));
         return std::make_pair(width < 0 ? -width : width, height < 0 ? -height : height);
     }
-    return std::nullopt;
+    // OS/2 BMP (BITMAPCOREHEADER, 12 bytes): 16-bit width and height.
+    if (bytes.size() >= 22 && bytes.substr(0, 2) == "BM" && little_endian(bytes, 14, 4) == 12) {
+        return std::make_pair(little_endian(bytes, 18, 2), little_endian(bytes, 20, 2));
+    }
+    if (auto size = tiff_size(bytes)) {
+        return size;
+    }
+    return webp_size(bytes);
 }
 
 }  // namespace stereo::io

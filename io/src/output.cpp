@@ -1,6 +1,7 @@
 #include "stereo_io/output.hpp"
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <stdexcept>
@@ -80,8 +81,8 @@ bool same_file(const fs::path& a, const fs::path& b) {
 
 namespace {
 
-// The bytes in a synced temporary file beside `path`, ready to be renamed over it.
-std::unique_ptr<TemporaryFile> stage(const fs::path& path, std::string_view bytes) {
+// Refuses a destination the rename must not replace.
+void check_destination(const fs::path& path) {
     std::error_code error;
     if (fs::exists(path, error) && ::access(path.c_str(), W_OK) != 0) {
         throw std::runtime_error("cannot write " + quoted(path) + ": " + std::strerror(errno));
@@ -90,6 +91,11 @@ std::unique_ptr<TemporaryFile> stage(const fs::path& path, std::string_view byte
     if (fs::exists(path, error) && !fs::is_regular_file(path, error)) {
         throw std::runtime_error("cannot write " + quoted(path) + ": not a regular file");
     }
+}
+
+// The bytes in a synced temporary file beside `path`, ready to be renamed over it.
+std::unique_ptr<TemporaryFile> stage(const fs::path& path, std::string_view bytes) {
+    check_destination(path);
     auto temporary = std::make_unique<TemporaryFile>(path);
     const char* data = bytes.data();
     std::size_t left = bytes.size();
@@ -118,6 +124,53 @@ void commit(TemporaryFile& temporary, const fs::path& path) {
 }
 
 }  // namespace
+
+StagedOutput::StagedOutput(const fs::path& destination) : destination_(destination) {
+    check_destination(destination);
+    const fs::path folder =
+        destination.parent_path().empty() ? fs::path(".") : destination.parent_path();
+    const std::string extension = destination.extension().string();
+    std::string pattern =
+        (folder / ("." + destination.stem().string() + ".XXXXXX" + extension)).string();
+    const int descriptor = ::mkstemps(pattern.data(), static_cast<int>(extension.size()));
+    if (descriptor < 0) {
+        throw std::runtime_error("cannot write " + quoted(destination) + ": " +
+                                 std::strerror(errno));
+    }
+    const mode_t mask = ::umask(0);
+    ::umask(mask);
+    ::fchmod(descriptor, 0666 & ~mask);
+    ::close(descriptor);
+    temporary_ = pattern;
+}
+
+StagedOutput::~StagedOutput() {
+    if (!temporary_.empty()) {
+        std::error_code ignored;
+        fs::remove(temporary_, ignored);
+    }
+}
+
+void StagedOutput::commit() {
+    if (temporary_.empty()) {
+        throw std::logic_error("StagedOutput::commit called twice for " + quoted(destination_));
+    }
+    // The writer closed the file; sync what it wrote before the rename makes it visible.
+    const int descriptor = ::open(temporary_.c_str(), O_RDONLY);
+    if (descriptor < 0 || ::fsync(descriptor) != 0) {
+        const std::string reason = std::strerror(errno);
+        if (descriptor >= 0) {
+            ::close(descriptor);
+        }
+        throw std::runtime_error("cannot write " + quoted(destination_) + ": " + reason);
+    }
+    ::close(descriptor);
+    if (::rename(temporary_.c_str(), destination_.c_str()) != 0) {
+        throw std::runtime_error("cannot write " + quoted(destination_) + ": " +
+                                 std::strerror(errno));
+    }
+    temporary_.clear();
+}
 
 void write_file_atomic(const fs::path& path, std::string_view bytes) {
     const auto temporary = stage(path, bytes);

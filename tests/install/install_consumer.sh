@@ -25,4 +25,7 @@ cmake --build "$work/consumer" -j2 > "$work/build.log" 2>&1 || { cat "$work/buil
 "$work/consumer/disparity" "$left" "$right" "$work/consumer.pfm" 16
 "$prefix/bin/stereo" match "$left" "$right" --ndisp 16 --no-validation -o "$work/tool.pfm"
 cmp "$work/consumer.pfm" "$work/tool.pfm"
+"$work/consumer/disparity" "$left" "$right" "$work/consumer2.pfm" 8 2
+"$prefix/bin/stereo" match "$left" "$right" --ndisp 8 --downscale 2 --no-validation -o "$work/tool2.pfm"
+cmp "$work/consumer2.pfm" "$work/tool2.pfm"
 echo "install.consumer: installed, consumer built, its PFM equals stereo match's"

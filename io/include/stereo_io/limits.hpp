@@ -21,9 +21,10 @@ std::int64_t max_image_pixels();
 // Throws std::invalid_argument unless 1 <= pixels <= 2^34.
 void set_max_image_pixels(std::int64_t pixels);
 
-// Width and height a PNG, JPEG, PNM (PBM/PGM/PPM) or BMP file declares in its header; nullopt
-// for other formats or a header too short or malformed to tell (the decoder then reports the
-// file).
+// Width and height a PNG, JPEG, PNM (PBM/PGM/PPM), BMP, TIFF or WebP file declares in its
+// header; nullopt for other formats or a header too short or malformed to tell. The image
+// loaders refuse such files before decoding them: a format whose size is not known up front
+// could make the decoder allocate without bound.
 std::optional<std::pair<std::int64_t, std::int64_t>> declared_size(std::string_view bytes);
 
 }  // namespace stereo::io
