@@ -1,6 +1,7 @@
 // The Verilated stereo_top configurations behind the TopSim interface.
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
 #include <filesystem>
 #include <stdexcept>
 #include <string_view>
@@ -26,6 +27,9 @@
 #include "verilated_harness.hpp"
 #ifdef STEREO_COSIM_FULL
 #include "Vstereo_top_full.h"
+#endif
+#ifdef STEREO_COSIM_USER
+#include "Vstereo_top_user.h"
 #endif
 
 namespace stereo::sim {
@@ -130,12 +134,29 @@ TopConfig top_config(const table::VerilatedConfig& config, const char* name) {
 }  // namespace
 
 const std::vector<TopConfig>& built_top_configs() {
-    static const std::vector<TopConfig> configs = {
-        top_config(table::verilated("Vstereo_top_small"), "small"),
+    static const std::vector<TopConfig> configs = [] {
+        std::vector<TopConfig> list = {
+            top_config(table::verilated("Vstereo_top_small"), "small"),
 #ifdef STEREO_COSIM_FULL
-        top_config(table::verilated("Vstereo_top_full"), "full"),
+            top_config(table::verilated("Vstereo_top_full"), "full"),
 #endif
-    };
+#ifdef STEREO_COSIM_USER
+            // -DSTEREO_COSIM_USER (sim/cosim_user.cmake)
+            TopConfig{"user", STEREO_COSIM_USER_WIDTH, STEREO_COSIM_USER_HEIGHT,
+                      STEREO_COSIM_USER_NDISP, STEREO_COSIM_USER_WINDOW,
+                      STEREO_COSIM_USER_MAX_MIN_DISP, STEREO_COSIM_USER_LANES},
+#endif
+        };
+        // Smallest first (covering_config takes the first that covers a run): by the work of a
+        // frame, pixels times labels, then by the window.
+        std::stable_sort(list.begin(), list.end(), [](const TopConfig& a, const TopConfig& b) {
+            const auto work = [](const TopConfig& c) {
+                return std::int64_t{c.width} * c.height * c.ndisp;
+            };
+            return work(a) != work(b) ? work(a) < work(b) : a.window < b.window;
+        });
+        return list;
+    }();
     return configs;
 }
 
@@ -253,6 +274,9 @@ const std::pair<std::string_view, TopFactory> kFactories[] = {
     {"ice40-ndisp4-lanes1", &make_verilated<Vstereo_synth_top_ice40_ndisp4_lanes1>},
 #ifdef STEREO_COSIM_FULL
     {"full", &make_verilated<Vstereo_top_full>},
+#endif
+#ifdef STEREO_COSIM_USER
+    {"user", &make_verilated<Vstereo_top_user>},
 #endif
 };
 

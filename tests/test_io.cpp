@@ -482,10 +482,11 @@ TEST(Limits, DeclaredSizeOfTiffAndWebp) {
         EXPECT_EQ(*size, std::make_pair(std::int64_t{37}, std::int64_t{23})) << extension;
     }
     // Big-endian TIFF by hand: IFD at 8 with two entries, width SHORT 300, height LONG 70000.
-    const std::string big("MM\0*\0\0\0\x08\0\x02"
-                          "\x01\x00\0\x03\0\0\0\x01\x01\x2c\0\0"
-                          "\x01\x01\0\x04\0\0\0\x01\0\x01\x11\x70",
-                          34);
+    const std::string big(
+        "MM\0*\0\0\0\x08\0\x02"
+        "\x01\x00\0\x03\0\0\0\x01\x01\x2c\0\0"
+        "\x01\x01\0\x04\0\0\0\x01\0\x01\x11\x70",
+        34);
     const auto big_size = declared_size(big);
     ASSERT_TRUE(big_size.has_value());
     EXPECT_EQ(*big_size, std::make_pair(std::int64_t{300}, std::int64_t{70000}));
@@ -496,10 +497,11 @@ TEST(Limits, DeclaredSizeOfTiffAndWebp) {
 TEST(Limits, HugeTiffAndUnknownFormatsAreRefusedBeforeDecoding) {
     const TempDir dir;
     // A little-endian TIFF directory declaring 40000 x 40000 (1.6 Gpixel) and nothing else.
-    const std::string huge("II*\0\x08\0\0\0\x02\0"
-                           "\x00\x01\x04\0\x01\0\0\0\x40\x9c\0\0"
-                           "\x01\x01\x04\0\x01\0\0\0\x40\x9c\0\0",
-                           34);
+    const std::string huge(
+        "II*\0\x08\0\0\0\x02\0"
+        "\x00\x01\x04\0\x01\0\0\0\x40\x9c\0\0"
+        "\x01\x01\x04\0\x01\0\0\0\x40\x9c\0\0",
+        34);
     std::ofstream(dir.file("huge.tif"), std::ios::binary) << huge;
     expect_error<std::invalid_argument>([&] { (void)load_image(dir.file("huge.tif")); },
                                         "declares 40000x40000 pixels");

@@ -159,9 +159,7 @@ TEST_F(Output, StagedOutputNotCommittedLeavesTheDestination) {
     }  // an error before the commit: the temporary goes, the old trace stays
     EXPECT_EQ(read(file), "previous trace");
     EXPECT_EQ(files_in_folder(), 1U);
-    {
-        StagedOutput staged(folder_ / "new.fst");
-    }
+    { StagedOutput staged(folder_ / "new.fst"); }
     EXPECT_FALSE(fs::exists(folder_ / "new.fst"));
     EXPECT_EQ(files_in_folder(), 1U);
 }

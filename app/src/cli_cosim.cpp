@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
-#include <regex>
 #include <optional>
+#include <regex>
 #include <stdexcept>
 #include <string>
 
@@ -15,7 +15,9 @@
 
 #include "cli.hpp"
 #include "cli_command.hpp"
+#include "cli_cosim_options.hpp"
 #include "cli_matcher_options.hpp"
+#include "cli_progress.hpp"
 #include "stereo_io/disparity_files.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/output.hpp"
@@ -24,22 +26,6 @@
 
 namespace stereo::cli {
 namespace {
-
-struct CosimOptions {
-    std::string left;
-    std::string right;
-    MatcherOptions matcher;
-    int downscale = 1;
-    std::string crop;  // WxH+X+Y
-    std::uint32_t seed = 1;
-    double stall = 0.0;  // probability that m_axis_tready is low in a cycle
-    double gap = 0.0;    // probability that s_axis_tvalid is withheld in a cycle
-    std::string output;  // the RTL's disparity PNG
-    std::string trace;   // FST waveform
-    bool json = false;
-    int frames = 1;     // frames streamed, traffic seed + f for frame f
-    int reset_at = -1;  // before every frame: this many beats of it, then a mid-frame reset
-};
 
 io::ImagePair apply_crop(io::ImagePair pair, const std::string& geometry) {
     if (geometry.empty()) {
@@ -150,7 +136,9 @@ void run_cosim(const CosimOptions& options) {
     std::uint64_t total_cycles = 0;
     const auto start = std::chrono::steady_clock::now();
     std::string failure;
+    const ProgressBar progress("cosim", options.frames);  // stderr, only on a terminal
     for (int frame = 0; frame < options.frames; ++frame) {
+        progress.update(frame, std::to_string(mismatches) + " mismatches");
         const sim::Traffic traffic{options.gap, options.stall,
                                    options.seed + static_cast<std::uint32_t>(frame)};
         if (options.reset_at >= 0) {
@@ -289,41 +277,12 @@ void add_cosim_command(CLI::App& app) {
     for (const sim::TopConfig& config : sim::built_top_configs()) {
         built += "\n  " + config.name + ": " + config_text(config) + ", cost ad";
     }
-    built += "\n  " + sim::lcdm_top_config().name + ": " + config_text(sim::lcdm_top_config()) +
-             ", cost lcdm\nMore: -DSTEREO_COSIM_CONFIGS=full (docs/gtkwave.md).";
+    built +=
+        "\n  " + sim::lcdm_top_config().name + ": " + config_text(sim::lcdm_top_config()) +
+        ", cost lcdm\nMore: -DSTEREO_COSIM_CONFIGS=full or -DSTEREO_COSIM_USER=WxH:NDISP:WINDOW "
+        "(docs/gtkwave.md).";
     command->footer(built);
-    command->add_option("LEFT", options->left, "Left image")->required();
-    command->add_option("RIGHT", options->right, "Right image, same size as LEFT")->required();
-    // The smallest Verilated configurations cover these; larger ones need a full build.
-    options->matcher.config.pipeline.ndisp = 16;
-    options->matcher.config.pipeline.window = 5;
-    add_matcher_options(*command, options->matcher, MatcherChoice::fixed, {.validation = true});
-    command
-        ->add_option("--cost", options->matcher.config.pipeline.cost,
-                     "Cost stage of the core: ad (COST = 0) or lcdm (COST = 1, colour pairs)")
-        ->check(CLI::IsMember({"ad", "lcdm"}))
-        ->capture_default_str();
-    command->add_option("--downscale", options->downscale, "Shrink both images by integer F")
-        ->capture_default_str();
-    command->add_option("--crop", options->crop, "Use the region WxH+X+Y (after --downscale)");
-    command->add_option("--seed", options->seed, "Seed of the stall/gap generator")
-        ->capture_default_str();
-    command->add_option("--stall", options->stall, "Probability of m_axis_tready low per cycle")
-        ->capture_default_str();
-    command->add_option("--gap", options->gap, "Probability of s_axis_tvalid withheld per cycle")
-        ->capture_default_str();
-    command->add_option("-o,--output", options->output, "Write the RTL's disparity PNG");
-    command
-        ->add_option("--frames", options->frames,
-                     "Stream the pair this many times (traffic seed + frame), all compared")
-        ->capture_default_str();
-    command->add_option("--reset-at", options->reset_at,
-                        "Before each frame, stream this many of its beats and reset mid-frame");
-    command->add_option("--trace", options->trace,
-                        "Write an FST waveform of the run (TRACE.fst; other "
-                        "extensions, .vcd included, are refused)");
-    command->add_flag("--json", options->json,
-                      "Print one JSON object (mismatches, cycles, pixels, ...)");
+    add_cosim_options(*command, *options);
 }
 
 }  // namespace stereo::cli

@@ -1,24 +1,26 @@
-// `stereo cosim` in a build without the RTL (-DSTEREO_WITH_RTL=OFF): the subcommand stays
-// listed, and running it says why it cannot co-simulate (exit 2, a usage error).
-#include <cstddef>
+// `stereo cosim` in a build without the RTL (-DSTEREO_WITH_RTL=OFF): the subcommand parses the
+// same options as with the RTL (cli_cosim_options.hpp), and running it says why it cannot
+// co-simulate (exit 2, a usage error).
 #include <stdexcept>
 
 #include <CLI/CLI.hpp>
 
 #include "cli.hpp"
+#include "cli_command.hpp"
+#include "cli_cosim_options.hpp"
 
 namespace stereo::cli {
 
 void add_cosim_command(CLI::App& app) {
-    CLI::App* command = app.add_subcommand(
-        "cosim", "Co-simulation of the Verilated RTL (not in this build: -DSTEREO_WITH_RTL=OFF)");
-    // Thrown as soon as the subcommand is seen, before its arguments are parsed (they would be
-    // unknown options): one line naming the build option, exit 2.
-    command->preparse_callback([](std::size_t) {
-        throw std::invalid_argument(
-            "cosim: this stereo was built without the RTL (-DSTEREO_WITH_RTL=OFF); rebuild with "
-            "Verilator (scripts/setup.sh) to co-simulate");
-    });
+    const auto [command, options] = add_command<CosimOptions>(
+        app, "cosim",
+        "Co-simulation of the Verilated RTL (not in this build: -DSTEREO_WITH_RTL=OFF)",
+        [](const CosimOptions&) {
+            throw std::invalid_argument(
+                "cosim: this stereo was built without the RTL (-DSTEREO_WITH_RTL=OFF); rebuild "
+                "with Verilator (scripts/setup.sh) to co-simulate");
+        });
+    add_cosim_options(*command, *options);
 }
 
 }  // namespace stereo::cli

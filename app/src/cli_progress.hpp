@@ -1,6 +1,6 @@
 // Progress of a long command: a one-line bar on stderr, only when stderr is a terminal (so that
-// scripts and tests see a clean stderr); cleared when done or on error. Used by `slam` and
-// `middlebury`.
+// scripts and tests see a clean stderr); cleared when done or on error. Used by `slam`,
+// `middlebury` and `cosim` (its frames).
 #pragma once
 
 #include <cstdio>

@@ -106,7 +106,7 @@ std::optional<std::pair<std::int64_t, std::int64_t>> pnm_size(std::string_view b
     return std::make_pair(numbers[0], numbers[1]);
 }
 
-    return value;
+return value;
 }
 
 // TIFF: the first image file directory's ImageWidth (256) and ImageLength (257) entries, SHORT

@@ -1,0 +1,40 @@
+#include "cli_cosim_options.hpp"
+
+namespace stereo::cli {
+
+void add_cosim_options(CLI::App& command, CosimOptions& options) {
+    command.add_option("LEFT", options.left, "Left image")->required();
+    command.add_option("RIGHT", options.right, "Right image, same size as LEFT")->required();
+    // The smallest Verilated configurations cover these; larger ones need a full build.
+    options.matcher.config.pipeline.ndisp = 16;
+    options.matcher.config.pipeline.window = 5;
+    add_matcher_options(command, options.matcher, MatcherChoice::fixed, {.validation = true});
+    command
+        .add_option("--cost", options.matcher.config.pipeline.cost,
+                    "Cost stage of the core: ad (COST = 0) or lcdm (COST = 1, colour pairs)")
+        ->check(CLI::IsMember({"ad", "lcdm"}))
+        ->capture_default_str();
+    command.add_option("--downscale", options.downscale, "Shrink both images by integer F")
+        ->capture_default_str();
+    command.add_option("--crop", options.crop, "Use the region WxH+X+Y (after --downscale)");
+    command.add_option("--seed", options.seed, "Seed of the stall/gap generator")
+        ->capture_default_str();
+    command.add_option("--stall", options.stall, "Probability of m_axis_tready low per cycle")
+        ->capture_default_str();
+    command.add_option("--gap", options.gap, "Probability of s_axis_tvalid withheld per cycle")
+        ->capture_default_str();
+    command.add_option("-o,--output", options.output, "Write the RTL's disparity PNG");
+    command
+        .add_option("--frames", options.frames,
+                    "Stream the pair this many times (traffic seed + frame), all compared")
+        ->capture_default_str();
+    command.add_option("--reset-at", options.reset_at,
+                       "Before each frame, stream this many of its beats and reset mid-frame");
+    command.add_option("--trace", options.trace,
+                       "Write an FST waveform of the run (TRACE.fst; other "
+                       "extensions, .vcd included, are refused)");
+    command.add_flag("--json", options.json,
+                     "Print one JSON object (mismatches, cycles, pixels, ...)");
+}
+
+}  // namespace stereo::cli

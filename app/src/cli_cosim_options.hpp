@@ -1,0 +1,35 @@
+// The options of `stereo cosim`, registered by the same function in a build with the RTL
+// (cli_cosim.cpp) and without it (cli_cosim_absent.cpp): the command line parses alike in both,
+// and the CLI fuzz harness (built without the RTL) covers them.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "cli_matcher_options.hpp"
+
+namespace stereo::cli {
+
+struct CosimOptions {
+    std::string left;
+    std::string right;
+    MatcherOptions matcher;
+    int downscale = 1;
+    std::string crop;  // WxH+X+Y
+    std::uint32_t seed = 1;
+    double stall = 0.0;  // probability that m_axis_tready is low in a cycle
+    double gap = 0.0;    // probability that s_axis_tvalid is withheld in a cycle
+    std::string output;  // the RTL's disparity PNG
+    std::string trace;   // FST waveform
+    bool json = false;
+    int frames = 1;     // frames streamed, traffic seed + f for frame f
+    int reset_at = -1;  // before every frame: this many beats of it, then a mid-frame reset
+};
+
+// LEFT, RIGHT, the matcher options with stage 6 (ndisp 16 and window 5 by default: the smallest
+// Verilated configuration covers them) and the co-simulation's own options.
+void add_cosim_options(CLI::App& command, CosimOptions& options);
+
+}  // namespace stereo::cli
