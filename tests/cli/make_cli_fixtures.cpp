@@ -81,6 +81,19 @@ void write_fixtures(const fs::path& dir) {
         .write(reinterpret_cast<const char*>(huge.data()),
                static_cast<std::streamsize>(huge.size()));
 
+    // A TIFF of a few bytes whose first directory declares 40000 x 40000 (ImageWidth and
+    // ImageLength, LONG, little-endian), and a Radiance HDR image (a format OpenCV decodes but
+    // whose size is not read before decoding): both refused before decoding.
+    const std::string huge_tiff("II*\0\x08\0\0\0\x02\0"
+                                "\x00\x01\x04\0\x01\0\0\0\x40\x9c\0\0"
+                                "\x01\x01\x04\0\x01\0\0\0\x40\x9c\0\0",
+                                34);
+    std::ofstream(dir / "huge_header.tif", std::ios::binary) << huge_tiff;
+    std::vector<uchar> hdr;
+    cv::imencode(".hdr", cv::Mat(kHeight, kWidth, CV_32FC3, cv::Scalar(0.5, 0.5, 0.5)), hdr);
+    std::ofstream(dir / "radiance.hdr", std::ios::binary)
+        .write(reinterpret_cast<const char*>(hdr.data()), static_cast<std::streamsize>(hdr.size()));
+
     // File kinds for the bad-input table (bad_inputs.txt): an empty file, a folder and a FIFO
     // named like images, a file nobody may read, and calibrations no rig has.
     std::ofstream(dir / "empty.png", std::ios::binary).flush();
