@@ -94,6 +94,15 @@ void write_fixtures(const fs::path& dir) {
     std::ofstream(dir / "radiance.hdr", std::ios::binary)
         .write(reinterpret_cast<const char*>(hdr.data()), static_cast<std::streamsize>(hdr.size()));
 
+    // Broken PFM disparities: a size that is no number, data cut short, three channels (PF),
+    // and a header declaring 30000 x 30000.
+    std::ofstream(dir / "bad_size.pfm", std::ios::binary) << "Pf\n4 x\n-1\n";
+    std::ofstream(dir / "short_data.pfm", std::ios::binary)
+        << "Pf\n4 2\n-1\n" << std::string(4 * 2 * 4 - 4, '\0');
+    std::ofstream(dir / "colour.pfm", std::ios::binary) << "PF\n1 1\n-1\n"
+                                                        << std::string(12, '\0');
+    std::ofstream(dir / "huge_header.pfm", std::ios::binary) << "Pf\n30000 30000\n-1\n";
+
     // File kinds for the bad-input table (bad_inputs.txt): an empty file, a folder and a FIFO
     // named like images, a file nobody may read, and calibrations no rig has.
     std::ofstream(dir / "empty.png", std::ios::binary).flush();
