@@ -106,9 +106,6 @@ std::optional<std::pair<std::int64_t, std::int64_t>> pnm_size(std::string_view b
     return std::make_pair(numbers[0], numbers[1]);
 }
 
-return value;
-}
-
 // TIFF: the first image file directory's ImageWidth (256) and ImageLength (257) entries, SHORT
 // or LONG, in the file's byte order. The first page is the one OpenCV decodes. BigTIFF and a
 // directory that does not name both are not told (the file is then refused).

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """A disparity map as a figure people read without a caption (issue 23): the map with a colour
 bar in pixels of disparity, axis labels and a title with its coverage; with --gt, the ground
 truth beside it on the same colour scale and an error map with a legend and the bad-pixel

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Synthesis reports for stereo_synth_top (docs/synthesis.md).
 
 Subcommands (each writes one JSON report; run with -h for the options):
@@ -12,12 +12,13 @@ Subcommands (each writes one JSON report; run with -h for the options):
   table     markdown tables of sweeps and estimate reports (docs/synthesis.md).
   check     validates a report's fields (used by the ctest of label `synth`).
 
-Only the Python standard library is used. Tools: yosys, nextpnr-ice40, and icepack for `board`
-(Debian packages yosys, nextpnr-ice40, fpga-icestorm).
+The plots need matplotlib (Debian package python3-matplotlib); everything else uses only the
+Python standard library. Tools: yosys, nextpnr-ice40, and icepack for `board` (Debian packages
+yosys, nextpnr-ice40, fpga-icestorm).
 """
 import argparse
+import io
 import json
-import math
 import os
 import re
 import subprocess
@@ -696,6 +697,7 @@ def command_lanes_sweep(args):
 def plot_lanes(points, target):
     """Resources against NDISP: one line for the all-parallel core (LANES = NDISP) and one per
     fixed LANES below NDISP (its slope is what a label costs at that many lanes)."""
+    plt = pyplot()
     chosen = [p for p in points if p["target"] == target]
     series = {}
     for point in chosen:
@@ -703,28 +705,27 @@ def plot_lanes(points, target):
         lanes = config.get("lanes", config["ndisp"])
         key = 0 if lanes == config["ndisp"] else lanes  # 0: all parallel
         series.setdefault(key, []).append((config["ndisp"], point))
-    palette = ("#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2")
-    colours = {key: palette[i % len(palette)] for i, key in enumerate(sorted(series))}
-    panel_w, panel_h, margin_l, margin_t, gap_x = 250, 170, 70, 70, 60
-    width = margin_l + len(PLOT_METRICS) * (panel_w + gap_x)
-    height = margin_t + panel_h + 60
+    colours = {key: LANE_COLOURS[i % len(LANE_COLOURS)] for i, key in enumerate(sorted(series))}
+    ndisps = sorted({n for values in series.values() for n, _ in values})
+    figure, axes = plt.subplots(2, 2, figsize=(11, 8.5))
+    for axis, (metric, metric_name) in zip(axes.flat, PLOT_METRICS):
+        for key, values in sorted(series.items()):
+            values = sorted(values, key=lambda v: v[0])
+            label = ("LANES = NDISP (1 clock per pixel)" if key == 0 else
+                     "LANES = 1 (NDISP clocks per pixel)" if key == 1 else
+                     f"LANES = {key} (NDISP / {key} clocks per pixel)")
+            axis.plot([n for n, _ in values], [p["resources"][metric] for _, p in values],
+                      color=colours[key], marker="o", linewidth=2, label=label,
+                      gid=f"lanes-{key or 'all'}-{metric}")
+        value_axis(axis, ndisps, "disparities (NDISP)", log2=True)
+        count_axis(axis, metric_name)
     config = chosen[0]["config"] if chosen else {"width": 0, "height": 0, "window": 0}
-    parts = [svg_text(width / 2, 22, f"{target}: stereo_synth_top {config['width']}x"
-                      f"{config['height']}, {config['window']}x{config['window']}, by "
-                      "disparities and labels per clock (Yosys estimate)", 14)]
-    legend_x = margin_l
-    for key, colour in colours.items():
-        label = "LANES = NDISP (1 clock per pixel)" if key == 0 else f"LANES = {key}"
-        parts.append(f'<rect x="{legend_x}" y="34" width="14" height="4" fill="{colour}"/>')
-        parts.append(svg_text(legend_x + 18, 40, label, 11, "start"))
-        legend_x += 230 if key == 0 else 100
-    for column, (metric, metric_name) in enumerate(PLOT_METRICS):
-        lines = [(colours[key], [(n, p["resources"][metric])
-                                 for n, p in sorted(values, key=lambda v: v[0])])
-                 for key, values in sorted(series.items())]
-        parts += line_panel(margin_l + column * (panel_w + gap_x), margin_t, panel_w, panel_h,
-                            metric_name, "disparities", lines)
-    return svg_document(width, height, parts)
+    handles, labels = axes.flat[0].get_legend_handles_labels()
+    figure_header(figure, f"{TARGET_NAMES.get(target, target)}: Yosys estimates of "
+                  f"stereo_synth_top at {config['width']}x{config['height']}, "
+                  f"{config['window']}x{config['window']} window,\nby disparities and labels "
+                  "computed per clock (LANES)", handles, labels, columns=min(len(labels), 3) or 1)
+    return figure_svg(figure)
 
 
 def command_plot_lanes(args):
@@ -740,18 +741,25 @@ def command_plot_lanes(args):
         print(path)
 
 
-# ---- plots (SVG, standard library only) -------------------------------------------------------
+# ---- plots (SVG, matplotlib) ------------------------------------------------------------------
 PLOT_METRICS = [("luts", "LUTs"), ("ffs", "flip-flops"), ("bram_kbits", "block RAM (Kib)"),
                 ("dsps", "DSPs")]
-PLOT_PARAMETERS = [("ndisp", "disparities (640x480, 11x11)"),
-                   ("window", "window side (640x480, 16 disparities)"),
-                   ("width", "image width (4:3, 16 disparities, 11x11)")]
+# The swept parameters, their axis labels, and whether the sweep doubles (a log2 axis).
+PLOT_PARAMETERS = [("ndisp", "disparities (640x480, 11x11)", True),
+                   ("window", "window side in pixels (640x480, 16 disparities)", False),
+                   ("width", "image width in pixels (4:3, 16 disparities, 11x11)", True)]
 TARGET_STYLE = {("xilinx", True): ("#1f77b4", "7-series"),
                 ("xilinx", False): ("#17becf", "7-series, no DSP"),
                 ("ecp5", True): ("#d62728", "ECP5"), ("ecp5", False): ("#ff9896", "ECP5, no DSP")}
+# ECP5's wider line lies under 7-series', so that where both targets need the same (block RAM,
+# DSPs) both colours show.
+TARGET_LINES = {"xilinx": {"marker": "o", "linewidth": 2, "zorder": 3},
+                "ecp5": {"marker": "s", "markersize": 7, "linewidth": 4, "zorder": 2}}
+TARGET_NAMES = {"xilinx": "Xilinx 7-series", "ecp5": "Lattice ECP5", "ice40": "Lattice iCE40"}
 # In pipeline order (STAGES, from the stage table), then the glue.
 STAGE_COLOURS = dict(zip(STAGES, ("#8c564b", "#1f77b4", "#2ca02c", "#98df8a", "#9467bd")),
                      glue="#7f7f7f")
+LANE_COLOURS = ("#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2")
 
 
 def sweep_series(points, parameter):
@@ -767,121 +775,131 @@ def sweep_series(points, parameter):
     return {key: sorted(values, key=lambda v: v[0]) for key, values in series.items()}
 
 
-def nice_ceiling(value):
-    """The smallest 1, 2 or 5 times a power of ten not below value (axis maximum)."""
-    if value <= 0:
-        return 1
-    power = 10 ** math.floor(math.log10(value))
-    return next(m * power for m in (1, 2, 5, 10) if m * power >= value)
+def pyplot():
+    """matplotlib.pyplot on the Agg backend. Imported here, not at the top, so that the
+    subcommands without plots run where matplotlib is missing."""
+    try:
+        import matplotlib
+    except ImportError:
+        raise ReportError("the plots need matplotlib (Debian: python3-matplotlib)") from None
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    # The SVG's element ids hash a random salt unless this is set; with it (and no date in
+    # figure_svg) the same sweep gives the same file, so a regenerated figure diffs cleanly.
+    matplotlib.rcParams["svg.hashsalt"] = "stereo synth.py"
+    # Text as <text> (with a list of fallback fonts ending in sans-serif), not as glyph
+    # outlines: half the size, and the numbers in a figure can be searched for.
+    matplotlib.rcParams["svg.fonttype"] = "none"
+    return plt
 
 
-def svg_text(x, y, text, size=11, anchor="middle", rotate=None):
-    transform = f' transform="rotate({rotate} {x} {y})"' if rotate else ""
-    return (f'<text x="{x:.1f}" y="{y:.1f}" font-size="{size}" text-anchor="{anchor}"'
-            f'{transform}>{text}</text>')
+def figure_svg(figure):
+    """The figure as SVG text (closed afterwards)."""
+    import matplotlib.pyplot as plt
+
+    text = io.StringIO()
+    figure.savefig(text, format="svg", metadata={"Date": None})
+    plt.close(figure)
+    return text.getvalue()
 
 
-def line_panel(left, top, width, height, title, x_label, series):
-    """One line chart: series = [(colour, [(x, y)])]; x on a log2 axis (the sweeps double)."""
-    parts = [f'<rect x="{left}" y="{top}" width="{width}" height="{height}" fill="none" '
-             f'stroke="#444"/>', svg_text(left + width / 2, top - 6, title, 12)]
-    xs = sorted({x for _, values in series for x, _ in values})
-    ys = [y for _, values in series for _, y in values]
-    if not xs:
-        return parts
-    y_max = nice_ceiling(max(ys) if ys else 1)
-    lo, hi = math.log2(xs[0]), math.log2(xs[-1])
-    span = (hi - lo) or 1
+def figure_header(figure, title, handles, labels, columns):
+    """The title, the legend under it, and the panels fitted below both by tight_layout
+    (constrained layout leaves no room for a figure legend before matplotlib 3.7)."""
+    inch = 1 / figure.get_figheight()  # in figure fractions
+    renderer = figure.canvas.get_renderer()
 
-    def px(x):
-        return left + 10 + (math.log2(x) - lo) / span * (width - 20)
+    def bottom(artist):
+        return artist.get_window_extent(renderer).transformed(figure.transFigure.inverted()).y0
 
-    def py(y):
-        return top + height - y / y_max * height
+    heading = figure.suptitle(title, y=1 - 0.1 * inch, va="top", fontsize="large")
+    heading.set_in_layout(False)  # else tight_layout reserves its height a second time
+    legend = figure.legend(handles, labels, loc="upper center", ncol=columns, frameon=False,
+                           bbox_to_anchor=(0.5, bottom(heading) - 0.05 * inch), borderaxespad=0)
+    figure.tight_layout(rect=(0, 0, 1, bottom(legend) - 0.05 * inch))
 
-    for k in range(5):
-        y = y_max * k / 4
-        parts.append(f'<line x1="{left}" y1="{py(y):.1f}" x2="{left + width}" y2="{py(y):.1f}" '
-                     f'stroke="#ddd"/>')
-        parts.append(svg_text(left - 4, py(y) + 4, f"{y:,.0f}" if y_max >= 10 else f"{y:g}", 9,
-                              "end"))
-    for x in xs:
-        parts.append(svg_text(px(x), top + height + 13, str(x), 9))
-    parts.append(svg_text(left + width / 2, top + height + 28, x_label, 10))
-    for colour, values in series:
-        path = " ".join(f"{px(x):.1f},{py(y):.1f}" for x, y in values)
-        parts.append(f'<polyline points="{path}" fill="none" stroke="{colour}" '
-                     f'stroke-width="2"/>')
-        parts += [f'<circle cx="{px(x):.1f}" cy="{py(y):.1f}" r="3" fill="{colour}"/>'
-                  for x, y in values]
-    return parts
+
+def value_axis(axis, values, label, log2):
+    """An x axis with a tick at every swept value, on a log2 scale where the sweep doubles."""
+    from matplotlib.ticker import NullLocator, StrMethodFormatter
+
+    if log2:
+        axis.set_xscale("log", base=2)
+        axis.xaxis.set_minor_locator(NullLocator())
+    axis.set_xticks(values)
+    axis.xaxis.set_major_formatter(StrMethodFormatter("{x:,.0f}"))
+    axis.set_xlabel(label)
+
+
+def count_axis(axis, label, headroom=1.06):
+    """A y axis of resource counts from 0 to `headroom` times the largest: whole-number ticks
+    with thousands separators, and a grid."""
+    from matplotlib.ticker import MaxNLocator, StrMethodFormatter
+
+    axis.set_ylim(0, max(1, axis.dataLim.y1 * headroom))  # 1: all zero, or no data
+    axis.yaxis.set_major_locator(MaxNLocator(integer=True, steps=[1, 2, 2.5, 5, 10]))
+    axis.yaxis.set_major_formatter(StrMethodFormatter("{x:,.0f}"))
+    axis.set_ylabel(label)
+    axis.grid(True, color="#dddddd")
+    axis.set_axisbelow(True)
 
 
 def plot_scaling(points):
     """Resources (rows) against each swept parameter (columns), one line per target."""
-    panel_w, panel_h, margin_l, margin_t, gap_x, gap_y = 250, 150, 70, 60, 60, 70
-    columns, rows = len(PLOT_PARAMETERS), len(PLOT_METRICS)
-    width = margin_l + columns * (panel_w + gap_x)
-    height = margin_t + rows * (panel_h + gap_y) + 20
-    parts = [svg_text(width / 2, 22, "Yosys resource estimates of stereo_synth_top", 15)]
-    legend_x = margin_l
-    for key, (colour, name) in TARGET_STYLE.items():
-        if any((p["target"], p.get("use_dsp", True)) == key for p in points):
-            parts.append(f'<rect x="{legend_x}" y="32" width="14" height="4" fill="{colour}"/>')
-            parts.append(svg_text(legend_x + 18, 38, name, 11, "start"))
-            legend_x += 130
-    for column, (parameter, x_label) in enumerate(PLOT_PARAMETERS):
+    plt = pyplot()
+    figure, axes = plt.subplots(len(PLOT_METRICS), len(PLOT_PARAMETERS), figsize=(13, 13),
+                                squeeze=False)
+    handles = {}
+    for column, (parameter, x_label, log2) in enumerate(PLOT_PARAMETERS):
         series = sweep_series(points, parameter)
+        xs = sorted({x for values in series.values() for x, _ in values})
         for row, (metric, metric_name) in enumerate(PLOT_METRICS):
-            lines = [(TARGET_STYLE[key][0], [(x, p["resources"][metric]) for x, p in values])
-                     for key, values in sorted(series.items())]
-            parts += line_panel(margin_l + column * (panel_w + gap_x),
-                                margin_t + row * (panel_h + gap_y), panel_w, panel_h,
-                                metric_name, x_label, lines)
-    return svg_document(width, height, parts)
+            axis = axes[row][column]
+            for key, values in sorted(series.items()):
+                colour, name = TARGET_STYLE[key]
+                handles[key], = axis.plot(
+                    [x for x, _ in values], [p["resources"][metric] for _, p in values],
+                    color=colour, label=name, **TARGET_LINES.get(key[0], {}),
+                    gid=f"{parameter}-{metric}-{key[0]}{'' if key[1] else '-nodsp'}")
+            value_axis(axis, xs, x_label, log2)
+            count_axis(axis, metric_name)
+    keys = [key for key in TARGET_STYLE if key in handles]
+    figure_header(figure, "Yosys resource estimates of stereo_synth_top, one parameter at a "
+                  "time around 640x480, 16 disparities, 11x11 window",
+                  [handles[key] for key in keys], [TARGET_STYLE[key][1] for key in keys],
+                  columns=max(1, len(keys)))
+    return figure_svg(figure)
 
 
 def plot_stages(points, target, metric="luts"):
     """Stacked bars: each stage's share of `metric` at every disparity count of the sweep."""
+    plt = pyplot()
     series = sweep_series(points, "ndisp").get((target, True), [])
-    bar_w, gap, left, top, plot_h = 60, 40, 80, 60, 300
-    width = left + max(1, len(series)) * (bar_w + gap) + 170
-    height = top + plot_h + 60
-    totals = [sum(p["stages"][s][metric] for s in STAGE_COLOURS if s in p.get("stages", {}))
-              for _, p in series]
-    y_max = nice_ceiling(max(totals) if totals else 1)
     metric_name = dict(PLOT_METRICS)[metric]
-    parts = [svg_text(width / 2, 24, f"{TARGET_STYLE[(target, True)][1]}: {metric_name} by "
-                      f"stage, 640x480, 11x11", 14)]
-    for k in range(5):
-        y = top + plot_h - plot_h * k / 4
-        parts.append(f'<line x1="{left}" y1="{y:.1f}" x2="{width - 170}" y2="{y:.1f}" '
-                     f'stroke="#ddd"/>')
-        parts.append(svg_text(left - 4, y + 4, f"{y_max * k / 4:,.0f}", 9, "end"))
-    for i, (ndisp, point) in enumerate(series):
-        x = left + gap / 2 + i * (bar_w + gap)
-        y = top + plot_h
-        for stage, colour in STAGE_COLOURS.items():
-            value = point.get("stages", {}).get(stage, {}).get(metric, 0)
-            h = value / y_max * plot_h
-            y -= h
-            parts.append(f'<rect x="{x:.1f}" y="{y:.1f}" width="{bar_w}" height="{h:.1f}" '
-                         f'fill="{colour}"/>')
-        parts.append(svg_text(x + bar_w / 2, top + plot_h + 14, str(ndisp), 10))
-    parts.append(svg_text(left + (width - 170 - left) / 2, top + plot_h + 34, "disparities", 11))
-    for k, (stage, colour) in enumerate(reversed(list(STAGE_COLOURS.items()))):
-        parts.append(f'<rect x="{width - 160}" y="{top + 10 + 20 * k}" width="12" height="12" '
-                     f'fill="{colour}"/>')
-        parts.append(svg_text(width - 142, top + 20 + 20 * k,
-                              stage, 11, "start"))
-    return svg_document(width, height, parts)
-
-
-def svg_document(width, height, parts):
-    body = "\n".join(parts)
-    return (f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" '
-            f'viewBox="0 0 {width} {height}" font-family="sans-serif">\n'
-            f'<rect width="100%" height="100%" fill="white"/>\n{body}\n</svg>\n')
+    figure, axis = plt.subplots(figsize=(8, 5))
+    positions = list(range(len(series)))  # evenly spaced: the disparity counts double
+    totals = [0] * len(series)
+    for stage, colour in STAGE_COLOURS.items():
+        heights = [p.get("stages", {}).get(stage, {}).get(metric, 0) for _, p in series]
+        bars = axis.bar(positions, heights, 0.6, bottom=totals, color=colour, label=stage)
+        for bar, (ndisp, _) in zip(bars, series):
+            bar.set_gid(f"{stage}-{ndisp}")
+        totals = [t + h for t, h in zip(totals, heights)]
+    for x, (ndisp, _), total in zip(positions, series, totals):
+        axis.annotate(f"{total:,.0f}", (x, total), xytext=(0, 3), textcoords="offset points",
+                      ha="center", va="bottom", gid=f"total-{ndisp}")
+    axis.set_xticks(positions, [f"{ndisp:,}" for ndisp, _ in series])
+    axis.set_xlabel("disparities (NDISP)")
+    count_axis(axis, metric_name, headroom=1.1)  # room for the totals
+    axis.grid(False, axis="x")
+    handles, labels = axis.get_legend_handles_labels()
+    # Top to bottom, as the stages stack.
+    axis.legend(handles[::-1], labels[::-1], title="stage", loc="upper left",
+                bbox_to_anchor=(1.02, 1))
+    axis.set_title(f"{TARGET_NAMES.get(target, target)}: {metric_name} by pipeline stage, "
+                   "640x480, 11x11 window\n(Yosys estimate; total above each bar)")
+    figure.tight_layout()
+    return figure_svg(figure)
 
 
 def with_bram_kbits(resources, target):

@@ -2,13 +2,16 @@
 """Unit tests of synth.py's report arithmetic, without Yosys (ctest synth.report_arithmetic).
 
 Every expected value is worked out by hand in the test from the fabricated input."""
+import importlib.util
 import json
+import re
 import sys
 import tempfile
 import unittest
 import xml.etree.ElementTree as ElementTree
 from pathlib import Path
 from types import SimpleNamespace
+from unittest import mock
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import synth  # noqa: E402
@@ -178,6 +181,47 @@ class Throughput(unittest.TestCase):
                                     " 0.5 ns logic, 0.5 ns routing"])
 
 
+SVG = "{http://www.w3.org/2000/svg}"
+
+
+# The plots need matplotlib; the rest of synth.py, and these tests of it, do not.
+needs_matplotlib = unittest.skipUnless(importlib.util.find_spec("matplotlib"),
+                                       "the plots need matplotlib (python3-matplotlib)")
+
+
+def read_svg_texts(element):
+    """The texts in an SVG element (one <text> a line of text)."""
+    return ["".join(node.itertext()).strip() for node in element.iter(SVG + "text")]
+
+
+def read_svg(path):
+    """The root of an SVG that synth.py wrote, and its texts."""
+    root = ElementTree.parse(path).getroot()
+    return root, read_svg_texts(root)
+
+
+def groups(root, pattern):
+    """{id: <g>} of the groups whose id matches pattern: the gids synth.py gives its lines and
+    bars."""
+    return {g.get("id"): g for g in root.iter(SVG + "g") if re.fullmatch(pattern, g.get("id", ""))}
+
+
+def markers(line):
+    """The points of a line: one marker (a <use> of the marker shape) each."""
+    return len(list(line.iter(SVG + "use")))
+
+
+def path_top(bar):
+    """The smallest y (the top, SVG y grows downwards) of a bar's outline."""
+    d = next(bar.iter(SVG + "path")).get("d")
+    return min(float(y) for y in re.findall(r"[ML] [-\d.]+ ([-\d.]+)", d))
+
+
+def thousands(texts):
+    """The texts that are numbers of four or more digits (with separators or without)."""
+    return [t for t in texts if re.fullmatch(r"\d[\d,]{3,}", t)]
+
+
 class Plots(unittest.TestCase):
     def sweep_point(self, target, ndisp, window, width, luts):
         stages = {name: {"luts": luts / 6, "ffs": 1, "bram_kbits": 18, "dsps": 0}
@@ -187,28 +231,75 @@ class Plots(unittest.TestCase):
                            "window": window},
                 "resources": {"luts": luts, "ffs": 6, "brams": 6, "dsps": 0}, "stages": stages}
 
-    def test_svg_files(self):
+    def plot(self, folder):
         points = [self.sweep_point(t, n, 11, 640, 1000 * n) for t in ("xilinx", "ecp5")
                   for n in (8, 16)]
         points.append(self.sweep_point("xilinx", 16, 3, 640, 500))
+        sweep = Path(folder) / "sweep.json"
+        sweep.write_text(json.dumps({"points": points}))
+        synth.command_plot(SimpleNamespace(sweep=str(sweep), out_dir=folder))
+
+    @needs_matplotlib
+    def test_scaling_plot(self):
         with tempfile.TemporaryDirectory() as folder:
-            sweep = Path(folder) / "sweep.json"
-            sweep.write_text(json.dumps({"points": points}))
-            synth.command_plot(SimpleNamespace(sweep=str(sweep), out_dir=folder))
-            scaling = ElementTree.parse(Path(folder) / "synth_scaling.svg").getroot()
-            lines = scaling.findall("{http://www.w3.org/2000/svg}polyline")
-            # One line per target and metric on each axis, all three axes holding both targets
-            # (the window axis: xilinx at 3 and 11, ecp5 at 11 only): 3 x 2 x 4 lines.
-            self.assertEqual(len(lines), 24)
-            bars = ElementTree.parse(Path(folder) / "synth_stages_xilinx_luts.svg").getroot()
-            rects = [r for r in bars.iter("{http://www.w3.org/2000/svg}rect")
-                     if r.get("width") == "60"]
-            self.assertEqual(len(rects), 2 * len(synth.STAGE_COLOURS))
+            self.plot(folder)
+            svg, texts = read_svg(Path(folder) / "synth_scaling.svg")
+        lines = groups(svg, r"(ndisp|window|width)-\w+-(xilinx|ecp5)")
+        # One line per target and metric on each axis, all three axes holding both targets
+        # (the window axis: xilinx at 3 and 11, ecp5 at 11 only): 3 x 2 x 4 lines.
+        self.assertEqual(len(lines), 24)
+        self.assertEqual(markers(lines["window-luts-xilinx"]), 2)
+        self.assertEqual(markers(lines["window-luts-ecp5"]), 1)
+        # points per metric: 2 + 2 on the disparity axis, 2 + 1 on the window's, 1 + 1 on width's
+        self.assertEqual(sum(markers(line) for line in lines.values()), 9 * 4)
+        self.assertIn("Yosys resource estimates of stereo_synth_top, one parameter at a time "
+                      "around 640x480, 16 disparities, 11x11 window", texts)
+        for text in ("7-series", "ECP5", "LUTs", "block RAM (Kib)", "DSPs",
+                     "disparities (640x480, 11x11)"):
+            self.assertIn(text, texts)
+        # LUTs up to 16,000: tick labels with thousands separators
+        self.assertTrue(thousands(texts))
+        self.assertEqual([t for t in thousands(texts) if "," not in t], [])
+
+    @needs_matplotlib
+    def test_stage_plots(self):
+        with tempfile.TemporaryDirectory() as folder:
+            self.plot(folder)
             # every target with per-stage figures gets its stage plots
-            for metric in ("luts", "ffs", "bram_kbits", "dsps"):
-                self.assertTrue((Path(folder) / f"synth_stages_ecp5_{metric}.svg").exists())
-            # bram_kbits is filled in for reports written before it existed (18 Kib per ECP5 BRAM)
-            self.assertEqual(synth.with_bram_kbits({"brams": 6}, "ecp5")["bram_kbits"], 108)
+            for target in ("xilinx", "ecp5"):
+                for metric in ("luts", "ffs", "bram_kbits", "dsps"):
+                    read_svg(Path(folder) / f"synth_stages_{target}_{metric}.svg")
+            svg, texts = read_svg(Path(folder) / "synth_stages_xilinx_luts.svg")
+        stages = "|".join(synth.STAGE_COLOURS)
+        bars = groups(svg, rf"({stages})-(8|16)")
+        self.assertEqual(len(bars), 2 * len(synth.STAGE_COLOURS))
+        # stacked in pipeline order: the first stage at the bottom
+        first, second = list(synth.STAGE_COLOURS)[:2]
+        self.assertGreater(path_top(bars[f"{first}-16"]), path_top(bars[f"{second}-16"]))
+        self.assertIn("Xilinx 7-series: LUTs by pipeline stage, 640x480, 11x11 window", texts)
+        for stage in synth.STAGE_COLOURS:
+            self.assertIn(stage, texts)
+        # the totals above the bars: 6 stages of 16,000 / 6 LUTs at 16 disparities, and 8,000
+        totals = groups(svg, r"total-\d+")
+        self.assertEqual({key: read_svg_texts(group) for key, group in totals.items()},
+                         {"total-8": ["8,000"], "total-16": ["16,000"]})
+
+    @needs_matplotlib
+    def test_same_sweep_same_file(self):
+        with tempfile.TemporaryDirectory() as one, tempfile.TemporaryDirectory() as two:
+            self.plot(one)
+            self.plot(two)
+            for name in ("synth_scaling.svg", "synth_stages_ecp5_luts.svg"):
+                self.assertEqual((Path(one) / name).read_bytes(), (Path(two) / name).read_bytes())
+
+    def test_missing_matplotlib_is_a_report_error(self):
+        with mock.patch.dict(sys.modules, {"matplotlib": None}):  # None: import fails
+            with self.assertRaisesRegex(synth.ReportError, "matplotlib"):
+                synth.plot_scaling([])
+
+    def test_bram_kbits_of_old_reports(self):
+        # bram_kbits is filled in for reports written before it existed (18 Kib per ECP5 BRAM)
+        self.assertEqual(synth.with_bram_kbits({"brams": 6}, "ecp5")["bram_kbits"], 108)
 
     def test_empty_sweep_is_an_error(self):
         with tempfile.TemporaryDirectory() as folder:
@@ -225,6 +316,7 @@ class LanePlots(unittest.TestCase):
             with self.assertRaises(synth.ReportError):
                 synth.parse_lane_points(bad)
 
+    @needs_matplotlib
     def test_one_line_per_lane_count_and_metric(self):
         def point(ndisp, lanes):
             return {"target": "xilinx",
@@ -238,12 +330,20 @@ class LanePlots(unittest.TestCase):
             sweep = Path(folder) / "lanes.json"
             sweep.write_text(json.dumps({"points": points}))
             synth.command_plot_lanes(SimpleNamespace(sweep=str(sweep), out_dir=folder))
-            svg = ElementTree.parse(Path(folder) / "synth_lanes_xilinx.svg").getroot()
-            lines = svg.findall("{http://www.w3.org/2000/svg}polyline")
-            self.assertEqual(len(lines), 3 * len(synth.PLOT_METRICS))
-            # the lines pass through the five points in all
-            self.assertEqual(sum(len(line.get("points").split()) for line in lines),
-                             5 * len(synth.PLOT_METRICS))
+            svg, texts = read_svg(Path(folder) / "synth_lanes_xilinx.svg")
+        lines = groups(svg, r"lanes-(all|\d+)-\w+")
+        self.assertEqual(len(lines), 3 * len(synth.PLOT_METRICS))
+        # the lines pass through the five points in all
+        self.assertEqual(sum(markers(line) for line in lines.values()),
+                         5 * len(synth.PLOT_METRICS))
+        self.assertEqual(markers(lines["lanes-4-luts"]), 2)
+        self.assertEqual(markers(lines["lanes-1-dsps"]), 1)
+        for text in ("LANES = NDISP (1 clock per pixel)", "LANES = 4 (NDISP / 4 clocks per pixel)",
+                     "LANES = 1 (NDISP clocks per pixel)", "LUTs", "disparities (NDISP)"):
+            self.assertIn(text, texts)
+        self.assertTrue(any("640x480, 11x11 window" in text for text in texts))
+        # LUTs up to 3,232: separators in the tick labels
+        self.assertIn("3,000", texts)
 
 
 class Tables(unittest.TestCase):
