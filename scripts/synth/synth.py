@@ -757,7 +757,11 @@ TARGET_LINES = {"xilinx": {"marker": "o", "linewidth": 2, "zorder": 3},
                 "ecp5": {"marker": "s", "markersize": 7, "linewidth": 4, "zorder": 2}}
 TARGET_NAMES = {"xilinx": "Xilinx 7-series", "ecp5": "Lattice ECP5", "ice40": "Lattice iCE40"}
 # In pipeline order (STAGES, from the stage table), then the glue.
-STAGE_COLOURS = dict(zip(STAGES, ("#8c564b", "#1f77b4", "#2ca02c", "#98df8a", "#9467bd")),
+# One colour per stage: a stage without one would drop out of the plots and the per-stage table.
+STAGE_PALETTE = ("#8c564b", "#1f77b4", "#2ca02c", "#98df8a", "#9467bd", "#e377c2", "#bcbd22",
+                 "#17becf", "#ff7f0e")
+assert len(STAGES) <= len(STAGE_PALETTE), "add colours to STAGE_PALETTE for the new stages"
+STAGE_COLOURS = dict(zip(STAGES, STAGE_PALETTE),
                      glue="#7f7f7f")
 LANE_COLOURS = ("#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2")
 

@@ -224,7 +224,9 @@ def thousands(texts):
 
 class Plots(unittest.TestCase):
     def sweep_point(self, target, ndisp, window, width, luts):
-        stages = {name: {"luts": luts / 6, "ffs": 1, "bram_kbits": 18, "dsps": 0}
+        # every stage (and the glue) an equal share, so the stacked total is the point's LUTs
+        count = len(synth.STAGE_COLOURS)
+        stages = {name: {"luts": luts / count, "ffs": 1, "bram_kbits": 18, "dsps": 0}
                   for name in synth.STAGE_COLOURS}
         return {"target": target, "use_dsp": True,
                 "config": {"width": width, "height": width * 3 // 4, "ndisp": ndisp,
@@ -279,7 +281,8 @@ class Plots(unittest.TestCase):
         self.assertIn("Xilinx 7-series: LUTs by pipeline stage, 640x480, 11x11 window", texts)
         for stage in synth.STAGE_COLOURS:
             self.assertIn(stage, texts)
-        # the totals above the bars: 6 stages of 16,000 / 6 LUTs at 16 disparities, and 8,000
+        # the totals above the bars: the stages' equal shares of 16,000 LUTs at 16 disparities,
+        # and of 8,000 at 8
         totals = groups(svg, r"total-\d+")
         self.assertEqual({key: read_svg_texts(group) for key, group in totals.items()},
                          {"total-8": ["8,000"], "total-16": ["16,000"]})
