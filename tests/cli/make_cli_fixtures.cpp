@@ -84,10 +84,11 @@ void write_fixtures(const fs::path& dir) {
     // A TIFF of a few bytes whose first directory declares 40000 x 40000 (ImageWidth and
     // ImageLength, LONG, little-endian), and a Radiance HDR image (a format OpenCV decodes but
     // whose size is not read before decoding): both refused before decoding.
-    const std::string huge_tiff("II*\0\x08\0\0\0\x02\0"
-                                "\x00\x01\x04\0\x01\0\0\0\x40\x9c\0\0"
-                                "\x01\x01\x04\0\x01\0\0\0\x40\x9c\0\0",
-                                34);
+    const std::string huge_tiff(
+        "II*\0\x08\0\0\0\x02\0"
+        "\x00\x01\x04\0\x01\0\0\0\x40\x9c\0\0"
+        "\x01\x01\x04\0\x01\0\0\0\x40\x9c\0\0",
+        34);
     std::ofstream(dir / "huge_header.tif", std::ios::binary) << huge_tiff;
     std::vector<uchar> hdr;
     cv::imencode(".hdr", cv::Mat(kHeight, kWidth, CV_32FC3, cv::Scalar(0.5, 0.5, 0.5)), hdr);
@@ -97,10 +98,9 @@ void write_fixtures(const fs::path& dir) {
     // Broken PFM disparities: a size that is no number, data cut short, three channels (PF),
     // and a header declaring 30000 x 30000.
     std::ofstream(dir / "bad_size.pfm", std::ios::binary) << "Pf\n4 x\n-1\n";
-    std::ofstream(dir / "short_data.pfm", std::ios::binary)
-        << "Pf\n4 2\n-1\n" << std::string(4 * 2 * 4 - 4, '\0');
-    std::ofstream(dir / "colour.pfm", std::ios::binary) << "PF\n1 1\n-1\n"
-                                                        << std::string(12, '\0');
+    std::ofstream(dir / "short_data.pfm", std::ios::binary) << "Pf\n4 2\n-1\n"
+                                                            << std::string(4 * 2 * 4 - 4, '\0');
+    std::ofstream(dir / "colour.pfm", std::ios::binary) << "PF\n1 1\n-1\n" << std::string(12, '\0');
     std::ofstream(dir / "huge_header.pfm", std::ios::binary) << "Pf\n30000 30000\n-1\n";
 
     // File kinds for the bad-input table (bad_inputs.txt): an empty file, a folder and a FIFO
