@@ -367,14 +367,7 @@ std::string markdown_report(const json& report) {
 }
 
 void run_eval(const EvalOptions& options) {
-    for (const std::string& path : {options.markdown, options.json_path}) {
-        if (!path.empty()) {
-            io::check_writable_location(path);
-        }
-    }
-    if (!options.figures.empty() && !fs::is_directory(options.figures)) {
-        throw std::runtime_error("figures folder \"" + options.figures + "\" does not exist");
-    }
+    check_report_outputs({options.markdown, options.json_path}, {options.figures});
     std::vector<io::SceneData> scenes;
     for (const auto& scene : io::middlebury2003_scenes()) {
         auto data = io::load_scene(options.data, scene);

@@ -19,27 +19,33 @@ std::string quoted(const fs::path& path) {
     return "\"" + path.string() + "\"";
 }
 
+// Creates the hidden file ".<name>.XXXXXX<suffix>" beside `destination` (the same folder, so a
+// rename over the destination stays atomic) with the permissions a new file normally gets;
+// returns its open descriptor and sets `created`.
+int create_hidden_beside(const fs::path& destination, const std::string& name,
+                         const std::string& suffix, fs::path& created) {
+    const fs::path folder =
+        destination.parent_path().empty() ? fs::path(".") : destination.parent_path();
+    std::string pattern = (folder / ("." + name + ".XXXXXX" + suffix)).string();
+    const int descriptor = ::mkstemps(pattern.data(), static_cast<int>(suffix.size()));
+    if (descriptor < 0) {
+        throw std::runtime_error("cannot write " + quoted(destination) + ": " +
+                                 std::strerror(errno));
+    }
+    // mkstemps creates the file 0600.
+    const mode_t mask = ::umask(0);
+    ::umask(mask);
+    ::fchmod(descriptor, 0666 & ~mask);
+    created = pattern;
+    return descriptor;
+}
+
 // Closes the descriptor and removes the temporary file unless released.
 class TemporaryFile {
   public:
-    explicit TemporaryFile(const fs::path& destination) {
-        const fs::path folder =
-            destination.parent_path().empty() ? fs::path(".") : destination.parent_path();
-        std::string name = ".";  // hidden, beside the destination, so rename stays atomic
-        name += destination.filename().string();
-        name += ".XXXXXX";
-        std::string pattern = (folder / name).string();
-        descriptor_ = ::mkstemp(pattern.data());
-        if (descriptor_ < 0) {
-            throw std::runtime_error("cannot write " + quoted(destination) + ": " +
-                                     std::strerror(errno));
-        }
-        path_ = pattern;
-        // mkstemp creates the file 0600; give it the permissions a new file normally gets.
-        const mode_t mask = ::umask(0);
-        ::umask(mask);
-        ::fchmod(descriptor_, 0666 & ~mask);
-    }
+    explicit TemporaryFile(const fs::path& destination)
+        : descriptor_(
+              create_hidden_beside(destination, destination.filename().string(), "", path_)) {}
     TemporaryFile(const TemporaryFile&) = delete;
     TemporaryFile& operator=(const TemporaryFile&) = delete;
     ~TemporaryFile() {
@@ -63,8 +69,8 @@ class TemporaryFile {
     void release() { path_.clear(); }
 
   private:
+    fs::path path_;  // before descriptor_: its initializer sets path_
     int descriptor_ = -1;
-    fs::path path_;
 };
 
 // The file a path names, for comparison: its identity when it exists, else the resolved path.
@@ -127,21 +133,9 @@ void commit(TemporaryFile& temporary, const fs::path& path) {
 
 StagedOutput::StagedOutput(const fs::path& destination) : destination_(destination) {
     check_destination(destination);
-    const fs::path folder =
-        destination.parent_path().empty() ? fs::path(".") : destination.parent_path();
-    const std::string extension = destination.extension().string();
-    std::string pattern =
-        (folder / ("." + destination.stem().string() + ".XXXXXX" + extension)).string();
-    const int descriptor = ::mkstemps(pattern.data(), static_cast<int>(extension.size()));
-    if (descriptor < 0) {
-        throw std::runtime_error("cannot write " + quoted(destination) + ": " +
-                                 std::strerror(errno));
-    }
-    const mode_t mask = ::umask(0);
-    ::umask(mask);
-    ::fchmod(descriptor, 0666 & ~mask);
-    ::close(descriptor);
-    temporary_ = pattern;
+    // The destination's extension kept last: the writer may choose its format by it.
+    ::close(create_hidden_beside(destination, destination.stem().string(),
+                                 destination.extension().string(), temporary_));
 }
 
 StagedOutput::~StagedOutput() {
