@@ -15,30 +15,26 @@
 #include "stereo_io/data_dir.hpp"
 #include "stereo_io/distortion.hpp"
 #include "stereo_io/io.hpp"
+#include "stereo_io/test_compare.hpp"
 #include "stereo_io/test_support.hpp"
 
 namespace stereo::hierarchical {
 namespace {
 
+// Horizontal and vertical disparity and the valid flag of every pixel.
 ::testing::AssertionResult same_level(const LevelMap& expected, const LevelMap& actual) {
-    if (expected.width != actual.width || expected.height != actual.height) {
-        return ::testing::AssertionFailure() << "level shapes differ";
-    }
-    for (int y = 0; y < expected.height; ++y) {
-        for (int x = 0; x < expected.width; ++x) {
-            const auto p = expected.index(x, y);
-            if (expected.disparity[p] != actual.disparity[p] ||
-                expected.vertical[p] != actual.vertical[p] ||
-                expected.valid[p] != actual.valid[p]) {
-                return ::testing::AssertionFailure()
-                       << "first mismatch at (x=" << x << ", y=" << y << "): expected (d "
-                       << expected.disparity[p] << ", v " << expected.vertical[p] << ", valid "
-                       << int(expected.valid[p]) << "), got (d " << actual.disparity[p] << ", v "
-                       << actual.vertical[p] << ", valid " << int(actual.valid[p]) << ")";
-            }
-        }
-    }
-    return ::testing::AssertionSuccess();
+    return test::same_pixels(
+        expected, actual,
+        [&](std::size_t i) {
+            return expected.disparity[i] != actual.disparity[i] ||
+                   expected.vertical[i] != actual.vertical[i] ||
+                   expected.valid[i] != actual.valid[i];
+        },
+        [](const LevelMap& map, std::size_t i) {
+            return "(d " + std::to_string(map.disparity[i]) + ", v " +
+                   std::to_string(map.vertical[i]) + ", valid " + std::to_string(map.valid[i]) +
+                   ")";
+        });
 }
 
 // right(x', y') = left(x' + dx, y' - dy) plus noise: true displacement (dx, dy) everywhere.

@@ -10,7 +10,6 @@
 #include <iostream>
 #include <memory>
 #include <random>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -44,52 +43,9 @@ std::mt19937 seeded(std::uint32_t salt) {
 
 // ---- comparison with messages ------------------------------------------------------------
 
-testing::AssertionResult same_volume(const Dsi& expected, const Dsi& actual, int ndisp) {
-    if (expected.width() != actual.width() || expected.height() != actual.height()) {
-        return testing::AssertionFailure() << "size differs";
-    }
-    std::ostringstream first;
-    long mismatches = 0;
-    for (int d = 0; d < ndisp; ++d) {
-        for (int y = 0; y < expected.height(); ++y) {
-            for (int x = 0; x < expected.width(); ++x) {
-                if (expected.at(x, y, d) != actual.at(x, y, d) && ++mismatches <= 10) {
-                    first << "\n  (x " << x << ", y " << y << ", d " << d << "): hls "
-                          << actual.at(x, y, d) << ", model " << expected.at(x, y, d);
-                }
-            }
-        }
-    }
-    if (mismatches == 0) {
-        return testing::AssertionSuccess();
-    }
-    return testing::AssertionFailure() << mismatches << " cells differ" << first.str();
-}
-
-testing::AssertionResult same_map(const DisparityMap& expected, const DisparityMap& actual) {
-    if (expected.width != actual.width || expected.height != actual.height) {
-        return testing::AssertionFailure() << "size differs";
-    }
-    std::ostringstream first;
-    long mismatches = 0;
-    for (int y = 0; y < expected.height; ++y) {
-        for (int x = 0; x < expected.width; ++x) {
-            const std::size_t i = expected.index(x, y);
-            if ((expected.disparity[i] != actual.disparity[i] ||
-                 expected.valid[i] != actual.valid[i]) &&
-                ++mismatches <= 10) {
-                first << "\n  (x " << x << ", y " << y << "): hls " << int{actual.disparity[i]}
-                      << (actual.valid[i] ? "" : " (invalid)") << ", model "
-                      << int{expected.disparity[i]} << (expected.valid[i] ? "" : " (invalid)");
-            }
-        }
-    }
-    if (mismatches == 0) {
-        return testing::AssertionSuccess();
-    }
-    return testing::AssertionFailure()
-           << mismatches << " of " << expected.disparity.size() << " pixels differ" << first.str();
-}
+using test::same_map;
+using test::same_validated;  // stage 6: fixed disparity, reason and certainty of every pixel
+using test::same_volume;
 
 // ---- streaming one stage ----------------------------------------------------------------
 
@@ -633,9 +589,6 @@ void expect_match(const Image& left, const Image& right, const MatchParams& para
         << params.ndisp << " window " << params.window << " sigma " << params.sigma
         << (params.use_ca ? " CA" : " no CA");
 }
-
-// Stage 6: fixed disparity, reason and certainty of every pixel against the golden model.
-using test::same_validated;
 
 MatchParams with_stage6(MatchParams params, int min_disp, int uniqueness, int lr, bool subpixel) {
     params.min_disp = min_disp;

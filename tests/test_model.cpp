@@ -10,52 +10,14 @@
 #include "stereo/reference.hpp"
 #include "stereo_io/data_dir.hpp"
 #include "stereo_io/io.hpp"
+#include "stereo_io/test_compare.hpp"
 #include "stereo_io/test_support.hpp"
 
 namespace stereo {
 namespace {
 
-// First differing cell, for a readable failure message.
-::testing::AssertionResult same_dsi(const Dsi& expected, const Dsi& actual) {
-    if (expected.width() != actual.width() || expected.height() != actual.height() ||
-        expected.ndisp() != actual.ndisp()) {
-        return ::testing::AssertionFailure() << "DSI shapes differ";
-    }
-    for (int d = 0; d < expected.ndisp(); ++d) {
-        for (int y = 0; y < expected.height(); ++y) {
-            for (int x = 0; x < expected.width(); ++x) {
-                if (expected.at(x, y, d) != actual.at(x, y, d)) {
-                    return ::testing::AssertionFailure()
-                           << "first mismatch at (x=" << x << ", y=" << y << ", d=" << d
-                           << "): naive " << expected.at(x, y, d) << ", model "
-                           << actual.at(x, y, d);
-                }
-            }
-        }
-    }
-    return ::testing::AssertionSuccess();
-}
-
-::testing::AssertionResult same_map(const DisparityMap& expected, const DisparityMap& actual) {
-    if (expected.width != actual.width || expected.height != actual.height) {
-        return ::testing::AssertionFailure() << "map shapes differ";
-    }
-    for (int y = 0; y < expected.height; ++y) {
-        for (int x = 0; x < expected.width; ++x) {
-            const auto i = expected.index(x, y);
-            if (expected.disparity[i] != actual.disparity[i] ||
-                expected.valid[i] != actual.valid[i]) {
-                return ::testing::AssertionFailure()
-                       << "first mismatch at (x=" << x << ", y=" << y
-                       << "): expected d=" << int(expected.disparity[i])
-                       << " valid=" << int(expected.valid[i])
-                       << ", got d=" << int(actual.disparity[i])
-                       << " valid=" << int(actual.valid[i]);
-            }
-        }
-    }
-    return ::testing::AssertionSuccess();
-}
+using test::same_map;
+using test::same_volume;
 
 struct Case {
     int width, height, channels, ndisp, window;
@@ -71,13 +33,13 @@ TEST_P(StagesEqualNaive, EveryStageBitExact) {
     const auto kernel = gaussian_kernel(c.window, c.sigma);
 
     const Dsi costs = cost(left, right, c.ndisp);
-    ASSERT_TRUE(same_dsi(naive::cost(left, right, c.ndisp), costs)) << "cost";
+    ASSERT_TRUE(same_volume(naive::cost(left, right, c.ndisp), costs)) << "cost";
     const Dsi aggregated = aggregate(costs, kernel);
-    ASSERT_TRUE(same_dsi(naive::aggregate(costs, kernel), aggregated)) << "aggregate";
+    ASSERT_TRUE(same_volume(naive::aggregate(costs, kernel), aggregated)) << "aggregate";
     const Dsi rule1 = ca_rule1(aggregated);
-    ASSERT_TRUE(same_dsi(naive::ca_rule1(aggregated), rule1)) << "ca_rule1";
+    ASSERT_TRUE(same_volume(naive::ca_rule1(aggregated), rule1)) << "ca_rule1";
     const Dsi rule2 = ca_rule2(rule1);
-    ASSERT_TRUE(same_dsi(naive::ca_rule2(rule1), rule2)) << "ca_rule2";
+    ASSERT_TRUE(same_volume(naive::ca_rule2(rule1), rule2)) << "ca_rule2";
     const MatchParams params{c.ndisp, c.window, c.sigma, true};
     ASSERT_TRUE(
         same_map(naive::wta(rule2, invalid_border(params)), wta(rule2, invalid_border(params))));
@@ -100,7 +62,7 @@ TEST(StagesEqualNaive, ConstantAndExtremeImages) {
     for (const auto& [l, r, left, right] : test::constant_pairs(40, 30, 3)) {
         const MatchParams params{8, 5, 2.0, true};
         const Dsi costs = cost(left, right, params.ndisp);
-        EXPECT_TRUE(same_dsi(naive::cost(left, right, params.ndisp), costs));
+        EXPECT_TRUE(same_volume(naive::cost(left, right, params.ndisp), costs));
         EXPECT_EQ(costs.at(20, 10, 3), 3 * std::abs(l - r));
         const Dsi aggregated = aggregate(costs, gaussian_kernel(5, 2.0));
         // Interior cells average a constant: the weighted mean is exact, times 2^kAggFracBits.
