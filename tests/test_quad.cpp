@@ -22,28 +22,16 @@ namespace {
 
 using test::same_validated;
 
-// A window of `big` at (ox, oy): crops of one random image at offsets (d * step) make a pair
-// whose true disparity is d everywhere, with no clamped or invented pixels.
-Image crop(const Image& big, int ox, int oy, int width, int height) {
-    Image out(width, height, big.channels);
-    for (int y = 0; y < height; ++y) {
-        for (int x = 0; x < width; ++x) {
-            for (int c = 0; c < big.channels; ++c) {
-                out.at(x, y, c) = big.at(x + ox, y + oy, c);
-            }
-        }
-    }
-    return out;
-}
-
 // Reference (x, y) sees partner (x - d sx, y - d sy): the partner is the crop shifted by +d step.
+// Crops of one random image make a pair whose true disparity is d everywhere, with no clamped or
+// invented pixels.
 std::pair<Image, Image> shifted_views(Pair pair, int d, int width, int height, int channels,
                                       std::mt19937& rng) {
     constexpr int kMargin = 16;
     const Image big = test::random_image(width + 2 * kMargin, height + 2 * kMargin, channels, rng);
     const Step s = step(pair);
-    return {crop(big, kMargin, kMargin, width, height),
-            crop(big, kMargin + d * s.x, kMargin + d * s.y, width, height)};
+    return {io::crop(big, kMargin, kMargin, width, height),
+            io::crop(big, kMargin + d * s.x, kMargin + d * s.y, width, height)};
 }
 
 MatchParams small_params(int ndisp, int min_disp, bool validation) {

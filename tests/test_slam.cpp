@@ -165,6 +165,15 @@ std::vector<Eigen::Vector3d> random_points(int n, std::mt19937& rng) {
     return points;
 }
 
+// known_motion() applied to every point.
+std::vector<Eigen::Vector3d> moved_by_known_motion(const std::vector<Eigen::Vector3d>& points) {
+    std::vector<Eigen::Vector3d> moved;
+    for (const auto& p : points) {
+        moved.push_back(known_motion() * p);
+    }
+    return moved;
+}
+
 void expect_same(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, double tolerance) {
     EXPECT_LT((a.linear() - b.linear()).norm(), tolerance);
     EXPECT_LT((a.translation() - b.translation()).norm(), tolerance);
@@ -173,10 +182,7 @@ void expect_same(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, double 
 TEST(RigidFit, RecoversAKnownTransformExactly) {
     std::mt19937 rng(test::test_seed());
     const auto src = random_points(20, rng);
-    std::vector<Eigen::Vector3d> dst;
-    for (const auto& p : src) {
-        dst.push_back(known_motion() * p);
-    }
+    const auto dst = moved_by_known_motion(src);
     expect_same(fit_rigid(src, dst), known_motion(), kExact);
     // Weights do not move an exact solution; three points are enough.
     std::vector<double> weights(src.size());
@@ -230,10 +236,7 @@ TEST(Ransac, RecoversTheTransformAndTheInliersAmongOutliers) {
 TEST(Ransac, MinimumInlierRuleRefusesAWeakConsensus) {
     std::mt19937 rng(test::test_seed());
     const auto src = random_points(12, rng);
-    std::vector<Eigen::Vector3d> dst;
-    for (const auto& p : src) {
-        dst.push_back(known_motion() * p);
-    }
+    const auto dst = moved_by_known_motion(src);
     RansacParams params;
     params.min_inliers = 13;  // one more than there are pairs
     EXPECT_FALSE(ransac_rigid(src, dst, euclidean_residual(src, dst), params).ok);
