@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cstddef>
 #include <iostream>
 #include <ostream>
 #include <random>
@@ -37,19 +39,9 @@ struct CaCase {
 };
 
 inline const char* input_name(CaInput input) {
-    switch (input) {
-        case CaInput::kPair:
-            return "pair";
-        case CaInput::kStructured:
-            return "structured";
-        case CaInput::kSmallValues:
-            return "small";
-        case CaInput::kNearMaximum:
-            return "nearmax";
-        case CaInput::kFull14Bits:
-            return "full14bits";
-    }
-    return "?";
+    // In the enum's order.
+    constexpr std::array kNames{"pair", "structured", "small", "nearmax", "full14bits"};
+    return kNames.at(static_cast<std::size_t>(input));
 }
 
 // Test names, and the parameter as ctest and GoogleTest print it (tb::PrintTo).
@@ -89,14 +81,10 @@ struct CaRuleBench {
         return {};
     }
 
-    struct Ports {
-        using Model = typename Rule::Model;
+    struct Ports : ColumnOutputPorts<Model> {
         static constexpr const char* kName = Rule::kName;
         static void scramble(Model& model, std::mt19937& rng) {
             randomize_bits(model.in_data, kDisparities * kCaBits, rng);
-        }
-        static std::vector<std::uint32_t> outputs(const Model& model) {
-            return port_words(model.out_data);
         }
     };
     using Driver = StageDriver<Ports>;
@@ -127,10 +115,7 @@ struct CaRuleBench {
 
     // kFramesPerCase frames of fresh input through one driver, each value against the model.
     static void check_case(const Case& c) {
-        const std::uint32_t seed = test_seed();
-        std::mt19937 rng(seed);
-        Driver driver(seed, c.ce_low);
-        for (int frame = 0; frame < kFramesPerCase; ++frame) {
+        check_frames<Driver>(c.ce_low, [&](Driver& driver, std::mt19937& rng, int frame) {
             const Dsi input = make_input(c.input, c.width, c.height, rng);
             const Dsi want = expected(input, c.ndisp, c.use_ca);
             if (c.use_ca && frame == 0) {
@@ -140,7 +125,7 @@ struct CaRuleBench {
             }
             EXPECT_TRUE(same_volume(want, run(driver, input, c.ndisp, c.use_ca), c.ndisp))
                 << "frame " << frame;
-        }
+        });
     }
 
     using Frame = CaFrame;

@@ -258,6 +258,28 @@ class StageDriver {
     Model* model_;
 };
 
+// kFramesPerCase frames of fresh input through one driver: the test's seed seeds the driver and
+// `rng`, from which check(driver, rng, frame) draws the frame's input before checking it.
+template <typename Driver, typename Check>
+void check_frames(double ce_low, Check&& check) {
+    const std::uint32_t seed = test_seed();
+    std::mt19937 rng(seed);
+    Driver driver(seed, ce_low);
+    for (int frame = 0; frame < kFramesPerCase; ++frame) {
+        check(driver, rng, frame);
+    }
+}
+
+// The ports of a stage whose data output is out_data (a DSI column), for StageDriver: the
+// stage's Ports derive from it and add kName and scramble().
+template <typename VerilatedModel>
+struct ColumnOutputPorts {
+    using Model = VerilatedModel;
+    static std::vector<std::uint32_t> outputs(const Model& model) {
+        return port_words(model.out_data);
+    }
+};
+
 // ---- Parameterised cases ---------------------------------------------------------------------
 
 // A case type with a describe(case) beside it (found by argument-dependent lookup) prints and

@@ -5,15 +5,46 @@
 
 #include <gtest/gtest.h>
 
+#include <cstddef>
+#include <cstdint>
 #include <memory>
+#include <ostream>
+#include <random>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "stereo/validated.hpp"
+#include "stereo_io/io.hpp"
+#include "stereo_io/test_support.hpp"
 #include "stereo_top_sim.hpp"
 #include "tb_options.hpp"
 
 namespace stereo::tb {
+
+// A random pair through the core (true disparity 3, noise 25): its size, the matching
+// parameters and the traffic (input gaps and output stalls).
+struct RandomCase {
+    int width, height, ndisp, window;
+    bool use_ca;
+    double gap, stall;
+};
+
+inline void PrintTo(const RandomCase& c, std::ostream* out) {
+    *out << c.width << "x" << c.height << " ndisp " << c.ndisp << " window " << c.window
+         << (c.use_ca ? " CA" : " no CA") << " gap " << c.gap << " stall " << c.stall;
+}
+
+// A test over RandomCases: the case, the test's seed, the case's pair drawn from it and the
+// case's traffic.
+class RandomPairTest : public ::testing::TestWithParam<RandomCase> {
+  protected:
+    const RandomCase c = GetParam();
+    const std::uint32_t seed = test_seed();
+    std::mt19937 rng{seed};
+    const io::ImagePair pair = test::shifted_pair(c.width, c.height, 3, 3, 25, rng);
+    const sim::Traffic traffic{c.gap, c.stall, seed};
+};
 
 class Cosim {
   public:
@@ -42,6 +73,17 @@ class Cosim {
             *result_out = std::move(result);
         }
         return map;
+    }
+
+    // Starts a frame of (left, right), streams its first `fed` beats (taking at most `outputs`
+    // outputs) and resets the core in the middle of that frame.
+    void reset_mid_frame(const Image& left, const Image& right, const MatchParams& params,
+                         std::size_t fed, std::size_t outputs, const sim::Traffic& traffic) {
+        sim_->set_params({left.width, left.height, params});
+        const auto beats = sim::frame_beats(left, right);
+        const std::vector<sim::InputBeat> part(beats.begin(), beats.begin() + fed);
+        EXPECT_GT(sim_->stream(part, outputs, traffic, 100000).input_beats, 0U);
+        sim_->reset();
     }
 
   private:

@@ -26,15 +26,12 @@ constexpr int kWindow = 5;  // WINDOW of Vstereo_aggregate
 constexpr int kTapBits = table::kTapBits;
 
 template <typename VerilatedModel>
-struct AggregatePorts {
+struct AggregatePorts : ColumnOutputPorts<VerilatedModel> {
     using Model = VerilatedModel;
     static constexpr const char* kName = "stereo_aggregate";
     static void scramble(Model& model, std::mt19937& rng) {
         randomize_bits(model.in_data, kDisparities * fx::kCostBits, rng);
         model.in_next_y = static_cast<std::uint16_t>(rng());  // only taken at a step
-    }
-    static std::vector<std::uint32_t> outputs(const Model& model) {
-        return port_words(model.out_data);
     }
     // in_next_y: the row of the step after this one (stereo_top: the cost stage's out_next_y).
     static void announce_next_row(Model& model, std::uint16_t next_y) { model.in_next_y = next_y; }
@@ -93,19 +90,17 @@ class RandomVolumes : public ::testing::TestWithParam<RandomCase> {};
 
 TEST_P(RandomVolumes, EveryValueEqualsTheModel) {
     const RandomCase c = GetParam();
-    const std::uint32_t seed = test_seed();
-    std::mt19937 rng(seed);
     const auto kernel = gaussian_kernel(c.window, c.sigma);
-    AggregateDriver driver(seed, c.ce_low);
-    for (int frame = 0; frame < kFramesPerCase; ++frame) {
-        const Dsi costs =
-            c.input == Input::kPairCost
-                ? pair_cost(c.width, c.height, kDisparities, 3, rng)
-                : uniform_volume(c.width, c.height, kDisparities, 0, fx::kCostMax, rng);
-        EXPECT_TRUE(same_volume(aggregate(costs, kernel), run_aggregate(driver, costs, kernel),
-                                kDisparities))
-            << "frame " << frame;
-    }
+    check_frames<AggregateDriver>(
+        c.ce_low, [&](AggregateDriver& driver, std::mt19937& rng, int frame) {
+            const Dsi costs =
+                c.input == Input::kPairCost
+                    ? pair_cost(c.width, c.height, kDisparities, 3, rng)
+                    : uniform_volume(c.width, c.height, kDisparities, 0, fx::kCostMax, rng);
+            EXPECT_TRUE(same_volume(aggregate(costs, kernel), run_aggregate(driver, costs, kernel),
+                                    kDisparities))
+                << "frame " << frame;
+        });
 }
 
 INSTANTIATE_TEST_SUITE_P(

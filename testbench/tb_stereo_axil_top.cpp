@@ -89,18 +89,9 @@ class AxilTop {
         m.s_axil_awvalid = 0;
         m.s_axil_wvalid = 0;
         m.s_axil_bready = 1;
-        for (int cycle = 0;; ++cycle) {
-            settle();
-            if (m.s_axil_bvalid) {
-                EXPECT_EQ(m.s_axil_bresp, 0) << "bresp";
-                harness_.tick();
-                break;
-            }
-            if (cycle > 20) {
-                throw std::runtime_error("AXI4-Lite write response missing");
-            }
-            harness_.tick();
-        }
+        await([&] { return m.s_axil_bvalid != 0; }, "AXI4-Lite write response missing");
+        EXPECT_EQ(m.s_axil_bresp, 0) << "bresp";
+        harness_.tick();
         m.s_axil_bready = 0;
     }
 
@@ -109,33 +100,16 @@ class AxilTop {
         m.s_axil_araddr = static_cast<std::uint8_t>(addr);
         m.s_axil_arvalid = 1;
         m.s_axil_rready = 0;
-        for (int cycle = 0;; ++cycle) {
-            settle();
-            const bool taken = m.s_axil_arready;
-            harness_.tick();
-            if (taken) {
-                break;
-            }
-            if (cycle > 20) {
-                throw std::runtime_error("AXI4-Lite read not accepted");
-            }
-        }
+        await([&] { return m.s_axil_arready != 0; }, "AXI4-Lite read not accepted");
+        harness_.tick();
         m.s_axil_arvalid = 0;
         m.s_axil_rready = 1;
-        for (int cycle = 0;; ++cycle) {
-            settle();
-            if (m.s_axil_rvalid) {
-                EXPECT_EQ(m.s_axil_rresp, 0) << "rresp";
-                const std::uint32_t data = m.s_axil_rdata;
-                harness_.tick();
-                m.s_axil_rready = 0;
-                return data;
-            }
-            if (cycle > 20) {
-                throw std::runtime_error("AXI4-Lite read data missing");
-            }
-            harness_.tick();
-        }
+        await([&] { return m.s_axil_rvalid != 0; }, "AXI4-Lite read data missing");
+        EXPECT_EQ(m.s_axil_rresp, 0) << "rresp";
+        const std::uint32_t data = m.s_axil_rdata;
+        harness_.tick();
+        m.s_axil_rready = 0;
+        return data;
     }
 
     // The pipeline configuration through the registers.
@@ -172,6 +146,22 @@ class AxilTop {
     void settle() {
         harness_.model().clk = 0;
         harness_.model().eval();
+    }
+
+    // Clocks until ready() holds on settled inputs (not clocking that cycle); throws `what` if
+    // it has not after 20 cycles.
+    template <typename Ready>
+    void await(Ready&& ready, const char* what) {
+        for (int cycle = 0;; ++cycle) {
+            settle();
+            if (ready()) {
+                return;
+            }
+            if (cycle > 20) {
+                throw std::runtime_error(what);
+            }
+            harness_.tick();
+        }
     }
 
     VerilatedHarness<Vstereo_axil_top> harness_;
@@ -238,8 +228,7 @@ TEST(AxilFrames, RegisterConfigurationsEqualTheModel) {
     for (const Case& c :
          {Case{64, 48, 16, 5, 0, true, false}, Case{37, 23, 12, 3, -4, true, true},
           Case{50, 30, 16, 5, 3, false, true}, Case{64, 48, 9, 1, -8, true, true}}) {
-        const Image left = test::random_image(c.width, c.height, 3, rng);
-        const Image right = test::shifted_copy(left, 3, 20, rng);
+        const auto [left, right] = test::shifted_pair(c.width, c.height, 3, 3, 20, rng);
         MatchParams params{c.ndisp, c.window, c.window == 3 ? 1.0 : fx::kDefaultSigma, c.ca};
         params.min_disp = c.min_disp;
         if (c.validation) {
@@ -261,8 +250,7 @@ TEST(AxilFrames, RegisterConfigurationsEqualTheModel) {
 TEST(AxilFrames, ClampedConfigurationSetsStatusAndSoftResetClearsIt) {
     std::mt19937 rng(tb::test_seed());
     AxilTop top;
-    const Image left = test::random_image(64, 48, 3, rng);
-    const Image right = test::shifted_copy(left, 2, 10, rng);
+    const auto [left, right] = test::shifted_pair(64, 48, 3, 2, 10, rng);
     top.write(kMatch, 0U | 2U << 16 | 1U << 24);  // ndisp 0: out of range, clamped to NDISP
     const MatchParams clamped{kConfig.ndisp, kConfig.window, fx::kDefaultSigma, true};
     EXPECT_TRUE(tb::same_validated(match_validated(left, right, clamped),

@@ -25,6 +25,7 @@
 #include "stereo_io/io.hpp"
 #include "stereo_io/test_support.hpp"
 #include "tb_options.hpp"
+#include "tb_real_pairs.hpp"
 
 namespace stereo::tb {
 namespace {
@@ -33,15 +34,12 @@ constexpr int kCostBits = fx::kCostBits;
 
 // The stage ports shared by both configurations, for StageDriver.
 template <typename VerilatedModel>
-struct CostPorts {
+struct CostPorts : ColumnOutputPorts<VerilatedModel> {
     using Model = VerilatedModel;
     static constexpr const char* kName = "stereo_cost";
     static void scramble(Model& model, std::mt19937& rng) {
         randomize_bits(model.in_left, table::kRgbBits, rng);
         randomize_bits(model.in_right, table::kRgbBits, rng);
-    }
-    static std::vector<std::uint32_t> outputs(const Model& model) {
-        return port_words(model.out_data);
     }
 };
 
@@ -190,14 +188,12 @@ TYPED_TEST(CostStage, EveryCostEqualsTheModelForEverySignedRange) {
 }
 
 TYPED_TEST(CostStage, TsukubaCrop) {
-    const auto dir = io::data_dir() / "middlebury2003" / "tsukuba";
-    if (!std::filesystem::exists(dir / "left.png") || !std::filesystem::exists(dir / "right.png")) {
-        GTEST_SKIP() << "tsukuba not found in " << dir;
+    const auto pair = tb::tsukuba_crop();
+    if (!pair) {
+        GTEST_SKIP() << "tsukuba not found in " << io::data_dir();
     }
-    const auto pair =
-        io::crop(io::load_pair(dir / "left.png", dir / "right.png"), 150, 100, 64, 48);
     typename TestFixture::Driver driver(test_seed(), 0.2);
-    EXPECT_TRUE(TestFixture::matches(driver, pair.left, pair.right));
+    EXPECT_TRUE(TestFixture::matches(driver, pair->left, pair->right));
 }
 
 // Grey pairs go in as (g, g, g); the LCDM model refuses them (colour is required), so AD only.

@@ -10,7 +10,6 @@
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <optional>
 #include <random>
 
 #include "stereo/pipeline.hpp"
@@ -22,6 +21,7 @@
 #include "tb_compare.hpp"
 #include "tb_cosim.hpp"
 #include "tb_options.hpp"
+#include "tb_real_pairs.hpp"
 
 namespace stereo::sim {
 namespace {
@@ -65,28 +65,15 @@ class Cosim : public tb::Cosim {
     Cosim() : tb::Cosim(small()) {}
 };
 
-struct RandomCase {
-    int width, height, ndisp, window;
-    bool use_ca;
-    double gap, stall;
-};
+using tb::RandomCase;
 
-void PrintTo(const RandomCase& c, std::ostream* out) {
-    *out << c.width << "x" << c.height << " ndisp " << c.ndisp << " window " << c.window
-         << (c.use_ca ? " CA" : " no CA") << " gap " << c.gap << " stall " << c.stall;
-}
-
-class RandomPairs : public ::testing::TestWithParam<RandomCase> {};
+class RandomPairs : public tb::RandomPairTest {};
 
 TEST_P(RandomPairs, EveryPixelEqualsTheModel) {
-    const RandomCase c = GetParam();
-    const std::uint32_t seed = tb::test_seed();
-    std::mt19937 rng(seed);
-    const auto [left, right] = test::shifted_pair(c.width, c.height, 3, 3, 25, rng);
     const MatchParams params{labels(c.ndisp), c.window, fx::kDefaultSigma, c.use_ca};
     Cosim cosim;
-    const ValidatedDisparity rtl = cosim.run(left, right, params, {c.gap, c.stall, seed});
-    EXPECT_TRUE(same_validated(expected(left, right, params), rtl));
+    const ValidatedDisparity rtl = cosim.run(pair.left, pair.right, params, traffic);
+    EXPECT_TRUE(same_validated(expected(pair.left, pair.right, params), rtl));
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -191,8 +178,7 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(Throughput, NegativeMinimumDisparityAddsItsDelay) {
     std::mt19937 rng(tb::test_seed());
     const TopConfig& point = small();
-    const Image left = test::random_image(point.width, point.height, 3, rng);
-    const Image right = test::shifted_copy(left, -2, 10, rng);
+    const auto [left, right] = test::shifted_pair(point.width, point.height, 3, -2, 10, rng);
     for (const int min_disp : {-kMaxMin, -3, 4}) {
         Cosim cosim;
         MatchParams params{point.ndisp, point.window, fx::kDefaultSigma, true};
@@ -221,8 +207,7 @@ TEST(Framing, BackToBackFramesWithDifferentStage6Configurations) {
         {40, 12, 16, 3, true, -6, 5, 1, true, -5, 0, 0},
     };
     for (const Stage6Case& c : cases) {
-        const Image left = test::random_image(c.width, c.height, 3, rng);
-        const Image right = test::shifted_copy(left, c.shift, 15, rng);
+        const auto [left, right] = test::shifted_pair(c.width, c.height, 3, c.shift, 15, rng);
         const MatchParams params = stage6_params(c);
         EXPECT_TRUE(same_validated(expected(left, right, params),
                                    cosim.run(left, right, params, {0.1, 0.1, seed})))
@@ -235,40 +220,41 @@ TEST(Framing, ResetInTheMiddleOfAStage6Frame) {
     std::mt19937 rng(seed);
     const Stage6Case c{64, 48, 16, 5, true, -kMaxMin, 10, 1, true, -3, 0, 0};
     const MatchParams params = stage6_params(c);
-    const Image left = test::random_image(64, 48, 3, rng);
-    const Image right = test::shifted_copy(left, -3, 15, rng);
+    const auto [left, right] = test::shifted_pair(64, 48, 3, -3, 15, rng);
     Cosim cosim;
-    cosim.sim().set_params({64, 48, params});
-    const auto beats = frame_beats(left, right);
-    const std::vector<InputBeat> part(beats.begin(), beats.begin() + 2 * beats.size() / 3);
-    EXPECT_GT(cosim.sim().stream(part, 200, {0.2, 0.2, seed}, 100000).input_beats, 0U);
-    cosim.sim().reset();
-    const Image left2 = test::random_image(64, 48, 3, rng);
-    const Image right2 = test::shifted_copy(left2, 6, 15, rng);
+    cosim.reset_mid_frame(left, right, params, 2 * 64 * 48 / 3, 200, {0.2, 0.2, seed});
+    const auto [left2, right2] = test::shifted_pair(64, 48, 3, 6, 15, rng);
     MatchParams params2 = params;
     params2.min_disp = 2;
     EXPECT_TRUE(same_validated(expected(left2, right2, params2),
                                cosim.run(left2, right2, params2, {0.2, 0.2, seed})));
 }
 
+// A frame under the out-of-range configuration `wide`: the core raises the clamped-configuration
+// status bit and matches as the model does with `clamped`, what it clamps `wide` to.
+void expect_clamped(Cosim& cosim, const Image& left, const Image& right, const CoreParams& wide,
+                    const MatchParams& clamped) {
+    cosim.sim().set_params(wide);
+    const auto beats = frame_beats(left, right);
+    const StreamResult result = cosim.sim().stream(beats, beats.size(), {}, 100000);
+    ASSERT_TRUE(result.completed);
+    EXPECT_EQ(result.status & (1U << table::kStatusConfigClamped),
+              1U << table::kStatusConfigClamped);
+    EXPECT_TRUE(same_validated(expected(left, right, clamped),
+                               frame_of(result, 0, left.width, left.height)));
+}
+
 TEST(BadInput, OutOfRangeMinimumDisparityIsClampedAndFlagged) {
     std::mt19937 rng(tb::test_seed());
-    const Image left = test::random_image(64, 48, 3, rng);
-    const Image right = test::shifted_copy(left, -3, 5, rng);
+    const auto [left, right] = test::shifted_pair(64, 48, 3, -3, 5, rng);
     for (const int sign : {-1, 1}) {
         Cosim cosim;
         MatchParams params{small().ndisp, 5, fx::kDefaultSigma, true};
         params.validation.left_right = true;
         CoreParams wide{64, 48, params};
         wide.match.min_disp = sign * (kMaxMin + 7);
-        cosim.sim().set_params(wide);
-        const auto beats = frame_beats(left, right);
-        const StreamResult result = cosim.sim().stream(beats, beats.size(), {}, 100000);
-        ASSERT_TRUE(result.completed);
-        EXPECT_EQ(result.status & (1U << table::kStatusConfigClamped),
-                  1U << table::kStatusConfigClamped);
         params.min_disp = sign * kMaxMin;  // what the core clamps to
-        EXPECT_TRUE(same_validated(expected(left, right, params), frame_of(result, 0, 64, 48)));
+        expect_clamped(cosim, left, right, wide, params);
     }
 }
 
@@ -285,33 +271,10 @@ TEST(Extremes, ConstantImages) {
 
 TEST(Extremes, GreyInputIsMatchedAsRgb) {
     std::mt19937 rng(tb::test_seed());
-    const Image left = test::random_image(48, 32, 1, rng);
-    const Image right = test::shifted_copy(left, 2, 10, rng);
+    const auto [left, right] = test::shifted_pair(48, 32, 1, 2, 10, rng);
     const MatchParams params{labels(12), 5, fx::kDefaultSigma, true};
     Cosim cosim;
     EXPECT_TRUE(same_validated(expected(left, right, params), cosim.run(left, right, params, {})));
-}
-
-// A crop of a real pair, at the small configuration's size.
-std::optional<std::pair<Image, Image>> real_crop(const std::filesystem::path& left_path,
-                                                 const std::filesystem::path& right_path,
-                                                 int downscale, int x0, int y0) {
-    if (!std::filesystem::exists(left_path) || !std::filesystem::exists(right_path)) {
-        return std::nullopt;
-    }
-    const auto pair = io::load_pair(left_path, right_path, downscale);
-    auto crop = [&](const Image& image) {
-        Image out(64, 48, image.channels);
-        for (int y = 0; y < 48; ++y) {
-            for (int x = 0; x < 64; ++x) {
-                for (int c = 0; c < image.channels; ++c) {
-                    out.at(x, y, c) = image.at(x0 + x, y0 + y, c);
-                }
-            }
-        }
-        return out;
-    };
-    return std::pair{crop(pair.left), crop(pair.right)};
 }
 
 struct RealCase {
@@ -328,7 +291,7 @@ class RealPairs : public ::testing::TestWithParam<RealCase> {};
 
 TEST_P(RealPairs, EveryPixelEqualsTheModel) {
     const RealCase c = GetParam();
-    const auto pair = real_crop(c.left, c.right, c.downscale, c.x0, c.y0);
+    const auto pair = tb::real_crop(c.left, c.right, c.downscale, c.x0, c.y0);
     if (!pair) {
         GTEST_SKIP() << c.name << " not found";
     }
@@ -336,8 +299,8 @@ TEST_P(RealPairs, EveryPixelEqualsTheModel) {
     Cosim cosim;
     for (const bool use_ca : {true, false}) {
         const MatchParams params{labels(c.ndisp), 5, fx::kDefaultSigma, use_ca};
-        EXPECT_TRUE(same_validated(expected(pair->first, pair->second, params),
-                                   cosim.run(pair->first, pair->second, params, {0.1, 0.1, seed})))
+        EXPECT_TRUE(same_validated(expected(pair->left, pair->right, params),
+                                   cosim.run(pair->left, pair->right, params, {0.1, 0.1, seed})))
             << c.name << " CA " << use_ca;
     }
     // Stage 6 on: a shifted range, every check and sub-pixel output.
@@ -345,22 +308,18 @@ TEST_P(RealPairs, EveryPixelEqualsTheModel) {
         MatchParams params{labels(c.ndisp), 5, fx::kDefaultSigma, true};
         params.min_disp = min_disp;
         params.validation = {true, 15, true, 1, true};
-        EXPECT_TRUE(same_validated(expected(pair->first, pair->second, params),
-                                   cosim.run(pair->first, pair->second, params, {0.1, 0.1, seed})))
+        EXPECT_TRUE(same_validated(expected(pair->left, pair->right, params),
+                                   cosim.run(pair->left, pair->right, params, {0.1, 0.1, seed})))
             << c.name << " stage 6, min_disp " << min_disp;
     }
 }
 
-std::filesystem::path middlebury(const char* scene, const char* file) {
-    return io::data_dir() / "middlebury2003" / scene / file;
-}
-
 INSTANTIATE_TEST_SUITE_P(
     Stereo, RealPairs,
-    ::testing::Values(RealCase{"tsukuba", middlebury("tsukuba", "left.png"),
-                               middlebury("tsukuba", "right.png"), 1, 150, 100, 16},
-                      RealCase{"cones", middlebury("cones", "left.png"),
-                               middlebury("cones", "right.png"), 2, 60, 60, 16},
+    ::testing::Values(RealCase{"tsukuba", tb::middlebury("tsukuba", "left.png"),
+                               tb::middlebury("tsukuba", "right.png"), 1, 150, 100, 16},
+                      RealCase{"cones", tb::middlebury("cones", "left.png"),
+                               tb::middlebury("cones", "right.png"), 2, 60, 60, 16},
                       RealCase{"aloe", io::aloe_dir() / "aloeL.jpg", io::aloe_dir() / "aloeR.jpg",
                                8, 50, 40, 16}),
     [](const auto& info) { return std::string(info.param.name); });
@@ -368,8 +327,7 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(Throughput, CyclesPerFrameWithoutStallsMatchTheDocumentedLatency) {
     std::mt19937 rng(tb::test_seed());
     const TopConfig& point = small();  // the configuration Cosim runs
-    const Image left = test::random_image(point.width, point.height, 3, rng);
-    const Image right = test::shifted_copy(left, 4, 10, rng);
+    const auto [left, right] = test::shifted_pair(point.width, point.height, 3, 4, 10, rng);
     Cosim cosim;
     StreamResult result;
     (void)cosim.run(left, right, {point.ndisp, point.window, fx::kDefaultSigma, true}, {}, &result);
@@ -421,8 +379,7 @@ TEST(Framing, BackToBackFramesOfDifferentSizes) {
     Cosim cosim;
     for (const auto& [width, height] : {std::pair{32, 12}, std::pair{32, 24}, std::pair{20, 30},
                                         std::pair{64, 48}, std::pair{13, 9}}) {
-        const Image left = test::random_image(width, height, 3, rng);
-        const Image right = test::shifted_copy(left, 3, 10, rng);
+        const auto [left, right] = test::shifted_pair(width, height, 3, 3, 10, rng);
         EXPECT_TRUE(same_validated(expected(left, right, params),
                                    cosim.run(left, right, params, {0.1, 0.1, seed})))
             << width << "x" << height;
@@ -432,75 +389,67 @@ TEST(Framing, BackToBackFramesOfDifferentSizes) {
 TEST(Framing, ResetInTheMiddleOfAFrameThenACleanFrame) {
     const std::uint32_t seed = tb::test_seed();
     std::mt19937 rng(seed);
-    const Image left = test::random_image(64, 48, 3, rng);
-    const Image right = test::shifted_copy(left, 5, 15, rng);
+    const auto [left, right] = test::shifted_pair(64, 48, 3, 5, 15, rng);
     const MatchParams params{labels(16), 5, fx::kDefaultSigma, true};
     Cosim cosim;
-    cosim.sim().set_params({64, 48, params});
     // Half a frame, with a few of its outputs already out, then reset.
-    const auto beats = frame_beats(left, right);
-    const std::vector<InputBeat> half(beats.begin(), beats.begin() + beats.size() / 2);
-    const StreamResult partial = cosim.sim().stream(half, 100, {0.2, 0.2, seed}, 100000);
-    EXPECT_GT(partial.input_beats, 0U);
-    cosim.sim().reset();
+    cosim.reset_mid_frame(left, right, params, 64 * 48 / 2, 100, {0.2, 0.2, seed});
     // A second frame with different content must come out exactly right.
-    const Image left2 = test::random_image(64, 48, 3, rng);
-    const Image right2 = test::shifted_copy(left2, 7, 15, rng);
+    const auto [left2, right2] = test::shifted_pair(64, 48, 3, 7, 15, rng);
     EXPECT_TRUE(same_validated(expected(left2, right2, params),
                                cosim.run(left2, right2, params, {0.2, 0.2, seed})));
 }
 
-TEST(BadInput, BeatsBeforeTheFirstStartOfFrameAreDropped) {
-    std::mt19937 rng(tb::test_seed());
-    const Image left = test::random_image(32, 24, 3, rng);
-    const Image right = test::shifted_copy(left, 3, 5, rng);
-    const MatchParams params{labels(8), 5, fx::kDefaultSigma, true};
+// The frame the malformed-stream tests spoil: a random 32x24 pair with 8 labels, its beats, and a
+// fresh core configured for it.
+struct SmallFrame {
+    std::mt19937 rng{tb::test_seed()};
+    io::ImagePair pair = test::shifted_pair(32, 24, 3, 3, 5, rng);
+    MatchParams params{labels(8), 5, fx::kDefaultSigma, true};
     Cosim cosim;
-    cosim.sim().set_params({32, 24, params});
-    auto beats = frame_beats(left, right);
+    std::vector<InputBeat> beats = frame_beats(pair.left, pair.right);
+
+    SmallFrame() { cosim.sim().set_params({32, 24, params}); }
+    ValidatedDisparity model() const { return expected(pair.left, pair.right, params); }
+    StreamResult stream(const std::vector<InputBeat>& input, std::uint64_t max_cycles) {
+        return cosim.sim().stream(input, beats.size(), {}, max_cycles);
+    }
+};
+
+TEST(BadInput, BeatsBeforeTheFirstStartOfFrameAreDropped) {
+    SmallFrame frame;
     std::vector<InputBeat> stream(5, InputBeat{0x123456789ABCULL, false, false});  // no tuser
-    stream.insert(stream.end(), beats.begin(), beats.end());
-    const StreamResult result = cosim.sim().stream(stream, beats.size(), {}, 100000);
+    stream.insert(stream.end(), frame.beats.begin(), frame.beats.end());
+    const StreamResult result = frame.stream(stream, 100000);
     ASSERT_TRUE(result.completed);
     EXPECT_EQ(result.status, 0U);
-    EXPECT_TRUE(same_validated(expected(left, right, params), frame_of(result, 0, 32, 24)));
+    EXPECT_TRUE(same_validated(frame.model(), frame_of(result, 0, 32, 24)));
 }
 
 TEST(BadInput, MisplacedTlastAndTuserSetStatusBitsAndTheFrameStillCompletes) {
-    std::mt19937 rng(tb::test_seed());
-    const Image left = test::random_image(32, 24, 3, rng);
-    const Image right = test::shifted_copy(left, 3, 5, rng);
-    Cosim cosim;
-    cosim.sim().set_params({32, 24, {labels(8), 5, fx::kDefaultSigma, true}});
-    auto beats = frame_beats(left, right);
-    beats[40].last = true;   // not a row end
-    beats[100].user = true;  // start of frame inside a frame
-    const StreamResult result = cosim.sim().stream(beats, beats.size(), {}, 100000);
+    SmallFrame frame;
+    frame.beats[40].last = true;   // not a row end
+    frame.beats[100].user = true;  // start of frame inside a frame
+    const StreamResult result = frame.stream(frame.beats, 100000);
     EXPECT_TRUE(result.completed);  // one output per input pixel regardless
     EXPECT_EQ(result.status & 3U,
               (1U << table::kStatusEolMisplaced) | (1U << table::kStatusSofMisplaced));
 }
 
 TEST(BadInput, AStreamThatEndsEarlyNeverProducesAPartialFrameAndResetRecovers) {
-    std::mt19937 rng(tb::test_seed());
-    const Image left = test::random_image(32, 24, 3, rng);
-    const Image right = test::shifted_copy(left, 3, 5, rng);
-    const MatchParams params{labels(8), 5, fx::kDefaultSigma, true};
-    Cosim cosim;
-    cosim.sim().set_params({32, 24, params});
-    const auto beats = frame_beats(left, right);
-    const std::vector<InputBeat> cut(beats.begin(), beats.end() - 50);
-    const StreamResult stalled = cosim.sim().stream(cut, beats.size(), {}, 20000);
+    SmallFrame frame;
+    const std::vector<InputBeat> cut(frame.beats.begin(), frame.beats.end() - 50);
+    const StreamResult stalled = frame.stream(cut, 20000);
     EXPECT_FALSE(stalled.completed);
-    EXPECT_LT(stalled.outputs.size(), beats.size());
-    cosim.sim().reset();
-    EXPECT_TRUE(same_validated(expected(left, right, params), cosim.run(left, right, params, {})));
+    EXPECT_LT(stalled.outputs.size(), frame.beats.size());
+    frame.cosim.sim().reset();
+    EXPECT_TRUE(same_validated(
+        frame.model(), frame.cosim.run(frame.pair.left, frame.pair.right, frame.params, {})));
 }
 
 TEST(BadInput, OutOfRangeConfigurationIsFlaggedAndClamped) {
     std::mt19937 rng(tb::test_seed());
-    const Image left = test::random_image(64, 48, 3, rng);
-    const Image right = test::shifted_copy(left, 3, 5, rng);
+    const auto [left, right] = test::shifted_pair(64, 48, 3, 3, 5, rng);
     Cosim cosim;
     MatchParams params{small().ndisp, 5, fx::kDefaultSigma, true};
     cosim.sim().set_params({64, 48, params});
@@ -508,13 +457,7 @@ TEST(BadInput, OutOfRangeConfigurationIsFlaggedAndClamped) {
     CoreParams wide{64, 48, params};
     wide.match.ndisp = 40;
     wide.match.window = 5;
-    cosim.sim().set_params(wide);
-    const auto beats = frame_beats(left, right);
-    const StreamResult result = cosim.sim().stream(beats, beats.size(), {}, 100000);
-    ASSERT_TRUE(result.completed);
-    EXPECT_EQ(result.status & (1U << table::kStatusConfigClamped),
-              1U << table::kStatusConfigClamped);
-    EXPECT_TRUE(same_validated(expected(left, right, params), frame_of(result, 0, 64, 48)));
+    expect_clamped(cosim, left, right, wide, params);
 }
 
 }  // namespace

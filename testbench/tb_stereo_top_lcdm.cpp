@@ -16,6 +16,7 @@
 #include "tb_compare.hpp"
 #include "tb_cosim.hpp"
 #include "tb_options.hpp"
+#include "tb_real_pairs.hpp"
 
 namespace stereo::sim {
 namespace {
@@ -46,29 +47,15 @@ class LcdmCosim : public tb::Cosim {
     }
 };
 
-struct RandomCase {
-    int width, height, ndisp, window;
-    bool use_ca;
-    double gap, stall;
-};
+using tb::RandomCase;
 
-void PrintTo(const RandomCase& c, std::ostream* out) {
-    *out << c.width << "x" << c.height << " ndisp " << c.ndisp << " window " << c.window
-         << (c.use_ca ? " CA" : " no CA") << " gap " << c.gap << " stall " << c.stall;
-}
-
-class LcdmRandomPairs : public ::testing::TestWithParam<RandomCase> {};
+class LcdmRandomPairs : public tb::RandomPairTest {};
 
 TEST_P(LcdmRandomPairs, EveryPixelEqualsTheModel) {
-    const RandomCase c = GetParam();
-    const std::uint32_t seed = tb::test_seed();
-    std::mt19937 rng(seed);
-    const Image left = test::random_image(c.width, c.height, 3, rng);
-    const Image right = test::shifted_copy(left, 3, 25, rng);
     const MatchParams params = lcdm_params(c.ndisp, c.window, c.use_ca);
     LcdmCosim cosim;
-    EXPECT_TRUE(same_map(match(left, right, params),
-                         cosim.run(left, right, params, {c.gap, c.stall, seed})));
+    EXPECT_TRUE(same_map(match(pair.left, pair.right, params),
+                         cosim.run(pair.left, pair.right, params, traffic)));
 }
 
 INSTANTIATE_TEST_SUITE_P(Lcdm, LcdmRandomPairs,
@@ -79,23 +66,21 @@ INSTANTIATE_TEST_SUITE_P(Lcdm, LcdmRandomPairs,
                                            RandomCase{23, 17, 4, 1, false, 0.0, 0.3}));
 
 TEST(LcdmRealPair, TsukubaCropWithTheRightImageDarkened) {
-    const auto dir = io::data_dir() / "middlebury2003" / "tsukuba";
-    if (!std::filesystem::exists(dir / "left.png") || !std::filesystem::exists(dir / "right.png")) {
-        GTEST_SKIP() << "tsukuba not found in " << dir;
+    const auto pair = tb::tsukuba_crop();
+    if (!pair) {
+        GTEST_SKIP() << "tsukuba not found in " << io::data_dir();
     }
-    const auto pair =
-        io::crop(io::load_pair(dir / "left.png", dir / "right.png"), 150, 100, 64, 48);
-    Image darker = pair.right;
+    Image darker = pair->right;
     for (auto& p : darker.pixels) {
         p = static_cast<std::uint8_t>(p * 3 / 4);
     }
     const MatchParams params = lcdm_params(16, 5, true);
     const std::uint32_t seed = tb::test_seed();
     LcdmCosim cosim;
-    EXPECT_TRUE(same_map(match(pair.left, pair.right, params),
-                         cosim.run(pair.left, pair.right, params, {0.2, 0.2, seed})));
-    EXPECT_TRUE(same_map(match(pair.left, darker, params),
-                         cosim.run(pair.left, darker, params, {0.2, 0.2, seed})));
+    EXPECT_TRUE(same_map(match(pair->left, pair->right, params),
+                         cosim.run(pair->left, pair->right, params, {0.2, 0.2, seed})));
+    EXPECT_TRUE(same_map(match(pair->left, darker, params),
+                         cosim.run(pair->left, darker, params, {0.2, 0.2, seed})));
 }
 
 // Stage 6 behind the LCDM cost: signed ranges (the LCDM points wait in the cost stage's left
@@ -103,8 +88,7 @@ TEST(LcdmRealPair, TsukubaCropWithTheRightImageDarkened) {
 TEST(LcdmStage6, SignedRangesWithValidation) {
     const std::uint32_t seed = tb::test_seed();
     std::mt19937 rng(seed);
-    const Image left = test::random_image(64, 48, 3, rng);
-    const Image right = test::shifted_copy(left, -2, 20, rng);
+    const auto [left, right] = test::shifted_pair(64, 48, 3, -2, 20, rng);
     LcdmCosim cosim;
     for (const int min_disp : {-8, -4, 0, 3}) {
         MatchParams params = lcdm_params(16, 5, true);
@@ -122,22 +106,14 @@ TEST(LcdmFraming, BackToBackFramesAndAResetInTheMiddleOfAFrame) {
     const MatchParams params = lcdm_params(16, 5, true);
     LcdmCosim cosim;
     for (const auto& [width, height] : {std::pair{64, 48}, std::pair{37, 23}, std::pair{64, 48}}) {
-        const Image left = test::random_image(width, height, 3, rng);
-        const Image right = test::shifted_copy(left, 4, 10, rng);
+        const auto [left, right] = test::shifted_pair(width, height, 3, 4, 10, rng);
         EXPECT_TRUE(
             same_map(match(left, right, params), cosim.run(left, right, params, {0.1, 0.1, seed})))
             << width << "x" << height;
     }
-    const Image left = test::random_image(64, 48, 3, rng);
-    const Image right = test::shifted_copy(left, 5, 15, rng);
-    cosim.sim().set_params({64, 48, params});
-    const auto beats = frame_beats(left, right);
-    const std::vector<InputBeat> half(beats.begin(), beats.begin() + beats.size() / 2);
-    const StreamResult partial = cosim.sim().stream(half, 100, {0.2, 0.2, seed}, 100000);
-    EXPECT_GT(partial.input_beats, 0U);
-    cosim.sim().reset();
-    const Image left2 = test::random_image(64, 48, 3, rng);
-    const Image right2 = test::shifted_copy(left2, 7, 15, rng);
+    const auto [left, right] = test::shifted_pair(64, 48, 3, 5, 15, rng);
+    cosim.reset_mid_frame(left, right, params, 64 * 48 / 2, 100, {0.2, 0.2, seed});
+    const auto [left2, right2] = test::shifted_pair(64, 48, 3, 7, 15, rng);
     EXPECT_TRUE(
         same_map(match(left2, right2, params), cosim.run(left2, right2, params, {0.2, 0.2, seed})));
 }

@@ -182,13 +182,11 @@ class Volumes : public ::testing::TestWithParam<Case> {};
 
 TEST_P(Volumes, EveryPixelEqualsTheArithmetic) {
     const Case c = GetParam();
-    const std::uint32_t seed = test_seed();
-    std::mt19937 rng(seed);
-    ValidateDriver driver(seed, c.ce_low);
-    for (int frame = 0; frame < kFramesPerCase; ++frame) {
-        const Dsi volume = make_input(c.input, c.width, c.height, rng);
-        EXPECT_TRUE(run_and_compare(driver, volume, c.config, rng)) << "frame " << frame;
-    }
+    check_frames<ValidateDriver>(
+        c.ce_low, [&](ValidateDriver& driver, std::mt19937& rng, int frame) {
+            const Dsi volume = make_input(c.input, c.width, c.height, rng);
+            EXPECT_TRUE(run_and_compare(driver, volume, c.config, rng)) << "frame " << frame;
+        });
 }
 
 INSTANTIATE_TEST_SUITE_P(

@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cstddef>
 #include <ostream>
 #include <random>
 #include <string>
@@ -74,17 +76,8 @@ DisparityMap expected_wta(const Dsi& input, const WtaConfig& config) {
 enum class Input { kUniform, kTies, kAllEqual, kPairCa };
 
 const char* input_name(Input input) {
-    switch (input) {
-        case Input::kUniform:
-            return "uniform";
-        case Input::kTies:
-            return "ties";
-        case Input::kAllEqual:
-            return "allequal";
-        case Input::kPairCa:
-            return "pair";
-    }
-    return "?";
+    constexpr std::array kNames{"uniform", "ties", "allequal", "pair"};  // in the enum's order
+    return kNames.at(static_cast<std::size_t>(input));
 }
 
 // The full NDISP planes fed to the core. Planes d >= ndisp hold 0, below every used value
@@ -141,14 +134,11 @@ class Volumes : public ::testing::TestWithParam<WtaCase> {};
 
 TEST_P(Volumes, EveryPixelEqualsTheModel) {
     const WtaCase c = GetParam();
-    const std::uint32_t seed = test_seed();
-    std::mt19937 rng(seed);
-    WtaDriver driver(seed, c.ce_low);
-    for (int frame = 0; frame < kFramesPerCase; ++frame) {
+    check_frames<WtaDriver>(c.ce_low, [&](WtaDriver& driver, std::mt19937& rng, int frame) {
         const Dsi input = make_input(c.input, c.width, c.height, c.config.ndisp, rng);
         EXPECT_TRUE(same_map(expected_wta(input, c.config), run_wta(driver, input, c.config)))
             << "frame " << frame;
-    }
+    });
 }
 
 INSTANTIATE_TEST_SUITE_P(
