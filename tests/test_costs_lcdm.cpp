@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include "middlebury_crop.hpp"
 #include "stereo/hierarchical_reference.hpp"
 #include "stereo/reference.hpp"
 #include "stereo/stages.hpp"
@@ -157,11 +158,11 @@ TEST(Lcdm, HierarchicalSearchEqualsNaive) {
 }
 
 TEST(Lcdm, RealImagesEqualNaive) {
-    const auto dir = io::data_dir() / "middlebury2003" / "tsukuba";
-    if (!std::filesystem::exists(dir / "left.png")) {
-        GTEST_SKIP() << "Middlebury tsukuba not found under " << dir;
+    const auto crop = test::middlebury_crop("tsukuba", 120, 90, 96, 72);
+    if (!crop) {
+        GTEST_SKIP() << "Middlebury tsukuba not found under " << io::data_dir();
     }
-    const auto pair = io::crop(io::load_pair(dir / "left.png", dir / "right.png"), 120, 90, 96, 72);
+    const io::ImagePair& pair = *crop;
     EXPECT_EQ(cost_volume(*make_cost("lcdm"), pair.left, pair.right, 16),
               lcdm::naive::cost(pair.left, pair.right, 16));
     EXPECT_EQ(cost_volume(*make_cost("zncc"), pair.left, pair.right, 16),

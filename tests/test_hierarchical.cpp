@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 #include <random>
 
+#include "middlebury_crop.hpp"
 #include "stereo/hierarchical.hpp"
 #include "stereo/hierarchical_reference.hpp"
 #include "stereo/pipeline.hpp"
@@ -247,19 +248,14 @@ TEST(MatchEqualsNaive, RandomPair) {
 }
 
 TEST(MatchEqualsNaive, MiddleburyCrop) {
-    const auto dir = io::data_dir() / "middlebury2003" / "tsukuba";
-    if (!std::filesystem::exists(dir / "left.png") || !std::filesystem::exists(dir / "right.png")) {
-        GTEST_SKIP() << "Middlebury tsukuba not found under " << dir;
+    const auto pair = test::middlebury_crop("tsukuba", 150, 100, 104, 84);
+    if (!pair) {
+        GTEST_SKIP() << "Middlebury tsukuba not found under " << io::data_dir();
     }
-    const cv::Mat left_bgr = io::load_bgr(dir / "left.png");
-    const cv::Mat right_bgr = io::load_bgr(dir / "right.png");
-    const cv::Rect crop(150, 100, 104, 84);
-    const Image left = io::to_image(left_bgr(crop).clone(), "left");
-    const Image right = io::to_image(right_bgr(crop).clone(), "right");
     Params params;
     params.ndisp = 16;
-    const Result model = match(left, right, params);
-    EXPECT_EQ(naive::match(left, right, params).disparity, model.disparity);
+    const Result model = match(pair->left, pair->right, params);
+    EXPECT_EQ(naive::match(pair->left, pair->right, params).disparity, model.disparity);
 }
 
 // ---- hand-checked cases --------------------------------------------------------------------

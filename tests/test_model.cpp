@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <random>
 
+#include "middlebury_crop.hpp"
 #include "stereo/pipeline.hpp"
 #include "stereo/reference.hpp"
 #include "stereo_io/data_dir.hpp"
@@ -72,17 +73,13 @@ TEST(StagesEqualNaive, ConstantAndExtremeImages) {
 }
 
 TEST(StagesEqualNaive, RealPairCrop) {
-    const auto dir = io::data_dir() / "middlebury2003" / "cones";
-    if (!std::filesystem::exists(dir / "left.png") || !std::filesystem::exists(dir / "right.png")) {
-        GTEST_SKIP() << "Middlebury cones not found under " << dir;
+    const auto pair = test::middlebury_crop("cones", 200, 150, 120, 90);
+    if (!pair) {
+        GTEST_SKIP() << "Middlebury cones not found under " << io::data_dir();
     }
-    const cv::Mat left_bgr = io::load_bgr(dir / "left.png");
-    const cv::Mat right_bgr = io::load_bgr(dir / "right.png");
-    const cv::Rect crop(200, 150, 120, 90);
-    const Image left = io::to_image(left_bgr(crop), "left");
-    const Image right = io::to_image(right_bgr(crop), "right");
     const MatchParams params{40, 11, fx::kDefaultSigma, true};
-    EXPECT_TRUE(same_map(naive::match(left, right, params), match(left, right, params)));
+    EXPECT_TRUE(same_map(naive::match(pair->left, pair->right, params),
+                         match(pair->left, pair->right, params)));
 }
 
 TEST(Cost, HandComputed) {
