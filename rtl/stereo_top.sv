@@ -59,34 +59,10 @@ module stereo_top #(
 ) (
     input  wire logic                               clk,
     input  wire logic                               rst,
-    // Configuration, sampled when the core takes the start-of-frame beat from the input slice.
-    input  wire fx_pkg::cfg_size_t                  cfg_width,
-    input  wire fx_pkg::cfg_size_t                  cfg_height,
-    input  wire fx_pkg::cfg_ndisp_t                 cfg_ndisp,
+    // The window, sampled with the rest of the configuration (stereo_core_ports.svh).
     input  wire fx_pkg::cfg_radius_t                cfg_radius,
     input  wire logic [WINDOW*fx_pkg::TAP_BITS-1:0] cfg_kernel,
-    input  wire logic                               cfg_use_ca,
-    // Stage 6 (docs/fixed-point.md): signed minimum disparity, uniqueness ratio U (percent),
-    // left-right tolerance T (labels), sub-pixel refinement; each check has an enable.
-    input  wire fx_pkg::cfg_min_disp_t              cfg_min_disp,
-    input  wire logic                               cfg_uniqueness_en,
-    input  wire fx_pkg::cfg_uniqueness_t            cfg_uniqueness,
-    input  wire logic                               cfg_lr_en,
-    input  wire fx_pkg::cfg_lr_tolerance_t          cfg_lr_tolerance,
-    input  wire logic                               cfg_subpixel_en,
-    // Input stream.
-    input  wire logic [fx_pkg::IN_BEAT_BITS-1:0]    s_axis_tdata,
-    input  wire logic                               s_axis_tvalid,
-    output      logic                               s_axis_tready,
-    input  wire logic                               s_axis_tlast,
-    input  wire logic                               s_axis_tuser,
-    // Output stream.
-    output      fx_pkg::out_beat_t                  m_axis_tdata,
-    output      logic                               m_axis_tvalid,
-    input  wire logic                               m_axis_tready,
-    output      logic                               m_axis_tlast,
-    output      logic                               m_axis_tuser,
-    output      logic [fx_pkg::STATUS_BITS-1:0]     status
+`include "stereo_core_ports.svh"
 );
   localparam int R = WINDOW / 2;
   localparam int COST_BITS = fx_pkg::COST_BITS;

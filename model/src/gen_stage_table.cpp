@@ -188,21 +188,36 @@ std::string package_text() {
           "  endfunction\n";
 
     // The default kernel (sigma = kDefaultSigma) of every odd window, for synthesis tops that
-    // tie the kernel configuration to constants.
-    sv << "\n  // Tap i (0 .. window-1) of the default kernel, sigma = " << fx::kDefaultSigma
-       << ".\n"
-          "  function automatic int default_tap(input int window, input int i);\n"
-          "    default_tap = 0;\n"
-          "    case (window)\n";
-    for (int window = fx::kMinWindow; window <= fx::kMaxWindow; window += 2) {
+    // tie the kernel configuration to constants: one table, window w = 2k + 1 from entry k * k
+    // (the windows before it hold 1 + 3 + ... + (2k - 1) = k * k taps), entry 0 in the low bits.
+    static_assert(fx::kMinWindow == 1 && fx::kMaxWindow % 2 == 1, "the table starts at window 1");
+    constexpr int kTapEntries = (fx::kMaxWindow / 2 + 1) * (fx::kMaxWindow / 2 + 1);
+    sv << "\n  // Tap i (0 .. window-1) of the default kernel (sigma = " << fx::kDefaultSigma
+       << ") of every odd window\n"
+          "  // 1 .. "
+       << fx::kMaxWindow
+       << ": window 2k + 1 starts at entry k * k; the last line holds entry 0.\n"
+          "  localparam int DEFAULT_TAP_ENTRIES = "
+       << kTapEntries
+       << ";\n"
+          "  localparam logic [DEFAULT_TAP_ENTRIES*TAP_BITS-1:0] DEFAULT_TAPS = {";
+    for (int window = fx::kMaxWindow; window >= fx::kMinWindow; window -= 2) {
         const auto taps = stereo::gaussian_kernel(window, fx::kDefaultSigma);
-        sv << "      " << window << ": case (i)";
-        for (int i = 0; i < window; ++i) {
-            sv << (i % 8 == 0 ? "\n        " : " ") << i << ": default_tap = " << taps[i] << ';';
+        sv << "\n      ";
+        for (int i = window - 1; i >= 0; --i) {
+            sv << fx::kKernelBits + 1 << "'d" << taps[static_cast<std::size_t>(i)]
+               << (i > 0 ? ", " : "");
         }
-        sv << "\n        default: default_tap = 0;\n      endcase\n";
+        sv << (window > fx::kMinWindow ? "," : "") << "  // window " << window;
     }
-    sv << "      default: default_tap = 0;\n    endcase\n  endfunction\n";
+    sv << "\n  };\n"
+          "  function automatic int default_tap(input int window, input int i);\n"
+          "    if (window < 1 || window > "
+       << fx::kMaxWindow
+       << " || window % 2 == 0 || i < 0 || i >= window) default_tap = 0;\n"
+          "    else default_tap = 32'(DEFAULT_TAPS[((window / 2) * (window / 2) + i) * TAP_BITS +: "
+          "TAP_BITS]);\n"
+          "  endfunction\n";
     sv << lcdm_section();
     sv << "  /* verilator lint_on UNUSEDPARAM */\n\nendpackage\n\n"
           "`default_nettype wire\n";
@@ -347,6 +362,9 @@ std::string fusesoc_text() {
         << "      - rtl/" << stereo::table::kPackageFile << "\n";
     for (const auto module : stereo::table::kRtlModules) {
         out << "      - rtl/" << module << ".sv\n";
+    }
+    for (const auto include : stereo::table::kRtlIncludes) {
+        out << "      - rtl/" << include << ": {is_include_file: true}\n";
     }
     out << "    file_type: systemVerilogSource\n"
            "  arty_a7:\n    files:\n      - scripts/synth/boards/arty_a7_100t.xdc:\n"
