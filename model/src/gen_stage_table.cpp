@@ -261,21 +261,16 @@ std::vector<std::pair<std::string, int>> assignments(const stereo::table::Params
 std::string cmake_text() {
     std::ostringstream out;
     out << "# " << kHeader << ".\n"
-        << "# sim/CMakeLists.txt calls stereo_verilate for each; STEREO_VERILATED_<prefix>_OPTION"
-           " names\n# the CMake option that must be ON (empty: always built).\n"
-        << "set(STEREO_VERILATED_CONFIGS";
+        << "# stereo_verilated_config(PREFIX TOP OPTION PARAMETER=VALUE...) (sim/CMakeLists.txt)\n"
+           "# records one configuration; OPTION names the CMake option that must be ON (empty:\n"
+           "# always built).\n";
     for (const auto& config : stereo::table::kVerilatedConfigs) {
-        out << ' ' << config.prefix;
-    }
-    out << ")\n";
-    for (const auto& config : stereo::table::kVerilatedConfigs) {
-        out << "set(STEREO_VERILATED_" << config.prefix << "_TOP " << config.top << ")\n"
-            << "set(STEREO_VERILATED_" << config.prefix << "_PARAMETERS";
+        out << "stereo_verilated_config(" << config.prefix << ' ' << config.top << " \""
+            << config.option << '"';
         for (const auto& [name, value] : assignments(config.params)) {
             out << ' ' << name << '=' << value;
         }
-        out << ")\nset(STEREO_VERILATED_" << config.prefix << "_OPTION \"" << config.option
-            << "\")\n";
+        out << ")\n";
     }
     return out.str();
 }
