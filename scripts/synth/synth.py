@@ -1091,18 +1091,23 @@ def add_config_arguments(parser, width=64, height=48, ndisp=4, window=5):
     parser.add_argument("--out", help="JSON report file (default: stdout)")
 
 
+def add_ice40_arguments(parser, device):
+    """The place-and-route options of the ice40 and fit commands."""
+    parser.add_argument("--device", choices=sorted(ICE40_DEVICES), default=device)
+    parser.add_argument("--freq", type=float, default=30.0, help="target MHz for nextpnr")
+    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--dsp", action="store_true", help="map multipliers to SB_MAC16")
+    parser.add_argument("--max-min-disp", type=int, default=None,
+                        help="stereo_top MAX_MIN_DISP (default: the RTL's default)")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True)
     ice40 = sub.add_parser("ice40", help="synth_ice40 + nextpnr-ice40")
     add_config_arguments(ice40)
-    ice40.add_argument("--device", choices=sorted(ICE40_DEVICES), default="up5k")
-    ice40.add_argument("--freq", type=float, default=30.0, help="target MHz for nextpnr")
-    ice40.add_argument("--seed", type=int, default=1)
-    ice40.add_argument("--dsp", action="store_true", help="map multipliers to SB_MAC16")
-    ice40.add_argument("--max-min-disp", type=int, default=None,
-                       help="stereo_top MAX_MIN_DISP (default: the RTL's default)")
+    add_ice40_arguments(ice40, device="up5k")
     ice40.add_argument("--no-pnr", action="store_true", help="synthesis only")
     ice40.set_defaults(handler=command_ice40)
     board = sub.add_parser("board", help="iCEBreaker: stereo_board_top to a flashable .bin")
@@ -1127,12 +1132,7 @@ def main():
     board.set_defaults(handler=command_board)
     fit = sub.add_parser("fit", help="most disparities that place and route on an iCE40")
     add_config_arguments(fit, ndisp=1)
-    fit.add_argument("--device", choices=sorted(ICE40_DEVICES), default="hx8k")
-    fit.add_argument("--freq", type=float, default=30.0, help="target MHz for nextpnr")
-    fit.add_argument("--seed", type=int, default=1)
-    fit.add_argument("--dsp", action="store_true", help="map multipliers to SB_MAC16")
-    fit.add_argument("--max-min-disp", type=int, default=None,
-                       help="stereo_top MAX_MIN_DISP (default: the RTL's default)")
+    add_ice40_arguments(fit, device="hx8k")
     fit.add_argument("--max-ndisp", type=int, default=16)
     fit.set_defaults(handler=command_fit, no_pnr=False)
     est = sub.add_parser("estimate", help="synth_xilinx / synth_ecp5 resource estimate")
