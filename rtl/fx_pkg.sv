@@ -60,6 +60,21 @@ package fx_pkg;
   typedef logic signed [CFG_MIN_DISP_BITS-1:0] cfg_min_disp_t;
   typedef logic [CFG_UNIQUENESS_BITS-1:0] cfg_uniqueness_t;
   typedef logic [CFG_LR_TOLERANCE_BITS-1:0] cfg_lr_tolerance_t;
+  // The run-time configuration but the kernel, as stereo_top holds it (clamped to its
+  // parameters, latched at the start of a frame).
+  typedef struct packed {
+    cfg_size_t width;
+    cfg_size_t height;
+    cfg_ndisp_t ndisp;
+    cfg_radius_t radius;
+    logic use_ca;
+    cfg_min_disp_t min_disp;
+    logic uniqueness_en;
+    cfg_uniqueness_t uniqueness;
+    logic lr_en;
+    cfg_lr_tolerance_t lr_tolerance;
+    logic subpixel_en;
+  } config_t;
   localparam int RGB_BITS = 24;  // one RGB pixel
   localparam int IN_BEAT_BITS = 48;  // s_axis_tdata = {right RGB, left RGB}
   localparam int IN_LEFT_LSB = 0;

@@ -91,28 +91,15 @@ module stereo_top #(
 
   // The run-time configuration as the stages see it: the ports, each clamped to what the
   // parameters support (port_cfg), latched when the frame starts (frame_cfg).
-  typedef struct packed {
-    fx_pkg::cfg_size_t width;
-    fx_pkg::cfg_size_t height;
-    fx_pkg::cfg_ndisp_t ndisp;
-    fx_pkg::cfg_radius_t radius;
-    logic [WINDOW*fx_pkg::TAP_BITS-1:0] kernel;
-    logic use_ca;
-    fx_pkg::cfg_min_disp_t min_disp;
-    logic uniqueness_en;
-    fx_pkg::cfg_uniqueness_t uniqueness;
-    logic lr_en;
-    fx_pkg::cfg_lr_tolerance_t lr_tolerance;
-    logic subpixel_en;
-  } config_t;
-  config_t port_cfg, frame_cfg;
+  // The kernel beside it (its width depends on WINDOW): cfg_kernel and frame_kernel.
+  fx_pkg::config_t port_cfg, frame_cfg;
+  logic [WINDOW*fx_pkg::TAP_BITS-1:0] frame_kernel, use_kernel;
   logic port_cfg_error;
   always_comb begin
     port_cfg.width = cfg_width;
     port_cfg.height = cfg_height;
     port_cfg.ndisp = cfg_ndisp;
     port_cfg.radius = cfg_radius;
-    port_cfg.kernel = cfg_kernel;
     port_cfg.use_ca = cfg_use_ca;
     port_cfg.min_disp = cfg_min_disp;
     port_cfg.uniqueness_en = cfg_uniqueness_en;
@@ -152,9 +139,10 @@ module stereo_top #(
   // constant for the stages (the one-label core: cfg_ndisp is 1; MAX_MIN_DISP = 0: cfg_min_disp
   // is 0), so no multiplexer from the frame state runs in front of their logic (the one-label
   // iCE40 core's critical path). The clamps and the status bit still see the ports.
-  config_t use_cfg;
+  fx_pkg::config_t use_cfg;
   always_comb begin
     use_cfg = (state == IDLE) ? port_cfg : frame_cfg;
+    use_kernel = (state == IDLE) ? cfg_kernel : frame_kernel;
     if (NDISP == 1) use_cfg.ndisp = fx_pkg::CFG_NDISP_BITS'(1);
     if (MAX_MIN_DISP == 0) use_cfg.min_disp = '0;
   end
@@ -262,6 +250,7 @@ module stereo_top #(
       if (step) begin
         if (state == IDLE) begin
           frame_cfg <= port_cfg;
+          frame_kernel <= cfg_kernel;
           if (port_cfg_error) status[fx_pkg::STATUS_CONFIG_CLAMPED] <= 1'b1;
         end
         if (state != FLUSH) begin
@@ -348,7 +337,7 @@ module stereo_top #(
       .in_data(cost_data),
       .cfg_width(use_cfg.width),
       .cfg_height(use_cfg.height),
-      .cfg_kernel(use_cfg.kernel),
+      .cfg_kernel(use_kernel),
       .out_x(agg_x),
       .out_y(agg_y),
       .out_data(agg_data)
