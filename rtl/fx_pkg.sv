@@ -60,6 +60,21 @@ package fx_pkg;
   typedef logic signed [CFG_MIN_DISP_BITS-1:0] cfg_min_disp_t;
   typedef logic [CFG_UNIQUENESS_BITS-1:0] cfg_uniqueness_t;
   typedef logic [CFG_LR_TOLERANCE_BITS-1:0] cfg_lr_tolerance_t;
+  // The run-time configuration but the kernel, as stereo_top holds it (clamped to its
+  // parameters, latched at the start of a frame).
+  typedef struct packed {
+    cfg_size_t width;
+    cfg_size_t height;
+    cfg_ndisp_t ndisp;
+    cfg_radius_t radius;
+    logic use_ca;
+    cfg_min_disp_t min_disp;
+    logic uniqueness_en;
+    cfg_uniqueness_t uniqueness;
+    logic lr_en;
+    cfg_lr_tolerance_t lr_tolerance;
+    logic subpixel_en;
+  } config_t;
   localparam int RGB_BITS = 24;  // one RGB pixel
   localparam int IN_BEAT_BITS = 48;  // s_axis_tdata = {right RGB, left RGB}
   localparam int IN_LEFT_LSB = 0;
@@ -89,100 +104,30 @@ package fx_pkg;
              twice_neighbour < centre_wide + {1'b0, centre, 1'b0};
   endfunction
 
-  // Tap i (0 .. window-1) of the default kernel, sigma = 3.
+  // Tap i (0 .. window-1) of the default kernel (sigma = 3) of every odd window
+  // 1 .. 31: window 2k + 1 starts at entry k * k; the last line holds entry 0.
+  localparam int DEFAULT_TAP_ENTRIES = 256;
+  localparam logic [DEFAULT_TAP_ENTRIES*TAP_BITS-1:0] DEFAULT_TAPS = {
+      9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd1, 9'd2, 9'd5, 9'd9, 9'd14, 9'd21, 9'd27, 9'd32, 9'd34, 9'd32, 9'd27, 9'd21, 9'd14, 9'd9, 9'd5, 9'd2, 9'd1, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0,  // window 31
+      9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd1, 9'd2, 9'd5, 9'd9, 9'd14, 9'd21, 9'd27, 9'd32, 9'd34, 9'd32, 9'd27, 9'd21, 9'd14, 9'd9, 9'd5, 9'd2, 9'd1, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0,  // window 29
+      9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd1, 9'd2, 9'd5, 9'd9, 9'd14, 9'd21, 9'd27, 9'd32, 9'd34, 9'd32, 9'd27, 9'd21, 9'd14, 9'd9, 9'd5, 9'd2, 9'd1, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0,  // window 27
+      9'd0, 9'd0, 9'd0, 9'd0, 9'd1, 9'd2, 9'd5, 9'd9, 9'd14, 9'd21, 9'd27, 9'd32, 9'd34, 9'd32, 9'd27, 9'd21, 9'd14, 9'd9, 9'd5, 9'd2, 9'd1, 9'd0, 9'd0, 9'd0, 9'd0,  // window 25
+      9'd0, 9'd0, 9'd0, 9'd1, 9'd2, 9'd5, 9'd9, 9'd14, 9'd21, 9'd27, 9'd32, 9'd34, 9'd32, 9'd27, 9'd21, 9'd14, 9'd9, 9'd5, 9'd2, 9'd1, 9'd0, 9'd0, 9'd0,  // window 23
+      9'd0, 9'd0, 9'd1, 9'd2, 9'd5, 9'd9, 9'd14, 9'd21, 9'd27, 9'd32, 9'd34, 9'd32, 9'd27, 9'd21, 9'd14, 9'd9, 9'd5, 9'd2, 9'd1, 9'd0, 9'd0,  // window 21
+      9'd0, 9'd1, 9'd2, 9'd5, 9'd9, 9'd14, 9'd21, 9'd27, 9'd32, 9'd34, 9'd32, 9'd27, 9'd21, 9'd14, 9'd9, 9'd5, 9'd2, 9'd1, 9'd0,  // window 19
+      9'd1, 9'd2, 9'd5, 9'd9, 9'd14, 9'd21, 9'd27, 9'd32, 9'd34, 9'd32, 9'd27, 9'd21, 9'd14, 9'd9, 9'd5, 9'd2, 9'd1,  // window 17
+      9'd2, 9'd5, 9'd9, 9'd14, 9'd21, 9'd28, 9'd32, 9'd34, 9'd32, 9'd28, 9'd21, 9'd14, 9'd9, 9'd5, 9'd2,  // window 15
+      9'd5, 9'd9, 9'd15, 9'd21, 9'd28, 9'd33, 9'd34, 9'd33, 9'd28, 9'd21, 9'd15, 9'd9, 9'd5,  // window 13
+      9'd9, 9'd15, 9'd22, 9'd29, 9'd35, 9'd36, 9'd35, 9'd29, 9'd22, 9'd15, 9'd9,  // window 11
+      9'd16, 9'd24, 9'd32, 9'd37, 9'd38, 9'd37, 9'd32, 9'd24, 9'd16,  // window 9
+      9'd27, 9'd36, 9'd43, 9'd44, 9'd43, 9'd36, 9'd27,  // window 7
+      9'd46, 9'd54, 9'd56, 9'd54, 9'd46,  // window 5
+      9'd84, 9'd88, 9'd84,  // window 3
+      9'd256  // window 1
+  };
   function automatic int default_tap(input int window, input int i);
-    default_tap = 0;
-    case (window)
-      1: case (i)
-        0: default_tap = 256;
-        default: default_tap = 0;
-      endcase
-      3: case (i)
-        0: default_tap = 84; 1: default_tap = 88; 2: default_tap = 84;
-        default: default_tap = 0;
-      endcase
-      5: case (i)
-        0: default_tap = 46; 1: default_tap = 54; 2: default_tap = 56; 3: default_tap = 54; 4: default_tap = 46;
-        default: default_tap = 0;
-      endcase
-      7: case (i)
-        0: default_tap = 27; 1: default_tap = 36; 2: default_tap = 43; 3: default_tap = 44; 4: default_tap = 43; 5: default_tap = 36; 6: default_tap = 27;
-        default: default_tap = 0;
-      endcase
-      9: case (i)
-        0: default_tap = 16; 1: default_tap = 24; 2: default_tap = 32; 3: default_tap = 37; 4: default_tap = 38; 5: default_tap = 37; 6: default_tap = 32; 7: default_tap = 24;
-        8: default_tap = 16;
-        default: default_tap = 0;
-      endcase
-      11: case (i)
-        0: default_tap = 9; 1: default_tap = 15; 2: default_tap = 22; 3: default_tap = 29; 4: default_tap = 35; 5: default_tap = 36; 6: default_tap = 35; 7: default_tap = 29;
-        8: default_tap = 22; 9: default_tap = 15; 10: default_tap = 9;
-        default: default_tap = 0;
-      endcase
-      13: case (i)
-        0: default_tap = 5; 1: default_tap = 9; 2: default_tap = 15; 3: default_tap = 21; 4: default_tap = 28; 5: default_tap = 33; 6: default_tap = 34; 7: default_tap = 33;
-        8: default_tap = 28; 9: default_tap = 21; 10: default_tap = 15; 11: default_tap = 9; 12: default_tap = 5;
-        default: default_tap = 0;
-      endcase
-      15: case (i)
-        0: default_tap = 2; 1: default_tap = 5; 2: default_tap = 9; 3: default_tap = 14; 4: default_tap = 21; 5: default_tap = 28; 6: default_tap = 32; 7: default_tap = 34;
-        8: default_tap = 32; 9: default_tap = 28; 10: default_tap = 21; 11: default_tap = 14; 12: default_tap = 9; 13: default_tap = 5; 14: default_tap = 2;
-        default: default_tap = 0;
-      endcase
-      17: case (i)
-        0: default_tap = 1; 1: default_tap = 2; 2: default_tap = 5; 3: default_tap = 9; 4: default_tap = 14; 5: default_tap = 21; 6: default_tap = 27; 7: default_tap = 32;
-        8: default_tap = 34; 9: default_tap = 32; 10: default_tap = 27; 11: default_tap = 21; 12: default_tap = 14; 13: default_tap = 9; 14: default_tap = 5; 15: default_tap = 2;
-        16: default_tap = 1;
-        default: default_tap = 0;
-      endcase
-      19: case (i)
-        0: default_tap = 0; 1: default_tap = 1; 2: default_tap = 2; 3: default_tap = 5; 4: default_tap = 9; 5: default_tap = 14; 6: default_tap = 21; 7: default_tap = 27;
-        8: default_tap = 32; 9: default_tap = 34; 10: default_tap = 32; 11: default_tap = 27; 12: default_tap = 21; 13: default_tap = 14; 14: default_tap = 9; 15: default_tap = 5;
-        16: default_tap = 2; 17: default_tap = 1; 18: default_tap = 0;
-        default: default_tap = 0;
-      endcase
-      21: case (i)
-        0: default_tap = 0; 1: default_tap = 0; 2: default_tap = 1; 3: default_tap = 2; 4: default_tap = 5; 5: default_tap = 9; 6: default_tap = 14; 7: default_tap = 21;
-        8: default_tap = 27; 9: default_tap = 32; 10: default_tap = 34; 11: default_tap = 32; 12: default_tap = 27; 13: default_tap = 21; 14: default_tap = 14; 15: default_tap = 9;
-        16: default_tap = 5; 17: default_tap = 2; 18: default_tap = 1; 19: default_tap = 0; 20: default_tap = 0;
-        default: default_tap = 0;
-      endcase
-      23: case (i)
-        0: default_tap = 0; 1: default_tap = 0; 2: default_tap = 0; 3: default_tap = 1; 4: default_tap = 2; 5: default_tap = 5; 6: default_tap = 9; 7: default_tap = 14;
-        8: default_tap = 21; 9: default_tap = 27; 10: default_tap = 32; 11: default_tap = 34; 12: default_tap = 32; 13: default_tap = 27; 14: default_tap = 21; 15: default_tap = 14;
-        16: default_tap = 9; 17: default_tap = 5; 18: default_tap = 2; 19: default_tap = 1; 20: default_tap = 0; 21: default_tap = 0; 22: default_tap = 0;
-        default: default_tap = 0;
-      endcase
-      25: case (i)
-        0: default_tap = 0; 1: default_tap = 0; 2: default_tap = 0; 3: default_tap = 0; 4: default_tap = 1; 5: default_tap = 2; 6: default_tap = 5; 7: default_tap = 9;
-        8: default_tap = 14; 9: default_tap = 21; 10: default_tap = 27; 11: default_tap = 32; 12: default_tap = 34; 13: default_tap = 32; 14: default_tap = 27; 15: default_tap = 21;
-        16: default_tap = 14; 17: default_tap = 9; 18: default_tap = 5; 19: default_tap = 2; 20: default_tap = 1; 21: default_tap = 0; 22: default_tap = 0; 23: default_tap = 0;
-        24: default_tap = 0;
-        default: default_tap = 0;
-      endcase
-      27: case (i)
-        0: default_tap = 0; 1: default_tap = 0; 2: default_tap = 0; 3: default_tap = 0; 4: default_tap = 0; 5: default_tap = 1; 6: default_tap = 2; 7: default_tap = 5;
-        8: default_tap = 9; 9: default_tap = 14; 10: default_tap = 21; 11: default_tap = 27; 12: default_tap = 32; 13: default_tap = 34; 14: default_tap = 32; 15: default_tap = 27;
-        16: default_tap = 21; 17: default_tap = 14; 18: default_tap = 9; 19: default_tap = 5; 20: default_tap = 2; 21: default_tap = 1; 22: default_tap = 0; 23: default_tap = 0;
-        24: default_tap = 0; 25: default_tap = 0; 26: default_tap = 0;
-        default: default_tap = 0;
-      endcase
-      29: case (i)
-        0: default_tap = 0; 1: default_tap = 0; 2: default_tap = 0; 3: default_tap = 0; 4: default_tap = 0; 5: default_tap = 0; 6: default_tap = 1; 7: default_tap = 2;
-        8: default_tap = 5; 9: default_tap = 9; 10: default_tap = 14; 11: default_tap = 21; 12: default_tap = 27; 13: default_tap = 32; 14: default_tap = 34; 15: default_tap = 32;
-        16: default_tap = 27; 17: default_tap = 21; 18: default_tap = 14; 19: default_tap = 9; 20: default_tap = 5; 21: default_tap = 2; 22: default_tap = 1; 23: default_tap = 0;
-        24: default_tap = 0; 25: default_tap = 0; 26: default_tap = 0; 27: default_tap = 0; 28: default_tap = 0;
-        default: default_tap = 0;
-      endcase
-      31: case (i)
-        0: default_tap = 0; 1: default_tap = 0; 2: default_tap = 0; 3: default_tap = 0; 4: default_tap = 0; 5: default_tap = 0; 6: default_tap = 0; 7: default_tap = 1;
-        8: default_tap = 2; 9: default_tap = 5; 10: default_tap = 9; 11: default_tap = 14; 12: default_tap = 21; 13: default_tap = 27; 14: default_tap = 32; 15: default_tap = 34;
-        16: default_tap = 32; 17: default_tap = 27; 18: default_tap = 21; 19: default_tap = 14; 20: default_tap = 9; 21: default_tap = 5; 22: default_tap = 2; 23: default_tap = 1;
-        24: default_tap = 0; 25: default_tap = 0; 26: default_tap = 0; 27: default_tap = 0; 28: default_tap = 0; 29: default_tap = 0; 30: default_tap = 0;
-        default: default_tap = 0;
-      endcase
-      default: default_tap = 0;
-    endcase
+    if (window < 1 || window > 31 || window % 2 == 0 || i < 0 || i >= window) default_tap = 0;
+    else default_tap = 32'(DEFAULT_TAPS[((window / 2) * (window / 2) + i) * TAP_BITS +: TAP_BITS]);
   endfunction
 
   // ---- LCDM cost (model/include/stereo/stages/lcdm.hpp) ----

@@ -32,14 +32,7 @@ module stereo_aggregate #(
     parameter bit RING_BLOCK_RAM = 1'b0,  // stereo_group_ring BLOCK_RAM (stereo_top)
     parameter int RING_BLOCK_MIN_FILL = 50  // stereo_group_ring BLOCK_MIN_FILL
 ) (
-    input  wire logic                               clk,
-    input  wire logic                               rst,  // clears coordinates only
-    input  wire logic                               ce,   // the pixel step (at group G-1)
-    /* verilator lint_off UNUSEDSIGNAL */  // LANES = NDISP: always 0
-    input  wire logic [((NDISP / LANES > 1) ? $clog2(NDISP / LANES) : 1)-1:0] group,
-    /* verilator lint_on UNUSEDSIGNAL */
-    input  wire fx_pkg::coord_t                     in_x,
-    input  wire fx_pkg::coord_t                     in_y,
+`include "stereo_stage_ports.svh"
     // The in_y of the next step (stereo_top: stereo_cost's out_next_y, what its coordinate
     // register takes at this ce): the row flags are computed from it and registered.
     input  wire fx_pkg::coord_t                     in_next_y,
@@ -294,20 +287,8 @@ module stereo_aggregate #(
 
   // G > 1: the group goes on as computed (the consumer's input ring registers it); G = 1: the
   // output register.
-  generate
-    if (GROUPS > 1) begin : g_group_out
-      assign out_data = aggregate_d;
-    end else begin : g_register_out
-      always_ff @(posedge clk) begin
-        if (ce) out_data <= aggregate_d;
-      end
-    end
-  endgenerate
-  stereo_coord_reg coordinates (
-      .in_x(centre_x),
-      .in_y(centre_y),
-      .*
-  );
+  stereo_stage_output #(.BITS(LANES * AGG_BITS), .REGISTERED(GROUPS == 1)) outputs (
+      .in_x(centre_x), .in_y(centre_y), .in_data(aggregate_d), .*);
 endmodule
 
 `default_nettype wire

@@ -58,16 +58,7 @@ module stereo_axil_top #(
     output      logic                            s_axil_rvalid,
     input  wire logic                            s_axil_rready,
     // Video in and out: stereo_top's streams.
-    input  wire logic [fx_pkg::IN_BEAT_BITS-1:0] s_axis_tdata,
-    input  wire logic                            s_axis_tvalid,
-    output      logic                            s_axis_tready,
-    input  wire logic                            s_axis_tlast,
-    input  wire logic                            s_axis_tuser,
-    output      fx_pkg::out_beat_t               m_axis_tdata,
-    output      logic                            m_axis_tvalid,
-    input  wire logic                            m_axis_tready,
-    output      logic                            m_axis_tlast,
-    output      logic                            m_axis_tuser
+`include "stereo_stream_ports.svh"
 );
   localparam int R = WINDOW / 2;
   localparam int TAP_BITS = fx_pkg::TAP_BITS;
@@ -81,15 +72,15 @@ module stereo_axil_top #(
   end
 
   // ---- registers ------------------------------------------------------------------------------
-  fx_pkg::cfg_size_t reg_width, reg_height;
-  fx_pkg::cfg_ndisp_t reg_ndisp;
-  fx_pkg::cfg_radius_t reg_radius;
-  logic reg_use_ca;
-  fx_pkg::cfg_min_disp_t reg_min_disp;
-  logic reg_uniqueness_en, reg_lr_en, reg_subpixel_en;
-  fx_pkg::cfg_uniqueness_t reg_uniqueness;
-  fx_pkg::cfg_lr_tolerance_t reg_lr_tolerance;
-  logic [WINDOW*TAP_BITS-1:0] reg_kernel;
+  fx_pkg::cfg_size_t cfg_width, cfg_height;
+  fx_pkg::cfg_ndisp_t cfg_ndisp;
+  fx_pkg::cfg_radius_t cfg_radius;
+  logic cfg_use_ca;
+  fx_pkg::cfg_min_disp_t cfg_min_disp;
+  logic cfg_uniqueness_en, cfg_lr_en, cfg_subpixel_en;
+  fx_pkg::cfg_uniqueness_t cfg_uniqueness;
+  fx_pkg::cfg_lr_tolerance_t cfg_lr_tolerance;
+  logic [WINDOW*TAP_BITS-1:0] cfg_kernel;
   logic [31:0] frames_in, frames_out, stalls;
   logic soft_reset;
   logic [fx_pkg::STATUS_BITS-1:0] core_status;
@@ -142,13 +133,13 @@ module stereo_axil_top #(
       register_word = {
         4'b0, 1'(COST), RUNTIME_KERNEL, 12'(MAX_MIN_DISP), 5'(R), 9'(NDISP)
       };
-      'h10: register_word = {reg_height, reg_width};
-      'h14: register_word = {7'b0, reg_use_ca, 3'b0, reg_radius, 7'b0, reg_ndisp};
+      'h10: register_word = {cfg_height, cfg_width};
+      'h14: register_word = {7'b0, cfg_use_ca, 3'b0, cfg_radius, 7'b0, cfg_ndisp};
       'h18:
       register_word = {
-        17'b0, reg_subpixel_en, reg_lr_en, reg_uniqueness_en, reg_min_disp
+        17'b0, cfg_subpixel_en, cfg_lr_en, cfg_uniqueness_en, cfg_min_disp
       };
-      'h1C: register_word = {16'b0, reg_lr_tolerance, reg_uniqueness};
+      'h1C: register_word = {16'b0, cfg_lr_tolerance, cfg_uniqueness};
       'h20: register_word = 32'(core_status);
       'h28: register_word = frames_in;
       'h2C: register_word = frames_out;
@@ -156,7 +147,7 @@ module stereo_axil_top #(
       default: begin
         for (int i = 0; i < WINDOW; i++) begin
           if (32'(word) == KERNEL_BASE + 4 * i) begin
-            register_word = 32'(reg_kernel[i*TAP_BITS+:TAP_BITS]);
+            register_word = 32'(cfg_kernel[i*TAP_BITS+:TAP_BITS]);
           end
         end
       end
@@ -180,18 +171,18 @@ module stereo_axil_top #(
       write_addr <= '0;
       write_data <= '0;
       write_strobe <= '0;
-      reg_width <= fx_pkg::CFG_SIZE_BITS'(WIDTH);
-      reg_height <= fx_pkg::CFG_SIZE_BITS'(HEIGHT);
-      reg_ndisp <= fx_pkg::CFG_NDISP_BITS'(NDISP);
-      reg_radius <= fx_pkg::CFG_RADIUS_BITS'(R);
-      reg_use_ca <= 1'b1;
-      reg_min_disp <= '0;
-      reg_uniqueness_en <= 1'b0;
-      reg_lr_en <= 1'b0;
-      reg_subpixel_en <= 1'b0;
-      reg_uniqueness <= fx_pkg::CFG_UNIQUENESS_BITS'(20);
-      reg_lr_tolerance <= '0;
-      reg_kernel <= default_kernel();
+      cfg_width <= fx_pkg::CFG_SIZE_BITS'(WIDTH);
+      cfg_height <= fx_pkg::CFG_SIZE_BITS'(HEIGHT);
+      cfg_ndisp <= fx_pkg::CFG_NDISP_BITS'(NDISP);
+      cfg_radius <= fx_pkg::CFG_RADIUS_BITS'(R);
+      cfg_use_ca <= 1'b1;
+      cfg_min_disp <= '0;
+      cfg_uniqueness_en <= 1'b0;
+      cfg_lr_en <= 1'b0;
+      cfg_subpixel_en <= 1'b0;
+      cfg_uniqueness <= fx_pkg::CFG_UNIQUENESS_BITS'(20);
+      cfg_lr_tolerance <= '0;
+      cfg_kernel <= default_kernel();
     end else begin
       if (s_axil_bvalid && s_axil_bready) s_axil_bvalid <= 1'b0;
       if (write_now) begin
@@ -200,27 +191,27 @@ module stereo_axil_top #(
         s_axil_bvalid <= 1'b1;
         begin
           case (32'(write_word))
-            'h10: {reg_height, reg_width} <= write_value;
+            'h10: {cfg_height, cfg_width} <= write_value;
             'h14: begin
-              reg_ndisp <= write_value[8:0];
-              reg_radius <= write_value[20:16];
-              reg_use_ca <= write_value[24];
+              cfg_ndisp <= write_value[8:0];
+              cfg_radius <= write_value[20:16];
+              cfg_use_ca <= write_value[24];
             end
             'h18: begin
-              reg_min_disp <= write_value[11:0];
-              reg_uniqueness_en <= write_value[12];
-              reg_lr_en <= write_value[13];
-              reg_subpixel_en <= write_value[14];
+              cfg_min_disp <= write_value[11:0];
+              cfg_uniqueness_en <= write_value[12];
+              cfg_lr_en <= write_value[13];
+              cfg_subpixel_en <= write_value[14];
             end
             'h1C: begin
-              reg_uniqueness <= write_value[7:0];
-              reg_lr_tolerance <= write_value[15:8];
+              cfg_uniqueness <= write_value[7:0];
+              cfg_lr_tolerance <= write_value[15:8];
             end
             'h24: soft_reset <= write_strobe_now[0] && write_data_now[0];
             default: begin
               for (int i = 0; i < WINDOW; i++) begin
                 if (32'(write_word) == KERNEL_BASE + 4 * i) begin
-                  reg_kernel[i*TAP_BITS+:TAP_BITS] <= write_value[TAP_BITS-1:0];
+                  cfg_kernel[i*TAP_BITS+:TAP_BITS] <= write_value[TAP_BITS-1:0];
                 end
               end
             end
@@ -270,40 +261,12 @@ module stereo_axil_top #(
 
   // ---- the core -------------------------------------------------------------------------------
   stereo_top #(
-      .WIDTH(WIDTH),
-      .HEIGHT(HEIGHT),
-      .NDISP(NDISP),
-      .WINDOW(WINDOW),
-      .RUNTIME_KERNEL(RUNTIME_KERNEL),
-      .MAX_MIN_DISP(MAX_MIN_DISP),
-      .COST(COST),
-      .LANES(LANES)
+      .WIDTH(WIDTH), .HEIGHT(HEIGHT), .NDISP(NDISP), .WINDOW(WINDOW),
+      .RUNTIME_KERNEL(RUNTIME_KERNEL), .MAX_MIN_DISP(MAX_MIN_DISP), .COST(COST), .LANES(LANES)
   ) core (
-      .clk(clk),
       .rst(rst || soft_reset),
-      .cfg_width(reg_width),
-      .cfg_height(reg_height),
-      .cfg_ndisp(reg_ndisp),
-      .cfg_radius(reg_radius),
-      .cfg_kernel(reg_kernel),
-      .cfg_use_ca(reg_use_ca),
-      .cfg_min_disp(reg_min_disp),
-      .cfg_uniqueness_en(reg_uniqueness_en),
-      .cfg_uniqueness(reg_uniqueness),
-      .cfg_lr_en(reg_lr_en),
-      .cfg_lr_tolerance(reg_lr_tolerance),
-      .cfg_subpixel_en(reg_subpixel_en),
-      .s_axis_tdata(s_axis_tdata),
-      .s_axis_tvalid(s_axis_tvalid),
-      .s_axis_tready(s_axis_tready),
-      .s_axis_tlast(s_axis_tlast),
-      .s_axis_tuser(s_axis_tuser),
-      .m_axis_tdata(m_axis_tdata),
-      .m_axis_tvalid(m_axis_tvalid),
-      .m_axis_tready(m_axis_tready),
-      .m_axis_tlast(m_axis_tlast),
-      .m_axis_tuser(m_axis_tuser),
-      .status(core_status)
+      .status(core_status),
+      .*  // every other port: the signal of the same name
   );
 endmodule
 

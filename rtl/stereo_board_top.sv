@@ -103,35 +103,25 @@ module stereo_board_top #(
       .CLKS_PER_BIT(CLKS_PER_BIT),
       .POR_BITS(POR_BITS)
   ) link (
-      .clk(clk),
-      .button_n(button_n),
-      .uart_rx(uart_rx),
-      .uart_tx(uart_tx),
-      .rst(rst),
-      .rx_data(rx_data),
-      .rx_valid(rx_valid),
-      .rx_framing_error(rx_framing_error),
-      .tx_data(tx_data),
-      .tx_valid(tx_valid),
-      .tx_ready(tx_ready)
+      .*
   );
 
   // ---- configuration registers (reset: the largest frame, all labels, CA on, stage 6 off) -----
-  fx_pkg::cfg_size_t reg_width, reg_height;
-  fx_pkg::cfg_ndisp_t reg_ndisp;
-  fx_pkg::cfg_radius_t reg_radius;
-  logic reg_use_ca, reg_uniqueness_en, reg_lr_en, reg_subpixel_en;
-  fx_pkg::cfg_min_disp_t reg_min_disp;
-  fx_pkg::cfg_uniqueness_t reg_uniqueness;
-  fx_pkg::cfg_lr_tolerance_t reg_lr_tolerance;
+  fx_pkg::cfg_size_t cfg_width, cfg_height;
+  fx_pkg::cfg_ndisp_t cfg_ndisp;
+  fx_pkg::cfg_radius_t cfg_radius;
+  logic cfg_use_ca, cfg_uniqueness_en, cfg_lr_en, cfg_subpixel_en;
+  fx_pkg::cfg_min_disp_t cfg_min_disp;
+  fx_pkg::cfg_uniqueness_t cfg_uniqueness;
+  fx_pkg::cfg_lr_tolerance_t cfg_lr_tolerance;
 
   // The frame size the core will use: stereo_top's clamping of cfg_width / cfg_height.
   fx_pkg::cfg_size_t clamped_width, clamped_height;
   always_comb begin
-    clamped_width = reg_width;
-    clamped_height = reg_height;
-    if (reg_width == 0 || 32'(reg_width) > WIDTH) clamped_width = fx_pkg::CFG_SIZE_BITS'(WIDTH);
-    if (reg_height == 0 || 32'(reg_height) > HEIGHT) begin
+    clamped_width = cfg_width;
+    clamped_height = cfg_height;
+    if (cfg_width == 0 || 32'(cfg_width) > WIDTH) clamped_width = fx_pkg::CFG_SIZE_BITS'(WIDTH);
+    if (cfg_height == 0 || 32'(cfg_height) > HEIGHT) begin
       clamped_height = fx_pkg::CFG_SIZE_BITS'(HEIGHT);
     end
   end
@@ -163,8 +153,8 @@ module stereo_board_top #(
   logic protocol_error, framing_error, overrun;  // sticky
 
   // The input beat register: one pixel pair waiting for the core.
-  logic [fx_pkg::IN_BEAT_BITS-1:0] in_data;
-  logic in_valid, in_last, in_user, in_ready;
+  logic [fx_pkg::IN_BEAT_BITS-1:0] s_axis_tdata;
+  logic s_axis_tvalid, s_axis_tlast, s_axis_tuser, s_axis_tready;
   logic soft_reset;
   logic drained, reply_taken, reply_last;
 
@@ -196,29 +186,29 @@ module stereo_board_top #(
       protocol_error <= 1'b0;
       framing_error <= 1'b0;
       overrun <= 1'b0;
-      in_valid <= 1'b0;
-      in_data <= '0;
-      in_last <= 1'b0;
-      in_user <= 1'b0;
-      reg_width <= fx_pkg::CFG_SIZE_BITS'(WIDTH);
-      reg_height <= fx_pkg::CFG_SIZE_BITS'(HEIGHT);
-      reg_ndisp <= fx_pkg::CFG_NDISP_BITS'(NDISP);
-      reg_radius <= fx_pkg::CFG_RADIUS_BITS'(R);
-      reg_use_ca <= 1'b1;
-      reg_uniqueness_en <= 1'b0;
-      reg_lr_en <= 1'b0;
-      reg_subpixel_en <= 1'b0;
-      reg_min_disp <= '0;
-      reg_uniqueness <= fx_pkg::CFG_UNIQUENESS_BITS'(20);
-      reg_lr_tolerance <= '0;
+      s_axis_tvalid <= 1'b0;
+      s_axis_tdata <= '0;
+      s_axis_tlast <= 1'b0;
+      s_axis_tuser <= 1'b0;
+      cfg_width <= fx_pkg::CFG_SIZE_BITS'(WIDTH);
+      cfg_height <= fx_pkg::CFG_SIZE_BITS'(HEIGHT);
+      cfg_ndisp <= fx_pkg::CFG_NDISP_BITS'(NDISP);
+      cfg_radius <= fx_pkg::CFG_RADIUS_BITS'(R);
+      cfg_use_ca <= 1'b1;
+      cfg_uniqueness_en <= 1'b0;
+      cfg_lr_en <= 1'b0;
+      cfg_subpixel_en <= 1'b0;
+      cfg_min_disp <= '0;
+      cfg_uniqueness <= fx_pkg::CFG_UNIQUENESS_BITS'(20);
+      cfg_lr_tolerance <= '0;
     end else begin
-      if (in_valid && in_ready) in_valid <= 1'b0;
+      if (s_axis_tvalid && s_axis_tready) s_axis_tvalid <= 1'b0;
       if (timed_out) begin
         parse <= CMD_HEADER;
         protocol_error <= 1'b1;
       end
       if (soft_reset) begin
-        in_valid <= 1'b0;
+        s_axis_tvalid <= 1'b0;
         radius_clamped <= 1'b0;
         protocol_error <= 1'b0;
         framing_error <= 1'b0;
@@ -252,7 +242,7 @@ module stereo_board_top #(
                 pixel_x <= '0;
                 pixel_y <= '0;
                 byte_in_pixel <= '0;
-                if (32'(reg_radius) != R) radius_clamped <= 1'b1;
+                if (32'(cfg_radius) != R) radius_clamped <= 1'b1;
               end
               default: protocol_error <= 1'b1;
             endcase
@@ -260,23 +250,23 @@ module stereo_board_top #(
           CMD_CONFIG: begin
             config_index <= config_index + 1'b1;
             unique case (config_index)
-              4'd0: reg_width[7:0] <= rx_data;
-              4'd1: reg_width[15:8] <= rx_data;
-              4'd2: reg_height[7:0] <= rx_data;
-              4'd3: reg_height[15:8] <= rx_data;
-              4'd4: reg_ndisp[7:0] <= rx_data;
-              4'd5: reg_ndisp[8] <= rx_data[0];
-              4'd6: reg_radius <= rx_data[4:0];
+              4'd0: cfg_width[7:0] <= rx_data;
+              4'd1: cfg_width[15:8] <= rx_data;
+              4'd2: cfg_height[7:0] <= rx_data;
+              4'd3: cfg_height[15:8] <= rx_data;
+              4'd4: cfg_ndisp[7:0] <= rx_data;
+              4'd5: cfg_ndisp[8] <= rx_data[0];
+              4'd6: cfg_radius <= rx_data[4:0];
               4'd7: begin
-                reg_use_ca <= rx_data[0];
-                reg_uniqueness_en <= rx_data[1];
-                reg_lr_en <= rx_data[2];
-                reg_subpixel_en <= rx_data[3];
+                cfg_use_ca <= rx_data[0];
+                cfg_uniqueness_en <= rx_data[1];
+                cfg_lr_en <= rx_data[2];
+                cfg_subpixel_en <= rx_data[3];
               end
-              4'd8: reg_min_disp[7:0] <= rx_data;
-              4'd9: reg_min_disp[11:8] <= rx_data[3:0];
-              4'd10: reg_uniqueness <= rx_data;
-              default: reg_lr_tolerance <= rx_data;
+              4'd8: cfg_min_disp[7:0] <= rx_data;
+              4'd9: cfg_min_disp[11:8] <= rx_data[3:0];
+              4'd10: cfg_uniqueness <= rx_data;
+              default: cfg_lr_tolerance <= rx_data;
             endcase
             if (32'(config_index) == CONFIG_BYTES - 1) begin
               parse <= CMD_HEADER;
@@ -290,13 +280,13 @@ module stereo_board_top #(
             end else begin
               byte_in_pixel <= '0;
               // {right RGB, left RGB}: bytes 3, 4, 5 over bytes 0, 1, 2.
-              if (in_valid && !in_ready) begin
+              if (s_axis_tvalid && !s_axis_tready) begin
                 overrun <= 1'b1;  // the core did not take the pixel before: drop this one
               end else begin
-                in_valid <= 1'b1;
-                in_data <= {pixel_bytes[15:0], rx_data, pixel_bytes[39:16]};
-                in_user <= pixel_x == 0 && pixel_y == 0;
-                in_last <= pixel_x == frame_width - 1'b1;
+                s_axis_tvalid <= 1'b1;
+                s_axis_tdata <= {pixel_bytes[15:0], rx_data, pixel_bytes[39:16]};
+                s_axis_tuser <= pixel_x == 0 && pixel_y == 0;
+                s_axis_tlast <= pixel_x == frame_width - 1'b1;
               end
               if (pixel_x == frame_width - 1'b1) begin
                 pixel_x <= '0;
@@ -340,7 +330,7 @@ module stereo_board_top #(
   logic [7:0] reply_byte;
   logic [7:0] status_byte;
   logic [fx_pkg::STATUS_BITS-1:0] core_status;
-  assign drained = !beat_held && outstanding == 0 && !in_valid;
+  assign drained = !beat_held && outstanding == 0 && !s_axis_tvalid;
   assign reply_taken = reply_kind != REPLY_NONE && !fifo_full && !beat_held &&
                        (drained || reply_kind == REPLY_CLEAR);
   assign reply_last = reply_index == 5'(reply_kind == REPLY_ID ? ID_REPLY_BYTES - 1 :
@@ -417,7 +407,7 @@ module stereo_board_top #(
       end
       // The core answers every pixel it takes with exactly one beat.
       unique case ({
-        in_valid && in_ready, m_axis_tvalid && m_axis_tready
+        s_axis_tvalid && s_axis_tready, m_axis_tvalid && m_axis_tready
       })
         2'b10: outstanding <= outstanding + 1'b1;
         2'b01: outstanding <= outstanding - 1'b1;
@@ -429,42 +419,17 @@ module stereo_board_top #(
   end
 
   // ---- the core --------------------------------------------------------------------------------
+  // The constant kernel; RING_BLOCK_RAM = 1: on the iCE40 flip-flops are logic cells.
   stereo_top #(
-      .WIDTH(WIDTH),
-      .HEIGHT(HEIGHT),
-      .NDISP(NDISP),
-      .WINDOW(WINDOW),
-      .RUNTIME_KERNEL(1'b0),
-      .MAX_MIN_DISP(MAX_MIN_DISP),
-      .LANES(LANES),
-      .RING_BLOCK_RAM(1'b1),  // the iCE40: flip-flops are logic cells
+      .WIDTH(WIDTH), .HEIGHT(HEIGHT), .NDISP(NDISP), .WINDOW(WINDOW), .RUNTIME_KERNEL(1'b0),
+      .MAX_MIN_DISP(MAX_MIN_DISP), .LANES(LANES), .RING_BLOCK_RAM(1'b1),
       .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
   ) core (
-      .clk(clk),
       .rst(rst || soft_reset),
-      .cfg_width(reg_width),
-      .cfg_height(reg_height),
-      .cfg_ndisp(reg_ndisp),
       .cfg_radius(fx_pkg::CFG_RADIUS_BITS'(R)),
       .cfg_kernel('0),  // unused: the kernel is constant
-      .cfg_use_ca(reg_use_ca),
-      .cfg_min_disp(reg_min_disp),
-      .cfg_uniqueness_en(reg_uniqueness_en),
-      .cfg_uniqueness(reg_uniqueness),
-      .cfg_lr_en(reg_lr_en),
-      .cfg_lr_tolerance(reg_lr_tolerance),
-      .cfg_subpixel_en(reg_subpixel_en),
-      .s_axis_tdata(in_data),
-      .s_axis_tvalid(in_valid),
-      .s_axis_tready(in_ready),
-      .s_axis_tlast(in_last),
-      .s_axis_tuser(in_user),
-      .m_axis_tdata(m_axis_tdata),
-      .m_axis_tvalid(m_axis_tvalid),
-      .m_axis_tready(m_axis_tready),
-      .m_axis_tlast(m_axis_tlast),
-      .m_axis_tuser(m_axis_tuser),
-      .status(core_status)
+      .status(core_status),
+      .*  // every other port: the signal of the same name
   );
 
   assign led_red_n = status_byte == 0;

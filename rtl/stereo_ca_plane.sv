@@ -32,14 +32,7 @@ module stereo_ca_plane #(
     parameter bit RING_BLOCK_RAM = 1'b0,  // stereo_group_ring BLOCK_RAM (stereo_top)
     parameter int RING_BLOCK_MIN_FILL = 50  // stereo_group_ring BLOCK_MIN_FILL
 ) (
-    input  wire logic                              clk,
-    input  wire logic                              rst,  // clears coordinates only
-    input  wire logic                              ce,   // the pixel step (at group G-1)
-    /* verilator lint_off UNUSEDSIGNAL */  // LANES = NDISP: always 0
-    input  wire logic [((NDISP / LANES > 1) ? $clog2(NDISP / LANES) : 1)-1:0] group,
-    /* verilator lint_on UNUSEDSIGNAL */
-    input  wire fx_pkg::coord_t                    in_x,
-    input  wire fx_pkg::coord_t                    in_y,
+`include "stereo_stage_ports.svh"
     // G = 1: the pixel's NDISP values; G > 1: the producer's result of this clock's group.
     input  wire logic [LANES*fx_pkg::AGG_BITS-1:0] in_data,
     input  wire fx_pkg::cfg_size_t                 cfg_width,
@@ -220,20 +213,8 @@ module stereo_ca_plane #(
 
   // G > 1: the group goes on as computed (the consumer's input ring registers it); G = 1: the
   // output register.
-  generate
-    if (GROUPS > 1) begin : g_group_out
-      assign out_data = result;
-    end else begin : g_register_out
-      always_ff @(posedge clk) begin
-        if (ce) out_data <= result;
-      end
-    end
-  endgenerate
-  stereo_coord_reg coordinates (
-      .in_x(centre_x),
-      .in_y(centre_y),
-      .*
-  );
+  stereo_stage_output #(.BITS(LANES * BITS), .REGISTERED(GROUPS == 1)) outputs (
+      .in_x(centre_x), .in_y(centre_y), .in_data(result), .*);
 endmodule
 
 `default_nettype wire

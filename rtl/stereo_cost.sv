@@ -35,14 +35,7 @@ module stereo_cost #(
     parameter int COST         = 0,                            // 0: AD over RGB, 1: LCDM
     parameter int LANES        = NDISP  // labels computed per clock (divides NDISP)
 ) (
-    input  wire logic                               clk,
-    input  wire logic                               rst,           // clears coordinates only
-    input  wire logic                               ce,            // the pixel step (at group G-1)
-    /* verilator lint_off UNUSEDSIGNAL */  // LANES = NDISP: always 0
-    input  wire logic [((NDISP / LANES > 1) ? $clog2(NDISP / LANES) : 1)-1:0] group,
-    /* verilator lint_on UNUSEDSIGNAL */
-    input  wire fx_pkg::coord_t                     in_x,
-    input  wire fx_pkg::coord_t                     in_y,
+`include "stereo_stage_ports.svh"
     input  wire logic [23:0]                        in_left,       // {R, G, B}
     input  wire logic [23:0]                        in_right,      // {R, G, B}
     input  wire fx_pkg::cfg_size_t                  cfg_width,
@@ -207,35 +200,30 @@ module stereo_cost #(
     end
   endgenerate
 
-  generate
-    if (HISTORY > 1) begin : g_shift
-      always_ff @(posedge clk) begin
-        if (ce) right_history <= {right_history[(HISTORY-1)*PIXEL_BITS-1:0], right_selected};
-      end
-    end else begin : g_single
-      always_ff @(posedge clk) begin
-        if (ce) right_history <= right_selected;
-      end
-    end
-    if (PRE_DELAY > 1) begin : g_pre_shift
-      always_ff @(posedge clk) begin
-        if (ce) right_pre <= {right_pre[(PRE_DELAY-1)*PIXEL_BITS-1:0], new_right};
-      end
-    end else begin : g_pre_single
-      always_ff @(posedge clk) begin
-        if (ce) right_pre <= new_right;
-      end
-    end
-    if (LEFT_DELAY > 1) begin : g_left_shift
-      always_ff @(posedge clk) begin
-        if (ce) left_history <= {left_history[(LEFT_DELAY-1)*PIXEL_BITS-1:0], new_left};
-      end
-    end else begin : g_left_single
-      always_ff @(posedge clk) begin
-        if (ce) left_history <= new_left;
-      end
-    end
-  endgenerate
+  stereo_shift_reg #(
+      .BITS (PIXEL_BITS),
+      .DEPTH(HISTORY)
+  ) right_delay (
+      .in_data(right_selected),
+      .history(right_history),
+      .*
+  );
+  stereo_shift_reg #(
+      .BITS (PIXEL_BITS),
+      .DEPTH(PRE_DELAY)
+  ) right_pre_delay (
+      .in_data(new_right),
+      .history(right_pre),
+      .*
+  );
+  stereo_shift_reg #(
+      .BITS (PIXEL_BITS),
+      .DEPTH(LEFT_DELAY)
+  ) left_delay (
+      .in_data(new_left),
+      .history(left_history),
+      .*
+  );
 
   // The coordinates of the delayed left pixels: "no pixel" after a reset, like every stage's.
   always_ff @(posedge clk) begin
@@ -254,26 +242,11 @@ module stereo_cost #(
     end
   end
 
-  generate
-    if (GROUPS > 1) begin : g_group_out
-      assign out_data = cost_d;  // this clock's group of the registered pixel
-    end else begin : g_registered_out
-      always_ff @(posedge clk) begin
-        if (ce) out_data <= cost_d;
-      end
-    end
-  endgenerate
-
   assign out_next_y = left_y;
-  stereo_coord_reg coordinates (
-      .clk(clk),
-      .rst(rst),
-      .ce(ce),
-      .in_x(left_x),
-      .in_y(left_y),
-      .out_x(out_x),
-      .out_y(out_y)
-  );
+  // G > 1: this clock's group of the registered pixel; G = 1: the output register.
+  stereo_stage_output #(.BITS(LANES * COST_BITS), .REGISTERED(GROUPS == 1)) outputs (
+      .in_x(left_x), .in_y(left_y), .in_data(cost_d), .*);
+
 endmodule
 
 `default_nettype wire

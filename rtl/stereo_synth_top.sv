@@ -23,64 +23,16 @@ module stereo_synth_top #(
 ) (
     input  wire logic                            clk,
     input  wire logic                            rst,
-    input  wire fx_pkg::cfg_size_t               cfg_width,
-    input  wire fx_pkg::cfg_size_t               cfg_height,
-    input  wire fx_pkg::cfg_ndisp_t              cfg_ndisp,
-    input  wire logic                            cfg_use_ca,
-    input  wire fx_pkg::cfg_min_disp_t           cfg_min_disp,
-    input  wire logic                            cfg_uniqueness_en,
-    input  wire fx_pkg::cfg_uniqueness_t         cfg_uniqueness,
-    input  wire logic                            cfg_lr_en,
-    input  wire fx_pkg::cfg_lr_tolerance_t       cfg_lr_tolerance,
-    input  wire logic                            cfg_subpixel_en,
-    input  wire logic [fx_pkg::IN_BEAT_BITS-1:0] s_axis_tdata,
-    input  wire logic                            s_axis_tvalid,
-    output      logic                            s_axis_tready,
-    input  wire logic                            s_axis_tlast,
-    input  wire logic                            s_axis_tuser,
-    output      fx_pkg::out_beat_t               m_axis_tdata,
-    output      logic                            m_axis_tvalid,
-    input  wire logic                            m_axis_tready,
-    output      logic                            m_axis_tlast,
-    output      logic                            m_axis_tuser,
-    output      logic [fx_pkg::STATUS_BITS-1:0]  status
+`include "stereo_core_ports.svh"
 );
   stereo_top #(
-      .WIDTH(WIDTH),
-      .HEIGHT(HEIGHT),
-      .NDISP(NDISP),
-      .WINDOW(WINDOW),
-      .RUNTIME_KERNEL(1'b0),
-      .MAX_MIN_DISP(MAX_MIN_DISP),
-      .LANES(LANES),
-      .RING_BLOCK_RAM(RING_BLOCK_RAM),
+      .WIDTH(WIDTH), .HEIGHT(HEIGHT), .NDISP(NDISP), .WINDOW(WINDOW), .RUNTIME_KERNEL(1'b0),
+      .MAX_MIN_DISP(MAX_MIN_DISP), .LANES(LANES), .RING_BLOCK_RAM(RING_BLOCK_RAM),
       .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
   ) core (
-      .clk(clk),
-      .rst(rst),
-      .cfg_width(cfg_width),
-      .cfg_height(cfg_height),
-      .cfg_ndisp(cfg_ndisp),
       .cfg_radius(fx_pkg::CFG_RADIUS_BITS'(WINDOW / 2)),
       .cfg_kernel('0),  // unused: the kernel is constant
-      .cfg_use_ca(cfg_use_ca),
-      .cfg_min_disp(cfg_min_disp),
-      .cfg_uniqueness_en(cfg_uniqueness_en),
-      .cfg_uniqueness(cfg_uniqueness),
-      .cfg_lr_en(cfg_lr_en),
-      .cfg_lr_tolerance(cfg_lr_tolerance),
-      .cfg_subpixel_en(cfg_subpixel_en),
-      .s_axis_tdata(s_axis_tdata),
-      .s_axis_tvalid(s_axis_tvalid),
-      .s_axis_tready(s_axis_tready),
-      .s_axis_tlast(s_axis_tlast),
-      .s_axis_tuser(s_axis_tuser),
-      .m_axis_tdata(m_axis_tdata),
-      .m_axis_tvalid(m_axis_tvalid),
-      .m_axis_tready(m_axis_tready),
-      .m_axis_tlast(m_axis_tlast),
-      .m_axis_tuser(m_axis_tuser),
-      .status(status)
+      .*  // every other port: the signal of the same name
   );
 endmodule
 /* verilator lint_on MULTITOP */

@@ -59,34 +59,10 @@ module stereo_top #(
 ) (
     input  wire logic                               clk,
     input  wire logic                               rst,
-    // Configuration, sampled when the core takes the start-of-frame beat from the input slice.
-    input  wire fx_pkg::cfg_size_t                  cfg_width,
-    input  wire fx_pkg::cfg_size_t                  cfg_height,
-    input  wire fx_pkg::cfg_ndisp_t                 cfg_ndisp,
+    // The window, sampled with the rest of the configuration (stereo_core_ports.svh).
     input  wire fx_pkg::cfg_radius_t                cfg_radius,
     input  wire logic [WINDOW*fx_pkg::TAP_BITS-1:0] cfg_kernel,
-    input  wire logic                               cfg_use_ca,
-    // Stage 6 (docs/fixed-point.md): signed minimum disparity, uniqueness ratio U (percent),
-    // left-right tolerance T (labels), sub-pixel refinement; each check has an enable.
-    input  wire fx_pkg::cfg_min_disp_t              cfg_min_disp,
-    input  wire logic                               cfg_uniqueness_en,
-    input  wire fx_pkg::cfg_uniqueness_t            cfg_uniqueness,
-    input  wire logic                               cfg_lr_en,
-    input  wire fx_pkg::cfg_lr_tolerance_t          cfg_lr_tolerance,
-    input  wire logic                               cfg_subpixel_en,
-    // Input stream.
-    input  wire logic [fx_pkg::IN_BEAT_BITS-1:0]    s_axis_tdata,
-    input  wire logic                               s_axis_tvalid,
-    output      logic                               s_axis_tready,
-    input  wire logic                               s_axis_tlast,
-    input  wire logic                               s_axis_tuser,
-    // Output stream.
-    output      fx_pkg::out_beat_t                  m_axis_tdata,
-    output      logic                               m_axis_tvalid,
-    input  wire logic                               m_axis_tready,
-    output      logic                               m_axis_tlast,
-    output      logic                               m_axis_tuser,
-    output      logic [fx_pkg::STATUS_BITS-1:0]     status
+`include "stereo_core_ports.svh"
 );
   localparam int R = WINDOW / 2;
   localparam int COST_BITS = fx_pkg::COST_BITS;
@@ -113,100 +89,62 @@ module stereo_top #(
   } state_t;
   state_t state;
 
-  fx_pkg::cfg_size_t port_width, port_height;
-  fx_pkg::cfg_ndisp_t port_ndisp;
-  fx_pkg::cfg_radius_t port_radius;
-  fx_pkg::cfg_min_disp_t port_min_disp;
+  // The run-time configuration as the stages see it: the ports, each clamped to what the
+  // parameters support (port_cfg), latched when the frame starts (frame_cfg).
+  // The kernel beside it (its width depends on WINDOW): cfg_kernel and frame_kernel.
+  fx_pkg::config_t port_cfg, frame_cfg;
+  logic [WINDOW*fx_pkg::TAP_BITS-1:0] frame_kernel, use_kernel;
   logic port_cfg_error;
   always_comb begin
-    port_width = cfg_width;
-    port_height = cfg_height;
-    port_ndisp = cfg_ndisp;
-    port_radius = cfg_radius;
-    port_min_disp = cfg_min_disp;
+    port_cfg.width = cfg_width;
+    port_cfg.height = cfg_height;
+    port_cfg.ndisp = cfg_ndisp;
+    port_cfg.radius = cfg_radius;
+    port_cfg.use_ca = cfg_use_ca;
+    port_cfg.min_disp = cfg_min_disp;
+    port_cfg.uniqueness_en = cfg_uniqueness_en;
+    port_cfg.uniqueness = cfg_uniqueness;
+    port_cfg.lr_en = cfg_lr_en;
+    port_cfg.lr_tolerance = cfg_lr_tolerance;
+    port_cfg.subpixel_en = cfg_subpixel_en;
     port_cfg_error = 1'b0;
     if (cfg_width == 0 || $signed(32'(cfg_width)) > WIDTH) begin
-      port_width = fx_pkg::CFG_SIZE_BITS'(WIDTH);
+      port_cfg.width = fx_pkg::CFG_SIZE_BITS'(WIDTH);
       port_cfg_error = 1'b1;
     end
     if (cfg_height == 0 || $signed(32'(cfg_height)) > HEIGHT) begin
-      port_height = fx_pkg::CFG_SIZE_BITS'(HEIGHT);
+      port_cfg.height = fx_pkg::CFG_SIZE_BITS'(HEIGHT);
       port_cfg_error = 1'b1;
     end
     if (cfg_ndisp == 0 || $signed(32'(cfg_ndisp)) > NDISP) begin
-      port_ndisp = fx_pkg::CFG_NDISP_BITS'(NDISP);
+      port_cfg.ndisp = fx_pkg::CFG_NDISP_BITS'(NDISP);
       port_cfg_error = 1'b1;
     end
     if ($signed(32'(cfg_radius)) > R) begin
-      port_radius = fx_pkg::CFG_RADIUS_BITS'(R);
+      port_cfg.radius = fx_pkg::CFG_RADIUS_BITS'(R);
       port_cfg_error = 1'b1;
     end
     if (32'(cfg_min_disp) > MAX_MIN_DISP) begin
-      port_min_disp = fx_pkg::CFG_MIN_DISP_BITS'(MAX_MIN_DISP);
+      port_cfg.min_disp = fx_pkg::CFG_MIN_DISP_BITS'(MAX_MIN_DISP);
       port_cfg_error = 1'b1;
     end
     if (32'(cfg_min_disp) < -MAX_MIN_DISP) begin
-      port_min_disp = fx_pkg::CFG_MIN_DISP_BITS'(-MAX_MIN_DISP);
+      port_cfg.min_disp = fx_pkg::CFG_MIN_DISP_BITS'(-MAX_MIN_DISP);
       port_cfg_error = 1'b1;
     end
   end
 
-  fx_pkg::cfg_size_t frame_width, frame_height;
-  fx_pkg::cfg_ndisp_t frame_ndisp;
-  fx_pkg::cfg_radius_t frame_radius;
-  logic [WINDOW*fx_pkg::TAP_BITS-1:0] frame_kernel;
-  logic frame_use_ca;
-  fx_pkg::cfg_min_disp_t frame_min_disp;
-  logic frame_uniqueness_en, frame_lr_en, frame_subpixel_en;
-  fx_pkg::cfg_uniqueness_t frame_uniqueness;
-  fx_pkg::cfg_lr_tolerance_t frame_lr_tolerance;
   // What the stages see: the ports while idle (the start-of-frame step uses them), the latched
-  // values during the frame and its flush.
-  fx_pkg::cfg_size_t use_width, use_height;
-  fx_pkg::cfg_ndisp_t use_ndisp;
-  fx_pkg::cfg_radius_t use_radius;
-  logic [WINDOW*fx_pkg::TAP_BITS-1:0] use_kernel;
-  logic use_ca;
-  fx_pkg::cfg_min_disp_t use_min_disp;
-  logic use_uniqueness_en, use_lr_en, use_subpixel_en;
-  fx_pkg::cfg_uniqueness_t use_uniqueness;
-  fx_pkg::cfg_lr_tolerance_t use_lr_tolerance;
-  // A setting whose clamped range is one value is that constant for the stages (the one-label
-  // core: cfg_ndisp is 1; MAX_MIN_DISP = 0: cfg_min_disp is 0), so no multiplexer from the frame
-  // state runs in front of their logic (the one-label iCE40 core's critical path). The clamps
-  // and the status bit still see the ports.
-  fx_pkg::cfg_ndisp_t mux_ndisp;
-  fx_pkg::cfg_min_disp_t mux_min_disp;
-  assign use_ndisp = (NDISP == 1) ? fx_pkg::CFG_NDISP_BITS'(1) : mux_ndisp;
-  assign use_min_disp = (MAX_MIN_DISP == 0) ? '0 : mux_min_disp;
+  // values during the frame and its flush. A setting whose clamped range is one value is that
+  // constant for the stages (the one-label core: cfg_ndisp is 1; MAX_MIN_DISP = 0: cfg_min_disp
+  // is 0), so no multiplexer from the frame state runs in front of their logic (the one-label
+  // iCE40 core's critical path). The clamps and the status bit still see the ports.
+  fx_pkg::config_t use_cfg;
   always_comb begin
-    if (state == IDLE) begin
-      use_width = port_width;
-      use_height = port_height;
-      mux_ndisp = port_ndisp;
-      use_radius = port_radius;
-      use_kernel = cfg_kernel;
-      use_ca = cfg_use_ca;
-      mux_min_disp = port_min_disp;
-      use_uniqueness_en = cfg_uniqueness_en;
-      use_uniqueness = cfg_uniqueness;
-      use_lr_en = cfg_lr_en;
-      use_lr_tolerance = cfg_lr_tolerance;
-      use_subpixel_en = cfg_subpixel_en;
-    end else begin
-      use_width = frame_width;
-      use_height = frame_height;
-      mux_ndisp = frame_ndisp;
-      use_radius = frame_radius;
-      use_kernel = frame_kernel;
-      use_ca = frame_use_ca;
-      mux_min_disp = frame_min_disp;
-      use_uniqueness_en = frame_uniqueness_en;
-      use_uniqueness = frame_uniqueness;
-      use_lr_en = frame_lr_en;
-      use_lr_tolerance = frame_lr_tolerance;
-      use_subpixel_en = frame_subpixel_en;
-    end
+    use_cfg = (state == IDLE) ? port_cfg : frame_cfg;
+    use_kernel = (state == IDLE) ? cfg_kernel : frame_kernel;
+    if (NDISP == 1) use_cfg.ndisp = fx_pkg::CFG_NDISP_BITS'(1);
+    if (MAX_MIN_DISP == 0) use_cfg.min_disp = '0;
   end
 
   // ---- stepping ----------------------------------------------------------------------------
@@ -293,13 +231,14 @@ module stereo_top #(
         step = can_step;
       end
     endcase
-    last_output_entering = step && final_x == fx_pkg::COORD_BITS'($signed(32'(use_width)) - 1) &&
-                           final_y == fx_pkg::COORD_BITS'($signed(32'(use_height)) - 1);
+    last_output_entering = step &&
+                           final_x == fx_pkg::COORD_BITS'($signed(32'(use_cfg.width)) - 1) &&
+                           final_y == fx_pkg::COORD_BITS'($signed(32'(use_cfg.height)) - 1);
   end
 
   logic last_input;
-  assign last_input = x_in == fx_pkg::COORD_BITS'($signed(32'(use_width)) - 1) &&
-                      y_in == fx_pkg::COORD_BITS'($signed(32'(use_height)) - 1);
+  assign last_input = x_in == fx_pkg::COORD_BITS'($signed(32'(use_cfg.width)) - 1) &&
+                      y_in == fx_pkg::COORD_BITS'($signed(32'(use_cfg.height)) - 1);
 
   always_ff @(posedge clk) begin
     if (rst) begin
@@ -310,26 +249,16 @@ module stereo_top #(
     end else begin
       if (step) begin
         if (state == IDLE) begin
-          frame_width <= port_width;
-          frame_height <= port_height;
-          frame_ndisp <= port_ndisp;
-          frame_radius <= port_radius;
+          frame_cfg <= port_cfg;
           frame_kernel <= cfg_kernel;
-          frame_use_ca <= cfg_use_ca;
-          frame_min_disp <= port_min_disp;
-          frame_uniqueness_en <= cfg_uniqueness_en;
-          frame_uniqueness <= cfg_uniqueness;
-          frame_lr_en <= cfg_lr_en;
-          frame_lr_tolerance <= cfg_lr_tolerance;
-          frame_subpixel_en <= cfg_subpixel_en;
           if (port_cfg_error) status[fx_pkg::STATUS_CONFIG_CLAMPED] <= 1'b1;
         end
         if (state != FLUSH) begin
-          if (in_main.last != (x_in == fx_pkg::COORD_BITS'($signed(32'(use_width)) - 1)))
+          if (in_main.last != (x_in == fx_pkg::COORD_BITS'($signed(32'(use_cfg.width)) - 1)))
             status[fx_pkg::STATUS_EOL_MISPLACED] <= 1'b1;
           if (state == RUN && in_main.user) status[fx_pkg::STATUS_SOF_MISPLACED] <= 1'b1;
         end
-        if (x_in == fx_pkg::COORD_BITS'($signed(32'(use_width)) - 1)) begin
+        if (x_in == fx_pkg::COORD_BITS'($signed(32'(use_cfg.width)) - 1)) begin
           x_in <= '0;
           y_in <= y_in + 16'sd1;
         end else begin
@@ -381,8 +310,8 @@ module stereo_top #(
       .in_y(y_in),
       .in_left(left_pixel),
       .in_right(right_pixel),
-      .cfg_width(use_width),
-      .cfg_min_disp(use_min_disp),
+      .cfg_width(use_cfg.width),
+      .cfg_min_disp(use_cfg.min_disp),
       .out_x(cost_x),
       .out_y(cost_y),
       .out_next_y(cost_next_y),
@@ -406,8 +335,8 @@ module stereo_top #(
       .in_y(cost_y),
       .in_next_y(cost_next_y),
       .in_data(cost_data),
-      .cfg_width(use_width),
-      .cfg_height(use_height),
+      .cfg_width(use_cfg.width),
+      .cfg_height(use_cfg.height),
       .cfg_kernel(use_kernel),
       .out_x(agg_x),
       .out_y(agg_y),
@@ -430,10 +359,10 @@ module stereo_top #(
       .in_x(agg_x),
       .in_y(agg_y),
       .in_data(agg_data),
-      .cfg_width(use_width),
-      .cfg_height(use_height),
-      .cfg_ndisp(use_ndisp),
-      .cfg_use_ca(use_ca),
+      .cfg_width(use_cfg.width),
+      .cfg_height(use_cfg.height),
+      .cfg_ndisp(use_cfg.ndisp),
+      .cfg_use_ca(use_cfg.use_ca),
       .out_x(rule1_x),
       .out_y(rule1_y),
       .out_data(rule1_data)
@@ -454,10 +383,10 @@ module stereo_top #(
       .in_x(rule1_x),
       .in_y(rule1_y),
       .in_data(rule1_data),
-      .cfg_width(use_width),
-      .cfg_height(use_height),
-      .cfg_ndisp(use_ndisp),
-      .cfg_use_ca(use_ca),
+      .cfg_width(use_cfg.width),
+      .cfg_height(use_cfg.height),
+      .cfg_ndisp(use_cfg.ndisp),
+      .cfg_use_ca(use_cfg.use_ca),
       .out_x(wta_in_x),
       .out_y(wta_in_y),
       .out_data(rule2_data)
@@ -485,12 +414,12 @@ module stereo_top #(
       .in_x(wta_in_x),
       .in_y(wta_in_y),
       .in_data(rule2_data),
-      .cfg_width(use_width),
-      .cfg_height(use_height),
-      .cfg_ndisp(use_ndisp),
-      .cfg_radius(use_radius),
-      .cfg_use_ca(use_ca),
-      .cfg_min_disp(use_min_disp),
+      .cfg_width(use_cfg.width),
+      .cfg_height(use_cfg.height),
+      .cfg_ndisp(use_cfg.ndisp),
+      .cfg_radius(use_cfg.radius),
+      .cfg_use_ca(use_cfg.use_ca),
+      .cfg_min_disp(use_cfg.min_disp),
       .out_x(wta_x),
       .out_y(wta_y),
       .out_label(wta_label),
@@ -519,9 +448,9 @@ module stereo_top #(
       .in_after(wta_after),
       .in_data(wta_data),
       .in_second(wta_second),
-      .cfg_ndisp(use_ndisp),
-      .cfg_min_disp(use_min_disp),
-      .cfg_subpixel_en(use_subpixel_en),
+      .cfg_ndisp(use_cfg.ndisp),
+      .cfg_min_disp(use_cfg.min_disp),
+      .cfg_subpixel_en(use_cfg.subpixel_en),
       .out_x(validate_x),
       .out_y(validate_y),
       .out_label(validate_label),
@@ -555,14 +484,14 @@ module stereo_top #(
       .in_cost(validate_cost),
       .in_second(validate_second),
       .in_fixed(validate_fixed),
-      .cfg_width(use_width),
-      .cfg_height(use_height),
-      .cfg_ndisp(use_ndisp),
-      .cfg_min_disp(use_min_disp),
-      .cfg_uniqueness_en(use_uniqueness_en),
-      .cfg_uniqueness(use_uniqueness),
-      .cfg_lr_en(use_lr_en),
-      .cfg_lr_tolerance(use_lr_tolerance),
+      .cfg_width(use_cfg.width),
+      .cfg_height(use_cfg.height),
+      .cfg_ndisp(use_cfg.ndisp),
+      .cfg_min_disp(use_cfg.min_disp),
+      .cfg_uniqueness_en(use_cfg.uniqueness_en),
+      .cfg_uniqueness(use_cfg.uniqueness),
+      .cfg_lr_en(use_cfg.lr_en),
+      .cfg_lr_tolerance(use_cfg.lr_tolerance),
       .next_x(final_x),
       .next_y(final_y),
       .out_x(out_x),
@@ -572,8 +501,8 @@ module stereo_top #(
 
   // ---- output: stereo_lr_check's register is the output register ------------------------------
   logic entering_in_frame;
-  assign entering_in_frame = final_x >= 0 && 32'(final_x) < $signed(32'(use_width)) &&
-                             final_y >= 0 && 32'(final_y) < $signed(32'(use_height));
+  assign entering_in_frame = final_x >= 0 && 32'(final_x) < $signed(32'(use_cfg.width)) &&
+                             final_y >= 0 && 32'(final_y) < $signed(32'(use_cfg.height));
   always_ff @(posedge clk) begin
     if (rst) begin
       output_pending <= 1'b0;
@@ -587,7 +516,7 @@ module stereo_top #(
   // The output register's beat with its framing.
   logic out_user, out_last;
   assign out_user = out_x == 0 && out_y == 0;
-  assign out_last = 32'(out_x) == $signed(32'(frame_width)) - 1;
+  assign out_last = 32'(out_x) == $signed(32'(frame_cfg.width)) - 1;
 
   // The skid register: filled when a step moves a new beat into the output register while its
   // beat is on m_axis and not taken (a step needs it empty, so it never overflows); emptied when

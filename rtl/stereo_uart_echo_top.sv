@@ -28,17 +28,9 @@ module stereo_uart_echo_top #(
       .CLKS_PER_BIT(CLKS_PER_BIT),
       .POR_BITS(POR_BITS)
   ) link (
-      .clk(clk),
-      .button_n(button_n),
-      .uart_rx(uart_rx),
-      .uart_tx(uart_tx),
-      .rst(rst),
-      .rx_data(rx_data),
-      .rx_valid(rx_valid),
-      .rx_framing_error(rx_framing_error),
       .tx_data(held),
       .tx_valid(held_valid),
-      .tx_ready(tx_ready)
+      .*
   );
 
   always_ff @(posedge clk) begin

@@ -143,16 +143,9 @@ module stereo_validate #(
       out_fixed <= fixed;
     end
   end
-  generate
-    if (NDISP <= 2) begin : g_second_constant
-      assign out_second = second;
-    end else begin : g_second_register
-      always_ff @(posedge clk) begin
-        if (ce) out_second <= second;
-      end
-    end
-  endgenerate
-  stereo_coord_reg coordinates (.*);
+  // The coordinates and C2 (NDISP <= 2: a constant, not registered).
+  stereo_stage_output #(.BITS(fx_pkg::AGG_BITS), .REGISTERED(NDISP > 2)) outputs (
+      .in_data(second), .out_data(out_second), .*);
 endmodule
 
 `default_nettype wire

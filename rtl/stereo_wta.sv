@@ -36,14 +36,7 @@ module stereo_wta #(
     parameter bit RING_BLOCK_RAM = 1'b0,  // stereo_group_ring BLOCK_RAM (stereo_top)
     parameter int RING_BLOCK_MIN_FILL = 50  // stereo_group_ring BLOCK_MIN_FILL
 ) (
-    input  wire logic                              clk,
-    input  wire logic                              rst,  // clears coordinates only
-    input  wire logic                              ce,   // the pixel step (at group G-1)
-    /* verilator lint_off UNUSEDSIGNAL */  // LANES = NDISP: always 0
-    input  wire logic [((NDISP / LANES > 1) ? $clog2(NDISP / LANES) : 1)-1:0] group,
-    /* verilator lint_on UNUSEDSIGNAL */
-    input  wire fx_pkg::coord_t                    in_x,
-    input  wire fx_pkg::coord_t                    in_y,
+`include "stereo_stage_ports.svh"
     // G = 1: the pixel's NDISP costs; G > 1: the producer's result of this clock's group.
     input  wire logic [LANES*fx_pkg::AGG_BITS-1:0] in_data,
     input  wire fx_pkg::cfg_size_t                 cfg_width,

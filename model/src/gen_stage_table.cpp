@@ -145,7 +145,22 @@ std::string package_text() {
           "  typedef logic [CFG_RADIUS_BITS-1:0] cfg_radius_t;\n"
           "  typedef logic signed [CFG_MIN_DISP_BITS-1:0] cfg_min_disp_t;\n"
           "  typedef logic [CFG_UNIQUENESS_BITS-1:0] cfg_uniqueness_t;\n"
-          "  typedef logic [CFG_LR_TOLERANCE_BITS-1:0] cfg_lr_tolerance_t;\n";
+          "  typedef logic [CFG_LR_TOLERANCE_BITS-1:0] cfg_lr_tolerance_t;\n"
+          "  // The run-time configuration but the kernel, as stereo_top holds it (clamped to its\n"
+          "  // parameters, latched at the start of a frame).\n"
+          "  typedef struct packed {\n"
+          "    cfg_size_t width;\n"
+          "    cfg_size_t height;\n"
+          "    cfg_ndisp_t ndisp;\n"
+          "    cfg_radius_t radius;\n"
+          "    logic use_ca;\n"
+          "    cfg_min_disp_t min_disp;\n"
+          "    logic uniqueness_en;\n"
+          "    cfg_uniqueness_t uniqueness;\n"
+          "    logic lr_en;\n"
+          "    cfg_lr_tolerance_t lr_tolerance;\n"
+          "    logic subpixel_en;\n"
+          "  } config_t;\n";
     params({
         {"RGB_BITS", t::kRgbBits, "one RGB pixel"},
         {"IN_BEAT_BITS", t::kInBeatBits, "s_axis_tdata = {right RGB, left RGB}"},
@@ -188,21 +203,36 @@ std::string package_text() {
           "  endfunction\n";
 
     // The default kernel (sigma = kDefaultSigma) of every odd window, for synthesis tops that
-    // tie the kernel configuration to constants.
-    sv << "\n  // Tap i (0 .. window-1) of the default kernel, sigma = " << fx::kDefaultSigma
-       << ".\n"
-          "  function automatic int default_tap(input int window, input int i);\n"
-          "    default_tap = 0;\n"
-          "    case (window)\n";
-    for (int window = fx::kMinWindow; window <= fx::kMaxWindow; window += 2) {
+    // tie the kernel configuration to constants: one table, window w = 2k + 1 from entry k * k
+    // (the windows before it hold 1 + 3 + ... + (2k - 1) = k * k taps), entry 0 in the low bits.
+    static_assert(fx::kMinWindow == 1 && fx::kMaxWindow % 2 == 1, "the table starts at window 1");
+    constexpr int kTapEntries = (fx::kMaxWindow / 2 + 1) * (fx::kMaxWindow / 2 + 1);
+    sv << "\n  // Tap i (0 .. window-1) of the default kernel (sigma = " << fx::kDefaultSigma
+       << ") of every odd window\n"
+          "  // 1 .. "
+       << fx::kMaxWindow
+       << ": window 2k + 1 starts at entry k * k; the last line holds entry 0.\n"
+          "  localparam int DEFAULT_TAP_ENTRIES = "
+       << kTapEntries
+       << ";\n"
+          "  localparam logic [DEFAULT_TAP_ENTRIES*TAP_BITS-1:0] DEFAULT_TAPS = {";
+    for (int window = fx::kMaxWindow; window >= fx::kMinWindow; window -= 2) {
         const auto taps = stereo::gaussian_kernel(window, fx::kDefaultSigma);
-        sv << "      " << window << ": case (i)";
-        for (int i = 0; i < window; ++i) {
-            sv << (i % 8 == 0 ? "\n        " : " ") << i << ": default_tap = " << taps[i] << ';';
+        sv << "\n      ";
+        for (int i = window - 1; i >= 0; --i) {
+            sv << fx::kKernelBits + 1 << "'d" << taps[static_cast<std::size_t>(i)]
+               << (i > 0 ? ", " : "");
         }
-        sv << "\n        default: default_tap = 0;\n      endcase\n";
+        sv << (window > fx::kMinWindow ? "," : "") << "  // window " << window;
     }
-    sv << "      default: default_tap = 0;\n    endcase\n  endfunction\n";
+    sv << "\n  };\n"
+          "  function automatic int default_tap(input int window, input int i);\n"
+          "    if (window < 1 || window > "
+       << fx::kMaxWindow
+       << " || window % 2 == 0 || i < 0 || i >= window) default_tap = 0;\n"
+          "    else default_tap = 32'(DEFAULT_TAPS[((window / 2) * (window / 2) + i) * TAP_BITS +: "
+          "TAP_BITS]);\n"
+          "  endfunction\n";
     sv << lcdm_section();
     sv << "  /* verilator lint_on UNUSEDPARAM */\n\nendpackage\n\n"
           "`default_nettype wire\n";
@@ -246,21 +276,16 @@ std::vector<std::pair<std::string, int>> assignments(const stereo::table::Params
 std::string cmake_text() {
     std::ostringstream out;
     out << "# " << kHeader << ".\n"
-        << "# sim/CMakeLists.txt calls stereo_verilate for each; STEREO_VERILATED_<prefix>_OPTION"
-           " names\n# the CMake option that must be ON (empty: always built).\n"
-        << "set(STEREO_VERILATED_CONFIGS";
+        << "# stereo_verilated_config(PREFIX TOP OPTION PARAMETER=VALUE...) (sim/CMakeLists.txt)\n"
+           "# records one configuration; OPTION names the CMake option that must be ON (empty:\n"
+           "# always built).\n";
     for (const auto& config : stereo::table::kVerilatedConfigs) {
-        out << ' ' << config.prefix;
-    }
-    out << ")\n";
-    for (const auto& config : stereo::table::kVerilatedConfigs) {
-        out << "set(STEREO_VERILATED_" << config.prefix << "_TOP " << config.top << ")\n"
-            << "set(STEREO_VERILATED_" << config.prefix << "_PARAMETERS";
+        out << "stereo_verilated_config(" << config.prefix << ' ' << config.top << " \""
+            << config.option << '"';
         for (const auto& [name, value] : assignments(config.params)) {
             out << ' ' << name << '=' << value;
         }
-        out << ")\nset(STEREO_VERILATED_" << config.prefix << "_OPTION \"" << config.option
-            << "\")\n";
+        out << ")\n";
     }
     return out.str();
 }
@@ -347,6 +372,9 @@ std::string fusesoc_text() {
         << "      - rtl/" << stereo::table::kPackageFile << "\n";
     for (const auto module : stereo::table::kRtlModules) {
         out << "      - rtl/" << module << ".sv\n";
+    }
+    for (const auto include : stereo::table::kRtlIncludes) {
+        out << "      - rtl/" << include << ": {is_include_file: true}\n";
     }
     out << "    file_type: systemVerilogSource\n"
            "  arty_a7:\n    files:\n      - scripts/synth/boards/arty_a7_100t.xdc:\n"

@@ -137,17 +137,23 @@ std::unique_ptr<Matcher> make_sparse(const MatchConfig& config) {
         });
 }
 
+// validate_params, and an engine without the minimum-disparity and validation stages (`engine`
+// names it in the message) refuses parameters that need them.
+void validate_plain_params(const MatchParams& params, const std::string& engine) {
+    validate_params(params);
+    if (params.min_disp != 0 || params.validation != ValidationParams{}) {
+        throw std::invalid_argument(engine +
+                                    " has no minimum disparity or validation stages (use "
+                                    "--no-validation, or --engine model or naive)");
+    }
+}
+
 }  // namespace
 
 MatcherFactory pipeline_factory(PipelineFunction run) {
     return [run](const MatchConfig& config) -> std::unique_ptr<Matcher> {
         const MatchParams params = config.pipeline;
-        validate_params(params);
-        if (params.min_disp != 0 || params.validation != ValidationParams{}) {
-            throw std::invalid_argument(
-                "this engine has no minimum disparity or validation stages (use --no-validation, "
-                "or --engine model or naive)");
-        }
+        validate_plain_params(params, "this engine");
         return std::make_unique<FunctionMatcher>(
             [params](int width, int height) { validate(params, width, height); },
             [params, run](const Image& left, const Image& right) {
@@ -226,12 +232,7 @@ MatcherFactory asw_floating_factory() {
     return [](const MatchConfig& config) -> std::unique_ptr<Matcher> {
         const MatchParams params = asw_checked(config.pipeline);
         const asw::Params weights = config.asw;
-        validate_params(params);
-        if (params.min_disp != 0 || params.validation != ValidationParams{}) {
-            throw std::invalid_argument(
-                "engine float of asw has no minimum disparity or validation stages (use "
-                "--no-validation, or --engine model or naive)");
-        }
+        validate_plain_params(params, "engine float of asw");
         return std::make_unique<FunctionMatcher>(
             [params, weights](int width, int height) {
                 validate(params, width, height);

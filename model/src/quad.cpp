@@ -171,15 +171,10 @@ void check_views(const QuadViews& views) {
 }  // namespace
 
 std::string_view name(Pair pair) {
-    switch (pair) {
-        case Pair::horizontal:
-            return "horizontal";
-        case Pair::vertical:
-            return "vertical";
-        case Pair::diagonal:
-            return "diagonal";
-    }
-    return "horizontal";
+    constexpr std::array<std::string_view, kPairs.size()> kNames = {"horizontal", "vertical",
+                                                                    "diagonal"};
+    const auto index = static_cast<std::size_t>(pair);
+    return index < kNames.size() ? kNames[index] : kNames[0];
 }
 
 void validate_pair(Pair pair, const MatchParams& params, int width, int height) {

@@ -1,6 +1,7 @@
 #include "stereo_robot/decision.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -41,17 +42,10 @@ void check_params(const FisParams& params) {
 }  // namespace
 
 std::string to_string(Direction direction) {
-    switch (direction) {
-        case Direction::forward:
-            return "forward";
-        case Direction::left:
-            return "left";
-        case Direction::right:
-            return "right";
-        case Direction::backwards:
-            return "backwards";
-    }
-    return "forward";
+    // In the order of the enumerators.
+    constexpr std::array<const char*, 4> kNames = {"forward", "left", "right", "backwards"};
+    const auto index = static_cast<std::size_t>(direction);
+    return index < kNames.size() ? kNames[index] : kNames[0];
 }
 
 ThresholdDecision decide_threshold(const DisparityMap& map, double threshold, int ndisp,

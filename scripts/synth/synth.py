@@ -246,6 +246,30 @@ def throughput(config, fmax_mhz):
     return round(fps, 2), round(mdes, 1)
 
 
+def run_nextpnr(report, work, netlist, seed, target_args):
+    """Places and routes `netlist` with nextpnr-ice40 (`target_args`: device, package, pins,
+    clock) into `work`. Sets report["nextpnr_seconds"] and, when it routes, report["placed"],
+    "fmax_mhz", "critical_path" and "utilisation"; when it fails, report["pnr_error"] (its first
+    ERROR line). Returns the log text."""
+    start = time.monotonic()
+    pnr_json, log_path = work / "nextpnr.json", work / "nextpnr.log"
+    progress(f"nextpnr-ice40 running (log {log_path})")
+    result = subprocess.run(
+        ["nextpnr-ice40", *target_args, "--json", str(netlist), "--seed", str(seed),
+         "--report", str(pnr_json), "--quiet", "--log", str(log_path)],
+        capture_output=True, text=True)
+    report["nextpnr_seconds"] = round(time.monotonic() - start, 1)
+    log = log_path.read_text() if log_path.exists() else ""
+    if result.returncode != 0:
+        errors = [line for line in (log + result.stderr).splitlines() if "ERROR" in line]
+        report["pnr_error"] = (errors or result.stderr.strip().splitlines() or ["failed"])[0]
+    else:
+        report["placed"] = True
+        report["fmax_mhz"], report["critical_path"] = parse_nextpnr_log(log)
+        report["utilisation"] = json.loads(pnr_json.read_text()).get("utilization", {})
+    return log
+
+
 def parse_nextpnr_log(text):
     fmax = None
     for match in re.finditer(r"Max frequency for clock\s+'([^']+)':\s+([\d.]+) MHz", text):
@@ -295,27 +319,9 @@ def ice40_report(config, args, work):
     report["placed"] = False
     report["fmax_mhz"] = None
     if fits and not args.no_pnr:
-        start = time.monotonic()
-        pnr_json = work / "nextpnr.json"
-        progress(f"nextpnr-ice40 running (log {work / 'nextpnr.log'})")
-        result = subprocess.run(
-            ["nextpnr-ice40", f"--{args.device}", "--package", device["package"],
-             "--json", str(netlist), "--freq", str(args.freq), "--timing-allow-fail",
-             "--seed", str(args.seed), "--report", str(pnr_json), "--quiet",
-             "--log", str(work / "nextpnr.log")],
-            capture_output=True, text=True)
-        report["nextpnr_seconds"] = round(time.monotonic() - start, 1)
-        log = (work / "nextpnr.log").read_text() if (work / "nextpnr.log").exists() else ""
-        if result.returncode != 0:
-            errors = [line for line in (log + result.stderr).splitlines() if "ERROR" in line]
-            report["pnr_error"] = (errors or result.stderr.strip().splitlines() or ["failed"])[0]
-        else:
-            report["placed"] = True
-            fmax, critical = parse_nextpnr_log(log)
-            report["fmax_mhz"] = fmax
-            report["critical_path"] = critical
-            pnr = json.loads(pnr_json.read_text())
-            report["utilisation"] = pnr.get("utilization", {})
+        run_nextpnr(report, work, netlist, args.seed,
+                    [f"--{args.device}", "--package", device["package"], "--freq", str(args.freq),
+                     "--timing-allow-fail"])
     fps, mdes = throughput(config, report["fmax_mhz"])
     report["frames_per_second"] = fps
     report["mde_per_second"] = mdes
@@ -402,30 +408,16 @@ def board_report(config, args, work):
     report["bin"] = None
     report["bin_bytes"] = None
     if fits:
-        start = time.monotonic()
-        asc, pnr_json, log_path = work / "board.asc", work / "nextpnr.json", work / "nextpnr.log"
-        progress(f"nextpnr-ice40 running (log {log_path})")
-        result = subprocess.run(
-            ["nextpnr-ice40", "--up5k", "--package", device["package"], "--json", str(netlist),
-             "--pcf", str(BOARD_PCF), "--asc", str(asc), "--freq", str(BOARD_CLOCK_MHZ),
-             "--seed", str(args.seed), "--report", str(pnr_json), "--quiet",
-             "--log", str(log_path)],
-            capture_output=True, text=True)
-        report["nextpnr_seconds"] = round(time.monotonic() - start, 1)
-        log = log_path.read_text() if log_path.exists() else ""
+        asc = work / "board.asc"
+        log = run_nextpnr(report, work, netlist, args.seed,
+                          ["--up5k", "--package", device["package"], "--pcf", str(BOARD_PCF),
+                           "--asc", str(asc), "--freq", str(BOARD_CLOCK_MHZ)])
         demand = re.search(r"ICESTORM_LC:\s+(\d+)/\s*(\d+)", log)
         report["logic_cells"] = int(demand.group(1)) if demand else None
         report["logic_cells_capacity"] = int(demand.group(2)) if demand else None
-        if result.returncode != 0:
-            errors = [line for line in (log + result.stderr).splitlines() if "ERROR" in line]
-            report["pnr_error"] = (errors or result.stderr.strip().splitlines() or ["failed"])[0]
-        else:
-            report["placed"] = True
-            fmax, critical = parse_nextpnr_log(log)
-            report["fmax_mhz"] = fmax
+        if report["placed"]:
+            fmax = report["fmax_mhz"]
             report["meets_12mhz"] = fmax is not None and fmax >= BOARD_CLOCK_MHZ
-            report["critical_path"] = critical
-            report["utilisation"] = json.loads(pnr_json.read_text()).get("utilization", {})
             binary = Path(args.bin) if args.bin else work / "stereo_board.bin"
             packed = subprocess.run(["icepack", str(asc), str(binary)], capture_output=True,
                                     text=True)
@@ -1099,18 +1091,23 @@ def add_config_arguments(parser, width=64, height=48, ndisp=4, window=5):
     parser.add_argument("--out", help="JSON report file (default: stdout)")
 
 
+def add_ice40_arguments(parser, device):
+    """The place-and-route options of the ice40 and fit commands."""
+    parser.add_argument("--device", choices=sorted(ICE40_DEVICES), default=device)
+    parser.add_argument("--freq", type=float, default=30.0, help="target MHz for nextpnr")
+    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--dsp", action="store_true", help="map multipliers to SB_MAC16")
+    parser.add_argument("--max-min-disp", type=int, default=None,
+                        help="stereo_top MAX_MIN_DISP (default: the RTL's default)")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True)
     ice40 = sub.add_parser("ice40", help="synth_ice40 + nextpnr-ice40")
     add_config_arguments(ice40)
-    ice40.add_argument("--device", choices=sorted(ICE40_DEVICES), default="up5k")
-    ice40.add_argument("--freq", type=float, default=30.0, help="target MHz for nextpnr")
-    ice40.add_argument("--seed", type=int, default=1)
-    ice40.add_argument("--dsp", action="store_true", help="map multipliers to SB_MAC16")
-    ice40.add_argument("--max-min-disp", type=int, default=None,
-                       help="stereo_top MAX_MIN_DISP (default: the RTL's default)")
+    add_ice40_arguments(ice40, device="up5k")
     ice40.add_argument("--no-pnr", action="store_true", help="synthesis only")
     ice40.set_defaults(handler=command_ice40)
     board = sub.add_parser("board", help="iCEBreaker: stereo_board_top to a flashable .bin")
@@ -1135,12 +1132,7 @@ def main():
     board.set_defaults(handler=command_board)
     fit = sub.add_parser("fit", help="most disparities that place and route on an iCE40")
     add_config_arguments(fit, ndisp=1)
-    fit.add_argument("--device", choices=sorted(ICE40_DEVICES), default="hx8k")
-    fit.add_argument("--freq", type=float, default=30.0, help="target MHz for nextpnr")
-    fit.add_argument("--seed", type=int, default=1)
-    fit.add_argument("--dsp", action="store_true", help="map multipliers to SB_MAC16")
-    fit.add_argument("--max-min-disp", type=int, default=None,
-                       help="stereo_top MAX_MIN_DISP (default: the RTL's default)")
+    add_ice40_arguments(fit, device="hx8k")
     fit.add_argument("--max-ndisp", type=int, default=16)
     fit.set_defaults(handler=command_fit, no_pnr=False)
     est = sub.add_parser("estimate", help="synth_xilinx / synth_ecp5 resource estimate")

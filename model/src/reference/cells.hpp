@@ -2,6 +2,9 @@
 // Written plainly, with no incremental tricks, like the references themselves.
 #pragma once
 
+#include "stereo/dsi.hpp"
+#include "stereo/image.hpp"
+
 namespace stereo::reference {
 
 // visit(x, y, d) for every cell of a width x height x ndisp volume, plane by plane.
@@ -14,6 +17,20 @@ void for_each_cell(int width, int height, int ndisp, Visit visit) {
             }
         }
     }
+}
+
+// The cost volume of a per-pixel cost: cell (x, y, k) of an ndisp-plane volume holds
+// pixel_cost(x, y, x - d), the left pixel (x, y) against the right pixel (x - d, y) with
+// d = min_disp + k, or `outside` where that right pixel lies outside the image.
+template <class PixelCost>
+Dsi pixel_cost_volume(const Image& left, int ndisp, int min_disp, int outside, PixelCost pixel_cost) {
+    Dsi dsi(left.width, left.height, ndisp);
+    for_each_cell(left.width, left.height, ndisp, [&](int x, int y, int k) {
+        const int right_x = x - (min_disp + k);
+        const bool inside = right_x >= 0 && right_x < left.width;
+        dsi.at(x, y, k) = static_cast<Dsi::Value>(inside ? pixel_cost(x, y, right_x) : outside);
+    });
+    return dsi;
 }
 
 // visit(i, j) for the 3x3 offsets around a centre, the centre included.

@@ -1,5 +1,6 @@
 // Naive reference of the census cost (stereo/stages/census.hpp): the code of each pixel is
 // rebuilt for every comparison and the differing bits are counted one at a time.
+#include "cells.hpp"
 #include "stereo/edge_frontend.hpp"
 #include "stereo/reference.hpp"
 #include "stereo/stages/census.hpp"
@@ -24,24 +25,14 @@ Dsi cost(const Image& left, const Image& right, int ndisp, int min_disp) {
     check_pair(left, right);
     const Image l = edge_frontend::naive::luma(left);
     const Image r = edge_frontend::naive::luma(right);
-    Dsi dsi(left.width, left.height, ndisp);
-    for (int k = 0; k < ndisp; ++k) {
-        const int d = min_disp + k;
-        for (int y = 0; y < left.height; ++y) {
-            for (int x = 0; x < left.width; ++x) {
-                if (x - d < 0 || x - d >= left.width) {
-                    dsi.at(x, y, k) = fx::kCostOutside;
-                    continue;
-                }
-                int distance = 0;
-                for (int n = 0; n < kBits; ++n) {
-                    distance += bit(l, x, y, n) != bit(r, x - d, y, n) ? 1 : 0;
-                }
-                dsi.at(x, y, k) = static_cast<Dsi::Value>(distance * kWeight);
+    return reference::pixel_cost_volume(
+        left, ndisp, min_disp, fx::kCostOutside, [&](int x, int y, int right_x) {
+            int distance = 0;
+            for (int n = 0; n < kBits; ++n) {
+                distance += bit(l, x, y, n) != bit(r, right_x, y, n) ? 1 : 0;
             }
-        }
-    }
-    return dsi;
+            return distance * kWeight;
+        });
 }
 
 }  // namespace stereo::census::naive

@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "../edge_checks.hpp"
+#include "cells.hpp"
 #include "stereo/edge_frontend.hpp"
 #include "stereo/reference.hpp"
 
@@ -98,25 +99,16 @@ Image superimpose(const Image& image, const Image& edges, int value) {
 
 Dsi truncated_cost(const Image& left, const Image& right, int ndisp, int truncation) {
     check_cost_inputs(left, right, ndisp, truncation);
-    Dsi dsi(left.width, left.height, ndisp);
-    for (int d = 0; d < ndisp; ++d) {
-        for (int y = 0; y < left.height; ++y) {
-            for (int x = 0; x < left.width; ++x) {
-                if (x - d < 0) {
-                    dsi.at(x, y, d) = static_cast<Value>(fx::kCostOutside);
-                    continue;
-                }
-                const auto l = rgb(left, x, y);
-                const auto r = rgb(right, x - d, y);
-                int sum = 0;
-                for (int c = 0; c < 3; ++c) {
-                    sum += std::abs(l[c] - r[c]);
-                }
-                dsi.at(x, y, d) = static_cast<Value>(std::min(sum, truncation));
-            }
-        }
-    }
-    return dsi;
+    return reference::pixel_cost_volume(left, ndisp, 0, fx::kCostOutside,
+                                        [&](int x, int y, int right_x) {
+                                            const auto l = rgb(left, x, y);
+                                            const auto r = rgb(right, right_x, y);
+                                            int sum = 0;
+                                            for (int c = 0; c < 3; ++c) {
+                                                sum += std::abs(l[c] - r[c]);
+                                            }
+                                            return std::min(sum, truncation);
+                                        });
 }
 
 DisparityMap match(const Image& left, const Image& right, const MatchParams& params,

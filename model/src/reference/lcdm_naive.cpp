@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <numbers>
 
+#include "cells.hpp"
 #include "stereo/reference.hpp"
 #include "stereo/stages/lcdm.hpp"
 
@@ -98,20 +99,10 @@ Dsi cost(const Image& left, const Image& right, int ndisp, int dark_floor) {
     check_pair(left, right);
     require_colour(left);
     require_colour(right);
-    Dsi dsi(left.width, left.height, ndisp);
-    for (int d = 0; d < ndisp; ++d) {
-        for (int y = 0; y < left.height; ++y) {
-            for (int x = 0; x < left.width; ++x) {
-                if (x - d < 0) {
-                    dsi.at(x, y, d) = fx::kCostOutside;
-                    continue;
-                }
-                dsi.at(x, y, d) =
-                    static_cast<Dsi::Value>(pixel_cost(left, x, y, right, x - d, y, dark_floor));
-            }
-        }
-    }
-    return dsi;
+    return reference::pixel_cost_volume(
+        left, ndisp, 0, fx::kCostOutside, [&](int x, int y, int right_x) {
+            return pixel_cost(left, x, y, right, right_x, y, dark_floor);
+        });
 }
 
 Dsi cost(const Image& left, const Image& right, int ndisp) {

@@ -30,26 +30,16 @@ bool differs_by_less_than_half(int neighbour, int centre) {
 
 Dsi cost(const Image& left, const Image& right, int ndisp, int min_disp) {
     check_pair(left, right);
-    Dsi dsi(left.width, left.height, ndisp);
-    for (int y = 0; y < left.height; ++y) {
-        for (int x = 0; x < left.width; ++x) {
-            for (int k = 0; k < ndisp; ++k) {
-                const int d = min_disp + k;
-                if (x - d < 0 || x - d >= left.width) {
-                    dsi.at(x, y, k) = fx::kCostMax;  // the right pixel is outside the image
-                    continue;
-                }
-                int sum = 0;
-                for (int c = 0; c < 3; ++c) {
-                    // A grey image has one channel; reading channel 0 three times matches (g,g,g).
-                    const int channel = left.channels == 3 ? c : 0;
-                    sum += std::abs(left.at(x, y, channel) - right.at(x - d, y, channel));
-                }
-                dsi.at(x, y, k) = static_cast<Dsi::Value>(sum);
+    return reference::pixel_cost_volume(
+        left, ndisp, min_disp, fx::kCostMax, [&](int x, int y, int right_x) {
+            int sum = 0;
+            for (int c = 0; c < 3; ++c) {
+                // A grey image has one channel; reading channel 0 three times matches (g,g,g).
+                const int channel = left.channels == 3 ? c : 0;
+                sum += std::abs(left.at(x, y, channel) - right.at(right_x, y, channel));
             }
-        }
-    }
-    return dsi;
+            return sum;
+        });
 }
 
 Dsi aggregate(const Dsi& cost, const std::vector<std::int32_t>& kernel) {

@@ -36,4 +36,19 @@ class lane_output : public coord_output {
     Lanes out_data_ = {};
 };
 
+// The winner the selection stage and the ones after it pass along (RTL: out_label, out_border,
+// out_cost of stereo_wta and stereo_validate): its label, whether the border rule holds there,
+// and its cost.
+class winner_output {
+  public:
+    disparity_t out_label() const { return out_label_; }
+    bool out_border() const { return out_border_; }
+    agg_t out_cost() const { return out_cost_; }
+
+  protected:
+    disparity_t out_label_ = 0;
+    bool out_border_ = false;
+    agg_t out_cost_ = 0;
+};
+
 }  // namespace stereo::hls

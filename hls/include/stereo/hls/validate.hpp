@@ -22,7 +22,7 @@
 namespace stereo::hls {
 
 template <int NDISP>
-class validate_stage : public coord_output {
+class validate_stage : public coord_output, public winner_output {
     static constexpr int kLeaves = tree_leaves(NDISP);
     static constexpr int kSteps = fx::kSubpixelScale / 2;  // largest |offset|
     static_assert(fx::kNoSecondCost == (1 << fx::kAggBits) - 1);
@@ -64,15 +64,6 @@ class validate_stage : public coord_output {
         out_y_ = in.out_y();
     }
 
-    disparity_t out_label() const {
-        return out_label_;
-    }
-    bool out_border() const {
-        return out_border_;
-    }
-    agg_t out_cost() const {
-        return out_cost_;
-    }
     agg_t out_second() const {
         return out_second_;
     }
@@ -81,9 +72,6 @@ class validate_stage : public coord_output {
     }
 
   private:
-    disparity_t out_label_ = 0;
-    bool out_border_ = false;
-    agg_t out_cost_ = 0;
     agg_t out_second_ = 0;
     fixed_t out_fixed_ = 0;
 };

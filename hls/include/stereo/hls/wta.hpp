@@ -17,7 +17,7 @@
 namespace stereo::hls {
 
 template <int NDISP>
-class wta : public lane_output<agg_t, NDISP> {
+class wta : public lane_output<agg_t, NDISP>, public winner_output {
     static_assert(NDISP >= 1 && NDISP <= fx::kMaxDisparities);
     using lane_output<agg_t, NDISP>::out_data_;
     using lane_output<agg_t, NDISP>::out_x_;
@@ -68,15 +68,6 @@ class wta : public lane_output<agg_t, NDISP> {
         out_y_ = in_y;
     }
 
-    disparity_t out_label() const {
-        return out_label_;
-    }
-    bool out_border() const {
-        return out_border_;
-    }
-    agg_t out_cost() const {
-        return out_cost_;
-    }
     agg_t out_before() const {
         return out_before_;
     }
@@ -92,9 +83,6 @@ class wta : public lane_output<agg_t, NDISP> {
     }
 
   private:
-    disparity_t out_label_ = 0;
-    bool out_border_ = false;
-    agg_t out_cost_ = 0;
     agg_t out_before_ = 0;
     agg_t out_after_ = 0;
 };
