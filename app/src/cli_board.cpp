@@ -136,16 +136,10 @@ void run_board(const BoardOptions& options) {
     const double valid_fraction = static_cast<double>(valid) / validated.reason.size();
     const ValidationParams& v = params.validation;
     if (options.json) {
-        const nlohmann::json summary = {
-            {"width", width},
-            {"height", height},
-            {"ndisp", params.ndisp},
-            {"window", params.window},
-            {"ca", params.use_ca},
-            {"min_disp", params.min_disp},
+        nlohmann::json summary = pipeline_json(width, height, params);
+        summary.update({
             {"uniqueness", v.uniqueness ? nlohmann::json(v.uniqueness_ratio) : nullptr},
             {"lr_check", v.left_right ? nlohmann::json(v.lr_tolerance) : nullptr},
-            {"subpixel", v.subpixel},
             {"valid_fraction", valid_fraction},
             {"port", options.port},
             {"baud", options.baud},
@@ -154,7 +148,7 @@ void run_board(const BoardOptions& options) {
             {"bytes_received", client.bytes_received()},
             {"status_cleared", cleared},
             {"board", identity_json(identity)},
-        };
+        });
         std::cout << io::versioned(summary).dump() << '\n';
         return;
     }
@@ -184,12 +178,10 @@ void add_board_command(CLI::App& app) {
                      "Serial port of the board (the iCEBreaker's second FTDI port, e.g. "
                      "/dev/ttyUSB1)")
         ->required();
-    command->add_option("--baud", options->baud, "Baud rate the bitstream was built for")
-        ->capture_default_str();
-    command
-        ->add_option("--timeout", options->timeout_ms,
-                     "Milliseconds of silence after which the board counts as not answering")
-        ->capture_default_str();
+    add_number_options(*command,
+                       {{"--baud", &options->baud, "Baud rate the bitstream was built for"},
+                        {"--timeout", &options->timeout_ms,
+                         "Milliseconds of silence after which the board counts as not answering"}});
     command->add_option("-o,--output", options->output,
                         "Disparity file as `stereo match -o` writes it (PNG, or .pfm)");
     // The defaults of `stereo match`, so that the same options give the same output; the ndisp

@@ -101,12 +101,10 @@ void add_cloud_command(CLI::App& app) {
         ->excludes(baseline);
     command->add_option("--cx", options->cx, "Principal point x, pixels (default: centre)");
     command->add_option("--cy", options->cy, "Principal point y, pixels (default: centre)");
-    command
-        ->add_option("--doffs", options->doffs,
-                     "Disparity offset: Z = f B / (d + doffs) (Middlebury 2014's doffs)")
-        ->capture_default_str();
-    command->add_option("--scale", options->scale, "PNG: stored value = d * scale")
-        ->capture_default_str();
+    add_number_options(*command,
+                       {{"--doffs", &options->doffs,
+                         "Disparity offset: Z = f B / (d + doffs) (Middlebury 2014's doffs)"},
+                        {"--scale", &options->scale, "PNG: stored value = d * scale"}});
     command->add_flag("--png16", options->png16, "PNG in offset16 form (stereo match --png16)");
     command->add_flag("--binary", options->binary, "binary_little_endian PLY instead of ASCII");
 }

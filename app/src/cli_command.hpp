@@ -3,8 +3,11 @@
 // the options live in a shared_ptr that the callback holds.
 #pragma once
 
+#include <cstdint>
+#include <initializer_list>
 #include <memory>
 #include <string>
+#include <variant>
 
 #include <CLI/CLI.hpp>
 
@@ -30,6 +33,24 @@ Command<Options> add_command(CLI::App& app, const std::string& name, const std::
 // --data: the folder that holds middlebury2003/ (its default shown by --help).
 inline void add_data_option(CLI::App& command, std::string& folder) {
     command.add_option("--data", folder, "Folder holding middlebury2003/")->capture_default_str();
+}
+
+// A numeric option whose --help shows its default. A run of them is registered as one table
+// instead of one add_option block each.
+struct NumberOption {
+    const char* name;
+    std::variant<int*, double*, std::uint32_t*> value;
+    const char* help;
+};
+
+inline void add_number_options(CLI::App& command, std::initializer_list<NumberOption> options) {
+    for (const NumberOption& option : options) {
+        std::visit(
+            [&](auto* value) {
+                command.add_option(option.name, *value, option.help)->capture_default_str();
+            },
+            option.value);
+    }
 }
 
 }  // namespace stereo::cli

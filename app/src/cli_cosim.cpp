@@ -205,7 +205,8 @@ void run_cosim(const CosimOptions& options) {
     const std::size_t pixels = beats.size();
     const double per_pixel = static_cast<double>(result.cycles) / pixels;
     if (options.json) {
-        const nlohmann::json summary = {
+        nlohmann::json summary = pipeline_json(width, height, params);
+        summary.update({
             {"mismatches", mismatches},
             {"frames", options.frames},
             {"reset_at", options.reset_at},
@@ -216,22 +217,15 @@ void run_cosim(const CosimOptions& options) {
             {"cycles_per_pixel", per_pixel},
             {"first_mismatches", first},
             {"config", config->name},
-            {"width", width},
-            {"height", height},
-            {"ndisp", params.ndisp},
-            {"window", params.window},
-            {"ca", params.use_ca},
-            {"min_disp", params.min_disp},
             {"uniqueness", params.validation.uniqueness ? params.validation.uniqueness_ratio : -1},
             {"lr_check", params.validation.left_right ? params.validation.lr_tolerance : -1},
-            {"subpixel", params.validation.subpixel},
             {"seed", options.seed},
             {"stall", options.stall},
             {"gap", options.gap},
             {"status", result.status},
             {"sim_seconds", seconds},
             {"sim_cycles_per_second", total_cycles / seconds},
-        };
+        });
         std::cout << io::versioned(summary).dump() << '\n';
     } else {
         std::printf(

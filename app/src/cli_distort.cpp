@@ -107,20 +107,14 @@ void add_distort_command(CLI::App& app) {
         ->required();
     command->add_option("OUT", options->output, "Output folder (created if its parent exists)")
         ->required();
-    command
-        ->add_option("--distortion", options->warp.distortion_percent,
-                     "Radial distortion P % of both images (> 0 barrel, < 0 pincushion)")
-        ->capture_default_str();
-    command
-        ->add_option("--shift-y", options->warp.right_shift_y,
-                     "Move the right image down by S pixels")
-        ->capture_default_str();
-    command
-        ->add_option("--rotate", options->warp.right_rotation_deg,
-                     "Rotate the right image by DEG degrees (counter-clockwise) about its centre")
-        ->capture_default_str();
-    command->add_option("--gt-scale", options->gt_scale, "gt.png holds disparity * G")
-        ->capture_default_str();
+    add_number_options(
+        *command,
+        {{"--distortion", &options->warp.distortion_percent,
+          "Radial distortion P % of both images (> 0 barrel, < 0 pincushion)"},
+         {"--shift-y", &options->warp.right_shift_y, "Move the right image down by S pixels"},
+         {"--rotate", &options->warp.right_rotation_deg,
+          "Rotate the right image by DEG degrees (counter-clockwise) about its centre"},
+         {"--gt-scale", &options->gt_scale, "gt.png holds disparity * G"}});
     command
         ->add_option("--gt", options->gt_mode,
                      "warped: distort the GT like the left image (the thesis); exact: follow "

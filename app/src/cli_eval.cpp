@@ -175,14 +175,11 @@ void add_eval_command(CLI::App& app) {
     command->add_option("DISP", options->disparity, "Our disparity PNG or PFM")->required();
     command->add_option("GT", options->ground_truth, "Ground-truth PNG (0 = unknown) or PFM")
         ->required();
-    command->add_option("--scale", options->scale, "DISP holds disparity * K")
-        ->capture_default_str();
-    command->add_option("--gt-scale", options->gt_scale, "GT holds disparity * G")
-        ->capture_default_str();
-    command
-        ->add_option("--gt-downscale", options->gt_downscale,
-                     "GT and masks are F times larger than DISP (match --downscale F)")
-        ->capture_default_str();
+    add_number_options(*command,
+                       {{"--scale", &options->scale, "DISP holds disparity * K"},
+                        {"--gt-scale", &options->gt_scale, "GT holds disparity * G"},
+                        {"--gt-downscale", &options->gt_downscale,
+                         "GT and masks are F times larger than DISP (match --downscale F)"}});
     command->add_option("--nonocc", options->nonocc, "Mask of non-occluded pixels (255 = scored)");
     command->add_option("--all", options->all,
                         "Mask of scored pixels (255); default: every known GT pixel");

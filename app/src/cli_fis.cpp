@@ -52,14 +52,10 @@ void add_fis_command(CLI::App& app) {
     command->add_option("--right", options->right, "Occupied fraction of the right window, [0, 1]")
         ->required();
     command->add_flag("--json", options->json, "Print one JSON object");
-    command
-        ->add_option("--rate", options->params.rate,
-                     "Centre occupancy from which 'forward' is never the answer")
-        ->capture_default_str();
-    command
-        ->add_option("--forward-band", options->params.forward_band,
-                     "|angle| up to this (deg) is no turn")
-        ->capture_default_str();
+    add_number_options(*command, {{"--rate", &options->params.rate,
+                                   "Centre occupancy from which 'forward' is never the answer"},
+                                  {"--forward-band", &options->params.forward_band,
+                                   "|angle| up to this (deg) is no turn"}});
 }
 
 }  // namespace stereo::cli

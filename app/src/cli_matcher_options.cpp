@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include "stereo/hls/match.hpp"
 #ifdef STEREO_WITH_RTL
@@ -173,14 +174,14 @@ void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoi
         ->capture_default_str();
 }
 
-void add_number_options(CLI::App& command, std::initializer_list<NumberOption> options) {
-    for (const NumberOption& option : options) {
-        std::visit(
-            [&](auto* value) {
-                command.add_option(option.name, *value, option.help)->capture_default_str();
-            },
-            option.value);
-    }
+nlohmann::json pipeline_json(int width, int height, const MatchParams& params) {
+    return {{"width", width},
+            {"height", height},
+            {"ndisp", params.ndisp},
+            {"window", params.window},
+            {"ca", params.use_ca},
+            {"min_disp", params.min_disp},
+            {"subpixel", params.validation.subpixel}};
 }
 
 }  // namespace stereo::cli

@@ -3,10 +3,9 @@
 // one help text each, registered by one helper and resolved into a stereo::MatchConfig once.
 #pragma once
 
-#include <cstdint>
-#include <initializer_list>
 #include <string>
-#include <variant>
+
+#include <nlohmann/json_fwd.hpp>
 
 #include "stereo/matcher.hpp"
 
@@ -50,6 +49,10 @@ struct MatcherOptions {
     MatchConfig resolved() const;
 };
 
+// The frame size and the pipeline parameters a run used, as the --json summaries of board and
+// cosim name them (each adds uniqueness and lr_check in its own form).
+nlohmann::json pipeline_json(int width, int height, const MatchParams& params);
+
 enum class MatcherChoice {
     fixed,      // the subcommand runs one matcher: only the pipeline parameters
     selectable  // also --method, --engine, --frontend, --cost
@@ -69,15 +72,5 @@ struct ExposedParams {
 // options.config holds when this is called, so a subcommand sets its own defaults first.
 void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoice choice,
                          ExposedParams exposed = {});
-
-// A numeric option whose --help shows its default; subcommands with many tuning parameters
-// register them as one table instead of one add_option block each.
-struct NumberOption {
-    const char* name;
-    std::variant<int*, double*, std::uint32_t*> value;
-    const char* help;
-};
-
-void add_number_options(CLI::App& command, std::initializer_list<NumberOption> options);
 
 }  // namespace stereo::cli

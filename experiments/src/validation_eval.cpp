@@ -300,10 +300,9 @@ void add_validation_eval_command(CLI::App& app) {
     command->add_option("--markdown", options->markdown, "Also write the tables to FILE");
     command->add_option("--json", options->json_path, "Also write every figure as JSON");
     command->add_option("--figure", options->figure, "Write the error-versus-coverage PNG");
-    command->add_option("--uniqueness", options->uniqueness, "Ratio of the defaults row")
-        ->capture_default_str();
-    command->add_option("--lr-check", options->lr_tolerance, "Tolerance of the defaults row")
-        ->capture_default_str();
+    cli::add_number_options(
+        *command, {{"--uniqueness", &options->uniqueness, "Ratio of the defaults row"},
+                   {"--lr-check", &options->lr_tolerance, "Tolerance of the defaults row"}});
     command->add_option("--sweep", options->sweep, "Uniqueness ratios of the curve")
         ->capture_default_str();
 }
