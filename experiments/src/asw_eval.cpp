@@ -21,6 +21,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <ranges>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -44,7 +45,6 @@
 #include "stereo_io/lighting.hpp"
 #include "stereo_io/metrics.hpp"
 #include "stereo_io/middlebury.hpp"
-#include "stereo_io/output.hpp"
 #include "stereo_io/scene_strip.hpp"
 #include "stereo_io/versioned_json.hpp"
 
@@ -151,6 +151,16 @@ Run run(const io::SceneData& data, const Config& config) {
 
 bool has_masks(const io::SceneData& data) {
     return !data.nonocc.mat.empty();
+}
+
+// The 2003 pairs of a scene list (scored on their masks), in order.
+auto masked_pairs(const std::vector<io::SceneData>& scenes) {
+    return scenes | std::views::filter(has_masks);
+}
+
+// The held-out scenes of a scene list (no masks), in order.
+auto held_out_scenes(const std::vector<io::SceneData>& scenes) {
+    return scenes | std::views::filter(std::not_fn(has_masks));
 }
 
 // The 2003 pairs: the Middlebury masks. The others: every known pixel, invalid counted bad.
@@ -339,10 +349,7 @@ std::string presented_table(const Results& results, const std::vector<io::SceneD
     int figures = 0;
     int below_sgbm = 0;
     int pairs = 0;
-    for (const io::SceneData& data : scenes) {
-        if (!has_masks(data)) {
-            continue;
-        }
+    for (const io::SceneData& data : masked_pairs(scenes)) {
         const std::string& name = data.scene.name;
         const Triple full = triple(results.at("pairs", name, kFull.name));
         const Triple separable = triple(results.at("pairs", name, kSeparable.name));
@@ -374,10 +381,7 @@ std::string lcdm_table(const Results& results, const std::vector<io::SceneData>&
     md << "### Table 3.8: ASW with the LCDM cost (bad > 1 %, nonocc / all / disc)\n\n"
        << "| pair | ours ASW + LCDM | thesis (Table 3.8) | ours ASW + AD | LCDM - AD (nonocc) "
           "|\n|---|---|---|---|---|\n";
-    for (const io::SceneData& data : scenes) {
-        if (!has_masks(data)) {
-            continue;
-        }
+    for (const io::SceneData& data : masked_pairs(scenes)) {
         const std::string& name = data.scene.name;
         const Triple lcdm = triple(results.at("pairs", name, kLcdm.name));
         const Triple ad = triple(results.at("pairs", name, kFull.name));
@@ -393,10 +397,7 @@ std::string held_out_table(const Results& results, const std::vector<io::SceneDa
           "bad / coverage %)\n\n"
        << "| scene | ndisp | full ASW | separable | ASW + LCDM | OpenCV SGBM | full ASW seconds "
           "|\n|---|---|---|---|---|---|---|\n";
-    for (const io::SceneData& data : scenes) {
-        if (has_masks(data)) {
-            continue;
-        }
+    for (const io::SceneData& data : held_out_scenes(scenes)) {
         const std::string& name = data.scene.name;
         md << "| " << name << " | " << data.scene.ndisp << " |";
         for (const Config* config : {&kFull, &kSeparable, &kLcdm, &kSgbm}) {
@@ -501,10 +502,7 @@ void run_asw_eval(const AswEvalOptions& options) {
         results.add("ablation", *tsukuba, config, run(*tsukuba, config));
     }
     std::string speed_scene;
-    for (const io::SceneData& data : scenes) {
-        if (!has_masks(data)) {
-            continue;
-        }
+    for (const io::SceneData& data : masked_pairs(scenes)) {
         const Run full = run(data, kFull);
         results.add("pairs", data, kFull, full);
         for (const Config* config : {&kSeparable, &kLcdm, &kSgbm}) {
@@ -526,10 +524,7 @@ void run_asw_eval(const AswEvalOptions& options) {
             }
         }
     }
-    for (const io::SceneData& data : scenes) {
-        if (has_masks(data)) {
-            continue;
-        }
+    for (const io::SceneData& data : held_out_scenes(scenes)) {
         std::cerr << "asw-eval: held-out, " << data.scene.name << " (" << data.pair.left.width
                   << "x" << data.pair.left.height << ", ndisp " << data.scene.ndisp
                   << "): the full ASW may take minutes\n";
@@ -552,17 +547,14 @@ void run_asw_eval(const AswEvalOptions& options) {
        << ablation_table(results, tsukuba->scene.ndisp) << '\n'
        << presented_table(results, scenes) << '\n'
        << lcdm_table(results, scenes) << '\n';
-    if (std::any_of(scenes.begin(), scenes.end(),
-                    [](const io::SceneData& d) { return !has_masks(d); })) {
+    if (!held_out_scenes(scenes).empty()) {
         md << held_out_table(results, scenes) << '\n';
     }
     md << sweep_table(results) << '\n' << speed_table(results, speed_scene);
-    std::cout << md.str();
     const json report = {{"quick", options.quick},
                          {"hardware_threads", std::thread::hardware_concurrency()},
                          {"runs", results.runs()}};
-    add_report_files(files, options.markdown, md.str(), options.json_path, report);
-    io::write_files_atomic(files);
+    print_and_write_report(std::move(files), options.markdown, md.str(), options.json_path, report);
 }
 
 }  // namespace

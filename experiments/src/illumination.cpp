@@ -152,6 +152,19 @@ const io::SceneData* find_scene(const std::vector<io::SceneData>& scenes, const 
 
 // ---- the parts ---------------------------------------------------------------------------
 
+// The rest of a table's header after its `leading` column names: one column per method, then
+// the separator row.
+void print_method_columns(const std::vector<Method>& methods, std::size_t leading) {
+    for (const auto& m : methods) {
+        std::cout << ' ' << m.name << " |";
+    }
+    std::cout << "\n|";
+    for (std::size_t i = 0; i < leading + methods.size(); ++i) {
+        std::cout << "---|";
+    }
+    std::cout << '\n';
+}
+
 void ideal(const std::vector<io::SceneData>& scenes) {
     // Thesis Table 3.8 (LCDM in the thesis' ASW algorithm): nonocc / all / disc.
     const std::map<std::string, std::string> thesis = {{"tsukuba", "5.98 / 7.84 / 22.2"},
@@ -295,14 +308,7 @@ void sweep(const std::vector<io::SceneData>& scenes, const std::string& figure) 
     const auto steps = sweep_steps();
     std::vector<std::vector<double>> values(methods.size());
     std::cout << "\n### Lightness sweep, Tsukuba (bad > 1 % nonocc)\n\n| lightness |";
-    for (const auto& m : methods) {
-        std::cout << ' ' << m.name << " |";
-    }
-    std::cout << "\n|---|";
-    for (std::size_t i = 0; i < methods.size(); ++i) {
-        std::cout << "---|";
-    }
-    std::cout << '\n';
+    print_method_columns(methods, 1);
     for (const double p : steps) {
         io::Lighting lighting;
         lighting.lightness_percent = p;
@@ -337,14 +343,7 @@ void variable(const std::vector<io::SceneData>& scenes) {
     methods.insert(methods.begin() + 2, equalised_ad());
     std::cout << "\n### Variably altered illumination of the right image (bad > 1 % nonocc)\n\n"
               << "| scene | lighting |";
-    for (const auto& m : methods) {
-        std::cout << ' ' << m.name << " |";
-    }
-    std::cout << "\n|---|---|";
-    for (std::size_t i = 0; i < methods.size(); ++i) {
-        std::cout << "---|";
-    }
-    std::cout << '\n';
+    print_method_columns(methods, 2);
     io::Lighting none;
     io::Lighting gradient;
     gradient.gradient_left = -50;
@@ -405,14 +404,7 @@ void real(const std::string& data_dir) {
     std::cout << "\n### Real lighting / exposure changes (Middlebury 2014, quarter size, 0..79)\n\n"
               << "Changed: % of the pixels valid in both maps whose disparity differs by more "
                  "than 1 (valid in both: % of the image).\n\n| pair |";
-    for (const auto& m : methods) {
-        std::cout << ' ' << m.name << " |";
-    }
-    std::cout << "\n|---|";
-    for (std::size_t i = 0; i < methods.size(); ++i) {
-        std::cout << "---|";
-    }
-    std::cout << '\n';
+    print_method_columns(methods, 1);
     for (const auto& [reference, varied] :
          {std::pair{"Motorcycle", "MotorcycleE"}, std::pair{"Piano", "PianoL"}}) {
         const auto load = [&](const char* folder) {

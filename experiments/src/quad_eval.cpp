@@ -17,6 +17,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -31,7 +32,6 @@
 #include "stereo_io/disparity_files.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/metrics.hpp"
-#include "stereo_io/output.hpp"
 #include "stereo_io/point_cloud.hpp"
 #include "stereo_io/versioned_json.hpp"
 
@@ -168,16 +168,21 @@ struct Row {
     std::string note;
 };
 
+// A float map (NaN invalid) against the light field's signed GT, on the three masks.
+io::EvalInput eval_input(const cv::Mat& disparity, const std::string& name, const cv::Mat& gt,
+                         const Masks& masks) {
+    return {.disparity = {disparity, name},
+            .ground_truth = {gt, "gt"},
+            .nonocc = io::NamedMat{masks.nonocc, "nonocc"},
+            .all = io::NamedMat{masks.all, "all"},
+            .disc = io::NamedMat{masks.disc, "disc"},
+            .threshold = 1.0,
+            .zero_is_invalid = false,
+            .gt_zero_is_unknown = false};
+}
+
 json score(const Row& row, const cv::Mat& gt, const Masks& masks) {
-    const io::EvalInput input{.disparity = {row.disparity, row.name},
-                              .ground_truth = {gt, "gt"},
-                              .nonocc = io::NamedMat{masks.nonocc, "nonocc"},
-                              .all = io::NamedMat{masks.all, "all"},
-                              .disc = io::NamedMat{masks.disc, "disc"},
-                              .threshold = 1.0,
-                              .zero_is_invalid = false,
-                              .gt_zero_is_unknown = false};
-    const io::EvalResult r = io::evaluate(input);
+    const io::EvalResult r = io::evaluate(eval_input(row.disparity, row.name, gt, masks));
     std::int64_t valid_inside = 0;
     std::int64_t inside = 0;
     for (int y = 0; y < gt.rows; ++y) {
@@ -671,14 +676,7 @@ void run_quad_eval(const Options& options) {
         report["baselines"].push_back(block);
 
         if (n == options.baselines.front() && !options.figures.empty()) {
-            const io::EvalInput fused_input{.disparity = {rows[3].disparity, "fused"},
-                                            .ground_truth = {gt, "gt"},
-                                            .nonocc = io::NamedMat{masks.nonocc, "nonocc"},
-                                            .all = io::NamedMat{masks.all, "all"},
-                                            .disc = io::NamedMat{masks.disc, "disc"},
-                                            .threshold = 1.0,
-                                            .zero_is_invalid = false,
-                                            .gt_zero_is_unknown = false};
+            const io::EvalInput fused_input = eval_input(rows[3].disparity, "fused", gt, masks);
             const fs::path dir(options.figures);
             const std::string suffix = "_n" + std::to_string(n) + ".png";
             files.emplace_back(
@@ -711,10 +709,8 @@ void run_quad_eval(const Options& options) {
     if (!report.contains("cloud_note")) {
         report["cloud_note"] = "";
     }
-    const std::string md = markdown(report);
-    std::cout << md;
-    add_report_files(files, options.markdown, md, options.json_path, report);
-    io::write_files_atomic(files);
+    print_and_write_report(std::move(files), options.markdown, markdown(report), options.json_path,
+                           report);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <iostream>
 #include <stdexcept>
 
 #include "experiments.hpp"
@@ -19,6 +20,14 @@ void add_report_files(OutputFiles& files, const std::string& markdown_path,
     if (!json_path.empty()) {
         files.emplace_back(json_path, io::versioned(report).dump(2) + '\n');
     }
+}
+
+void print_and_write_report(OutputFiles files, const std::string& markdown_path,
+                            const std::string& markdown, const std::string& json_path,
+                            const nlohmann::json& report) {
+    std::cout << markdown;
+    add_report_files(files, markdown_path, markdown, json_path, report);
+    io::write_files_atomic(files);
 }
 
 void check_report_outputs(const std::vector<std::string>& files,
