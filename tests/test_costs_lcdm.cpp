@@ -56,13 +56,6 @@ TEST(Lcdm, EveryGreyAndPrimaryMixEqualsNaive) {
     EXPECT_EQ(cost_volume(*make_cost("lcdm"), left, right, 5), lcdm::naive::cost(left, right, 5));
 }
 
-TEST(Lcdm, MatchEqualsNaive) {
-    std::mt19937 rng(test::test_seed() + 1);
-    const auto [left, right] = test::shifted_pair(48, 32, 3, 5, 4, rng);
-    MatchParams params{12, 5, 1.5, true, "lcdm"};
-    EXPECT_EQ(match(left, right, params), naive::match(left, right, params));
-}
-
 TEST(Lcdm, HandComputedColours) {
     // Same hue and HSL saturation 1, different lightness: the same point, cost 0.
     EXPECT_EQ(fixed_cost(255, 0, 0, 128, 0, 0), 0);
@@ -183,13 +176,6 @@ TEST(Zncc, CostVolumeEqualsNaive) {
     }
 }
 
-TEST(Zncc, MatchEqualsNaive) {
-    std::mt19937 rng(test::test_seed() + 5);
-    const auto [left, right] = test::shifted_pair(40, 30, 1, 3, 4, rng);
-    MatchParams params{8, 1, 1.0, false, "zncc"};
-    EXPECT_EQ(match(left, right, params), naive::match(left, right, params));
-}
-
 TEST(Zncc, HandComputedCases) {
     // An affine change of the right image (gain 2, offset 10) leaves ZNCC at 1: cost 0.
     Image left(15, 15, 1);
@@ -219,6 +205,28 @@ TEST(Zncc, HandComputedCases) {
         }
     }
 }
+
+// The whole pipeline with each cost plug-in against the naive pipeline, on a random pair.
+struct PipelineCase {
+    int seed_offset;
+    int width, height, channels, shift;
+    MatchParams params;
+};
+
+class PipelineEqualsNaive : public ::testing::TestWithParam<PipelineCase> {};
+
+TEST_P(PipelineEqualsNaive, RandomPair) {
+    const PipelineCase& c = GetParam();
+    std::mt19937 rng(test::test_seed() + c.seed_offset);
+    const auto [left, right] = test::shifted_pair(c.width, c.height, c.channels, c.shift, 4, rng);
+    EXPECT_EQ(match(left, right, c.params), naive::match(left, right, c.params));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Costs, PipelineEqualsNaive,
+    ::testing::Values(PipelineCase{1, 48, 32, 3, 5, {12, 5, 1.5, true, "lcdm"}},
+                      PipelineCase{5, 40, 30, 1, 3, {8, 1, 1.0, false, "zncc"}}),
+    [](const auto& info) { return info.param.params.cost; });
 
 }  // namespace
 }  // namespace stereo
