@@ -11,6 +11,7 @@ stereo_ca_plane.sv
 stereo_lcdm_convert.sv
 stereo_lcdm_distance.sv
 stereo_cost.sv
+stereo_weighted_sum.sv
 stereo_aggregate.sv
 stereo_wta.sv
 stereo_divider.sv

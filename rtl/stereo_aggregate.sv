@@ -80,7 +80,7 @@ module stereo_aggregate #(
     end else begin : g_constant_kernel
       for (genvar i = 0; i < WINDOW; i++) begin : g_tap
         assign kernel[i*TAP_BITS+:TAP_BITS] = TAP_BITS'(fx_pkg::default_tap(WINDOW, i));
-        // The paired taps below need a symmetric kernel: stop elaboration if it is not.
+        // stereo_weighted_sum pairs mirrored taps: stop elaboration if the kernel is not symmetric.
         if (fx_pkg::default_tap(WINDOW, i) != fx_pkg::default_tap(WINDOW, WINDOW - 1 - i))
         begin : g_asymmetric
           stereo_aggregate_default_kernel_is_not_symmetric asymmetric_kernel ();
@@ -147,31 +147,11 @@ module stereo_aggregate #(
           tap_cost[j*COST_BITS +: COST_BITS] = row_inside[j] ? cost : '0;
         end
       end
-      if (RUNTIME_KERNEL) begin : g_runtime_taps
-        always_comb begin
-          logic [VSUM_BITS-1:0] sum;
-          sum = '0;
-          for (int j = 0; j < WINDOW; j++) begin
-            sum = sum + VSUM_BITS'(tap_cost[j*COST_BITS +: COST_BITS]) *
-                        VSUM_BITS'(kernel[j*TAP_BITS +: TAP_BITS]);
-          end
-          vertical_d[d*VSUM_BITS +: VSUM_BITS] = sum;
-        end
-      end else begin : g_symmetric_taps
-        // The default kernel is symmetric (k[j] = k[2R-j], checked below): mirrored taps are
-        // added before the one multiplication they share, R+1 constant products instead of
-        // 2R+1. Exact: integer sums in full precision.
-        always_comb begin
-          logic [VSUM_BITS-1:0] sum;
-          sum = VSUM_BITS'(tap_cost[R*COST_BITS +: COST_BITS]) * VSUM_BITS'(fx_pkg::default_tap(WINDOW, R));
-          for (int j = 0; j < R; j++) begin
-            sum = sum + (VSUM_BITS'(tap_cost[j*COST_BITS +: COST_BITS]) +
-                         VSUM_BITS'(tap_cost[(2*R-j)*COST_BITS +: COST_BITS])) *
-                        VSUM_BITS'(fx_pkg::default_tap(WINDOW, j));
-          end
-          vertical_d[d*VSUM_BITS +: VSUM_BITS] = sum;
-        end
-      end
+      stereo_weighted_sum #(
+          .WINDOW(WINDOW), .IN_BITS(COST_BITS), .SUM_BITS(VSUM_BITS),
+          .RUNTIME_KERNEL(RUNTIME_KERNEL)
+      ) vertical_sum (
+          .taps(tap_cost), .kernel(kernel), .sum(vertical_d[d*VSUM_BITS +: VSUM_BITS]));
     end
   endgenerate
 
@@ -263,25 +243,15 @@ module stereo_aggregate #(
           tap_sum[i*VSUM_BITS +: VSUM_BITS] = column_inside[i] ? v : '0;
         end
       end
-      always_comb begin
-        logic [WSUM_BITS-1:0] sum;
-        if (RUNTIME_KERNEL) begin
-          sum = '0;
-          for (int i = 0; i < WINDOW; i++) begin
-            sum = sum + WSUM_BITS'(tap_sum[i*VSUM_BITS +: VSUM_BITS]) *
-                        WSUM_BITS'(kernel[i*TAP_BITS +: TAP_BITS]);
-          end
-        end else begin  // symmetric constant kernel, as in the vertical pass
-          sum = WSUM_BITS'(tap_sum[R*VSUM_BITS +: VSUM_BITS]) * WSUM_BITS'(fx_pkg::default_tap(WINDOW, R));
-          for (int i = 0; i < R; i++) begin
-            sum = sum + (WSUM_BITS'(tap_sum[i*VSUM_BITS +: VSUM_BITS]) +
-                         WSUM_BITS'(tap_sum[(2*R-i)*VSUM_BITS +: VSUM_BITS])) *
-                        WSUM_BITS'(fx_pkg::default_tap(WINDOW, i));
-          end
-        end
-        sum = sum + WSUM_BITS'(1 << (AGG_SHIFT - 1));
-        aggregate_d[d*AGG_BITS +: AGG_BITS] = AGG_BITS'(sum >> AGG_SHIFT);
-      end
+      logic [WSUM_BITS-1:0] sum;
+      stereo_weighted_sum #(
+          .WINDOW(WINDOW), .IN_BITS(VSUM_BITS), .SUM_BITS(WSUM_BITS),
+          .RUNTIME_KERNEL(RUNTIME_KERNEL)
+      ) horizontal_sum (
+          .taps(tap_sum), .kernel(kernel), .sum(sum));
+      // Rounded to the nearest (half up) by the kernel's scale.
+      assign aggregate_d[d*AGG_BITS +: AGG_BITS] =
+          AGG_BITS'((sum + WSUM_BITS'(1 << (AGG_SHIFT - 1))) >> AGG_SHIFT);
     end
   endgenerate
 

@@ -32,7 +32,17 @@ Command<Options> add_command(CLI::App& app, const std::string& name, const std::
 
 // --data: the folder that holds middlebury2003/ (its default shown by --help).
 inline void add_data_option(CLI::App& command, std::string& folder) {
-    command.add_option("--data", folder, "Folder holding middlebury2003/")->capture_default_str();
+    command.add_option("--data", folder, "Data folder (middlebury2003/ and the other data sets)")
+        ->capture_default_str();
+}
+
+// The options of every result generator: the data folder, and besides stdout a Markdown file of
+// the tables and a JSON file of every number.
+inline void add_report_options(CLI::App& command, std::string& data_folder, std::string& markdown,
+                               std::string& json) {
+    add_data_option(command, data_folder);
+    command.add_option("--markdown", markdown, "Also write the tables (Markdown) to FILE");
+    command.add_option("--json", json, "Also write every number as JSON to FILE");
 }
 
 // A numeric option whose --help shows its default. A run of them is registered as one table

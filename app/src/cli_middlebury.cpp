@@ -240,10 +240,8 @@ void add_middlebury_command(CLI::App& app) {
     const auto [command, options] = add_command<Options>(
         app, "middlebury", "Evaluate the model and OpenCV baselines on the Middlebury 2003 pairs.",
         run_middlebury);
-    add_data_option(*command, options->data_dir);
+    add_report_options(*command, options->data_dir, options->markdown, options->json);
     command->add_option("--figures", options->figures, "Write one figure strip per pair here");
-    command->add_option("--markdown", options->markdown, "Also write the tables to this file");
-    command->add_option("--json", options->json, "Write all figures as JSON to this file");
     // The scenes set ndisp, and the report runs both CA settings: only --window and --sigma.
     add_matcher_options(*command, options->matcher, MatcherChoice::fixed,
                         {.ndisp = false, .no_ca = false});

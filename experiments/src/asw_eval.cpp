@@ -566,9 +566,7 @@ void add_asw_eval_command(CLI::App& app) {
         "SGBM: ablation, the 2003 pairs, LCDM, held-out scenes, lightness sweep, speed "
         "(docs/results-asw-tables.md).",
         run_asw_eval);
-    command->add_option("--data", options->data_dir, "Data folder")->capture_default_str();
-    command->add_option("--markdown", options->markdown, "Also write the tables to FILE");
-    command->add_option("--json", options->json_path, "Also write every run as JSON");
+    cli::add_report_options(*command, options->data_dir, options->markdown, options->json_path);
     command->add_option("--figures", options->figures,
                         "Write one strip per 2003 pair into this existing folder");
     command->add_flag("--quick", options->quick, "Tsukuba and Venus only (a smoke test)");

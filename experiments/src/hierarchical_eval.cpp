@@ -440,9 +440,7 @@ void add_hierarchical_eval_command(CLI::App& app) {
         "Evaluate the hierarchical 2-D search on decalibrated Middlebury pairs "
         "(docs/results-hierarchical.md).",
         run_eval);
-    cli::add_data_option(*command, options->data);
-    command->add_option("--markdown", options->markdown, "Also write the tables to FILE");
-    command->add_option("--json", options->json_path, "Write every number as JSON to FILE");
+    cli::add_report_options(*command, options->data, options->markdown, options->json_path);
     command->add_option("--figures", options->figures, "Write the figures into this folder");
     command->add_flag("--skip-full-search", options->skip_full_search,
                       "Count the full D x V search without running it (no run time)");

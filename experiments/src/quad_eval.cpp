@@ -721,9 +721,7 @@ void add_quad_eval_command(CLI::App& app) {
         "Quad-camera fusion on the antinous light field against each pair, the two-camera "
         "23 x 23 matcher and SGBM (docs/results-quad.md).",
         run_quad_eval);
-    command->add_option("--data", options->data_dir, "Data folder")->capture_default_str();
-    command->add_option("--markdown", options->markdown, "Also write the report to FILE");
-    command->add_option("--json", options->json_path, "Also write every number as JSON");
+    cli::add_report_options(*command, options->data_dir, options->markdown, options->json_path);
     command->add_option("--figures", options->figures, "Folder for quad_montage / quad_cloud PNGs");
     command->add_option("--ply", options->ply, "Also write the fused n = 4 cloud (binary PLY)");
     command->add_option("--baselines", options->baselines, "Square sides n (first: figures)")

@@ -296,9 +296,7 @@ void add_validation_eval_command(CLI::App& app) {
         "Coverage and error of the validated output on every scene with ground truth, beside "
         "OpenCV BM and SGBM, and the uniqueness sweep (docs/results.md).",
         run_validation_eval);
-    command->add_option("--data", options->data_dir, "Data folder")->capture_default_str();
-    command->add_option("--markdown", options->markdown, "Also write the tables to FILE");
-    command->add_option("--json", options->json_path, "Also write every figure as JSON");
+    cli::add_report_options(*command, options->data_dir, options->markdown, options->json_path);
     command->add_option("--figure", options->figure, "Write the error-versus-coverage PNG");
     cli::add_number_options(
         *command, {{"--uniqueness", &options->uniqueness, "Ratio of the defaults row"},
