@@ -23,7 +23,8 @@ void for_each_cell(int width, int height, int ndisp, Visit visit) {
 // pixel_cost(x, y, x - d), the left pixel (x, y) against the right pixel (x - d, y) with
 // d = min_disp + k, or `outside` where that right pixel lies outside the image.
 template <class PixelCost>
-Dsi pixel_cost_volume(const Image& left, int ndisp, int min_disp, int outside, PixelCost pixel_cost) {
+Dsi pixel_cost_volume(const Image& left, int ndisp, int min_disp, int outside,
+                      PixelCost pixel_cost) {
     Dsi dsi(left.width, left.height, ndisp);
     for_each_cell(left.width, left.height, ndisp, [&](int x, int y, int k) {
         const int right_x = x - (min_disp + k);
