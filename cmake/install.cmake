@@ -10,10 +10,6 @@ include(CMakePackageConfigHelpers)
 
 set(STEREO_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/stereo)
 
-set_target_properties(stereo_model PROPERTIES EXPORT_NAME model)
-set_target_properties(stereo_io PROPERTIES EXPORT_NAME io)
-set_target_properties(stereo_robot PROPERTIES EXPORT_NAME robot)
-
 install(TARGETS stereo_model stereo_io stereo_robot
         EXPORT stereo-targets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}

@@ -7,9 +7,14 @@
 #include <initializer_list>
 #include <memory>
 #include <string>
+#include <string_view>
+#include <type_traits>
+#include <utility>
 #include <variant>
 
 #include <CLI/CLI.hpp>
+
+#include "stereo_io/data_dir.hpp"
 
 namespace stereo::cli {
 
@@ -36,13 +41,28 @@ inline void add_data_option(CLI::App& command, std::string& folder) {
         ->capture_default_str();
 }
 
-// The options of every result generator: the data folder, and besides stdout a Markdown file of
-// the tables and a JSON file of every number.
-inline void add_report_options(CLI::App& command, std::string& data_folder, std::string& markdown,
-                               std::string& json) {
-    add_data_option(command, data_folder);
-    command.add_option("--markdown", markdown, "Also write the tables (Markdown) to FILE");
-    command.add_option("--json", json, "Also write every number as JSON to FILE");
+// The options every result generator shares: the data folder it reads (--data), and besides
+// stdout a Markdown file of its tables (--markdown) and a JSON file of every number (--json).
+struct ReportOptions {
+    std::string data_dir = io::data_dir().string();
+    std::string markdown;   // empty: stdout only
+    std::string json_path;  // empty: no JSON file
+};
+
+// add_command for a result generator: Options derives from ReportOptions and names its command
+// beside its fields (Options::kName, Options::kDescription); --data, --markdown and --json are
+// registered here, so that its add_*_command lists only the options of its own.
+template <class Options, class Run>
+Command<Options> add_report_command(CLI::App& app, Run run) {
+    static_assert(std::is_base_of_v<ReportOptions, Options>);
+    const Command<Options> command = add_command<Options>(
+        app, std::string(Options::kName), std::string(Options::kDescription), std::move(run));
+    ReportOptions& report = *command.options;
+    add_data_option(*command.app, report.data_dir);
+    command.app->add_option("--markdown", report.markdown,
+                            "Also write the tables (Markdown) to FILE");
+    command.app->add_option("--json", report.json_path, "Also write every number as JSON to FILE");
+    return command;
 }
 
 // A numeric option whose --help shows its default. A run of them is registered as one table

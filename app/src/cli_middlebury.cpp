@@ -13,6 +13,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -37,11 +38,11 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-struct Options {
-    std::string data_dir = io::data_dir().string();
+struct Options : ReportOptions {
+    static constexpr std::string_view kName = "middlebury";
+    static constexpr std::string_view kDescription =
+        "Evaluate the model and OpenCV baselines on the Middlebury 2003 pairs.";
     std::string figures;
-    std::string markdown;
-    std::string json;
     MatcherOptions matcher;  // --window, --sigma; ndisp comes from each scene
 };
 
@@ -112,8 +113,8 @@ nlohmann::json row_json(const MethodRow& row) {
 void run_report(const Options& options) {
     const fs::path data_dir = options.data_dir;
     // The report files are checked before minutes of matching, not after.
-    io::check_outputs_distinct({options.markdown, options.json}, {});
-    for (const std::string& report_file : {options.markdown, options.json}) {
+    io::check_outputs_distinct({options.markdown, options.json_path}, {});
+    for (const std::string& report_file : {options.markdown, options.json_path}) {
         if (!report_file.empty()) {
             io::check_writable_location(report_file);
         }
@@ -214,8 +215,8 @@ void run_report(const Options& options) {
     if (!options.markdown.empty()) {
         files.emplace_back(options.markdown, report);
     }
-    if (!options.json.empty()) {
-        files.emplace_back(options.json, io::versioned({{"scenes", json}}).dump(2) + '\n');
+    if (!options.json_path.empty()) {
+        files.emplace_back(options.json_path, io::versioned({{"scenes", json}}).dump(2) + '\n');
     }
     if (!options.figures.empty()) {
         fs::create_directories(options.figures);
@@ -237,10 +238,7 @@ void run_middlebury(const Options& options) {
 }  // namespace
 
 void add_middlebury_command(CLI::App& app) {
-    const auto [command, options] = add_command<Options>(
-        app, "middlebury", "Evaluate the model and OpenCV baselines on the Middlebury 2003 pairs.",
-        run_middlebury);
-    add_report_options(*command, options->data_dir, options->markdown, options->json);
+    const auto [command, options] = add_report_command<Options>(app, run_middlebury);
     command->add_option("--figures", options->figures, "Write one figure strip per pair here");
     // The scenes set ndisp, and the report runs both CA settings: only --window and --sigma.
     add_matcher_options(*command, options->matcher, MatcherChoice::fixed,

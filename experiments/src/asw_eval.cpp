@@ -25,6 +25,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <utility>
 #include <vector>
@@ -54,10 +55,12 @@ namespace fs = std::filesystem;
 using json = nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
-struct AswEvalOptions {
-    std::string data_dir = io::data_dir().string();
-    std::string markdown;  // empty: stdout only
-    std::string json_path;
+struct AswEvalOptions : cli::ReportOptions {
+    static constexpr std::string_view kName = "asw-eval";
+    static constexpr std::string_view kDescription =
+        "Adaptive support weights (method asw) against the thesis' Tables 3.6-3.8 and OpenCV "
+        "SGBM: ablation, the 2003 pairs, LCDM, held-out scenes, lightness sweep, speed "
+        "(docs/results-asw-tables.md).";
     std::string figures;  // folder of the per-pair strips; empty: none
     bool quick = false;   // Tsukuba and Venus only
 };
@@ -560,13 +563,7 @@ void run_asw_eval(const AswEvalOptions& options) {
 }  // namespace
 
 void add_asw_eval_command(CLI::App& app) {
-    const auto [command, options] = cli::add_command<AswEvalOptions>(
-        app, "asw-eval",
-        "Adaptive support weights (method asw) against the thesis' Tables 3.6-3.8 and OpenCV "
-        "SGBM: ablation, the 2003 pairs, LCDM, held-out scenes, lightness sweep, speed "
-        "(docs/results-asw-tables.md).",
-        run_asw_eval);
-    cli::add_report_options(*command, options->data_dir, options->markdown, options->json_path);
+    const auto [command, options] = cli::add_report_command<AswEvalOptions>(app, run_asw_eval);
     command->add_option("--figures", options->figures,
                         "Write one strip per 2003 pair into this existing folder");
     command->add_flag("--quick", options->quick, "Tsukuba and Venus only (a smoke test)");

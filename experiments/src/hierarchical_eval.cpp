@@ -13,6 +13,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -38,10 +39,11 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-struct EvalOptions {
-    std::string data = io::data_dir().string();
-    std::string markdown;
-    std::string json_path;
+struct EvalOptions : cli::ReportOptions {
+    static constexpr std::string_view kName = "hierarchical-eval";
+    static constexpr std::string_view kDescription =
+        "Evaluate the hierarchical 2-D search on decalibrated Middlebury pairs "
+        "(docs/results-hierarchical.md).";
     std::string figures;
     bool skip_full_search = false;
 };
@@ -370,11 +372,11 @@ void run_eval(const EvalOptions& options) {
     check_report_outputs({options.markdown, options.json_path}, {options.figures});
     std::vector<io::SceneData> scenes;
     for (const auto& scene : io::middlebury2003_scenes()) {
-        auto data = io::load_scene(options.data, scene);
+        auto data = io::load_scene(options.data_dir, scene);
         if (!data) {
             throw std::runtime_error("Middlebury 2003 scene \"" + scene.name +
                                      "\" not found under " +
-                                     io::scene_dir(options.data, scene).string());
+                                     io::scene_dir(options.data_dir, scene).string());
         }
         scenes.push_back(std::move(*data));
     }
@@ -435,12 +437,7 @@ void run_eval(const EvalOptions& options) {
 }  // namespace
 
 void add_hierarchical_eval_command(CLI::App& app) {
-    const auto [command, options] = cli::add_command<EvalOptions>(
-        app, "hierarchical-eval",
-        "Evaluate the hierarchical 2-D search on decalibrated Middlebury pairs "
-        "(docs/results-hierarchical.md).",
-        run_eval);
-    cli::add_report_options(*command, options->data, options->markdown, options->json_path);
+    const auto [command, options] = cli::add_report_command<EvalOptions>(app, run_eval);
     command->add_option("--figures", options->figures, "Write the figures into this folder");
     command->add_flag("--skip-full-search", options->skip_full_search,
                       "Count the full D x V search without running it (no run time)");

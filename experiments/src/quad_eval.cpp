@@ -17,6 +17,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -53,10 +54,11 @@ constexpr double kOcclusionMargin = 0.5;
 constexpr double kJump = 1.0;
 constexpr int kDiscRadius = 4;
 
-struct Options {
-    std::string data_dir = io::data_dir().string();
-    std::string markdown;
-    std::string json_path;
+struct Options : cli::ReportOptions {
+    static constexpr std::string_view kName = "quad-eval";
+    static constexpr std::string_view kDescription =
+        "Quad-camera fusion on the antinous light field against each pair, the two-camera "
+        "23 x 23 matcher and SGBM (docs/results-quad.md).";
     std::string figures;  // folder for quad_*.png
     std::string ply;      // also write the fused n = 4 cloud here
     std::vector<int> baselines = {4, 2};
@@ -716,12 +718,7 @@ void run_quad_eval(const Options& options) {
 }  // namespace
 
 void add_quad_eval_command(CLI::App& app) {
-    const auto [command, options] = cli::add_command<Options>(
-        app, "quad-eval",
-        "Quad-camera fusion on the antinous light field against each pair, the two-camera "
-        "23 x 23 matcher and SGBM (docs/results-quad.md).",
-        run_quad_eval);
-    cli::add_report_options(*command, options->data_dir, options->markdown, options->json_path);
+    const auto [command, options] = cli::add_report_command<Options>(app, run_quad_eval);
     command->add_option("--figures", options->figures, "Folder for quad_montage / quad_cloud PNGs");
     command->add_option("--ply", options->ply, "Also write the fused n = 4 cloud (binary PLY)");
     command->add_option("--baselines", options->baselines, "Square sides n (first: figures)")

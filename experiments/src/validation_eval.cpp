@@ -12,6 +12,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -33,10 +34,11 @@ namespace {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
-struct EvalOptions {
-    std::string data_dir = io::data_dir().string();
-    std::string markdown;  // empty: stdout only
-    std::string json_path;
+struct EvalOptions : cli::ReportOptions {
+    static constexpr std::string_view kName = "validation-eval";
+    static constexpr std::string_view kDescription =
+        "Coverage and error of the validated output on every scene with ground truth, beside "
+        "OpenCV BM and SGBM, and the uniqueness sweep (docs/results.md).";
     std::string figure;  // the error-versus-coverage PNG
     int uniqueness = ValidationParams{}.uniqueness_ratio;
     int lr_tolerance = ValidationParams{}.lr_tolerance;
@@ -291,12 +293,7 @@ void run_validation_eval(const EvalOptions& options) {
 }  // namespace
 
 void add_validation_eval_command(CLI::App& app) {
-    const auto [command, options] = cli::add_command<EvalOptions>(
-        app, "validation-eval",
-        "Coverage and error of the validated output on every scene with ground truth, beside "
-        "OpenCV BM and SGBM, and the uniqueness sweep (docs/results.md).",
-        run_validation_eval);
-    cli::add_report_options(*command, options->data_dir, options->markdown, options->json_path);
+    const auto [command, options] = cli::add_report_command<EvalOptions>(app, run_validation_eval);
     command->add_option("--figure", options->figure, "Write the error-versus-coverage PNG");
     cli::add_number_options(
         *command, {{"--uniqueness", &options->uniqueness, "Ratio of the defaults row"},
