@@ -34,6 +34,7 @@
 #include "stereo_io/io.hpp"
 #include "stereo_io/serial_port.hpp"
 #include "stereo_io/test_support.hpp"
+#include "temp_folder.hpp"
 
 namespace stereo {
 namespace {
@@ -331,10 +332,9 @@ TEST(BoardClient, SilentDeviceTimesOut) {
 
 TEST(SerialPort, MissingPortAndNonTerminalAreErrors) {
     EXPECT_THROW(io::SerialPort("/nonexistent/ttyUSB9", 115200), std::runtime_error);
-    const std::filesystem::path file = std::filesystem::temp_directory_path() / "not_a_tty.bin";
-    std::ofstream(file) << "x";
+    const test::TempFolder folder;
+    const std::filesystem::path file = folder.write_text("not_a_tty.bin", "x");
     EXPECT_THROW(io::SerialPort(file.string(), 115200), std::runtime_error);
-    std::filesystem::remove(file);
     const EmulatedBoard device(small_board());
     EXPECT_THROW(io::SerialPort(device.path(), 123456), std::invalid_argument);
 }
@@ -371,9 +371,6 @@ std::string file_bytes(const std::filesystem::path& path) {
 class BoardCli : public ::testing::Test {
   protected:
     void SetUp() override {
-        folder_ = std::filesystem::temp_directory_path() /
-                  ("stereo_board_cli_" + std::to_string(::getpid()));
-        std::filesystem::create_directories(folder_);
         std::mt19937 rng(5);
         const Image left = test::random_image(32, 24, 3, rng);
         const Image right = test::shifted_copy(left, 4, 12, rng);
@@ -382,10 +379,9 @@ class BoardCli : public ::testing::Test {
         io::write_png(path("big.png"), io::to_bgr(test::random_image(40, 24, 3, rng)));
         io::write_png(path("narrow.png"), io::to_bgr(test::random_image(31, 24, 3, rng)));
     }
-    void TearDown() override { std::filesystem::remove_all(folder_); }
-    std::string path(const std::string& name) const { return (folder_ / name).string(); }
+    std::string path(const std::string& name) const { return folder_.file(name).string(); }
 
-    std::filesystem::path folder_;
+    const test::TempFolder folder_;
 };
 
 TEST_F(BoardCli, BoardOutputEqualsStereoMatchByteForByte) {

@@ -21,34 +21,14 @@
 #include "stereo_io/data_dir.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/limits.hpp"
+#include "temp_folder.hpp"
 
 namespace stereo::io {
 namespace {
 
 namespace fs = std::filesystem;
 
-// A fresh folder per test, removed at the end (tests may run in parallel processes).
-class TempDir {
-  public:
-    TempDir() {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        const std::string name = std::string("stereo_io_") + info->test_suite_name() + "_" +
-                                 info->name() + "_" + std::to_string(std::random_device{}());
-        path_ = fs::path(::testing::TempDir()) / name;
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ignored;
-        fs::remove_all(path_, ignored);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-
-    fs::path file(const std::string& name) const { return path_ / name; }
-
-  private:
-    fs::path path_;
-};
+using test::TempFolder;
 
 // Expects `call` to throw `Exception` with a one-line message containing `part`.
 template <typename Exception, typename Call>
@@ -97,11 +77,11 @@ void expect_round_trip(const DisparityMap& map, const cv::Mat& loaded) {
 }
 
 TEST(LoadImage, ConvertsBgrFileToRgbOrder) {
-    const TempDir dir;
+    const TempFolder dir;
     cv::Mat bgr(1, 2, CV_8UC3);
     bgr.at<cv::Vec3b>(0, 0) = cv::Vec3b(10, 20, 30);  // B, G, R
     bgr.at<cv::Vec3b>(0, 1) = cv::Vec3b(200, 100, 0);
-    ASSERT_TRUE(cv::imwrite(dir.file("rgb.png").string(), bgr));
+    dir.write_image("rgb.png", bgr);
 
     const Image image = load_image(dir.file("rgb.png"));
     ASSERT_EQ(image.width, 2);
@@ -115,9 +95,9 @@ TEST(LoadImage, ConvertsBgrFileToRgbOrder) {
 }
 
 TEST(LoadImage, DropsAlpha) {
-    const TempDir dir;
+    const TempFolder dir;
     const cv::Mat bgra(2, 2, CV_8UC4, cv::Scalar(1, 2, 3, 77));
-    ASSERT_TRUE(cv::imwrite(dir.file("rgba.png").string(), bgra));
+    dir.write_image("rgba.png", bgra);
 
     const Image image = load_image(dir.file("rgba.png"));
     ASSERT_EQ(image.channels, 3);
@@ -127,9 +107,9 @@ TEST(LoadImage, DropsAlpha) {
 }
 
 TEST(LoadImage, KeepsGreyAsOneChannel) {
-    const TempDir dir;
+    const TempFolder dir;
     const cv::Mat grey(3, 5, CV_8UC1, cv::Scalar(42));
-    ASSERT_TRUE(cv::imwrite(dir.file("grey.png").string(), grey));
+    dir.write_image("grey.png", grey);
 
     const Image image = load_image(dir.file("grey.png"));
     EXPECT_EQ(image.channels, 1);
@@ -139,21 +119,21 @@ TEST(LoadImage, KeepsGreyAsOneChannel) {
 }
 
 TEST(LoadImage, Refuses16BitColour) {
-    const TempDir dir;
+    const TempFolder dir;
     const cv::Mat deep(2, 2, CV_16UC3, cv::Scalar(1000, 2000, 3000));
-    ASSERT_TRUE(cv::imwrite(dir.file("deep.png").string(), deep));
+    dir.write_image("deep.png", deep);
     expect_error<std::runtime_error>([&] { (void)load_image(dir.file("deep.png")); },
                                      "deep.png': it is 16-bit 3-channel");
 }
 
 TEST(LoadImage, MissingFileNamesTheFile) {
-    const TempDir dir;
+    const TempFolder dir;
     expect_error<std::runtime_error>([&] { (void)load_image(dir.file("nope.png")); },
                                      "nope.png': no such file");
 }
 
 TEST(LoadImage, NotAnImageNamesTheFile) {
-    const TempDir dir;
+    const TempFolder dir;
     write_text(dir.file("text.png"), "this is not a PNG\n");
     expect_error<std::runtime_error>([&] { (void)load_image(dir.file("text.png")); },
                                      "text.png': not an image");
@@ -163,11 +143,11 @@ TEST(LoadImage, NotAnImageNamesTheFile) {
 }
 
 TEST(LoadImage, DownscaleAveragesBlocks) {
-    const TempDir dir;
+    const TempFolder dir;
     // 4x2 grey: two 2x2 blocks with means 25 and 100.
     const cv::Mat grey = (cv::Mat_<std::uint8_t>(2, 4) << 10, 20, 100, 100,  //
                           30, 40, 100, 100);
-    ASSERT_TRUE(cv::imwrite(dir.file("blocks.png").string(), grey));
+    dir.write_image("blocks.png", grey);
 
     const Image image = load_image(dir.file("blocks.png"), 2);
     ASSERT_EQ(image.width, 2);
@@ -177,8 +157,8 @@ TEST(LoadImage, DownscaleAveragesBlocks) {
 }
 
 TEST(LoadImage, RejectsBadDownscale) {
-    const TempDir dir;
-    ASSERT_TRUE(cv::imwrite(dir.file("small.png").string(), cv::Mat(3, 3, CV_8UC1)));
+    const TempFolder dir;
+    dir.write_image("small.png", cv::Mat(3, 3, CV_8UC1));
     expect_error<std::invalid_argument>([&] { (void)load_image(dir.file("small.png"), 0); },
                                         "downscale factor must be >= 1, got 0");
     expect_error<std::invalid_argument>([&] { (void)load_image(dir.file("small.png"), 4); },
@@ -186,25 +166,25 @@ TEST(LoadImage, RejectsBadDownscale) {
 }
 
 TEST(LoadPair, SizeMismatchNamesBothSizes) {
-    const TempDir dir;
-    ASSERT_TRUE(cv::imwrite(dir.file("l.png").string(), cv::Mat(3, 4, CV_8UC3)));
-    ASSERT_TRUE(cv::imwrite(dir.file("r.png").string(), cv::Mat(3, 5, CV_8UC3)));
+    const TempFolder dir;
+    dir.write_image("l.png", cv::Mat(3, 4, CV_8UC3));
+    dir.write_image("r.png", cv::Mat(3, 5, CV_8UC3));
     expect_error<std::invalid_argument>(
         [&] { (void)load_pair(dir.file("l.png"), dir.file("r.png")); },
         "l.png' is 4x3 but right '" + dir.file("r.png").string() + "' is 5x3");
 }
 
 TEST(LoadPair, UnreadableRightNamesTheFile) {
-    const TempDir dir;
-    ASSERT_TRUE(cv::imwrite(dir.file("l.png").string(), cv::Mat(3, 4, CV_8UC3)));
+    const TempFolder dir;
+    dir.write_image("l.png", cv::Mat(3, 4, CV_8UC3));
     expect_error<std::runtime_error>(
         [&] { (void)load_pair(dir.file("l.png"), dir.file("missing.png")); }, "missing.png'");
 }
 
 TEST(LoadPair, PromotesGreyToColourWhenMixed) {
-    const TempDir dir;
-    ASSERT_TRUE(cv::imwrite(dir.file("l.png").string(), cv::Mat(2, 2, CV_8UC1, cv::Scalar(9))));
-    ASSERT_TRUE(cv::imwrite(dir.file("r.png").string(), cv::Mat(2, 2, CV_8UC3)));
+    const TempFolder dir;
+    dir.write_image("l.png", cv::Mat(2, 2, CV_8UC1, cv::Scalar(9)));
+    dir.write_image("r.png", cv::Mat(2, 2, CV_8UC3));
     const ImagePair pair = load_pair(dir.file("l.png"), dir.file("r.png"));
     EXPECT_EQ(pair.left.channels, 3);
     EXPECT_EQ(pair.right.channels, 3);
@@ -212,7 +192,7 @@ TEST(LoadPair, PromotesGreyToColourWhenMixed) {
 }
 
 TEST(DisparityPng, RoundTrip8Bit) {
-    const TempDir dir;
+    const TempFolder dir;
     const int ndisp = 16;
     const int scale = 4;  // (16 - 1) * 4 = 60 fits 8 bits
     const DisparityMap map = sample_map(ndisp);
@@ -226,7 +206,7 @@ TEST(DisparityPng, RoundTrip8Bit) {
 }
 
 TEST(DisparityPng, RoundTrip16Bit) {
-    const TempDir dir;
+    const TempFolder dir;
     const int ndisp = 64;
     const int scale = 16;  // 63 * 16 = 1008 needs 16 bits
     const DisparityMap map = sample_map(ndisp);
@@ -280,18 +260,17 @@ TEST(DisparityPng, ColourViewBlacksOutInvalidPixels) {
 }
 
 TEST(LoadDisparity, AppliesScaleAndTakesOneChannelOfGrey) {
-    const TempDir dir;
+    const TempFolder dir;
     const cv::Mat grey3(1, 2, CV_8UC3, cv::Scalar(40, 40, 40));
-    ASSERT_TRUE(cv::imwrite(dir.file("g3.png").string(), grey3));
+    dir.write_image("g3.png", grey3);
     const cv::Mat loaded = load_disparity(dir.file("g3.png"), 8.0);
     ASSERT_EQ(loaded.type(), CV_32FC1);
     EXPECT_FLOAT_EQ(loaded.at<float>(0, 1), 5.0F);
 }
 
 TEST(LoadDisparity, RefusesColourAndBadScale) {
-    const TempDir dir;
-    ASSERT_TRUE(
-        cv::imwrite(dir.file("c.png").string(), cv::Mat(1, 2, CV_8UC3, cv::Scalar(1, 2, 3))));
+    const TempFolder dir;
+    dir.write_image("c.png", cv::Mat(1, 2, CV_8UC3, cv::Scalar(1, 2, 3)));
     expect_error<std::runtime_error>([&] { (void)load_disparity(dir.file("c.png"), 1.0); },
                                      "expected a grey image");
     expect_error<std::invalid_argument>([&] { (void)load_disparity(dir.file("c.png"), 0.0); },
@@ -299,14 +278,14 @@ TEST(LoadDisparity, RefusesColourAndBadScale) {
 }
 
 TEST(LoadMask, Refuses16Bit) {
-    const TempDir dir;
-    ASSERT_TRUE(cv::imwrite(dir.file("m16.png").string(), cv::Mat(2, 2, CV_16UC1)));
+    const TempFolder dir;
+    dir.write_image("m16.png", cv::Mat(2, 2, CV_16UC1));
     expect_error<std::runtime_error>([&] { (void)load_mask(dir.file("m16.png")); },
                                      "expected an 8-bit mask");
 }
 
 TEST(WritePng, MissingFolderFailsWithoutCreatingAFile) {
-    const TempDir dir;
+    const TempFolder dir;
     const fs::path target = dir.file("no_such_folder") / "out.png";
     expect_error<std::runtime_error>([&] { check_writable_location(target); },
                                      "no_such_folder' does not exist");
@@ -356,7 +335,7 @@ TEST(ShrinkArea, AveragesBlocksAndRejectsTooSmall) {
 }
 
 TEST(ImageFiles, ListsImagesSortedByName) {
-    const TempDir dir;
+    const TempFolder dir;
     const fs::path folder = dir.file("frames");
     fs::create_directories(folder / "folder.png");  // a folder is not an image file
     for (const char* name : {"b.PNG", "a.jpg", "notes.txt", "c.ppm"}) {
@@ -371,8 +350,8 @@ TEST(ToBgr, InvertsToImage) {
     cv::Mat bgr(2, 3, CV_8UC3);
     cv::randu(bgr, 0, 256);
     EXPECT_EQ(cv::norm(to_bgr(to_image(bgr, "bgr")), bgr, cv::NORM_INF), 0.0);
-    const TempDir dir;
-    ASSERT_TRUE(cv::imwrite(dir.file("grey.png").string(), cv::Mat(2, 2, CV_8UC1, cv::Scalar(7))));
+    const TempFolder dir;
+    dir.write_image("grey.png", cv::Mat(2, 2, CV_8UC1, cv::Scalar(7)));
     const cv::Mat loaded = load_bgr(dir.file("grey.png"));
     ASSERT_EQ(loaded.type(), CV_8UC3);
     EXPECT_EQ(loaded.at<cv::Vec3b>(1, 1), cv::Vec3b(7, 7, 7));
@@ -495,7 +474,7 @@ TEST(Limits, DeclaredSizeOfTiffAndWebp) {
 }
 
 TEST(Limits, HugeTiffAndUnknownFormatsAreRefusedBeforeDecoding) {
-    const TempDir dir;
+    const TempFolder dir;
     // A little-endian TIFF directory declaring 40000 x 40000 (1.6 Gpixel) and nothing else.
     const std::string huge(
         "II*\0\x08\0\0\0\x02\0"

@@ -13,6 +13,7 @@
 #include "stereo_io/io.hpp"
 #include "stereo_io/output.hpp"
 #include "stereo_io/text_file.hpp"
+#include "temp_folder.hpp"
 
 namespace stereo::io {
 namespace {
@@ -20,18 +21,6 @@ namespace fs = std::filesystem;
 
 class Output : public ::testing::Test {
   protected:
-    void SetUp() override {
-        folder_ = fs::temp_directory_path() /
-                  ("stereo_output_test_" + std::to_string(::getpid()) + "_" +
-                   ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(folder_);
-        fs::create_directories(folder_);
-    }
-    void TearDown() override {
-        std::error_code ignored;
-        fs::permissions(folder_, fs::perms::owner_all, fs::perm_options::add, ignored);
-        fs::remove_all(folder_, ignored);
-    }
     static std::string read(const fs::path& path) {
         std::ifstream in(path, std::ios::binary);
         return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -43,7 +32,8 @@ class Output : public ::testing::Test {
         return static_cast<std::size_t>(
             std::distance(fs::directory_iterator(folder_), fs::directory_iterator()));
     }
-    fs::path folder_;
+    const test::TempFolder temp_;
+    const fs::path& folder_ = temp_.path();
 };
 
 TEST_F(Output, WritesAndReplaces) {

@@ -19,6 +19,7 @@
 #include "stereo_robot/calibration.hpp"
 #include "stereo_robot/decision.hpp"
 #include "stereo_robot/windows.hpp"
+#include "temp_folder.hpp"
 
 namespace stereo::robot {
 namespace {
@@ -430,19 +431,11 @@ TEST(Fuzzy, ObstaclesLeftCentreRight) {
 
 class TempDir : public ::testing::Test {
   protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("stereo_robot_test_" + std::to_string(std::random_device{}()));
-        fs::create_directories(dir_);
+    fs::path write(const std::string& name, const std::string& text) const {
+        return folder_.write_text(name, text);
     }
-    void TearDown() override { fs::remove_all(dir_); }
-    fs::path write(const std::string& name, const std::string& text) {
-        const fs::path path = dir_ / name;
-        fs::create_directories(path.parent_path());
-        std::ofstream(path) << text;
-        return path;
-    }
-    fs::path dir_;
+    const test::TempFolder folder_;
+    const fs::path& dir_ = folder_.path();
 };
 
 TEST_F(TempDir, KittiCalibration) {

@@ -1,7 +1,6 @@
 // Stereo SLAM (thesis Sec. 4.2): every expected value below is written down by hand or built
 // into the input by construction, never taken from a run of the code under test.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -26,6 +25,7 @@
 #include "stereo_robot/slam/maps.hpp"
 #include "stereo_robot/slam/motion.hpp"
 #include "stereo_robot/slam/pipeline.hpp"
+#include "temp_folder.hpp"
 
 namespace stereo::robot::slam {
 namespace {
@@ -598,23 +598,7 @@ TEST(Evaluation, DriftOfAWanderingEstimate) {
 
 // ---- files and bad input --------------------------------------------------------------------
 
-class TempDir {
-  public:
-    TempDir()
-        : path_(fs::temp_directory_path() /
-                ("stereo_slam_" + std::to_string(::getpid()) + "_" + std::to_string(counter_++))) {
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~TempDir() { fs::remove_all(path_); }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    const fs::path& path() const { return path_; }
-
-  private:
-    static inline int counter_ = 0;
-    fs::path path_;
-};
+using test::TempFolder;
 
 void write_file(const fs::path& path, const std::string& text) {
     std::ofstream(path) << text;
@@ -641,7 +625,7 @@ void make_sequence(const fs::path& dir, int left, int right) {
 }
 
 TEST(Sequence, ReadsTheLayoutAndTheCamera) {
-    const TempDir dir;
+    const TempFolder dir;
     make_sequence(dir.path(), 3, 3);
     const Sequence sequence = open_sequence(dir.path(), Layout::kitti, std::nullopt);
     EXPECT_EQ(sequence.frames.size(), 3U);
@@ -655,7 +639,7 @@ TEST(Sequence, ReadsTheLayoutAndTheCamera) {
 }
 
 TEST(Sequence, UnequalFrameCountsAreRefused) {
-    const TempDir dir;
+    const TempFolder dir;
     make_sequence(dir.path(), 3, 2);  // image_r lacks 000002.png
     try {
         open_sequence(dir.path(), Layout::kitti, std::nullopt);
@@ -667,7 +651,7 @@ TEST(Sequence, UnequalFrameCountsAreRefused) {
 }
 
 TEST(Sequence, MissingFoldersAndFilesAreIoErrors) {
-    const TempDir dir;
+    const TempFolder dir;
     EXPECT_THROW(open_sequence(dir.path() / "nope", Layout::kitti, std::nullopt),
                  std::runtime_error);
     make_sequence(dir.path(), 2, 2);
@@ -680,7 +664,7 @@ TEST(Sequence, MissingFoldersAndFilesAreIoErrors) {
 }
 
 TEST(Sequence, MalformedCalibrationAndPosesAreRefused) {
-    const TempDir dir;
+    const TempFolder dir;
     make_sequence(dir.path(), 2, 2);
     write_file(dir.path() / "calib.txt", "P0: 1 2 3\nhello\n");
     EXPECT_THROW(open_sequence(dir.path(), Layout::kitti, std::nullopt), std::invalid_argument);
@@ -701,7 +685,7 @@ TEST(Sequence, MalformedCalibrationAndPosesAreRefused) {
 }
 
 TEST(Sequence, UnreadableOrMismatchedImagesFailWhenLoaded) {
-    const TempDir dir;
+    const TempFolder dir;
     make_sequence(dir.path(), 2, 2);
     write_file(dir.path() / "image_r" / "000001.png", "not a PNG");
     const Sequence sequence = open_sequence(dir.path(), Layout::kitti, std::nullopt);
@@ -711,7 +695,7 @@ TEST(Sequence, UnreadableOrMismatchedImagesFailWhenLoaded) {
 }
 
 TEST(Poses, RoundTripThroughTheKittiFormat) {
-    const TempDir dir;
+    const TempFolder dir;
     const Trajectory poses{Eigen::Isometry3d::Identity(), known_motion()};
     write_file(dir.path() / "poses.txt", format_kitti_poses(poses));
     const Trajectory back = load_kitti_poses(dir.path() / "poses.txt");
