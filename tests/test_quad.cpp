@@ -145,6 +145,52 @@ TEST(QuadFusion, ModelEqualsNaiveOnRandomMaps) {
     EXPECT_EQ(reference.source, model.source);
 }
 
+TEST(QuadFusion, ByCostPicksTheSmallestWinnerCost) {
+    // The certainties point the other way on purpose. Pixel 0: vertical cheapest. 1: diagonal
+    // cheapest. 2: a cost tie of horizontal and diagonal goes to horizontal. 3: the cheapest
+    // (vertical) is invalid, so diagonal. 4: nothing valid.
+    const auto h = map_of({16, 32, 48, 64, 0}, {0, 0, 0, 1, 1}, {250, 250, 5, 250, 7});
+    const auto v = map_of({17, 33, 49, 65, 0}, {0, 0, 0, 3, 2}, {3, 250, 250, 250, 9});
+    const auto d = map_of({18, 34, 50, 66, 0}, {0, 0, 0, 0, 1}, {250, 4, 250, 6, 9});
+    const std::array<PairMatch, 3> pairs = {PairMatch{h, {900, 500, 300, 10, 0}},
+                                            PairMatch{v, {100, 400, 301, 5, 0}},
+                                            PairMatch{d, {800, 399, 300, 12240, 0}}};
+    for (const bool use_naive : {false, true}) {
+        const QuadResult r = use_naive ? naive::fuse_by_cost(pairs) : fuse_by_cost(pairs);
+        EXPECT_EQ(r.fused.fixed, (std::vector<std::int16_t>{17, 34, 48, 66, 0}));
+        EXPECT_EQ(r.source, (std::vector<std::uint8_t>{2, 3, 1, 3, 0}));
+        EXPECT_EQ(r.fused.certainty, (std::vector<std::uint8_t>{3, 4, 5, 6, 0}));
+        EXPECT_EQ(r.fused.reason, (std::vector<std::uint8_t>{0, 0, 0, 0, 1}));
+    }
+    std::array<PairMatch, 3> short_costs = pairs;
+    short_costs[1].cost.pop_back();
+    EXPECT_THROW((void)fuse_by_cost(short_costs), std::invalid_argument);
+    EXPECT_THROW((void)naive::fuse_by_cost(short_costs), std::invalid_argument);
+}
+
+TEST(QuadFusion, KeysByName) {
+    EXPECT_EQ(fusion_key("certainty"), FusionKey::certainty);
+    EXPECT_EQ(fusion_key("cost"), FusionKey::cost);
+    EXPECT_EQ(name(FusionKey::cost), "cost");
+    EXPECT_THROW((void)fusion_key("ratio"), std::invalid_argument);
+}
+
+TEST(QuadPairs, WinnerCostsEqualNaive) {
+    // C1 of every pixel, the model's volume form against the naive stages.
+    auto rng = test::seeded_rng(27);
+    for (const Pair pair : kPairs) {
+        const auto [reference, partner] = shifted_views(pair, 1, 29, 23, 3, rng);
+        const MatchParams params = small_params(6, -2, true);
+        const PairMatch model = match_pair_with_cost(pair, reference, partner, params);
+        const PairMatch slow = naive::match_pair_with_cost(pair, reference, partner, params);
+        SCOPED_TRACE(std::string(name(pair)));
+        EXPECT_EQ(model.cost, slow.cost);
+        EXPECT_EQ(model.cost.size(), model.map.fixed.size());
+        EXPECT_TRUE(same_validated(slow.map, model.map));
+        EXPECT_TRUE(same_validated(match_pair(pair, reference, partner, params), model.map));
+    }
+}
+
 TEST(QuadMatch, ThreadedModelEqualsSequentialAndNaive) {
     auto rng = test::seeded_rng(25);
     const Image reference = test::random_image(33, 29, 3, rng);
@@ -161,6 +207,23 @@ TEST(QuadMatch, ThreadedModelEqualsSequentialAndNaive) {
     EXPECT_EQ(slow.source, threaded.source);
     for (std::size_t p = 0; p < 3; ++p) {
         EXPECT_TRUE(same_validated(slow.pairs[p], threaded.pairs[p]));
+    }
+    // Fused by cost, with and without stage 6's checks: the same three pairs, another choice.
+    for (const bool validation : {true, false}) {
+        const MatchParams p6 = small_params(6, -2, validation);
+        const QuadResult by_certainty = match_quad(views, p6, true);
+        const QuadResult by_cost = match_quad(views, p6, true, FusionKey::cost);
+        const QuadResult by_cost_sequential = match_quad(views, p6, false, FusionKey::cost);
+        const QuadResult by_cost_slow = naive::match_quad(views, p6, FusionKey::cost);
+        EXPECT_TRUE(same_validated(by_cost_slow.fused, by_cost.fused));
+        EXPECT_TRUE(same_validated(by_cost_sequential.fused, by_cost.fused));
+        EXPECT_EQ(by_cost_slow.source, by_cost.source);
+        for (std::size_t p = 0; p < 3; ++p) {
+            EXPECT_TRUE(same_validated(by_certainty.pairs[p], by_cost.pairs[p]));
+        }
+        if (!validation) {  // dense random pairs: the two keys disagree somewhere
+            EXPECT_NE(by_cost.source, by_certainty.source);
+        }
     }
 }
 

@@ -7,6 +7,7 @@
 #include <iostream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -30,6 +31,7 @@ struct QuadOptions {
     std::string certainty;  // fused certainty PNG, empty: none
     std::string source;     // source map PNG, empty: none
     MatcherOptions matcher;
+    std::string fuse_by{quad::name(quad::FusionKey::certainty)};  // a quad::FusionKey by name
     bool json = false;
 };
 
@@ -80,7 +82,8 @@ void run_quad(const QuadOptions& options) {
     quad::validate_quad(views, params);
 
     const auto start = std::chrono::steady_clock::now();
-    const quad::QuadResult result = quad::match_quad(views, params);
+    const quad::QuadResult result =
+        quad::match_quad(views, params, true, quad::fusion_key(options.fuse_by));
     const std::chrono::duration<double, std::milli> elapsed =
         std::chrono::steady_clock::now() - start;
 
@@ -112,6 +115,7 @@ void run_quad(const QuadOptions& options) {
                               {"window", params.window}, {"sigma", params.sigma},
                               {"ca", params.use_ca},     {"valid_fraction", valid_fraction(fused)},
                               {"ms", elapsed.count()}};
+    summary["fuse_by"] = options.fuse_by;
     for (const quad::Pair pair : quad::kPairs) {
         const std::string name(quad::name(pair));
         summary["pairs"][name]["valid_fraction"] =
@@ -139,7 +143,7 @@ void add_quad_command(CLI::App& app) {
     const auto [command, options] = add_command<QuadOptions>(
         app, "quad",
         "Quad-camera matching (thesis Sec. 3.2): horizontal, vertical and diagonal pairs fused "
-        "by maximum certainty.",
+        "pixel by pixel by maximum certainty (or, --fuse-by cost, by the smallest winner cost).",
         run_quad);
     command->add_option("REF", options->views[0], "Reference view (upper left)")->required();
     command->add_option("RIGHT", options->views[1], "Horizontal partner (upper right)")->required();
@@ -152,6 +156,16 @@ void add_quad_command(CLI::App& app) {
         ->required();
     options->matcher.config.pipeline.window = 13;  // the thesis' quad window
     add_matcher_options(*command, options->matcher, MatcherChoice::fixed, {.validation = true});
+    std::vector<std::string> keys;  // the model's names of the fusion keys
+    for (const quad::FusionKey key : {quad::FusionKey::certainty, quad::FusionKey::cost}) {
+        keys.emplace_back(quad::name(key));
+    }
+    command
+        ->add_option("--fuse-by", options->fuse_by,
+                     "What fusion compares: certainty (stage 6's, the largest wins) or cost (the "
+                     "winner's aggregated cost, the smallest wins; docs/quad.md)")
+        ->check(CLI::IsMember(keys))
+        ->capture_default_str();
     command->add_option("--certainty", options->certainty,
                         "Also write the fused certainty (8-bit PNG, 0..255)");
     command->add_option("--source", options->source,

@@ -63,9 +63,10 @@ Dsi direction_cost(Step s, const Image& reference, const Image& partner, int ndi
 }
 
 // Stage 6 over a final volume, plane by plane: winner, second cost, right-referenced winner of
-// every partner pixel (the left pixels that see it, along the direction), then per pixel.
-ValidatedDisparity direction_validate(const Dsi& volume, Step s, int min_disp,
-                                      const ValidationParams& params, const InvalidBorder& border) {
+// every partner pixel (the left pixels that see it, along the direction), then per pixel. The
+// winner costs come along for fusion by cost.
+PairMatch direction_validate(const Dsi& volume, Step s, int min_disp,
+                             const ValidationParams& params, const InvalidBorder& border) {
     const int width = volume.width();
     const int height = volume.height();
     const int ndisp = volume.ndisp();
@@ -148,7 +149,56 @@ ValidatedDisparity direction_validate(const Dsi& volume, Step s, int min_disp,
             out.fixed[p] = static_cast<std::int16_t>(fx::kSubpixelScale * d + offset);
         }
     }
-    return out;
+    return {std::move(out), std::vector<std::uint16_t>(best.begin(), best.end())};
+}
+
+// The final volume of a pair: the cost along the direction, the aggregation, the CA rules.
+Dsi pair_volume(Pair pair, const Image& reference, const Image& partner,
+                const MatchParams& params) {
+    check_pair(reference, partner);
+    validate_pair(pair, params, reference.width, reference.height);
+    Dsi volume =
+        aggregate(direction_cost(step(pair), reference, partner, params.ndisp, params.min_disp),
+                  gaussian_kernel(params.window, params.sigma));
+    if (params.use_ca) {
+        volume = ca_rule2(ca_rule1(volume));
+    }
+    return volume;
+}
+
+// Pixel by pixel, the pair p that wins(pairs, p, q, i) against every other valid pair q (scanned
+// in the order horizontal, vertical, diagonal, so that a strict comparison leaves ties to the
+// earlier).
+template <class Wins>
+QuadResult fuse_maps(std::array<ValidatedDisparity, 3> pairs, Wins wins) {
+    const int width = pairs[0].width;
+    const int height = pairs[0].height;
+    for (const auto& map : pairs) {
+        if (map.width != width || map.height != height) {
+            throw std::invalid_argument("the three pair maps must have one size");
+        }
+    }
+    QuadResult result;
+    result.fused = ValidatedDisparity(width, height);
+    result.source.assign(static_cast<std::size_t>(width) * height, kSourceNone);
+    for (std::size_t i = 0; i < result.source.size(); ++i) {
+        int winner = -1;
+        for (int p = 0; p < 3; ++p) {
+            if (pairs[p].valid(i) && (winner < 0 || wins(pairs, p, winner, i))) {
+                winner = p;
+            }
+        }
+        if (winner < 0) {
+            result.fused.reason[i] = pairs[0].reason[i];
+            continue;
+        }
+        result.fused.fixed[i] = pairs[winner].fixed[i];
+        result.fused.reason[i] = fx::kReasonValid;
+        result.fused.certainty[i] = pairs[winner].certainty[i];
+        result.source[i] = source_code(static_cast<Pair>(winner));
+    }
+    result.pairs = std::move(pairs);
+    return result;
 }
 
 void check_views(const QuadViews& views) {
@@ -175,6 +225,20 @@ std::string_view name(Pair pair) {
                                                                     "diagonal"};
     const auto index = static_cast<std::size_t>(pair);
     return index < kNames.size() ? kNames[index] : kNames[0];
+}
+
+std::string_view name(FusionKey key) {
+    return key == FusionKey::cost ? "cost" : "certainty";
+}
+
+FusionKey fusion_key(std::string_view name) {
+    for (const FusionKey key : {FusionKey::certainty, FusionKey::cost}) {
+        if (name == quad::name(key)) {
+            return key;
+        }
+    }
+    throw std::invalid_argument("unknown fusion key '" + std::string(name) +
+                                "' (certainty or cost)");
 }
 
 void validate_pair(Pair pair, const MatchParams& params, int width, int height) {
@@ -229,16 +293,13 @@ ValidatedDisparity transpose(const ValidatedDisparity& map) {
 
 ValidatedDisparity match_pair_volume(Pair pair, const Image& reference, const Image& partner,
                                      const MatchParams& params) {
-    check_pair(reference, partner);
-    validate_pair(pair, params, reference.width, reference.height);
-    const Step s = step(pair);
-    Dsi volume = aggregate(direction_cost(s, reference, partner, params.ndisp, params.min_disp),
-                           gaussian_kernel(params.window, params.sigma));
-    if (params.use_ca) {
-        volume = ca_rule2(ca_rule1(volume));
-    }
-    return direction_validate(volume, s, params.min_disp, params.validation,
-                              invalid_border(params));
+    return match_pair_with_cost(pair, reference, partner, params).map;
+}
+
+PairMatch match_pair_with_cost(Pair pair, const Image& reference, const Image& partner,
+                               const MatchParams& params) {
+    return direction_validate(pair_volume(pair, reference, partner, params), step(pair),
+                              params.min_disp, params.validation, invalid_border(params));
 }
 
 ValidatedDisparity match_pair(Pair pair, const Image& reference, const Image& partner,
@@ -257,35 +318,23 @@ ValidatedDisparity match_pair(Pair pair, const Image& reference, const Image& pa
 }
 
 QuadResult fuse(std::array<ValidatedDisparity, 3> pairs) {
-    const int width = pairs[0].width;
-    const int height = pairs[0].height;
-    for (const auto& map : pairs) {
-        if (map.width != width || map.height != height) {
-            throw std::invalid_argument("the three pair maps must have one size");
+    return fuse_maps(std::move(pairs), [](const auto& maps, int p, int q, std::size_t i) {
+        return maps[p].certainty[i] > maps[q].certainty[i];
+    });
+}
+
+QuadResult fuse_by_cost(std::array<PairMatch, 3> pairs) {
+    std::array<ValidatedDisparity, 3> maps;
+    for (std::size_t p = 0; p < pairs.size(); ++p) {
+        if (pairs[p].cost.size() != pairs[p].map.fixed.size()) {
+            throw std::invalid_argument("a pair's winner costs do not cover its map");
         }
+        maps[p] = std::move(pairs[p].map);
     }
-    QuadResult result;
-    result.fused = ValidatedDisparity(width, height);
-    result.source.assign(static_cast<std::size_t>(width) * height, kSourceNone);
-    for (std::size_t i = 0; i < result.source.size(); ++i) {
-        int winner = -1;
-        for (int p = 0; p < 3; ++p) {
-            if (pairs[p].valid(i) &&
-                (winner < 0 || pairs[p].certainty[i] > pairs[winner].certainty[i])) {
-                winner = p;
-            }
-        }
-        if (winner < 0) {
-            result.fused.reason[i] = pairs[0].reason[i];
-            continue;
-        }
-        result.fused.fixed[i] = pairs[winner].fixed[i];
-        result.fused.reason[i] = fx::kReasonValid;
-        result.fused.certainty[i] = pairs[winner].certainty[i];
-        result.source[i] = source_code(static_cast<Pair>(winner));
-    }
-    result.pairs = std::move(pairs);
-    return result;
+    // Only the maps move: the costs stay in `pairs` for the comparison.
+    return fuse_maps(std::move(maps), [&pairs](const auto&, int p, int q, std::size_t i) {
+        return pairs[p].cost[i] < pairs[q].cost[i];
+    });
 }
 
 void validate_quad(const QuadViews& views, const MatchParams& params) {
@@ -295,29 +344,48 @@ void validate_quad(const QuadViews& views, const MatchParams& params) {
     }
 }
 
-QuadResult match_quad(const QuadViews& views, const MatchParams& params, bool threads) {
-    validate_quad(views, params);
+namespace {
+
+// The three pairs, one thread each when `threads`: match(pair, partner) for each.
+template <class Match>
+auto match_three(const QuadViews& views, bool threads, Match match) {
+    using Output = decltype(match(Pair::horizontal, views.horizontal));
     const std::array<const Image*, 3> partners = {&views.horizontal, &views.vertical,
                                                   &views.diagonal};
-    std::array<ValidatedDisparity, 3> maps;
+    std::array<Output, 3> outputs;
     if (!threads) {
         for (const Pair pair : kPairs) {
             const auto p = static_cast<std::size_t>(pair);
-            maps[p] = match_pair(pair, views.reference, *partners[p], params);
+            outputs[p] = match(pair, *partners[p]);
         }
-        return fuse(std::move(maps));
+        return outputs;
     }
-    std::array<std::future<ValidatedDisparity>, 3> jobs;
+    std::array<std::future<Output>, 3> jobs;
     for (const Pair pair : kPairs) {
         const auto p = static_cast<std::size_t>(pair);
-        jobs[p] = std::async(std::launch::async, [&views, &params, pair, partner = partners[p]] {
-            return match_pair(pair, views.reference, *partner, params);
+        jobs[p] = std::async(std::launch::async, [&match, pair, partner = partners[p]] {
+            return match(pair, *partner);
         });
     }
     for (std::size_t p = 0; p < jobs.size(); ++p) {
-        maps[p] = jobs[p].get();
+        outputs[p] = jobs[p].get();
     }
-    return fuse(std::move(maps));
+    return outputs;
+}
+
+}  // namespace
+
+QuadResult match_quad(const QuadViews& views, const MatchParams& params, bool threads,
+                      FusionKey key) {
+    validate_quad(views, params);
+    if (key == FusionKey::cost) {
+        return fuse_by_cost(match_three(views, threads, [&](Pair pair, const Image& partner) {
+            return match_pair_with_cost(pair, views.reference, partner, params);
+        }));
+    }
+    return fuse(match_three(views, threads, [&](Pair pair, const Image& partner) {
+        return match_pair(pair, views.reference, partner, params);
+    }));
 }
 
 }  // namespace stereo::quad

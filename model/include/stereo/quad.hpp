@@ -62,6 +62,23 @@ ValidatedDisparity match_pair(Pair pair, const Image& reference, const Image& pa
 ValidatedDisparity match_pair_volume(Pair pair, const Image& reference, const Image& partner,
                                      const MatchParams& params);
 
+// What fusion compares among the pairs valid at a pixel (docs/quad.md, "The fusion key"):
+// certainty: stage 6's certainty, the largest wins (the default: the thesis fuses by certainty);
+// cost: the winner's final aggregated cost C1, the smallest wins (each pair's
+// best explanation of the same reference window, compared on one scale: the residual, as
+// multi-baseline matchers choose among partner views). Equal keys go to the earlier pair.
+enum class FusionKey : std::uint8_t { certainty = 0, cost = 1 };
+std::string_view name(FusionKey key);  // "certainty", "cost"
+// The key of a name; throws std::invalid_argument naming both choices for any other.
+FusionKey fusion_key(std::string_view name);
+
+// One pair's stage-6 output and, per pixel, the final cost of the winning label (C1, 0 ..
+// fx::kAggMax; every pixel, border pixels too): what fusion by cost compares.
+struct PairMatch {
+    ValidatedDisparity map;
+    std::vector<std::uint16_t> cost;
+};
+
 struct QuadResult {
     ValidatedDisparity fused;                 // the winning pair's disparity, reason and certainty
     std::vector<std::uint8_t> source;         // kSourceNone or source_code(winning pair), per pixel
@@ -72,6 +89,13 @@ struct QuadResult {
 // (horizontal, vertical, diagonal). Where no pair is valid: fixed 0, certainty 0, source
 // kSourceNone and the horizontal pair's reason. Throws std::invalid_argument on unequal sizes.
 QuadResult fuse(std::array<ValidatedDisparity, 3> pairs);
+// Fusion by the smallest winner cost among the valid pairs, ties to the earlier pair; otherwise as
+// fuse (the fused certainty is the winning pair's). Throws std::invalid_argument on unequal sizes.
+QuadResult fuse_by_cost(std::array<PairMatch, 3> pairs);
+
+// match_pair_volume with the winner costs.
+PairMatch match_pair_with_cost(Pair pair, const Image& reference, const Image& partner,
+                               const MatchParams& params);
 
 struct QuadViews {
     const Image& reference;   // upper left
@@ -84,8 +108,10 @@ struct QuadViews {
 // or (validate_pair) when the parameters do not fit one of the three pairs.
 void validate_quad(const QuadViews& views, const MatchParams& params);
 
-// The three pairs (one thread each when `threads`), then fuse.
-QuadResult match_quad(const QuadViews& views, const MatchParams& params, bool threads = true);
+// The three pairs (one thread each when `threads`), then fuse by `key` (by cost, every pair runs
+// through match_pair_with_cost).
+QuadResult match_quad(const QuadViews& views, const MatchParams& params, bool threads = true,
+                      FusionKey key = FusionKey::certainty);
 
 // Transposes (x, y) -> (y, x), every channel; for ValidatedDisparity every field.
 Image transpose(const Image& image);
@@ -97,10 +123,15 @@ namespace stereo::quad::naive {
 
 // Independent references: the cost along the direction by direct loops, stereo::naive's
 // aggregation and CA rules, stage 6 by its definition per pixel (parabola in double precision),
-// and the fusion as the largest (certainty, priority) key. Slow; tests only.
+// and the fusion as the largest (certainty, priority) key or the smallest (cost, rank) key.
+// Slow; tests only.
 ValidatedDisparity match_pair(Pair pair, const Image& reference, const Image& partner,
                               const MatchParams& params);
+PairMatch match_pair_with_cost(Pair pair, const Image& reference, const Image& partner,
+                               const MatchParams& params);
 QuadResult fuse(std::array<ValidatedDisparity, 3> pairs);
-QuadResult match_quad(const QuadViews& views, const MatchParams& params);
+QuadResult fuse_by_cost(std::array<PairMatch, 3> pairs);
+QuadResult match_quad(const QuadViews& views, const MatchParams& params,
+                      FusionKey key = FusionKey::certainty);
 
 }  // namespace stereo::quad::naive

@@ -1,6 +1,7 @@
 // The quad-camera references, written from the definitions in docs/quad.md and
 // docs/fixed-point.md: direct loops, bounds checks in the innermost loops, nothing shared with
 // model/src/quad.cpp but the public stage definitions of stereo::naive.
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
@@ -39,23 +40,56 @@ Dsi cost(Step s, const Image& reference, const Image& partner, int ndisp, int mi
     return dsi;
 }
 
-}  // namespace
-
-ValidatedDisparity match_pair(Pair pair, const Image& reference, const Image& partner,
-                              const MatchParams& params) {
+// The final volume of a pair by stereo::naive's stages.
+Dsi final_volume(Pair pair, const Image& reference, const Image& partner,
+                 const MatchParams& params) {
     check_pair(reference, partner);
     validate_pair(pair, params, reference.width, reference.height);
-    const Step s = step(pair);
-    Dsi dsi = stereo::naive::aggregate(cost(s, reference, partner, params.ndisp, params.min_disp),
-                                       gaussian_kernel(params.window, params.sigma));
+    Dsi dsi = stereo::naive::aggregate(
+        cost(step(pair), reference, partner, params.ndisp, params.min_disp),
+        gaussian_kernel(params.window, params.sigma));
     if (params.use_ca) {
         dsi = stereo::naive::ca_rule2(stereo::naive::ca_rule1(dsi));
     }
+    return dsi;
+}
+
+ValidatedDisparity validate(Pair pair, const Dsi& dsi, const MatchParams& params) {
+    const Step s = step(pair);
     return stereo::naive::validate_along(dsi, s.x, s.y, params.min_disp, params.validation,
                                          invalid_border(params).reach);
 }
 
-QuadResult fuse(std::array<ValidatedDisparity, 3> pairs) {
+}  // namespace
+
+ValidatedDisparity match_pair(Pair pair, const Image& reference, const Image& partner,
+                              const MatchParams& params) {
+    return validate(pair, final_volume(pair, reference, partner, params), params);
+}
+
+PairMatch match_pair_with_cost(Pair pair, const Image& reference, const Image& partner,
+                               const MatchParams& params) {
+    const Dsi dsi = final_volume(pair, reference, partner, params);
+    PairMatch out{validate(pair, dsi, params), {}};
+    // C1: the smallest cost of the pixel's column (the first minimum's value; which label holds
+    // it does not matter for the value).
+    for (int y = 0; y < dsi.height(); ++y) {
+        for (int x = 0; x < dsi.width(); ++x) {
+            int c1 = dsi.at(x, y, 0);
+            for (int k = 1; k < dsi.ndisp(); ++k) {
+                c1 = std::min(c1, static_cast<int>(dsi.at(x, y, k)));
+            }
+            out.cost.push_back(static_cast<std::uint16_t>(c1));
+        }
+    }
+    return out;
+}
+
+namespace {
+
+// The largest key wins; `key(p, i)` is 0 for an invalid pair.
+template <class Key>
+QuadResult fuse_by_key(std::array<ValidatedDisparity, 3> pairs, Key key) {
     const int width = pairs[0].width;
     const int height = pairs[0].height;
     if (pairs[1].width != width || pairs[2].width != width || pairs[1].height != height ||
@@ -68,16 +102,12 @@ QuadResult fuse(std::array<ValidatedDisparity, 3> pairs) {
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
             const std::size_t i = result.fused.index(x, y);
-            // Key: 0 for an invalid pair, else 1 + 3 * certainty + priority (horizontal 2,
-            // vertical 1, diagonal 0): the largest key wins, equal certainties by priority.
-            int best_key = 0;
+            long long best_key = 0;
             int best_pair = -1;
-            for (int p = 2; p >= 0; --p) {
-                const int key = pairs[p].reason[i] == fx::kReasonValid
-                                    ? 1 + 3 * pairs[p].certainty[i] + (2 - p)
-                                    : 0;
-                if (key > best_key) {
-                    best_key = key;
+            for (int p = 0; p < 3; ++p) {
+                const long long k = pairs[p].reason[i] == fx::kReasonValid ? key(p, i) : 0;
+                if (k > best_key) {
+                    best_key = k;
                     best_pair = p;
                 }
             }
@@ -96,8 +126,39 @@ QuadResult fuse(std::array<ValidatedDisparity, 3> pairs) {
     return result;
 }
 
-QuadResult match_quad(const QuadViews& views, const MatchParams& params) {
+}  // namespace
+
+QuadResult fuse(std::array<ValidatedDisparity, 3> pairs) {
+    // Key: 1 + 3 * certainty + priority (horizontal 2, vertical 1, diagonal 0): the largest key
+    // wins, equal certainties by priority.
+    const auto key = [&pairs](int p, std::size_t i) {
+        return 1 + 3LL * pairs[p].certainty[i] + (2 - p);
+    };
+    return fuse_by_key(pairs, key);
+}
+
+QuadResult fuse_by_cost(std::array<PairMatch, 3> pairs) {
+    for (const PairMatch& pair : pairs) {
+        if (pair.cost.size() != pair.map.fixed.size()) {
+            throw std::invalid_argument("a pair's winner costs do not cover its map");
+        }
+    }
+    // Key: 1 + 3 * (kAggMax - cost) + priority (horizontal 2, vertical 1, diagonal 0).
+    const auto key = [&pairs](int p, std::size_t i) {
+        return 1 + 3LL * (fx::kAggMax - pairs[p].cost[i]) + (2 - p);
+    };
+    return fuse_by_key({pairs[0].map, pairs[1].map, pairs[2].map}, key);
+}
+
+QuadResult match_quad(const QuadViews& views, const MatchParams& params, FusionKey key) {
     validate_quad(views, params);
+    if (key == FusionKey::cost) {
+        return naive::fuse_by_cost(
+            {naive::match_pair_with_cost(Pair::horizontal, views.reference, views.horizontal,
+                                         params),
+             naive::match_pair_with_cost(Pair::vertical, views.reference, views.vertical, params),
+             naive::match_pair_with_cost(Pair::diagonal, views.reference, views.diagonal, params)});
+    }
     return naive::fuse(
         {naive::match_pair(Pair::horizontal, views.reference, views.horizontal, params),
          naive::match_pair(Pair::vertical, views.reference, views.vertical, params),
