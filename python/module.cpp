@@ -206,12 +206,14 @@ MatchOptions match_options(const std::string& method, const std::string& engine,
                 a.right_weights = value.cast<bool>();
             } else if (key == "separable") {
                 a.separable = value.cast<bool>();
+            } else if (key == "truncation") {
+                a.truncation = value.cast<int>();
             } else if (key == "threads") {
                 a.threads = value.cast<int>();
             } else {
                 throw std::invalid_argument("unknown asw key \"" + key +
                                             "\" (diameter, response, shape, continuity, "
-                                            "right_weights, separable, threads)");
+                                            "right_weights, separable, truncation, threads)");
             }
         }
     }

@@ -221,6 +221,51 @@ TEST(AswMatch, EqualsNaiveWithStageSixAndLcdm) {
     }
 }
 
+TEST(AswCost, TruncationCapsEveryCell) {
+    Dsi cost(6, 2, 3);
+    for (int k = 0; k < 3; ++k) {
+        for (int y = 0; y < 2; ++y) {
+            for (int x = 0; x < 6; ++x) {
+                cost.at(x, y, k) = static_cast<Dsi::Value>(20 * (12 * k + 6 * y + x));  // 0 .. 700
+            }
+        }
+    }
+    cost.at(0, 0, 2) = fx::kCostOutside;
+    const Dsi original = cost;
+    asw::truncate_cost(cost, 40);
+    for (int k = 0; k < 3; ++k) {
+        for (int y = 0; y < 2; ++y) {
+            for (int x = 0; x < 6; ++x) {
+                EXPECT_EQ(cost.at(x, y, k), std::min<int>(original.at(x, y, k), 40));
+            }
+        }
+    }
+    EXPECT_EQ(cost.at(0, 0, 2), 40);  // an outside match costs no more than any mismatch
+    EXPECT_EQ(cost.at(2, 0, 0), 40);
+    EXPECT_EQ(cost.at(1, 0, 0), 20);
+    Dsi untouched = original;
+    asw::truncate_cost(untouched, 0);
+    EXPECT_EQ(untouched, original);
+}
+
+TEST(AswMatch, TruncationOnAndOffEqualNaive) {
+    // The default (T = 40), none, and a T that caps almost nothing: model against naive, and a
+    // truncation that really acts (the maps differ).
+    std::mt19937 rng(test::test_seed() + 4);
+    const auto [left, right] = test::shifted_pair(36, 24, 3, 3, 40, rng);
+    MatchParams match;
+    match.ndisp = 8;
+    match.min_disp = -2;
+    std::vector<ValidatedDisparity> maps;
+    for (const int truncation : {asw::kDefaultTruncation, 0, 700}) {
+        asw::Params params = small();
+        params.truncation = truncation;
+        maps.push_back(asw::match(left, right, match, params));
+        EXPECT_EQ(maps.back(), asw::match_naive(left, right, match, params)) << truncation;
+    }
+    EXPECT_NE(maps[0], maps[1]);
+}
+
 TEST(AswMatch, FindsTheShiftOfATexturedPair) {
     // A random texture shifted by 4: every pixel away from the edges gets 4 (shifted_copy clamps
     // the last 4 right columns, which makes the right edge ambiguous).
@@ -310,6 +355,14 @@ TEST(AswErrors, ImpossibleWindowsAreClearErrors) {
     bad = small();
     bad.threads = -1;
     EXPECT_THROW(asw::validate(bad, 300, 300), std::invalid_argument);
+    for (const int truncation : {-1, 766}) {
+        bad = small();
+        bad.truncation = truncation;
+        EXPECT_THROW(asw::validate(bad, 300, 300), std::invalid_argument) << truncation;
+    }
+    bad = small();
+    bad.truncation = 765;
+    EXPECT_NO_THROW(asw::validate(bad, 300, 300));
 }
 
 TEST(AswErrors, NamesOfResponsesAndShapes) {

@@ -239,7 +239,8 @@ void run_match(const MatchOptions& options) {
                               {"shape", options.matcher.asw_shape},
                               {"continuity", weights.continuity},
                               {"right_weights", weights.right_weights},
-                              {"separable", weights.separable}};
+                              {"separable", weights.separable},
+                              {"truncation", weights.truncation}};
             std::snprintf(settings, sizeof settings,
                           "asw diameter %d %s %s%s%s%s cost %s method %s engine %s",
                           weights.diameter, options.matcher.asw_response.c_str(),

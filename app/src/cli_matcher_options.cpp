@@ -170,6 +170,11 @@ void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoi
                      "ASW: the hardware-friendly variant (a vertical then a horizontal 1-D pass)");
     command.add_flag("--left-weights-only", options.asw_left_weights_only,
                      "ASW: colour similarity in the left image only (not in the right too)");
+    command
+        .add_option("--truncation", weights.truncation,
+                    "ASW: the cost is min(C, T) before the aggregation (Yoon and Kweon's 40; "
+                    "0: not truncated)")
+        ->capture_default_str();
     command.add_option("--threads", weights.threads, "ASW: worker threads, 0 = every core")
         ->capture_default_str();
 }

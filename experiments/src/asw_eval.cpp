@@ -287,7 +287,8 @@ std::vector<Config> ablation_configs(int ndisp) {
             asw_config("left weights only", [](asw::Params& p) { p.right_weights = false; }),
             asw_config("separable", [](asw::Params& p) { p.separable = true; }),
             asw_config("continuity range ndisp",
-                       [ndisp](asw::Params& p) { p.disparity_range = std::min(ndisp, 255); })};
+                       [ndisp](asw::Params& p) { p.disparity_range = std::min(ndisp, 255); }),
+            asw_config("untruncated cost", [](asw::Params& p) { p.truncation = 0; })};
 }
 
 const Config kFull = asw_config("full");
@@ -338,7 +339,10 @@ std::string ablation_table(const Results& results, int ndisp) {
        << " (the project's constants, stereo/asw.hpp; proximity gamma = the radius). square "
           "window: the odd square of nearly the circle's pixel count. continuity range ndisp: the "
           "continuity stimulus normalised by ndisp = "
-       << ndisp << " instead of asw::Params::disparity_range = 255 (ours).\n";
+       << ndisp
+       << " instead of asw::Params::disparity_range = 255 (ours). untruncated cost: the AD "
+          "without Yoon and Kweon's truncation at asw::kDefaultTruncation = "
+       << asw::kDefaultTruncation << " (docs/asw.md, \"The truncated cost\").\n";
     return md.str();
 }
 

@@ -413,6 +413,10 @@ void validate(const Params& params, int width, int height) {
         throw std::invalid_argument("ASW disparity range must be in [1, 255], got " +
                                     std::to_string(params.disparity_range));
     }
+    if (params.truncation < 0 || params.truncation > kMaxColourDifference) {
+        throw std::invalid_argument("ASW cost truncation must be in [0, 765] (0: none), got " +
+                                    std::to_string(params.truncation));
+    }
     if (params.threads < 0) {
         throw std::invalid_argument("ASW threads must be >= 0, got " +
                                     std::to_string(params.threads));
@@ -485,6 +489,18 @@ Dsi aggregate(const Dsi& cost, const Image& left, const Image& right, int min_di
     return params.separable ? passes.horizontal(passes.vertical(), labels) : passes.full(labels);
 }
 
+void truncate_cost(Dsi& cost, int truncation) {
+    if (truncation == 0) {
+        return;
+    }
+    const auto cap = static_cast<CostValue>(truncation);
+    for (int k = 0; k < cost.ndisp(); ++k) {
+        for (CostValue& cell : cost.plane(k)) {
+            cell = std::min(cell, cap);
+        }
+    }
+}
+
 ValidatedDisparity match(const Image& left, const Image& right, const MatchParams& match,
                          const Params& params) {
     check_pair(left, right);
@@ -493,7 +509,8 @@ ValidatedDisparity match(const Image& left, const Image& right, const MatchParam
     checked.window = 1;  // the Gaussian window is not used; its checks must not reject
     checked.use_ca = false;
     stereo::validate(checked, left.width, left.height);
-    const Dsi cost = parallel_cost_volume(*make_cost(match.cost), left, right, match, params);
+    Dsi cost = parallel_cost_volume(*make_cost(match.cost), left, right, match, params);
+    truncate_cost(cost, params.truncation);
     const Passes passes(cost, left, right, match.min_disp, params);
     Dsi aggregated;
     if (params.separable) {

@@ -46,6 +46,10 @@ inline constexpr int kResponseBits = 8;   // every response and the support weig
 inline constexpr int kResponseMax = (1 << kResponseBits) - 1;
 inline constexpr int kMaxColourDifference = 765;  // |dR| + |dG| + |dB|
 inline constexpr int kOutputFracBits = 4;         // A(p, d) carries 4 fraction bits, like stage 2
+// The matching cost is truncated before the aggregation, C' = min(C, T): Yoon and Kweon's T = 40
+// (in units of |dR| + |dG| + |dB|), part of the ASW framework the thesis builds on (docs/asw.md,
+// "The truncated cost"). 0 switches it off.
+inline constexpr int kDefaultTruncation = 40;
 // Exponential ablation: Yoon and Kweon's gamma_p is the window radius; these two are ours.
 inline constexpr double kExpColourGamma = 14.0;     // in units of |dR| + |dG| + |dB|
 inline constexpr double kExpContinuityGamma = 2.0;  // in disparity labels
@@ -63,6 +67,7 @@ struct Params {
     // difference of disparity_range or more, is the largest stimulus (S = 1).
     int colour_range = 255;
     int disparity_range = 255;
+    int truncation = kDefaultTruncation;  // 0 .. 765; 0: the cost is not truncated
     int threads = 0;  // worker threads, 0 = every hardware thread (results do not depend on it)
     bool operator==(const Params&) const = default;
 };
@@ -112,11 +117,17 @@ int reach(const Params& params);
 Dsi aggregate(const Dsi& cost, const Image& left, const Image& right, int min_disp,
               const Params& params, const std::vector<std::int16_t>& labels);
 
-// The whole matcher: cost (match.cost), pass 1 without continuity, its winners as the
-// preliminary map, pass 2 with continuity (when on), then stage 6 (match.min_disp,
-// match.validation). The support region is clipped at the image border, so the only invalid
-// border is a match outside the right image (0 <= x - d < width). match.window, sigma and use_ca
-// are not read.
+// min(C, truncation) for every cell, in place; truncation 0 leaves the volume as it is. The cells
+// whose match lies outside the right image (fx::kCostOutside) are capped too: under truncation T
+// is the cost of no match, and a neighbour that has no partner at d is no evidence against d
+// (docs/asw.md, "The truncated cost"). The pixel's own outside match is invalid anyway.
+void truncate_cost(Dsi& cost, int truncation);
+
+// The whole matcher: cost (match.cost, truncated by params.truncation), pass 1 without continuity,
+// its winners as the preliminary map, pass 2 with continuity (when on), then stage 6
+// (match.min_disp, match.validation). The support region is clipped at the image border, so the
+// only invalid border is a match outside the right image (0 <= x - d < width). match.window, sigma
+// and use_ca are not read.
 ValidatedDisparity match(const Image& left, const Image& right, const MatchParams& match,
                          const Params& params);
 

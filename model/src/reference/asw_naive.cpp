@@ -111,10 +111,33 @@ Dsi aggregate_naive(const Dsi& cost, const Image& left, const Image& right, int 
     return naive_pass(vertical, left, right, min_disp, row, tables, params, labels, 0);
 }
 
+namespace {
+
+// The matching cost, then min(C, truncation) cell by cell (outside matches too).
+Dsi truncated_cost_volume(const Image& left, const Image& right, const MatchParams& match,
+                          const Params& params) {
+    Dsi cost = cost_volume(*make_cost(match.cost), left, right, match.ndisp, match.min_disp);
+    if (params.truncation == 0) {
+        return cost;
+    }
+    for (int y = 0; y < cost.height(); ++y) {
+        for (int x = 0; x < cost.width(); ++x) {
+            for (int k = 0; k < cost.ndisp(); ++k) {
+                if (cost.at(x, y, k) > params.truncation) {
+                    cost.at(x, y, k) = static_cast<Dsi::Value>(params.truncation);
+                }
+            }
+        }
+    }
+    return cost;
+}
+
+}  // namespace
+
 ValidatedDisparity match_naive(const Image& left, const Image& right, const MatchParams& match,
                                const Params& params) {
     validate(params, left.width, left.height);
-    const Dsi cost = cost_volume(*make_cost(match.cost), left, right, match.ndisp, match.min_disp);
+    const Dsi cost = truncated_cost_volume(left, right, match, params);
     Params first = params;
     first.continuity = false;
     Dsi aggregated = aggregate_naive(cost, left, right, match.min_disp, first, {});
@@ -238,7 +261,7 @@ std::vector<double> real_aggregate(const std::vector<double>& cost, const Image&
 DisparityMap match_floating(const Image& left, const Image& right, const MatchParams& match,
                             const Params& params) {
     validate(params, left.width, left.height);
-    const Dsi cost = cost_volume(*make_cost(match.cost), left, right, match.ndisp, match.min_disp);
+    const Dsi cost = truncated_cost_volume(left, right, match, params);
     const std::vector<double> real_cost(cost.cells().begin(), cost.cells().end());
     Params first = params;
     first.continuity = false;
