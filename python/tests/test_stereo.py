@@ -161,6 +161,18 @@ def test_asw_options_reach_the_matcher(fixture_pair, tmp_path):
     assert np.array_equal(got[both], expected[both])
     full = stereo.match(left, right, method="asw", ndisp=8, asw={"diameter": 9})
     assert full["disparity_px"].shape == expected.shape
+    # The cost truncation: the CLI's --truncation and the dict key reach the same matcher.
+    untruncated = tmp_path / "asw0.pfm"
+    subprocess.run([CLI, "match", left_path, right_path, "--ndisp", "8", "--aggregation", "asw",
+                    "--window", "9", "--truncation", "0", "--no-validation", "-o",
+                    str(untruncated)], check=True, capture_output=True)
+    plain = stereo.match(left, right, method="asw", ndisp=8, asw={"diameter": 9, "truncation": 0})
+    expected0 = read_pfm(untruncated)
+    both0 = np.isfinite(expected0)
+    assert np.array_equal(np.isfinite(plain["disparity_px"]), both0)
+    assert np.array_equal(plain["disparity_px"][both0], expected0[both0])
+    with pytest.raises(ValueError):
+        stereo.match(left, right, method="asw", ndisp=8, asw={"diameter": 9, "truncation": 766})
     with pytest.raises(ValueError):
         stereo.match(left, right, method="asw", ndisp=8, asw={"diameter": 8})
     with pytest.raises(ValueError):
