@@ -28,6 +28,7 @@
 
 #include "cli_command.hpp"
 #include "experiments.hpp"
+#include "stereo/asw.hpp"
 #include "stereo/pipeline.hpp"
 #include "stereo/search.hpp"
 #include "stereo/stages.hpp"
@@ -86,6 +87,18 @@ Method validated_method(const std::string& name, const std::string& cost) {
                 MatchParams params = pipeline_params(ndisp, cost);
                 params.validation = ValidationParams::all_on();
                 return io::to_float_disparity(match_validated(pair.left, pair.right, params));
+            }};
+}
+
+// Adaptive support weights (separable, plain winners; docs/asw.md) with `cost`.
+Method asw_method(const std::string& name, const std::string& cost) {
+    return {name, [cost](const Pair& pair, int ndisp) {
+                MatchParams params;
+                params.ndisp = ndisp;
+                params.cost = cost;
+                asw::Params weights;
+                weights.separable = true;
+                return io::to_float_disparity(asw::match(pair.left, pair.right, params, weights));
             }};
 }
 
@@ -416,6 +429,8 @@ void real(const std::string& data_dir) {
     methods.push_back(validated_method("LCDM", "lcdm"));
     methods.push_back(validated_method("AD", "ad"));
     methods.push_back(validated_method("census", "census"));
+    methods.push_back(asw_method("ASW + LCDM", "lcdm"));  // issue 21's matcher, plain winners
+    methods.push_back(asw_method("ASW + AD", "ad"));
     std::cout << "\n### Real lighting / exposure changes (Middlebury 2014, quarter size, 0..79)\n\n"
               << "Changed: % of the pixels valid in both maps whose disparity differs by more "
                  "than 1 (valid in both: % of the image).\n\n| pair |";
