@@ -705,7 +705,15 @@ void run_quad_eval(const Options& options) {
         const Views views = load_views(folder, n);
         const cv::Mat gt = g * n;
         const Setup setup = setup_for(gt);
-        const auto& [gt_min, gt_max, min_disp, max_disp, ndisp, frame, masks, params] = setup;
+        // Named references, not a structured binding: lambdas below capture them (clang 14).
+        const double gt_min = setup.gt_min;
+        const double gt_max = setup.gt_max;
+        const int min_disp = setup.min_disp;
+        const int max_disp = setup.max_disp;
+        const int ndisp = setup.ndisp;
+        const int frame = setup.frame;
+        const Masks& masks = setup.masks;
+        const MatchParams& params = setup.params;
         std::vector<Row> rows;
         std::array<double, 3> pair_ms{};
         for (const Pair pair : quad::kPairs) {
