@@ -589,25 +589,19 @@ std::string markdown(const json& report) {
 struct Setup {
     double gt_min = 0.0;
     double gt_max = 0.0;
-    int min_disp = 0;
-    int max_disp = 0;
-    int ndisp = 0;
-    int frame = 0;
-    Masks masks;
-    MatchParams params;
+    MatchParams params;  // the range min_disp .. min_disp + ndisp - 1, the 13 x 13 window
+    Masks masks;         // with their frame
 };
 
 Setup setup_for(const cv::Mat& gt) {
     Setup s;
     cv::minMaxLoc(gt, &s.gt_min, &s.gt_max);
-    s.min_disp = static_cast<int>(std::floor(s.gt_min)) - 1;
-    s.max_disp = static_cast<int>(std::ceil(s.gt_max)) + 1;
-    s.ndisp = s.max_disp - s.min_disp + 1;
-    s.frame = (kEquivalentWindow / 2 + 1) + std::max(-s.min_disp, s.max_disp);
-    s.masks = make_masks(gt, s.frame);
-    s.params.ndisp = s.ndisp;
-    s.params.min_disp = s.min_disp;
+    const int lowest = static_cast<int>(std::floor(s.gt_min)) - 1;
+    const int highest = static_cast<int>(std::ceil(s.gt_max)) + 1;
+    s.params.min_disp = lowest;
+    s.params.ndisp = highest - lowest + 1;
     s.params.window = kQuadWindow;
+    s.masks = make_masks(gt, (kEquivalentWindow / 2 + 1) + std::max(-lowest, highest));
     return s;
 }
 
@@ -708,12 +702,12 @@ void run_quad_eval(const Options& options) {
         // Named references, not a structured binding: lambdas below capture them (clang 14).
         const double gt_min = setup.gt_min;
         const double gt_max = setup.gt_max;
-        const int min_disp = setup.min_disp;
-        const int max_disp = setup.max_disp;
-        const int ndisp = setup.ndisp;
-        const int frame = setup.frame;
-        const Masks& masks = setup.masks;
         const MatchParams& params = setup.params;
+        const int min_disp = params.min_disp;
+        const int ndisp = params.ndisp;
+        const int max_disp = min_disp + ndisp - 1;
+        const Masks& masks = setup.masks;
+        const int frame = masks.frame;
         std::vector<Row> rows;
         std::array<double, 3> pair_ms{};
         for (const Pair pair : quad::kPairs) {
