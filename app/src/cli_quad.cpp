@@ -157,7 +157,7 @@ void add_quad_command(CLI::App& app) {
     options->matcher.config.pipeline.window = 13;  // the thesis' quad window
     add_matcher_options(*command, options->matcher, MatcherChoice::fixed, {.validation = true});
     std::vector<std::string> keys;  // the model's names of the fusion keys
-    for (const quad::FusionKey key : {quad::FusionKey::certainty, quad::FusionKey::cost}) {
+    for (const quad::FusionKey key : quad::kFusionKeys) {
         keys.emplace_back(quad::name(key));
     }
     command

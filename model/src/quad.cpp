@@ -232,7 +232,7 @@ std::string_view name(FusionKey key) {
 }
 
 FusionKey fusion_key(std::string_view name) {
-    for (const FusionKey key : {FusionKey::certainty, FusionKey::cost}) {
+    for (const FusionKey key : kFusionKeys) {
         if (name == quad::name(key)) {
             return key;
         }

@@ -68,6 +68,7 @@ ValidatedDisparity match_pair_volume(Pair pair, const Image& reference, const Im
 // best explanation of the same reference window, compared on one scale: the residual, as
 // multi-baseline matchers choose among partner views). Equal keys go to the earlier pair.
 enum class FusionKey : std::uint8_t { certainty = 0, cost = 1 };
+inline constexpr std::array<FusionKey, 2> kFusionKeys = {FusionKey::certainty, FusionKey::cost};
 std::string_view name(FusionKey key);  // "certainty", "cost"
 // The key of a name; throws std::invalid_argument naming both choices for any other.
 FusionKey fusion_key(std::string_view name);
