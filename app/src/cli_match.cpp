@@ -118,10 +118,11 @@ void run_match(const MatchOptions& options) {
         // way.
         if (options.matcher.explicit_validation() || config.pipeline.min_disp != 0) {
             throw std::invalid_argument(
-                "--min-disp, --uniqueness, --lr-check and --subpixel need --method pipeline or "
-                "asw");
+                "--min-disp, --uniqueness, --lr-check, --subpixel and --speckle-size need "
+                "--method pipeline or asw");
         }
         config.pipeline.validation = {};
+        config.speckle = {};
     }
     const auto matcher = matchers().create(method, engine, config);
     const int ndisp = config.pipeline.ndisp;
@@ -223,13 +224,18 @@ void run_match(const MatchOptions& options) {
         summary["lr_check"] =
             v.left_right ? nlohmann::json(v.lr_tolerance) : nlohmann::json(nullptr);
         summary["subpixel"] = v.subpixel;
-        std::array<std::int64_t, 4> reasons{};
+        summary["speckle"] =
+            config.speckle.enabled()
+                ? nlohmann::json{{"size", config.speckle.max_size}, {"range", config.speckle.range}}
+                : nlohmann::json(nullptr);
+        std::array<std::int64_t, fx::kReasonSpeckle + 1> reasons{};
         for (const auto reason : result.validated.reason) {
             reasons[std::min<std::size_t>(reason, reasons.size() - 1)] += 1;
         }
         summary["invalid"] = {{"border", reasons[fx::kReasonBorder]},
                               {"uniqueness", reasons[fx::kReasonUniqueness]},
-                              {"left_right", reasons[fx::kReasonLeftRight]}};
+                              {"left_right", reasons[fx::kReasonLeftRight]},
+                              {"speckle", reasons[fx::kReasonSpeckle]}};
         if (method == "asw") {
             const asw::Params& weights = config.asw;
             summary["window"] = weights.diameter;

@@ -59,7 +59,8 @@ std::string MatcherOptions::resolved_method() const {
 
 bool MatcherOptions::explicit_validation() const {
     return (uniqueness != nullptr && uniqueness->count() > 0) ||
-           (lr_check != nullptr && lr_check->count() > 0) || subpixel;
+           (lr_check != nullptr && lr_check->count() > 0) || subpixel ||
+           (speckle_size != nullptr && speckle_size->count() > 0);
 }
 
 MatchConfig MatcherOptions::resolved() const {
@@ -70,6 +71,9 @@ MatchConfig MatcherOptions::resolved() const {
     ValidationParams& validation = resolved_config.pipeline.validation;
     if (no_validation) {
         validation.uniqueness = validation.left_right = validation.subpixel = false;
+        if (speckle_size == nullptr || speckle_size->count() == 0) {
+            resolved_config.speckle.max_size = 0;
+        }
     }
     validation.uniqueness =
         validation.uniqueness || (uniqueness != nullptr && uniqueness->count() > 0);
@@ -102,12 +106,15 @@ void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoi
     }
     if (exposed.validation) {
         ValidationParams& v = params.validation;
+        speckle::Params& speckles = options.config.speckle;
         if (exposed.validation_on_by_default) {
             v = ValidationParams::all_on();
+            v.uniqueness_ratio = speckle::kDefaultUniqueness;
+            speckles = speckle::Params::defaults();
             command.add_flag("--no-validation", options.no_validation,
-                             "Output the plain winners: no uniqueness, left-right or sub-pixel "
-                             "step (an explicit --uniqueness, --lr-check or --subpixel turns "
-                             "that step back on)");
+                             "Output the plain winners: no uniqueness, left-right, sub-pixel or "
+                             "speckle step (an explicit --uniqueness, --lr-check, --subpixel or "
+                             "--speckle-size turns that step back on)");
         }
         command
             .add_option("--min-disp", params.min_disp,
@@ -128,6 +135,16 @@ void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoi
         command.add_flag("--subpixel", options.subpixel,
                          "Refine each disparity by the parabola through its neighbours' costs "
                          "(1/16 pixel)");
+        options.speckle_size =
+            command
+                .add_option("--speckle-size", speckles.max_size,
+                            "Invalidate every region of at most N connected valid pixels "
+                            "(neighbours within --speckle-range), after stage 6; 0: off")
+                ->capture_default_str();
+        command
+            .add_option("--speckle-range", speckles.range,
+                        "Largest disparity step, in pixels, inside one speckle region")
+            ->capture_default_str();
     }
     if (choice == MatcherChoice::fixed) {
         return;

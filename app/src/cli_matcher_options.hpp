@@ -34,6 +34,7 @@ struct MatcherOptions {
     CLI::Option* sigma = nullptr;
     CLI::Option* uniqueness = nullptr;
     CLI::Option* lr_check = nullptr;
+    CLI::Option* speckle_size = nullptr;
     bool no_validation = false;
     bool subpixel = false;
 
@@ -42,7 +43,7 @@ struct MatcherOptions {
     // The method after --frontend and --aggregation; throws std::invalid_argument when they
     // contradict.
     std::string resolved_method() const;
-    // --uniqueness, --lr-check or --subpixel was given on the command line.
+    // --uniqueness, --lr-check, --subpixel or --speckle-size was given on the command line.
     bool explicit_validation() const;
     // The configuration with --no-ca, the stage 6 switches and the ASW options applied (with
     // --aggregation asw, --window is the support region's diameter, 55 when not given).
@@ -63,7 +64,8 @@ enum class MatcherChoice {
 struct ExposedParams {
     bool ndisp = true;
     bool no_ca = true;
-    bool validation = false;  // --min-disp, --uniqueness, --lr-check, --subpixel (stage 6)
+    // --min-disp, --uniqueness, --lr-check, --subpixel (stage 6), --speckle-size/-range
+    bool validation = false;
     // Stage 6 on unless --no-validation (stereo match); otherwise each option turns its step on.
     bool validation_on_by_default = false;
 };

@@ -3,7 +3,8 @@
 // pairs, Reindeer, Cloth3, Wood2, Aloe at half size) it runs the pipeline without stage 6, with
 // each validation step alone, with every step (the defaults of `stereo match --validate`), and
 // OpenCV StereoBM and StereoSGBM in the same run; then it sweeps the uniqueness ratio (with the
-// left-right check on) for the curve. Scores are over every pixel with known ground truth.
+// left-right check on) for the curve, and the speckle filter's size and range over that sweep
+// (the rule that chose the defaults). Scores are over every pixel with known ground truth.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -22,6 +23,7 @@
 #include "cli_command.hpp"
 #include "cli_matcher_options.hpp"
 #include "experiments.hpp"
+#include "stereo/speckle.hpp"
 #include "stereo_io/data_dir.hpp"
 #include "stereo_io/disparity_files.hpp"
 #include "stereo_io/io.hpp"
@@ -39,11 +41,17 @@ struct EvalOptions : cli::ReportOptions {
     static constexpr std::string_view kDescription =
         "Coverage and error of the validated output on every scene with ground truth, beside "
         "OpenCV BM and SGBM, and the uniqueness sweep (docs/results.md).";
-    std::string figure;  // the error-versus-coverage PNG
-    int uniqueness = ValidationParams{}.uniqueness_ratio;
+    std::string figure;                            // the error-versus-coverage PNG
+    int uniqueness = speckle::kDefaultUniqueness;  // with the speckle filter (stereo match)
     int lr_tolerance = ValidationParams{}.lr_tolerance;
-    std::vector<int> sweep = {0, 2, 5, 10, 15, 20, 30, 45, 70, 100};
+    std::vector<int> sweep = {0, 1, 2, 3, 4, 5, 6, 8, 10, 12, 15, 20, 30, 45, 70, 100};
+    speckle::Params speckle = speckle::Params::defaults();
+    std::vector<int> speckle_sizes = {0, 25, 50, 100, 200, 400};
+    std::vector<int> speckle_ranges = {1, 2};
 };
+
+// The error goal of issue 16: bad > 1 among the output at most this times SGBM's, every scene.
+constexpr double kErrorGoalRatio = 1.2;
 
 struct Score {
     double coverage = 0.0;   // percent of known pixels that are valid
@@ -73,12 +81,19 @@ cv::Mat opencv_map(cv::Mat map) {
     return map;
 }
 
-cv::Mat run_model(const io::SceneData& data, const ValidationParams& validation) {
+ValidatedDisparity run_model(const io::SceneData& data, const ValidationParams& validation) {
     MatchConfig config;
     config.pipeline.ndisp = data.scene.ndisp;
     config.pipeline.validation = validation;
     const auto matcher = cli::matchers().create("pipeline", "model", config);
-    return io::to_float_disparity(matcher->compute(data.pair.left, data.pair.right).validated);
+    return matcher->compute(data.pair.left, data.pair.right).validated;
+}
+
+// The score of `validated` after the speckle filter (off: as it is).
+Score score_filtered(const io::SceneData& data, ValidatedDisparity validated,
+                     const speckle::Params& speckles) {
+    speckle::filter(validated, speckles);
+    return score(data, io::to_float_disparity(validated));
 }
 
 json score_json(const Score& s) {
@@ -174,12 +189,14 @@ std::string markdown(const json& report) {
           " Rows: `plain` no stage 6; `uniqueness` (U = "
        << report["defaults"]["uniqueness"].get<int>()
        << "), `left_right` (T = " << report["defaults"]["lr_tolerance"].get<int>()
-       << "), `subpixel` alone; `defaults_integer` uniqueness + left-right; `defaults` all three; "
-          "OpenCV `bm` and `sgbm`.\n\n";
+       << "), `subpixel`, `speckle` (size " << report["defaults"]["speckle_size"].get<int>()
+       << ", range " << report["defaults"]["speckle_range"].get<int>()
+       << ") alone; `defaults_integer` all but sub-pixel; `defaults` all four; OpenCV `bm` and "
+          "`sgbm`.\n\n";
     md << "| scene | method | coverage % | bad>1 % of output | bad>1 % all (invalid = bad) | "
           "bad>0.5 % of output | NMSE |\n|---|---|---|---|---|---|---|\n";
     for (const auto& scene : report["scenes"]) {
-        for (const char* method : {"plain", "uniqueness", "left_right", "subpixel",
+        for (const char* method : {"plain", "uniqueness", "left_right", "subpixel", "speckle",
                                    "defaults_integer", "defaults", "bm", "sgbm"}) {
             const json& s = scene[method];
             std::snprintf(line, sizeof line, "| %s | %s | %.1f | %.2f | %.2f | %.2f | %.4f |\n",
@@ -211,7 +228,26 @@ std::string markdown(const json& report) {
                       yes_no("bad_half_valid"), yes_no("nmse"));
         md << line;
     }
-    md << "\nUniqueness sweep (left-right on), coverage % / bad>1 % of output:\n\n| scene |";
+    md << "\nThe speckle filter, applied to every point of the sweep below: for each size and "
+          "range, the smallest uniqueness ratio U whose error among the output is at most "
+       << kErrorGoalRatio
+       << "x SGBM's on every scene, with the mean and lowest coverage and the worst ratio there "
+          "(`-`: no ratio of the sweep meets it).\n\n| speckle size | range | U | mean coverage % "
+          "| lowest coverage % | worst ratio to SGBM |\n|---|---|---|---|---|---|\n";
+    for (const auto& setting : report["speckle_grid"]) {
+        md << "| " << setting["size"].get<int>() << " | " << setting["range"].get<int>() << " |";
+        if (setting["ratio"].is_null()) {
+            md << " - | - | - | - |\n";
+            continue;
+        }
+        std::snprintf(line, sizeof line, " %d | %.1f | %.1f | %.2fx |\n",
+                      setting["ratio"].get<int>(), setting["mean_coverage"].get<double>(),
+                      setting["lowest_coverage"].get<double>(),
+                      setting["worst_ratio"].get<double>());
+        md << line;
+    }
+    md << "\nUniqueness sweep (left-right on, the defaults' speckle filter), coverage % / bad>1 % "
+          "of output:\n\n| scene |";
     for (const int ratio : report["sweep_ratios"]) {
         md << " U=" << ratio << " |";
     }
@@ -232,8 +268,40 @@ std::string markdown(const json& report) {
     return md.str();
 }
 
+// For one speckle setting: the smallest ratio of the sweep that meets the error goal on every
+// scene, with the coverage there; null ratio when none does.
+json choose_ratio(const json& scenes, std::size_t setting, const std::vector<int>& ratios) {
+    for (std::size_t r = 0; r < ratios.size(); ++r) {
+        double worst = 0.0;
+        double sum = 0.0;
+        double lowest = 100.0;
+        for (const auto& scene : scenes) {
+            const json& point = scene["speckle_grid"][setting][r];
+            const double sgbm = scene["sgbm"]["bad_valid"].get<double>();
+            worst = std::max(worst, point["bad_valid"].get<double>() / sgbm);
+            sum += point["coverage"].get<double>();
+            lowest = std::min(lowest, point["coverage"].get<double>());
+        }
+        if (worst <= kErrorGoalRatio) {
+            return {{"ratio", ratios[r]},
+                    {"mean_coverage", sum / static_cast<double>(scenes.size())},
+                    {"lowest_coverage", lowest},
+                    {"worst_ratio", worst}};
+        }
+    }
+    return {{"ratio", nullptr}};
+}
+
 void run_validation_eval(const EvalOptions& options) {
     const ValidationParams defaults{true, options.uniqueness, true, options.lr_tolerance, true};
+    speckle::validate(options.speckle);
+    std::vector<speckle::Params> grid;
+    for (const int size : options.speckle_sizes) {
+        for (const int range : options.speckle_ranges) {
+            grid.push_back({size, range});
+            speckle::validate(grid.back());
+        }
+    }
     // The single-step rows use the same ratio and tolerance.
     {
         MatchParams check;
@@ -253,32 +321,53 @@ void run_validation_eval(const EvalOptions& options) {
                    {"defaults",
                     {{"uniqueness", options.uniqueness},
                      {"lr_tolerance", options.lr_tolerance},
-                     {"subpixel", true}}},
+                     {"subpixel", true},
+                     {"speckle_size", options.speckle.max_size},
+                     {"speckle_range", options.speckle.range}}},
                    {"scenes", json::array()}};
     for (const io::SceneData& data : scenes) {
         std::cerr << "validation-eval: " << data.scene.name << '\n';
         json scene = {{"name", data.scene.name}, {"ndisp", data.scene.ndisp}};
-        const auto run = [&](const ValidationParams& v) {
-            return score_json(score(data, run_model(data, v)));
+        const auto run = [&](const ValidationParams& v, const speckle::Params& speckles) {
+            return score_json(score_filtered(data, run_model(data, v), speckles));
         };
-        scene["plain"] = run({});
-        scene["uniqueness"] = run({true, options.uniqueness, false, options.lr_tolerance, false});
-        scene["left_right"] = run({false, options.uniqueness, true, options.lr_tolerance, false});
-        scene["subpixel"] = run({false, options.uniqueness, false, options.lr_tolerance, true});
-        scene["defaults"] = run(defaults);
+        const auto run_unfiltered = [&](const ValidationParams& v) { return run(v, {}); };
+        scene["plain"] = run_unfiltered({});
+        scene["uniqueness"] =
+            run_unfiltered({true, options.uniqueness, false, options.lr_tolerance, false});
+        scene["left_right"] =
+            run_unfiltered({false, options.uniqueness, true, options.lr_tolerance, false});
+        scene["subpixel"] =
+            run_unfiltered({false, options.uniqueness, false, options.lr_tolerance, true});
+        scene["speckle"] = run({}, options.speckle);
+        scene["defaults"] = run(defaults, options.speckle);
         ValidationParams integer = defaults;
         integer.subpixel = false;
-        scene["defaults_integer"] = run(integer);
+        scene["defaults_integer"] = run(integer, options.speckle);
         scene["bm"] = score_json(score(data, opencv_map(io::run_stereo_bm(data, 11))));
         scene["sgbm"] = score_json(score(data, opencv_map(io::run_stereo_sgbm(data))));
         json sweep = json::array();
+        json speckle_grid(grid.size(), json::array());
         for (const int ratio : options.sweep) {
-            json point = run({true, ratio, true, options.lr_tolerance, true});
+            const ValidatedDisparity validated =
+                run_model(data, {true, ratio, true, options.lr_tolerance, true});
+            json point = score_json(score_filtered(data, validated, options.speckle));
             point["ratio"] = ratio;
             sweep.push_back(point);
+            for (std::size_t g = 0; g < grid.size(); ++g) {
+                speckle_grid[g].push_back(score_json(score_filtered(data, validated, grid[g])));
+            }
         }
         scene["sweep"] = sweep;
+        scene["speckle_grid"] = speckle_grid;
         report["scenes"].push_back(scene);
+    }
+    report["speckle_grid"] = json::array();
+    for (std::size_t g = 0; g < grid.size(); ++g) {
+        json setting = choose_ratio(report["scenes"], g, options.sweep);
+        setting["size"] = grid[g].max_size;
+        setting["range"] = grid[g].range;
+        report["speckle_grid"].push_back(setting);
     }
     const std::string md = markdown(report);
     std::cout << md;
@@ -299,6 +388,14 @@ void add_validation_eval_command(CLI::App& app) {
         *command, {{"--uniqueness", &options->uniqueness, "Ratio of the defaults row"},
                    {"--lr-check", &options->lr_tolerance, "Tolerance of the defaults row"}});
     command->add_option("--sweep", options->sweep, "Uniqueness ratios of the curve")
+        ->capture_default_str();
+    cli::add_number_options(
+        *command,
+        {{"--speckle-size", &options->speckle.max_size, "Speckle size of the defaults row"},
+         {"--speckle-range", &options->speckle.range, "Speckle range of the defaults row"}});
+    command->add_option("--speckle-sizes", options->speckle_sizes, "Speckle sizes of the grid")
+        ->capture_default_str();
+    command->add_option("--speckle-ranges", options->speckle_ranges, "Speckle ranges of the grid")
         ->capture_default_str();
 }
 

@@ -26,6 +26,28 @@ void add_unique(std::vector<std::string>& names, const std::string& name) {
     }
 }
 
+// A matcher whose validated output goes through the speckle filter; methods without one (their
+// `validated` is empty) pass unchanged.
+class SpeckleFiltered final : public Matcher {
+  public:
+    SpeckleFiltered(std::unique_ptr<Matcher> inner, speckle::Params params)
+        : inner_(std::move(inner)), params_(params) {}
+    void validate(int width, int height) const override { inner_->validate(width, height); }
+    MatchResult compute(const Image& left, const Image& right) const override {
+        MatchResult result = inner_->compute(left, right);
+        if (!result.validated.fixed.empty()) {
+            const int removed = speckle::filter(result.validated, params_);
+            result.disparity = to_label_map(result.validated);
+            result.counts.emplace_back("speckle", removed);
+        }
+        return result;
+    }
+
+  private:
+    std::unique_ptr<Matcher> inner_;
+    speckle::Params params_;
+};
+
 // ---- pipeline: the 1-D Sec. 3.1 matcher ------------------------------------------------------
 
 // The model's pipeline: kernel and cost built once, when the matcher is made (a bad window,
@@ -263,7 +285,12 @@ std::unique_ptr<Matcher> MatcherRegistry::create(std::string_view method, std::s
     for (const auto& entry : entries_) {
         if (entry.method == method) {
             if (entry.engine == engine) {
-                return entry.create(config);
+                speckle::validate(config.speckle);
+                std::unique_ptr<Matcher> matcher = entry.create(config);
+                if (config.speckle.enabled()) {
+                    return std::make_unique<SpeckleFiltered>(std::move(matcher), config.speckle);
+                }
+                return matcher;
             }
             engines_of_method.push_back(entry.engine);
         }

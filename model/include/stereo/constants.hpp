@@ -94,6 +94,9 @@ inline constexpr int kReasonValid = 0;
 inline constexpr int kReasonBorder = 1;      // window or match outside the images
 inline constexpr int kReasonUniqueness = 2;  // a distant label costs almost as little
 inline constexpr int kReasonLeftRight = 3;   // the right image's winner disagrees
+// Set by the host-side speckle filter after stage 6 (stereo/speckle.hpp), never by the core: the
+// output beat's reason field does not carry it, so fx_pkg.sv does not list it.
+inline constexpr int kReasonSpeckle = 4;  // a small island of disparities cut off from its surround
 
 // ---- Exactness proofs (compile time) ----------------------------------------------------
 constexpr std::uint32_t mean9(std::uint32_t sum) {

@@ -18,6 +18,7 @@
 #include "stereo/pipeline.hpp"
 #include "stereo/search.hpp"
 #include "stereo/sparse.hpp"
+#include "stereo/speckle.hpp"
 
 namespace stereo {
 
@@ -29,6 +30,9 @@ struct MatchConfig {
     edge_frontend::EdgeParams edges;                     // edges: LoG and truncation
     sparse::Params sparse;  // sparse: stage 6 uniqueness ratio and left-right tolerance
     asw::Params asw;        // asw: support region, responses, ablation switches
+    // Every method with a validated output (pipeline, asw, quad pairs), every engine: the
+    // host-side speckle filter after stage 6 (MatcherRegistry::create applies it). Off here.
+    speckle::Params speckle;
 };
 
 struct MatchResult {
@@ -79,7 +83,9 @@ class MatcherRegistry {
   public:
     // Throws std::logic_error when (method, engine) is registered already.
     void add(MatcherEntry entry);
-    // Throws std::invalid_argument naming what exists when (method, engine) does not.
+    // Throws std::invalid_argument naming what exists when (method, engine) does not, and for
+    // impossible speckle parameters. With config.speckle on, the matcher's validated output
+    // passes through speckle::filter (its label map and counts follow).
     std::unique_ptr<Matcher> create(std::string_view method, std::string_view engine,
                                     const MatchConfig& config) const;
     const std::vector<MatcherEntry>& entries() const { return entries_; }
