@@ -160,7 +160,8 @@ MatchOptions match_options(const std::string& method, const std::string& engine,
                            std::optional<int> uniqueness, std::optional<int> lr_check,
                            bool subpixel, int vrange, const std::string& neighbours, int log_window,
                            double log_sigma, int edge_value, int truncation, int sparse_uniqueness,
-                           int sparse_lr, const std::optional<py::dict>& asw = std::nullopt) {
+                           int sparse_lr, const std::optional<py::dict>& asw = std::nullopt,
+                           stereo::speckle::Params speckle = {}) {
     MatchOptions o{method, engine, {}};
     stereo::MatchParams& p = o.config.pipeline;
     p.ndisp = ndisp;
@@ -189,6 +190,7 @@ MatchOptions match_options(const std::string& method, const std::string& engine,
     o.config.edges.truncation = truncation;
     o.config.sparse.uniqueness = sparse_uniqueness;
     o.config.sparse.lr_tolerance = sparse_lr;
+    o.config.speckle = speckle;
     if (asw) {
         // method "asw": the keys of stereo::asw::Params (docs/asw.md), each optional.
         stereo::asw::Params& a = o.config.asw;
@@ -370,12 +372,13 @@ PYBIND11_MODULE(stereo, m) {
            const std::string& cost, int min_disp, std::optional<int> uniqueness,
            std::optional<int> lr_check, bool subpixel, int vrange, const std::string& neighbours,
            int log_window, double log_sigma, int edge_value, int truncation, int sparse_uniqueness,
-           int sparse_lr, const std::optional<py::dict>& asw) {
+           int sparse_lr, const std::optional<py::dict>& asw, int speckle_size, int speckle_range) {
             return run_match(
                 left, right,
                 match_options(method, engine, ndisp, window, sigma, ca, cost, min_disp, uniqueness,
                               lr_check, subpixel, vrange, neighbours, log_window, log_sigma,
-                              edge_value, truncation, sparse_uniqueness, sparse_lr, asw));
+                              edge_value, truncation, sparse_uniqueness, sparse_lr, asw,
+                              {speckle_size, speckle_range}));
         },
         py::arg("left"), py::arg("right"), py::kw_only(), py::arg("method") = "pipeline",
         py::arg("engine") = "model", py::arg("ndisp") = defaults.ndisp,
@@ -387,12 +390,15 @@ PYBIND11_MODULE(stereo, m) {
         py::arg("log_sigma") = edges.log_sigma, py::arg("edge_value") = edges.edge_value,
         py::arg("truncation") = edges.truncation, py::arg("sparse_uniqueness") = sparse.uniqueness,
         py::arg("sparse_lr") = sparse.lr_tolerance, py::arg("asw") = py::none(),
+        py::arg("speckle_size") = 0, py::arg("speckle_range") = stereo::speckle::kDefaultRange,
         "Match a pair with (method, engine) of stereo.matchers(). Returns a dict: disparity "
         "(uint8 labels), valid (bool), and for the pipeline and asw stage 6's disparity_px "
         "(float32, NaN invalid), fixed (int16, x16), reason, certainty; subpixel (sparse), "
         "vertical (2-D methods), counts. uniqueness / lr_check: None = that stage off. asw: a "
         "dict of method asw's options (diameter, response, shape, continuity, right_weights, "
-        "separable, threads), defaults as stereo match --aggregation asw.");
+        "separable, threads), defaults as stereo match --aggregation asw. speckle_size / "
+        "speckle_range: the speckle filter after stage 6 (0 = off; stereo match's defaults are "
+        "100 / 1).");
 
     m.def("evaluate", &evaluate, py::arg("disparity"), py::arg("ground_truth"), py::kw_only(),
           py::arg("threshold") = 1.0, py::arg("nonocc") = py::none(), py::arg("all") = py::none(),

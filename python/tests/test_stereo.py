@@ -57,13 +57,15 @@ def test_version_matches_cli():
 def test_match_equals_cli_bit_for_bit(fixture_pair, tmp_path):
     left_path, right_path = fixture_pair
     pfm = tmp_path / "cli.pfm"
-    # The CLI's defaults: every stage-6 step on (uniqueness 20, left-right 0, sub-pixel).
+    # The CLI's defaults: every stage-6 step on (uniqueness 8, left-right 0, sub-pixel), then the
+    # speckle filter (size 100, range 1).
     subprocess.run([CLI, "match", left_path, right_path, "--ndisp", "16", "-o", str(pfm)],
                    check=True, capture_output=True)
     expected = read_pfm(pfm)
     left = stereo.load_image(left_path)
     right = stereo.load_image(right_path)
-    result = stereo.match(left, right, ndisp=16, uniqueness=20, lr_check=0, subpixel=True)
+    result = stereo.match(left, right, ndisp=16, uniqueness=8, lr_check=0, subpixel=True,
+                          speckle_size=100, speckle_range=1)
     got = result["disparity_px"]
     assert got.shape == expected.shape
     expected_valid = np.isfinite(expected)
@@ -177,6 +179,25 @@ def test_asw_options_reach_the_matcher(fixture_pair, tmp_path):
         stereo.match(left, right, method="asw", ndisp=8, asw={"diameter": 8})
     with pytest.raises(ValueError):
         stereo.match(left, right, method="asw", ndisp=8, asw={"radius": 4})
+
+
+def test_speckle_filter_counts_what_it_removes():
+    # Two unrelated random images: a map of islands. The filter's count is the pixels it marked
+    # (reason 4), they were valid without it, and an impossible size is refused.
+    rng = np.random.default_rng(SEED)
+    left = rng.integers(0, 256, size=(48, 64, 3), dtype=np.uint8)
+    right = rng.integers(0, 256, size=(48, 64, 3), dtype=np.uint8)
+    options = dict(ndisp=8, window=5, uniqueness=8, lr_check=0, subpixel=True)
+    plain = stereo.match(left, right, **options)
+    filtered = stereo.match(left, right, speckle_size=30, speckle_range=1, **options)
+    removed = filtered["reason"] == 4
+    assert removed.any()
+    assert filtered["counts"]["speckle"] == np.count_nonzero(removed)
+    assert plain["valid"][removed].all()
+    kept = filtered["valid"]
+    assert np.array_equal(filtered["fixed"][kept], plain["fixed"][kept])
+    with pytest.raises(ValueError):
+        stereo.match(left, right, ndisp=8, speckle_size=-1)
 
 
 def test_bad_inputs_raise():
