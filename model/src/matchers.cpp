@@ -163,7 +163,9 @@ std::unique_ptr<Matcher> make_sparse(const MatchConfig& config) {
 // names it in the message) refuses parameters that need them.
 void validate_plain_params(const MatchParams& params, const std::string& engine) {
     validate_params(params);
-    if (params.min_disp != 0 || params.validation != ValidationParams{}) {
+    // Only the switches count: the ratio or tolerance of a step that is off is never read.
+    const ValidationParams& v = params.validation;
+    if (params.min_disp != 0 || v.uniqueness || v.left_right || v.subpixel) {
         throw std::invalid_argument(engine +
                                     " has no minimum disparity or validation stages (use "
                                     "--no-validation, or --engine model or naive)");
