@@ -176,7 +176,8 @@ TEST(QuadFusion, KeysByName) {
 }
 
 TEST(QuadPairs, WinnerCostsEqualNaive) {
-    // C1 of every pixel, the model's volume form against the naive stages.
+    // C1 of every pixel, the model (streaming for the horizontal and vertical pairs, the volume
+    // for the diagonal) against the naive stages, on a non-square frame (the vertical transpose).
     auto rng = test::seeded_rng(27);
     for (const Pair pair : kPairs) {
         const auto [reference, partner] = shifted_views(pair, 1, 29, 23, 3, rng);

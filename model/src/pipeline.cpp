@@ -234,4 +234,15 @@ ValidatedDisparity match_validated_with(const CostFunction& cost,
     return selector.result();
 }
 
+CostedDisparity match_validated_with_costs(const Image& left, const Image& right,
+                                           const MatchParams& params) {
+    check_pair(left, right);
+    validate(params, left.width, left.height);
+    ValidatingSelector selector(left.width, left.height, params.ndisp, params.min_disp,
+                                params.validation, invalid_border(params));
+    run_pipeline(*make_cost(params.cost), gaussian_kernel(params.window, params.sigma), left, right,
+                 params, selector);
+    return {selector.result(), selector.winner_costs()};
+}
+
 }  // namespace stereo

@@ -298,8 +298,29 @@ ValidatedDisparity match_pair_volume(Pair pair, const Image& reference, const Im
 
 PairMatch match_pair_with_cost(Pair pair, const Image& reference, const Image& partner,
                                const MatchParams& params) {
-    return direction_validate(pair_volume(pair, reference, partner, params), step(pair),
-                              params.min_disp, params.validation, invalid_border(params));
+    check_pair(reference, partner);
+    validate_pair(pair, params, reference.width, reference.height);
+    switch (pair) {
+        case Pair::horizontal:
+            return match_validated_with_costs(reference, partner, params);
+        case Pair::vertical: {
+            const PairMatch columns =
+                match_validated_with_costs(transpose(reference), transpose(partner), params);
+            // The costs transposed back like the map: column-major of the transposed frame.
+            std::vector<std::uint16_t> cost(columns.cost.size());
+            for (int y = 0; y < reference.height; ++y) {
+                for (int x = 0; x < reference.width; ++x) {
+                    cost[static_cast<std::size_t>(y) * reference.width + x] =
+                        columns.cost[static_cast<std::size_t>(x) * reference.height + y];
+                }
+            }
+            return {transpose(columns.map), std::move(cost)};
+        }
+        case Pair::diagonal:
+            return direction_validate(pair_volume(pair, reference, partner, params), step(pair),
+                                      params.min_disp, params.validation, invalid_border(params));
+    }
+    throw std::invalid_argument("unknown pair");
 }
 
 ValidatedDisparity match_pair(Pair pair, const Image& reference, const Image& partner,

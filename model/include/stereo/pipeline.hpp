@@ -103,6 +103,10 @@ DisparityMap match(const Image& left, const Image& right, const MatchParams& par
 ValidatedDisparity match_validated(const Image& left, const Image& right,
                                    const MatchParams& params);
 
+// match_validated with the winner's final cost of every pixel (the same map, bit for bit).
+CostedDisparity match_validated_with_costs(const Image& left, const Image& right,
+                                           const MatchParams& params);
+
 // The checks of validate() that depend on the image size (ndisp against the width, the invalid
 // border against the size), for callers that built the kernel and the cost already.
 void validate_size(const MatchParams& params, int width, int height);

@@ -75,10 +75,7 @@ FusionKey fusion_key(std::string_view name);
 
 // One pair's stage-6 output and, per pixel, the final cost of the winning label (C1, 0 ..
 // fx::kAggMax; every pixel, border pixels too): what fusion by cost compares.
-struct PairMatch {
-    ValidatedDisparity map;
-    std::vector<std::uint16_t> cost;
-};
+using PairMatch = CostedDisparity;
 
 struct QuadResult {
     ValidatedDisparity fused;                 // the winning pair's disparity, reason and certainty
@@ -94,7 +91,8 @@ QuadResult fuse(std::array<ValidatedDisparity, 3> pairs);
 // fuse (the fused certainty is the winning pair's). Throws std::invalid_argument on unequal sizes.
 QuadResult fuse_by_cost(std::array<PairMatch, 3> pairs);
 
-// match_pair_volume with the winner costs.
+// match_pair with the winner costs: the horizontal and vertical pairs through the streaming
+// pipeline (match_validated_with_costs), the diagonal through its volume.
 PairMatch match_pair_with_cost(Pair pair, const Image& reference, const Image& partner,
                                const MatchParams& params);
 

@@ -37,6 +37,13 @@ struct ValidatedDisparity {
     bool operator==(const ValidatedDisparity&) const = default;
 };
 
+// A validated map and, per pixel, the final aggregated cost of its winning label (C1, 0 ..
+// fx::kAggMax; every pixel, border pixels too): what the quad-camera fusion by cost compares.
+struct CostedDisparity {
+    ValidatedDisparity map;
+    std::vector<std::uint16_t> cost;
+};
+
 // The nearest integer disparity (halves up) where it is valid and in 0 .. 255; invalid (0)
 // elsewhere. With every validation stage off and min_disp 0 this is stereo::match's map.
 DisparityMap to_label_map(const ValidatedDisparity& validated);

@@ -148,6 +148,14 @@ ValidatedDisparity ValidatingSelector::result() const {
     return out;
 }
 
+std::vector<std::uint16_t> ValidatingSelector::winner_costs() const {
+    std::vector<std::uint16_t> costs(static_cast<std::size_t>(width_) * height_);
+    for (std::size_t q = 0; q < costs.size(); ++q) {
+        costs[q] = static_cast<std::uint16_t>(key_cost(kept_[q]));
+    }
+    return costs;
+}
+
 DisparityMap to_label_map(const ValidatedDisparity& validated) {
     DisparityMap map(validated.width, validated.height);
     for (std::size_t q = 0; q < validated.fixed.size(); ++q) {

@@ -58,6 +58,8 @@ class ValidatingSelector final : public Selector {
                        const ValidationParams& params, const InvalidBorder& border);
     void update(const CostValue* plane, int i, int j) override;
     ValidatedDisparity result() const;
+    // The winner's final cost C1 of every pixel, raster order.
+    std::vector<std::uint16_t> winner_costs() const;
 
   private:
     static constexpr int kKept = 4;  // enough for the best outside the winner's neighbours
