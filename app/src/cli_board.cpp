@@ -108,7 +108,7 @@ void run_board(const BoardOptions& options) {
     }
     const std::uint8_t configured = client.configure(registers);
     const auto start = std::chrono::steady_clock::now();
-    const ValidatedDisparity validated = client.frame(pair.left, pair.right);
+    ValidatedDisparity validated = client.frame(pair.left, pair.right);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const std::uint8_t status = client.identify().status;
@@ -117,6 +117,8 @@ void run_board(const BoardOptions& options) {
                                  board::describe_status(configured | status));
     }
 
+    // The host-side speckle filter, as stereo match runs it after any engine.
+    speckle::filter(validated, config.speckle);
     const DisparityMap map = to_label_map(validated);
     if (!options.output.empty()) {
         std::string bytes;
@@ -188,7 +190,7 @@ void add_board_command(CLI::App& app) {
     // default fits the smallest build.
     options->matcher.config.pipeline.ndisp = 1;
     add_matcher_options(*command, options->matcher, MatcherChoice::fixed,
-                        {.validation = true, .validation_on_by_default = true});
+                        {.validation = true, .speckle = true, .validation_on_by_default = true});
     command->add_flag("--png16", options->png16,
                       "Write a 16-bit PNG of 32768 + 16 d (signed, 1/16 pixel), 0 = invalid");
     command->add_option("--downscale", options->downscale, "Shrink both images by integer F first")

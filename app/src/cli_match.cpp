@@ -283,7 +283,7 @@ void add_match_command(CLI::App& app) {
                      "Disparity PNG: disparity * scale, 0 = invalid")
         ->required();
     add_matcher_options(*command, options->matcher, MatcherChoice::selectable,
-                        {.validation = true, .validation_on_by_default = true});
+                        {.validation = true, .speckle = true, .validation_on_by_default = true});
     command->add_flag("--png16", options->png16,
                       "pipeline: write a 16-bit PNG of 32768 + 16 d (signed, 1/16 pixel), 0 = "
                       "invalid; a .pfm output holds float disparities with +inf invalid");

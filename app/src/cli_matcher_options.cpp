@@ -106,11 +106,10 @@ void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoi
     }
     if (exposed.validation) {
         ValidationParams& v = params.validation;
-        speckle::Params& speckles = options.config.speckle;
         if (exposed.validation_on_by_default) {
             v = ValidationParams::all_on();
-            v.uniqueness_ratio = speckle::kDefaultUniqueness;
-            speckles = speckle::Params::defaults();
+            // The ratio the defaults' speckle filter allows (stereo/speckle.hpp).
+            v.uniqueness_ratio = exposed.speckle ? speckle::kDefaultUniqueness : v.uniqueness_ratio;
             command.add_flag("--no-validation", options.no_validation,
                              "Output the plain winners: no uniqueness, left-right, sub-pixel or "
                              "speckle step (an explicit --uniqueness, --lr-check, --subpixel or "
@@ -135,6 +134,12 @@ void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoi
         command.add_flag("--subpixel", options.subpixel,
                          "Refine each disparity by the parabola through its neighbours' costs "
                          "(1/16 pixel)");
+    }
+    if (exposed.speckle) {
+        speckle::Params& speckles = options.config.speckle;
+        if (exposed.validation_on_by_default) {
+            speckles = speckle::Params::defaults();
+        }
         options.speckle_size =
             command
                 .add_option("--speckle-size", speckles.max_size,

@@ -64,8 +64,10 @@ enum class MatcherChoice {
 struct ExposedParams {
     bool ndisp = true;
     bool no_ca = true;
-    // --min-disp, --uniqueness, --lr-check, --subpixel (stage 6), --speckle-size/-range
-    bool validation = false;
+    bool validation = false;  // --min-disp, --uniqueness, --lr-check, --subpixel (stage 6)
+    // --speckle-size / --speckle-range: the host-side filter after stage 6 (not in the core, so
+    // not for cosim; quad fuses maps the filter has not seen)
+    bool speckle = false;
     // Stage 6 on unless --no-validation (stereo match); otherwise each option turns its step on.
     bool validation_on_by_default = false;
 };
