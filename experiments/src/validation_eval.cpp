@@ -48,6 +48,7 @@ struct EvalOptions : cli::ReportOptions {
     speckle::Params speckle = speckle::Params::defaults();
     std::vector<int> speckle_sizes = {0, 25, 50, 100, 200, 400};
     std::vector<int> speckle_ranges = {1, 2};
+    std::string cost = "ad";  // the pipeline's cost plug-in (stereo::cost_names())
 };
 
 // The error goal of issue 16: bad > 1 among the output at most this times SGBM's, every scene.
@@ -81,9 +82,11 @@ cv::Mat opencv_map(cv::Mat map) {
     return map;
 }
 
-ValidatedDisparity run_model(const io::SceneData& data, const ValidationParams& validation) {
+ValidatedDisparity run_model(const io::SceneData& data, const ValidationParams& validation,
+                             const std::string& cost) {
     MatchConfig config;
     config.pipeline.ndisp = data.scene.ndisp;
+    config.pipeline.cost = cost;
     config.pipeline.validation = validation;
     const auto matcher = cli::matchers().create("pipeline", "model", config);
     return matcher->compute(data.pair.left, data.pair.right).validated;
@@ -329,7 +332,7 @@ void run_validation_eval(const EvalOptions& options) {
         std::cerr << "validation-eval: " << data.scene.name << '\n';
         json scene = {{"name", data.scene.name}, {"ndisp", data.scene.ndisp}};
         const auto run = [&](const ValidationParams& v, const speckle::Params& speckles) {
-            return score_json(score_filtered(data, run_model(data, v), speckles));
+            return score_json(score_filtered(data, run_model(data, v, options.cost), speckles));
         };
         const auto run_unfiltered = [&](const ValidationParams& v) { return run(v, {}); };
         scene["plain"] = run_unfiltered({});
@@ -350,7 +353,7 @@ void run_validation_eval(const EvalOptions& options) {
         json speckle_grid(grid.size(), json::array());
         for (const int ratio : options.sweep) {
             const ValidatedDisparity validated =
-                run_model(data, {true, ratio, true, options.lr_tolerance, true});
+                run_model(data, {true, ratio, true, options.lr_tolerance, true}, options.cost);
             json point = score_json(score_filtered(data, validated, options.speckle));
             point["ratio"] = ratio;
             sweep.push_back(point);
@@ -394,6 +397,8 @@ void add_validation_eval_command(CLI::App& app) {
         {{"--speckle-size", &options->speckle.max_size, "Speckle size of the defaults row"},
          {"--speckle-range", &options->speckle.range, "Speckle range of the defaults row"}});
     command->add_option("--speckle-sizes", options->speckle_sizes, "Speckle sizes of the grid")
+        ->capture_default_str();
+    command->add_option("--cost", options->cost, "Cost plug-in of every model row")
         ->capture_default_str();
     command->add_option("--speckle-ranges", options->speckle_ranges, "Speckle ranges of the grid")
         ->capture_default_str();
