@@ -24,6 +24,7 @@
 #include "cli_matcher_options.hpp"
 #include "experiments.hpp"
 #include "stereo/speckle.hpp"
+#include "stereo/stages.hpp"
 #include "stereo_io/data_dir.hpp"
 #include "stereo_io/disparity_files.hpp"
 #include "stereo_io/io.hpp"
@@ -322,7 +323,8 @@ void run_validation_eval(const EvalOptions& options) {
     }
     json report = {{"sweep_ratios", options.sweep},
                    {"defaults",
-                    {{"uniqueness", options.uniqueness},
+                    {{"cost", options.cost},
+                     {"uniqueness", options.uniqueness},
                      {"lr_tolerance", options.lr_tolerance},
                      {"subpixel", true},
                      {"speckle_size", options.speckle.max_size},
@@ -398,9 +400,10 @@ void add_validation_eval_command(CLI::App& app) {
          {"--speckle-range", &options->speckle.range, "Speckle range of the defaults row"}});
     command->add_option("--speckle-sizes", options->speckle_sizes, "Speckle sizes of the grid")
         ->capture_default_str();
-    command->add_option("--cost", options->cost, "Cost plug-in of every model row")
-        ->capture_default_str();
     command->add_option("--speckle-ranges", options->speckle_ranges, "Speckle ranges of the grid")
+        ->capture_default_str();
+    command->add_option("--cost", options->cost, "Cost plug-in of every model row")
+        ->check(CLI::IsMember(cost_names()))
         ->capture_default_str();
 }
 
