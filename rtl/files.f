@@ -10,6 +10,7 @@ stereo_window3x3.sv
 stereo_ca_plane.sv
 stereo_lcdm_convert.sv
 stereo_lcdm_distance.sv
+stereo_census.sv
 stereo_cost.sv
 stereo_weighted_sum.sv
 stereo_aggregate.sv

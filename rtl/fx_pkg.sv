@@ -246,6 +246,18 @@ package fx_pkg;
       default: lcdm_quarter_cos = '0;
     endcase
   endfunction
+
+  // ---- Census cost (constants.hpp, stages/census.hpp; COST = COST_CENSUS) ----
+  localparam int COST_AD = 0;  // stereo_top's COST: AD over RGB
+  localparam int COST_LCDM = 1;  // ... LCDM (thesis Sec. 3.5)
+  localparam int COST_CENSUS = 2;  // ... 5x5 census of the luma
+  localparam int LUMA_R = 77;  // luma = (R*LUMA_R + G*LUMA_G + B*LUMA_B
+  localparam int LUMA_G = 150;  //         + 2^(LUMA_SHIFT-1)) >> LUMA_SHIFT
+  localparam int LUMA_B = 29;
+  localparam int LUMA_SHIFT = 8;
+  localparam int CENSUS_RADIUS = 2;  // (2r+1)^2 window
+  localparam int CENSUS_BITS = 24;  // code bits, raster order, centre skipped
+  localparam int CENSUS_WEIGHT = 31;  // cost = Hamming distance * CENSUS_WEIGHT
   /* verilator lint_on UNUSEDPARAM */
 
 endpackage

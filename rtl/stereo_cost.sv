@@ -2,8 +2,11 @@
 // m = cfg_min_disp (model: stereo::cost and the cost plug-ins, docs/fixed-point.md stages 1 and 6,
 // "LCDM"). COST = 0: absolute differences over RGB; COST = 1: the LCDM cost (thesis Sec. 3.5),
 // each incoming pixel first converted to its point on the hue-saturation disc
-// (stereo_lcdm_convert), the per-label distance by stereo_lcdm_distance.
-// Below, "pixel" is what the delay lines carry: RGB (24 bits) or the LCDM point (22 bits).
+// (stereo_lcdm_convert), the per-label distance by stereo_lcdm_distance; COST = 2: the census
+// cost, in_left and in_right being census codes (stereo_census in front), the Hamming distance
+// times CENSUS_WEIGHT.
+// Below, "pixel" is what the delay lines carry: RGB or a census code (24 bits) or the LCDM point
+// (22 bits).
 //
 // The right pixels pass through continuous delay lines (across row boundaries). For a negative m
 // the left pixel must wait for right pixels that arrive later: it is delayed (with its
@@ -12,7 +15,8 @@
 // pre-delay line of MAX_MIN_DISP, and the lanes' delay line holds its history (a lane reading a
 // value picked under the previous frame's P reads a position before the frame, which is
 // outside). The cost of label k is
-//   |Lr - Rr(xr)| + |Lg - Rg(xr)| + |Lb - Rb(xr)|  (AD)  or  lcdm(L, R(xr))  (LCDM),  xr = x - m - k,
+//   |Lr - Rr(xr)| + |Lg - Rg(xr)| + |Lb - Rb(xr)|  (AD),  lcdm(L, R(xr))  (LCDM)  or
+//   popcount(L ^ R(xr)) * CENSUS_WEIGHT  (census),  xr = x - m - k,
 // or COST_OUTSIDE where xr lies outside [0, W): exactly where the tap holds a pixel of another
 // row (or none), so nothing is ever cleared. cfg_min_disp must stay within +-MAX_MIN_DISP
 // (stereo_top clamps it) and constant during a frame and its flush.
@@ -32,12 +36,12 @@
 module stereo_cost #(
     parameter int NDISP        = 16,                           // labels
     parameter int MAX_MIN_DISP = fx_pkg::DEFAULT_MAX_MIN_DISP,  // largest |cfg_min_disp|
-    parameter int COST         = 0,                            // 0: AD over RGB, 1: LCDM
+    parameter int COST         = fx_pkg::COST_AD,  // COST_AD, COST_LCDM or COST_CENSUS
     parameter int LANES        = NDISP  // labels computed per clock (divides NDISP)
 ) (
 `include "stereo_stage_ports.svh"
-    input  wire logic [23:0]                        in_left,       // {R, G, B}
-    input  wire logic [23:0]                        in_right,      // {R, G, B}
+    input  wire logic [23:0]                        in_left,       // {R, G, B} or census code
+    input  wire logic [23:0]                        in_right,      // {R, G, B} or census code
     input  wire fx_pkg::cfg_size_t                  cfg_width,
     input  wire fx_pkg::cfg_min_disp_t              cfg_min_disp,
     output      fx_pkg::coord_t                     out_x,
@@ -49,7 +53,8 @@ module stereo_cost #(
     output      logic [LANES*fx_pkg::COST_BITS-1:0] out_data
 );
   localparam int COST_BITS = fx_pkg::COST_BITS;
-  localparam int PIXEL_BITS = (COST == 1) ? 2 * fx_pkg::LCDM_COORD_BITS : fx_pkg::RGB_BITS;
+  localparam int PIXEL_BITS =
+      (COST == fx_pkg::COST_LCDM) ? 2 * fx_pkg::LCDM_COORD_BITS : fx_pkg::RGB_BITS;
   localparam int GROUPS = NDISP / LANES;  // clocks per pixel step
   // Right pixels kept: the pre-delay line, and the lanes' history (LANES = NDISP: besides the
   // selected pixel; else including it, as it was at the last step).
@@ -60,14 +65,14 @@ module stereo_cost #(
 
   initial begin
     assert (MAX_MIN_DISP >= 0 && MAX_MIN_DISP <= fx_pkg::MAX_MIN_DISPARITY);
-    assert (COST == 0 || COST == 1);
+    assert (COST == fx_pkg::COST_AD || COST == fx_pkg::COST_LCDM || COST == fx_pkg::COST_CENSUS);
     assert (LANES >= 1 && NDISP % LANES == 0);
   end
 
   // The pixels the delay lines carry.
   logic [PIXEL_BITS-1:0] new_left, new_right;
   generate
-    if (COST == 1) begin : g_lcdm_points
+    if (COST == fx_pkg::COST_LCDM) begin : g_lcdm_points
       logic signed [fx_pkg::LCDM_COORD_BITS-1:0] left_a, left_b, right_a, right_b;
       stereo_lcdm_convert convert_left (
           .in_rgb(in_left),
@@ -81,7 +86,7 @@ module stereo_cost #(
       );
       assign new_left  = {left_a, left_b};
       assign new_right = {right_a, right_b};
-    end else begin : g_rgb
+    end else begin : g_rgb  // or the census codes
       assign new_left  = in_left;
       assign new_right = in_right;
     end
@@ -141,6 +146,16 @@ module stereo_cost #(
     abs_diff_rgb = COST_BITS'(dr) + COST_BITS'(dg) + COST_BITS'(db);
   endfunction
 
+  function automatic logic [COST_BITS-1:0] census_distance(input logic [23:0] a,
+                                                           input logic [23:0] b);
+    logic [23:0] differ;
+    logic [COST_BITS-1:0] count;
+    differ = a ^ b;
+    count = '0;
+    for (int i = 0; i < fx_pkg::CENSUS_BITS; i++) count = count + COST_BITS'(differ[i]);
+    census_distance = count * COST_BITS'(fx_pkg::CENSUS_WEIGHT);
+  endfunction
+
   // What the LANES distance units compare: the left pixel, each lane's right pixel, and each
   // lane's xr + l (lane l's xr is lane_base_x - l).
   logic [PIXEL_BITS-1:0] lane_left;
@@ -185,12 +200,15 @@ module stereo_cost #(
       logic signed [17:0] right_x;  // xr
       logic [COST_BITS-1:0] distance;
       assign right_x = lane_base_x - 18'(l);
-      if (COST == 1) begin : g_lcdm
+      if (COST == fx_pkg::COST_LCDM) begin : g_lcdm
         stereo_lcdm_distance lcdm (
             .in_left (lane_left),
             .in_right(lane_right[l*PIXEL_BITS +: PIXEL_BITS]),
             .out_cost(distance)
         );
+      end else if (COST == fx_pkg::COST_CENSUS) begin : g_census  // PIXEL_BITS = 24
+        assign distance =
+            census_distance(24'(lane_left), 24'(lane_right[l*PIXEL_BITS +: PIXEL_BITS]));
       end else begin : g_ad  // PIXEL_BITS = 24 here
         assign distance = abs_diff_rgb(24'(lane_left), 24'(lane_right[l*PIXEL_BITS +: PIXEL_BITS]));
       end

@@ -22,7 +22,8 @@
 // (taking no input; the slice holds up to two beats of the next frame) until the frame's last
 // output has left the WTA, so a frame never waits for the next one. Cycles per frame without
 // stalls:
-//   G * S - 2 * (G - 1) + 1, S = W*H + (R + 2)*W + R + 11 + NDISP + K pixel steps,
+//   G * S - 2 * (G - 1) + 1, S = W*H + (R + 2)*W + R + 11 + NDISP + K pixel steps
+//   (+ 2*W + 4 with COST_CENSUS),
 //   R = WINDOW/2, K = max(0, -cfg_min_disp), G = NDISP / LANES clocks per step
 // (stage_table.hpp frame_cycles, docs/rtl.md; G = 1: S + 1).
 // LANES < NDISP: a step every G clocks (the slice fills and s_axis_tready falls between steps);
@@ -45,8 +46,10 @@ module stereo_top #(
     parameter bit RUNTIME_KERNEL = 1'b1,
     // Largest |cfg_min_disp|: sizes the cost stage's delay lines.
     parameter int MAX_MIN_DISP = fx_pkg::DEFAULT_MAX_MIN_DISP,
-    // Matching cost: 0 AD over RGB, 1 LCDM (thesis Sec. 3.5; colour input). Same latency.
-    parameter int COST = 0,
+    // Matching cost: fx_pkg::COST_AD (0) over RGB, COST_LCDM (1, thesis Sec. 3.5; colour input;
+    // same latency) or COST_CENSUS (2, 5x5 census of the luma: stereo_census in front of the
+    // cost stage, 2 * W + 4 more pixel steps of latency, 4 rows of lumas more memory).
+    parameter int COST = fx_pkg::COST_AD,
     // Labels computed per clock (divides NDISP). A pixel step takes G = NDISP / LANES clocks;
     // the converted stages compute LANES labels per clock on shared arithmetic (docs/rtl.md,
     // "Time-multiplexed lanes"). LANES = NDISP: one pixel per clock, every label in parallel.
@@ -290,6 +293,36 @@ module stereo_top #(
   assign left_pixel = (state == FLUSH) ? '0 : in_main.data[fx_pkg::IN_LEFT_LSB +: fx_pkg::RGB_BITS];
   assign right_pixel = (state == FLUSH) ? '0 : in_main.data[fx_pkg::IN_RIGHT_LSB +: fx_pkg::RGB_BITS];
 
+  // The cost stage's input: the pixels, or (COST_CENSUS) their census codes.
+  fx_pkg::coord_t match_x, match_y;
+  logic [fx_pkg::RGB_BITS-1:0] match_left, match_right;
+  generate
+    if (COST == fx_pkg::COST_CENSUS) begin : g_census
+      stereo_census #(
+          .WIDTH(WIDTH)
+      ) census (
+          .clk(clk),
+          .rst(clear_coordinates),
+          .ce(step),
+          .in_x(x_in),
+          .in_y(y_in),
+          .in_left(left_pixel),
+          .in_right(right_pixel),
+          .cfg_width(use_cfg.width),
+          .cfg_height(use_cfg.height),
+          .out_x(match_x),
+          .out_y(match_y),
+          .out_left(match_left),
+          .out_right(match_right)
+      );
+    end else begin : g_pixels
+      assign match_x = x_in;
+      assign match_y = y_in;
+      assign match_left = left_pixel;
+      assign match_right = right_pixel;
+    end
+  endgenerate
+
   fx_pkg::coord_t cost_x, cost_y, agg_x, agg_y, rule1_x, rule1_y, wta_in_x, wta_in_y;
   fx_pkg::coord_t cost_next_y;  // the row cost_y takes at this step
   logic [LANES*COST_BITS-1:0] cost_data;  // LANES < NDISP: this clock's group of labels
@@ -306,10 +339,10 @@ module stereo_top #(
       .rst(clear_coordinates),
       .ce(step),
       .group(group),
-      .in_x(x_in),
-      .in_y(y_in),
-      .in_left(left_pixel),
-      .in_right(right_pixel),
+      .in_x(match_x),
+      .in_y(match_y),
+      .in_left(match_left),
+      .in_right(match_right),
       .cfg_width(use_cfg.width),
       .cfg_min_disp(use_cfg.min_disp),
       .out_x(cost_x),

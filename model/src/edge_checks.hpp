@@ -15,12 +15,10 @@ namespace stereo::edge_frontend::detail {
 
 using Value = Dsi::Value;
 
-// BT.601 weights scaled to 256 (0.299, 0.587, 0.114 -> 77, 150, 29; they sum to 256).
-inline constexpr int kLumaR = 77;
-inline constexpr int kLumaG = 150;
-inline constexpr int kLumaB = 29;
-inline constexpr int kLumaShift = 8;
-static_assert(kLumaR + kLumaG + kLumaB == 1 << kLumaShift);
+using fx::kLumaB;
+using fx::kLumaG;
+using fx::kLumaR;
+using fx::kLumaShift;
 
 // Widths: the smoothed image is at most 255 * 2^16 (24 bits); the Laplacian is at most 8 times
 // that in magnitude, which fits a signed 32-bit value.

@@ -234,6 +234,19 @@ std::string package_text() {
           "TAP_BITS]);\n"
           "  endfunction\n";
     sv << lcdm_section();
+    sv << "\n  // ---- Census cost (constants.hpp, stages/census.hpp; COST = COST_CENSUS) ----\n";
+    params({
+        {"COST_AD", t::kCostAd, "stereo_top's COST: AD over RGB"},
+        {"COST_LCDM", t::kCostLcdm, "... LCDM (thesis Sec. 3.5)"},
+        {"COST_CENSUS", t::kCostCensus, "... 5x5 census of the luma"},
+        {"LUMA_R", fx::kLumaR, "luma = (R*LUMA_R + G*LUMA_G + B*LUMA_B"},
+        {"LUMA_G", fx::kLumaG, "        + 2^(LUMA_SHIFT-1)) >> LUMA_SHIFT"},
+        {"LUMA_B", fx::kLumaB, ""},
+        {"LUMA_SHIFT", fx::kLumaShift, ""},
+        {"CENSUS_RADIUS", fx::kCensusRadius, "(2r+1)^2 window"},
+        {"CENSUS_BITS", fx::kCensusBits, "code bits, raster order, centre skipped"},
+        {"CENSUS_WEIGHT", fx::kCensusWeight, "cost = Hamming distance * CENSUS_WEIGHT"},
+    });
     sv << "  /* verilator lint_on UNUSEDPARAM */\n\nendpackage\n\n"
           "`default_nettype wire\n";
     return sv.str();

@@ -18,6 +18,24 @@ inline constexpr int kChannels = 3;  // RGB; a grey pixel g is matched as (g, g,
 inline constexpr int kCostMax = kChannels * kPixelMax;  // 765
 inline constexpr int kCostBits = 10;
 inline constexpr int kCostOutside = kCostMax;  // cost where x - d < 0 (right pixel outside)
+
+// ITU-R BT.601 integer luma (census, ZNCC, the edge front end; in the RTL's census stage):
+// (kLumaR R + kLumaG G + kLumaB B + 2^(kLumaShift-1)) >> kLumaShift. The weights 0.299, 0.587,
+// 0.114 scaled to 256 and rounded so that they sum to 256: a grey pixel (g, g, g) has luma g.
+inline constexpr int kLumaR = 77;
+inline constexpr int kLumaG = 150;
+inline constexpr int kLumaB = 29;
+inline constexpr int kLumaShift = 8;
+static_assert(kLumaR + kLumaG + kLumaB == 1 << kLumaShift);
+
+// The census cost (stages/census.hpp; the RTL's census stage, COST = 2): a (2r+1)^2 window of
+// the luma gives a code of (2r+1)^2 - 1 bits, the cost is the codes' Hamming distance times
+// kCensusWeight so that it spans [0, kCostMax] like the AD cost.
+inline constexpr int kCensusRadius = 2;                                                // 5x5
+inline constexpr int kCensusBits = (2 * kCensusRadius + 1) * (2 * kCensusRadius + 1) - 1;  // 24
+inline constexpr int kCensusWeight = kCostMax / kCensusBits;                           // 31
+static_assert(kCensusBits * kCensusWeight <= kCostMax && kCensusBits <= 24,
+              "census codes are three bytes");
 static_assert(kCostMax < (1 << kCostBits));
 
 // ---- Stage 2: Gaussian window aggregation ------------------------------------------------

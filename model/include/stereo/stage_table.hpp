@@ -133,14 +133,33 @@ inline constexpr std::array<Stage, 7> kStages = {{
     {"lr_check", "stereo_lr_check", fx::kAggBits, kOutBeatBits, {0, 0, 0, 0, 1}, 0},
 }};
 
-// Pixel steps from a pixel entering stereo_top's cost stage to its output beat:
-// (R + 2) * W + R + 11 + N + K (N = NDISP, K = max(0, -min_disp)). With LANES = NDISP stereo_top
-// streams one frame in W*H + this many cycles + 1 (the input register slice) without stalls
-// (frame_cycles; checked by tb_stereo_top's Throughput test).
-constexpr int pipeline_latency(int width, int window, int ndisp, int min_disp = 0) {
+// The matching costs of the hardware: stereo_top's COST parameter, the HLS pipeline's measure.
+inline constexpr int kCostAd = 0;      // absolute differences over RGB (thesis Sec. 3.1)
+inline constexpr int kCostLcdm = 1;    // LCDM, the hue-saturation distance (thesis Sec. 3.5)
+inline constexpr int kCostCensus = 2;  // 5x5 census of the luma, Hamming distance x 31
+inline constexpr int kCostCount = 3;
+
+// The census transform (COST = kCostCensus only), in front of the cost stage: it turns each
+// image's RGB stream into a stream of census codes, which the cost stage's delay lines carry in
+// place of the RGB pixels. An input register, a window reaching r rows and r columns past its
+// centre (r = fx::kCensusRadius), and the output register: r * W + r + 2 steps.
+inline constexpr Stage kCensusStage = {
+    "census", "stereo_census", kInBeatBits, 2 * fx::kCensusBits,
+    {0, fx::kCensusRadius, 0, fx::kCensusRadius + 2}, 1};
+
+// Pixel steps from a pixel entering stereo_top's first stage to its output beat:
+// (R + 2) * W + R + 11 + N + K (N = NDISP, K = max(0, -min_disp)), and 2 * W + 4 more with the
+// census cost. With LANES = NDISP stereo_top streams one frame in W*H + this many cycles + 1 (the
+// input register slice) without stalls (frame_cycles; checked by tb_stereo_top's Throughput
+// test and the census testbench's).
+constexpr int pipeline_latency(int width, int window, int ndisp, int min_disp = 0,
+                               int cost = kCostAd) {
     int steps = 0;
     for (const Stage& stage : kStages) {
         steps += stage.rtl.at(width, window, ndisp, min_disp);
+    }
+    if (cost == kCostCensus) {
+        steps += kCensusStage.rtl.at(width, window, ndisp, min_disp);
     }
     return steps;
 }
@@ -159,18 +178,23 @@ constexpr int clocks_per_step(int ndisp, int lanes) {
 // Back to back, frames follow each other every G * S clocks (the slice takes the next frame's
 // first beat during the flush).
 constexpr long long frame_cycles(int width, int height, int window, int ndisp, int lanes,
-                                 int min_disp = 0) {
+                                 int min_disp = 0, int cost = kCostAd) {
     const long long g = clocks_per_step(ndisp, lanes);
-    const long long steps =
-        static_cast<long long>(width) * height + pipeline_latency(width, window, ndisp, min_disp);
+    const long long steps = static_cast<long long>(width) * height +
+                            pipeline_latency(width, window, ndisp, min_disp, cost);
     return g * steps - 2 * (g - 1) + 1;
 }
 
-// The same for the HLS pipeline (stereo_hls_top): (R + 2) * W + R + 9 + N + K.
-constexpr int hls_pipeline_latency(int width, int window, int ndisp, int min_disp = 0) {
+// The same for the HLS pipeline (stereo_hls_top): (R + 2) * W + R + 9 + N + K, and 2 * W + 3
+// more with the census cost.
+constexpr int hls_pipeline_latency(int width, int window, int ndisp, int min_disp = 0,
+                                   int cost = kCostAd) {
     int steps = 0;
     for (const Stage& stage : kStages) {
         steps += stage.rtl.at(width, window, ndisp, min_disp) - stage.hls_fewer_steps;
+    }
+    if (cost == kCostCensus) {
+        steps += kCensusStage.rtl.at(width, window, ndisp, min_disp) - kCensusStage.hls_fewer_steps;
     }
     return steps;
 }
@@ -179,10 +203,10 @@ constexpr int hls_pipeline_latency(int width, int window, int ndisp, int min_dis
 // The package first, then every module before its first user. One module per file, named after
 // it; the list of modules to lint is this list without the package.
 inline constexpr std::string_view kPackageFile = "fx_pkg.sv";
-inline constexpr std::array<std::string_view, 26> kRtlModules = {
+inline constexpr std::array<std::string_view, 27> kRtlModules = {
     "stereo_coord_reg",    "stereo_stage_output",  "stereo_shift_reg",      "stereo_border_flags",
     "stereo_line_buffer",  "stereo_group_ring",    "stereo_window3x3",      "stereo_ca_plane",
-    "stereo_lcdm_convert", "stereo_lcdm_distance", "stereo_cost",           "stereo_weighted_sum",
+    "stereo_lcdm_convert", "stereo_lcdm_distance", "stereo_census",         "stereo_cost",           "stereo_weighted_sum",
     "stereo_aggregate",    "stereo_wta",           "stereo_divider",        "stereo_validate",
     "stereo_lr_check",     "stereo_top",           "stereo_axil_top",       "stereo_synth_top",
     "stereo_uart_rx",      "stereo_uart_tx",       "stereo_power_on_reset", "stereo_board_link",
@@ -209,7 +233,7 @@ struct Params {
     int runtime_kernel = kUnset;
     int rule = kUnset;          // stereo_ca_plane's RULE
     int max_min_disp = kUnset;  // stereo_top's and stereo_cost's MAX_MIN_DISP
-    int cost = kUnset;          // stereo_top's and stereo_cost's COST: 0 AD, 1 LCDM
+    int cost = kUnset;          // stereo_top's and stereo_cost's COST: kCostAd, kCostLcdm, kCostCensus
     int lanes = kUnset;         // stereo_top's and stereo_cost's LANES (unset: NDISP)
     int clks_per_bit = kUnset;  // the UART's CLKS_PER_BIT (stereo_board_top)
 };
@@ -227,6 +251,10 @@ inline constexpr Params kFull{640, 480, 64, 11, kUnset};
 inline constexpr Params kSmallLcdm{kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window,
                                    kUnset,       kUnset,        kUnset,       1};
 
+// ... and with the census cost (COST = 2: the census stage in front of the cost stage).
+inline constexpr Params kSmallCensus{kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window,
+                                     kUnset,       kUnset,        kUnset,       kCostCensus};
+
 // The iCEBreaker top (rtl/stereo_board_top.sv, docs/board.md) at the co-simulation point, with
 // a UART of 4 clocks per bit so that a frame simulates in a few seconds.
 inline constexpr Params kSmallBoard{
@@ -242,6 +270,10 @@ inline constexpr Params kSmallLanes1{
 // The LCDM cost stage with lanes: its G:1 right-pixel multiplexers and LANES LCDM distance units.
 inline constexpr Params kSmallLcdmLanes4{
     kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window, kUnset, kUnset, kUnset, 1, 4};
+// The census cost with lanes (the census stage steps once per pixel step, G clocks).
+inline constexpr Params kSmallCensusLanes4{
+    kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window, kUnset, kUnset, kUnset,
+    kCostCensus,  4};
 // The iCE40 cores: one label (no delay line, C2 a constant, the certainty divider folded away)
 // and two labels one per clock (C2 a constant in the lanes mode too).
 inline constexpr Params kNdisp1{kSmall.width, kSmall.height, 1, kSmall.window, kUnset};
@@ -257,7 +289,7 @@ inline constexpr Params kIce40Ndisp1{kSmall.width, kSmall.height, 1, 3, kUnset, 
 inline constexpr Params kIce40Ndisp4Lanes1{
     kSmall.width, kSmall.height, 4, 5, kUnset, kUnset, 0, kUnset, 1};
 
-inline constexpr std::array<VerilatedConfig, 24> kVerilatedConfigs = {{
+inline constexpr std::array<VerilatedConfig, 27> kVerilatedConfigs = {{
     {"Vstereo_top_small", "stereo_top", kSmall, ""},
     {"Vstereo_top_lanes4", "stereo_top", kSmallLanes4, ""},
     {"Vstereo_top_lanes1", "stereo_top", kSmallLanes1, ""},
@@ -273,6 +305,9 @@ inline constexpr std::array<VerilatedConfig, 24> kVerilatedConfigs = {{
      "stereo_cost",
      {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset, kUnset, kUnset, 1},
      ""},
+    {"Vstereo_top_census", "stereo_top", kSmallCensus, ""},
+    {"Vstereo_top_census_lanes4", "stereo_top", kSmallCensusLanes4, ""},
+    {"Vstereo_census", "stereo_census", {kSmall.width}, ""},
     {"Vstereo_aggregate",
      "stereo_aggregate",
      {kSmall.width, kUnset, kSmall.ndisp, kSmall.window, kUnset},
@@ -328,7 +363,7 @@ struct LintConfig {
     Params params;
 };
 
-inline constexpr std::array<LintConfig, 15> kExtraLintConfigs = {{
+inline constexpr std::array<LintConfig, 18> kExtraLintConfigs = {{
     // Time-multiplexed lanes: one label per clock, an odd group count, the FPGA build at full size.
     {"stereo_top", {kUnset, kUnset, 3, 3, kUnset, kUnset, kUnset, kUnset, 1}},
     {"stereo_top", {100, 75, 12, 7, kUnset, kUnset, kUnset, kUnset, 4}},
@@ -343,6 +378,11 @@ inline constexpr std::array<LintConfig, 15> kExtraLintConfigs = {{
     // The LCDM cost stage alone with lanes (LANES < NDISP: the group port, G:1 multiplexers).
     {"stereo_cost", {kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, 1, 4}},
     {"stereo_top", kSmallLcdm},
+    // The census cost: the cost stage alone (one label, and lanes) and the top at the full size.
+    {"stereo_cost", {kUnset, kUnset, 1, kUnset, kUnset, kUnset, kUnset, kCostCensus}},
+    {"stereo_cost", {kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, kCostCensus, 4}},
+    {"stereo_top", {kFull.width, kFull.height, kFull.ndisp, kFull.window, kUnset, kUnset, kUnset,
+                    kCostCensus}},
     // The CA skeleton with the other rule.
     {"stereo_ca_plane", {kUnset, kUnset, kUnset, kUnset, kUnset, 2}},
     // The top at other shapes: a 3x3 window, odd label counts, and the full-size configuration.

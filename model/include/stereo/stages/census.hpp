@@ -13,10 +13,9 @@
 
 namespace stereo::census {
 
-inline constexpr int kRadius = 2;                                        // 5x5 window
-inline constexpr int kBits = (2 * kRadius + 1) * (2 * kRadius + 1) - 1;  // 24
-inline constexpr int kWeight = fx::kCostMax / kBits;                     // 31
-static_assert(kBits * kWeight <= fx::kCostMax && kBits <= 24, "census codes are three bytes");
+inline constexpr int kRadius = fx::kCensusRadius;  // 5x5 window
+inline constexpr int kBits = fx::kCensusBits;      // 24
+inline constexpr int kWeight = fx::kCensusWeight;  // 31
 
 // Row-major 24-bit codes of an image (grey, or RGB through edge_frontend::luma).
 std::vector<std::uint32_t> transform(const Image& image);
