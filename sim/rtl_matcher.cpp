@@ -13,9 +13,9 @@ namespace {
 ValidatedDisparity run_rtl(const Image& left, const Image& right, const MatchParams& params) {
     check_pair(left, right);
     validate(params, left.width, left.height);
-    if (params.cost != "ad" && params.cost != "lcdm") {
-        throw std::invalid_argument("the RTL has the ad and lcdm costs, not \"" + params.cost +
-                                    "\"");
+    if (params.cost != "ad" && params.cost != "lcdm" && params.cost != "census") {
+        throw std::invalid_argument("the RTL has the ad, census and lcdm costs, not \"" +
+                                    params.cost + "\"");
     }
     const bool lcdm = params.cost == "lcdm";
     if (lcdm) {
@@ -24,7 +24,9 @@ ValidatedDisparity run_rtl(const Image& left, const Image& right, const MatchPar
     const TopConfig* config = covering_config(left.width, left.height, params.ndisp, params.window,
                                               params.min_disp, params.cost);
     if (config == nullptr) {
-        const TopConfig& largest = lcdm ? lcdm_top_config() : built_top_configs().back();
+        const TopConfig& largest = lcdm                       ? lcdm_top_config()
+                                   : params.cost == "census" ? census_top_config()
+                                                             : built_top_configs().back();
         throw std::invalid_argument(
             "no Verilated configuration covers " + std::to_string(left.width) + "x" +
             std::to_string(left.height) + " ndisp " + std::to_string(params.ndisp) + " window " +

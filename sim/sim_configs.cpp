@@ -12,6 +12,8 @@
 
 #include "Vstereo_synth_top_ice40_ndisp1.h"
 #include "Vstereo_synth_top_ice40_ndisp4_lanes1.h"
+#include "Vstereo_top_census.h"
+#include "Vstereo_top_census_lanes4.h"
 #include "Vstereo_top_lanes1.h"
 #include "Vstereo_top_lanes4.h"
 #include "Vstereo_top_lcdm.h"
@@ -128,7 +130,8 @@ TopConfig top_config(const table::VerilatedConfig& config, const char* name) {
             p.ndisp,
             p.window,
             p.max_min_disp == table::kUnset ? table::kDefaultMaxMinDisp : p.max_min_disp,
-            p.lanes == table::kUnset ? p.ndisp : p.lanes};
+            p.lanes == table::kUnset ? p.ndisp : p.lanes,
+            p.cost == table::kUnset ? table::kCostAd : p.cost};
 }
 
 }  // namespace
@@ -171,6 +174,18 @@ const TopConfig& lcdm_lanes_top_config() {
     return config;
 }
 
+const TopConfig& census_top_config() {
+    static const TopConfig config =
+        top_config(table::verilated("Vstereo_top_census"), "small-census");
+    return config;
+}
+
+const TopConfig& census_lanes_top_config() {
+    static const TopConfig config =
+        top_config(table::verilated("Vstereo_top_census_lanes4"), "census-lanes4");
+    return config;
+}
+
 const std::vector<TopConfig>& lanes_top_configs() {
     static const std::vector<TopConfig> configs = {
         top_config(table::verilated("Vstereo_top_lanes4"), "lanes4"),
@@ -198,6 +213,12 @@ const TopConfig& top_config_named(const std::string& name) {
     if (name == lcdm_lanes_top_config().name) {
         return lcdm_lanes_top_config();
     }
+    if (name == census_top_config().name) {
+        return census_top_config();
+    }
+    if (name == census_lanes_top_config().name) {
+        return census_lanes_top_config();
+    }
     for (const auto* list : {&built_top_configs(), &lanes_top_configs(), &fpga_top_configs()}) {
         for (const TopConfig& config : *list) {
             if (config.name == name) {
@@ -220,8 +241,8 @@ bool covers(const TopConfig& config, int width, int height, int ndisp, int windo
 
 const TopConfig* covering_config(int width, int height, int ndisp, int window, int min_disp,
                                  const std::string& cost) {
-    if (cost == "lcdm") {
-        const TopConfig& config = lcdm_top_config();
+    if (cost == "lcdm" || cost == "census") {
+        const TopConfig& config = cost == "lcdm" ? lcdm_top_config() : census_top_config();
         return covers(config, width, height, ndisp, window, min_disp) ? &config : nullptr;
     }
     for (const TopConfig& config : built_top_configs()) {
@@ -265,6 +286,8 @@ const std::pair<std::string_view, TopFactory> kFactories[] = {
     {"small", &make_verilated<Vstereo_top_small>},
     {"small-lcdm", &make_verilated<Vstereo_top_lcdm>},
     {"lcdm-lanes4", &make_verilated<Vstereo_top_lcdm_lanes4>},
+    {"small-census", &make_verilated<Vstereo_top_census>},
+    {"census-lanes4", &make_verilated<Vstereo_top_census_lanes4>},
     {"lanes4", &make_verilated<Vstereo_top_lanes4>},
     {"lanes1", &make_verilated<Vstereo_top_lanes1>},
     {"ndisp8-lanes2", &make_verilated<Vstereo_top_ndisp8_lanes2>},

@@ -12,6 +12,7 @@
 #include "stereo/image.hpp"
 #include "stereo/matcher.hpp"
 #include "stereo/pipeline.hpp"
+#include "stereo/stage_table.hpp"
 
 namespace stereo::sim {
 
@@ -24,6 +25,7 @@ struct TopConfig {
     int window;        // largest window
     int max_min_disp;  // largest |cfg_min_disp| (MAX_MIN_DISP)
     int lanes;         // labels computed per clock (LANES): NDISP / lanes clocks per pixel step
+    int cost = table::kCostAd;  // COST: table::kCostAd, kCostLcdm or kCostCensus
 };
 
 // The configurations built into this binary, smallest first.
@@ -37,6 +39,11 @@ const TopConfig& lcdm_top_config();
 // built_top_configs(), lanes_top_configs() or fpga_top_configs().
 const TopConfig& lcdm_lanes_top_config();
 
+// stereo_top with the census cost (COST = 2, stereo_census in front of the cost stage) at the
+// small configuration's size: "small-census"; and with LANES = 4: "census-lanes4".
+const TopConfig& census_top_config();
+const TopConfig& census_lanes_top_config();
+
 // stereo_top with time-multiplexed lanes (LANES < NDISP), AD cost: "lanes4" (16 labels, 4 per
 // clock), "lanes1" (16, 1), "ndisp8-lanes2" (8, 2), "ndisp2-lanes1" (2, 1), and the one-label
 // core "ndisp1". Not among built_top_configs().
@@ -45,12 +52,13 @@ const std::vector<TopConfig>& lanes_top_configs();
 // tb_stereo_synth_top co-simulates: "ice40-ndisp1", "ice40-ndisp4-lanes1".
 const std::vector<TopConfig>& fpga_top_configs();
 
-// Any built stereo_top configuration by name (small, small-lcdm, lcdm-lanes4, full, the lanes and
+// Any built stereo_top configuration by name (small, small-lcdm, lcdm-lanes4, small-census,
+// census-lanes4, full, the lanes and
 // FPGA ones); throws std::invalid_argument for an unknown name.
 const TopConfig& top_config_named(const std::string& name);
 
 // The smallest built configuration with the cost `cost` ("ad": built_top_configs(), "lcdm":
-// lcdm_top_config()) that covers a request; nullptr when none does.
+// lcdm_top_config(), "census": census_top_config()) that covers a request; nullptr when none does.
 const TopConfig* covering_config(int width, int height, int ndisp, int window, int min_disp = 0,
                                  const std::string& cost = "ad");
 

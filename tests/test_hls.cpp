@@ -15,6 +15,7 @@
 
 #include "stereo/hls/aggregate.hpp"
 #include "stereo/hls/ca_rule.hpp"
+#include "stereo/hls/census.hpp"
 #include "stereo/hls/cost.hpp"
 #include "stereo/hls/cost_lcdm.hpp"
 #include "stereo/hls/host.hpp"
@@ -25,6 +26,7 @@
 #include "stereo/pipeline.hpp"
 #include "stereo/search.hpp"
 #include "stereo/stages.hpp"
+#include "stereo/stages/census.hpp"
 #include "stereo_hls_synth_top.hpp"
 #include "stereo_io/data_dir.hpp"
 #include "stereo_io/io.hpp"
@@ -638,6 +640,126 @@ TEST(HlsMatchValidated, LcdmCostOverSignedRangesWithStage6) {
                                    hls::match_validated(left, right, params)))
             << "min_disp " << min_disp;
     }
+}
+
+// The census stage alone: every code of both images against the model's census::transform, on
+// frames of many shapes (one pixel wide or high: the window wraps over several rows) stepped
+// back to back through one object with a reset between frames, and flush steps of noise.
+TEST(HlsCensus, EveryCodeEqualsTheModelsTransform) {
+    auto rng = seeded(31);
+    const auto state = std::make_unique<hls::census_transform<64>>();
+    std::uniform_int_distribution<int> byte(0, 255);
+    const auto noise = [&] {
+        return hls::Rgb{static_cast<hls::pixel_t>(byte(rng)), static_cast<hls::pixel_t>(byte(rng)),
+                        static_cast<hls::pixel_t>(byte(rng))};
+    };
+    const auto pack = [](const hls::Rgb& c) {
+        return (std::uint32_t{c.r} << 16) | (std::uint32_t{c.g} << 8) | c.b;
+    };
+    for (const auto& [width, height, channels] :
+         {std::tuple{64, 48, 3}, std::tuple{1, 9, 3}, std::tuple{2, 7, 3}, std::tuple{5, 1, 3},
+          std::tuple{3, 3, 1}, std::tuple{37, 23, 3}, std::tuple{17, 2, 1}, std::tuple{64, 5, 3}}) {
+        const Image left = test::random_image(width, height, channels, rng);
+        const Image right = test::random_image(width, height, channels, rng);
+        const auto want_left = census::transform(left);
+        const auto want_right = census::transform(right);
+        state->reset();
+        int seen = 0;
+        bool all_equal = true;
+        for (int step = 0; step < width * height + 3 * width + 4; ++step) {
+            const int x = step % width;
+            const int y = step / width;
+            const bool in_frame = y < height;
+            state->step(static_cast<hls::coord_t>(x), static_cast<hls::coord_t>(y),
+                        in_frame ? rgb_at(left, x, y) : noise(),
+                        in_frame ? rgb_at(right, x, y) : noise(), width, height);
+            const int ox = state->out_x();
+            const int oy = state->out_y();
+            if (oy < 0 || oy >= height) {
+                continue;
+            }
+            const auto index = static_cast<std::size_t>(oy) * width + ox;
+            EXPECT_EQ(index, static_cast<std::size_t>(seen)) << "raster order";
+            all_equal = all_equal && pack(state->out_left()) == want_left[index] &&
+                        pack(state->out_right()) == want_right[index];
+            ++seen;
+        }
+        EXPECT_EQ(seen, width * height) << width << "x" << height;
+        EXPECT_TRUE(all_equal) << width << "x" << height << "x" << channels;
+    }
+}
+
+// The census measure is the model's cost: the Hamming distance of the codes times the weight.
+TEST(HlsCensus, MeasureIsTheWeightedHammingDistance) {
+    const hls::Rgb a{0xF0, 0x0F, 0x01};
+    const hls::Rgb b{0x0F, 0x0F, 0x00};
+    EXPECT_EQ(hls::census_measure::distance(a, b), 9 * fx::kCensusWeight);  // 8 + 0 + 1 bits
+    EXPECT_EQ(hls::census_measure::distance(a, a), 0);
+    const hls::Rgb zero{};
+    const hls::Rgb ones{0xFF, 0xFF, 0xFF};
+    EXPECT_EQ(hls::census_measure::distance(zero, ones), fx::kCensusBits * fx::kCensusWeight);
+}
+
+TEST(HlsMatch, CensusCostEqualsModel) {
+    auto rng = seeded(32);
+    const auto [left, right] = test::shifted_pair(61, 37, 3, 4, 8, rng);
+    for (const int window : {1, 5, 11}) {
+        MatchParams params{16, window, fx::kDefaultSigma, window != 1};
+        params.cost = "census";
+        expect_match(left, right, params, "census");
+    }
+    const auto [grey_left, grey_right] = test::shifted_pair(45, 30, 1, 3, 8, rng);
+    MatchParams params{16, 5, fx::kDefaultSigma, true};
+    params.cost = "census";
+    expect_match(grey_left, grey_right, params, "census grey");
+}
+
+TEST(HlsMatchValidated, CensusCostOverSignedRangesWithStage6) {
+    auto rng = seeded(33);
+    const auto [left, right] = test::shifted_pair(41, 27, 3, -3, 20, rng);
+    for (const int min_disp : {-8, -3, 0, 5}) {
+        MatchParams params =
+            with_stage6(MatchParams{16, 5, fx::kDefaultSigma, true}, min_disp, 15, 0, true);
+        params.cost = "census";
+        EXPECT_TRUE(same_validated(match_validated(left, right, params),
+                                   hls::match_validated(left, right, params)))
+            << "min_disp " << min_disp;
+    }
+}
+
+// The census stage's 2 W + 3 steps (2 rows and 2 columns of window, its output register), on
+// top of the AD pipeline's latency; and the last result leaves exactly then.
+TEST(HlsTop, CensusStageAddsItsLatency) {
+    constexpr int kWindow = 5;
+    constexpr int N = 8;
+    const int width = 20;
+    const int height = 10;
+    EXPECT_EQ((hls::pipeline_delay<N, kWindow, hls::census_measure>(width)),
+              (hls::pipeline_delay<N, kWindow>(width)) + 2 * width + 3);
+    auto rng = seeded(34);
+    const auto [left, right] = test::shifted_pair(width, height, 3, 2, 5, rng);
+    MatchParams params{N, kWindow, 2.0, true};
+    params.cost = "census";
+    const auto cfg = hls::frame_config<kWindow>(params, width, height);
+    const auto state = std::make_unique<
+        hls::pipeline<64, 64, N, kWindow, table::kDefaultMaxMinDisp, hls::census_measure>>();
+    state->reset();
+    int last_step = -1;
+    for (int step = 0; step < width * height + 3 * hls::pipeline_delay<N, kWindow>(width) +
+                                  2 * width + 3;
+         ++step) {
+        const int x = step % width;
+        const int y = step / width;
+        const bool in_frame = y < height;
+        state->step(static_cast<hls::coord_t>(x), static_cast<hls::coord_t>(y),
+                    in_frame ? rgb_at(left, x, y) : hls::Rgb{},
+                    in_frame ? rgb_at(right, x, y) : hls::Rgb{}, cfg);
+        if (state->out_x() == width - 1 && state->out_y() == height - 1) {
+            last_step = step;
+        }
+    }
+    EXPECT_EQ(last_step + 1,
+              (hls::frame_steps<N, kWindow, hls::census_measure>(width, height)));
 }
 
 TEST(HlsMatchValidated, TheMatcherRegistryRunsStage6) {

@@ -97,8 +97,9 @@ void run_cosim(const CosimOptions& options) {
     const sim::TopConfig* config = sim::covering_config(width, height, params.ndisp, params.window,
                                                         params.min_disp, params.cost);
     if (config == nullptr) {
-        const sim::TopConfig& largest =
-            params.cost == "lcdm" ? sim::lcdm_top_config() : sim::built_top_configs().back();
+        const sim::TopConfig& largest = params.cost == "lcdm"     ? sim::lcdm_top_config()
+                                        : params.cost == "census" ? sim::census_top_config()
+                                                                  : sim::built_top_configs().back();
         throw std::invalid_argument(
             "no co-simulation model covers " + std::to_string(width) + "x" +
             std::to_string(height) + " with ndisp " + std::to_string(params.ndisp) + ", window " +
@@ -273,7 +274,9 @@ void add_cosim_command(CLI::App& app) {
     }
     built +=
         "\n  " + sim::lcdm_top_config().name + ": " + config_text(sim::lcdm_top_config()) +
-        ", cost lcdm\nMore: -DSTEREO_COSIM_CONFIGS=full or -DSTEREO_COSIM_USER=WxH:NDISP:WINDOW "
+        ", cost lcdm\n  " + sim::census_top_config().name + ": " +
+        config_text(sim::census_top_config()) +
+        ", cost census\nMore: -DSTEREO_COSIM_CONFIGS=full or -DSTEREO_COSIM_USER=WxH:NDISP:WINDOW "
         "(docs/gtkwave.md).";
     command->footer(built);
     add_cosim_options(*command, *options);

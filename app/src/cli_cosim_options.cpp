@@ -11,8 +11,9 @@ void add_cosim_options(CLI::App& command, CosimOptions& options) {
     add_matcher_options(command, options.matcher, MatcherChoice::fixed, {.validation = true});
     command
         .add_option("--cost", options.matcher.config.pipeline.cost,
-                    "Cost stage of the core: ad (COST = 0) or lcdm (COST = 1, colour pairs)")
-        ->check(CLI::IsMember({"ad", "lcdm"}))
+                    "Cost stage of the core: ad (COST = 0), lcdm (COST = 1, colour pairs) or "
+                    "census (COST = 2, the census stage in front)")
+        ->check(CLI::IsMember({"ad", "lcdm", "census"}))
         ->capture_default_str();
     command.add_option("--downscale", options.downscale, "Shrink both images by integer F")
         ->capture_default_str();

@@ -47,8 +47,13 @@ ValidatedDisparity run_cost(const Image& left, const Image& right, const MatchPa
 template <int NDISP>
 ValidatedDisparity run_window(const Image& left, const Image& right, const MatchParams& params,
                               const Variant& variant) {
-    return params.cost == "lcdm" ? run_cost<NDISP, lcdm_measure>(left, right, params, variant)
-                                 : run_cost<NDISP, ad_measure>(left, right, params, variant);
+    if (params.cost == "lcdm") {
+        return run_cost<NDISP, lcdm_measure>(left, right, params, variant);
+    }
+    if (params.cost == "census") {
+        return run_cost<NDISP, census_measure>(left, right, params, variant);
+    }
+    return run_cost<NDISP, ad_measure>(left, right, params, variant);
 }
 
 }  // namespace
@@ -78,8 +83,8 @@ ValidatedDisparity match_validated(const Image& left, const Image& right,
             " is larger than the HLS variants' " + std::to_string(kHostMaxWidth) + "x" +
             std::to_string(kHostMaxHeight));
     }
-    if (params.cost != "ad" && params.cost != "lcdm") {
-        throw std::invalid_argument("the HLS kernels have the ad and lcdm costs, not \"" +
+    if (params.cost != "ad" && params.cost != "lcdm" && params.cost != "census") {
+        throw std::invalid_argument("the HLS kernels have the ad, census and lcdm costs, not \"" +
                                     params.cost + "\"");
     }
     if (params.cost == "lcdm") {

@@ -289,7 +289,7 @@ inline constexpr Params kIce40Ndisp1{kSmall.width, kSmall.height, 1, 3, kUnset, 
 inline constexpr Params kIce40Ndisp4Lanes1{
     kSmall.width, kSmall.height, 4, 5, kUnset, kUnset, 0, kUnset, 1};
 
-inline constexpr std::array<VerilatedConfig, 27> kVerilatedConfigs = {{
+inline constexpr std::array<VerilatedConfig, 26> kVerilatedConfigs = {{
     {"Vstereo_top_small", "stereo_top", kSmall, ""},
     {"Vstereo_top_lanes4", "stereo_top", kSmallLanes4, ""},
     {"Vstereo_top_lanes1", "stereo_top", kSmallLanes1, ""},
@@ -307,7 +307,6 @@ inline constexpr std::array<VerilatedConfig, 27> kVerilatedConfigs = {{
      ""},
     {"Vstereo_top_census", "stereo_top", kSmallCensus, ""},
     {"Vstereo_top_census_lanes4", "stereo_top", kSmallCensusLanes4, ""},
-    {"Vstereo_census", "stereo_census", {kSmall.width}, ""},
     {"Vstereo_aggregate",
      "stereo_aggregate",
      {kSmall.width, kUnset, kSmall.ndisp, kSmall.window, kUnset},
@@ -363,7 +362,7 @@ struct LintConfig {
     Params params;
 };
 
-inline constexpr std::array<LintConfig, 18> kExtraLintConfigs = {{
+inline constexpr std::array<LintConfig, 19> kExtraLintConfigs = {{
     // Time-multiplexed lanes: one label per clock, an odd group count, the FPGA build at full size.
     {"stereo_top", {kUnset, kUnset, 3, 3, kUnset, kUnset, kUnset, kUnset, 1}},
     {"stereo_top", {100, 75, 12, 7, kUnset, kUnset, kUnset, kUnset, 4}},
@@ -378,7 +377,8 @@ inline constexpr std::array<LintConfig, 18> kExtraLintConfigs = {{
     // The LCDM cost stage alone with lanes (LANES < NDISP: the group port, G:1 multiplexers).
     {"stereo_cost", {kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, 1, 4}},
     {"stereo_top", kSmallLcdm},
-    // The census cost: the cost stage alone (one label, and lanes) and the top at the full size.
+    // The census stage alone, and the census cost: the cost stage alone (one label, and lanes) and the top at the full size.
+    {"stereo_census", {}},
     {"stereo_cost", {kUnset, kUnset, 1, kUnset, kUnset, kUnset, kUnset, kCostCensus}},
     {"stereo_cost", {kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, kCostCensus, 4}},
     {"stereo_top", {kFull.width, kFull.height, kFull.ndisp, kFull.window, kUnset, kUnset, kUnset,

@@ -15,6 +15,7 @@
 
 #include "stereo/hls/aggregate.hpp"
 #include "stereo/hls/ca_rule.hpp"
+#include "stereo/hls/census.hpp"
 #include "stereo/hls/cost.hpp"
 #include "stereo/hls/cost_lcdm.hpp"
 #include "stereo/hls/stream.hpp"
@@ -29,28 +30,41 @@ inline constexpr status_t kStatusEolMisplaced = 1U << table::kStatusEolMisplaced
 inline constexpr status_t kStatusSofMisplaced = 1U << table::kStatusSofMisplaced;
 inline constexpr status_t kStatusConfigClamped = 1U << table::kStatusConfigClamped;
 
-// Pixel steps from a pixel entering the cost stage to its result leaving the output register
+// The stage table's code of a cost stage's measure (table::kCostAd, kCostLcdm, kCostCensus).
+template <class MEASURE>
+inline constexpr int kMeasureCost = kIsCensus<MEASURE>                      ? table::kCostCensus
+                                    : std::is_same_v<MEASURE, lcdm_measure> ? table::kCostLcdm
+                                                                            : table::kCostAd;
+
+// Pixel steps from a pixel entering the first stage to its result leaving the output register
 // (stage 6's lr_check), R = WINDOW/2 of the synthesised window, N = NDISP, K = max(0, -min_disp):
-// the stage table's table::hls_pipeline_latency, (R + 2) * W + R + 9 + N + K (the RTL's CA rules
-// take one step more each: their windows have an input register for Fmax, hls/README.md).
-template <int NDISP, int WINDOW>
+// the stage table's table::hls_pipeline_latency, (R + 2) * W + R + 9 + N + K, and 2 * W + 3 more
+// with the census stage (the RTL's CA rules and census stage take one step more each: their
+// windows have an input register for Fmax, hls/README.md).
+template <int NDISP, int WINDOW, class MEASURE = ad_measure>
 constexpr int pipeline_delay(int width, int min_disp = 0) {
-    return table::hls_pipeline_latency(width, WINDOW, NDISP, min_disp);
+    return table::hls_pipeline_latency(width, WINDOW, NDISP, min_disp, kMeasureCost<MEASURE>);
 }
 
 // Iterations of one frame: the pixels, then the flush. The result of the last pixel is in the
 // output register after its own step plus pipeline_delay - 1 more (the RTL's D counts the
 // output beat's cycle too).
-template <int NDISP, int WINDOW>
+template <int NDISP, int WINDOW, class MEASURE = ad_measure>
 constexpr int frame_steps(int width, int height, int min_disp = 0) {
-    return width * height + pipeline_delay<NDISP, WINDOW>(width, min_disp) - 1;
+    return width * height + pipeline_delay<NDISP, WINDOW, MEASURE>(width, min_disp) - 1;
 }
+
+// The census stage of a pipeline whose measure is not census: nothing.
+struct no_census_stage {
+    void reset() {}
+};
 
 // The state of stereo_hls_top: the stages of rtl/stereo_top.sv. Large (the line buffers are
 // WIDTH columns of whole disparity columns): a static object in a synthesis top, a heap object
 // in C-simulation hosts.
-// MEASURE is the cost stage's measure: ad_measure (AD over RGB) or lcdm_measure (LCDM, thesis
-// Sec. 3.5), as stereo_top's COST parameter; same interface and latency.
+// MEASURE is the cost stage's measure: ad_measure (AD over RGB), lcdm_measure (LCDM, thesis
+// Sec. 3.5) or census_measure (the census stage in front of the cost stage), as stereo_top's
+// COST parameter.
 template <int WIDTH, int HEIGHT, int NDISP, int WINDOW,
           int MAX_MIN_DISP = table::kDefaultMaxMinDisp, class MEASURE = ad_measure>
 class pipeline {
@@ -66,6 +80,7 @@ class pipeline {
     // Every stage's coordinate registers to "no pixel"; data registers and RAMs keep their
     // contents (stale data is masked by coordinates).
     void reset() {
+        census_.reset();
         cost_.reset();
         aggregate_.reset();
         rule1_.reset();
@@ -92,7 +107,13 @@ class pipeline {
                     cfg.height, cfg.ndisp, cfg.use_ca);
         aggregate_.step(cost_.out_x(), cost_.out_y(), cost_.out_data(), cfg.width, cfg.height,
                         cfg.kernel);
-        cost_.step(x, y, left, right, cfg.width, cfg.min_disp);
+        if constexpr (kIsCensus<MEASURE>) {
+            cost_.step(census_.out_x(), census_.out_y(), census_.out_left(), census_.out_right(),
+                       cfg.width, cfg.min_disp);
+            census_.step(x, y, left, right, cfg.width, cfg.height);
+        } else {
+            cost_.step(x, y, left, right, cfg.width, cfg.min_disp);
+        }
     }
 
     // lr_check's register, which is the output register.
@@ -107,6 +128,7 @@ class pipeline {
     }
 
   private:
+    std::conditional_t<kIsCensus<MEASURE>, census_transform<WIDTH>, no_census_stage> census_;
     cost<NDISP, MAX_MIN_DISP, MEASURE> cost_;
     aggregate<WIDTH, NDISP, WINDOW> aggregate_;
     ca_rule1<WIDTH, NDISP> rule1_;
@@ -151,13 +173,13 @@ status_t stereo_hls_top(stream<InputBeat>& in, stream<OutputBeat>& out,
                         const FrameConfig<WINDOW>& requested,
                         pipeline<WIDTH, HEIGHT, NDISP, WINDOW, MAX_MIN_DISP, MEASURE>& state) {
 #pragma HLS INLINE
-    constexpr int kMaxSteps = frame_steps<NDISP, WINDOW>(WIDTH, HEIGHT, -MAX_MIN_DISP);
+    constexpr int kMaxSteps = frame_steps<NDISP, WINDOW, MEASURE>(WIDTH, HEIGHT, -MAX_MIN_DISP);
     status_t status = 0;
     const FrameConfig<WINDOW> cfg =
         sanitise<WIDTH, HEIGHT, NDISP, WINDOW, MAX_MIN_DISP>(requested, status);
     state.reset();
     const int pixels = cfg.width * cfg.height;
-    const int steps = frame_steps<NDISP, WINDOW>(cfg.width, cfg.height, cfg.min_disp);
+    const int steps = frame_steps<NDISP, WINDOW, MEASURE>(cfg.width, cfg.height, cfg.min_disp);
     int x = 0;  // raster position of this step's input; y >= height while flushing
     int y = 0;
 frame_loop:
