@@ -49,14 +49,20 @@ module stereo_census #(
   end
 
   localparam int SUM_BITS = LUMA_BITS + fx_pkg::LUMA_SHIFT;  // 255 * 256 + 128 fits
+  // v * WEIGHT as a sum of shifted copies of v, one per set bit of the constant weight: adders,
+  // never a multiplier or a DSP block.
+  function automatic logic [SUM_BITS-1:0] times(input logic [LUMA_BITS-1:0] v, input int weight);
+    times = '0;
+    for (int b = 0; b < SUM_BITS; b++) begin
+      if (((weight >> b) & 1) == 1) times = times + (SUM_BITS'(v) << b);
+    end
+  endfunction
   function automatic logic [LUMA_BITS-1:0] luma(input logic [23:0] rgb);
     /* verilator lint_off UNUSEDSIGNAL */  // the fraction below the shift
     logic [SUM_BITS-1:0] sum;
     /* verilator lint_on UNUSEDSIGNAL */
-    sum = SUM_BITS'(rgb[23:16]) * SUM_BITS'(fx_pkg::LUMA_R) +
-          SUM_BITS'(rgb[15:8]) * SUM_BITS'(fx_pkg::LUMA_G) +
-          SUM_BITS'(rgb[7:0]) * SUM_BITS'(fx_pkg::LUMA_B) +
-          SUM_BITS'(1 << (fx_pkg::LUMA_SHIFT - 1));
+    sum = times(rgb[23:16], fx_pkg::LUMA_R) + times(rgb[15:8], fx_pkg::LUMA_G) +
+          times(rgb[7:0], fx_pkg::LUMA_B) + SUM_BITS'(1 << (fx_pkg::LUMA_SHIFT - 1));
     luma = sum[SUM_BITS-1:fx_pkg::LUMA_SHIFT];
   endfunction
 

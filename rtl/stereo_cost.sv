@@ -56,6 +56,8 @@ module stereo_cost #(
   localparam int PIXEL_BITS =
       (COST == fx_pkg::COST_LCDM) ? 2 * fx_pkg::LCDM_COORD_BITS : fx_pkg::RGB_BITS;
   localparam int GROUPS = NDISP / LANES;  // clocks per pixel step
+  localparam int CENSUS_SHIFT = $clog2(fx_pkg::CENSUS_WEIGHT + 1);
+  localparam int CENSUS_BELOW = (1 << CENSUS_SHIFT) - fx_pkg::CENSUS_WEIGHT;
   // Right pixels kept: the pre-delay line, and the lanes' history (LANES = NDISP: besides the
   // selected pixel; else including it, as it was at the last step).
   localparam int PRE_DELAY = (MAX_MIN_DISP > 0) ? MAX_MIN_DISP : 1;
@@ -153,7 +155,9 @@ module stereo_cost #(
     differ = a ^ b;
     count = '0;
     for (int i = 0; i < fx_pkg::CENSUS_BITS; i++) count = count + COST_BITS'(differ[i]);
-    census_distance = count * COST_BITS'(fx_pkg::CENSUS_WEIGHT);
+    // count * CENSUS_WEIGHT as count * 2^k - count * (2^k - CENSUS_WEIGHT), 2^k the power of two
+    // above the weight (31 = 32 - 1: a shift and a subtraction), so no multiplier or DSP block.
+    census_distance = (count << CENSUS_SHIFT) - count * COST_BITS'(CENSUS_BELOW);
   endfunction
 
   // What the LANES distance units compare: the left pixel, each lane's right pixel, and each

@@ -138,16 +138,16 @@ TEST(CostFraming, BackToBackFramesAndAResetInTheMiddleOfAFrame) {
         same_map(match(left2, right2, params), cosim.run(left2, right2, params, {0.2, 0.2, seed})));
 }
 
-// Frames of odd sizes, down to one pixel wide or high (the census window wraps over several rows
-// of a narrow frame), each checked as it comes and back to back with the others.
+// Frames of odd sizes, down to two pixels wide (the model's least: ndisp < width) or one high;
+// the census window wraps over several rows of a narrow frame. Back to back, each compared.
 TEST(CostFraming, NarrowAndFlatFrames) {
     const std::uint32_t seed = tb::test_seed();
     std::mt19937 rng(seed);
     CostCosim cosim;
     for (const auto& [width, height] :
-         {std::pair{1, 9}, std::pair{2, 7}, std::pair{5, 1}, std::pair{3, 3}, std::pair{17, 2}}) {
+         {std::pair{2, 9}, std::pair{3, 7}, std::pair{5, 1}, std::pair{4, 3}, std::pair{17, 2}}) {
         const auto [left, right] = test::shifted_pair(width, height, 3, 1, 10, rng);
-        const MatchParams params = cost_params(std::min(4, width), 1, false);
+        const MatchParams params = cost_params(std::min(4, width - 1), 1, false);
         EXPECT_TRUE(same_map(match(left, right, params),
                              cosim.run(left, right, params, {0.2, 0.2, seed})))
             << width << "x" << height;

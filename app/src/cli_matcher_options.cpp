@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "stereo/defaults.hpp"
 #include "stereo/hls/match.hpp"
 #ifdef STEREO_WITH_RTL
 #include "stereo_top_sim.hpp"
@@ -63,9 +64,35 @@ bool MatcherOptions::explicit_validation() const {
            (speckle_size != nullptr && speckle_size->count() > 0);
 }
 
+namespace {
+
+bool given(const CLI::Option* option) {
+    return option != nullptr && option->count() > 0;
+}
+
+// The pipelines that have the default cost: every pipeline engine but the double-precision one.
+bool has_default_cost(const std::string& method, const std::string& engine) {
+    return method == "pipeline" && engine != "float";
+}
+
+}  // namespace
+
 MatchConfig MatcherOptions::resolved() const {
     MatchConfig resolved_config = config;
     resolved_config.pipeline.use_ca = !no_ca;
+    if (defaults_per_cost) {
+        MatchParams& params = resolved_config.pipeline;
+        if (!given(cost) && !has_default_cost(resolved_method(), engine)) {
+            params.cost = std::string(defaults::kFallbackCost);
+        }
+        const defaults::Validation chosen = defaults::validation_for(params.cost);
+        if (!given(uniqueness)) {
+            params.validation.uniqueness_ratio = chosen.uniqueness;
+        }
+        if (!given(lr_check)) {
+            params.validation.lr_tolerance = chosen.lr_tolerance;
+        }
+    }
     // --no-validation clears the steps a subcommand turns on by default; an explicit option
     // turns its own step (back) on.
     ValidationParams& validation = resolved_config.pipeline.validation;
@@ -108,8 +135,16 @@ void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoi
         ValidationParams& v = params.validation;
         if (exposed.validation_on_by_default) {
             v = ValidationParams::all_on();
-            // The ratio the defaults' speckle filter allows (stereo/speckle.hpp).
-            v.uniqueness_ratio = exposed.speckle ? speckle::kDefaultUniqueness : v.uniqueness_ratio;
+            if (exposed.speckle && choice == MatcherChoice::selectable) {
+                // The default cost and its ratio and tolerance in front of the speckle filter
+                // (stereo/defaults.hpp); resolved() applies another cost's when --cost or the
+                // method changes it.
+                options.defaults_per_cost = true;
+                params.cost = std::string(defaults::kCost);
+                const defaults::Validation chosen = defaults::validation_for(params.cost);
+                v.uniqueness_ratio = chosen.uniqueness;
+                v.lr_tolerance = chosen.lr_tolerance;
+            }
             command.add_flag("--no-validation", options.no_validation,
                              "Output the plain winners: no uniqueness, left-right, sub-pixel or "
                              "speckle step (an explicit --uniqueness, --lr-check, --subpixel or "
@@ -159,11 +194,21 @@ void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoi
                                        const std::vector<std::string>& choices) {
         command.add_option(name, value, help)->check(CLI::IsMember(choices))->capture_default_str();
     };
-    add_choice("--cost", params.cost,
-               "Matching cost: ad (absolute differences over RGB), census (5x5, Hamming), lcdm "
-               "(hue-saturation distance, colour only, thesis Sec. 3.5) or zncc (15x15; use "
-               "with --window 1 --no-ca)",
-               cost_names());
+    options.cost =
+        command
+            .add_option("--cost", params.cost,
+                        options.defaults_per_cost
+                            ? "Matching cost: census (5x5 of the luma, Hamming; the default of "
+                              "the pipeline), ad (absolute differences over RGB, thesis Sec. "
+                              "3.1; the default of the other methods and of --engine float), "
+                              "lcdm (hue-saturation distance, colour only, thesis Sec. 3.5) or "
+                              "zncc (15x15; use with --window 1 --no-ca). The --uniqueness and "
+                              "--lr-check defaults follow the cost (docs/results.md)"
+                            : "Matching cost: ad (absolute differences over RGB), census (5x5, "
+                              "Hamming), lcdm (hue-saturation distance, colour only, thesis Sec. "
+                              "3.5) or zncc (15x15; use with --window 1 --no-ca)")
+            ->check(CLI::IsMember(cost_names()))
+            ->capture_default_str();
     add_choice("--method", options.method,
                "pipeline (1-D, rectified pairs), edges (LoG front end), hierarchical (2-D, "
                "uncalibrated pairs) or sparse (validated sub-pixel)",

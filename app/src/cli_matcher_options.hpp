@@ -35,6 +35,11 @@ struct MatcherOptions {
     CLI::Option* uniqueness = nullptr;
     CLI::Option* lr_check = nullptr;
     CLI::Option* speckle_size = nullptr;
+    CLI::Option* cost = nullptr;
+    // `stereo match`: the cost defaults to defaults::kCost where the method and engine have it
+    // (else defaults::kFallbackCost), and stage 6's ratio and tolerance to that cost's defaults
+    // (stereo/defaults.hpp), each unless given on the command line.
+    bool defaults_per_cost = false;
     bool no_validation = false;
     bool subpixel = false;
 
@@ -45,8 +50,9 @@ struct MatcherOptions {
     std::string resolved_method() const;
     // --uniqueness, --lr-check, --subpixel or --speckle-size was given on the command line.
     bool explicit_validation() const;
-    // The configuration with --no-ca, the stage 6 switches and the ASW options applied (with
-    // --aggregation asw, --window is the support region's diameter, 55 when not given).
+    // The configuration with --no-ca, the stage 6 switches, the per-cost defaults and the ASW
+    // options applied (with --aggregation asw, --window is the support region's diameter, 55
+    // when not given).
     MatchConfig resolved() const;
 };
 

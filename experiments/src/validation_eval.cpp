@@ -23,6 +23,7 @@
 #include "cli_command.hpp"
 #include "cli_matcher_options.hpp"
 #include "experiments.hpp"
+#include "stereo/defaults.hpp"
 #include "stereo/speckle.hpp"
 #include "stereo/stages.hpp"
 #include "stereo_io/data_dir.hpp"
@@ -43,13 +44,14 @@ struct EvalOptions : cli::ReportOptions {
         "Coverage and error of the validated output on every scene with ground truth, beside "
         "OpenCV BM and SGBM, and the uniqueness sweep (docs/results.md).";
     std::string figure;                            // the error-versus-coverage PNG
-    int uniqueness = speckle::kDefaultUniqueness;  // with the speckle filter (stereo match)
-    int lr_tolerance = ValidationParams{}.lr_tolerance;
+    // The defaults row: stereo match's for the cost unless given (-1; stereo/defaults.hpp).
+    int uniqueness = -1;
+    int lr_tolerance = -1;
     std::vector<int> sweep = {0, 1, 2, 3, 4, 5, 6, 8, 10, 12, 15, 20, 30, 45, 70, 100};
     speckle::Params speckle = speckle::Params::defaults();
     std::vector<int> speckle_sizes = {0, 25, 50, 100, 200, 400};
     std::vector<int> speckle_ranges = {1, 2};
-    std::string cost = "ad";  // the pipeline's cost plug-in (stereo::cost_names())
+    std::string cost{defaults::kCost};  // the pipeline's cost plug-in (stereo::cost_names())
 };
 
 // The error goal of issue 16: bad > 1 among the output at most this times SGBM's, every scene.
@@ -296,7 +298,12 @@ json choose_ratio(const json& scenes, std::size_t setting, const std::vector<int
     return {{"ratio", nullptr}};
 }
 
-void run_validation_eval(const EvalOptions& options) {
+void run_validation_eval(const EvalOptions& given) {
+    EvalOptions options = given;
+    const defaults::Validation cost_defaults = defaults::validation_for(options.cost);
+    options.uniqueness = options.uniqueness >= 0 ? options.uniqueness : cost_defaults.uniqueness;
+    options.lr_tolerance =
+        options.lr_tolerance >= 0 ? options.lr_tolerance : cost_defaults.lr_tolerance;
     const ValidationParams defaults{true, options.uniqueness, true, options.lr_tolerance, true};
     speckle::validate(options.speckle);
     std::vector<speckle::Params> grid;
@@ -390,8 +397,10 @@ void add_validation_eval_command(CLI::App& app) {
     const auto [command, options] = cli::add_report_command<EvalOptions>(app, run_validation_eval);
     command->add_option("--figure", options->figure, "Write the error-versus-coverage PNG");
     cli::add_number_options(
-        *command, {{"--uniqueness", &options->uniqueness, "Ratio of the defaults row"},
-                   {"--lr-check", &options->lr_tolerance, "Tolerance of the defaults row"}});
+        *command, {{"--uniqueness", &options->uniqueness,
+                    "Ratio of the defaults row (-1: stereo match's for the cost)"},
+                   {"--lr-check", &options->lr_tolerance,
+                    "Tolerance of the defaults row and the sweep (-1: stereo match's)"}});
     command->add_option("--sweep", options->sweep, "Uniqueness ratios of the curve")
         ->capture_default_str();
     cli::add_number_options(

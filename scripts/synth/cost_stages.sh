@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Resources of the cost stages alone (docs/synthesis.md, "Cost stages: AD and LCDM"): Yosys
-# synth_ice40 and synth_xilinx (7-series) of stereo_cost with COST = 0 (AD) and COST = 1 (LCDM),
-# and of one stereo_lcdm_convert, flattened, at NDISP disparities (default 16, the co-simulation
+# Resources of the cost stages alone (docs/synthesis.md, "Cost stages: AD, census and LCDM"):
+# Yosys synth_ice40 and synth_xilinx (7-series) of stereo_cost with COST = 0 (AD), 1 (LCDM) and
+# 2 (census), of the census stage stereo_census (at WIDTH 64, its default) and of one
+# stereo_lcdm_convert, flattened, at NDISP disparities (default 16, the co-simulation
 # point) and the default MAX_MIN_DISP.
 # Usage: scripts/synth/cost_stages.sh [NDISP]. Prints one markdown table row per module and target.
 set -euo pipefail
@@ -15,7 +16,7 @@ count() {  # count PATTERN FILE: sum of the cell counts whose type matches PATTE
 }
 echo "| module | target | LUTs | FFs | carries | DSPs | block RAMs |"
 echo "|---|---|---|---|---|---|---|"
-for variant in stereo_cost:0 stereo_cost:1 stereo_lcdm_convert:; do
+for variant in stereo_cost:0 stereo_cost:1 stereo_cost:2 stereo_census: stereo_lcdm_convert:; do
     module=${variant%%:*}
     cost=${variant#*:}
     param=""

@@ -16,12 +16,10 @@ inline constexpr int kMaxRange = 255;     // pixels
 // The defaults of `stereo match` (docs/results.md, "The speckle filter"). The size is OpenCV's
 // sample value and keeps every object of 10 x 10 pixels or more (a robot's small obstacles); the
 // range is the stricter of the two OpenCV recommends. With the filter removing islands, stage 6's
-// uniqueness ratio can be lower than the 20 it needs alone: kDefaultUniqueness is the smallest
-// ratio whose error stays within 1.2x SGBM's on each of the eight scenes with ground truth (the
-// same rule that chose 20 without the filter). The library's default is off.
+// uniqueness ratio can be lower than it needs alone (stereo/defaults.hpp gives the ratio per
+// cost). The library's default is off.
 inline constexpr int kDefaultSize = 100;
 inline constexpr int kDefaultRange = 1;
-inline constexpr int kDefaultUniqueness = 8;
 
 struct Params {
     // A connected region of valid pixels (4-neighbours whose disparities differ by at most
