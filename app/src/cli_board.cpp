@@ -186,8 +186,8 @@ void add_board_command(CLI::App& app) {
                          "Milliseconds of silence after which the board counts as not answering"}});
     command->add_option("-o,--output", options->output,
                         "Disparity file as `stereo match -o` writes it (PNG, or .pfm)");
-    // The defaults of `stereo match`, so that the same options give the same output; the ndisp
-    // default fits the smallest build.
+    // The defaults of `stereo match --cost ad` (the core's cost), so that the same options give
+    // the same output; the ndisp default fits the smallest build.
     options->matcher.config.pipeline.ndisp = 1;
     add_matcher_options(*command, options->matcher, MatcherChoice::fixed,
                         {.validation = true, .speckle = true, .validation_on_by_default = true});

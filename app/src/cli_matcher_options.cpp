@@ -135,12 +135,15 @@ void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoi
         ValidationParams& v = params.validation;
         if (exposed.validation_on_by_default) {
             v = ValidationParams::all_on();
-            if (exposed.speckle && choice == MatcherChoice::selectable) {
-                // The default cost and its ratio and tolerance in front of the speckle filter
-                // (stereo/defaults.hpp); resolved() applies another cost's when --cost or the
-                // method changes it.
-                options.defaults_per_cost = true;
-                params.cost = std::string(defaults::kCost);
+            if (exposed.speckle) {
+                // The cost's ratio and tolerance in front of the speckle filter
+                // (stereo/defaults.hpp). Where the subcommand chooses the matcher, the default
+                // cost too, and resolved() applies another cost's when --cost or the method
+                // changes it; elsewhere (board: the AD core) the subcommand's cost.
+                if (choice == MatcherChoice::selectable) {
+                    options.defaults_per_cost = true;
+                    params.cost = std::string(defaults::kCost);
+                }
                 const defaults::Validation chosen = defaults::validation_for(params.cost);
                 v.uniqueness_ratio = chosen.uniqueness;
                 v.lr_tolerance = chosen.lr_tolerance;

@@ -3,9 +3,9 @@
 #
 # The README's main job at quarter size: match Debian opencv-doc's Aloe pair, write the colour
 # view, and score it against aloeGT.png. Fails if the error among the output pixels or the
-# coverage drifts from what was measured when the validated output (stage 6) became the default
-# (bad_valid 3.82 %, coverage 0.663; before it: bad_all 26.96 %, coverage 0.899 with every pixel
-# output), so a regression on real input is caught. Exit 77 (skipped) when the package's data is
+# coverage drifts from what was measured when the census cost became the default (bad_valid
+# 4.31 %, coverage 0.760; with the AD defaults before it: 3.82 % at 0.663; before stage 6: bad_all
+# 26.96 %, coverage 0.899 with every pixel output), so a regression on real input is caught. Exit 77 (skipped) when the package's data is
 # not installed.
 set -eu
 stereo=$1
@@ -27,7 +27,7 @@ bad=$(printf '%s' "$scores" | sed -n 's/.*"bad_valid":\([0-9.]*\).*/\1/p')
 coverage=$(printf '%s' "$scores" | sed -n 's/.*"coverage":\([0-9.]*\).*/\1/p')
 awk -v bad="$bad" -v cov="$coverage" 'BEGIN {
     if (bad == "" || cov == "") { print "FAIL: scores missing"; exit 1 }
-    if (bad > 4.2) { print "FAIL: bad_valid " bad " % > 4.2 %"; exit 1 }
-    if (cov < 0.64) { print "FAIL: coverage " cov " < 0.64"; exit 1 }
+    if (bad > 4.7) { print "FAIL: bad_valid " bad " % > 4.7 %"; exit 1 }
+    if (cov < 0.73) { print "FAIL: coverage " cov " < 0.73"; exit 1 }
     print "OK: bad_valid " bad " %, coverage " cov
 }'
