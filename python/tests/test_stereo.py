@@ -57,15 +57,16 @@ def test_version_matches_cli():
 def test_match_equals_cli_bit_for_bit(fixture_pair, tmp_path):
     left_path, right_path = fixture_pair
     pfm = tmp_path / "cli.pfm"
-    # The CLI's defaults: every stage-6 step on (uniqueness 8, left-right 0, sub-pixel), then the
-    # speckle filter (size 100, range 1).
+    # The CLI's defaults: the census cost, every stage-6 step on (uniqueness 0, left-right 1,
+    # sub-pixel; stereo/defaults.hpp), then the speckle filter (size 100, range 1). The binding
+    # keeps the library's defaults (AD, stage 6 off), so they are spelled out here.
     subprocess.run([CLI, "match", left_path, right_path, "--ndisp", "16", "-o", str(pfm)],
                    check=True, capture_output=True)
     expected = read_pfm(pfm)
     left = stereo.load_image(left_path)
     right = stereo.load_image(right_path)
-    result = stereo.match(left, right, ndisp=16, uniqueness=8, lr_check=0, subpixel=True,
-                          speckle_size=100, speckle_range=1)
+    result = stereo.match(left, right, ndisp=16, cost="census", uniqueness=0, lr_check=1,
+                          subpixel=True, speckle_size=100, speckle_range=1)
     got = result["disparity_px"]
     assert got.shape == expected.shape
     expected_valid = np.isfinite(expected)
@@ -82,7 +83,7 @@ def test_match_labels_equal_cli_without_validation(fixture_pair, tmp_path):
                     "--no-validation", "-o", str(pfm)], check=True, capture_output=True)
     expected = read_pfm(pfm)
     result = stereo.match(stereo.load_image(left_path), stereo.load_image(right_path),
-                          ndisp=12, window=3)
+                          ndisp=12, window=3, cost="census")
     labels = np.where(result["valid"], result["disparity"].astype(np.float32), np.nan)
     both = np.isfinite(expected)
     assert np.array_equal(np.isfinite(labels), both)
