@@ -24,7 +24,7 @@ ValidatedDisparity run_rtl(const Image& left, const Image& right, const MatchPar
     const TopConfig* config = covering_config(left.width, left.height, params.ndisp, params.window,
                                               params.min_disp, params.cost);
     if (config == nullptr) {
-        const TopConfig& largest = lcdm                       ? lcdm_top_config()
+        const TopConfig& largest = lcdm                      ? lcdm_top_config()
                                    : params.cost == "census" ? census_top_config()
                                                              : built_top_configs().back();
         throw std::invalid_argument(

@@ -148,8 +148,8 @@ TEST(CostFraming, NarrowAndFlatFrames) {
          {std::pair{2, 9}, std::pair{3, 7}, std::pair{5, 1}, std::pair{4, 3}, std::pair{17, 2}}) {
         const auto [left, right] = test::shifted_pair(width, height, 3, 1, 10, rng);
         const MatchParams params = cost_params(std::min(4, width - 1), 1, false);
-        EXPECT_TRUE(same_map(match(left, right, params),
-                             cosim.run(left, right, params, {0.2, 0.2, seed})))
+        EXPECT_TRUE(
+            same_map(match(left, right, params), cosim.run(left, right, params, {0.2, 0.2, seed})))
             << width << "x" << height;
     }
 }
@@ -167,10 +167,9 @@ TEST(CostThroughput, FrameCyclesAreTheStageTables) {
         StreamResult result;
         EXPECT_TRUE(tb::same_validated(match_validated(left, right, params),
                                        cosim.run_validated(left, right, params, {}, &result)));
-        EXPECT_EQ(result.cycles,
-                  static_cast<std::uint64_t>(table::frame_cycles(
-                      point.width, point.height, point.window, point.ndisp, point.lanes, min_disp,
-                      point.cost)))
+        EXPECT_EQ(result.cycles, static_cast<std::uint64_t>(table::frame_cycles(
+                                     point.width, point.height, point.window, point.ndisp,
+                                     point.lanes, min_disp, point.cost)))
             << "min_disp " << min_disp;
     }
 }

@@ -398,8 +398,8 @@ TEST_F(BoardCli, BoardOutputEqualsStereoMatchByteForByte) {
                                             "--port",         device.path(),    "-o",
                                             path("board.png")};
         // The board's core has the AD cost; stereo match's default is census.
-        std::vector<std::string> match_args{"match", path("left.png"), path("right.png"), "-o",
-                                            path("match.png"), "--cost", "ad"};
+        std::vector<std::string> match_args{
+            "match", path("left.png"), path("right.png"), "-o", path("match.png"), "--cost", "ad"};
         board_args.insert(board_args.end(), options.begin(), options.end());
         match_args.insert(match_args.end(), options.begin(), options.end());
         const Outcome board = run_stereo(board_args);

@@ -745,8 +745,8 @@ TEST(HlsTop, CensusStageAddsItsLatency) {
         hls::pipeline<64, 64, N, kWindow, table::kDefaultMaxMinDisp, hls::census_measure>>();
     state->reset();
     int last_step = -1;
-    for (int step = 0; step < width * height + 3 * hls::pipeline_delay<N, kWindow>(width) +
-                                  2 * width + 3;
+    for (int step = 0;
+         step < width * height + 3 * hls::pipeline_delay<N, kWindow>(width) + 2 * width + 3;
          ++step) {
         const int x = step % width;
         const int y = step / width;
@@ -758,8 +758,7 @@ TEST(HlsTop, CensusStageAddsItsLatency) {
             last_step = step;
         }
     }
-    EXPECT_EQ(last_step + 1,
-              (hls::frame_steps<N, kWindow, hls::census_measure>(width, height)));
+    EXPECT_EQ(last_step + 1, (hls::frame_steps<N, kWindow, hls::census_measure>(width, height)));
 }
 
 TEST(HlsMatchValidated, TheMatcherRegistryRunsStage6) {

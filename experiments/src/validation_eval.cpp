@@ -43,7 +43,7 @@ struct EvalOptions : cli::ReportOptions {
     static constexpr std::string_view kDescription =
         "Coverage and error of the validated output on every scene with ground truth, beside "
         "OpenCV BM and SGBM, and the uniqueness sweep (docs/results.md).";
-    std::string figure;                            // the error-versus-coverage PNG
+    std::string figure;  // the error-versus-coverage PNG
     // The defaults row: stereo match's for the cost unless given (-1; stereo/defaults.hpp).
     int uniqueness = -1;
     int lr_tolerance = -1;
@@ -396,11 +396,11 @@ void run_validation_eval(const EvalOptions& given) {
 void add_validation_eval_command(CLI::App& app) {
     const auto [command, options] = cli::add_report_command<EvalOptions>(app, run_validation_eval);
     command->add_option("--figure", options->figure, "Write the error-versus-coverage PNG");
-    cli::add_number_options(
-        *command, {{"--uniqueness", &options->uniqueness,
-                    "Ratio of the defaults row (-1: stereo match's for the cost)"},
-                   {"--lr-check", &options->lr_tolerance,
-                    "Tolerance of the defaults row and the sweep (-1: stereo match's)"}});
+    cli::add_number_options(*command,
+                            {{"--uniqueness", &options->uniqueness,
+                              "Ratio of the defaults row (-1: stereo match's for the cost)"},
+                             {"--lr-check", &options->lr_tolerance,
+                              "Tolerance of the defaults row and the sweep (-1: stereo match's)"}});
     command->add_option("--sweep", options->sweep, "Uniqueness ratios of the curve")
         ->capture_default_str();
     cli::add_number_options(

@@ -31,9 +31,9 @@ static_assert(kLumaR + kLumaG + kLumaB == 1 << kLumaShift);
 // The census cost (stages/census.hpp; the RTL's census stage, COST = 2): a (2r+1)^2 window of
 // the luma gives a code of (2r+1)^2 - 1 bits, the cost is the codes' Hamming distance times
 // kCensusWeight so that it spans [0, kCostMax] like the AD cost.
-inline constexpr int kCensusRadius = 2;                                                // 5x5
+inline constexpr int kCensusRadius = 2;                                                    // 5x5
 inline constexpr int kCensusBits = (2 * kCensusRadius + 1) * (2 * kCensusRadius + 1) - 1;  // 24
-inline constexpr int kCensusWeight = kCostMax / kCensusBits;                           // 31
+inline constexpr int kCensusWeight = kCostMax / kCensusBits;                               // 31
 static_assert(kCensusBits * kCensusWeight <= kCostMax && kCensusBits <= 24,
               "census codes are three bytes");
 static_assert(kCostMax < (1 << kCostBits));

@@ -31,7 +31,8 @@ struct Validation {
 // SGBM 0.84x), T = 1 at U = 0 too (81.7 %, 73.4 %, 0.88x): U = 0, T = 1.
 inline constexpr int kCensusUniqueness = 0;
 inline constexpr int kCensusLrTolerance = 1;
-// AD: T = 0 at U = 8 (67.2 %, 41.3 %, 1.17x), T = 1 at U = 30 (60.3 %, 26.3 %, 1.18x): U = 8, T = 0.
+// AD: T = 0 at U = 8 (67.2 %, 41.3 %, 1.17x), T = 1 at U = 30 (60.3 %, 26.3 %, 1.18x): U = 8, T =
+// 0.
 inline constexpr int kAdUniqueness = 8;
 inline constexpr int kAdLrTolerance = 0;
 

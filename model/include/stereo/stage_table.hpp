@@ -143,9 +143,12 @@ inline constexpr int kCostCount = 3;
 // image's RGB stream into a stream of census codes, which the cost stage's delay lines carry in
 // place of the RGB pixels. An input register, a window reaching r rows and r columns past its
 // centre (r = fx::kCensusRadius), and the output register: r * W + r + 2 steps.
-inline constexpr Stage kCensusStage = {
-    "census", "stereo_census", kInBeatBits, 2 * fx::kCensusBits,
-    {0, fx::kCensusRadius, 0, fx::kCensusRadius + 2}, 1};
+inline constexpr Stage kCensusStage = {"census",
+                                       "stereo_census",
+                                       kInBeatBits,
+                                       2 * fx::kCensusBits,
+                                       {0, fx::kCensusRadius, 0, fx::kCensusRadius + 2},
+                                       1};
 
 // Pixel steps from a pixel entering stereo_top's first stage to its output beat:
 // (R + 2) * W + R + 11 + N + K (N = NDISP, K = max(0, -min_disp)), and 2 * W + 4 more with the
@@ -204,13 +207,13 @@ constexpr int hls_pipeline_latency(int width, int window, int ndisp, int min_dis
 // it; the list of modules to lint is this list without the package.
 inline constexpr std::string_view kPackageFile = "fx_pkg.sv";
 inline constexpr std::array<std::string_view, 27> kRtlModules = {
-    "stereo_coord_reg",    "stereo_stage_output",  "stereo_shift_reg",      "stereo_border_flags",
-    "stereo_line_buffer",  "stereo_group_ring",    "stereo_window3x3",      "stereo_ca_plane",
-    "stereo_lcdm_convert", "stereo_lcdm_distance", "stereo_census",         "stereo_cost",           "stereo_weighted_sum",
-    "stereo_aggregate",    "stereo_wta",           "stereo_divider",        "stereo_validate",
-    "stereo_lr_check",     "stereo_top",           "stereo_axil_top",       "stereo_synth_top",
-    "stereo_uart_rx",      "stereo_uart_tx",       "stereo_power_on_reset", "stereo_board_link",
-    "stereo_board_top",    "stereo_uart_echo_top",
+    "stereo_coord_reg",    "stereo_stage_output",  "stereo_shift_reg",     "stereo_border_flags",
+    "stereo_line_buffer",  "stereo_group_ring",    "stereo_window3x3",     "stereo_ca_plane",
+    "stereo_lcdm_convert", "stereo_lcdm_distance", "stereo_census",        "stereo_cost",
+    "stereo_weighted_sum", "stereo_aggregate",     "stereo_wta",           "stereo_divider",
+    "stereo_validate",     "stereo_lr_check",      "stereo_top",           "stereo_axil_top",
+    "stereo_synth_top",    "stereo_uart_rx",       "stereo_uart_tx",       "stereo_power_on_reset",
+    "stereo_board_link",   "stereo_board_top",     "stereo_uart_echo_top",
 };
 // Port-list fragments the modules `include (found in rtl/: tools need rtl/ on the include path).
 inline constexpr std::array<std::string_view, 3> kRtlIncludes = {
@@ -233,8 +236,8 @@ struct Params {
     int runtime_kernel = kUnset;
     int rule = kUnset;          // stereo_ca_plane's RULE
     int max_min_disp = kUnset;  // stereo_top's and stereo_cost's MAX_MIN_DISP
-    int cost = kUnset;          // stereo_top's and stereo_cost's COST: kCostAd, kCostLcdm, kCostCensus
-    int lanes = kUnset;         // stereo_top's and stereo_cost's LANES (unset: NDISP)
+    int cost = kUnset;   // stereo_top's and stereo_cost's COST: kCostAd, kCostLcdm, kCostCensus
+    int lanes = kUnset;  // stereo_top's and stereo_cost's LANES (unset: NDISP)
     int clks_per_bit = kUnset;  // the UART's CLKS_PER_BIT (stereo_board_top)
 };
 
@@ -271,9 +274,9 @@ inline constexpr Params kSmallLanes1{
 inline constexpr Params kSmallLcdmLanes4{
     kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window, kUnset, kUnset, kUnset, 1, 4};
 // The census cost with lanes (the census stage steps once per pixel step, G clocks).
-inline constexpr Params kSmallCensusLanes4{
-    kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window, kUnset, kUnset, kUnset,
-    kCostCensus,  4};
+inline constexpr Params kSmallCensusLanes4{kSmall.width,  kSmall.height, kSmall.ndisp,
+                                           kSmall.window, kUnset,        kUnset,
+                                           kUnset,        kCostCensus,   4};
 // The iCE40 cores: one label (no delay line, C2 a constant, the certainty divider folded away)
 // and two labels one per clock (C2 a constant in the lanes mode too).
 inline constexpr Params kNdisp1{kSmall.width, kSmall.height, 1, kSmall.window, kUnset};
@@ -377,12 +380,13 @@ inline constexpr std::array<LintConfig, 19> kExtraLintConfigs = {{
     // The LCDM cost stage alone with lanes (LANES < NDISP: the group port, G:1 multiplexers).
     {"stereo_cost", {kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, 1, 4}},
     {"stereo_top", kSmallLcdm},
-    // The census stage alone, and the census cost: the cost stage alone (one label, and lanes) and the top at the full size.
+    // The census stage alone, and the census cost: the cost stage alone (one label, and lanes) and
+    // the top at the full size.
     {"stereo_census", {}},
     {"stereo_cost", {kUnset, kUnset, 1, kUnset, kUnset, kUnset, kUnset, kCostCensus}},
     {"stereo_cost", {kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, kCostCensus, 4}},
-    {"stereo_top", {kFull.width, kFull.height, kFull.ndisp, kFull.window, kUnset, kUnset, kUnset,
-                    kCostCensus}},
+    {"stereo_top",
+     {kFull.width, kFull.height, kFull.ndisp, kFull.window, kUnset, kUnset, kUnset, kCostCensus}},
     // The CA skeleton with the other rule.
     {"stereo_ca_plane", {kUnset, kUnset, kUnset, kUnset, kUnset, 2}},
     // The top at other shapes: a 3x3 window, odd label counts, and the full-size configuration.

@@ -131,7 +131,7 @@ class census_transform : public coord_output {
     }
 
     line_buffer<WIDTH, pixel_t, kSide - 1, 2> rows_;  // {left, right} lumas of 4 rows
-    pixel_t history_[kSide - 1][kSide][2] = {};      // the 4 columns before the newest
+    pixel_t history_[kSide - 1][kSide][2] = {};       // the 4 columns before the newest
     Rgb out_left_;
     Rgb out_right_;
 };
