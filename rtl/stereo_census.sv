@@ -178,7 +178,7 @@ module stereo_census #(
           left = columns[RADIUS-dx][(dy+RADIUS)*PAIR_BITS+LUMA_BITS+:LUMA_BITS];
           right = columns[RADIUS-dx][(dy+RADIUS)*PAIR_BITS+:LUMA_BITS];
           in_window = row_inside_q[dy+RADIUS] && column_inside_q[dx+RADIUS];
-          code_left[bit_index] = in_window && left <= centre_left;
+          code_left[bit_index] = in_window && left < centre_left;
           code_right[bit_index] = in_window && right < centre_right;
           bit_index--;
         end

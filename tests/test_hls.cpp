@@ -628,18 +628,24 @@ TEST(HlsMatchValidated, EqualsMatchValidatedOverStage6Parameters) {
     }
 }
 
-// The LCDM cost stage shares the AD stage's signed-range delay lines (cost<..., lcdm_measure>).
-TEST(HlsMatchValidated, LcdmCostOverSignedRangesWithStage6) {
-    auto rng = seeded(23);
+// Another cost than AD over signed ranges with every stage-6 step on: the HLS pipeline equals the
+// model, all three output fields.
+void expect_cost_over_signed_ranges(const std::string& cost, std::uint32_t seed, int lr) {
+    auto rng = seeded(seed);
     const auto [left, right] = test::shifted_pair(41, 27, 3, -3, 20, rng);
     for (const int min_disp : {-8, -3, 0, 5}) {
         MatchParams params =
-            with_stage6(MatchParams{16, 5, fx::kDefaultSigma, true}, min_disp, 15, 1, true);
-        params.cost = "lcdm";
+            with_stage6(MatchParams{16, 5, fx::kDefaultSigma, true}, min_disp, 15, lr, true);
+        params.cost = cost;
         EXPECT_TRUE(same_validated(match_validated(left, right, params),
                                    hls::match_validated(left, right, params)))
-            << "min_disp " << min_disp;
+            << cost << " min_disp " << min_disp;
     }
+}
+
+// The LCDM cost stage shares the AD stage's signed-range delay lines (cost<..., lcdm_measure>).
+TEST(HlsMatchValidated, LcdmCostOverSignedRangesWithStage6) {
+    expect_cost_over_signed_ranges("lcdm", 23, 1);
 }
 
 // The census stage alone: every code of both images against the model's census::transform, on
@@ -714,17 +720,9 @@ TEST(HlsMatch, CensusCostEqualsModel) {
     expect_match(grey_left, grey_right, params, "census grey");
 }
 
+// The census codes wait in the same delay lines (cost<..., census_measure>).
 TEST(HlsMatchValidated, CensusCostOverSignedRangesWithStage6) {
-    auto rng = seeded(33);
-    const auto [left, right] = test::shifted_pair(41, 27, 3, -3, 20, rng);
-    for (const int min_disp : {-8, -3, 0, 5}) {
-        MatchParams params =
-            with_stage6(MatchParams{16, 5, fx::kDefaultSigma, true}, min_disp, 15, 0, true);
-        params.cost = "census";
-        EXPECT_TRUE(same_validated(match_validated(left, right, params),
-                                   hls::match_validated(left, right, params)))
-            << "min_disp " << min_disp;
-    }
+    expect_cost_over_signed_ranges("census", 33, 0);
 }
 
 // The census stage's 2 W + 3 steps (2 rows and 2 columns of window, its output register), on
