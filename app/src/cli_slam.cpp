@@ -20,6 +20,7 @@
 #include "cli_command.hpp"
 #include "cli_matcher_options.hpp"
 #include "cli_progress.hpp"
+#include "stereo/stages.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/output.hpp"
 #include "stereo_io/versioned_json.hpp"
@@ -97,6 +98,7 @@ void run_slam(SlamOptions o) {
     o.params.frontend.ndisp = frontend.ndisp;
     o.params.frontend.window = frontend.window;
     o.params.frontend.sigma = frontend.sigma;
+    o.params.frontend.cost = frontend.cost;
     if (o.params.threads == 0) {
         o.params.threads = robot::default_threads();
     }
@@ -188,6 +190,7 @@ void run_slam(SlamOptions o) {
     summary["height"] = height;
     summary["downscale"] = o.downscale;
     summary["merge"] = o.params.merge_enabled;
+    summary["cost"] = o.params.frontend.cost;
     const double per_pair = frames > 1 ? frames - 1 : 1;
     summary["fps"] = {{"total", fps(frames, total_ms)},
                       {"load", fps(frames, totals.load_ms)},
@@ -324,8 +327,14 @@ void add_slam_command(CLI::App& app) {
     frontend.ndisp = p.frontend.ndisp;
     frontend.window = p.frontend.window;
     frontend.sigma = p.frontend.sigma;
+    frontend.cost = p.frontend.cost;
     add_matcher_options(*command, o->matcher, MatcherChoice::fixed,
                         {.ndisp = true, .no_ca = false});
+    command
+        ->add_option("--cost", frontend.cost,
+                     "Matching cost of the front end: ad, census, lcdm or zncc (docs/slam.md)")
+        ->check(CLI::IsMember(cost_names()))
+        ->capture_default_str();
     add_number_options(
         *command,
         {{"--uniqueness", &p.frontend.uniqueness,

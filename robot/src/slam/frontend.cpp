@@ -8,6 +8,7 @@ namespace {
 MatchConfig config_of(const FrontendParams& params) {
     MatchConfig config;
     config.pipeline = {params.ndisp, params.window, params.sigma, false};
+    config.pipeline.cost = params.cost;
     config.sparse = {params.uniqueness, params.lr_tolerance};
     return config;
 }

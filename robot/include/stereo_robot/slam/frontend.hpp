@@ -3,6 +3,8 @@
 // Thresholds: docs/slam.md.
 #pragma once
 
+#include <string>
+
 #include "stereo/image.hpp"
 #include "stereo/sparse.hpp"
 
@@ -18,6 +20,7 @@ struct FrontendParams {
     double sigma = 3.0;    // aggregation Gaussian sigma (the model's default)
     int uniqueness = 10;   // stage 6's ratio U: (C2 - C1) / C1 must be larger than U / 100
     int lr_tolerance = 1;  // |dL - dR| <= this
+    std::string cost = "ad";  // the matching cost (stereo::cost_names(); docs/slam.md)
 };
 
 // The registry's "sparse" matcher on a pair. Throws std::invalid_argument for impossible
