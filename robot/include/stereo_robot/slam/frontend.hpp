@@ -15,11 +15,11 @@ using sparse::SparseDisparity;
 using sparse::ValidationCounts;
 
 struct FrontendParams {
-    int ndisp = 64;        // disparity labels 0 .. ndisp-1
-    int window = 11;       // aggregation window (the model's default)
-    double sigma = 3.0;    // aggregation Gaussian sigma (the model's default)
-    int uniqueness = 10;   // stage 6's ratio U: (C2 - C1) / C1 must be larger than U / 100
-    int lr_tolerance = 1;  // |dL - dR| <= this
+    int ndisp = 64;           // disparity labels 0 .. ndisp-1
+    int window = 11;          // aggregation window (the model's default)
+    double sigma = 3.0;       // aggregation Gaussian sigma (the model's default)
+    int uniqueness = 10;      // stage 6's ratio U: (C2 - C1) / C1 must be larger than U / 100
+    int lr_tolerance = 1;     // |dL - dR| <= this
     std::string cost = "ad";  // the matching cost (stereo::cost_names(); docs/slam.md)
 };
 
