@@ -140,8 +140,9 @@ void validate(const Params& params, int width, int height) {
         }
     };
     if (std::find(kCosts.begin(), kCosts.end(), params.cost) == kCosts.end()) {
-        throw std::invalid_argument("the hierarchical search has the ad and lcdm costs, not \"" +
-                                    params.cost + "\"");
+        throw std::invalid_argument(
+            "the hierarchical search has the ad, lcdm and census costs, not \"" + params.cost +
+            "\"");
     }
     check_range("ndisp", params.ndisp, fx::kMaxDisparities);
     if (params.vrange < 0) {

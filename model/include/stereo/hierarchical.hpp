@@ -41,10 +41,10 @@ constexpr LevelParams default_level(int window) {
 inline constexpr int kLevels = 3;  // quarter, half, full
 inline constexpr std::array<int, kLevels> kLevelFactor = {4, 2, 1};
 inline constexpr std::array<const char*, kLevels> kLevelNames = {"quarter", "half", "full"};
-inline constexpr int kMaxVerticalRange = 252;
-// The costs the search (and its naive reference) can use: AD over RGB and LCDM (colour only).
-inline constexpr std::array<const char*, 2> kCosts = {
-    "ad", "lcdm"};  // offsets fit an int8 and 128 + v a PNG byte
+inline constexpr int kMaxVerticalRange = 252;  // offsets fit an int8 and 128 + v a PNG byte
+// The costs the search (and its naive reference) can use: AD over RGB, LCDM (colour only) and
+// the 5x5 census of the luma (computed on each level's image).
+inline constexpr std::array<const char*, 3> kCosts = {"ad", "lcdm", "census"};
 
 struct Params {
     int ndisp = fx::kDefaultDisparities;  // D: horizontal labels 0..D-1 at full size

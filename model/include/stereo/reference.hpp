@@ -41,6 +41,11 @@ namespace stereo::census::naive {
 // bits counted one by one.
 Dsi cost(const Image& left, const Image& right, int ndisp, int min_disp = 0);
 
+// The census cost of left pixel (x, y) against right pixel (xr, yr), both inside their images,
+// from grey images (edge_frontend::naive::luma): the differing code bits, one by one, times
+// census::kWeight.
+int pixel_cost(const Image& left_grey, int x, int y, const Image& right_grey, int xr, int yr);
+
 }  // namespace stereo::census::naive
 
 namespace stereo::lcdm::naive {

@@ -21,18 +21,21 @@ bool bit(const Image& grey, int x, int y, int n) {
 
 }  // namespace
 
+int pixel_cost(const Image& left_grey, int x, int y, const Image& right_grey, int xr, int yr) {
+    int distance = 0;
+    for (int n = 0; n < kBits; ++n) {
+        distance += bit(left_grey, x, y, n) != bit(right_grey, xr, yr, n) ? 1 : 0;
+    }
+    return distance * kWeight;
+}
+
 Dsi cost(const Image& left, const Image& right, int ndisp, int min_disp) {
     check_pair(left, right);
     const Image l = edge_frontend::naive::luma(left);
     const Image r = edge_frontend::naive::luma(right);
     return reference::pixel_cost_volume(
-        left, ndisp, min_disp, fx::kCostOutside, [&](int x, int y, int right_x) {
-            int distance = 0;
-            for (int n = 0; n < kBits; ++n) {
-                distance += bit(l, x, y, n) != bit(r, right_x, y, n) ? 1 : 0;
-            }
-            return distance * kWeight;
-        });
+        left, ndisp, min_disp, fx::kCostOutside,
+        [&](int x, int y, int right_x) { return pixel_cost(l, x, y, r, right_x, y); });
 }
 
 }  // namespace stereo::census::naive

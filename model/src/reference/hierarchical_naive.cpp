@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "stereo/edge_frontend.hpp"
 #include "stereo/hierarchical_reference.hpp"
 #include "stereo/pipeline.hpp"
 #include "stereo/reference.hpp"
@@ -38,16 +39,29 @@ bool agree(std::int64_t neighbour, std::int64_t centre) {
     return 2 * std::abs(neighbour - centre) < centre;
 }
 
-// The cost (AD, or LCDM when `lcdm`) of left pixel (x, y) against right pixel (x - d, y + v).
-std::int64_t pixel_cost(const Image& left, const Image& right, int x, int y, int d, int v,
-                        bool lcdm) {
+// The images a level's cost reads: the pixels, and for census their naive luma.
+struct CostImages {
+    const Image& left;
+    const Image& right;
+    std::string_view cost;  // "ad", "lcdm" or "census"
+    Image left_grey;
+    Image right_grey;
+};
+
+// The cost of left pixel (x, y) against right pixel (x - d, y + v).
+std::int64_t pixel_cost(const CostImages& images, int x, int y, int d, int v) {
+    const Image& left = images.left;
+    const Image& right = images.right;
     const int xr = x - d;
     const int yr = y + v;
     if (xr < 0 || xr >= right.width || yr < 0 || yr >= right.height) {
         return fx::kCostOutside;
     }
-    if (lcdm) {
+    if (images.cost == "lcdm") {
         return lcdm::naive::pixel_cost(left, x, y, right, xr, yr, lcdm::kDarkFloor);
+    }
+    if (images.cost == "census") {
+        return census::naive::pixel_cost(images.left_grey, x, y, images.right_grey, xr, yr);
     }
     std::int64_t sum = 0;
     for (int c = 0; c < fx::kChannels; ++c) {
@@ -82,10 +96,13 @@ Image downscale_area(const Image& image, int factor) {
 LevelMap match_level(const Image& left, const Image& right, const CandidateGrid& grid,
                      const LevelParams& level, bool use_ca, CaNeighbours neighbours,
                      std::string_view cost) {
-    if (cost != "ad" && cost != "lcdm") {
-        throw std::invalid_argument("the naive hierarchical search has only the ad and lcdm costs");
+    if (cost != "ad" && cost != "lcdm" && cost != "census") {
+        throw std::invalid_argument(
+            "the naive hierarchical search has only the ad, census and lcdm costs");
     }
-    const bool lcdm = cost == "lcdm";
+    const bool census = cost == "census";
+    const CostImages images{left, right, cost, census ? edge_frontend::naive::luma(left) : Image{},
+                            census ? edge_frontend::naive::luma(right) : Image{}};
     const int width = left.width;
     const int height = left.height;
     const int planes = grid.cols * grid.rows;
@@ -109,7 +126,7 @@ LevelMap match_level(const Image& left, const Image& right, const CandidateGrid&
                         }
                         const auto [d, v] = displacement(x + i, y + j, k);
                         sum += static_cast<std::int64_t>(kernel[i + r]) * kernel[j + r] *
-                               pixel_cost(left, right, x + i, y + j, d, v, lcdm);
+                               pixel_cost(images, x + i, y + j, d, v);
                     }
                 }
                 aggregated.at(x, y, k) = (sum + (1 << (fx::kAggShift - 1))) >> fx::kAggShift;
