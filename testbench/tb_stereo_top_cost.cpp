@@ -25,10 +25,7 @@ namespace {
 
 using tb::same_map;
 
-#ifndef STEREO_TB_COST_CONFIG
-#define STEREO_TB_COST_CONFIG "small-lcdm"
-#endif
-
+// STEREO_TB_COST_CONFIG: the configuration's name, set by testbench/CMakeLists.txt for each target.
 const TopConfig& config() {
     return top_config_named(STEREO_TB_COST_CONFIG);
 }

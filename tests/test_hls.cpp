@@ -484,6 +484,27 @@ DisparityMap run_top(hls::pipeline<WIDTH, HEIGHT, NDISP, WINDOW, MAX_MIN_DISP>& 
     return to_label_map(run_top_validated(state, left, right, params, expected_status));
 }
 
+// Steps a reset pipeline through the pair's raster, then zero pixels, `steps` times in all, and
+// returns the step at which the frame's last pixel reached the output register (-1: never).
+template <class Pipeline, int WINDOW>
+int last_output_step(Pipeline& state, const Image& left, const Image& right,
+                     const hls::FrameConfig<WINDOW>& cfg, int steps) {
+    state.reset();
+    int last_step = -1;
+    for (int step = 0; step < steps; ++step) {
+        const int x = step % left.width;
+        const int y = step / left.width;
+        const bool in_frame = y < left.height;
+        state.step(static_cast<hls::coord_t>(x), static_cast<hls::coord_t>(y),
+                   in_frame ? rgb_at(left, x, y) : hls::Rgb{},
+                   in_frame ? rgb_at(right, x, y) : hls::Rgb{}, cfg);
+        if (state.out_x() == left.width - 1 && state.out_y() == left.height - 1) {
+            last_step = step;
+        }
+    }
+    return last_step;
+}
+
 TEST(HlsTop, LastResultLeavesAfterTheDocumentedLatency) {
     // hls/README.md: D = (R + 2) * W + R + 9 + N + K pixel steps (the RTL takes 2 more), the sum
     // of the stage latencies 1 + K + (R*W + R + 2) + 2 (W + 2) + 1 measured one by one above,
@@ -505,20 +526,9 @@ TEST(HlsTop, LastResultLeavesAfterTheDocumentedLatency) {
         auto frame_cfg = cfg;
         frame_cfg.min_disp = min_disp;
         const auto state = std::make_unique<hls::pipeline<64, 64, N, kWindow>>();
-        state->reset();
-        int last_step = -1;
-        for (int step = 0; step < width * height + 3 * hls::pipeline_delay<N, kWindow>(width);
-             ++step) {
-            const int x = step % width;
-            const int y = step / width;
-            const bool in_frame = y < height;
-            state->step(static_cast<hls::coord_t>(x), static_cast<hls::coord_t>(y),
-                        in_frame ? rgb_at(left, x, y) : hls::Rgb{},
-                        in_frame ? rgb_at(right, x, y) : hls::Rgb{}, frame_cfg);
-            if (state->out_x() == width - 1 && state->out_y() == height - 1) {
-                last_step = step;
-            }
-        }
+        const int last_step =
+            last_output_step(*state, left, right, frame_cfg,
+                             width * height + 3 * hls::pipeline_delay<N, kWindow>(width));
         EXPECT_EQ(last_step + 1, (hls::frame_steps<N, kWindow>(width, height, min_disp)))
             << "min_disp " << min_disp;
     }
@@ -741,21 +751,9 @@ TEST(HlsTop, CensusStageAddsItsLatency) {
     const auto cfg = hls::frame_config<kWindow>(params, width, height);
     const auto state = std::make_unique<
         hls::pipeline<64, 64, N, kWindow, table::kDefaultMaxMinDisp, hls::census_measure>>();
-    state->reset();
-    int last_step = -1;
-    for (int step = 0;
-         step < width * height + 3 * hls::pipeline_delay<N, kWindow>(width) + 2 * width + 3;
-         ++step) {
-        const int x = step % width;
-        const int y = step / width;
-        const bool in_frame = y < height;
-        state->step(static_cast<hls::coord_t>(x), static_cast<hls::coord_t>(y),
-                    in_frame ? rgb_at(left, x, y) : hls::Rgb{},
-                    in_frame ? rgb_at(right, x, y) : hls::Rgb{}, cfg);
-        if (state->out_x() == width - 1 && state->out_y() == height - 1) {
-            last_step = step;
-        }
-    }
+    const int last_step = last_output_step(
+        *state, left, right, cfg,
+        width * height + 3 * hls::pipeline_delay<N, kWindow>(width) + 2 * width + 3);
     EXPECT_EQ(last_step + 1, (hls::frame_steps<N, kWindow, hls::census_measure>(width, height)));
 }
 

@@ -25,22 +25,6 @@
 
 namespace stereo::hls {
 
-// The census cost: the delay lines carry the codes.
-struct census_measure {
-    using feature = Rgb;
-    static feature convert(const Rgb& code) { return code; }
-    static cost_t distance(const Rgb& a, const Rgb& b) {
-#pragma HLS INLINE
-        const auto bits = [](const Rgb& c) {
-            return (std::uint32_t{c.r} << 16) | (std::uint32_t{c.g} << 8) | c.b;
-        };
-        return static_cast<cost_t>(std::popcount(bits(a) ^ bits(b)) * fx::kCensusWeight);
-    }
-};
-
-template <class MEASURE>
-inline constexpr bool kIsCensus = std::is_same_v<MEASURE, census_measure>;
-
 // BT.601 integer luma of one pixel.
 inline pixel_t census_luma(const Rgb& p) {
 #pragma HLS INLINE
@@ -135,5 +119,21 @@ class census_transform : public coord_output {
     Rgb out_left_;
     Rgb out_right_;
 };
+
+// The census cost: the delay lines carry the codes.
+struct census_measure {
+    using feature = Rgb;
+    static feature convert(const Rgb& code) { return code; }
+    static cost_t distance(const Rgb& a, const Rgb& b) {
+#pragma HLS INLINE
+        const auto bits = [](const Rgb& c) {
+            return (std::uint32_t{c.r} << 16) | (std::uint32_t{c.g} << 8) | c.b;
+        };
+        return static_cast<cost_t>(std::popcount(bits(a) ^ bits(b)) * fx::kCensusWeight);
+    }
+};
+
+template <class MEASURE>
+inline constexpr bool kIsCensus = std::is_same_v<MEASURE, census_measure>;
 
 }  // namespace stereo::hls
