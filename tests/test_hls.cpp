@@ -716,14 +716,20 @@ TEST(HlsCensus, MeasureIsTheWeightedHammingDistance) {
     EXPECT_EQ(hls::census_measure::distance(zero, ones), fx::kCensusBits * fx::kCensusWeight);
 }
 
-TEST(HlsMatch, CensusCostEqualsModel) {
-    auto rng = seeded(32);
+// A cost plug-in through the HLS pipeline at three windows (CA on where the window is wider
+// than a pixel), on a random colour pair.
+void expect_cost_equals_model(const std::string& cost, std::mt19937& rng) {
     const auto [left, right] = test::shifted_pair(61, 37, 3, 4, 8, rng);
     for (const int window : {1, 5, 11}) {
         MatchParams params{16, window, fx::kDefaultSigma, window != 1};
-        params.cost = "census";
-        expect_match(left, right, params, "census");
+        params.cost = cost;
+        expect_match(left, right, params, cost);
     }
+}
+
+TEST(HlsMatch, CensusCostEqualsModel) {
+    auto rng = seeded(32);
+    expect_cost_equals_model("census", rng);
     const auto [grey_left, grey_right] = test::shifted_pair(45, 30, 1, 3, 8, rng);
     MatchParams params{16, 5, fx::kDefaultSigma, true};
     params.cost = "census";
@@ -826,12 +832,7 @@ TEST(HlsMatch, SmallRandomImagesOverTheParameters) {
 
 TEST(HlsMatch, LcdmCostEqualsModel) {
     auto rng = seeded(22);
-    const auto [left, right] = test::shifted_pair(61, 37, 3, 4, 8, rng);
-    for (const int window : {1, 5, 11}) {
-        MatchParams params{16, window, fx::kDefaultSigma, window != 1};
-        params.cost = "lcdm";
-        expect_match(left, right, params, "lcdm");
-    }
+    expect_cost_equals_model("lcdm", rng);
     MatchParams params;
     params.cost = "lcdm";
     const Image grey = test::random_image(61, 37, 1, rng);

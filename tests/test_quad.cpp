@@ -48,24 +48,31 @@ MatchParams small_params(int ndisp, int min_disp, bool validation) {
 
 TEST(QuadPairs, ModelEqualsNaiveAndVolumeForm) {
     auto rng = test::seeded_rng(22);
-    for (const Pair pair : kPairs) {
-        for (const int channels : {1, 3}) {
-            for (const bool validation : {false, true}) {
-                // Odd sizes, a signed range, noise so that the CA rules and stage 6 all act.
-                const auto [reference, partner] = shifted_views(pair, -2, 31, 27, channels, rng);
-                Image noisy = partner;
-                std::uniform_int_distribution<int> noise(-12, 12);
-                for (auto& v : noisy.pixels) {
-                    v = static_cast<std::uint8_t>(std::clamp(v + noise(rng), 0, 255));
+    for (const std::string_view cost : kPairCosts) {
+        for (const Pair pair : kPairs) {
+            for (const int channels : {1, 3}) {
+                if (cost == "lcdm" && channels == 1) {
+                    continue;  // colour only (QuadErrors)
                 }
-                const MatchParams params = small_params(7, -4, validation);
-                const auto model = match_pair(pair, reference, noisy, params);
-                SCOPED_TRACE(std::string(name(pair)) + " channels " + std::to_string(channels) +
-                             (validation ? " validated" : " plain"));
-                EXPECT_TRUE(
-                    same_validated(naive::match_pair(pair, reference, noisy, params), model));
-                EXPECT_TRUE(
-                    same_validated(match_pair_volume(pair, reference, noisy, params), model));
+                for (const bool validation : {false, true}) {
+                    // Odd sizes, a signed range, noise so that the CA rules and stage 6 all act.
+                    const auto [reference, partner] =
+                        shifted_views(pair, -2, 31, 27, channels, rng);
+                    Image noisy = partner;
+                    std::uniform_int_distribution<int> noise(-12, 12);
+                    for (auto& v : noisy.pixels) {
+                        v = static_cast<std::uint8_t>(std::clamp(v + noise(rng), 0, 255));
+                    }
+                    MatchParams params = small_params(7, -4, validation);
+                    params.cost = cost;
+                    const auto model = match_pair(pair, reference, noisy, params);
+                    SCOPED_TRACE(std::string(cost) + " " + std::string(name(pair)) + " channels " +
+                                 std::to_string(channels) + (validation ? " validated" : " plain"));
+                    EXPECT_TRUE(
+                        same_validated(naive::match_pair(pair, reference, noisy, params), model));
+                    EXPECT_TRUE(
+                        same_validated(match_pair_volume(pair, reference, noisy, params), model));
+                }
             }
         }
     }
@@ -73,30 +80,34 @@ TEST(QuadPairs, ModelEqualsNaiveAndVolumeForm) {
 
 TEST(QuadPairs, KnownShiftsAreRecoveredExactly) {
     auto rng = test::seeded_rng(23);
-    for (const Pair pair : {Pair::vertical, Pair::diagonal, Pair::horizontal}) {
-        for (const int d : {-3, 0, 4}) {
-            const auto [reference, partner] = shifted_views(pair, d, 40, 36, 3, rng);
-            const MatchParams params = small_params(11, -5, false);
-            const auto result = match_pair(pair, reference, partner, params);
-            const int reach = invalid_border(params).reach;
-            const Step s = step(pair);
-            int checked = 0;
-            for (int y = reach; y < reference.height - reach; ++y) {
-                for (int x = reach; x < reference.width - reach; ++x) {
-                    const int xs = x - d * s.x;
-                    const int ys = y - d * s.y;
-                    if (xs < reach || ys < reach || xs >= reference.width - reach ||
-                        ys >= reference.height - reach) {
-                        continue;
+    for (const std::string_view cost : kPairCosts) {
+        for (const Pair pair : {Pair::vertical, Pair::diagonal, Pair::horizontal}) {
+            for (const int d : {-3, 0, 4}) {
+                const auto [reference, partner] = shifted_views(pair, d, 40, 36, 3, rng);
+                MatchParams params = small_params(11, -5, false);
+                params.cost = cost;
+                const auto result = match_pair(pair, reference, partner, params);
+                const int reach = invalid_border(params).reach;
+                const Step s = step(pair);
+                int checked = 0;
+                for (int y = reach; y < reference.height - reach; ++y) {
+                    for (int x = reach; x < reference.width - reach; ++x) {
+                        const int xs = x - d * s.x;
+                        const int ys = y - d * s.y;
+                        if (xs < reach || ys < reach || xs >= reference.width - reach ||
+                            ys >= reference.height - reach) {
+                            continue;
+                        }
+                        const auto i = result.index(x, y);
+                        ASSERT_TRUE(result.valid(i))
+                            << cost << " " << name(pair) << " d " << d << " at " << x << "," << y;
+                        ASSERT_EQ(result.fixed[i], 16 * d)
+                            << cost << " " << name(pair) << " at " << x << "," << y;
+                        ++checked;
                     }
-                    const auto i = result.index(x, y);
-                    ASSERT_TRUE(result.valid(i))
-                        << name(pair) << " d " << d << " at " << x << "," << y;
-                    ASSERT_EQ(result.fixed[i], 16 * d) << name(pair) << " at " << x << "," << y;
-                    ++checked;
                 }
+                EXPECT_GT(checked, 100);
             }
-            EXPECT_GT(checked, 100);
         }
     }
 }
@@ -245,7 +256,17 @@ TEST(QuadMatch, ViewsThatDoNotFitAreRefused) {
     EXPECT_NO_THROW(validate_pair(Pair::horizontal, small_params(4, 30, false), 40, 30));
     MatchParams census = params;
     census.cost = "census";
-    EXPECT_THROW(validate_pair(Pair::vertical, census, 40, 30), std::invalid_argument);
+    EXPECT_NO_THROW(validate_pair(Pair::vertical, census, 40, 30));
+    MatchParams zncc = params;
+    zncc.cost = "zncc";
+    EXPECT_NO_THROW(validate_pair(Pair::horizontal, zncc, 40, 30));
+    EXPECT_THROW(validate_pair(Pair::vertical, zncc, 40, 30), std::invalid_argument);
+    EXPECT_THROW(validate_pair(Pair::diagonal, zncc, 40, 30), std::invalid_argument);
+    // LCDM compares colours: grey views fail with a clear error, in the model and the reference.
+    MatchParams lcdm = params;
+    lcdm.cost = "lcdm";
+    EXPECT_THROW(match_pair(Pair::diagonal, grey, grey, lcdm), std::invalid_argument);
+    EXPECT_THROW(naive::match_pair(Pair::diagonal, grey, grey, lcdm), std::invalid_argument);
 }
 
 TEST(QuadLightField, EveryPairFollowsTheGridGeometry) {

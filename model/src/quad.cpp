@@ -1,12 +1,14 @@
 // Quad-camera matching (docs/quad.md): the three pair geometries and the certainty fusion.
 #include "stereo/quad.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <future>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
+#include "stereo/stages.hpp"
 #include "stereo/stages/validate.hpp"
 
 namespace stereo::quad {
@@ -24,39 +26,33 @@ bool partner_inside(Step s, int x, int y, int d, int width, int height, int reac
     return xs >= reach && xs < width - reach && ys >= reach && ys < height - reach;
 }
 
-// Stage 1 along the direction: plane k holds d = min_disp + k, kCostOutside where the partner
-// pixel leaves the image. A grey image counts its one channel three times.
-Dsi direction_cost(Step s, const Image& reference, const Image& partner, int ndisp, int min_disp) {
+// Stage 1 along the direction, through the cost plug-in (stages.hpp): plane k holds d =
+// min_disp + k, kCostOutside where the partner pixel leaves the image. The plug-in's row() takes
+// the partner row and column offset, so every pixel-pair cost (quad::kPairCosts) runs along any
+// direction.
+Dsi direction_cost(Step s, const Image& reference, const Image& partner,
+                   const MatchParams& params) {
     const int width = reference.width;
     const int height = reference.height;
-    const int channels = reference.channels;
-    Dsi dsi(width, height, ndisp);
-    for (int k = 0; k < ndisp; ++k) {
-        const int d = min_disp + k;
+    const auto cost = make_cost(params.cost);
+    const PlanarImage ref = cost->prepare(reference);
+    const PlanarImage par = cost->prepare(partner);
+    Dsi dsi(width, height, params.ndisp);
+    for (int k = 0; k < params.ndisp; ++k) {
+        const int d = params.min_disp + k;
+        const int shift = d * s.x;
+        // The columns whose partner x - shift lies inside [0, width).
+        const int x0 = std::clamp(shift, 0, width);
+        const int x1 = std::clamp(width + shift, 0, width);
         const auto plane = dsi.plane(k);
+        std::fill(plane.begin(), plane.end(), static_cast<Dsi::Value>(fx::kCostOutside));
         for (int y = 0; y < height; ++y) {
             const int ys = y - d * s.y;
-            const bool row_inside = ys >= 0 && ys < height;
-            const std::uint8_t* ref_row =
-                &reference.pixels[static_cast<std::size_t>(y) * width * channels];
-            for (int x = 0; x < width; ++x) {
-                const int xs = x - d * s.x;
-                Dsi::Value& cell = plane[static_cast<std::size_t>(y) * width + x];
-                if (!row_inside || xs < 0 || xs >= width) {
-                    cell = fx::kCostOutside;
-                    continue;
-                }
-                const std::uint8_t* a = ref_row + static_cast<std::size_t>(x) * channels;
-                const std::uint8_t* b =
-                    &partner.pixels[(static_cast<std::size_t>(ys) * width + xs) * channels];
-                int sum = 0;
-                if (channels == 3) {
-                    sum = std::abs(a[0] - b[0]) + std::abs(a[1] - b[1]) + std::abs(a[2] - b[2]);
-                } else {
-                    sum = 3 * std::abs(a[0] - b[0]);
-                }
-                cell = static_cast<Dsi::Value>(sum);
+            if (ys < 0 || ys >= height || x1 <= x0) {
+                continue;
             }
+            cost->row(ref, par, y, ys, x0, x1 - x0, shift,
+                      &plane[static_cast<std::size_t>(y) * width + x0]);
         }
     }
     return dsi;
@@ -157,9 +153,8 @@ Dsi pair_volume(Pair pair, const Image& reference, const Image& partner,
                 const MatchParams& params) {
     check_pair(reference, partner);
     validate_pair(pair, params, reference.width, reference.height);
-    Dsi volume =
-        aggregate(direction_cost(step(pair), reference, partner, params.ndisp, params.min_disp),
-                  gaussian_kernel(params.window, params.sigma));
+    Dsi volume = aggregate(direction_cost(step(pair), reference, partner, params),
+                           gaussian_kernel(params.window, params.sigma));
     if (params.use_ca) {
         volume = ca_rule2(ca_rule1(volume));
     }
@@ -243,9 +238,12 @@ FusionKey fusion_key(std::string_view name) {
 
 void validate_pair(Pair pair, const MatchParams& params, int width, int height) {
     validate_params(params);
-    if (pair != Pair::horizontal && params.cost != "ad") {
-        throw std::invalid_argument("the " + std::string(name(pair)) +
-                                    " pair supports the ad cost only, not " + params.cost);
+    if (pair != Pair::horizontal &&
+        std::find(kPairCosts.begin(), kPairCosts.end(), params.cost) == kPairCosts.end()) {
+        throw std::invalid_argument(
+            "the " + std::string(name(pair)) +
+            " pair supports the pixel-pair costs ad, census and lcdm, not " + params.cost +
+            " (a window cost that is defined along rows)");
     }
     // The disparity range runs along the search axis: the width for the horizontal pair, the
     // height for the vertical pair, both for the diagonal.
@@ -293,7 +291,9 @@ ValidatedDisparity transpose(const ValidatedDisparity& map) {
 
 ValidatedDisparity match_pair_volume(Pair pair, const Image& reference, const Image& partner,
                                      const MatchParams& params) {
-    return match_pair_with_cost(pair, reference, partner, params).map;
+    return direction_validate(pair_volume(pair, reference, partner, params), step(pair),
+                              params.min_disp, params.validation, invalid_border(params))
+        .map;
 }
 
 PairMatch match_pair_with_cost(Pair pair, const Image& reference, const Image& partner,
@@ -325,17 +325,8 @@ PairMatch match_pair_with_cost(Pair pair, const Image& reference, const Image& p
 
 ValidatedDisparity match_pair(Pair pair, const Image& reference, const Image& partner,
                               const MatchParams& params) {
-    check_pair(reference, partner);
-    validate_pair(pair, params, reference.width, reference.height);
-    switch (pair) {
-        case Pair::horizontal:
-            return match_validated(reference, partner, params);
-        case Pair::vertical:
-            return transpose(match_validated(transpose(reference), transpose(partner), params));
-        case Pair::diagonal:
-            return match_pair_volume(pair, reference, partner, params);
-    }
-    throw std::invalid_argument("unknown pair");
+    // The winner costs come for free from the streaming selector (and the diagonal's volume).
+    return match_pair_with_cost(pair, reference, partner, params).map;
 }
 
 QuadResult fuse(std::array<ValidatedDisparity, 3> pairs) {

@@ -6,8 +6,10 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "stereo/edge_frontend.hpp"
 #include "stereo/quad.hpp"
 #include "stereo/reference.hpp"
+#include "stereo/stages/lcdm.hpp"
 
 namespace stereo::quad::naive {
 namespace {
@@ -16,24 +18,42 @@ bool inside(int x, int y, int width, int height, int margin) {
     return x >= margin && y >= margin && x < width - margin && y < height - margin;
 }
 
-Dsi cost(Step s, const Image& reference, const Image& partner, int ndisp, int min_disp) {
-    Dsi dsi(reference.width, reference.height, ndisp);
+// One reference pixel against one partner pixel, both inside, by the cost's definition.
+int pixel_cost(const MatchParams& params, const Image& reference, int x, int y,
+               const Image& partner, int xs, int ys, const Image& reference_grey,
+               const Image& partner_grey) {
+    if (params.cost == "census") {
+        return census::naive::pixel_cost(reference_grey, x, y, partner_grey, xs, ys);
+    }
+    if (params.cost == "lcdm") {
+        return lcdm::naive::pixel_cost(reference, x, y, partner, xs, ys, lcdm::kDarkFloor);
+    }
+    int sum = 0;
+    for (int c = 0; c < 3; ++c) {
+        const int channel = reference.channels == 3 ? c : 0;
+        sum += std::abs(reference.at(x, y, channel) - partner.at(xs, ys, channel));
+    }
+    return sum;
+}
+
+Dsi cost(Step s, const Image& reference, const Image& partner, const MatchParams& params) {
+    if (params.cost == "lcdm" && (reference.channels != 3 || partner.channels != 3)) {
+        throw std::invalid_argument("the lcdm cost needs colour images");
+    }
+    const Image reference_grey = edge_frontend::naive::luma(reference);
+    const Image partner_grey = edge_frontend::naive::luma(partner);
+    Dsi dsi(reference.width, reference.height, params.ndisp);
     for (int y = 0; y < reference.height; ++y) {
         for (int x = 0; x < reference.width; ++x) {
-            for (int k = 0; k < ndisp; ++k) {
-                const int d = min_disp + k;
+            for (int k = 0; k < params.ndisp; ++k) {
+                const int d = params.min_disp + k;
                 const int xs = x - d * s.x;
                 const int ys = y - d * s.y;
-                if (!inside(xs, ys, reference.width, reference.height, 0)) {
-                    dsi.at(x, y, k) = fx::kCostMax;
-                    continue;
-                }
-                int sum = 0;
-                for (int c = 0; c < 3; ++c) {
-                    const int channel = reference.channels == 3 ? c : 0;
-                    sum += std::abs(reference.at(x, y, channel) - partner.at(xs, ys, channel));
-                }
-                dsi.at(x, y, k) = static_cast<Dsi::Value>(sum);
+                dsi.at(x, y, k) =
+                    inside(xs, ys, reference.width, reference.height, 0)
+                        ? static_cast<Dsi::Value>(pixel_cost(params, reference, x, y, partner, xs,
+                                                             ys, reference_grey, partner_grey))
+                        : static_cast<Dsi::Value>(fx::kCostMax);
             }
         }
     }
@@ -45,9 +65,8 @@ Dsi final_volume(Pair pair, const Image& reference, const Image& partner,
                  const MatchParams& params) {
     check_pair(reference, partner);
     validate_pair(pair, params, reference.width, reference.height);
-    Dsi dsi = stereo::naive::aggregate(
-        cost(step(pair), reference, partner, params.ndisp, params.min_disp),
-        gaussian_kernel(params.window, params.sigma));
+    Dsi dsi = stereo::naive::aggregate(cost(step(pair), reference, partner, params),
+                                       gaussian_kernel(params.window, params.sigma));
     if (params.use_ca) {
         dsi = stereo::naive::ca_rule2(stereo::naive::ca_rule1(dsi));
     }
