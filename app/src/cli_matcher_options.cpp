@@ -72,7 +72,9 @@ bool given(const CLI::Option* option) {
 
 // The pipelines that have the default cost: every pipeline engine but the double-precision one.
 bool has_default_cost(const std::string& method, const std::string& engine) {
-    return method == "pipeline" && engine != "float";
+    // The quad pair geometries take every pixel-pair cost (quad::kPairCosts), census included.
+    return (method == "pipeline" || method == "vertical" || method == "diagonal") &&
+           engine != "float";
 }
 
 }  // namespace
@@ -202,8 +204,9 @@ void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoi
             .add_option("--cost", params.cost,
                         options.defaults_per_cost
                             ? "Matching cost: census (5x5 of the luma, Hamming; the default of "
-                              "the pipeline), ad (absolute differences over RGB, thesis Sec. "
-                              "3.1; the default of the other methods and of --engine float), "
+                              "the pipeline and the vertical / diagonal pairs), ad (absolute "
+                              "differences over RGB, thesis Sec. 3.1; the default of the other "
+                              "methods and of --engine float), "
                               "lcdm (hue-saturation distance, colour only, thesis Sec. 3.5) or "
                               "zncc (15x15; use with --window 1 --no-ca). The --uniqueness and "
                               "--lr-check defaults follow the cost (docs/results.md)"

@@ -16,6 +16,7 @@
 #include "cli.hpp"
 #include "cli_command.hpp"
 #include "cli_matcher_options.hpp"
+#include "stereo/defaults.hpp"
 #include "stereo/quad.hpp"
 #include "stereo_io/disparity_files.hpp"
 #include "stereo_io/io.hpp"
@@ -116,6 +117,7 @@ void run_quad(const QuadOptions& options) {
                               {"ca", params.use_ca},     {"valid_fraction", valid_fraction(fused)},
                               {"ms", elapsed.count()}};
     summary["fuse_by"] = options.fuse_by;
+    summary["cost"] = params.cost;
     for (const quad::Pair pair : quad::kPairs) {
         const std::string name(quad::name(pair));
         summary["pairs"][name]["valid_fraction"] =
@@ -128,10 +130,10 @@ void run_quad(const QuadOptions& options) {
         return;
     }
     std::printf(
-        "%dx%d ndisp %d min-disp %d window %d: %.1f%% valid (horizontal %.1f%%, vertical "
+        "%dx%d ndisp %d min-disp %d window %d cost %s: %.1f%% valid (horizontal %.1f%%, vertical "
         "%.1f%%, diagonal %.1f%% of the pixels won), %.1f ms\n",
         fused.width, fused.height, params.ndisp, params.min_disp, params.window,
-        100.0 * valid_fraction(fused),
+        params.cost.c_str(), 100.0 * valid_fraction(fused),
         100.0 * sources[1] / static_cast<double>(result.source.size()),
         100.0 * sources[2] / static_cast<double>(result.source.size()),
         100.0 * sources[3] / static_cast<double>(result.source.size()), elapsed.count());
@@ -155,7 +157,18 @@ void add_quad_command(CLI::App& app) {
                      "0 invalid)")
         ->required();
     options->matcher.config.pipeline.window = 13;  // the thesis' quad window
+    // `stereo match`'s default cost (chosen on the Middlebury scenes, stereo/defaults.hpp); every
+    // pair geometry takes the pixel-pair costs (quad::kPairCosts).
+    options->matcher.config.pipeline.cost = std::string(defaults::kCost);
     add_matcher_options(*command, options->matcher, MatcherChoice::fixed, {.validation = true});
+    command
+        ->add_option("--cost", options->matcher.config.pipeline.cost,
+                     "Matching cost of the three pairs: census (5x5 of the luma, Hamming; "
+                     "stereo match's default), ad (absolute differences over RGB, the thesis') or "
+                     "lcdm (hue-saturation distance, colour only)")
+        ->check(CLI::IsMember(
+            std::vector<std::string>(quad::kPairCosts.begin(), quad::kPairCosts.end())))
+        ->capture_default_str();
     std::vector<std::string> keys;  // the model's names of the fusion keys
     for (const quad::FusionKey key : quad::kFusionKeys) {
         keys.emplace_back(quad::name(key));

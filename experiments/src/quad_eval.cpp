@@ -28,7 +28,9 @@
 
 #include "cli_command.hpp"
 #include "experiments.hpp"
+#include "stereo/defaults.hpp"
 #include "stereo/quad.hpp"
+#include "stereo/speckle.hpp"
 #include "stereo_io/data_dir.hpp"
 #include "stereo_io/disparity_files.hpp"
 #include "stereo_io/io.hpp"
@@ -62,6 +64,8 @@ struct Options : cli::ReportOptions {
     std::string figures;  // folder for quad_*.png
     std::string ply;      // also write the fused n = 4 cloud here
     std::vector<int> baselines = {4, 2};
+    // The thesis' AD cost first (the figures), then `stereo match`'s default cost.
+    std::vector<std::string> costs = {"ad", std::string(defaults::kCost)};
 };
 
 struct Views {
@@ -433,6 +437,14 @@ std::string fmt(double v) {
     return text;
 }
 
+// The heading of a cost's tables.
+std::string cost_title(const std::string& cost) {
+    if (cost == "ad") {
+        return "AD cost (the thesis')";
+    }
+    return cost + " cost" + (cost == defaults::kCost ? " (`stereo match`'s default)" : "");
+}
+
 std::string markdown(const json& report) {
     std::ostringstream md;
     md << "# Quad-camera results (issue 22)\n\n"
@@ -448,7 +460,11 @@ std::string markdown(const json& report) {
           "the ground truth's extremes: `min_disp = floor(min d) - 1`, `ndisp` up to "
           "`ceil(max d) + 1`. The quad pairs use the Sec. 3.1 pipeline with a 13 x 13 window, "
           "sigma 3 (the default), CA rules on, stage 6 without uniqueness or left-right check "
-          "(dense, as in the thesis' Table 3.3; only the border rule invalidates).\n\n";
+          "(dense, as in the thesis' Table 3.3; only the border rule invalidates). Every table "
+          "is given twice: with the thesis' AD cost, and with the 5x5 census cost, which "
+          "`stereo match` and `stereo quad` use by default (chosen on the Middlebury scenes, "
+          "[results.md](results.md#defaults), not here). The two-camera rows use the same cost "
+          "as the pairs above them.\n\n";
     md << "## Masks\n\n"
        << "The light field has no occlusion masks; these are derived from the reference view's "
           "ground truth (`experiments/src/quad_eval.cpp`, `make_masks`):\n\n"
@@ -475,8 +491,9 @@ std::string markdown(const json& report) {
           "the quad row with its three pairs on three threads.\n\n";
     for (const json& block : report["baselines"]) {
         const int n = block["n"];
-        md << "## Baseline n = " << n << " (views 40 / " << 40 + n << " / " << 40 + 9 * n << " / "
-           << 40 + 10 * n << ")\n\n"
+        const std::string cost = block["cost"];
+        md << "## Baseline n = " << n << ", " << cost_title(cost) << " (views 40 / " << 40 + n
+           << " / " << 40 + 9 * n << " / " << 40 + 10 * n << ")\n\n"
            << "Search range " << block["min_disp"].get<int>() << " .. "
            << block["min_disp"].get<int>() + block["ndisp"].get<int>() - 1 << " ("
            << block["ndisp"].get<int>() << " labels); frame " << block["frame"].get<int>()
@@ -501,7 +518,7 @@ std::string markdown(const json& report) {
            << fmt(src["horizontal"]) << " %, vertical " << fmt(src["vertical"]) << " %, diagonal "
            << fmt(src["diagonal"]) << " %, none " << fmt(src["none"]) << " %.\n\n";
         const json& goals = block["goals"];
-        md << "Goals at n = " << n << ":\n\n"
+        md << "Goals at n = " << n << ", " << cost << " cost:\n\n"
            << "* fused at or below the best single pair on nonocc (" << fmt(goals["fused_nonocc"])
            << " vs " << fmt(goals["best_pair_nonocc"]) << "): **"
            << (goals["nonocc_met"].get<bool>() ? "met" : "not met") << "**\n"
@@ -514,9 +531,8 @@ std::string markdown(const json& report) {
            << " % fewer; sigma scaled: " << fmt(goals["reduction_vs_23_scaled"]) << " % fewer): **"
            << (goals["reduction_met"].get<bool>() ? "met" : "not met")
            << "** (met only when the fused map has at least 25 % fewer than both rows)\n"
-           << "* the same with `--fuse-by cost` (not the default): nonocc "
-           << fmt(goals["cost_fused_nonocc"]) << " (**"
-           << (goals["cost_nonocc_met"].get<bool>() ? "met" : "not met") << "**), all "
+           << "* the same with `--fuse-by cost`: nonocc " << fmt(goals["cost_fused_nonocc"])
+           << " (**" << (goals["cost_nonocc_met"].get<bool>() ? "met" : "not met") << "**), all "
            << fmt(goals["cost_fused_all"]) << " (**"
            << (goals["cost_all_met"].get<bool>() ? "met" : "not met") << "**), "
            << fmt(goals["cost_reduction_vs_23"]) << " % / "
@@ -532,14 +548,15 @@ std::string markdown(const json& report) {
           "its occlusions on other sides), bad > 1 %, fused by certainty (the default) and by "
           "cost; `fewer`: bad nonocc pixels fewer than the two-camera 23 x 23 (sigma 3) matcher "
           "on the reference and its horizontal partner.\n\n"
-       << "| corner | n | best pair nonocc | 23 x 23 nonocc | certainty nonocc / all | fewer % | "
-          "cost nonocc / all | fewer % |\n|---|---|---|---|---|---|---|---|\n";
+       << "| matching cost | corner | n | best pair nonocc | 23 x 23 nonocc | certainty nonocc / "
+          "all | fewer % | cost nonocc / all | fewer % |\n|---|---|---|---|---|---|---|---|---|\n";
     for (const json& row : report["orientations"]) {
-        md << "| " << row["corner"].get<std::string>() << " | " << row["n"].get<int>() << " | "
-           << fmt(row["best_pair_nonocc"]) << " | " << fmt(row["two_camera_nonocc"]) << " | "
-           << fmt(row["certainty_nonocc"]) << " / " << fmt(row["certainty_all"]) << " | "
-           << fmt(row["certainty_fewer"]) << " | " << fmt(row["cost_nonocc"]) << " / "
-           << fmt(row["cost_all"]) << " | " << fmt(row["cost_fewer"]) << " |\n";
+        md << "| " << row["cost"].get<std::string>() << " | " << row["corner"].get<std::string>()
+           << " | " << row["n"].get<int>() << " | " << fmt(row["best_pair_nonocc"]) << " | "
+           << fmt(row["two_camera_nonocc"]) << " | " << fmt(row["certainty_nonocc"]) << " / "
+           << fmt(row["certainty_all"]) << " | " << fmt(row["certainty_fewer"]) << " | "
+           << fmt(row["cost_nonocc"]) << " / " << fmt(row["cost_all"]) << " | "
+           << fmt(row["cost_fewer"]) << " |\n";
     }
     md << "\n";
     md << "## Reading the tables\n\n"
@@ -547,7 +564,8 @@ std::string markdown(const json& report) {
           "was chosen on the Middlebury 2003 pairs ([sigma-sweep.md](sigma-sweep.md)), the "
           "fusion has no numeric parameter (its key is a switch: the certainty by default, the "
           "winner cost as the alternative reported beside it; this is the only 2 x 2 scene, so "
-          "it does not choose the default, [quad.md](quad.md#the-fusion-key)), and the mask "
+          "it does not choose the default, [quad.md](quad.md#the-fusion-key)), the census cost "
+          "is `stereo match`'s default, chosen on the eight Middlebury scenes, and the mask "
           "thresholds (0.5 px occlusion margin, 1 px "
           "jump, 4 px dilation) were fixed before the first run from the bad-pixel threshold "
           "and Middlebury's practice.\n"
@@ -559,9 +577,11 @@ std::string markdown(const json& report) {
           "both rows; the sigma-3 row is the harder one.\n"
        << "* The pairs are dense (only the border rule invalidates), as in the thesis' Table "
           "3.3, so coverage inside the frame is 100 % for them and for the fused map; the "
-          "two-camera 13 x 13 row with stage 6 shows what `stereo match`'s defaults give on the "
-          "same pair (fewer pixels, and here more bad ones, since every invalid pixel counts "
-          "as bad). SGBM fills its own holes differently and is shown for reference.\n"
+          "two-camera 13 x 13 row with stage 6 shows what `stereo match`'s validation for the "
+          "cost (its uniqueness ratio and left-right tolerance, sub-pixel, the speckle filter) "
+          "gives on the same pair, every invalid pixel counted as bad: this scene chose none of "
+          "those defaults, so it is a held-out check of them. SGBM fills its own holes "
+          "differently and is shown for reference.\n"
        << "* For scale, the thesis' Table 3.3 (Tsukuba, bad > 1 nonocc / all / disc): "
           "horizontal 16.2 / 18.1 / 29.9, vertical 12.5 / 13.8 / 35.1, diagonal 10.7 / 12.4 / "
           "32.3, fused 10.8 / 12.6 / 31.5, two-camera 23 x 23 15.8 / 17.6 / 33.9 — there the "
@@ -630,11 +650,13 @@ cv::Mat flipped(const cv::Mat& mat, int code) {
     return out;
 }
 
-json orientation_study(const fs::path& folder, const cv::Mat& g, const std::vector<int>& sides) {
+json orientation_study(const fs::path& folder, const cv::Mat& g, const std::vector<int>& sides,
+                       const std::string& cost_name) {
     json out = json::array();
     for (const int n : sides) {
         for (const Orientation& o : kOrientations) {
-            std::cerr << "quad-eval: orientation " << o.corner << ", n = " << n << '\n';
+            std::cerr << "quad-eval: " << cost_name << ", orientation " << o.corner << ", n = " << n
+                      << '\n';
             const std::array<int, 4> index = {kCentreView, kCentreView + o.dx * n,
                                               kCentreView + kGridSide * o.dy * n,
                                               kCentreView + o.dx * n + kGridSide * o.dy * n};
@@ -645,7 +667,8 @@ json orientation_study(const fs::path& folder, const cv::Mat& g, const std::vect
                 images[v] = io::to_image(flipped(io::load_bgr(folder / name), o.flip), name);
             }
             const cv::Mat gt = flipped(g * n, o.flip);
-            const Setup s = setup_for(gt);
+            Setup s = setup_for(gt);
+            s.params.cost = cost_name;
             const quad::QuadViews views{images[0], images[1], images[2], images[3]};
             const quad::QuadResult by_certainty = quad::match_quad(views, s.params);
             const quad::QuadResult by_cost =
@@ -670,6 +693,7 @@ json orientation_study(const fs::path& folder, const cv::Mat& g, const std::vect
                             static_cast<double>(wide_row["bad_nonocc_pixels"].get<long long>()));
             };
             out.push_back({{"corner", o.corner},
+                           {"cost", cost_name},
                            {"n", n},
                            {"best_pair_nonocc", best_pair},
                            {"two_camera_nonocc", wide_row["bad_nonocc"]},
@@ -694,167 +718,193 @@ void run_quad_eval(const Options& options) {
     const cv::Mat g = io::load_disparity_file(gt_path, io::DisparityEncoding::pfm, 1.0);
     json report = {{"baselines", json::array()}};
     OutputFiles files;
-    for (const int n : options.baselines) {
-        std::cerr << "quad-eval: n = " << n << '\n';
-        const Views views = load_views(folder, n);
-        const cv::Mat gt = g * n;
-        const Setup setup = setup_for(gt);
-        // Named references, not a structured binding: lambdas below capture them (clang 14).
-        const double gt_min = setup.gt_min;
-        const double gt_max = setup.gt_max;
-        const MatchParams& params = setup.params;
-        const int min_disp = params.min_disp;
-        const int ndisp = params.ndisp;
-        const int max_disp = min_disp + ndisp - 1;
-        const Masks& masks = setup.masks;
-        const int frame = masks.frame;
-        std::vector<Row> rows;
-        std::array<double, 3> pair_ms{};
-        for (const Pair pair : quad::kPairs) {
-            const auto p = static_cast<std::size_t>(pair);
-            const auto map = timed(pair_ms[p], [&] {
-                return quad::match_pair(pair, views.images[0], views.images[p + 1], params);
-            });
-            rows.push_back({std::string(quad::name(pair)) + " 13 x 13", io::to_float_disparity(map),
-                            pair_ms[p], ""});
-        }
-        double quad_ms = 0.0;
-        const quad::QuadResult result = timed(quad_ms, [&] {
-            return quad::match_quad(
-                {views.images[0], views.images[1], views.images[2], views.images[3]}, params);
-        });
-        rows.push_back({"fused (quad)", io::to_float_disparity(result.fused), quad_ms,
-                        "three pairs on three threads"});
-        double cost_ms = 0.0;
-        const quad::QuadResult by_cost = timed(cost_ms, [&] {
-            return quad::match_quad(
-                {views.images[0], views.images[1], views.images[2], views.images[3]}, params, true,
-                quad::FusionKey::cost);
-        });
-        rows.push_back({"fused (quad, --fuse-by cost)", io::to_float_disparity(by_cost.fused),
-                        cost_ms, "the smallest winner cost wins"});
-        for (const double sigma : {params.sigma, params.sigma * kEquivalentWindow / 11.0}) {
-            MatchParams wide = params;
-            wide.window = kEquivalentWindow;
-            wide.sigma = sigma;
-            double ms = 0.0;
-            const auto map =
-                timed(ms, [&] { return match_validated(views.images[0], views.images[1], wide); });
-            rows.push_back(
-                {"two-camera 23 x 23", io::to_float_disparity(map), ms, "sigma " + fmt(sigma)});
-        }
-        {
-            MatchParams single = params;
-            single.validation = ValidationParams::all_on();
-            double ms = 0.0;
-            const auto map = timed(
-                ms, [&] { return match_validated(views.images[0], views.images[1], single); });
-            rows.push_back({"two-camera 13 x 13", io::to_float_disparity(map), ms,
-                            "stage 6 on: uniqueness 20, left-right 0, sub-pixel"});
-        }
-        {
-            double ms = 0.0;
-            const cv::Mat map = timed(ms, [&] { return run_sgbm(views, min_disp, ndisp); });
-            rows.push_back({"OpenCV SGBM", map, ms, "horizontal pair, block 5"});
-        }
-        json block = {{"n", n},
-                      {"min_disp", min_disp},
-                      {"ndisp", ndisp},
-                      {"gt_min", gt_min},
-                      {"gt_max", gt_max},
-                      {"frame", frame},
-                      {"pixels_all", cv::countNonZero(masks.all)},
-                      {"pixels_nonocc", cv::countNonZero(masks.nonocc)},
-                      {"pixels_disc", cv::countNonZero(masks.disc)},
-                      {"rows", json::array()}};
-        for (const Row& row : rows) {
-            block["rows"].push_back(score(row, gt, masks));
-        }
-        std::array<double, 4> share{};
-        for (const auto s : result.source) {
-            share[s] += 100.0 / static_cast<double>(result.source.size());
-        }
-        block["source_share"] = {{"none", share[0]},
-                                 {"horizontal", share[1]},
-                                 {"vertical", share[2]},
-                                 {"diagonal", share[3]}};
-        const json& r = block["rows"];
-        const double best_nonocc =
-            std::min({r[0]["bad_nonocc"].get<double>(), r[1]["bad_nonocc"].get<double>(),
-                      r[2]["bad_nonocc"].get<double>()});
-        const double best_all =
-            std::min({r[0]["bad_all"].get<double>(), r[1]["bad_all"].get<double>(),
-                      r[2]["bad_all"].get<double>()});
-        const double fused_nonocc = r[3]["bad_nonocc"];
-        const double fused_all = r[3]["bad_all"];
-        // How many fewer bad nonocc pixels a fused row has than a two-camera row, in %.
-        const auto reduction = [](const json& fused, const json& wide) {
-            return 100.0 *
-                   (1.0 - static_cast<double>(fused["bad_nonocc_pixels"].get<long long>()) /
-                              static_cast<double>(wide["bad_nonocc_pixels"].get<long long>()));
-        };
-        const double red = reduction(r[3], r[5]);
-        const double red_scaled = reduction(r[3], r[6]);
-        const double cost_red = reduction(r[4], r[5]);
-        const double cost_red_scaled = reduction(r[4], r[6]);
-        const double best_disc =
-            std::min({r[0]["bad_disc"].get<double>(), r[1]["bad_disc"].get<double>(),
-                      r[2]["bad_disc"].get<double>()});
-        block["goals"] = {{"fused_disc", r[3]["bad_disc"].get<double>()},
-                          {"best_pair_disc", best_disc},
-                          {"fused_nonocc", fused_nonocc},
-                          {"best_pair_nonocc", best_nonocc},
-                          {"nonocc_met", fused_nonocc <= best_nonocc},
-                          {"fused_all", fused_all},
-                          {"best_pair_all", best_all},
-                          {"all_met", fused_all <= best_all},
-                          {"reduction_vs_23", red},
-                          {"reduction_vs_23_scaled", red_scaled},
-                          {"reduction_met", red >= 25.0 && red_scaled >= 25.0},
-                          {"cost_fused_nonocc", r[4]["bad_nonocc"].get<double>()},
-                          {"cost_fused_all", r[4]["bad_all"].get<double>()},
-                          {"cost_nonocc_met", r[4]["bad_nonocc"].get<double>() <= best_nonocc},
-                          {"cost_all_met", r[4]["bad_all"].get<double>() <= best_all},
-                          {"cost_reduction_vs_23", cost_red},
-                          {"cost_reduction_vs_23_scaled", cost_red_scaled},
-                          {"cost_reduction_met", cost_red >= 25.0 && cost_red_scaled >= 25.0}};
-        report["baselines"].push_back(block);
-
-        if (n == options.baselines.front() && !options.figures.empty()) {
-            const io::EvalInput fused_input = eval_input(rows[3].disparity, "fused", gt, masks);
-            const fs::path dir(options.figures);
-            const std::string suffix = "_n" + std::to_string(n) + ".png";
-            files.emplace_back(
-                dir / ("quad_montage" + suffix),
-                io::encode_png(montage(views, result, gt, fused_input, n, min_disp, max_disp),
-                               dir / ("quad_montage" + suffix)));
-            // The light field's camera constants are not in the data folder: a nominal focal
-            // length of 512 px, one unit of baseline per view step, and a disparity offset of
-            // 8 n (cloud_note), so the cloud's shape is right up to that projective choice.
-            const io::CloudGeometry geometry{512.0, static_cast<double>(n), 255.5, 255.5, 8.0 * n};
-            const std::string ply = io::encode_ply(
-                io::disparity_to_points(rows[3].disparity, views.bgr[0], geometry), true);
-            const auto points = io::decode_ply(ply, "fused cloud");
-            files.emplace_back(dir / ("quad_cloud" + suffix),
-                               io::encode_png(render_cloud(points, 640, 25.0 * CV_PI / 180.0),
-                                              dir / ("quad_cloud" + suffix)));
-            if (!options.ply.empty()) {
-                files.emplace_back(options.ply, ply);
+    for (const std::string& cost_name : options.costs) {
+        for (const int n : options.baselines) {
+            std::cerr << "quad-eval: " << cost_name << ", n = " << n << '\n';
+            const Views views = load_views(folder, n);
+            const cv::Mat gt = g * n;
+            const Setup setup = setup_for(gt);
+            // Named references, not a structured binding: lambdas below capture them (clang 14).
+            const double gt_min = setup.gt_min;
+            const double gt_max = setup.gt_max;
+            MatchParams cost_params = setup.params;
+            cost_params.cost = cost_name;
+            const MatchParams& params = cost_params;
+            const int min_disp = params.min_disp;
+            const int ndisp = params.ndisp;
+            const int max_disp = min_disp + ndisp - 1;
+            const Masks& masks = setup.masks;
+            const int frame = masks.frame;
+            std::vector<Row> rows;
+            std::array<double, 3> pair_ms{};
+            for (const Pair pair : quad::kPairs) {
+                const auto p = static_cast<std::size_t>(pair);
+                const auto map = timed(pair_ms[p], [&] {
+                    return quad::match_pair(pair, views.images[0], views.images[p + 1], params);
+                });
+                rows.push_back({std::string(quad::name(pair)) + " 13 x 13",
+                                io::to_float_disparity(map), pair_ms[p], ""});
             }
-            report["cloud_note"] =
-                "The light field's camera constants are not in the data folder, so the cloud uses "
-                "a nominal focal length of 512 px, one unit of baseline per view step and a "
-                "disparity offset of 8 n (`--doffs`; any offset beyond the scene's most negative "
-                "g = -3.13 gives positive depths, 8 keeps the depth range of the bust and the wall "
-                "within a factor of two so that both are visible): the shape is right up to that "
-                "projective choice. " +
-                std::to_string(points.size()) + " points.";
+            double quad_ms = 0.0;
+            const quad::QuadResult result = timed(quad_ms, [&] {
+                return quad::match_quad(
+                    {views.images[0], views.images[1], views.images[2], views.images[3]}, params);
+            });
+            rows.push_back({"fused (quad)", io::to_float_disparity(result.fused), quad_ms,
+                            "three pairs on three threads"});
+            double cost_ms = 0.0;
+            const quad::QuadResult by_cost = timed(cost_ms, [&] {
+                return quad::match_quad(
+                    {views.images[0], views.images[1], views.images[2], views.images[3]}, params,
+                    true, quad::FusionKey::cost);
+            });
+            rows.push_back({"fused (quad, --fuse-by cost)", io::to_float_disparity(by_cost.fused),
+                            cost_ms, "the smallest winner cost wins"});
+            for (const double sigma : {params.sigma, params.sigma * kEquivalentWindow / 11.0}) {
+                MatchParams wide = params;
+                wide.window = kEquivalentWindow;
+                wide.sigma = sigma;
+                double ms = 0.0;
+                const auto map = timed(
+                    ms, [&] { return match_validated(views.images[0], views.images[1], wide); });
+                rows.push_back(
+                    {"two-camera 23 x 23", io::to_float_disparity(map), ms, "sigma " + fmt(sigma)});
+            }
+            {
+                // `stereo match`'s validation for this cost: its uniqueness ratio and left-right
+                // tolerance (stereo/defaults.hpp), sub-pixel, then the speckle filter.
+                const defaults::Validation chosen = defaults::validation_for(cost_name);
+                MatchParams single = params;
+                single.validation = {true, chosen.uniqueness, true, chosen.lr_tolerance, true};
+                double ms = 0.0;
+                const auto map = timed(ms, [&] {
+                    ValidatedDisparity out =
+                        match_validated(views.images[0], views.images[1], single);
+                    speckle::filter(out, speckle::Params::defaults());
+                    return out;
+                });
+                rows.push_back({"two-camera 13 x 13", io::to_float_disparity(map), ms,
+                                "stereo match's stage 6 for the cost: uniqueness " +
+                                    std::to_string(chosen.uniqueness) + ", left-right " +
+                                    std::to_string(chosen.lr_tolerance) +
+                                    ", sub-pixel, speckle filter"});
+            }
+            {
+                double ms = 0.0;
+                const cv::Mat map = timed(ms, [&] { return run_sgbm(views, min_disp, ndisp); });
+                rows.push_back({"OpenCV SGBM", map, ms, "horizontal pair, block 5"});
+            }
+            json block = {{"n", n},
+                          {"cost", cost_name},
+                          {"min_disp", min_disp},
+                          {"ndisp", ndisp},
+                          {"gt_min", gt_min},
+                          {"gt_max", gt_max},
+                          {"frame", frame},
+                          {"pixels_all", cv::countNonZero(masks.all)},
+                          {"pixels_nonocc", cv::countNonZero(masks.nonocc)},
+                          {"pixels_disc", cv::countNonZero(masks.disc)},
+                          {"rows", json::array()}};
+            for (const Row& row : rows) {
+                block["rows"].push_back(score(row, gt, masks));
+            }
+            std::array<double, 4> share{};
+            for (const auto s : result.source) {
+                share[s] += 100.0 / static_cast<double>(result.source.size());
+            }
+            block["source_share"] = {{"none", share[0]},
+                                     {"horizontal", share[1]},
+                                     {"vertical", share[2]},
+                                     {"diagonal", share[3]}};
+            const json& r = block["rows"];
+            const double best_nonocc =
+                std::min({r[0]["bad_nonocc"].get<double>(), r[1]["bad_nonocc"].get<double>(),
+                          r[2]["bad_nonocc"].get<double>()});
+            const double best_all =
+                std::min({r[0]["bad_all"].get<double>(), r[1]["bad_all"].get<double>(),
+                          r[2]["bad_all"].get<double>()});
+            const double fused_nonocc = r[3]["bad_nonocc"];
+            const double fused_all = r[3]["bad_all"];
+            // How many fewer bad nonocc pixels a fused row has than a two-camera row, in %.
+            const auto reduction = [](const json& fused, const json& wide) {
+                return 100.0 *
+                       (1.0 - static_cast<double>(fused["bad_nonocc_pixels"].get<long long>()) /
+                                  static_cast<double>(wide["bad_nonocc_pixels"].get<long long>()));
+            };
+            const double red = reduction(r[3], r[5]);
+            const double red_scaled = reduction(r[3], r[6]);
+            const double cost_red = reduction(r[4], r[5]);
+            const double cost_red_scaled = reduction(r[4], r[6]);
+            const double best_disc =
+                std::min({r[0]["bad_disc"].get<double>(), r[1]["bad_disc"].get<double>(),
+                          r[2]["bad_disc"].get<double>()});
+            block["goals"] = {{"fused_disc", r[3]["bad_disc"].get<double>()},
+                              {"best_pair_disc", best_disc},
+                              {"fused_nonocc", fused_nonocc},
+                              {"best_pair_nonocc", best_nonocc},
+                              {"nonocc_met", fused_nonocc <= best_nonocc},
+                              {"fused_all", fused_all},
+                              {"best_pair_all", best_all},
+                              {"all_met", fused_all <= best_all},
+                              {"reduction_vs_23", red},
+                              {"reduction_vs_23_scaled", red_scaled},
+                              {"reduction_met", red >= 25.0 && red_scaled >= 25.0},
+                              {"cost_fused_nonocc", r[4]["bad_nonocc"].get<double>()},
+                              {"cost_fused_all", r[4]["bad_all"].get<double>()},
+                              {"cost_nonocc_met", r[4]["bad_nonocc"].get<double>() <= best_nonocc},
+                              {"cost_all_met", r[4]["bad_all"].get<double>() <= best_all},
+                              {"cost_reduction_vs_23", cost_red},
+                              {"cost_reduction_vs_23_scaled", cost_red_scaled},
+                              {"cost_reduction_met", cost_red >= 25.0 && cost_red_scaled >= 25.0}};
+            report["baselines"].push_back(block);
+
+            if (n == options.baselines.front() && cost_name == options.costs.front() &&
+                !options.figures.empty()) {
+                const io::EvalInput fused_input = eval_input(rows[3].disparity, "fused", gt, masks);
+                const fs::path dir(options.figures);
+                const std::string suffix = "_n" + std::to_string(n) + ".png";
+                files.emplace_back(
+                    dir / ("quad_montage" + suffix),
+                    io::encode_png(montage(views, result, gt, fused_input, n, min_disp, max_disp),
+                                   dir / ("quad_montage" + suffix)));
+                // The light field's camera constants are not in the data folder: a nominal focal
+                // length of 512 px, one unit of baseline per view step, and a disparity offset of
+                // 8 n (cloud_note), so the cloud's shape is right up to that projective choice.
+                const io::CloudGeometry geometry{512.0, static_cast<double>(n), 255.5, 255.5,
+                                                 8.0 * n};
+                const std::string ply = io::encode_ply(
+                    io::disparity_to_points(rows[3].disparity, views.bgr[0], geometry), true);
+                const auto points = io::decode_ply(ply, "fused cloud");
+                files.emplace_back(dir / ("quad_cloud" + suffix),
+                                   io::encode_png(render_cloud(points, 640, 25.0 * CV_PI / 180.0),
+                                                  dir / ("quad_cloud" + suffix)));
+                if (!options.ply.empty()) {
+                    files.emplace_back(options.ply, ply);
+                }
+                report["cloud_note"] =
+                    "The light field's camera constants are not in the data folder, so the cloud "
+                    "uses "
+                    "a nominal focal length of 512 px, one unit of baseline per view step and a "
+                    "disparity offset of 8 n (`--doffs`; any offset beyond the scene's most "
+                    "negative "
+                    "g = -3.13 gives positive depths, 8 keeps the depth range of the bust and the "
+                    "wall "
+                    "within a factor of two so that both are visible): the shape is right up to "
+                    "that "
+                    "projective choice. " +
+                    std::to_string(points.size()) + " points.";
+            }
         }
     }
     if (!report.contains("cloud_note")) {
         report["cloud_note"] = "";
     }
-    report["orientations"] = orientation_study(folder, g, options.baselines);
+    report["orientations"] = json::array();
+    for (const std::string& cost_name : options.costs) {
+        for (json& row : orientation_study(folder, g, options.baselines, cost_name)) {
+            report["orientations"].push_back(std::move(row));
+        }
+    }
     print_and_write_report(std::move(files), options.markdown, markdown(report), options.json_path,
                            report);
 }
@@ -866,6 +916,12 @@ void add_quad_eval_command(CLI::App& app) {
     command->add_option("--figures", options->figures, "Folder for quad_montage / quad_cloud PNGs");
     command->add_option("--ply", options->ply, "Also write the fused n = 4 cloud (binary PLY)");
     command->add_option("--baselines", options->baselines, "Square sides n (first: figures)")
+        ->capture_default_str();
+    command
+        ->add_option("--costs", options->costs,
+                     "Matching costs of the pairs and the two-camera rows (first: figures)")
+        ->check(CLI::IsMember(
+            std::vector<std::string>(quad::kPairCosts.begin(), quad::kPairCosts.end())))
         ->capture_default_str();
 }
 

@@ -15,10 +15,11 @@
 
 namespace stereo::defaults {
 
-// The cost of `stereo match --method pipeline` where the engine has it (model, naive, hls, rtl):
-// the 5x5 census. It has half of SGBM's error or less on every scene at near SGBM's coverage, and
-// it is the cost that survives real exposure and lighting changes (docs/results-illumination.md).
-// Other methods and engines default to the thesis' AD cost.
+// The cost of `stereo match --method pipeline` where the engine has it (model, naive, hls, rtl),
+// of the quad-camera pair geometries (`--method vertical|diagonal`, `stereo quad`): the 5x5 census.
+// It has half of SGBM's error or less on every scene at near SGBM's coverage, and it is the cost
+// that survives real exposure and lighting changes (docs/results-illumination.md). Other methods
+// and engines default to the thesis' AD cost.
 inline constexpr std::string_view kCost = "census";
 inline constexpr std::string_view kFallbackCost = "ad";
 
