@@ -29,8 +29,10 @@
 #include "cli_command.hpp"
 #include "experiments.hpp"
 #include "stereo/asw.hpp"
+#include "stereo/defaults.hpp"
 #include "stereo/pipeline.hpp"
 #include "stereo/search.hpp"
+#include "stereo/speckle.hpp"
 #include "stereo/stages.hpp"
 #include "stereo/stages/lcdm.hpp"
 #include "stereo_io/data_dir.hpp"
@@ -80,13 +82,17 @@ Method pipeline_method(const std::string& name, const std::string& cost) {
             }};
 }
 
-// The pipeline with every validation stage on (stereo match's defaults: uniqueness 20,
-// left-right tolerance 0, sub-pixel): only the pixels it can vouch for.
+// The pipeline validated as `stereo match` runs it with `cost`: that cost's uniqueness ratio and
+// left-right tolerance (stereo/defaults.hpp), sub-pixel, then the speckle filter; only the
+// pixels it can vouch for.
 Method validated_method(const std::string& name, const std::string& cost) {
     return {name + " validated", [cost](const Pair& pair, int ndisp) {
                 MatchParams params = pipeline_params(ndisp, cost);
-                params.validation = ValidationParams::all_on();
-                return io::to_float_disparity(match_validated(pair.left, pair.right, params));
+                const defaults::Validation chosen = defaults::validation_for(cost);
+                params.validation = {true, chosen.uniqueness, true, chosen.lr_tolerance, true};
+                ValidatedDisparity map = match_validated(pair.left, pair.right, params);
+                speckle::filter(map, speckle::Params::defaults());
+                return io::to_float_disparity(map);
             }};
 }
 
