@@ -129,6 +129,22 @@ package fx_pkg;
     if (window < 1 || window > 31 || window % 2 == 0 || i < 0 || i >= window) default_tap = 0;
     else default_tap = 32'(DEFAULT_TAPS[((window / 2) * (window / 2) + i) * TAP_BITS +: TAP_BITS]);
   endfunction
+  // Sub-pixel correction (constants.hpp kSubpixelCorrection): |offset| 0 .. 8 of the parabola -> the refined |offset|.
+  function automatic logic [SUBPIXEL_BITS-1:0] subpixel_correction(
+      input logic [SUBPIXEL_BITS-1:0] steps);
+    case (steps)
+      4'd0: subpixel_correction = 4'd0;
+      4'd1: subpixel_correction = 4'd2;
+      4'd2: subpixel_correction = 4'd4;
+      4'd3: subpixel_correction = 4'd5;
+      4'd4: subpixel_correction = 4'd6;
+      4'd5: subpixel_correction = 4'd6;
+      4'd6: subpixel_correction = 4'd7;
+      4'd7: subpixel_correction = 4'd8;
+      4'd8: subpixel_correction = 4'd8;
+      default: subpixel_correction = steps;  // above 8: not reached
+    endcase
+  endfunction
 
   // ---- LCDM cost (model/include/stereo/stages/lcdm.hpp) ----
   localparam int LCDM_RADIUS_BITS = 9;

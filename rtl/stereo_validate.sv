@@ -9,10 +9,11 @@
 //        groups (in_second); in_data is unused and this stage has no comparator tree. NDISP <= 2:
 //        no label can lie away from the winner, so C2 is the constant NO_SECOND_COST (not even
 //        registered: stereo_lr_check's certainty divider then folds into a shift).
-//   fixed = 16 (m + k1) + offset, offset = sign(a - b) floor((16 |a - b| + den) / (2 den)),
-//        a = E(k1 - 1), b = E(k1 + 1), den = a + b - 2 C1 > 0, when cfg_subpixel_en and
-//        0 < k1 < cfg_ndisp - 1; else 0. Since |offset| <= 8 (den >= |a - b|), a 4-bit
-//        restoring division of 16 |a - b| + den by 2 den (four subtractors) gives it.
+//   fixed = 16 (m + k1) + offset, offset = sign(a - b) CORRECTION[p],
+//        p = floor((16 |a - b| + den) / (2 den)), a = E(k1 - 1), b = E(k1 + 1),
+//        den = a + b - 2 C1 > 0, when cfg_subpixel_en and 0 < k1 < cfg_ndisp - 1; else 0. Since
+//        p <= 8 (den >= |a - b|), a 4-bit restoring division of 16 |a - b| + den by 2 den (four
+//        subtractors) gives it; CORRECTION is the 9-entry table fx_pkg::subpixel_correction.
 // Latency: 1 pixel step.
 `default_nettype none
 
@@ -129,6 +130,8 @@ module stereo_validate #(
              32'(in_label) + 1 < 32'(cfg_ndisp) && denominator != '0;
     fixed = (fx_pkg::FIXED_BITS'(cfg_min_disp) + fx_pkg::FIXED_BITS'(in_label))
             <<< fx_pkg::SUBPIXEL_BITS;
+    // The calibrated correction of the vertex (fx_pkg::subpixel_correction, a 9-entry table).
+    steps = fx_pkg::subpixel_correction(steps);
     if (refine) begin
       if (!a_below_b) fixed = fixed + fx_pkg::FIXED_BITS'(steps);
       else fixed = fixed - fx_pkg::FIXED_BITS'(steps);

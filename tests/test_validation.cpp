@@ -41,20 +41,30 @@ TEST(ValidationArithmetic, SubpixelOffsetIsTheRoundedParabolaVertex) {
                     }
                     expected = num >= 0 ? q : -q;
                 }
-                ASSERT_EQ(validation::subpixel_offset(before, centre, after), expected)
+                ASSERT_EQ(validation::parabola_offset(before, centre, after), expected)
                     << before << " " << centre << " " << after;
                 ASSERT_LE(std::abs(expected), fx::kSubpixelScale / 2);
+                // Stage 6's offset: the vertex through the correction table, sign kept.
+                const int corrected = fx::kSubpixelCorrection.at(std::abs(expected));
+                ASSERT_EQ(validation::subpixel_offset(before, centre, after),
+                          expected >= 0 ? corrected : -corrected);
             }
         }
     }
     // Hand cases: a symmetric valley has its vertex on the label; (4, 0, 0) is halfway to d + 1
     // (the parabola through (-1,4), (0,0), (1,0) has its vertex at +1/2 = 8/16).
+    EXPECT_EQ(validation::parabola_offset(10, 2, 10), 0);
+    EXPECT_EQ(validation::parabola_offset(4, 0, 0), 8);
+    EXPECT_EQ(validation::parabola_offset(0, 0, 4), -8);
+    // (6, 2, 4): vertex (6 - 4) / (2 * 6) = 1/6 pixel = 2.67/16 -> 3.
+    EXPECT_EQ(validation::parabola_offset(6, 2, 4), 3);
+    EXPECT_EQ(validation::parabola_offset(5, 5, 5), 0);  // flat: no curvature
+    // Through the table {0, 2, 4, 5, 6, 6, 7, 8, 8} (docs/fixed-point.md): 0 and +-8 stay, 3 -> 5.
     EXPECT_EQ(validation::subpixel_offset(10, 2, 10), 0);
     EXPECT_EQ(validation::subpixel_offset(4, 0, 0), 8);
     EXPECT_EQ(validation::subpixel_offset(0, 0, 4), -8);
-    // (6, 2, 4): vertex (6 - 4) / (2 * 6) = 1/6 pixel = 2.67/16 -> 3.
-    EXPECT_EQ(validation::subpixel_offset(6, 2, 4), 3);
-    EXPECT_EQ(validation::subpixel_offset(5, 5, 5), 0);  // flat: no curvature
+    EXPECT_EQ(validation::subpixel_offset(6, 2, 4), 5);
+    EXPECT_EQ(validation::subpixel_offset(4, 2, 6), -5);
 }
 
 TEST(ValidationArithmetic, CertaintyAndUniqueness) {

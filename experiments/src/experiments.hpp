@@ -17,14 +17,15 @@ class App;
 
 namespace stereo::experiments {
 
-void add_hierarchical_eval_command(CLI::App& app);  // docs/results-hierarchical.md
-void add_sigma_sweep_command(CLI::App& app);        // docs/sigma-sweep.md
-void add_avoid_figures_command(CLI::App& app);      // docs/avoidance.md
-void add_validation_eval_command(CLI::App& app);    // docs/results.md, validated output
-void add_avoid_benchmark_command(CLI::App& app);    // docs/results-avoidance.md
-void add_illumination_command(CLI::App& app);       // docs/results-illumination.md
-void add_quad_eval_command(CLI::App& app);          // docs/results-quad.md
-void add_asw_eval_command(CLI::App& app);           // docs/results-asw-tables.md
+void add_hierarchical_eval_command(CLI::App& app);     // docs/results-hierarchical.md
+void add_sigma_sweep_command(CLI::App& app);           // docs/sigma-sweep.md
+void add_avoid_figures_command(CLI::App& app);         // docs/avoidance.md
+void add_validation_eval_command(CLI::App& app);       // docs/results.md, validated output
+void add_avoid_benchmark_command(CLI::App& app);       // docs/results-avoidance.md
+void add_illumination_command(CLI::App& app);          // docs/results-illumination.md
+void add_quad_eval_command(CLI::App& app);             // docs/results-quad.md
+void add_asw_eval_command(CLI::App& app);              // docs/results-asw-tables.md
+void add_subpixel_calibration_command(CLI::App& app);  // docs/fixed-point.md, stage 6
 
 // Every scene with ground truth under `root` that is present: the four Middlebury 2003 pairs
 // (with their masks), Reindeer (2005), Cloth3 and Wood2 (2006) at half size, and Aloe at half

@@ -16,5 +16,6 @@ int main(int argc, char** argv) {
     stereo::experiments::add_illumination_command(app);
     stereo::experiments::add_quad_eval_command(app);
     stereo::experiments::add_asw_eval_command(app);
+    stereo::experiments::add_subpixel_calibration_command(app);
     return stereo::cli::run(app, argc, argv);
 }

@@ -233,6 +233,19 @@ std::string package_text() {
           "    else default_tap = 32'(DEFAULT_TAPS[((window / 2) * (window / 2) + i) * TAP_BITS +: "
           "TAP_BITS]);\n"
           "  endfunction\n";
+    sv << "  // Sub-pixel correction (constants.hpp kSubpixelCorrection): |offset| 0 .. "
+       << fx::kSubpixelScale / 2
+       << " of the parabola -> the refined |offset|.\n"
+          "  function automatic logic [SUBPIXEL_BITS-1:0] subpixel_correction(\n"
+          "      input logic [SUBPIXEL_BITS-1:0] steps);\n"
+          "    case (steps)";
+    for (std::size_t k = 0; k < fx::kSubpixelCorrection.size(); ++k) {
+        sv << "\n      " << fx::kSubpixelBits << "'d" << k
+           << ": subpixel_correction = " << fx::kSubpixelBits << "'d" << fx::kSubpixelCorrection[k]
+           << ';';
+    }
+    sv << "\n      default: subpixel_correction = steps;  // above 8: not reached\n"
+          "    endcase\n  endfunction\n";
     sv << lcdm_section();
     sv << "\n  // ---- Census cost (constants.hpp, stages/census.hpp; COST = COST_CENSUS) ----\n";
     params({

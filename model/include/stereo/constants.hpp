@@ -5,6 +5,7 @@
 // Nothing here may be re-typed elsewhere: include this header or generate from it.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 namespace stereo::fx {
@@ -95,6 +96,26 @@ inline constexpr int kSubpixelScale = 1 << kSubpixelBits;
 inline constexpr int kFixedDisparityBits = 16;  // signed disparity x 16
 static_assert((kMaxMinDisparity + kMaxDisparities) * kSubpixelScale <
               (1 << (kFixedDisparityBits - 1)));
+// The sub-pixel correction: the parabola's vertex, rounded to 1/16 (|p| <= 8), moves to
+// sign(p) * kSubpixelCorrection[|p|]. The parabola through three window-aggregated costs pulls
+// the vertex towards the integer label (pixel locking); each entry is the mean true offset of
+// the pixels whose parabola gave |p|, measured on camera-sampled sub-pixel shifts of KITTI frames
+// (no evaluation scene; scripts/subpixel/calibrate.py, docs/fixed-point.md stage 6), rounded.
+inline constexpr std::array<int, kSubpixelScale / 2 + 1> kSubpixelCorrection = {0, 2, 4, 5, 6,
+                                                                                6, 7, 8, 8};
+constexpr bool subpixel_correction_is_monotone() {
+    for (std::size_t i = 1; i < kSubpixelCorrection.size(); ++i) {
+        if (kSubpixelCorrection[i] < kSubpixelCorrection[i - 1]) {
+            return false;
+        }
+    }
+    return true;
+}
+// 0 stays on the label, half a pixel stays half a pixel (either neighbour's reading agrees), and
+// the order of the offsets is kept, so the refined disparity stays within half a pixel.
+static_assert(kSubpixelCorrection.front() == 0 &&
+              kSubpixelCorrection.back() == kSubpixelScale / 2 &&
+              subpixel_correction_is_monotone());
 // Uniqueness: invalid when C1 * (100 + U) >= C2 * 100, U in 0 .. kMaxUniqueness percent.
 inline constexpr int kMaxUniqueness = 255;
 inline constexpr int kUniquenessBase = 100;

@@ -245,6 +245,9 @@ ValidatedDisparity validate_along(const Dsi& dsi, int step_x, int step_y, int mi
                 if (curvature > 0) {
                     // The parabola's vertex in 1/16 pixel, halves away from zero (std::round).
                     offset = std::round(8.0 * (before - after) / curvature);
+                    // Then the calibrated correction of the vertex (constants.hpp).
+                    const auto steps = static_cast<std::size_t>(std::abs(offset));
+                    offset = std::copysign(fx::kSubpixelCorrection.at(steps), offset);
                 }
             }
             out.fixed[q] = static_cast<std::int16_t>(16 * d + static_cast<int>(offset));

@@ -52,8 +52,10 @@ class validate_stage : public coord_output, public winner_output {
             steps += (difference << fx::kSubpixelBits) >= (2 * t - 1) * denominator ? 1 : 0;
         }
         int fixed = (min_disp + k1) * fx::kSubpixelScale;
+        // The calibrated correction of the vertex: a 9-entry ROM (constants.hpp).
+        const int corrected = fx::kSubpixelCorrection[static_cast<std::size_t>(steps)];
         if (subpixel && k1 > 0 && k1 + 1 < ndisp && denominator != 0) {
-            fixed += before >= after ? steps : -steps;
+            fixed += before >= after ? corrected : -corrected;
         }
         out_label_ = static_cast<disparity_t>(k1);
         out_border_ = in.out_border();

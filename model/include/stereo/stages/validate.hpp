@@ -33,7 +33,7 @@ constexpr int certainty(int c1, int c2) {
 // The vertex of the parabola through (-1, before), (0, centre), (1, after), in 1/16 pixel:
 // round(8 * (before - after) / (before + after - 2 * centre)), halves away from zero; 0 when the
 // costs are flat. centre <= before, after (it is the minimum), so the offset is in [-8, 8].
-constexpr int subpixel_offset(int before, int centre, int after) {
+constexpr int parabola_offset(int before, int centre, int after) {
     const int denominator = before + after - 2 * centre;
     if (denominator <= 0) {
         return 0;
@@ -42,6 +42,15 @@ constexpr int subpixel_offset(int before, int centre, int after) {
     const int magnitude = numerator >= 0 ? numerator : -numerator;
     const int steps = (fx::kSubpixelScale * magnitude + denominator) / (2 * denominator);
     return numerator >= 0 ? steps : -steps;
+}
+
+// Stage 6's sub-pixel offset: the parabola's vertex through the calibrated correction
+// (fx::kSubpixelCorrection), in [-8, 8].
+constexpr int subpixel_offset(int before, int centre, int after) {
+    const int parabola = parabola_offset(before, centre, after);
+    const int corrected =
+        fx::kSubpixelCorrection[static_cast<std::size_t>(parabola >= 0 ? parabola : -parabola)];
+    return parabola >= 0 ? corrected : -corrected;
 }
 
 }  // namespace stereo::validation
