@@ -9,6 +9,8 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "stereo/pipeline.hpp"
+#include "stereo/validated.hpp"
 #include "stereo_io/middlebury.hpp"
 
 namespace CLI {
@@ -31,6 +33,11 @@ void add_subpixel_calibration_command(CLI::App& app);  // docs/fixed-point.md, s
 // (with their masks), Reindeer (2005), Cloth3 and Wood2 (2006) at half size, and Aloe at half
 // size (no masks). Absent scenes are skipped; present but broken ones throw.
 std::vector<io::SceneData> load_ground_truth_scenes(const std::filesystem::path& root);
+
+// `stereo match`'s validated output for params.cost: stage 6 with every step on at that cost's
+// uniqueness ratio and left-right tolerance (stereo/defaults.hpp), then the speckle filter at its
+// defaults; params.validation is replaced.
+ValidatedDisparity match_as_stereo_match(const Image& left, const Image& right, MatchParams params);
 
 // Files a subcommand writes together with io::write_files_atomic (all or nothing).
 using OutputFiles = std::vector<std::pair<std::filesystem::path, std::string>>;

@@ -32,7 +32,6 @@
 #include "stereo/defaults.hpp"
 #include "stereo/pipeline.hpp"
 #include "stereo/search.hpp"
-#include "stereo/speckle.hpp"
 #include "stereo/stages.hpp"
 #include "stereo/stages/lcdm.hpp"
 #include "stereo_io/data_dir.hpp"
@@ -87,12 +86,8 @@ Method pipeline_method(const std::string& name, const std::string& cost) {
 // pixels it can vouch for.
 Method validated_method(const std::string& name, const std::string& cost) {
     return {name + " validated", [cost](const Pair& pair, int ndisp) {
-                MatchParams params = pipeline_params(ndisp, cost);
-                const defaults::Validation chosen = defaults::validation_for(cost);
-                params.validation = {true, chosen.uniqueness, true, chosen.lr_tolerance, true};
-                ValidatedDisparity map = match_validated(pair.left, pair.right, params);
-                speckle::filter(map, speckle::Params::defaults());
-                return io::to_float_disparity(map);
+                return io::to_float_disparity(
+                    match_as_stereo_match(pair.left, pair.right, pipeline_params(ndisp, cost)));
             }};
 }
 

@@ -30,7 +30,6 @@
 #include "experiments.hpp"
 #include "stereo/defaults.hpp"
 #include "stereo/quad.hpp"
-#include "stereo/speckle.hpp"
 #include "stereo_io/data_dir.hpp"
 #include "stereo_io/disparity_files.hpp"
 #include "stereo_io/io.hpp"
@@ -774,14 +773,9 @@ void run_quad_eval(const Options& options) {
                 // `stereo match`'s validation for this cost: its uniqueness ratio and left-right
                 // tolerance (stereo/defaults.hpp), sub-pixel, then the speckle filter.
                 const defaults::Validation chosen = defaults::validation_for(cost_name);
-                MatchParams single = params;
-                single.validation = {true, chosen.uniqueness, true, chosen.lr_tolerance, true};
                 double ms = 0.0;
                 const auto map = timed(ms, [&] {
-                    ValidatedDisparity out =
-                        match_validated(views.images[0], views.images[1], single);
-                    speckle::filter(out, speckle::Params::defaults());
-                    return out;
+                    return match_as_stereo_match(views.images[0], views.images[1], params);
                 });
                 rows.push_back({"two-camera 13 x 13", io::to_float_disparity(map), ms,
                                 "stereo match's stage 6 for the cost: uniqueness " +

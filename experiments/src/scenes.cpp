@@ -5,6 +5,8 @@
 #include <vector>
 
 #include "experiments.hpp"
+#include "stereo/defaults.hpp"
+#include "stereo/speckle.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/middlebury.hpp"
 
@@ -30,6 +32,15 @@ std::optional<io::SceneData> load_extra(const fs::path& left, const fs::path& ri
 }
 
 }  // namespace
+
+ValidatedDisparity match_as_stereo_match(const Image& left, const Image& right,
+                                         MatchParams params) {
+    const defaults::Validation chosen = defaults::validation_for(params.cost);
+    params.validation = {true, chosen.uniqueness, true, chosen.lr_tolerance, true};
+    ValidatedDisparity map = match_validated(left, right, params);
+    speckle::filter(map, speckle::Params::defaults());
+    return map;
+}
 
 std::vector<io::SceneData> load_ground_truth_scenes(const fs::path& root) {
     std::vector<io::SceneData> scenes;

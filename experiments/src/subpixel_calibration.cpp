@@ -30,7 +30,6 @@
 #include "stereo/defaults.hpp"
 #include "stereo/pipeline.hpp"
 #include "stereo/search.hpp"
-#include "stereo/speckle.hpp"
 #include "stereo/stages.hpp"
 #include "stereo/stages/validate.hpp"
 #include "stereo_io/io.hpp"
@@ -58,8 +57,6 @@ MatchParams defaults_for(const std::string& cost, int ndisp) {
     MatchParams params;
     params.ndisp = ndisp;
     params.cost = cost;
-    const defaults::Validation chosen = defaults::validation_for(cost);
-    params.validation = {true, chosen.uniqueness, true, chosen.lr_tolerance, true};
     return params;
 }
 
@@ -76,8 +73,7 @@ struct Readings {
 // plus subpixel_offset throws: the two paths must agree.
 std::vector<std::pair<std::size_t, Readings>> readings(const Image& left, const Image& right,
                                                        const MatchParams& params) {
-    ValidatedDisparity map = match_validated(left, right, params);
-    speckle::filter(map, speckle::Params::defaults());
+    const ValidatedDisparity map = match_as_stereo_match(left, right, params);
     Dsi volume = aggregate(cost_volume(*make_cost(params.cost), left, right, params.ndisp),
                            gaussian_kernel(params.window, params.sigma));
     if (params.use_ca) {
@@ -198,7 +194,9 @@ void run(const Options& options) {
         throw std::invalid_argument("--factor must be 2 .. 16, got " +
                                     std::to_string(options.factor));
     }
-    validate_params(defaults_for(options.cost, kCalibrationLabels));
+    MatchParams check = defaults_for(options.cost, kCalibrationLabels);
+    check.validation = ValidationParams::all_on();
+    validate_params(check);
     check_report_outputs({options.markdown, options.json_path});
     const Calibration cal = calibrate(options);
     const auto table = derived_table(cal);
