@@ -247,12 +247,6 @@ class Results {
     json runs_ = json::array();
 };
 
-std::string fmt(double value, int digits = 2) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.*f", digits, value);
-    return text;
-}
-
 // "3.62 / 5.52 / 14.6" in the thesis' style (three significant digits).
 std::string fmt3(double value) {
     return fmt(value, value >= 10.0 ? 1 : 2);

@@ -29,6 +29,13 @@ void add_quad_eval_command(CLI::App& app);             // docs/results-quad.md
 void add_asw_eval_command(CLI::App& app);              // docs/results-asw-tables.md
 void add_subpixel_calibration_command(CLI::App& app);  // docs/fixed-point.md, stage 6
 
+// The Middlebury 2003 pairs under `root` that are present (with their masks), in the order of
+// io::middlebury2003_scenes(); absent ones are skipped, present but broken ones throw.
+std::vector<io::SceneData> load_2003_scenes(const std::filesystem::path& root);
+
+// A number with `digits` decimals, as the generated tables print them.
+std::string fmt(double value, int digits = 2);
+
 // Every scene with ground truth under `root` that is present: the four Middlebury 2003 pairs
 // (with their masks), Reindeer (2005), Cloth3 and Wood2 (2006) at half size, and Aloe at half
 // size (no masks). Absent scenes are skipped; present but broken ones throw.

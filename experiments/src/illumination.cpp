@@ -147,19 +147,8 @@ double nonocc(const io::SceneData& data, const cv::Mat& map) {
     return io::evaluate_scene(data, map).nonocc->percent().value_or(0.0);
 }
 
-std::string fmt(double value, int digits = 2) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.*f", digits, value);
-    return text;
-}
-
 std::vector<io::SceneData> load_2003(const std::string& data_dir) {
-    std::vector<io::SceneData> scenes;
-    for (const auto& scene : io::middlebury2003_scenes()) {
-        if (auto data = io::load_scene(data_dir, scene)) {
-            scenes.push_back(std::move(*data));
-        }
-    }
+    std::vector<io::SceneData> scenes = load_2003_scenes(data_dir);
     if (scenes.empty()) {
         throw std::runtime_error("no Middlebury 2003 scene found under " + data_dir);
     }

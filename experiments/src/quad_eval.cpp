@@ -430,12 +430,6 @@ cv::Mat render_cloud(const std::vector<io::CloudPoint>& points, int size, double
 
 // ---- the report ---------------------------------------------------------------------------
 
-std::string fmt(double v) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.2f", v);
-    return text;
-}
-
 // The heading of a cost's tables.
 std::string cost_title(const std::string& cost) {
     if (cost == "ad") {

@@ -1,4 +1,5 @@
 // The scenes with ground truth that the evaluations share (experiments.hpp).
+#include <cstdio>
 #include <filesystem>
 #include <optional>
 #include <utility>
@@ -42,13 +43,24 @@ ValidatedDisparity match_as_stereo_match(const Image& left, const Image& right,
     return map;
 }
 
-std::vector<io::SceneData> load_ground_truth_scenes(const fs::path& root) {
+std::string fmt(double value, int digits) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.*f", digits, value);
+    return text;
+}
+
+std::vector<io::SceneData> load_2003_scenes(const fs::path& root) {
     std::vector<io::SceneData> scenes;
     for (const auto& scene : io::middlebury2003_scenes()) {
         if (auto data = io::load_scene(root, scene)) {
             scenes.push_back(std::move(*data));
         }
     }
+    return scenes;
+}
+
+std::vector<io::SceneData> load_ground_truth_scenes(const fs::path& root) {
+    std::vector<io::SceneData> scenes = load_2003_scenes(root);
     // The 2005/2006 README gives the range 0..128 at half size; Aloe's GT reaches 211 at full
     // size, 106 at half.
     for (const auto& [folder, name] :

@@ -58,12 +58,7 @@ void run_sweep(const SweepOptions& options) {
     if (!fs::is_directory(folder)) {
         throw std::runtime_error("cannot read '" + folder.string() + "': no such folder");
     }
-    std::vector<io::SceneData> scenes;
-    for (const auto& scene : io::middlebury2003_scenes()) {
-        if (auto data = io::load_scene(options.data_dir, scene)) {
-            scenes.push_back(std::move(*data));
-        }
-    }
+    const std::vector<io::SceneData> scenes = load_2003_scenes(options.data_dir);
     if (scenes.empty()) {
         throw std::runtime_error("no Middlebury 2003 scene found under " + options.data_dir);
     }

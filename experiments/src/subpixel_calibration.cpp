@@ -183,12 +183,6 @@ std::array<int, kHalf + 1> derived_table(const Calibration& cal) {
     return table;
 }
 
-std::string fmt(double v, int digits = 2) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.*f", digits, v);
-    return text;
-}
-
 void run(const Options& options) {
     if (options.factor < 2 || options.factor > 16) {
         throw std::invalid_argument("--factor must be 2 .. 16, got " +
