@@ -44,13 +44,13 @@ constexpr int kCalibrationLabels = 16;
 constexpr int kLeftMargin = 40;  // calibration columns left of this have no partner at D = 6
 
 struct Options : cli::ReportOptions {
+    std::string cost = std::string(defaults::kCost);  // its `stereo match` defaults
+    int factor = 8;                                   // area factor: shifts of 1 / factor px
     static constexpr std::string_view kName = "subpixel-calibration";
     static constexpr std::string_view kDescription =
         "Stage 6's sub-pixel parabola on camera-sampled shifts of KITTI frames: its bias, the "
         "correction table it gives (constants.hpp), and the table's effect on the eight scenes "
         "(docs/fixed-point.md, stage 6).";
-    std::string cost = std::string(defaults::kCost);
-    int factor = 8;
 };
 
 MatchParams defaults_for(const std::string& cost, int ndisp) {
