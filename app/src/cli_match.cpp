@@ -85,7 +85,9 @@ void run_match(const MatchOptions& options) {
     const std::string method = options.matcher.resolved_method();
     const std::string& engine = options.matcher.engine;
     const bool two_d = method == "hierarchical";
-    const bool stage6 = method == "pipeline" || method == "asw";  // the methods with stage 6
+    // The methods with stage 6: the 1-D pipeline, ASW and the quad pair geometries.
+    const bool stage6 =
+        method == "pipeline" || method == "asw" || method == "vertical" || method == "diagonal";
     if (!two_d && (options.matcher.config.vrange != 0 || !options.vertical.empty() ||
                    !options.dump_levels.empty())) {
         throw std::invalid_argument(
@@ -110,16 +112,16 @@ void run_match(const MatchOptions& options) {
     if (output_encoding != io::DisparityEncoding::scaled && !stage6) {
         throw std::invalid_argument(
             "PFM and --png16 outputs hold the pipeline's validated disparities: use --method "
-            "pipeline or asw");
+            "pipeline, asw, vertical or diagonal");
     }
     MatchConfig config = options.matcher.resolved();
     if (!stage6) {
-        // Stage 6 belongs to the 1-D pipeline and ASW; the other methods validate in their own
-        // way.
+        // Stage 6 belongs to the 1-D pipeline, ASW and the quad pairs; the other methods
+        // validate in their own way.
         if (options.matcher.explicit_validation() || config.pipeline.min_disp != 0) {
             throw std::invalid_argument(
                 "--min-disp, --uniqueness, --lr-check, --subpixel and --speckle-size need "
-                "--method pipeline or asw");
+                "--method pipeline, asw, vertical or diagonal");
         }
         config.pipeline.validation = {};
         config.speckle = {};
