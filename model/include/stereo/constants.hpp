@@ -100,7 +100,8 @@ static_assert((kMaxMinDisparity + kMaxDisparities) * kSubpixelScale <
 // sign(p) * kSubpixelCorrection[|p|]. The parabola through three window-aggregated costs pulls
 // the vertex towards the integer label (pixel locking); each entry is the mean true offset of
 // the pixels whose parabola gave |p|, measured on camera-sampled sub-pixel shifts of KITTI frames
-// (no evaluation scene; scripts/subpixel/calibrate.py, docs/fixed-point.md stage 6), rounded.
+// (no evaluation scene; `stereo_experiments subpixel-calibration`, docs/fixed-point.md stage 6),
+// rounded.
 inline constexpr std::array<int, kSubpixelScale / 2 + 1> kSubpixelCorrection = {0, 2, 4, 5, 6,
                                                                                 6, 7, 8, 8};
 constexpr bool subpixel_correction_is_monotone() {
