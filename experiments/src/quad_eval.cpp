@@ -63,8 +63,8 @@ struct Options : cli::ReportOptions {
     std::string figures;  // folder for quad_*.png
     std::string ply;      // also write the fused n = 4 cloud here
     std::vector<int> baselines = {4, 2};
-    // The thesis' AD cost first (the figures), then `stereo match`'s default cost.
-    std::vector<std::string> costs = {"ad", std::string(defaults::kCost)};
+    // `stereo match`'s default cost first (the figures), then the thesis' AD cost.
+    std::vector<std::string> costs = {std::string(defaults::kCost), "ad"};
 };
 
 struct Views {
@@ -585,13 +585,14 @@ std::string markdown(const json& report) {
           "cost about one pair with three cores (or three hardware pipelines).\n\n";
     md << "## Figures\n\n"
        << "![quad montage, n = 4](figures/quad_montage_n4.png)\n\n"
-       << "Fig. 3.6 of the thesis, for antinous at n = 4: the four views; the certainty of each "
+       << "Fig. 3.6 of the thesis, for antinous at n = 4, with `stereo quad`'s defaults (the "
+          "first cost above): the four views; the certainty of each "
           "pair and the fused certainty (black 0, white 255); each pair's disparity and the "
           "fused one (colour bar below, black = invalid); the ground truth; the source map; the "
           "masks (white nonocc, grey all only, orange disc); the fused map's errors (red wrong, "
           "blue invalid, grey right, black not scored).\n\n"
        << "![point cloud](figures/quad_cloud_n4.png)\n\n"
-       << "The fused n = 4 map as a point cloud (`stereo cloud`, binary PLY, read back and "
+       << "The same fused n = 4 map as a point cloud (`stereo cloud`, binary PLY, read back and "
           "rendered from a camera turned by 25 degrees). "
        << report["cloud_note"].get<std::string>() << "\n";
     return md.str();
