@@ -65,6 +65,10 @@ TEST(ValidationArithmetic, SubpixelOffsetIsTheRoundedParabolaVertex) {
     EXPECT_EQ(validation::subpixel_offset(0, 0, 4), -8);
     EXPECT_EQ(validation::subpixel_offset(6, 2, 4), 5);
     EXPECT_EQ(validation::subpixel_offset(4, 2, 6), -5);
+    // A centre that is not the minimum (no caller does this): the vertex lies outside half a
+    // pixel, (0 - 20) / (2 * 10) = -1 px = -16/16, and the table index stays inside.
+    EXPECT_EQ(validation::parabola_offset(0, 5, 20), -16);
+    EXPECT_EQ(validation::subpixel_offset(0, 5, 20), -8);
 }
 
 TEST(ValidationArithmetic, CertaintyAndUniqueness) {

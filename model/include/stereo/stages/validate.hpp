@@ -3,6 +3,7 @@
 // selector that runs it over the 1-D search.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -45,11 +46,13 @@ constexpr int parabola_offset(int before, int centre, int after) {
 }
 
 // Stage 6's sub-pixel offset: the parabola's vertex through the calibrated correction
-// (fx::kSubpixelCorrection), in [-8, 8].
+// (fx::kSubpixelCorrection), in [-8, 8]. With centre the minimum |vertex| <= 8; the index is
+// clamped all the same, so that a caller breaking that cannot read past the table.
 constexpr int subpixel_offset(int before, int centre, int after) {
     const int parabola = parabola_offset(before, centre, after);
-    const int corrected =
-        fx::kSubpixelCorrection[static_cast<std::size_t>(parabola >= 0 ? parabola : -parabola)];
+    const auto index = std::min(static_cast<std::size_t>(parabola >= 0 ? parabola : -parabola),
+                                fx::kSubpixelCorrection.size() - 1);
+    const int corrected = fx::kSubpixelCorrection[index];
     return parabola >= 0 ? corrected : -corrected;
 }
 
