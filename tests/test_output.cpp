@@ -28,6 +28,13 @@ class Output : public ::testing::Test {
     static void write(const fs::path& path, const std::string& text) {
         std::ofstream(path, std::ios::binary) << text;
     }
+    // A trace already at the destination of the staged-output tests.
+    static constexpr const char* kPreviousTrace = "previous trace";
+    fs::path previous_trace() const {
+        const fs::path file = folder_ / "run.fst";
+        write(file, kPreviousTrace);
+        return file;
+    }
     std::size_t files_in_folder() const {
         return static_cast<std::size_t>(
             std::distance(fs::directory_iterator(folder_), fs::directory_iterator()));
@@ -124,15 +131,14 @@ TEST_F(Output, FailedWriteLeavesThePreviousFile) {
 // A file written by another library by name (the FST tracer): a hidden temporary with the
 // destination's extension, renamed over the destination only on commit.
 TEST_F(Output, StagedOutputReplacesOnlyOnCommit) {
-    const fs::path file = folder_ / "run.fst";
-    write(file, "previous trace");
+    const fs::path file = previous_trace();
     {
         StagedOutput staged(file);
         EXPECT_EQ(staged.path().parent_path(), folder_);
         EXPECT_EQ(staged.path().extension(), ".fst");
         EXPECT_EQ(staged.path().filename().string().rfind(".run.", 0), 0U);
         write(staged.path(), "new trace");
-        EXPECT_EQ(read(file), "previous trace");  // not before the commit
+        EXPECT_EQ(read(file), kPreviousTrace);  // not before the commit
         staged.commit();
         EXPECT_THROW(staged.commit(), std::logic_error);
     }
@@ -141,13 +147,12 @@ TEST_F(Output, StagedOutputReplacesOnlyOnCommit) {
 }
 
 TEST_F(Output, StagedOutputNotCommittedLeavesTheDestination) {
-    const fs::path file = folder_ / "run.fst";
-    write(file, "previous trace");
+    const fs::path file = previous_trace();
     {
         StagedOutput staged(file);
         write(staged.path(), "half a trace");
     }  // an error before the commit: the temporary goes, the old trace stays
-    EXPECT_EQ(read(file), "previous trace");
+    EXPECT_EQ(read(file), kPreviousTrace);
     EXPECT_EQ(files_in_folder(), 1U);
     { StagedOutput staged(folder_ / "new.fst"); }
     EXPECT_FALSE(fs::exists(folder_ / "new.fst"));
