@@ -274,6 +274,8 @@ package fx_pkg;
   localparam int CENSUS_RADIUS = 2;  // (2r+1)^2 window
   localparam int CENSUS_BITS = 24;  // code bits, raster order, centre skipped
   localparam int CENSUS_WEIGHT = 31;  // cost = Hamming distance * CENSUS_WEIGHT
+  localparam int CENSUS_CODE_BITS = 5;  // aggregation line buffer: the distance
+  localparam int CENSUS_CODE_OUTSIDE = 31;  // ... or this code: cost COST_OUTSIDE
   /* verilator lint_on UNUSEDPARAM */
 
 endpackage

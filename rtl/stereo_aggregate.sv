@@ -18,6 +18,15 @@
 // head; out_data is this clock's group result, unregistered (the next stage, stereo_ca_plane,
 // delays it in its input ring), while out_x/out_y step with ce. LANES = NDISP is the
 // all-parallel stage (G = 1: the advance is ce, the ring one register, out_data a register).
+//
+// Census codes (COST = COST_CENSUS, docs/rtl.md): in_data carries each label's census code
+// (stereo_cost CENSUS_CODES: the Hamming distance h, or CENSUS_CODE_OUTSIDE where the right pixel
+// lies outside), and the line buffer keeps these CENSUS_CODE_BITS-bit codes instead of 10-bit
+// costs. The cost is CENSUS_WEIGHT * h, or COST_OUTSIDE in a column whose right pixel is outside,
+// which is the same for every row of the column (it depends on x, the label and the frame's
+// configuration only). So, exactly as on the costs, V = CENSUS_WEIGHT * sum_j k[j] h, or
+// COST_OUTSIDE * (the sum of the taps whose rows lie inside) when the centre row's code says
+// outside. A vertical sum whose centre row lies outside the frame is never used.
 `default_nettype none
 
 module stereo_aggregate #(
@@ -30,13 +39,19 @@ module stereo_aggregate #(
     parameter bit RUNTIME_KERNEL = 1'b1,
     parameter int LANES = NDISP,  // labels computed per clock (divides NDISP)
     parameter bit RING_BLOCK_RAM = 1'b0,  // stereo_group_ring BLOCK_RAM (stereo_top)
-    parameter int RING_BLOCK_MIN_FILL = 50  // stereo_group_ring BLOCK_MIN_FILL
+    parameter int RING_BLOCK_MIN_FILL = 50,  // stereo_group_ring BLOCK_MIN_FILL
+    // COST_CENSUS: in_data carries census codes, kept narrow in the line buffer (above); any
+    // other cost: in_data carries the costs.
+    parameter int COST = fx_pkg::COST_AD
 ) (
 `include "stereo_stage_ports.svh"
     // The in_y of the next step (stereo_top: stereo_cost's out_next_y, what its coordinate
     // register takes at this ce): the row flags are computed from it and registered.
     input  wire fx_pkg::coord_t                     in_next_y,
-    input  wire logic [LANES*fx_pkg::COST_BITS-1:0] in_data,  // labels [group*LANES +: LANES]
+    // labels [group*LANES +: LANES]; census codes are zero-extended to COST_BITS
+    /* verilator lint_off UNUSEDSIGNAL */  // the upper bits of census codes
+    input  wire logic [LANES*fx_pkg::COST_BITS-1:0] in_data,
+    /* verilator lint_on UNUSEDSIGNAL */
     input  wire fx_pkg::cfg_size_t                  cfg_width,
     input  wire fx_pkg::cfg_size_t                  cfg_height,
     /* verilator lint_off UNUSEDSIGNAL */  // ignored with RUNTIME_KERNEL = 0
@@ -55,7 +70,11 @@ module stereo_aggregate #(
   localparam int AGG_SHIFT = fx_pkg::AGG_SHIFT;
   localparam int R = WINDOW / 2;
   localparam int GROUPS = NDISP / LANES;           // clocks per pixel step
-  localparam int COLUMN_BITS = LANES * COST_BITS;  // one group's costs
+  localparam bit CODES = COST == fx_pkg::COST_CENSUS;  // census codes in the line buffer
+  localparam int LINE_BITS = CODES ? fx_pkg::CENSUS_CODE_BITS : COST_BITS;  // one label's entry
+  // sum_j k[j] h of census codes: the taps sum to 2^KERNEL_BITS.
+  localparam int CODE_SUM_BITS = fx_pkg::CENSUS_CODE_BITS + fx_pkg::KERNEL_BITS;
+  localparam int COLUMN_BITS = LANES * LINE_BITS;  // one group's line buffer entries
   localparam int V_BITS = LANES * VSUM_BITS;       // one group's vertical sums
   localparam int OUT_BITS = LANES * AGG_BITS;      // one group's results
 
@@ -69,9 +88,12 @@ module stereo_aggregate #(
   // A clock that processes a group: every group below the last, and the last at the step.
   logic advance;
   assign advance = ce || 32'(group_now) != GROUPS - 1;
-  // This clock's group of the input costs: stereo_cost computes it for this clock's group.
+  // This clock's group of the input costs (codes): stereo_cost computes it for this clock's group.
   logic [COLUMN_BITS-1:0] group_costs;
-  assign group_costs = in_data;
+  always_comb begin
+    for (int d = 0; d < LANES; d++)
+      group_costs[d*LINE_BITS +: LINE_BITS] = in_data[d*COST_BITS +: LINE_BITS];
+  end
 
   logic [WINDOW*TAP_BITS-1:0] kernel;
   generate
@@ -134,24 +156,65 @@ module stereo_aggregate #(
     else if (ce) row_inside <= next_row_inside;
   end
 
+  // Census codes: COST_OUTSIDE times the taps of the rows inside, the vertical sum of every
+  // label whose column is outside (shared by the lanes).
+  /* verilator lint_off UNUSEDSIGNAL */  // a constant 0 without census codes
+  logic [VSUM_BITS-1:0] outside_sum;
+  /* verilator lint_on UNUSEDSIGNAL */
+  generate
+    if (CODES) begin : g_outside_sum
+      always_comb begin
+        logic [VSUM_BITS-1:0] inside_taps;
+        inside_taps = '0;
+        for (int j = 0; j < WINDOW; j++) begin
+          if (row_inside[j]) inside_taps = inside_taps + VSUM_BITS'(kernel[j*TAP_BITS +: TAP_BITS]);
+        end
+        outside_sum = inside_taps * VSUM_BITS'(fx_pkg::COST_OUTSIDE);
+      end
+    end else begin : g_no_outside_sum
+      assign outside_sum = '0;
+    end
+  endgenerate
+
   logic [V_BITS-1:0] vertical_d;
   generate
     for (genvar d = 0; d < LANES; d++) begin : g_vertical
       // Tap j covers row in_y - 2R + j, i.e. the row 2R - j above the incoming one.
-      logic [WINDOW*COST_BITS-1:0] tap_cost;  // cost of tap j, 0 when its row is outside
+      logic [WINDOW*LINE_BITS-1:0] tap_cost;  // cost (code) of tap j, 0 when its row is outside
       always_comb begin
         for (int j = 0; j < WINDOW; j++) begin
-          logic [COST_BITS-1:0] cost;
-          if (j == 2 * R) cost = group_costs[d*COST_BITS +: COST_BITS];
-          else cost = rows_above[(2*R-1-j)*COLUMN_BITS + d*COST_BITS +: COST_BITS];
-          tap_cost[j*COST_BITS +: COST_BITS] = row_inside[j] ? cost : '0;
+          logic [LINE_BITS-1:0] cost;
+          if (j == 2 * R) cost = group_costs[d*LINE_BITS +: LINE_BITS];
+          else cost = rows_above[(2*R-1-j)*COLUMN_BITS + d*LINE_BITS +: LINE_BITS];
+          tap_cost[j*LINE_BITS +: LINE_BITS] = row_inside[j] ? cost : '0;
         end
       end
-      stereo_weighted_sum #(
-          .WINDOW(WINDOW), .IN_BITS(COST_BITS), .SUM_BITS(VSUM_BITS),
-          .RUNTIME_KERNEL(RUNTIME_KERNEL)
-      ) vertical_sum (
-          .taps(tap_cost), .kernel(kernel), .sum(vertical_d[d*VSUM_BITS +: VSUM_BITS]));
+      if (CODES) begin : g_codes
+        // The centre row's code tells whether the column is outside (it lies inside the frame
+        // wherever the sum is used); sum_j k[j] h times CENSUS_WEIGHT otherwise, as a shift and
+        // a subtraction (31 = 32 - 1) like stereo_cost's.
+        localparam int SHIFT = $clog2(fx_pkg::CENSUS_WEIGHT + 1);
+        logic [CODE_SUM_BITS-1:0] code_sum;
+        logic [LINE_BITS-1:0] centre_code;
+        stereo_weighted_sum #(
+            .WINDOW(WINDOW), .IN_BITS(LINE_BITS), .SUM_BITS(CODE_SUM_BITS),
+            .RUNTIME_KERNEL(RUNTIME_KERNEL)
+        ) vertical_sum (
+            .taps(tap_cost), .kernel(kernel), .sum(code_sum));
+        assign centre_code = (R > 0) ? rows_above[((R > 0) ? R - 1 : 0)*COLUMN_BITS + d*LINE_BITS +: LINE_BITS]
+                                     : group_costs[d*LINE_BITS +: LINE_BITS];
+        assign vertical_d[d*VSUM_BITS +: VSUM_BITS] =
+            (centre_code == LINE_BITS'(fx_pkg::CENSUS_CODE_OUTSIDE))
+                ? outside_sum
+                : (VSUM_BITS'(code_sum) << SHIFT) -
+                      VSUM_BITS'(code_sum) * VSUM_BITS'((1 << SHIFT) - fx_pkg::CENSUS_WEIGHT);
+      end else begin : g_costs
+        stereo_weighted_sum #(
+            .WINDOW(WINDOW), .IN_BITS(COST_BITS), .SUM_BITS(VSUM_BITS),
+            .RUNTIME_KERNEL(RUNTIME_KERNEL)
+        ) vertical_sum (
+            .taps(tap_cost), .kernel(kernel), .sum(vertical_d[d*VSUM_BITS +: VSUM_BITS]));
+      end
     end
   endgenerate
 

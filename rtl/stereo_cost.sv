@@ -30,6 +30,9 @@
 // LANES distance units compute labels [g*LANES +: LANES] combinationally (a G:1 multiplexer per
 // lane picks its right pixel), and out_data carries that group only (LANES costs). The stage's
 // output is thus the same pixel's costs between two steps as with LANES = NDISP.
+// CENSUS_CODES = 1 (census only; what stereo_top sets for its aggregation): each label's field
+// carries the census code instead, the distance or CENSUS_CODE_OUTSIDE where xr lies outside,
+// zero-extended to COST_BITS (stereo_aggregate's narrow line buffer, docs/rtl.md "Census codes").
 // Latency: 1 + K pixel steps. Throughput: one pixel per ce.
 `default_nettype none
 
@@ -37,7 +40,8 @@ module stereo_cost #(
     parameter int NDISP        = 16,                           // labels
     parameter int MAX_MIN_DISP = fx_pkg::DEFAULT_MAX_MIN_DISP,  // largest |cfg_min_disp|
     parameter int COST         = fx_pkg::COST_AD,  // COST_AD, COST_LCDM or COST_CENSUS
-    parameter int LANES        = NDISP  // labels computed per clock (divides NDISP)
+    parameter int LANES        = NDISP,  // labels computed per clock (divides NDISP)
+    parameter bit CENSUS_CODES = 1'b0  // census: the code (distance or outside) per label
 ) (
 `include "stereo_stage_ports.svh"
     input  wire logic [23:0]                        in_left,       // {R, G, B} or census code
@@ -58,6 +62,9 @@ module stereo_cost #(
   localparam int GROUPS = NDISP / LANES;  // clocks per pixel step
   localparam int CENSUS_SHIFT = $clog2(fx_pkg::CENSUS_WEIGHT + 1);
   localparam int CENSUS_BELOW = (1 << CENSUS_SHIFT) - fx_pkg::CENSUS_WEIGHT;
+  // What a label whose right pixel lies outside [0, W) gets.
+  localparam logic [COST_BITS-1:0] OUTSIDE = (COST == fx_pkg::COST_CENSUS && CENSUS_CODES)
+      ? COST_BITS'(fx_pkg::CENSUS_CODE_OUTSIDE) : COST_BITS'(fx_pkg::COST_OUTSIDE);
   // Right pixels kept: the pre-delay line, and the lanes' history (LANES = NDISP: besides the
   // selected pixel; else including it, as it was at the last step).
   localparam int PRE_DELAY = (MAX_MIN_DISP > 0) ? MAX_MIN_DISP : 1;
@@ -68,6 +75,7 @@ module stereo_cost #(
   initial begin
     assert (MAX_MIN_DISP >= 0 && MAX_MIN_DISP <= fx_pkg::MAX_MIN_DISPARITY);
     assert (COST == fx_pkg::COST_AD || COST == fx_pkg::COST_LCDM || COST == fx_pkg::COST_CENSUS);
+    assert (!CENSUS_CODES || COST == fx_pkg::COST_CENSUS);
     assert (LANES >= 1 && NDISP % LANES == 0);
   end
 
@@ -148,13 +156,18 @@ module stereo_cost #(
     abs_diff_rgb = COST_BITS'(dr) + COST_BITS'(dg) + COST_BITS'(db);
   endfunction
 
+  function automatic logic [COST_BITS-1:0] census_count(input logic [23:0] a,
+                                                        input logic [23:0] b);
+    logic [23:0] differ;
+    differ = a ^ b;
+    census_count = '0;
+    for (int i = 0; i < fx_pkg::CENSUS_BITS; i++) census_count = census_count + COST_BITS'(differ[i]);
+  endfunction
+
   function automatic logic [COST_BITS-1:0] census_distance(input logic [23:0] a,
                                                            input logic [23:0] b);
-    logic [23:0] differ;
     logic [COST_BITS-1:0] count;
-    differ = a ^ b;
-    count = '0;
-    for (int i = 0; i < fx_pkg::CENSUS_BITS; i++) count = count + COST_BITS'(differ[i]);
+    count = census_count(a, b);
     // count * CENSUS_WEIGHT as count * 2^k - count * (2^k - CENSUS_WEIGHT), 2^k the power of two
     // above the weight (31 = 32 - 1: a shift and a subtraction), so no multiplier or DSP block.
     census_distance = (count << CENSUS_SHIFT) - count * COST_BITS'(CENSUS_BELOW);
@@ -210,6 +223,9 @@ module stereo_cost #(
             .in_right(lane_right[l*PIXEL_BITS +: PIXEL_BITS]),
             .out_cost(distance)
         );
+      end else if (COST == fx_pkg::COST_CENSUS && CENSUS_CODES) begin : g_census_code
+        assign distance =
+            census_count(24'(lane_left), 24'(lane_right[l*PIXEL_BITS +: PIXEL_BITS]));
       end else if (COST == fx_pkg::COST_CENSUS) begin : g_census  // PIXEL_BITS = 24
         assign distance =
             census_distance(24'(lane_left), 24'(lane_right[l*PIXEL_BITS +: PIXEL_BITS]));
@@ -217,8 +233,7 @@ module stereo_cost #(
         assign distance = abs_diff_rgb(24'(lane_left), 24'(lane_right[l*PIXEL_BITS +: PIXEL_BITS]));
       end
       assign cost_d[l*COST_BITS +: COST_BITS] =
-          (right_x < 18'sd0 || right_x >= $signed(18'(cfg_width)))
-              ? COST_BITS'(fx_pkg::COST_OUTSIDE) : distance;
+          (right_x < 18'sd0 || right_x >= $signed(18'(cfg_width))) ? OUTSIDE : distance;
     end
   endgenerate
 

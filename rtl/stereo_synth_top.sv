@@ -19,7 +19,8 @@ module stereo_synth_top #(
     parameter int MAX_MIN_DISP = fx_pkg::DEFAULT_MAX_MIN_DISP,
     // stereo_top RING_BLOCK_RAM: 1 for the iCE40 (synth.py sets it there).
     parameter bit RING_BLOCK_RAM = 1'b0,
-    parameter int RING_BLOCK_MIN_FILL = 50  // stereo_group_ring BLOCK_MIN_FILL
+    parameter int RING_BLOCK_MIN_FILL = 50,  // stereo_group_ring BLOCK_MIN_FILL
+    parameter int COST = fx_pkg::COST_AD  // COST_AD, COST_LCDM or COST_CENSUS (stereo_top)
 ) (
     input  wire logic                            clk,
     input  wire logic                            rst,
@@ -28,7 +29,7 @@ module stereo_synth_top #(
   stereo_top #(
       .WIDTH(WIDTH), .HEIGHT(HEIGHT), .NDISP(NDISP), .WINDOW(WINDOW), .RUNTIME_KERNEL(1'b0),
       .MAX_MIN_DISP(MAX_MIN_DISP), .LANES(LANES), .RING_BLOCK_RAM(RING_BLOCK_RAM),
-      .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
+      .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL), .COST(COST)
   ) core (
       .cfg_radius(fx_pkg::CFG_RADIUS_BITS'(WINDOW / 2)),
       .cfg_kernel('0),  // unused: the kernel is constant

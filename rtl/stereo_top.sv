@@ -333,7 +333,8 @@ module stereo_top #(
       .NDISP(NDISP),
       .MAX_MIN_DISP(MAX_MIN_DISP),
       .COST(COST),
-      .LANES(LANES)
+      .LANES(LANES),
+      .CENSUS_CODES(COST == fx_pkg::COST_CENSUS)  // the aggregation keeps census codes
   ) cost (
       .clk(clk),
       .rst(clear_coordinates),
@@ -358,7 +359,8 @@ module stereo_top #(
       .RUNTIME_KERNEL(RUNTIME_KERNEL),
       .LANES(LANES),
       .RING_BLOCK_RAM(RING_BLOCK_RAM),
-      .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
+      .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL),
+      .COST(COST)
   ) aggregate (
       .clk(clk),
       .rst(clear_coordinates),

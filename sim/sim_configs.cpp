@@ -10,6 +10,7 @@
 #include <verilated.h>
 #include <verilated_fst_c.h>
 
+#include "Vstereo_synth_top_census_ndisp8_lanes2.h"
 #include "Vstereo_synth_top_ice40_ndisp1.h"
 #include "Vstereo_synth_top_ice40_ndisp4_lanes1.h"
 #include "Vstereo_top_census.h"
@@ -202,6 +203,8 @@ const std::vector<TopConfig>& fpga_top_configs() {
         top_config(table::verilated("Vstereo_synth_top_ice40_ndisp1"), "ice40-ndisp1"),
         top_config(table::verilated("Vstereo_synth_top_ice40_ndisp4_lanes1"),
                    "ice40-ndisp4-lanes1"),
+        top_config(table::verilated("Vstereo_synth_top_census_ndisp8_lanes2"),
+                   "fpga-census-ndisp8-lanes2"),
     };
     return configs;
 }
@@ -295,6 +298,7 @@ const std::pair<std::string_view, TopFactory> kFactories[] = {
     {"ndisp1", &make_verilated<Vstereo_top_ndisp1>},
     {"ice40-ndisp1", &make_verilated<Vstereo_synth_top_ice40_ndisp1>},
     {"ice40-ndisp4-lanes1", &make_verilated<Vstereo_synth_top_ice40_ndisp4_lanes1>},
+    {"fpga-census-ndisp8-lanes2", &make_verilated<Vstereo_synth_top_census_ndisp8_lanes2>},
 #ifdef STEREO_COSIM_FULL
     {"full", &make_verilated<Vstereo_top_full>},
 #endif

@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "stereo/stage_table.hpp"
 #include "stereo/validated.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/test_support.hpp"
@@ -21,6 +22,18 @@
 #include "tb_options.hpp"
 
 namespace stereo::tb {
+
+// The model's name (MatchParams::cost) of a configuration's COST.
+inline std::string model_cost_name(int cost) {
+    switch (cost) {
+        case table::kCostLcdm:
+            return "lcdm";
+        case table::kCostCensus:
+            return "census";
+        default:
+            return "ad";
+    }
+}
 
 // A random pair through the core (true disparity 3, noise 25): its size, the matching
 // parameters and the traffic (input gaps and output stalls).

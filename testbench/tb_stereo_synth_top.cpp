@@ -1,9 +1,11 @@
 // stereo_synth_top, the FPGA build as it is synthesised (the constant default kernel, the radius
 // WINDOW/2, MAX_MIN_DISP = 0), against the golden model: the HX8K's one-label 3x3 core
 // ("ice40-ndisp1") and its 4-label 5x5 core at one label per clock ("ice40-ndisp4-lanes1"),
-// docs/synthesis.md. Random pairs with and without the CA rules and stage 6, real crops, fewer
-// labels than the build has, frames of two sizes back to back, input gaps and output stalls, and
-// a minimum disparity outside the build's range (clamped to 0 and flagged).
+// docs/synthesis.md, and a census build (8 labels, 7x7, two per clock) whose aggregation keeps
+// census codes in its line buffer ("fpga-census-ndisp8-lanes2"). Random pairs with and without
+// the CA rules and stage 6, real crops, fewer labels than the build has, frames of two sizes back
+// to back, input gaps and output stalls, and a minimum disparity outside the build's range
+// (clamped to 0 and flagged).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -32,9 +34,11 @@ using tb::same_validated;
 class FpgaTop : public ::testing::TestWithParam<std::string> {
   protected:
     const TopConfig& config() const { return top_config_named(GetParam()); }
-    // The parameters the build can run: its window with the default kernel.
+    // The parameters the build can run: its window with the default kernel, its cost.
     MatchParams params(int ndisp, bool use_ca) const {
-        return {ndisp, config().window, fx::kDefaultSigma, use_ca};
+        MatchParams p{ndisp, config().window, fx::kDefaultSigma, use_ca};
+        p.cost = tb::model_cost_name(config().cost);
+        return p;
     }
 };
 
@@ -87,7 +91,7 @@ TEST_P(FpgaTop, BackToBackFramesOfTwoSizes) {
     const std::uint32_t seed = tb::test_seed();
     std::mt19937 rng(seed);
     tb::Cosim cosim(config());
-    for (const auto& [width, height] : {std::pair{config().width, config().height}, {19, 7}}) {
+    for (const auto& [width, height] : {std::pair{config().width, config().height}, {19, 9}}) {
         const Image left = test::random_image(width, height, 3, rng);
         const Image right = test::shifted_copy(left, 1, 15, rng);
         const MatchParams p = params(config().ndisp, true);
@@ -122,7 +126,9 @@ TEST_P(FpgaTop, AnotherWindowIsRefused) {
     EXPECT_THROW(cosim.sim().set_params({16, 8, p}), std::invalid_argument);
 }
 
-INSTANTIATE_TEST_SUITE_P(Ice40, FpgaTop, ::testing::Values("ice40-ndisp1", "ice40-ndisp4-lanes1"),
+INSTANTIATE_TEST_SUITE_P(Ice40, FpgaTop,
+                         ::testing::Values("ice40-ndisp1", "ice40-ndisp4-lanes1",
+                                           "fpga-census-ndisp8-lanes2"),
                          [](const auto& info) {
                              std::string name = info.param;
                              for (char& c : name) {

@@ -30,21 +30,9 @@ const TopConfig& config() {
     return top_config_named(STEREO_TB_COST_CONFIG);
 }
 
-// The model's name of the configuration's cost.
-std::string cost_name() {
-    switch (config().cost) {
-        case table::kCostLcdm:
-            return "lcdm";
-        case table::kCostCensus:
-            return "census";
-        default:
-            return "ad";
-    }
-}
-
 MatchParams cost_params(int ndisp, int window, bool use_ca) {
     MatchParams params{ndisp, window, fx::kDefaultSigma, use_ca};
-    params.cost = cost_name();
+    params.cost = tb::model_cost_name(config().cost);
     return params;
 }
 

@@ -259,6 +259,8 @@ std::string package_text() {
         {"CENSUS_RADIUS", fx::kCensusRadius, "(2r+1)^2 window"},
         {"CENSUS_BITS", fx::kCensusBits, "code bits, raster order, centre skipped"},
         {"CENSUS_WEIGHT", fx::kCensusWeight, "cost = Hamming distance * CENSUS_WEIGHT"},
+        {"CENSUS_CODE_BITS", fx::kCensusCodeBits, "aggregation line buffer: the distance"},
+        {"CENSUS_CODE_OUTSIDE", fx::kCensusCodeOutside, "... or this code: cost COST_OUTSIDE"},
     });
     sv << "  /* verilator lint_on UNUSEDPARAM */\n\nendpackage\n\n"
           "`default_nettype wire\n";

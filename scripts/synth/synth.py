@@ -90,6 +90,11 @@ def config_from_args(args):
     # stereo_top's RING_BLOCK_MIN_FILL (which group rings go to block RAM on the iCE40), likewise.
     if getattr(args, "ring_min_fill", None) is not None:
         config["ring_block_min_fill"] = args.ring_min_fill
+    # stereo_top's COST (ad, lcdm, census), likewise recorded only when given.
+    if getattr(args, "cost", None) is not None:
+        if getattr(args, "command", None) == "board":
+            raise ReportError("the board top builds the AD cost only; --cost is for the core")
+        config["cost"] = args.cost
     # stereo_top's MAX_MIN_DISP, likewise recorded only when given.
     if getattr(args, "max_min_disp", None) is not None and getattr(args, "command", None) != "board":
         config["max_min_disp"] = args.max_min_disp
@@ -117,6 +122,8 @@ def chparam(config, ice40=False):
     extra = (f"-set MAX_MIN_DISP {config['max_min_disp']} " if "max_min_disp" in config else "")
     if "ring_block_min_fill" in config:
         extra += f"-set RING_BLOCK_MIN_FILL {config['ring_block_min_fill']} "
+    if "cost" in config:
+        extra += f"-set COST {COSTS[config['cost']]} "
     return (f"chparam -set WIDTH {config['width']} -set HEIGHT {config['height']} "
             f"-set NDISP {config['ndisp']} -set WINDOW {config['window']} "
             f"-set LANES {lanes} {extra}{'-set RING_BLOCK_RAM 1 ' if ice40 else ''}{TOP}")
@@ -577,6 +584,11 @@ STAGES = tuple(stage["name"] for stage in STAGE_TABLE["stages"])
 # stereo_top's MAX_MIN_DISP default, read from the generated package (one definition).
 DEFAULT_MAX_MIN_DISP = int(re.search(r"DEFAULT_MAX_MIN_DISP\s*=\s*(\d+)",
                                      (REPO / "rtl" / "fx_pkg.sv").read_text()).group(1))
+
+
+# stereo_top's COST values by name, read from the generated package.
+COSTS = {name.lower(): int(value) for name, value in
+         re.findall(r"COST_(AD|LCDM|CENSUS)\s*=\s*(\d+)", (REPO / "rtl" / "fx_pkg.sv").read_text())}
 
 
 def module_kind(name):
@@ -1087,6 +1099,9 @@ def add_config_arguments(parser, width=64, height=48, ndisp=4, window=5):
                         help="stereo_top RING_BLOCK_MIN_FILL (iCE40): a group ring goes to block "
                              "RAM when it fills each 16-bit block column with at least this many "
                              "bits (default: the RTL's, 50)")
+    parser.add_argument("--cost", choices=["ad", "lcdm", "census"], default=None,
+                        help="stereo_top COST (default: the RTL's, AD); census keeps 5-bit codes "
+                             "in the aggregation's line buffer")
     parser.add_argument("--work", help="folder for netlists and logs (default: a temp folder)")
     parser.add_argument("--out", help="JSON report file (default: stdout)")
 

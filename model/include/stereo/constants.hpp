@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <bit>
 #include <cstdint>
 
 namespace stereo::fx {
@@ -38,6 +39,12 @@ inline constexpr int kCensusWeight = kCostMax / kCensusBits;                    
 static_assert(kCensusBits * kCensusWeight <= kCostMax && kCensusBits <= 24,
               "census codes are three bytes");
 static_assert(kCostMax < (1 << kCostBits));
+// How the RTL's aggregation keeps census costs in its line buffer (docs/rtl.md, "Census codes"):
+// the Hamming distance in kCensusCodeBits bits, the all-ones code for "right pixel outside"
+// (cost kCostOutside). Exact, since the cost is kCensusWeight times the distance there.
+inline constexpr int kCensusCodeBits = std::bit_width(static_cast<unsigned>(kCensusBits));  // 5
+inline constexpr int kCensusCodeOutside = (1 << kCensusCodeBits) - 1;                       // 31
+static_assert(kCensusCodeOutside > kCensusBits, "the outside code is not a distance");
 
 // ---- Stage 2: Gaussian window aggregation ------------------------------------------------
 // The 1-D kernel taps are non-negative integers that sum to exactly 2^kKernelBits, so the

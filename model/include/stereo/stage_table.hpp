@@ -291,8 +291,12 @@ inline constexpr Params kNdisp8Lanes2{kSmall.width, kSmall.height, 8, kSmall.win
 inline constexpr Params kIce40Ndisp1{kSmall.width, kSmall.height, 1, 3, kUnset, kUnset, 0};
 inline constexpr Params kIce40Ndisp4Lanes1{
     kSmall.width, kSmall.height, 4, 5, kUnset, kUnset, 0, kUnset, 1};
+// The census build as synthesised: the aggregation's line buffer keeps census codes (5 bits, not
+// 10-bit costs), at a 7x7 window (radius 3) and two labels per clock.
+inline constexpr Params kFpgaCensusNdisp8Lanes2{
+    kSmall.width, kSmall.height, 8, 7, kUnset, kUnset, 0, kCostCensus, 2};
 
-inline constexpr std::array<VerilatedConfig, 26> kVerilatedConfigs = {{
+inline constexpr std::array<VerilatedConfig, 27> kVerilatedConfigs = {{
     {"Vstereo_top_small", "stereo_top", kSmall, ""},
     {"Vstereo_top_lanes4", "stereo_top", kSmallLanes4, ""},
     {"Vstereo_top_lanes1", "stereo_top", kSmallLanes1, ""},
@@ -333,6 +337,7 @@ inline constexpr std::array<VerilatedConfig, 26> kVerilatedConfigs = {{
     {"Vstereo_lr_check", "stereo_lr_check", {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset}, ""},
     {"Vstereo_synth_top_ice40_ndisp1", "stereo_synth_top", kIce40Ndisp1, ""},
     {"Vstereo_synth_top_ice40_ndisp4_lanes1", "stereo_synth_top", kIce40Ndisp4Lanes1, ""},
+    {"Vstereo_synth_top_census_ndisp8_lanes2", "stereo_synth_top", kFpgaCensusNdisp8Lanes2, ""},
     // The SoC wrapper (AXI4-Lite registers around stereo_top) at the co-simulation point.
     {"Vstereo_axil_top", "stereo_axil_top", kSmall, ""},
     // The iCEBreaker top: UART protocol, configuration registers and stereo_top.
