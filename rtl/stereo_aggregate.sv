@@ -42,7 +42,12 @@ module stereo_aggregate #(
     parameter int RING_BLOCK_MIN_FILL = 50,  // stereo_group_ring BLOCK_MIN_FILL
     // COST_CENSUS: in_data carries census codes, kept narrow in the line buffer (above); any
     // other cost: in_data carries the costs.
-    parameter int COST = fx_pkg::COST_AD
+    parameter int COST = fx_pkg::COST_AD,
+    // RUNTIME_KERNEL = 0, which constant tap products are built from shifts and adds
+    // (stereo_weighted_sum SHIFT_ADD) rather than left to the tools (DSP blocks where the target
+    // has them): 0 none; 1 the census codes' vertical products (6-bit operands, not worth a DSP
+    // block); 2 every product.
+    parameter int SHIFT_ADD = 0
 ) (
 `include "stereo_stage_ports.svh"
     // The in_y of the next step (stereo_top: stereo_cost's out_next_y, what its coordinate
@@ -198,7 +203,7 @@ module stereo_aggregate #(
         logic [LINE_BITS-1:0] centre_code;
         stereo_weighted_sum #(
             .WINDOW(WINDOW), .IN_BITS(LINE_BITS), .SUM_BITS(CODE_SUM_BITS),
-            .RUNTIME_KERNEL(RUNTIME_KERNEL)
+            .RUNTIME_KERNEL(RUNTIME_KERNEL), .SHIFT_ADD(SHIFT_ADD >= 1)
         ) vertical_sum (
             .taps(tap_cost), .kernel(kernel), .sum(code_sum));
         assign centre_code = (R > 0) ? rows_above[((R > 0) ? R - 1 : 0)*COLUMN_BITS + d*LINE_BITS +: LINE_BITS]
@@ -211,7 +216,7 @@ module stereo_aggregate #(
       end else begin : g_costs
         stereo_weighted_sum #(
             .WINDOW(WINDOW), .IN_BITS(COST_BITS), .SUM_BITS(VSUM_BITS),
-            .RUNTIME_KERNEL(RUNTIME_KERNEL)
+            .RUNTIME_KERNEL(RUNTIME_KERNEL), .SHIFT_ADD(SHIFT_ADD >= 2)
         ) vertical_sum (
             .taps(tap_cost), .kernel(kernel), .sum(vertical_d[d*VSUM_BITS +: VSUM_BITS]));
       end
@@ -309,7 +314,7 @@ module stereo_aggregate #(
       logic [WSUM_BITS-1:0] sum;
       stereo_weighted_sum #(
           .WINDOW(WINDOW), .IN_BITS(VSUM_BITS), .SUM_BITS(WSUM_BITS),
-          .RUNTIME_KERNEL(RUNTIME_KERNEL)
+          .RUNTIME_KERNEL(RUNTIME_KERNEL), .SHIFT_ADD(SHIFT_ADD >= 2)
       ) horizontal_sum (
           .taps(tap_sum), .kernel(kernel), .sum(sum));
       // Rounded to the nearest (half up) by the kernel's scale.

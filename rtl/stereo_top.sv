@@ -58,7 +58,11 @@ module stereo_top #(
     // any group count; for the iCE40, whose flip-flops are logic cells (it has no LUT RAM).
     // 0: block or LUT RAM from 8 groups on, registers below, as synthesis sees fit.
     parameter bit RING_BLOCK_RAM = 1'b0,
-    parameter int RING_BLOCK_MIN_FILL = 50  // stereo_group_ring BLOCK_MIN_FILL
+    parameter int RING_BLOCK_MIN_FILL = 50,  // stereo_group_ring BLOCK_MIN_FILL
+    // RUNTIME_KERNEL = 0: which constant tap products of the aggregation are built from shifts
+    // and adds (canonical signed digits) instead of being left to the tools (DSP blocks where the
+    // target has them): 0 none, 1 the census codes' narrow vertical products, 2 all.
+    parameter int SHIFT_ADD = 0
 ) (
     input  wire logic                               clk,
     input  wire logic                               rst,
@@ -360,7 +364,8 @@ module stereo_top #(
       .LANES(LANES),
       .RING_BLOCK_RAM(RING_BLOCK_RAM),
       .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL),
-      .COST(COST)
+      .COST(COST),
+      .SHIFT_ADD(SHIFT_ADD)
   ) aggregate (
       .clk(clk),
       .rst(clear_coordinates),

@@ -292,7 +292,8 @@ std::vector<std::pair<std::string, int>> assignments(const stereo::table::Params
                                                {"MAX_MIN_DISP", params.max_min_disp},
                                                {"COST", params.cost},
                                                {"LANES", params.lanes},
-                                               {"CLKS_PER_BIT", params.clks_per_bit}};
+                                               {"CLKS_PER_BIT", params.clks_per_bit},
+                                               {"SHIFT_ADD", params.shift_add}};
     for (const auto& [name, value] : all) {
         if (value != stereo::table::kUnset) {
             out.emplace_back(name, value);

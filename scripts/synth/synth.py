@@ -95,6 +95,11 @@ def config_from_args(args):
         if getattr(args, "command", None) == "board":
             raise ReportError("the board top builds the AD cost only; --cost is for the core")
         config["cost"] = args.cost
+    # stereo_top's SHIFT_ADD (constant tap products from shifts and adds), likewise.
+    if getattr(args, "shift_add", None) is not None:
+        if getattr(args, "command", None) == "board":
+            raise ReportError("--shift-add is for the core, not the board top")
+        config["shift_add"] = args.shift_add
     # stereo_top's MAX_MIN_DISP, likewise recorded only when given.
     if getattr(args, "max_min_disp", None) is not None and getattr(args, "command", None) != "board":
         config["max_min_disp"] = args.max_min_disp
@@ -124,6 +129,8 @@ def chparam(config, ice40=False):
         extra += f"-set RING_BLOCK_MIN_FILL {config['ring_block_min_fill']} "
     if "cost" in config:
         extra += f"-set COST {COSTS[config['cost']]} "
+    if "shift_add" in config:
+        extra += f"-set SHIFT_ADD {SHIFT_ADD[config['shift_add']]} "
     return (f"chparam -set WIDTH {config['width']} -set HEIGHT {config['height']} "
             f"-set NDISP {config['ndisp']} -set WINDOW {config['window']} "
             f"-set LANES {lanes} {extra}{'-set RING_BLOCK_RAM 1 ' if ice40 else ''}{TOP}")
@@ -246,8 +253,10 @@ def throughput(config, fmax_mhz):
     if fmax_mhz is None:
         return None, None
     r = config["window"] // 2
-    cycles = (config["width"] * config["height"] + (r + 2) * config["width"] + r + 10) * \
-        clocks_per_step(config)
+    steps = config["width"] * config["height"] + (r + 2) * config["width"] + r + 10
+    if config.get("cost") == "census":
+        steps += 2 * config["width"] + 4  # the census stage's latency (stage_table kCensusStage)
+    cycles = steps * clocks_per_step(config)
     fps = fmax_mhz * 1e6 / cycles
     mdes = fps * config["width"] * config["height"] * config["ndisp"] / 1e6
     return round(fps, 2), round(mdes, 1)
@@ -586,6 +595,8 @@ DEFAULT_MAX_MIN_DISP = int(re.search(r"DEFAULT_MAX_MIN_DISP\s*=\s*(\d+)",
                                      (REPO / "rtl" / "fx_pkg.sv").read_text()).group(1))
 
 
+# stereo_top's SHIFT_ADD values by name.
+SHIFT_ADD = {"none": 0, "narrow": 1, "all": 2}
 # stereo_top's COST values by name, read from the generated package.
 COSTS = {name.lower(): int(value) for name, value in
          re.findall(r"COST_(AD|LCDM|CENSUS)\s*=\s*(\d+)", (REPO / "rtl" / "fx_pkg.sv").read_text())}
@@ -1102,6 +1113,10 @@ def add_config_arguments(parser, width=64, height=48, ndisp=4, window=5):
     parser.add_argument("--cost", choices=["ad", "lcdm", "census"], default=None,
                         help="stereo_top COST (default: the RTL's, AD); census keeps 5-bit codes "
                              "in the aggregation's line buffer")
+    parser.add_argument("--shift-add", choices=sorted(SHIFT_ADD), default=None,
+                        help="stereo_top SHIFT_ADD: which constant tap products of the aggregation "
+                             "are shifts and adds instead of multipliers (DSP blocks): none, "
+                             "narrow (the census codes' vertical pass) or all (default: none)")
     parser.add_argument("--work", help="folder for netlists and logs (default: a temp folder)")
     parser.add_argument("--out", help="JSON report file (default: stdout)")
 

@@ -399,6 +399,28 @@ class Devices(unittest.TestCase):
 
 
 class Configs(unittest.TestCase):
+    def test_cost_and_shift_add_reach_chparam(self):
+        args = SimpleNamespace(width=64, height=48, ndisp=8, window=7, lanes=2, cost="census",
+                               shift_add="narrow", command="estimate")
+        config = synth.config_from_args(args)
+        self.assertEqual((config["cost"], config["shift_add"]), ("census", "narrow"))
+        command = synth.chparam(config)
+        self.assertIn("-set COST 2 ", command)  # fx_pkg COST_CENSUS
+        self.assertIn("-set SHIFT_ADD 1 ", command)
+        # Without them the report keeps its old shape and the RTL's defaults apply.
+        plain = synth.config_from_args(SimpleNamespace(width=64, height=48, ndisp=8, window=7))
+        self.assertNotIn("cost", plain)
+        self.assertNotIn("COST", synth.chparam(plain))
+        # The census stage adds 2W + 4 = 132 steps: (3072 + 5 * 64 + 3 + 10 + 132) * 4 clocks.
+        fps, _ = synth.throughput(dict(config, lanes=2), 100.0)
+        self.assertEqual(fps, round(100e6 / ((3072 + 5 * 64 + 3 + 10 + 132) * 4), 2))
+
+    def test_board_refuses_core_options(self):
+        for extra in ({"cost": "census"}, {"shift_add": "all"}):
+            args = SimpleNamespace(width=32, height=24, ndisp=1, window=3, command="board", **extra)
+            with self.assertRaises(synth.ReportError, msg=str(extra)):
+                synth.config_from_args(args)
+
     def test_impossible_configurations(self):
         for bad in ({"window": 4}, {"window": 33}, {"ndisp": 0}, {"ndisp": 257}, {"width": 0}):
             args = SimpleNamespace(**dict({"width": 64, "height": 48, "ndisp": 4, "window": 5},

@@ -239,6 +239,7 @@ struct Params {
     int cost = kUnset;   // stereo_top's and stereo_cost's COST: kCostAd, kCostLcdm, kCostCensus
     int lanes = kUnset;  // stereo_top's and stereo_cost's LANES (unset: NDISP)
     int clks_per_bit = kUnset;  // the UART's CLKS_PER_BIT (stereo_board_top)
+    int shift_add = kUnset;  // stereo_top's SHIFT_ADD: tap products from shifts and adds (0-2)
 };
 
 struct VerilatedConfig {
@@ -292,9 +293,10 @@ inline constexpr Params kIce40Ndisp1{kSmall.width, kSmall.height, 1, 3, kUnset, 
 inline constexpr Params kIce40Ndisp4Lanes1{
     kSmall.width, kSmall.height, 4, 5, kUnset, kUnset, 0, kUnset, 1};
 // The census build as synthesised: the aggregation's line buffer keeps census codes (5 bits, not
-// 10-bit costs), at a 7x7 window (radius 3) and two labels per clock.
+// 10-bit costs), at a 7x7 window (radius 3) and two labels per clock, with every tap product
+// built from shifts and adds (SHIFT_ADD = 2).
 inline constexpr Params kFpgaCensusNdisp8Lanes2{
-    kSmall.width, kSmall.height, 8, 7, kUnset, kUnset, 0, kCostCensus, 2};
+    kSmall.width, kSmall.height, 8, 7, kUnset, kUnset, 0, kCostCensus, 2, kUnset, 2};
 
 inline constexpr std::array<VerilatedConfig, 27> kVerilatedConfigs = {{
     {"Vstereo_top_small", "stereo_top", kSmall, ""},
@@ -370,7 +372,7 @@ struct LintConfig {
     Params params;
 };
 
-inline constexpr std::array<LintConfig, 19> kExtraLintConfigs = {{
+inline constexpr std::array<LintConfig, 21> kExtraLintConfigs = {{
     // Time-multiplexed lanes: one label per clock, an odd group count, the FPGA build at full size.
     {"stereo_top", {kUnset, kUnset, 3, 3, kUnset, kUnset, kUnset, kUnset, 1}},
     {"stereo_top", {100, 75, 12, 7, kUnset, kUnset, kUnset, kUnset, 4}},
@@ -400,6 +402,14 @@ inline constexpr std::array<LintConfig, 19> kExtraLintConfigs = {{
     {"stereo_top", kFull},
     // The FPGA build (constant kernel) at the full-size configuration.
     {"stereo_synth_top", kFull},
+    // ... with the census cost and its narrow vertical products as shifts and adds (SHIFT_ADD =
+    // 1), and with the AD cost and every product as shifts and adds (SHIFT_ADD = 2).
+    {"stereo_synth_top",
+     {kFull.width, kFull.height, kFull.ndisp, kFull.window, kUnset, kUnset, kUnset, kCostCensus, 32,
+      kUnset, 1}},
+    {"stereo_synth_top",
+     {kFull.width, kFull.height, kFull.ndisp, kFull.window, kUnset, kUnset, kUnset, kUnset, 8,
+      kUnset, 2}},
     // The board top at its co-simulation point (the defaults are the UP5K build).
     {"stereo_board_top", kSmallBoard},
 }};
