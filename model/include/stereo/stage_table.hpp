@@ -239,7 +239,7 @@ struct Params {
     int cost = kUnset;   // stereo_top's and stereo_cost's COST: kCostAd, kCostLcdm, kCostCensus
     int lanes = kUnset;  // stereo_top's and stereo_cost's LANES (unset: NDISP)
     int clks_per_bit = kUnset;  // the UART's CLKS_PER_BIT (stereo_board_top)
-    int shift_add = kUnset;  // stereo_top's SHIFT_ADD: tap products from shifts and adds (0-2)
+    int shift_add = kUnset;     // stereo_top's SHIFT_ADD: tap products from shifts and adds (0-2)
 };
 
 struct VerilatedConfig {
