@@ -91,7 +91,7 @@ package fx_pkg;
   localparam int STATUS_SOF_MISPLACED = 1;  // tuser inside a frame
   localparam int STATUS_CONFIG_CLAMPED = 2;  // configuration out of range
   localparam int REGMAP_ID = 1398031698;  // stereo_axil_top's ID register
-  localparam int REGMAP_VERSION = 65536;  // stereo_axil_top's VERSION register
+  localparam int REGMAP_VERSION = 65537;  // stereo_axil_top's VERSION register
 
   // CA rules: 2|n - c| < c  <=>  c < 2n < 3c, exactly in integers (stereo::fx::agrees):
   // two comparisons instead of a subtraction, an absolute value and a comparison.

@@ -6,7 +6,7 @@
 //   0x04 VERSION     RO  REGMAP_VERSION (0xMMMMmmmm)
 //   0x08 MAX_SIZE    RO  [15:0] WIDTH, [31:16] HEIGHT (the largest frame)
 //   0x0C BUILD       RO  [8:0] NDISP, [13:9] WINDOW / 2, [25:14] MAX_MIN_DISP, [26] RUNTIME_KERNEL,
-//                        [27] COST
+//                        [28:27] COST (0 AD, 1 LCDM, 2 census)
 //   0x10 FRAME       RW  [15:0] width, [31:16] height           reset WIDTH, HEIGHT
 //   0x14 MATCH       RW  [8:0] ndisp, [20:16] radius, [24] use_ca  reset NDISP, WINDOW / 2, 1
 //   0x18 STAGE6      RW  [11:0] min_disp (signed), [12] uniqueness enable, [13] left-right enable,
@@ -35,6 +35,7 @@ module stereo_axil_top #(
     parameter int MAX_MIN_DISP   = fx_pkg::DEFAULT_MAX_MIN_DISP,
     parameter int COST           = 0,
     parameter int LANES          = NDISP,  // labels per clock: NDISP / LANES clocks per pixel
+    parameter int SHIFT_ADD      = 0,  // RUNTIME_KERNEL = 0: tap products from shifts and adds
     parameter int ADDR_BITS      = 8                               // AXI4-Lite address width
 ) (
     input  wire logic                            clk,
@@ -131,7 +132,7 @@ module stereo_axil_top #(
       'h08: register_word = {16'(HEIGHT), 16'(WIDTH)};
       'h0C:
       register_word = {
-        4'b0, 1'(COST), RUNTIME_KERNEL, 12'(MAX_MIN_DISP), 5'(R), 9'(NDISP)
+        3'b0, 2'(COST), RUNTIME_KERNEL, 12'(MAX_MIN_DISP), 5'(R), 9'(NDISP)
       };
       'h10: register_word = {cfg_height, cfg_width};
       'h14: register_word = {7'b0, cfg_use_ca, 3'b0, cfg_radius, 7'b0, cfg_ndisp};
@@ -262,7 +263,8 @@ module stereo_axil_top #(
   // ---- the core -------------------------------------------------------------------------------
   stereo_top #(
       .WIDTH(WIDTH), .HEIGHT(HEIGHT), .NDISP(NDISP), .WINDOW(WINDOW),
-      .RUNTIME_KERNEL(RUNTIME_KERNEL), .MAX_MIN_DISP(MAX_MIN_DISP), .COST(COST), .LANES(LANES)
+      .RUNTIME_KERNEL(RUNTIME_KERNEL), .MAX_MIN_DISP(MAX_MIN_DISP), .COST(COST), .LANES(LANES),
+      .SHIFT_ADD(SHIFT_ADD)
   ) core (
       .rst(rst || soft_reset),
       .status(core_status),

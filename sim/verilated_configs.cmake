@@ -26,6 +26,7 @@ stereo_verilated_config(Vstereo_synth_top_ice40_ndisp1 stereo_synth_top "" WIDTH
 stereo_verilated_config(Vstereo_synth_top_ice40_ndisp4_lanes1 stereo_synth_top "" WIDTH=64 HEIGHT=48 NDISP=4 WINDOW=5 MAX_MIN_DISP=0 LANES=1)
 stereo_verilated_config(Vstereo_synth_top_census_ndisp8_lanes2 stereo_synth_top "" WIDTH=64 HEIGHT=48 NDISP=8 WINDOW=7 MAX_MIN_DISP=0 COST=2 LANES=2 SHIFT_ADD=2)
 stereo_verilated_config(Vstereo_axil_top stereo_axil_top "" WIDTH=64 HEIGHT=48 NDISP=16 WINDOW=5)
+stereo_verilated_config(Vstereo_axil_top_census stereo_axil_top "" WIDTH=64 HEIGHT=48 NDISP=16 WINDOW=5 RUNTIME_KERNEL=0 COST=2 LANES=4 SHIFT_ADD=1)
 stereo_verilated_config(Vstereo_board_top stereo_board_top "" WIDTH=64 HEIGHT=48 NDISP=16 WINDOW=5 CLKS_PER_BIT=4)
 stereo_verilated_config(Vstereo_uart_echo_top stereo_uart_echo_top "" CLKS_PER_BIT=4)
 stereo_verilated_config(Vstereo_top_full stereo_top "STEREO_COSIM_FULL" WIDTH=640 HEIGHT=480 NDISP=64 WINDOW=11)

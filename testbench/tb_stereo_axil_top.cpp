@@ -8,12 +8,14 @@
 #include <cstdint>
 #include <random>
 #include <stdexcept>
+#include <tuple>
 #include <vector>
 
 #include <verilated.h>
 #include <verilated_fst_c.h>
 
 #include "Vstereo_axil_top.h"
+#include "Vstereo_axil_top_census.h"
 #include "axis_driver.hpp"
 #include "stereo/pipeline.hpp"
 #include "stereo/stage_table.hpp"
@@ -47,10 +49,13 @@ enum Register : std::uint32_t {
 
 enum class Order { together, address_first, data_first };
 
-class AxilTop {
+// One Verilated build of the wrapper (Model: Vstereo_axil_top or Vstereo_axil_top_census, both at
+// kConfig's size and window).
+template <class Model>
+class AxilTopOf {
   public:
-    AxilTop() : harness_("stereo_axil_top") {
-        Vstereo_axil_top& m = harness_.model();
+    AxilTopOf() : harness_("stereo_axil_top") {
+        Model& m = harness_.model();
         m.s_axil_awvalid = 0;
         m.s_axil_wvalid = 0;
         m.s_axil_bready = 0;
@@ -66,7 +71,7 @@ class AxilTop {
 
     void write(std::uint32_t addr, std::uint32_t data, std::uint8_t strobe = 0xF,
                Order order = Order::together) {
-        Vstereo_axil_top& m = harness_.model();
+        Model& m = harness_.model();
         bool address_done = false;
         bool data_done = false;
         m.s_axil_awaddr = static_cast<std::uint8_t>(addr);
@@ -96,7 +101,7 @@ class AxilTop {
     }
 
     std::uint32_t read(std::uint32_t addr) {
-        Vstereo_axil_top& m = harness_.model();
+        Model& m = harness_.model();
         m.s_axil_araddr = static_cast<std::uint8_t>(addr);
         m.s_axil_arvalid = 1;
         m.s_axil_rready = 0;
@@ -164,8 +169,10 @@ class AxilTop {
         }
     }
 
-    VerilatedHarness<Vstereo_axil_top> harness_;
+    VerilatedHarness<Model> harness_;
 };
+
+using AxilTop = AxilTopOf<Vstereo_axil_top>;
 
 TEST(AxilRegisters, ResetValuesAndReadOnlyFields) {
     AxilTop top;
@@ -177,7 +184,8 @@ TEST(AxilRegisters, ResetValuesAndReadOnlyFields) {
     EXPECT_EQ(build >> 9 & 0x1FU, static_cast<std::uint32_t>(kConfig.window / 2));
     EXPECT_EQ(build >> 14 & 0xFFFU, static_cast<std::uint32_t>(table::kDefaultMaxMinDisp));
     EXPECT_EQ(build >> 26 & 1U, 1U);  // RUNTIME_KERNEL
-    EXPECT_EQ(build >> 27 & 1U, 0U);  // COST: AD
+    EXPECT_EQ(build >> 27 & 3U, 0U);  // COST: AD
+    EXPECT_EQ(build >> 29, 0U);       // reserved
     EXPECT_EQ(top.read(kFrame), static_cast<std::uint32_t>(kConfig.width | kConfig.height << 16));
     EXPECT_EQ(top.read(kMatch),
               static_cast<std::uint32_t>(kConfig.ndisp | (kConfig.window / 2) << 16 | 1 << 24));
@@ -244,6 +252,36 @@ TEST(AxilFrames, RegisterConfigurationsEqualTheModel) {
     EXPECT_EQ(top.read(kFramesIn), static_cast<std::uint32_t>(frames));
     EXPECT_EQ(top.read(kFramesOut), static_cast<std::uint32_t>(frames));
     EXPECT_GT(top.read(kStalls), 0U);  // 30 % of the cycles had tready low
+    EXPECT_EQ(top.read(kStatus), 0U);
+}
+
+// The census build (constant kernel, 4 labels per clock, SHIFT_ADD = 1): BUILD says so, and frames
+// configured through the registers equal the model's census matcher pixel for pixel.
+TEST(AxilFrames, CensusBuildReportsItsCostAndEqualsTheModel) {
+    constexpr table::Params census = table::verilated("Vstereo_axil_top_census").params;
+    static_assert(census.window == kConfig.window && census.cost == table::kCostCensus);
+    const std::uint32_t seed = tb::test_seed();
+    std::mt19937 rng(seed);
+    AxilTopOf<Vstereo_axil_top_census> top;
+    const std::uint32_t build = top.read(kBuild);
+    EXPECT_EQ(build & 0x1FFU, static_cast<std::uint32_t>(census.ndisp));
+    EXPECT_EQ(build >> 26 & 1U, 0U);  // RUNTIME_KERNEL 0: the default kernel as constants
+    EXPECT_EQ(build >> 27 & 3U, 2U);  // COST: census
+    int frames = 0;
+    for (const auto& [width, height, min_disp] :
+         {std::tuple{64, 48, 0}, std::tuple{41, 17, -3}, std::tuple{64, 48, 5}}) {
+        const auto [left, right] = test::shifted_pair(width, height, 3, 4, 15, rng);
+        MatchParams params{census.ndisp, census.window, fx::kDefaultSigma, true};
+        params.cost = "census";
+        params.min_disp = min_disp;
+        params.validation = ValidationParams::all_on();
+        top.configure(width, height, params);
+        EXPECT_TRUE(tb::same_validated(match_validated(left, right, params),
+                                       top.frame(left, right, {0.2, 0.2, seed + frames})))
+            << width << "x" << height << " min_disp " << min_disp;
+        ++frames;
+    }
+    EXPECT_EQ(top.read(kFramesOut), static_cast<std::uint32_t>(frames));
     EXPECT_EQ(top.read(kStatus), 0U);
 }
 

@@ -222,8 +222,8 @@ inline constexpr std::array<std::string_view, 3> kRtlIncludes = {
 // ---- SoC wrapper (rtl/stereo_axil_top.sv, docs/integration.md) -------------------------------
 // The register map's version (VERSION register, 0xMMMMmmmm) and the FuseSoC core's version.
 inline constexpr std::uint32_t kRegmapId = 0x5354'4552;  // "STER"
-inline constexpr std::uint32_t kRegmapVersion = 0x0001'0000;
-inline constexpr std::string_view kRegmapVersionText = "1.0.0";
+inline constexpr std::uint32_t kRegmapVersion = 0x0001'0001;
+inline constexpr std::string_view kRegmapVersionText = "1.1.0";
 
 // ---- Verilated configurations (sim/verilated_configs.cmake) --------------------------------
 inline constexpr int kUnset = -1;
@@ -298,7 +298,7 @@ inline constexpr Params kIce40Ndisp4Lanes1{
 inline constexpr Params kFpgaCensusNdisp8Lanes2{
     kSmall.width, kSmall.height, 8, 7, kUnset, kUnset, 0, kCostCensus, 2, kUnset, 2};
 
-inline constexpr std::array<VerilatedConfig, 27> kVerilatedConfigs = {{
+inline constexpr std::array<VerilatedConfig, 28> kVerilatedConfigs = {{
     {"Vstereo_top_small", "stereo_top", kSmall, ""},
     {"Vstereo_top_lanes4", "stereo_top", kSmallLanes4, ""},
     {"Vstereo_top_lanes1", "stereo_top", kSmallLanes1, ""},
@@ -340,8 +340,15 @@ inline constexpr std::array<VerilatedConfig, 27> kVerilatedConfigs = {{
     {"Vstereo_synth_top_ice40_ndisp1", "stereo_synth_top", kIce40Ndisp1, ""},
     {"Vstereo_synth_top_ice40_ndisp4_lanes1", "stereo_synth_top", kIce40Ndisp4Lanes1, ""},
     {"Vstereo_synth_top_census_ndisp8_lanes2", "stereo_synth_top", kFpgaCensusNdisp8Lanes2, ""},
-    // The SoC wrapper (AXI4-Lite registers around stereo_top) at the co-simulation point.
+    // The SoC wrapper (AXI4-Lite registers around stereo_top) at the co-simulation point, and
+    // its census build as an FPGA would take it: the constant kernel, 4 labels per clock, the
+    // census codes' vertical products as shifts and adds.
     {"Vstereo_axil_top", "stereo_axil_top", kSmall, ""},
+    {"Vstereo_axil_top_census",
+     "stereo_axil_top",
+     {kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window, 0, kUnset, kUnset, kCostCensus, 4,
+      kUnset, 1},
+     ""},
     // The iCEBreaker top: UART protocol, configuration registers and stereo_top.
     {"Vstereo_board_top", "stereo_board_top", kSmallBoard, ""},
     // Its link test (UART echo, no core) with the same UART speed.
