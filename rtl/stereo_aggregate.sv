@@ -206,8 +206,11 @@ module stereo_aggregate #(
             .RUNTIME_KERNEL(RUNTIME_KERNEL), .SHIFT_ADD(SHIFT_ADD >= 1)
         ) vertical_sum (
             .taps(tap_cost), .kernel(kernel), .sum(code_sum));
-        assign centre_code = (R > 0) ? rows_above[((R > 0) ? R - 1 : 0)*COLUMN_BITS + d*LINE_BITS +: LINE_BITS]
-                                     : group_costs[d*LINE_BITS +: LINE_BITS];
+        if (R > 0) begin : g_centre_above  // tap R: the row R above the incoming one
+          assign centre_code = rows_above[(R-1)*COLUMN_BITS + d*LINE_BITS +: LINE_BITS];
+        end else begin : g_centre_incoming
+          assign centre_code = group_costs[d*LINE_BITS +: LINE_BITS];
+        end
         assign vertical_d[d*VSUM_BITS +: VSUM_BITS] =
             (centre_code == LINE_BITS'(fx_pkg::CENSUS_CODE_OUTSIDE))
                 ? outside_sum
