@@ -194,18 +194,19 @@ module stereo_aggregate #(
           tap_cost[j*LINE_BITS +: LINE_BITS] = row_inside[j] ? cost : '0;
         end
       end
+      // One weighted sum of the taps: of census codes (narrow, CODE_SUM_BITS) or of costs.
+      logic [(CODES ? CODE_SUM_BITS : VSUM_BITS)-1:0] column_sum;
+      stereo_weighted_sum #(
+          .WINDOW(WINDOW), .IN_BITS(LINE_BITS), .SUM_BITS(CODES ? CODE_SUM_BITS : VSUM_BITS),
+          .RUNTIME_KERNEL(RUNTIME_KERNEL), .SHIFT_ADD(SHIFT_ADD >= (CODES ? 1 : 2))
+      ) vertical_sum (
+          .taps(tap_cost), .kernel(kernel), .sum(column_sum));
       if (CODES) begin : g_codes
         // The centre row's code tells whether the column is outside (it lies inside the frame
         // wherever the sum is used); sum_j k[j] h times CENSUS_WEIGHT otherwise, as a shift and
         // a subtraction (31 = 32 - 1) like stereo_cost's.
         localparam int SHIFT = $clog2(fx_pkg::CENSUS_WEIGHT + 1);
-        logic [CODE_SUM_BITS-1:0] code_sum;
         logic [LINE_BITS-1:0] centre_code;
-        stereo_weighted_sum #(
-            .WINDOW(WINDOW), .IN_BITS(LINE_BITS), .SUM_BITS(CODE_SUM_BITS),
-            .RUNTIME_KERNEL(RUNTIME_KERNEL), .SHIFT_ADD(SHIFT_ADD >= 1)
-        ) vertical_sum (
-            .taps(tap_cost), .kernel(kernel), .sum(code_sum));
         if (R > 0) begin : g_centre_above  // tap R: the row R above the incoming one
           assign centre_code = rows_above[(R-1)*COLUMN_BITS + d*LINE_BITS +: LINE_BITS];
         end else begin : g_centre_incoming
@@ -214,14 +215,10 @@ module stereo_aggregate #(
         assign vertical_d[d*VSUM_BITS +: VSUM_BITS] =
             (centre_code == LINE_BITS'(fx_pkg::CENSUS_CODE_OUTSIDE))
                 ? outside_sum
-                : (VSUM_BITS'(code_sum) << SHIFT) -
-                      VSUM_BITS'(code_sum) * VSUM_BITS'((1 << SHIFT) - fx_pkg::CENSUS_WEIGHT);
+                : (VSUM_BITS'(column_sum) << SHIFT) -
+                      VSUM_BITS'(column_sum) * VSUM_BITS'((1 << SHIFT) - fx_pkg::CENSUS_WEIGHT);
       end else begin : g_costs
-        stereo_weighted_sum #(
-            .WINDOW(WINDOW), .IN_BITS(COST_BITS), .SUM_BITS(VSUM_BITS),
-            .RUNTIME_KERNEL(RUNTIME_KERNEL), .SHIFT_ADD(SHIFT_ADD >= 2)
-        ) vertical_sum (
-            .taps(tap_cost), .kernel(kernel), .sum(vertical_d[d*VSUM_BITS +: VSUM_BITS]));
+        assign vertical_d[d*VSUM_BITS +: VSUM_BITS] = VSUM_BITS'(column_sum);
       end
     end
   endgenerate
