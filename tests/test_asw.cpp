@@ -2,6 +2,8 @@
 // regions against hand calculations, the fast aggregator and matcher against the naive reference
 // bit for bit (every ablation switch, the separable variant, signed ranges, grey images, real
 // pixels), the fixed-point model against the real-valued reference, and the bad-input errors.
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -16,6 +18,7 @@
 #include "stereo/matcher.hpp"
 #include "stereo/search.hpp"
 #include "stereo/stages.hpp"
+#include "stereo/stages/validate.hpp"
 #include "stereo_io/data_dir.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/test_support.hpp"
@@ -264,6 +267,71 @@ TEST(AswMatch, TruncationOnAndOffEqualNaive) {
         EXPECT_EQ(maps.back(), asw::match_naive(left, right, match, params)) << truncation;
     }
     EXPECT_NE(maps[0], maps[1]);
+}
+
+TEST(AswMatch, ExcludesExactlyTheOutsideMatches) {
+    // Width 4, d = -1, 0, 1 (min_disp -1). By hand: d = -1 has no partner at x = 3 (x - d = 4),
+    // d = 0 a partner everywhere, d = 1 none at x = 0 (x - d = -1).
+    Dsi volume(4, 2, 3);
+    for (int k = 0; k < 3; ++k) {
+        std::fill(volume.plane(k).begin(), volume.plane(k).end(), static_cast<CostValue>(5 + k));
+    }
+    asw::exclude_outside_matches(volume, -1);
+    for (int y = 0; y < 2; ++y) {
+        for (int x = 0; x < 4; ++x) {
+            EXPECT_EQ(volume.at(x, y, 0), x == 3 ? kNoCandidate : 5) << x;
+            EXPECT_EQ(volume.at(x, y, 1), 6) << x;
+            EXPECT_EQ(volume.at(x, y, 2), x == 0 ? kNoCandidate : 7) << x;
+        }
+    }
+}
+
+TEST(AswMatch, NoParabolaThroughAnExcludedNeighbour) {
+    // One pixel, labels 0..2 (d = -1, 0, 1) costing 100, 50 and "no candidate": the winner is
+    // label 1 (d = 0) with sub-pixel output on, but its right neighbour is no match, so the
+    // output stays on the label (a parabola through 65535 would move it half a pixel).
+    ValidationParams validation;
+    validation.subpixel = true;
+    ValidatingSelector selector(1, 1, 3, -1, validation, InvalidBorder{0});
+    const std::array<CostValue, 3> costs = {100, 50, kNoCandidate};
+    for (int k = 0; k < 3; ++k) {
+        selector.update(&costs[static_cast<std::size_t>(k)], k, 0);
+    }
+    const ValidatedDisparity out = selector.result();
+    ASSERT_TRUE(out.valid(0));
+    EXPECT_EQ(out.fixed[0], 0);
+}
+
+TEST(AswMatch, EveryPixelWinsAmongItsInsideMatches) {
+    // Plain winners (no stage-6 checks): a pixel is valid exactly when one of its disparities has
+    // a partner in the right image, and then its disparity has one. Positive min_disp leaves the
+    // first min_disp columns without any; a negative one the last columns a partner of fewer
+    // labels. Model and naive reference agree.
+    std::mt19937 rng(test::test_seed() + 5);
+    const auto [left, right] = test::shifted_pair(30, 16, 3, 3, 20, rng);
+    for (const int min_disp : {2, -4}) {
+        MatchParams match;
+        match.ndisp = 9;
+        match.min_disp = min_disp;
+        for (const bool separable : {false, true}) {
+            asw::Params params = small();
+            params.separable = separable;
+            const ValidatedDisparity out = asw::match(left, right, match, params);
+            EXPECT_EQ(out, asw::match_naive(left, right, match, params)) << min_disp;
+            for (int y = 0; y < 16; ++y) {
+                for (int x = 0; x < 30; ++x) {
+                    const std::size_t i = out.index(x, y);
+                    const bool has_partner = x - min_disp >= 0 && x - (min_disp + 8) < 30;
+                    ASSERT_EQ(out.valid(i), has_partner) << x << "," << y << " from " << min_disp;
+                    if (has_partner) {
+                        const int d = out.fixed[i] / fx::kSubpixelScale;
+                        EXPECT_GE(x - d, 0) << x << "," << y;
+                        EXPECT_LT(x - d, 30) << x << "," << y;
+                    }
+                }
+            }
+        }
+    }
 }
 
 TEST(AswMatch, FindsTheShiftOfATexturedPair) {

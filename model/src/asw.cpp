@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -501,6 +502,23 @@ void truncate_cost(Dsi& cost, int truncation) {
     }
 }
 
+void exclude_outside_matches(Dsi& aggregated, int min_disp) {
+    const int width = aggregated.width();
+    for (int k = 0; k < aggregated.ndisp(); ++k) {
+        const int d = min_disp + k;
+        // Inside: 0 <= x - d < width, i.e. x in [max(0, d), min(width, width + d)).
+        const int inside_begin = std::clamp(d, 0, width);
+        const int inside_end = std::clamp(width + d, inside_begin, width);
+        const std::span<CostValue> plane = aggregated.plane(k);
+        for (int y = 0; y < aggregated.height(); ++y) {
+            const auto row = plane.subspan(static_cast<std::size_t>(y) * width,
+                                           static_cast<std::size_t>(width));
+            std::fill(row.begin(), row.begin() + inside_begin, kNoCandidate);
+            std::fill(row.begin() + inside_end, row.end(), kNoCandidate);
+        }
+    }
+}
+
 ValidatedDisparity match(const Image& left, const Image& right, const MatchParams& match,
                          const Params& params) {
     check_pair(left, right);
@@ -518,6 +536,7 @@ ValidatedDisparity match(const Image& left, const Image& right, const MatchParam
         const Dsi vertical = passes.vertical();
         aggregated = passes.horizontal(vertical, {});
         if (params.continuity) {
+            exclude_outside_matches(aggregated, match.min_disp);
             const auto labels = winners_of(aggregated, match.min_disp);
             aggregated = Dsi();  // release before the second pass
             aggregated = passes.horizontal(vertical, labels);
@@ -525,11 +544,13 @@ ValidatedDisparity match(const Image& left, const Image& right, const MatchParam
     } else {
         aggregated = passes.full({});
         if (params.continuity) {
+            exclude_outside_matches(aggregated, match.min_disp);
             const auto labels = winners_of(aggregated, match.min_disp);
             aggregated = Dsi();  // at most two volumes alive: the cost and one aggregate
             aggregated = passes.full(labels);
         }
     }
+    exclude_outside_matches(aggregated, match.min_disp);
     ValidatingSelector selector(left.width, left.height, match.ndisp, match.min_disp,
                                 match.validation, InvalidBorder{0});
     for (int k = 0; k < match.ndisp; ++k) {

@@ -123,11 +123,18 @@ Dsi aggregate(const Dsi& cost, const Image& left, const Image& right, int min_di
 // (docs/asw.md, "The truncated cost"). The pixel's own outside match is invalid anyway.
 void truncate_cost(Dsi& cost, int truncation);
 
+// Takes every pixel's own outside matches out of the search: the aggregated cell of (x, y, d)
+// becomes kNoCandidate where x - d lies outside the right image (d = min_disp + k). Each pixel
+// then wins among the disparities it can have, and the output is dense wherever one exists
+// (docs/asw.md, "Border and validity").
+void exclude_outside_matches(Dsi& aggregated, int min_disp);
+
 // The whole matcher: cost (match.cost, truncated by params.truncation), pass 1 without continuity,
-// its winners as the preliminary map, pass 2 with continuity (when on), then stage 6
-// (match.min_disp, match.validation). The support region is clipped at the image border, so the
-// only invalid border is a match outside the right image (0 <= x - d < width). match.window, sigma
-// and use_ca are not read.
+// its winners (outside matches excluded) as the preliminary map, pass 2 with continuity (when
+// on), outside matches excluded again, then stage 6 (match.min_disp, match.validation). The
+// support region is clipped at the image border, so a pixel is invalid only where none of its
+// matches lies inside the right image (0 <= x - d < width). match.window, sigma and use_ca are
+// not read.
 ValidatedDisparity match(const Image& left, const Image& right, const MatchParams& match,
                          const Params& params);
 

@@ -1,6 +1,7 @@
 // The independent references of the ASW aggregator (stereo/asw.hpp): the fixed-point
 // definition evaluated one pixel and one disparity at a time, straight from docs/asw.md, and the
 // real-valued algorithm with exact logarithms and no rounding.
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -90,6 +91,20 @@ std::vector<std::int16_t> naive_winners(const Dsi& volume, int min_disp) {
     return winners;
 }
 
+// A pixel's own match outside the right image is no candidate (one cell at a time).
+void naive_exclude_outside(Dsi& volume, int min_disp) {
+    for (int y = 0; y < volume.height(); ++y) {
+        for (int x = 0; x < volume.width(); ++x) {
+            for (int k = 0; k < volume.ndisp(); ++k) {
+                const int xr = x - (min_disp + k);
+                if (xr < 0 || xr >= volume.width()) {
+                    volume.at(x, y, k) = kNoCandidate;
+                }
+            }
+        }
+    }
+}
+
 }  // namespace
 
 Dsi aggregate_naive(const Dsi& cost, const Image& left, const Image& right, int min_disp,
@@ -142,9 +157,11 @@ ValidatedDisparity match_naive(const Image& left, const Image& right, const Matc
     first.continuity = false;
     Dsi aggregated = aggregate_naive(cost, left, right, match.min_disp, first, {});
     if (params.continuity) {
+        naive_exclude_outside(aggregated, match.min_disp);
         aggregated = aggregate_naive(cost, left, right, match.min_disp, params,
                                      naive_winners(aggregated, match.min_disp));
     }
+    naive_exclude_outside(aggregated, match.min_disp);
     ValidatingSelector selector(left.width, left.height, match.ndisp, match.min_disp,
                                 match.validation, InvalidBorder{0});
     for (int k = 0; k < match.ndisp; ++k) {
@@ -229,13 +246,17 @@ std::vector<std::int16_t> real_winners(const std::vector<double>& volume, int wi
     std::vector<std::int16_t> winners(static_cast<std::size_t>(width) * height);
     const std::size_t plane = static_cast<std::size_t>(width) * height;
     for (std::size_t i = 0; i < plane; ++i) {
-        int best = 0;
-        for (int k = 1; k < ndisp; ++k) {
-            if (volume[k * plane + i] < volume[best * plane + i]) {
+        // Only the disparities whose match lies inside the right image; none: min_disp (invalid).
+        const int x = static_cast<int>(i % static_cast<std::size_t>(width));
+        int best = -1;
+        for (int k = 0; k < ndisp; ++k) {
+            const int xr = x - (min_disp + k);
+            const bool inside = xr >= 0 && xr < width;
+            if (inside && (best < 0 || volume[k * plane + i] < volume[best * plane + i])) {
                 best = k;
             }
         }
-        winners[i] = static_cast<std::int16_t>(min_disp + best);
+        winners[i] = static_cast<std::int16_t>(min_disp + std::max(best, 0));
     }
     return winners;
 }

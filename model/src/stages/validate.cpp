@@ -9,7 +9,7 @@
 namespace stereo {
 namespace {
 
-constexpr CostValue kUnset = std::numeric_limits<CostValue>::max();  // above every cost
+constexpr CostValue kUnset = kNoCandidate;  // an empty slot: above every cost
 
 }  // namespace
 
@@ -139,7 +139,9 @@ ValidatedDisparity ValidatingSelector::result() const {
                 continue;
             }
             int offset = 0;
-            if (params_.subpixel && winner > 0 && winner < ndisp_ - 1) {
+            // Both neighbours must be candidates (not so next to a label the ASW matcher excluded).
+            if (params_.subpixel && winner > 0 && winner < ndisp_ - 1 && before_[q] != kUnset &&
+                after_[q] != kUnset) {
                 offset = validation::subpixel_offset(before_[q], c1, after_[q]);
             }
             out.fixed[q] = static_cast<std::int16_t>(d * fx::kSubpixelScale + offset);

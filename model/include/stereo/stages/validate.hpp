@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "stereo/constants.hpp"
@@ -59,6 +60,12 @@ constexpr int subpixel_offset(int before, int centre, int after) {
 }  // namespace stereo::validation
 
 namespace stereo {
+
+// A cell that is no candidate at all: above every cost, so it never wins while a real candidate
+// exists, and the selector never takes it for the second cost or a parabola point. The ASW
+// matcher writes it where a pixel's own match lies outside the right image (docs/asw.md).
+inline constexpr CostValue kNoCandidate = std::numeric_limits<CostValue>::max();
+static_assert(fx::kNoSecondCost < kNoCandidate);
 
 // Winner takes all over the 1-D search (labels k = 0 .. ndisp-1, d = min_disp + k, ties to the
 // smaller k) with stage 6: certainty, uniqueness, left-right check and sub-pixel refinement.
