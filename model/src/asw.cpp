@@ -511,8 +511,8 @@ void exclude_outside_matches(Dsi& aggregated, int min_disp) {
         const int inside_end = std::clamp(width + d, inside_begin, width);
         const std::span<CostValue> plane = aggregated.plane(k);
         for (int y = 0; y < aggregated.height(); ++y) {
-            const auto row = plane.subspan(static_cast<std::size_t>(y) * width,
-                                           static_cast<std::size_t>(width));
+            const auto row =
+                plane.subspan(static_cast<std::size_t>(y) * width, static_cast<std::size_t>(width));
             std::fill(row.begin(), row.begin() + inside_begin, kNoCandidate);
             std::fill(row.begin() + inside_end, row.end(), kNoCandidate);
         }
