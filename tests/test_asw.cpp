@@ -334,6 +334,33 @@ TEST(AswMatch, EveryPixelWinsAmongItsInsideMatches) {
     }
 }
 
+TEST(AswCost, TruncationFollowsTheCost) {
+    EXPECT_EQ(asw::truncation_for(asw::kTruncationByCost, "census"), 0);
+    EXPECT_EQ(asw::truncation_for(asw::kTruncationByCost, "ad"), asw::kDefaultTruncation);
+    EXPECT_EQ(asw::truncation_for(asw::kTruncationByCost, "lcdm"), asw::kDefaultTruncation);
+    EXPECT_EQ(asw::truncation_for(7, "census"), 7);
+    EXPECT_EQ(asw::truncation_for(0, "ad"), 0);
+    // The default reaches the matcher: census untruncated, AD at 40; each map differs from the
+    // other truncation's, and the naive reference agrees.
+    std::mt19937 rng(test::test_seed() + 6);
+    const auto [left, right] = test::shifted_pair(36, 24, 3, 3, 40, rng);
+    MatchParams match;
+    match.ndisp = 8;
+    for (const char* cost : {"census", "ad"}) {
+        match.cost = cost;
+        const bool census = match.cost == "census";
+        asw::Params by_cost = small();
+        asw::Params expected = small();
+        asw::Params other = small();
+        expected.truncation = census ? 0 : asw::kDefaultTruncation;
+        other.truncation = census ? asw::kDefaultTruncation : 0;
+        const ValidatedDisparity out = asw::match(left, right, match, by_cost);
+        EXPECT_EQ(out, asw::match(left, right, match, expected)) << cost;
+        EXPECT_NE(out, asw::match(left, right, match, other)) << cost;
+        EXPECT_EQ(out, asw::match_naive(left, right, match, by_cost)) << cost;
+    }
+}
+
 TEST(AswMatch, FindsTheShiftOfATexturedPair) {
     // A random texture shifted by 4: every pixel away from the edges gets 4 (shifted_copy clamps
     // the last 4 right columns, which makes the right edge ambiguous).
@@ -423,7 +450,7 @@ TEST(AswErrors, ImpossibleWindowsAreClearErrors) {
     bad = small();
     bad.threads = -1;
     EXPECT_THROW(asw::validate(bad, 300, 300), std::invalid_argument);
-    for (const int truncation : {-1, 766}) {
+    for (const int truncation : {-2, 766}) {
         bad = small();
         bad.truncation = truncation;
         EXPECT_THROW(asw::validate(bad, 300, 300), std::invalid_argument) << truncation;

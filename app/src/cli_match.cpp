@@ -248,7 +248,7 @@ void run_match(const MatchOptions& options) {
                               {"continuity", weights.continuity},
                               {"right_weights", weights.right_weights},
                               {"separable", weights.separable},
-                              {"truncation", weights.truncation}};
+                              {"truncation", asw::truncation_for(weights.truncation, params.cost)}};
             std::snprintf(settings, sizeof settings,
                           "asw diameter %d %s %s%s%s%s cost %s method %s engine %s",
                           weights.diameter, options.matcher.asw_response.c_str(),

@@ -70,10 +70,12 @@ bool given(const CLI::Option* option) {
     return option != nullptr && option->count() > 0;
 }
 
-// The pipelines that have the default cost: every pipeline engine but the double-precision one.
+// The matchers that have the default cost: every pipeline and ASW engine but the double-precision
+// one.
 bool has_default_cost(const std::string& method, const std::string& engine) {
     // The quad pair geometries take every pixel-pair cost (quad::kPairCosts), census included.
-    return (method == "pipeline" || method == "vertical" || method == "diagonal") &&
+    return (method == "pipeline" || method == "asw" || method == "vertical" ||
+            method == "diagonal") &&
            engine != "float";
 }
 
@@ -204,7 +206,7 @@ void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoi
             .add_option("--cost", params.cost,
                         options.defaults_per_cost
                             ? "Matching cost: census (5x5 of the luma, Hamming; the default of "
-                              "the pipeline and the vertical / diagonal pairs), ad (absolute "
+                              "the pipeline, asw and the vertical / diagonal pairs), ad (absolute "
                               "differences over RGB, thesis Sec. 3.1; the default of the other "
                               "methods and of --engine float), "
                               "lcdm (hue-saturation distance, colour only, thesis Sec. 3.5) or "
@@ -245,8 +247,8 @@ void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoi
                      "ASW: colour similarity in the left image only (not in the right too)");
     command
         .add_option("--truncation", weights.truncation,
-                    "ASW: the cost is min(C, T) before the aggregation (Yoon and Kweon's 40; "
-                    "0: not truncated)")
+                    "ASW: the cost is min(C, T) before the aggregation; -1: by the cost "
+                    "(Yoon and Kweon's 40, census not truncated), 0: not truncated")
         ->capture_default_str();
     command.add_option("--threads", weights.threads, "ASW: worker threads, 0 = every core")
         ->capture_default_str();

@@ -414,9 +414,11 @@ void validate(const Params& params, int width, int height) {
         throw std::invalid_argument("ASW disparity range must be in [1, 255], got " +
                                     std::to_string(params.disparity_range));
     }
-    if (params.truncation < 0 || params.truncation > kMaxColourDifference) {
-        throw std::invalid_argument("ASW cost truncation must be in [0, 765] (0: none), got " +
-                                    std::to_string(params.truncation));
+    if ((params.truncation < 0 && params.truncation != kTruncationByCost) ||
+        params.truncation > kMaxColourDifference) {
+        throw std::invalid_argument(
+            "ASW cost truncation must be in [0, 765] (0: none) or -1 (by the cost), got " +
+            std::to_string(params.truncation));
     }
     if (params.threads < 0) {
         throw std::invalid_argument("ASW threads must be >= 0, got " +
@@ -490,6 +492,13 @@ Dsi aggregate(const Dsi& cost, const Image& left, const Image& right, int min_di
     return params.separable ? passes.horizontal(passes.vertical(), labels) : passes.full(labels);
 }
 
+int truncation_for(int truncation, std::string_view cost) {
+    if (truncation != kTruncationByCost) {
+        return truncation;
+    }
+    return cost == "census" ? 0 : kDefaultTruncation;
+}
+
 void truncate_cost(Dsi& cost, int truncation) {
     if (truncation == 0) {
         return;
@@ -528,7 +537,7 @@ ValidatedDisparity match(const Image& left, const Image& right, const MatchParam
     checked.use_ca = false;
     stereo::validate(checked, left.width, left.height);
     Dsi cost = parallel_cost_volume(*make_cost(match.cost), left, right, match, params);
-    truncate_cost(cost, params.truncation);
+    truncate_cost(cost, truncation_for(params.truncation, match.cost));
     const Passes passes(cost, left, right, match.min_disp, params);
     Dsi aggregated;
     if (params.separable) {

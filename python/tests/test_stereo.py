@@ -145,8 +145,9 @@ def test_every_registered_matcher_runs():
 
 
 def test_asw_options_reach_the_matcher(fixture_pair, tmp_path):
-    # The same pair through `stereo match --aggregation asw` and stereo.match(method="asw"):
-    # identical disparities, and a bad option is refused.
+    # The same pair through `stereo match --aggregation asw` (its default cost: census) and
+    # stereo.match(method="asw", cost="census"): identical disparities, and a bad option is
+    # refused.
     left_path, right_path = fixture_pair
     pfm = tmp_path / "asw.pfm"
     subprocess.run([CLI, "match", left_path, right_path, "--ndisp", "8", "--aggregation", "asw",
@@ -155,7 +156,7 @@ def test_asw_options_reach_the_matcher(fixture_pair, tmp_path):
     expected = read_pfm(pfm)
     left = stereo.load_image(left_path)
     right = stereo.load_image(right_path)
-    result = stereo.match(left, right, method="asw", ndisp=8,
+    result = stereo.match(left, right, method="asw", ndisp=8, cost="census",
                           asw={"diameter": 9, "separable": True})
     got = result["disparity_px"]
     both = np.isfinite(expected)
@@ -167,7 +168,7 @@ def test_asw_options_reach_the_matcher(fixture_pair, tmp_path):
     # The cost truncation: the CLI's --truncation and the dict key reach the same matcher.
     untruncated = tmp_path / "asw0.pfm"
     subprocess.run([CLI, "match", left_path, right_path, "--ndisp", "8", "--aggregation", "asw",
-                    "--window", "9", "--truncation", "0", "--no-validation", "-o",
+                    "--window", "9", "--cost", "ad", "--truncation", "0", "--no-validation", "-o",
                     str(untruncated)], check=True, capture_output=True)
     plain = stereo.match(left, right, method="asw", ndisp=8, asw={"diameter": 9, "truncation": 0})
     expected0 = read_pfm(untruncated)

@@ -50,6 +50,14 @@ inline constexpr int kOutputFracBits = 4;         // A(p, d) carries 4 fraction 
 // (in units of |dR| + |dG| + |dB|), part of the ASW framework the thesis builds on (docs/asw.md,
 // "The truncated cost"). 0 switches it off.
 inline constexpr int kDefaultTruncation = 40;
+// The default of Params::truncation: T follows the cost (truncation_for). Yoon and Kweon's T is
+// in intensity steps and caps the outliers of a difference of intensities (ad, lcdm, zncc); the
+// census cost is a Hamming distance, bounded and rank-based, whose every bit already saturates,
+// and min(31 h, 40) would keep no more than h = 0, 1 apart: it is not truncated.
+inline constexpr int kTruncationByCost = -1;
+// `truncation` as the matcher applies it for `cost`: kTruncationByCost becomes 0 for census and
+// kDefaultTruncation for every other cost; any other value is returned unchanged.
+int truncation_for(int truncation, std::string_view cost);
 // Exponential ablation: Yoon and Kweon's gamma_p is the window radius; these two are ours.
 inline constexpr double kExpColourGamma = 14.0;     // in units of |dR| + |dG| + |dB|
 inline constexpr double kExpContinuityGamma = 2.0;  // in disparity labels
@@ -67,7 +75,8 @@ struct Params {
     // difference of disparity_range or more, is the largest stimulus (S = 1).
     int colour_range = 255;
     int disparity_range = 255;
-    int truncation = kDefaultTruncation;  // 0 .. 765; 0: the cost is not truncated
+    // kTruncationByCost (by the cost, truncation_for), 0 (not truncated) or 1 .. 765.
+    int truncation = kTruncationByCost;
     int threads = 0;  // worker threads, 0 = every hardware thread (results do not depend on it)
     bool operator==(const Params&) const = default;
 };
@@ -129,7 +138,8 @@ void truncate_cost(Dsi& cost, int truncation);
 // (docs/asw.md, "Border and validity").
 void exclude_outside_matches(Dsi& aggregated, int min_disp);
 
-// The whole matcher: cost (match.cost, truncated by params.truncation), pass 1 without continuity,
+// The whole matcher: cost (match.cost, truncated by truncation_for(params.truncation,
+// match.cost)), pass 1 without continuity,
 // its winners (outside matches excluded) as the preliminary map, pass 2 with continuity (when
 // on), outside matches excluded again, then stage 6 (match.min_disp, match.validation). The
 // support region is clipped at the image border, so a pixel is invalid only where none of its

@@ -132,14 +132,15 @@ namespace {
 Dsi truncated_cost_volume(const Image& left, const Image& right, const MatchParams& match,
                           const Params& params) {
     Dsi cost = cost_volume(*make_cost(match.cost), left, right, match.ndisp, match.min_disp);
-    if (params.truncation == 0) {
+    const int truncation = truncation_for(params.truncation, match.cost);
+    if (truncation == 0) {
         return cost;
     }
     for (int y = 0; y < cost.height(); ++y) {
         for (int x = 0; x < cost.width(); ++x) {
             for (int k = 0; k < cost.ndisp(); ++k) {
-                if (cost.at(x, y, k) > params.truncation) {
-                    cost.at(x, y, k) = static_cast<Dsi::Value>(params.truncation);
+                if (cost.at(x, y, k) > truncation) {
+                    cost.at(x, y, k) = static_cast<Dsi::Value>(truncation);
                 }
             }
         }
