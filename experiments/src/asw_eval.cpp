@@ -13,6 +13,7 @@
 // The output is the plain winner map (no stage 6 validation), as in the thesis.
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -501,6 +502,22 @@ io::SceneData relit(const io::SceneData& data, double percent) {
     return out;
 }
 
+// "tsukuba", "reindeer", "aloe-half": the scene's name as a file name.
+std::string figure_stem(const io::SceneData& data) {
+    std::string stem;
+    for (const char c : data.scene.name) {
+        if (std::isalnum(static_cast<unsigned char>(c)) != 0) {
+            stem += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        } else if (!stem.empty() && stem.back() != '-') {
+            stem += '-';
+        }
+    }
+    while (!stem.empty() && stem.back() == '-') {
+        stem.pop_back();
+    }
+    return stem;
+}
+
 std::string figure_png(const io::SceneData& data, const cv::Mat& ours, const fs::path& path) {
     // The figures' convention is 0 = invalid: a valid 0 (the winner at the left border, where
     // no match exists) becomes a tiny disparity so that it shows as wrong, not as invalid.
@@ -544,7 +561,7 @@ void run_asw_eval(const AswEvalOptions& options) {
             results.add("pairs", data, *config, run(data, *config));
         }
         if (!options.figures.empty()) {
-            const fs::path path = fs::path(options.figures) / (data.scene.name + ".png");
+            const fs::path path = fs::path(options.figures) / (figure_stem(data) + ".png");
             files.emplace_back(path, figure_png(data, full.disparity, path));
         }
         // Speed: Teddy, or the last 2003 pair with --quick.
@@ -565,7 +582,15 @@ void run_asw_eval(const AswEvalOptions& options) {
                   << "): the full ASW may take minutes\n";
         for (const Config* config :
              {&kFull, &kSeparable, &kLcdm, &kCensus, &kSeparableCensus, &kSgbm}) {
-            results.add("held-out", data, *config, run(data, *config));
+            const Run out = run(data, *config);
+            results.add("held-out", data, *config, out);
+            if (config == &kFull && !options.figures.empty()) {
+                // No masks: the error map's "all" is every known pixel, as the score's.
+                io::SceneData masked = data;
+                masked.all = {data.ground_truth.mat > 0.0F, "known"};
+                const fs::path path = fs::path(options.figures) / (figure_stem(data) + ".png");
+                files.emplace_back(path, figure_png(masked, out.disparity, path));
+            }
         }
     }
     for (const double p : sweep_steps()) {
