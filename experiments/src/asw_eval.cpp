@@ -9,7 +9,7 @@
 //     known pixel with invalid counted bad, and coverage);
 //   * the lightness sweep of the right image on Tsukuba (separable ASW with AD and LCDM, SGBM);
 //   * speed on Teddy (wall time; every run's time is in the JSON);
-//   * figures: one strip per 2003 pair (io::scene_strip).
+//   * figures: one strip per 2003 pair and held-out scene (io::scene_strip).
 // The output is the plain winner map (no stage 6 validation), as in the thesis.
 #include <algorithm>
 #include <array>
