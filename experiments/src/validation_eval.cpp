@@ -206,7 +206,9 @@ std::string markdown(const json& report) {
               "`./build/experiments/stereo_experiments validation-eval --method asw"
            << (defaults["separable"].get<bool>() ? " --separable" : "")
            << " --sweep 0 --speckle-sizes 100 --speckle-ranges 1 --markdown "
-              "docs/results-validation-asw-tables.md`; read with "
+              "docs/results-validation-asw"
+           << (defaults["separable"].get<bool>() ? "" : "-full")
+           << "-tables.md`; read with "
               "[results-asw.md](results-asw.md#validated-output).";
     }
     md << " Rows: `plain` no stage 6; `uniqueness` (U = "
