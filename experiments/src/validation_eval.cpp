@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -432,15 +433,16 @@ void add_validation_eval_command(CLI::App& app) {
         ->capture_default_str();
     command->add_option("--speckle-ranges", options->speckle_ranges, "Speckle ranges of the grid")
         ->capture_default_str();
-    command->add_option("--cost", options->cost, "Cost plug-in of every model row")
-        ->check(CLI::IsMember(cost_names()))
-        ->capture_default_str();
-    command
-        ->add_option("--method", options->method,
+    // Each a choice among names, its default shown in --help.
+    const std::vector<std::string> methods = {"pipeline", "asw"};
+    for (const auto& [name, value, help, names] :
+         {std::tuple{"--cost", &options->cost, "Cost plug-in of every model row", cost_names()},
+          std::tuple{"--method", &options->method,
                      "Matcher of every model row: pipeline, or asw (adaptive support weights, "
-                     "default window; stage 6 on its volume)")
-        ->check(CLI::IsMember({"pipeline", "asw"}))
-        ->capture_default_str();
+                     "default window; stage 6 on its volume)",
+                     methods}}) {
+        command->add_option(name, *value, help)->check(CLI::IsMember(names))->capture_default_str();
+    }
     command->add_flag("--separable", options->separable, "asw: the separable variant");
 }
 

@@ -561,6 +561,15 @@ void exclude_outside_matches(Dsi& aggregated, int min_disp) {
     }
 }
 
+ValidatedDisparity select_validated(const Dsi& aggregated, const MatchParams& match) {
+    ValidatingSelector selector(aggregated.width(), aggregated.height(), match.ndisp,
+                                match.min_disp, match.validation, InvalidBorder{0});
+    for (int k = 0; k < match.ndisp; ++k) {
+        selector.update(aggregated.plane(k).data(), k, 0);
+    }
+    return selector.result();
+}
+
 ValidatedDisparity match(const Image& left, const Image& right, const MatchParams& match,
                          const Params& params) {
     check_pair(left, right);
@@ -593,12 +602,7 @@ ValidatedDisparity match(const Image& left, const Image& right, const MatchParam
         }
     }
     exclude_outside_matches(aggregated, match.min_disp);
-    ValidatingSelector selector(left.width, left.height, match.ndisp, match.min_disp,
-                                match.validation, InvalidBorder{0});
-    for (int k = 0; k < match.ndisp; ++k) {
-        selector.update(aggregated.plane(k).data(), k, 0);
-    }
-    return selector.result();
+    return select_validated(aggregated, match);
 }
 
 }  // namespace stereo::asw

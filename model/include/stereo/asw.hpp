@@ -138,6 +138,11 @@ void truncate_cost(Dsi& cost, int truncation);
 // (docs/asw.md, "Border and validity").
 void exclude_outside_matches(Dsi& aggregated, int min_disp);
 
+// Winner takes all with stage 6 (match.min_disp, match.validation) over an aggregated volume
+// whose outside matches are excluded: the last step of match() and match_naive(). No invalid
+// border: the support region is clipped, so every cell has its cost.
+ValidatedDisparity select_validated(const Dsi& aggregated, const MatchParams& match);
+
 // The whole matcher: cost (match.cost, truncated by truncation_for(params.truncation,
 // match.cost)), pass 1 without continuity,
 // its winners (outside matches excluded) as the preliminary map, pass 2 with continuity (when

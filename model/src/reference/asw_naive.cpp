@@ -163,12 +163,7 @@ ValidatedDisparity match_naive(const Image& left, const Image& right, const Matc
                                      naive_winners(aggregated, match.min_disp));
     }
     naive_exclude_outside(aggregated, match.min_disp);
-    ValidatingSelector selector(left.width, left.height, match.ndisp, match.min_disp,
-                                match.validation, InvalidBorder{0});
-    for (int k = 0; k < match.ndisp; ++k) {
-        selector.update(aggregated.plane(k).data(), k, 0);
-    }
-    return selector.result();
+    return select_validated(aggregated, match);
 }
 
 namespace {
