@@ -27,6 +27,12 @@
 // configuration only). So, exactly as on the costs, V = CENSUS_WEIGHT * sum_j k[j] h, or
 // COST_OUTSIDE * (the sum of the taps whose rows lie inside) when the centre row's code says
 // outside. A vertical sum whose centre row lies outside the frame is never used.
+//
+// RECOMPUTE (census codes only; stereo_top RECOMPUTE_COSTS, docs/rtl.md "Lean memory"): in_data
+// carries, for each label, the codes of all WINDOW rows of the column (stereo_cost ROWS = WINDOW
+// recomputes them from its line buffer of census codes), row in_y - 2R + j at
+// [(d*WINDOW + j)*COST_BITS +: CENSUS_CODE_BITS]; this stage then has no line buffer. The
+// arithmetic after the taps is the same, so is the output.
 `default_nettype none
 
 module stereo_aggregate #(
@@ -47,7 +53,9 @@ module stereo_aggregate #(
     // (stereo_weighted_sum SHIFT_ADD) rather than left to the tools (DSP blocks where the target
     // has them): 0 none; 1 the census codes' vertical products (6-bit operands, not worth a DSP
     // block); 2 every product.
-    parameter int SHIFT_ADD = 0
+    parameter int SHIFT_ADD = 0,
+    // 1 (COST_CENSUS only): every row's code arrives with the column (above), no line buffer.
+    parameter int RECOMPUTE = 0
 ) (
 `include "stereo_stage_ports.svh"
     // The in_y of the next step (stereo_top: stereo_cost's out_next_y, what its coordinate
@@ -55,7 +63,7 @@ module stereo_aggregate #(
     input  wire fx_pkg::coord_t                     in_next_y,
     // labels [group*LANES +: LANES]; census codes are zero-extended to COST_BITS
     /* verilator lint_off UNUSEDSIGNAL */  // the upper bits of census codes
-    input  wire logic [LANES*fx_pkg::COST_BITS-1:0] in_data,
+    input  wire logic [LANES*((RECOMPUTE != 0) ? WINDOW : 1)*fx_pkg::COST_BITS-1:0] in_data,
     /* verilator lint_on UNUSEDSIGNAL */
     input  wire fx_pkg::cfg_size_t                  cfg_width,
     input  wire fx_pkg::cfg_size_t                  cfg_height,
@@ -83,8 +91,11 @@ module stereo_aggregate #(
   localparam int V_BITS = LANES * VSUM_BITS;       // one group's vertical sums
   localparam int OUT_BITS = LANES * AGG_BITS;      // one group's results
 
+  localparam int IN_ROWS = (RECOMPUTE != 0) ? WINDOW : 1;  // rows of codes per label in in_data
+
   initial begin
     assert (LANES >= 1 && NDISP % LANES == 0);
+    assert (RECOMPUTE == 0 || (RECOMPUTE == 1 && CODES));
   end
 
   // The group of this clock; G = 1: 0 whatever the port carries (stage testbenches leave it open).
@@ -94,10 +105,12 @@ module stereo_aggregate #(
   logic advance;
   assign advance = ce || 32'(group_now) != GROUPS - 1;
   // This clock's group of the input costs (codes): stereo_cost computes it for this clock's group.
+  // (RECOMPUTE: the incoming row's, j = 2R.)
   logic [COLUMN_BITS-1:0] group_costs;
   always_comb begin
     for (int d = 0; d < LANES; d++)
-      group_costs[d*LINE_BITS +: LINE_BITS] = in_data[d*COST_BITS +: LINE_BITS];
+      group_costs[d*LINE_BITS +: LINE_BITS] =
+          in_data[(d*IN_ROWS + IN_ROWS - 1)*COST_BITS +: LINE_BITS];
   end
 
   logic [WINDOW*TAP_BITS-1:0] kernel;
@@ -119,7 +132,15 @@ module stereo_aggregate #(
   // ---- vertical pass -------------------------------------------------------------------
   logic [((R > 0) ? 2 * R : 1)*COLUMN_BITS-1:0] rows_above;  // row in_y-1-k at slot k
   generate
-    if (R > 0) begin : g_line_buffer
+    if (R > 0 && RECOMPUTE != 0) begin : g_rows_with_column
+      // Row in_y-1-k of label d is in_data's row 2R-1-k.
+      always_comb begin
+        for (int k = 0; k < 2 * R; k++)
+          for (int d = 0; d < LANES; d++)
+            rows_above[k*COLUMN_BITS + d*LINE_BITS +: LINE_BITS] =
+                in_data[(d*IN_ROWS + 2*R - 1 - k)*COST_BITS +: LINE_BITS];
+      end
+    end else if (R > 0) begin : g_line_buffer
       stereo_line_buffer #(
           .WIDTH(WIDTH),
           .DATA_BITS(COLUMN_BITS),

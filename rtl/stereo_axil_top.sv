@@ -36,6 +36,7 @@ module stereo_axil_top #(
     parameter int COST           = 0,
     parameter int LANES          = NDISP,  // labels per clock: NDISP / LANES clocks per pixel
     parameter int SHIFT_ADD      = 0,  // RUNTIME_KERNEL = 0: tap products from shifts and adds
+    parameter int RECOMPUTE_COSTS = 0,       // census: the lean memory architecture (stereo_top)
     parameter int ADDR_BITS      = 8                               // AXI4-Lite address width
 ) (
     input  wire logic                            clk,
@@ -264,7 +265,7 @@ module stereo_axil_top #(
   stereo_top #(
       .WIDTH(WIDTH), .HEIGHT(HEIGHT), .NDISP(NDISP), .WINDOW(WINDOW),
       .RUNTIME_KERNEL(RUNTIME_KERNEL), .MAX_MIN_DISP(MAX_MIN_DISP), .COST(COST), .LANES(LANES),
-      .SHIFT_ADD(SHIFT_ADD)
+      .SHIFT_ADD(SHIFT_ADD), .RECOMPUTE_COSTS(RECOMPUTE_COSTS)
   ) core (
       .rst(rst || soft_reset),
       .status(core_status),

@@ -33,6 +33,12 @@
 // CENSUS_CODES = 1 (census only; what stereo_top sets for its aggregation): each label's field
 // carries the census code instead, the distance or CENSUS_CODE_OUTSIDE where xr lies outside,
 // zero-extended to COST_BITS (stereo_aggregate's narrow line buffer, docs/rtl.md "Census codes").
+// ROWS > 1 (census codes only; stereo_top RECOMPUTE_COSTS, docs/rtl.md "Lean memory"): the stage
+// keeps a line buffer of ROWS - 1 rows of both images' census codes (48 bits a column, whatever
+// the label count) and the delay lines carry column stacks of ROWS codes (rows in_y - ROWS + 1 ..
+// in_y of one column) instead of single codes; each label's field then holds ROWS codes, row j
+// (in_y - ROWS + 1 + j) at [j*COST_BITS +: CENSUS_CODE_BITS], so the aggregation's vertical pass
+// needs no per-label line buffer: memory grows with the width, not with the label count.
 // Latency: 1 + K pixel steps. Throughput: one pixel per ce.
 `default_nettype none
 
@@ -41,7 +47,11 @@ module stereo_cost #(
     parameter int MAX_MIN_DISP = fx_pkg::DEFAULT_MAX_MIN_DISP,  // largest |cfg_min_disp|
     parameter int COST         = fx_pkg::COST_AD,  // COST_AD, COST_LCDM or COST_CENSUS
     parameter int LANES        = NDISP,  // labels computed per clock (divides NDISP)
-    parameter bit CENSUS_CODES = 1'b0  // census: the code (distance or outside) per label
+    parameter bit CENSUS_CODES = 1'b0,  // census: the code (distance or outside) per label
+    // Rows of codes per label (CENSUS_CODES only above 1): the vertical window of the
+    // aggregation, recomputed from a line buffer of codes (above); WIDTH sizes that buffer.
+    parameter int ROWS  = 1,
+    parameter int WIDTH = 64  // longest row (ROWS > 1 only)
 ) (
 `include "stereo_stage_ports.svh"
     input  wire logic [23:0]                        in_left,       // {R, G, B} or census code
@@ -54,11 +64,13 @@ module stereo_cost #(
     // computes its row flags a step ahead from it (stereo_aggregate in_next_y).
     output      fx_pkg::coord_t                     out_next_y,
     // LANES = NDISP: all labels, registered; else labels [group*LANES +: LANES], combinational.
-    output      logic [LANES*fx_pkg::COST_BITS-1:0] out_data
+    // Label l's field is ROWS * COST_BITS wide (ROWS > 1: one code per row, above).
+    output      logic [LANES*ROWS*fx_pkg::COST_BITS-1:0] out_data
 );
   localparam int COST_BITS = fx_pkg::COST_BITS;
-  localparam int PIXEL_BITS =
-      (COST == fx_pkg::COST_LCDM) ? 2 * fx_pkg::LCDM_COORD_BITS : fx_pkg::RGB_BITS;
+  localparam int PIXEL_BITS = (COST == fx_pkg::COST_LCDM) ? 2 * fx_pkg::LCDM_COORD_BITS
+                                                         : ROWS * fx_pkg::RGB_BITS;
+  localparam int LANE_BITS = ROWS * COST_BITS;  // one label's output field
   localparam int GROUPS = NDISP / LANES;  // clocks per pixel step
   localparam int CENSUS_SHIFT = $clog2(fx_pkg::CENSUS_WEIGHT + 1);
   localparam int CENSUS_BELOW = (1 << CENSUS_SHIFT) - fx_pkg::CENSUS_WEIGHT;
@@ -77,6 +89,7 @@ module stereo_cost #(
     assert (COST == fx_pkg::COST_AD || COST == fx_pkg::COST_LCDM || COST == fx_pkg::COST_CENSUS);
     assert (!CENSUS_CODES || COST == fx_pkg::COST_CENSUS);
     assert (LANES >= 1 && NDISP % LANES == 0);
+    assert (ROWS >= 1 && (ROWS == 1 || CENSUS_CODES));
   end
 
   // The pixels the delay lines carry.
@@ -96,6 +109,34 @@ module stereo_cost #(
       );
       assign new_left  = {left_a, left_b};
       assign new_right = {right_a, right_b};
+    end else if (ROWS > 1) begin : g_code_stacks
+      // The line buffer keeps rows in_y - 1 .. in_y - ROWS + 1 of both codes at column in_x
+      // (read a step ahead); the stack's row j is in_y - ROWS + 1 + j, the incoming one last.
+      localparam int PAIR_BITS = 2 * fx_pkg::RGB_BITS;  // {right code, left code}
+      logic [(ROWS-1)*PAIR_BITS-1:0] rows_above;  // row in_y - 1 - k at slot k
+      stereo_line_buffer #(
+          .WIDTH(WIDTH),
+          .DATA_BITS(PAIR_BITS),
+          .ROWS(ROWS - 1),
+          .GROUPS(1)
+      ) code_rows (
+          .clk(clk),
+          .ce(ce),
+          .in_x(in_x),
+          .group(1'b0),
+          .cfg_width(cfg_width),
+          .in_data({in_right, in_left}),
+          .rows_above(rows_above)
+      );
+      for (genvar j = 0; j < ROWS; j++) begin : g_row
+        if (j == ROWS - 1) begin : g_incoming
+          assign new_left[j*24 +: 24] = in_left;
+          assign new_right[j*24 +: 24] = in_right;
+        end else begin : g_above
+          assign new_left[j*24 +: 24] = rows_above[(ROWS-2-j)*PAIR_BITS +: 24];
+          assign new_right[j*24 +: 24] = rows_above[(ROWS-2-j)*PAIR_BITS + 24 +: 24];
+        end
+      end
     end else begin : g_rgb  // or the census codes
       assign new_left  = in_left;
       assign new_right = in_right;
@@ -211,13 +252,18 @@ module stereo_cost #(
     end
   endgenerate
 
-  logic [LANES*COST_BITS-1:0] cost_d;
+  logic [LANES*LANE_BITS-1:0] cost_d;
   generate
     for (genvar l = 0; l < LANES; l++) begin : g_label
       logic signed [17:0] right_x;  // xr
-      logic [COST_BITS-1:0] distance;
+      logic [LANE_BITS-1:0] distance;
       assign right_x = lane_base_x - 18'(l);
-      if (COST == fx_pkg::COST_LCDM) begin : g_lcdm
+      if (ROWS > 1) begin : g_census_rows  // CENSUS_CODES: one code per row
+        for (genvar j = 0; j < ROWS; j++) begin : g_row
+          assign distance[j*COST_BITS +: COST_BITS] =
+              census_count(lane_left[j*24 +: 24], lane_right[l*PIXEL_BITS + j*24 +: 24]);
+        end
+      end else if (COST == fx_pkg::COST_LCDM) begin : g_lcdm
         stereo_lcdm_distance lcdm (
             .in_left (lane_left),
             .in_right(lane_right[l*PIXEL_BITS +: PIXEL_BITS]),
@@ -232,8 +278,9 @@ module stereo_cost #(
       end else begin : g_ad  // PIXEL_BITS = 24 here
         assign distance = abs_diff_rgb(24'(lane_left), 24'(lane_right[l*PIXEL_BITS +: PIXEL_BITS]));
       end
-      assign cost_d[l*COST_BITS +: COST_BITS] =
-          (right_x < 18'sd0 || right_x >= $signed(18'(cfg_width))) ? OUTSIDE : distance;
+      // Outside: every row's field (a column is outside for all its rows).
+      assign cost_d[l*LANE_BITS +: LANE_BITS] =
+          (right_x < 18'sd0 || right_x >= $signed(18'(cfg_width))) ? {ROWS{OUTSIDE}} : distance;
     end
   endgenerate
 
@@ -281,7 +328,7 @@ module stereo_cost #(
 
   assign out_next_y = left_y;
   // G > 1: this clock's group of the registered pixel; G = 1: the output register.
-  stereo_stage_output #(.BITS(LANES * COST_BITS), .REGISTERED(GROUPS == 1)) outputs (
+  stereo_stage_output #(.BITS(LANES * LANE_BITS), .REGISTERED(GROUPS == 1)) outputs (
       .in_x(left_x), .in_y(left_y), .in_data(cost_d), .*);
 
 endmodule

@@ -22,7 +22,9 @@ module stereo_synth_top #(
     parameter int RING_BLOCK_MIN_FILL = 50,  // stereo_group_ring BLOCK_MIN_FILL
     parameter int COST = fx_pkg::COST_AD,  // COST_AD, COST_LCDM or COST_CENSUS (stereo_top)
     // Tap products from shifts and adds (stereo_top SHIFT_ADD): 0 none, 1 census vertical, 2 all
-    parameter int SHIFT_ADD = 0
+    parameter int SHIFT_ADD = 0,
+    // The lean memory architecture (stereo_top RECOMPUTE_COSTS; census only)
+    parameter int RECOMPUTE_COSTS = 0
 ) (
     input  wire logic                            clk,
     input  wire logic                            rst,
@@ -32,7 +34,7 @@ module stereo_synth_top #(
       .WIDTH(WIDTH), .HEIGHT(HEIGHT), .NDISP(NDISP), .WINDOW(WINDOW), .RUNTIME_KERNEL(1'b0),
       .MAX_MIN_DISP(MAX_MIN_DISP), .LANES(LANES), .RING_BLOCK_RAM(RING_BLOCK_RAM),
       .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL), .COST(COST),
-      .SHIFT_ADD(SHIFT_ADD)
+      .SHIFT_ADD(SHIFT_ADD), .RECOMPUTE_COSTS(RECOMPUTE_COSTS)
   ) core (
       .cfg_radius(fx_pkg::CFG_RADIUS_BITS'(WINDOW / 2)),
       .cfg_kernel('0),  // unused: the kernel is constant

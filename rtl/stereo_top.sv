@@ -62,7 +62,13 @@ module stereo_top #(
     // RUNTIME_KERNEL = 0: which constant tap products of the aggregation are built from shifts
     // and adds (canonical signed digits) instead of being left to the tools (DSP blocks where the
     // target has them): 0 none, 1 the census codes' narrow vertical products, 2 all.
-    parameter int SHIFT_ADD = 0
+    parameter int SHIFT_ADD = 0,
+    // COST_CENSUS only. 1: the lean memory architecture (docs/rtl.md "Lean memory"): the cost
+    // stage keeps WINDOW - 1 rows of both census codes and recomputes every label's codes for the
+    // aggregation's vertical window, which then has no per-label line buffer (memory grows with
+    // WIDTH * WINDOW, not with NDISP). 0: the aggregation keeps each label's code (5 bits) for
+    // WINDOW - 1 rows, cheaper below about 10 labels.
+    parameter int RECOMPUTE_COSTS = 0
 ) (
     input  wire logic                               clk,
     input  wire logic                               rst,
@@ -86,7 +92,10 @@ module stereo_top #(
     assert (MAX_MIN_DISP >= 0 && MAX_MIN_DISP <= fx_pkg::MAX_MIN_DISPARITY);
     assert (WIDTH >= 1 && WIDTH <= fx_pkg::MAX_FRAME_SIDE && HEIGHT >= 1 &&
             HEIGHT <= fx_pkg::MAX_FRAME_SIDE);
+    assert (RECOMPUTE_COSTS == 0 || (RECOMPUTE_COSTS == 1 && COST == fx_pkg::COST_CENSUS));
   end
+  // Rows of codes per label between the cost stage and the aggregation.
+  localparam int COST_ROWS = (RECOMPUTE_COSTS != 0) ? WINDOW : 1;
 
   // ---- configuration: sanitised ports, latched at the start of a frame ----------------------
   typedef enum logic [1:0] {
@@ -329,7 +338,8 @@ module stereo_top #(
 
   fx_pkg::coord_t cost_x, cost_y, agg_x, agg_y, rule1_x, rule1_y, wta_in_x, wta_in_y;
   fx_pkg::coord_t cost_next_y;  // the row cost_y takes at this step
-  logic [LANES*COST_BITS-1:0] cost_data;  // LANES < NDISP: this clock's group of labels
+  // LANES < NDISP: this clock's group of labels; COST_ROWS fields per label.
+  logic [LANES*COST_ROWS*COST_BITS-1:0] cost_data;
   // G = 1: all labels of a pixel, registered; G > 1: the group each stage computes in this clock.
   logic [LANES*AGG_BITS-1:0] agg_data, rule1_data, rule2_data;
 
@@ -338,7 +348,9 @@ module stereo_top #(
       .MAX_MIN_DISP(MAX_MIN_DISP),
       .COST(COST),
       .LANES(LANES),
-      .CENSUS_CODES(COST == fx_pkg::COST_CENSUS)  // the aggregation keeps census codes
+      .CENSUS_CODES(COST == fx_pkg::COST_CENSUS),  // the aggregation keeps census codes
+      .ROWS(COST_ROWS),
+      .WIDTH(WIDTH)
   ) cost (
       .clk(clk),
       .rst(clear_coordinates),
@@ -365,7 +377,8 @@ module stereo_top #(
       .RING_BLOCK_RAM(RING_BLOCK_RAM),
       .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL),
       .COST(COST),
-      .SHIFT_ADD(SHIFT_ADD)
+      .SHIFT_ADD(SHIFT_ADD),
+      .RECOMPUTE(RECOMPUTE_COSTS)
   ) aggregate (
       .clk(clk),
       .rst(clear_coordinates),

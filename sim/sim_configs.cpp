@@ -15,6 +15,8 @@
 #include "Vstereo_synth_top_ice40_ndisp4_lanes1.h"
 #include "Vstereo_top_census.h"
 #include "Vstereo_top_census_lanes4.h"
+#include "Vstereo_top_census_recompute.h"
+#include "Vstereo_top_census_recompute_lanes4.h"
 #include "Vstereo_top_lanes1.h"
 #include "Vstereo_top_lanes4.h"
 #include "Vstereo_top_lcdm.h"
@@ -187,6 +189,15 @@ const TopConfig& census_lanes_top_config() {
     return config;
 }
 
+const std::vector<TopConfig>& census_recompute_top_configs() {
+    static const std::vector<TopConfig> configs = {
+        top_config(table::verilated("Vstereo_top_census_recompute"), "census-recompute"),
+        top_config(table::verilated("Vstereo_top_census_recompute_lanes4"),
+                   "census-recompute-lanes4"),
+    };
+    return configs;
+}
+
 const std::vector<TopConfig>& lanes_top_configs() {
     static const std::vector<TopConfig> configs = {
         top_config(table::verilated("Vstereo_top_lanes4"), "lanes4"),
@@ -222,7 +233,8 @@ const TopConfig& top_config_named(const std::string& name) {
     if (name == census_lanes_top_config().name) {
         return census_lanes_top_config();
     }
-    for (const auto* list : {&built_top_configs(), &lanes_top_configs(), &fpga_top_configs()}) {
+    for (const auto* list : {&built_top_configs(), &lanes_top_configs(), &fpga_top_configs(),
+                              &census_recompute_top_configs()}) {
         for (const TopConfig& config : *list) {
             if (config.name == name) {
                 return config;
@@ -291,6 +303,8 @@ const std::pair<std::string_view, TopFactory> kFactories[] = {
     {"lcdm-lanes4", &make_verilated<Vstereo_top_lcdm_lanes4>},
     {"small-census", &make_verilated<Vstereo_top_census>},
     {"census-lanes4", &make_verilated<Vstereo_top_census_lanes4>},
+    {"census-recompute", &make_verilated<Vstereo_top_census_recompute>},
+    {"census-recompute-lanes4", &make_verilated<Vstereo_top_census_recompute_lanes4>},
     {"lanes4", &make_verilated<Vstereo_top_lanes4>},
     {"lanes1", &make_verilated<Vstereo_top_lanes1>},
     {"ndisp8-lanes2", &make_verilated<Vstereo_top_ndisp8_lanes2>},

@@ -43,6 +43,10 @@ const TopConfig& lcdm_lanes_top_config();
 // small configuration's size: "small-census"; and with LANES = 4: "census-lanes4".
 const TopConfig& census_top_config();
 const TopConfig& census_lanes_top_config();
+// The census core in the lean memory architecture (stereo_top RECOMPUTE_COSTS = 1: rows of census
+// codes, every label's vertical window recomputed; docs/rtl.md "Lean memory") at the small size:
+// "census-recompute" (all labels per clock) and "census-recompute-lanes4" (LANES = 4).
+const std::vector<TopConfig>& census_recompute_top_configs();
 
 // stereo_top with time-multiplexed lanes (LANES < NDISP), AD cost: "lanes4" (16 labels, 4 per
 // clock), "lanes1" (16, 1), "ndisp8-lanes2" (8, 2), "ndisp2-lanes1" (2, 1), and the one-label

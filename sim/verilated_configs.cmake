@@ -15,6 +15,8 @@ stereo_verilated_config(Vstereo_top_lcdm_lanes4 stereo_top "" WIDTH=64 HEIGHT=48
 stereo_verilated_config(Vstereo_cost_lcdm stereo_cost "" NDISP=16 COST=1)
 stereo_verilated_config(Vstereo_top_census stereo_top "" WIDTH=64 HEIGHT=48 NDISP=16 WINDOW=5 COST=2)
 stereo_verilated_config(Vstereo_top_census_lanes4 stereo_top "" WIDTH=64 HEIGHT=48 NDISP=16 WINDOW=5 COST=2 LANES=4)
+stereo_verilated_config(Vstereo_top_census_recompute stereo_top "" WIDTH=64 HEIGHT=48 NDISP=16 WINDOW=5 COST=2 RECOMPUTE_COSTS=1)
+stereo_verilated_config(Vstereo_top_census_recompute_lanes4 stereo_top "" WIDTH=64 HEIGHT=48 NDISP=16 WINDOW=5 COST=2 LANES=4 RECOMPUTE_COSTS=1)
 stereo_verilated_config(Vstereo_aggregate stereo_aggregate "" WIDTH=64 NDISP=16 WINDOW=5)
 stereo_verilated_config(Vstereo_aggregate_const stereo_aggregate "" WIDTH=64 NDISP=16 WINDOW=5 RUNTIME_KERNEL=0)
 stereo_verilated_config(Vstereo_ca_rule1 stereo_ca_plane "" WIDTH=64 NDISP=16 RULE=1)

@@ -3,8 +3,9 @@
 // relit pair, a real crop, signed ranges with stage 6, frames back to back of different sizes, a
 // reset in the middle of a frame, and the frame's cycle count. Built once per configuration
 // (STEREO_TB_COST_CONFIG names it, testbench/CMakeLists.txt): small-lcdm and lcdm-lanes4 (the
-// LCDM cost, COST = 1), small-census and census-lanes4 (the census stage, COST = 2); LANES < NDISP
-// in the -lanes4 ones.
+// LCDM cost, COST = 1), small-census and census-lanes4 (the census stage, COST = 2), and
+// census-recompute and census-recompute-lanes4 (the census core in the lean memory architecture,
+// RECOMPUTE_COSTS = 1); LANES < NDISP in the -lanes4 ones.
 #include <gtest/gtest.h>
 
 #include <filesystem>

@@ -293,7 +293,8 @@ std::vector<std::pair<std::string, int>> assignments(const stereo::table::Params
                                                {"COST", params.cost},
                                                {"LANES", params.lanes},
                                                {"CLKS_PER_BIT", params.clks_per_bit},
-                                               {"SHIFT_ADD", params.shift_add}};
+                                               {"SHIFT_ADD", params.shift_add},
+                                               {"RECOMPUTE_COSTS", params.recompute_costs}};
     for (const auto& [name, value] : all) {
         if (value != stereo::table::kUnset) {
             out.emplace_back(name, value);

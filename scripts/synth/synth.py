@@ -100,6 +100,11 @@ def config_from_args(args):
         if getattr(args, "command", None) == "board":
             raise ReportError("--shift-add is for the core, not the board top")
         config["shift_add"] = args.shift_add
+    # stereo_top's RECOMPUTE_COSTS (the lean memory architecture, census only), likewise.
+    if getattr(args, "recompute", False):
+        if config.get("cost") != "census":
+            raise ReportError("--recompute (the lean memory architecture) needs --cost census")
+        config["recompute_costs"] = 1
     # stereo_top's MAX_MIN_DISP, likewise recorded only when given.
     if getattr(args, "max_min_disp", None) is not None and getattr(args, "command", None) != "board":
         config["max_min_disp"] = args.max_min_disp
@@ -131,6 +136,8 @@ def chparam(config, ice40=False):
         extra += f"-set COST {COSTS[config['cost']]} "
     if "shift_add" in config:
         extra += f"-set SHIFT_ADD {SHIFT_ADD[config['shift_add']]} "
+    if config.get("recompute_costs"):
+        extra += "-set RECOMPUTE_COSTS 1 "
     return (f"chparam -set WIDTH {config['width']} -set HEIGHT {config['height']} "
             f"-set NDISP {config['ndisp']} -set WINDOW {config['window']} "
             f"-set LANES {lanes} {extra}{'-set RING_BLOCK_RAM 1 ' if ice40 else ''}{TOP}")
@@ -1117,6 +1124,10 @@ def add_config_arguments(parser, width=64, height=48, ndisp=4, window=5):
                         help="stereo_top SHIFT_ADD: which constant tap products of the aggregation "
                              "are shifts and adds instead of multipliers (DSP blocks): none, "
                              "narrow (the census codes' vertical pass) or all (default: none)")
+    parser.add_argument("--recompute", action="store_true",
+                        help="stereo_top RECOMPUTE_COSTS (with --cost census): the lean memory "
+                             "architecture, rows of census codes instead of per-label rows "
+                             "(docs/rtl.md \"Lean memory\")")
     parser.add_argument("--work", help="folder for netlists and logs (default: a temp folder)")
     parser.add_argument("--out", help="JSON report file (default: stdout)")
 

@@ -240,6 +240,9 @@ struct Params {
     int lanes = kUnset;  // stereo_top's and stereo_cost's LANES (unset: NDISP)
     int clks_per_bit = kUnset;  // the UART's CLKS_PER_BIT (stereo_board_top)
     int shift_add = kUnset;     // stereo_top's SHIFT_ADD: tap products from shifts and adds (0-2)
+    // stereo_top's RECOMPUTE_COSTS (census): the lean memory architecture, rows of census codes
+    // instead of per-label rows (docs/rtl.md "Lean memory")
+    int recompute_costs = kUnset;
 };
 
 struct VerilatedConfig {
@@ -278,6 +281,15 @@ inline constexpr Params kSmallLcdmLanes4{
 inline constexpr Params kSmallCensusLanes4{kSmall.width,  kSmall.height, kSmall.ndisp,
                                            kSmall.window, kUnset,        kUnset,
                                            kUnset,        kCostCensus,   4};
+// The lean memory architecture (RECOMPUTE_COSTS = 1): the census core whose cost stage keeps rows
+// of census codes and recomputes every label's vertical window, all labels in parallel and 4 per
+// clock; tb_stereo_top_cost runs every census check on both.
+inline constexpr Params kSmallCensusRecompute{
+    kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window, kUnset, kUnset, kUnset, kCostCensus,
+    kUnset,       kUnset,        kUnset,       1};
+inline constexpr Params kSmallCensusRecomputeLanes4{
+    kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window, kUnset, kUnset, kUnset, kCostCensus,
+    4,            kUnset,        kUnset,       1};
 // The iCE40 cores: one label (no delay line, C2 a constant, the certainty divider folded away)
 // and two labels one per clock (C2 a constant in the lanes mode too).
 inline constexpr Params kNdisp1{kSmall.width, kSmall.height, 1, kSmall.window, kUnset};
@@ -298,7 +310,7 @@ inline constexpr Params kIce40Ndisp4Lanes1{
 inline constexpr Params kFpgaCensusNdisp8Lanes2{
     kSmall.width, kSmall.height, 8, 7, kUnset, kUnset, 0, kCostCensus, 2, kUnset, 2};
 
-inline constexpr std::array<VerilatedConfig, 28> kVerilatedConfigs = {{
+inline constexpr std::array<VerilatedConfig, 30> kVerilatedConfigs = {{
     {"Vstereo_top_small", "stereo_top", kSmall, ""},
     {"Vstereo_top_lanes4", "stereo_top", kSmallLanes4, ""},
     {"Vstereo_top_lanes1", "stereo_top", kSmallLanes1, ""},
@@ -316,6 +328,8 @@ inline constexpr std::array<VerilatedConfig, 28> kVerilatedConfigs = {{
      ""},
     {"Vstereo_top_census", "stereo_top", kSmallCensus, ""},
     {"Vstereo_top_census_lanes4", "stereo_top", kSmallCensusLanes4, ""},
+    {"Vstereo_top_census_recompute", "stereo_top", kSmallCensusRecompute, ""},
+    {"Vstereo_top_census_recompute_lanes4", "stereo_top", kSmallCensusRecomputeLanes4, ""},
     {"Vstereo_aggregate",
      "stereo_aggregate",
      {kSmall.width, kUnset, kSmall.ndisp, kSmall.window, kUnset},
@@ -379,7 +393,16 @@ struct LintConfig {
     Params params;
 };
 
-inline constexpr std::array<LintConfig, 21> kExtraLintConfigs = {{
+inline constexpr std::array<LintConfig, 24> kExtraLintConfigs = {{
+    // The lean memory architecture (RECOMPUTE_COSTS): the VGA build (64 labels, 8 per clock), a
+    // 3x3 window with one label, and the FPGA top at the VGA size.
+    {"stereo_top",
+     {kFull.width, kFull.height, kFull.ndisp, kFull.window, kUnset, kUnset, kUnset, kCostCensus, 8,
+      kUnset, kUnset, 1}},
+    {"stereo_top", {kUnset, kUnset, 1, 3, kUnset, kUnset, 0, kCostCensus, kUnset, kUnset, kUnset, 1}},
+    {"stereo_synth_top",
+     {kFull.width, kFull.height, kFull.ndisp, kFull.window, kUnset, kUnset, kUnset, kCostCensus, 8,
+      kUnset, 1, 1}},
     // Time-multiplexed lanes: one label per clock, an odd group count, the FPGA build at full size.
     {"stereo_top", {kUnset, kUnset, 3, 3, kUnset, kUnset, kUnset, kUnset, 1}},
     {"stereo_top", {100, 75, 12, 7, kUnset, kUnset, kUnset, kUnset, 4}},
