@@ -27,8 +27,9 @@
 // arithmetic. The step registers the matched left pixel, its coordinates and the selected right
 // pixel into a history of NDISP (label k's right pixel at entry k); during the clock of label
 // group g (`group` from stereo_top, 0 .. G-1, G = NDISP / LANES; the step, ce, comes at G-1)
-// LANES distance units compute labels [g*LANES +: LANES] combinationally (a G:1 multiplexer per
-// lane picks its right pixel), and out_data carries that group only (LANES costs). The stage's
+// LANES distance units compute labels [g*LANES +: LANES] combinationally from the head of the
+// history, a ring of G words of LANES entries (stereo_group_ring: LUT or block RAM, no G:1
+// multiplexer per lane), and out_data carries that group only (LANES costs). The stage's
 // output is thus the same pixel's costs between two steps as with LANES = NDISP.
 // CENSUS_CODES = 1 (census only; what stereo_top sets for its aggregation): each label's field
 // carries the census code instead, the distance or CENSUS_CODE_OUTSIDE where xr lies outside,
@@ -51,7 +52,10 @@ module stereo_cost #(
     // Rows of codes per label (CENSUS_CODES only above 1): the vertical window of the
     // aggregation, recomputed from a line buffer of codes (above); WIDTH sizes that buffer.
     parameter int ROWS  = 1,
-    parameter int WIDTH = 64  // longest row (ROWS > 1 only)
+    parameter int WIDTH = 64,  // longest row (ROWS > 1 only)
+    // LANES < NDISP: the right history's ring (stereo_group_ring BLOCK_RAM, BLOCK_MIN_FILL)
+    parameter bit RING_BLOCK_RAM = 1'b0,
+    parameter int RING_BLOCK_MIN_FILL = 50
 ) (
 `include "stereo_stage_ports.svh"
     input  wire logic [23:0]                        in_left,       // {R, G, B} or census code
@@ -77,10 +81,9 @@ module stereo_cost #(
   // What a label whose right pixel lies outside [0, W) gets.
   localparam logic [COST_BITS-1:0] OUTSIDE = (COST == fx_pkg::COST_CENSUS && CENSUS_CODES)
       ? COST_BITS'(fx_pkg::CENSUS_CODE_OUTSIDE) : COST_BITS'(fx_pkg::COST_OUTSIDE);
-  // Right pixels kept: the pre-delay line, and the lanes' history (LANES = NDISP: besides the
-  // selected pixel; else including it, as it was at the last step).
+  // Right pixels kept: the pre-delay line, and the lanes' history (LANES = NDISP: NDISP - 1
+  // besides the selected pixel; else a ring of NDISP, below).
   localparam int PRE_DELAY = (MAX_MIN_DISP > 0) ? MAX_MIN_DISP : 1;
-  localparam int HISTORY = (GROUPS > 1) ? NDISP : ((NDISP > 1) ? NDISP - 1 : 1);
   localparam int LEFT_DELAY = (MAX_MIN_DISP > 0) ? MAX_MIN_DISP : 1;  // left pixels kept
   localparam int SHIFT_BITS = $clog2(MAX_MIN_DISP + 1) + 1;
 
@@ -145,11 +148,6 @@ module stereo_cost #(
 
   // right_pre[i*PIXEL_BITS +: PIXEL_BITS] = the right pixel i + 1 steps before the newest.
   logic [PRE_DELAY*PIXEL_BITS-1:0] right_pre;
-  // right_history[i*PIXEL_BITS +: PIXEL_BITS] = the selected right pixel i + 1 steps ago
-  // (LANES < NDISP: i steps before the last step).
-  /* verilator lint_off UNUSEDSIGNAL */  // NDISP = 1: not needed
-  logic [HISTORY*PIXEL_BITS-1:0] right_history;
-  /* verilator lint_on UNUSEDSIGNAL */
   // The left pixel and its coordinates, i + 1 steps ago.
   logic [LEFT_DELAY*PIXEL_BITS-1:0] left_history;
   fx_pkg::coord_t left_x_history[LEFT_DELAY];
@@ -221,31 +219,71 @@ module stereo_cost #(
   logic signed [17:0] lane_base_x;
   generate
     if (GROUPS > 1) begin : g_lanes
-      // The pixel of the last step: the left pixel, and the selected right pixel as entry 0 of
-      // the history (label k's right pixel at entry k).
-      logic [PIXEL_BITS-1:0] left_q;
+      // The pixels of the last step: the left pixel, and the selected right pixel (label 0's
+      // right pixel, entry 0 of the history; label k's at entry k).
+      logic [PIXEL_BITS-1:0] left_q, right_q;
       always_ff @(posedge clk) begin
-        if (ce) left_q <= left_pixel;
+        if (ce) begin
+          left_q <= left_pixel;
+          right_q <= right_selected;
+        end
       end
       assign lane_left = left_q;
       // xr = x - m - k with the registered coordinates, k = group*LANES + l.
       assign lane_base_x = 18'(out_x) - 18'(cfg_min_disp) - 18'(32'(group) * LANES);
-      for (genvar l = 0; l < LANES; l++) begin : g_pick
-        always_comb begin  // G:1: entry g*LANES + l at group g
-          lane_right[l*PIXEL_BITS +: PIXEL_BITS] = right_history[l*PIXEL_BITS +: PIXEL_BITS];
-          for (int g = 1; g < GROUPS; g++) begin
-            if (32'(group) == g)
-              lane_right[l*PIXEL_BITS +: PIXEL_BITS] =
-                  right_history[(g*LANES+l)*PIXEL_BITS +: PIXEL_BITS];
-          end
-        end
+      // The history as a ring of G words of LANES entries (stereo_group_ring, block or LUT RAM):
+      // the word at the head in the clock of group g holds entries [g*LANES +: LANES], so the
+      // lanes read it without a multiplexer. At each advance the head's word moves one entry up
+      // (the entries of the next step) and takes the previous group's last entry (`carry`) as its
+      // first; the first entry of group 0 is the next step's right pixel, which is not there yet:
+      // it is right_q, put in when group 0 is read. A reset in the middle of a round rotates the
+      // ring against the group count, which only moves entries registered before the reset
+      // (pixels before any frame pixel of their row, outside for every label).
+      localparam int WORD_BITS = LANES * PIXEL_BITS;
+      logic [WORD_BITS-1:0] head, word, next_word;
+      logic [PIXEL_BITS-1:0] carry;  // the last entry of the group read at the previous advance
+      logic advance;  // a clock that processes a group
+      assign advance = ce || 32'(group) != GROUPS - 1;
+      always_comb begin
+        word = head;
+        if (32'(group) == 0) word[0+:PIXEL_BITS] = right_q;
       end
+      assign lane_right = word;
+      if (LANES > 1) begin : g_shift_word
+        assign next_word = {word[0+:(LANES-1)*PIXEL_BITS], carry};
+      end else begin : g_one_entry
+        assign next_word = carry;
+      end
+      always_ff @(posedge clk) begin
+        if (advance) carry <= word[(LANES-1)*PIXEL_BITS+:PIXEL_BITS];
+      end
+      stereo_group_ring #(
+          .BITS(WORD_BITS),
+          .GROUPS(GROUPS),
+          .BLOCK_RAM(RING_BLOCK_RAM),
+          .BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
+      ) history_ring (
+          .clk(clk),
+          .advance(advance),
+          .next_state(next_word),
+          .head(head)
+      );
     end else begin : g_parallel
       assign lane_left = left_pixel;
       assign lane_base_x = 18'(left_x) - 18'(cfg_min_disp);
       // Tap k + P behind the newest right pixel: k behind the selected one.
       if (NDISP > 1) begin : g_history
-        assign lane_right = {right_history[(NDISP-1)*PIXEL_BITS-1:0], right_selected};
+        // right_history[i*PIXEL_BITS +: PIXEL_BITS] = the selected right pixel i + 1 steps ago.
+        logic [(NDISP-1)*PIXEL_BITS-1:0] right_history;
+        stereo_shift_reg #(
+            .BITS (PIXEL_BITS),
+            .DEPTH(NDISP - 1)
+        ) right_delay (
+            .in_data(right_selected),
+            .history(right_history),
+            .*
+        );
+        assign lane_right = {right_history, right_selected};
       end else begin : g_selected
         assign lane_right = right_selected;
       end
@@ -284,14 +322,6 @@ module stereo_cost #(
     end
   endgenerate
 
-  stereo_shift_reg #(
-      .BITS (PIXEL_BITS),
-      .DEPTH(HISTORY)
-  ) right_delay (
-      .in_data(right_selected),
-      .history(right_history),
-      .*
-  );
   stereo_shift_reg #(
       .BITS (PIXEL_BITS),
       .DEPTH(PRE_DELAY)

@@ -350,7 +350,9 @@ module stereo_top #(
       .LANES(LANES),
       .CENSUS_CODES(COST == fx_pkg::COST_CENSUS),  // the aggregation keeps census codes
       .ROWS(COST_ROWS),
-      .WIDTH(WIDTH)
+      .WIDTH(WIDTH),
+      .RING_BLOCK_RAM(RING_BLOCK_RAM),
+      .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
   ) cost (
       .clk(clk),
       .rst(clear_coordinates),
