@@ -33,6 +33,9 @@
 #ifdef STEREO_COSIM_FULL
 #include "Vstereo_top_full.h"
 #endif
+#ifdef STEREO_COSIM_FULL_CENSUS
+#include "Vstereo_top_full_census_lean.h"
+#endif
 #ifdef STEREO_COSIM_USER
 #include "Vstereo_top_user.h"
 #endif
@@ -194,6 +197,9 @@ const std::vector<TopConfig>& census_recompute_top_configs() {
         top_config(table::verilated("Vstereo_top_census_recompute"), "census-recompute"),
         top_config(table::verilated("Vstereo_top_census_recompute_lanes4"),
                    "census-recompute-lanes4"),
+#ifdef STEREO_COSIM_FULL_CENSUS
+        top_config(table::verilated("Vstereo_top_full_census_lean"), "full-census-lean"),
+#endif
     };
     return configs;
 }
@@ -258,7 +264,18 @@ const TopConfig* covering_config(int width, int height, int ndisp, int window, i
                                  const std::string& cost) {
     if (cost == "lcdm" || cost == "census") {
         const TopConfig& config = cost == "lcdm" ? lcdm_top_config() : census_top_config();
-        return covers(config, width, height, ndisp, window, min_disp) ? &config : nullptr;
+        if (covers(config, width, height, ndisp, window, min_disp)) {
+            return &config;
+        }
+        if (cost == "census") {  // the larger census builds (the small lean ones are not larger)
+            for (const TopConfig& lean : census_recompute_top_configs()) {
+                if (lean.width > config.width &&
+                    covers(lean, width, height, ndisp, window, min_disp)) {
+                    return &lean;
+                }
+            }
+        }
+        return nullptr;
     }
     for (const TopConfig& config : built_top_configs()) {
         if (covers(config, width, height, ndisp, window, min_disp)) {
@@ -315,6 +332,9 @@ const std::pair<std::string_view, TopFactory> kFactories[] = {
     {"fpga-census-ndisp8-lanes2", &make_verilated<Vstereo_synth_top_census_ndisp8_lanes2>},
 #ifdef STEREO_COSIM_FULL
     {"full", &make_verilated<Vstereo_top_full>},
+#endif
+#ifdef STEREO_COSIM_FULL_CENSUS
+    {"full-census-lean", &make_verilated<Vstereo_top_full_census_lean>},
 #endif
 #ifdef STEREO_COSIM_USER
     {"user", &make_verilated<Vstereo_top_user>},

@@ -240,6 +240,13 @@ def resources_xilinx(cells):
         "bram_kbits": 36 * count(cells, r"RAMB36E1") + 18 * count(cells, r"RAMB18E1"),
         "dsps": count(cells, r"DSP48E1"),
         "srls": count(cells, r"SRL\w+"),
+        # LUTs of the part that the design occupies: logic LUTs, shift registers (one LUT each)
+        # and LUT RAM (UG474: RAM32M/RAM64M/RAM128X1D/RAM256X1S take four LUTs, RAM64X1D and
+        # RAM128X1S two, RAM32X1S/RAM64X1S one).
+        "lut_sites": count(cells, r"LUT[1-6]") + count(cells, r"SRL\w+") +
+        4 * count(cells, r"RAM32M\w*", r"RAM64M\w*", r"RAM128X1D", r"RAM256X1S") +
+        2 * count(cells, r"RAM32X1D", r"RAM64X1D", r"RAM128X1S") +
+        count(cells, r"RAM32X1S", r"RAM64X1S"),
     }
 
 
@@ -577,11 +584,13 @@ def estimate(config, target, work=None, use_dsp=True):
     # module with different parameters: the CA rules are both stereo_ca_plane).
     instances = {name: work / f"stage_{name}.txt" for name in STAGES}
     # chparam leaves the top as a derived "$paramod...stereo_synth_top": name it back for stat.
+    netlist = work / "netlist.json"
     script = (f"read_verilog -sv {' '.join(rtl_sources())}; {chparam(config, ice40=target == 'ice40')}; "
               f"{synth}; chformal -remove; opt_clean; rename -top {TOP}; "
               f"tee -q -o {stat} stat -json; " +
               "; ".join(f"tee -q -o {path} {stage_module_query(name)}"
-                        for name, path in instances.items()))
+                        for name, path in instances.items()) +
+              f"; flatten; opt_clean; write_json {netlist}")
     seconds = run_yosys(script, work / "yosys.log")
     resources_of = {"xilinx": resources_xilinx, "ecp5": resources_ecp5,
                     "ice40": resources_ice40}[target]
@@ -589,10 +598,79 @@ def estimate(config, target, work=None, use_dsp=True):
     modules = stage_modules({name: path.read_text() for name, path in instances.items()})
     stages = {name: resources_of(stage_cells) for name, stage_cells in
               stage_breakdown(stat, modules).items()}
+    depth = logic_depth(netlist, target)
+    netlist.unlink()  # hundreds of MB at the VGA size; the depth is what was needed of it
     return {"target": target, "top": TOP, "config": config, "use_dsp": use_dsp,
-            "resources": resources_of(cells), "stages": stages,
+            "resources": resources_of(cells), "stages": stages, "logic_depth": depth,
             "yosys_seconds": round(seconds, 1), "tools": {"yosys": tool_version(["yosys", "-V"])},
             "note": "Yosys resource estimate before place and route; no Fmax"}
+
+
+# What each cell counts on a register-to-register path: "level" cells are one level of logic
+# (a LUT, or a LUT RAM read), "free" cells are combinational but add no LUT level (carry chains,
+# the slice's wide multiplexers); every other cell type (flip-flops, block RAM, DSP blocks, shift
+# registers, I/O) starts and ends paths.
+DEPTH_CELLS = {
+    "xilinx": {"level": r"LUT[1-6]|RAM(32|64|128|256)(X1[SD]|M)\w*",
+               "free": r"CARRY4|MUXF[78]"},
+    "ecp5": {"level": r"LUT4|TRELLIS_DPR16X4|CCU2C", "free": r"PFUMX|L6MUX21"},
+    "ice40": {"level": r"SB_LUT4", "free": r"SB_CARRY"},
+}
+
+
+def logic_depth(netlist_path, target):
+    """The most LUT levels between two registers (or ports) in a flattened Yosys JSON netlist, and
+    how many carry cells lie on that path: {"lut_levels": n, "carry_cells": c}."""
+    kinds = DEPTH_CELLS[target]
+    modules = json.loads(Path(netlist_path).read_text())["modules"]
+    top = next((m for name, m in modules.items() if m.get("attributes", {}).get("top")),
+               None) or next(iter(modules.values()))
+    driver = {}  # net bit -> index of the combinational cell that drives it
+    cells = []   # (weight (lut levels, carries), input bits)
+    for cell in top["cells"].values():
+        kind = cell["type"].lstrip("\\$")
+        if re.fullmatch(kinds["level"], kind):
+            weight = (1, 0)
+        elif re.fullmatch(kinds["free"], kind):
+            weight = (0, 1 if "CARRY" in kind or "CCU2" in kind else 0)
+        else:
+            continue
+        directions = cell.get("port_directions", {})
+        inputs, index = [], len(cells)
+        for port, bits in cell["connections"].items():
+            for bit in bits:
+                if isinstance(bit, int):
+                    (inputs if directions.get(port) == "input" else []).append(bit)
+                    if directions.get(port) == "output":
+                        driver[bit] = index
+        cells.append((weight, inputs))
+    depth = [None] * len(cells)
+    on_stack = [False] * len(cells)  # a combinational loop (none expected) is cut, not followed
+    for start in range(len(cells)):  # iterative depth-first, memoised
+        stack = [start]
+        while stack:
+            node = stack[-1]
+            if depth[node] is not None:
+                on_stack[node] = False
+                stack.pop()
+                continue
+            on_stack[node] = True
+            pending = [driver[b] for b in cells[node][1]
+                       if b in driver and depth[driver[b]] is None and not on_stack[driver[b]]]
+            if pending:
+                stack.extend(pending)
+                continue
+            best = (0, 0)
+            for b in cells[node][1]:
+                d = driver.get(b)
+                if d is not None and d != node and depth[d] is not None:
+                    best = max(best, depth[d])
+            weight = cells[node][0]
+            depth[node] = (best[0] + weight[0], best[1] + weight[1])
+            on_stack[node] = False
+            stack.pop()
+    deepest = max(depth, default=(0, 0))
+    return {"lut_levels": deepest[0], "carry_cells": deepest[1]}
 
 
 # Stage names in pipeline order; each is also the name of the stage's instance in stereo_top.
@@ -1104,6 +1182,156 @@ def check_stages(report):
             raise ReportError(f"stages add up to {total} {key}, the design has "
                               f"{report['resources'][key]}")
 
+# ---- boards: the largest measured configuration each board holds -------------------------------
+# The boards a user can buy, their FPGA's resources (vendor data sheets: AMD DS180/DS190, Lattice
+# FPGA-DS-02012 and iCE40 family data sheets) and the report family that estimates them. "clock_mhz"
+# is the clock assumed for the frame rate where nothing is placed and routed (the 7-series and
+# ECP5 estimates); iCE40 reports carry their routed Fmax, which is used instead. Block RAM is
+# counted in the report's own unit: RAMB36 equivalents (7-series), DP16KD (ECP5), SB_RAM40_4K.
+BOARDS = {
+    "icebreaker": {"name": "iCEBreaker", "fpga": "iCE40 UP5K", "family": "ice40", "device": "up5k",
+                   "luts": 5280, "ffs": 5280, "brams": 30, "dsps": 8},
+    "hx8k-breakout": {"name": "iCE40-HX8K breakout", "fpga": "iCE40 HX8K", "family": "ice40",
+                      "device": "hx8k", "luts": 7680, "ffs": 7680, "brams": 32, "dsps": 0},
+    "basys3": {"name": "Basys 3", "fpga": "XC7A35T", "family": "xilinx", "luts": 20800,
+               "ffs": 41600, "brams": 50, "dsps": 90, "clock_mhz": 100.0},
+    "arty-a7-35t": {"name": "Arty A7-35T", "fpga": "XC7A35T", "family": "xilinx", "luts": 20800,
+                    "ffs": 41600, "brams": 50, "dsps": 90, "clock_mhz": 100.0},
+    "arty-a7-100t": {"name": "Arty A7-100T", "fpga": "XC7A100T", "family": "xilinx",
+                     "luts": 63400, "ffs": 126800, "brams": 135, "dsps": 240, "clock_mhz": 100.0},
+    "pynq-z2": {"name": "PYNQ-Z2", "fpga": "XC7Z020 (fabric)", "family": "xilinx", "luts": 53200,
+                "ffs": 106400, "brams": 140, "dsps": 220, "clock_mhz": 100.0},
+    "nexys-video": {"name": "Nexys Video", "fpga": "XC7A200T", "family": "xilinx",
+                    "luts": 134600, "ffs": 269200, "brams": 365, "dsps": 740, "clock_mhz": 100.0},
+    "ulx3s-85f": {"name": "ULX3S 85F", "fpga": "LFE5U-85F", "family": "ecp5", "luts": 83640,
+                  "ffs": 83640, "brams": 208, "dsps": 156, "clock_mhz": 100.0},
+}
+BOARD_BUDGET = 0.85  # of every resource: headroom for packing, routing and the board's own logic
+
+
+def report_luts(report):
+    """The LUTs a report occupies: logic cells where it was placed (iCE40), the LUT sites of a
+    7-series estimate (logic, shift registers, LUT RAM), else its LUT count."""
+    utilisation = report.get("utilisation", {}).get("ICESTORM_LC")
+    if utilisation:
+        return utilisation["used"]
+    resources = report["resources"]
+    return resources.get("lut_sites", resources["luts"])
+
+
+def board_usage(report, board):
+    """{resource: (used, available)} of a report on a board."""
+    resources = report["resources"]
+    return {"luts": (report_luts(report), board["luts"]), "ffs": (resources["ffs"], board["ffs"]),
+            "brams": (resources["brams"], board["brams"]), "dsps": (resources["dsps"], board["dsps"])}
+
+
+def board_candidate(report, board):
+    """A report's figures on a board, or None when it is not evidence for that board (another
+    family, another iCE40 device, an iCE40 report that was not placed and routed)."""
+    # An iCEBreaker build (synth.py board: the core with its UART top) is evidence for the UP5K.
+    target = "ice40" if report.get("target") == "ice40_board" else report.get("target")
+    if target != board["family"] or not isinstance(report.get("config"), dict):
+        return None
+    if board["family"] == "ice40" and (report.get("device") != board["device"] or
+                                       not report.get("placed")):
+        return None
+    usage = board_usage(report, board)
+    fits = all(used <= BOARD_BUDGET * available for used, available in usage.values())
+    clock = report.get("fmax_mhz") if board["family"] == "ice40" else board["clock_mhz"]
+    if report.get("target") == "ice40_board" and clock is not None:
+        clock = min(clock, 12.0)  # the iCEBreaker top runs on the board's 12 MHz oscillator
+    fps, _ = throughput(report["config"], clock)
+    return {"fits": fits, "usage": {k: {"used": u, "available": a,
+                                        "percent": round(100.0 * u / a, 1) if a else None}
+                                    for k, (u, a) in usage.items()},
+            "clock_mhz": clock, "frames_per_second": fps}
+
+
+def config_size(config):
+    """What "largest" means: pixels times labels, then the window."""
+    return (config["width"] * config["height"] * config["ndisp"], config["window"])
+
+
+def command_boards(args):
+    names = args.board or list(BOARDS)
+    for name in names:
+        if name not in BOARDS:
+            raise ReportError(f"unknown board {name!r}; known: {', '.join(sorted(BOARDS))}")
+    paths = []
+    for folder in args.reports:
+        folder = Path(folder)
+        paths += sorted(folder.glob("*.json")) if folder.is_dir() else [folder]
+    reports = []
+    for path in paths:
+        try:
+            report = json.loads(path.read_text())
+        except (OSError, json.JSONDecodeError):
+            continue
+        if isinstance(report, dict) and "resources" in report and "config" in report:
+            reports.append((path, report))
+    result = {"budget": BOARD_BUDGET, "min_frames_per_second": args.min_fps, "boards": {}}
+    for name in names:
+        board = BOARDS[name]
+        best = None
+        for path, report in reports:
+            candidate = board_candidate(report, board)
+            if candidate is None or not candidate["fits"]:
+                continue
+            if (candidate["frames_per_second"] or 0) < args.min_fps:
+                continue
+            key = config_size(report["config"]) + (candidate["frames_per_second"] or 0,)
+            if best is None or key > best[0]:
+                best = (key, path, report, candidate)
+        entry = {"board": board["name"], "fpga": board["fpga"], "family": board["family"]}
+        if best is None:
+            entry["largest"] = None
+        else:
+            _, path, report, candidate = best
+            entry["largest"] = {"report": path.name, "config": report["config"],
+                                "placed": bool(report.get("placed")),
+                                "logic_depth": report.get("logic_depth"),
+                                **candidate}
+        result["boards"][name] = entry
+    fitting = [n for n in names if result["boards"][n]["largest"] is not None]
+    if not fitting:
+        raise ReportError(f"no measured configuration fits {', '.join(names)} within "
+                          f"{BOARD_BUDGET:.0%} of every resource at >= {args.min_fps:g} frames/s "
+                          f"(reports: {', '.join(map(str, args.reports))})")
+    write_report(result, args.out)
+    if args.markdown:
+        Path(args.markdown).write_text(boards_markdown(result))
+    return result
+
+
+def boards_markdown(result):
+    """The table of docs/synthesis.md "Boards"."""
+    lines = ["| board | FPGA | largest configuration | LUT | FF | block RAM | DSP | clock | "
+             "frames/s | LUT levels | report |", "|" + "---|" * 11]
+    for entry in result["boards"].values():
+        best = entry["largest"]
+        if best is None:
+            lines.append(f"| {entry['board']} | {entry['fpga']} | none measured fits | | | | | | "
+                         "| | |")
+            continue
+        c = best["config"]
+        text = f"{c['width']}x{c['height']}, {c['ndisp']} labels, {c['window']}x{c['window']}"
+        for key, label in (("cost", "cost"), ("lanes", "LANES"), ("max_min_disp", "MAX_MIN_DISP")):
+            if key in c:
+                text += f", {label} {c[key]}"
+        if c.get("recompute_costs"):
+            text += ", lean memory"
+        usage = best["usage"]
+        cells = [f"{usage[k]['used']:,} ({usage[k]['percent']} %)" if usage[k]["available"]
+                 else f"{usage[k]['used']:,} (none on the part)" for k in
+                 ("luts", "ffs", "brams", "dsps")]
+        clock = f"{best['clock_mhz']} MHz" + (" (routed)" if best["placed"] else " (assumed)")
+        depth = (best["logic_depth"] or {}).get("lut_levels", "not measured")
+        lines.append(f"| {entry['board']} | {entry['fpga']} | {text} | " + " | ".join(cells) +
+                     f" | {clock} | {best['frames_per_second']} | {depth} | `{best['report']}` |")
+    return "\n".join(lines) + "\n"
+
+
 
 def add_config_arguments(parser, width=64, height=48, ndisp=4, window=5):
     parser.add_argument("--width", type=int, default=width)
@@ -1213,6 +1441,18 @@ def main():
     table.add_argument("--clock", type=float, default=100.0, help="assumed clock in MHz")
     table.add_argument("--out")
     table.set_defaults(handler=command_table)
+    boards = sub.add_parser("boards", help="the largest measured configuration each board holds")
+    boards.add_argument("--board", action="append", metavar="NAME",
+                        help=f"a board (repeatable; default: all): {', '.join(sorted(BOARDS))}")
+    boards.add_argument("--reports", nargs="+",
+                        default=[str(REPO / "docs" / "figures" / "synthesis" / "boards")],
+                        help="report files or folders of them (default: docs/figures/synthesis/"
+                        "boards, measured at the current RTL)")
+    boards.add_argument("--min-fps", type=float, default=30.0,
+                        help="only configurations at least this fast (default 30, a robot's camera)")
+    boards.add_argument("--out", help="JSON file (default: stdout)")
+    boards.add_argument("--markdown", help="also write the table as markdown to this file")
+    boards.set_defaults(handler=command_boards)
     check = sub.add_parser("check", help="validate a JSON report")
     check.add_argument("report")
     check.add_argument("--expect-bram", action="store_true")

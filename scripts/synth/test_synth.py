@@ -526,5 +526,94 @@ class Board(unittest.TestCase):
                 self.check(dict(placed, bin_bytes=99), expect_placed=True)
 
 
+# A Yosys JSON netlist (the fields logic_depth reads): a register feeds LUT a, which feeds a carry
+# cell and LUT b; b and the carry feed LUT c, which feeds a register. Longest path by hand:
+# a -> b -> c, three LUT levels, with one carry cell beside it on the path a -> carry -> c.
+def _cell(kind, inputs, outputs):
+    connections = {f"I{i}": [bit] for i, bit in enumerate(inputs)}
+    connections.update({f"O{i}": [bit] for i, bit in enumerate(outputs)})
+    directions = {f"I{i}": "input" for i in range(len(inputs))}
+    directions.update({f"O{i}": "output" for i in range(len(outputs))})
+    return {"type": kind, "connections": connections, "port_directions": directions}
+
+
+NETLIST = {"modules": {"top": {"attributes": {"top": 1}, "cells": {
+    "q0": _cell("FDRE", [10], [2]),
+    "a": _cell("LUT2", [2, 3], [4]),
+    "carry": _cell("CARRY4", [4], [5]),
+    "b": _cell("LUT3", [4, 2, 3], [6]),
+    "c": _cell("LUT4", [6, 5, 2, 3], [7]),
+    "q1": _cell("FDRE", [7], [10]),
+}}}}
+
+
+class LogicDepth(unittest.TestCase):
+    def test_longest_register_to_register_path(self):
+        with tempfile.TemporaryDirectory() as folder:
+            path = Path(folder) / "netlist.json"
+            path.write_text(json.dumps(NETLIST))
+            self.assertEqual(synth.logic_depth(path, "xilinx"),
+                             {"lut_levels": 3, "carry_cells": 0})
+            # Without LUT b the deepest path is a -> carry -> c: two levels and one carry.
+            del NETLIST["modules"]["top"]["cells"]["b"]
+            path.write_text(json.dumps(NETLIST))
+            self.assertEqual(synth.logic_depth(path, "xilinx"),
+                             {"lut_levels": 2, "carry_cells": 1})
+
+
+class Boards(unittest.TestCase):
+    """synth.py boards: the largest report within 85 % of every resource of a board."""
+
+    @staticmethod
+    def estimate(ndisp, luts, brams, dsps=0, ffs=1000, lanes=None):
+        config = {"width": 640, "height": 480, "ndisp": ndisp, "window": 11}
+        if lanes:
+            config["lanes"] = lanes
+        return {"target": "xilinx", "config": config,
+                "resources": {"luts": luts, "lut_sites": luts, "ffs": ffs, "brams": brams,
+                              "dsps": dsps},
+                "logic_depth": {"lut_levels": 7, "carry_cells": 4}}
+
+    def run_boards(self, reports, *arguments):
+        with tempfile.TemporaryDirectory() as folder:
+            for name, report in reports.items():
+                (Path(folder) / name).write_text(json.dumps(report))
+            out = Path(folder) / "boards.out"
+            args = SimpleNamespace(board=list(arguments) or None, reports=[folder], min_fps=30.0,
+                                   out=str(out), markdown=None)
+            synth.command_boards(args)
+            return json.loads(out.read_text())
+
+    def test_largest_that_fits_85_percent(self):
+        # XC7A35T: 85 % of 20,800 LUTs is 17,680, of 50 RAMB36 42.5. 64 labels at 17,000 LUTs and
+        # 43 blocks is over (43 > 42.5); 32 labels at 17,680 LUTs and 42.5 blocks is exactly on
+        # the budget, so it is the largest that fits. At 100 MHz and 4 clocks per step
+        # (32 / 8) it runs 100e6 / (4 * (640*480 + 7*640 + 5 + 10 + 2*0)) = 80.21 frames/s.
+        result = self.run_boards({"a.json": self.estimate(64, 17000, 43, lanes=8),
+                                  "b.json": self.estimate(32, 17680, 42.5, lanes=8),
+                                  "c.json": self.estimate(16, 9000, 20, lanes=4)}, "basys3")
+        best = result["boards"]["basys3"]["largest"]
+        self.assertEqual(best["report"], "b.json")
+        self.assertEqual(best["frames_per_second"], round(100e6 / (4 * 311695), 2))
+        self.assertEqual(best["usage"]["luts"]["percent"], 85.0)
+        self.assertEqual(best["logic_depth"]["lut_levels"], 7)
+
+    def test_too_slow_is_not_a_candidate(self):
+        # 64 labels one per clock: 64 * 311,695 clocks a frame, 5.01 frames/s at 100 MHz, below 30.
+        result = self.run_boards({"slow.json": self.estimate(64, 5000, 10, lanes=1),
+                                  "ok.json": self.estimate(16, 5000, 10, lanes=4)}, "basys3")
+        self.assertEqual(result["boards"]["basys3"]["largest"]["report"], "ok.json")
+
+    def test_unknown_board_and_nothing_fits(self):
+        with self.assertRaisesRegex(synth.ReportError, "unknown board 'zedboard'"):
+            self.run_boards({"a.json": self.estimate(16, 5000, 10)}, "zedboard")
+        with self.assertRaisesRegex(synth.ReportError, "no measured configuration fits basys3"):
+            self.run_boards({"a.json": self.estimate(16, 20000, 10, lanes=4)}, "basys3")
+        # An ECP5 report says nothing about a 7-series board.
+        ecp5 = dict(self.estimate(16, 5000, 10, lanes=4), target="ecp5")
+        with self.assertRaisesRegex(synth.ReportError, "no measured configuration fits"):
+            self.run_boards({"a.json": ecp5}, "arty-a7-35t")
+
+
 if __name__ == "__main__":
     unittest.main()

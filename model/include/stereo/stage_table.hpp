@@ -310,7 +310,12 @@ inline constexpr Params kIce40Ndisp4Lanes1{
 inline constexpr Params kFpgaCensusNdisp8Lanes2{
     kSmall.width, kSmall.height, 8, 7, kUnset, kUnset, 0, kCostCensus, 2, kUnset, 2};
 
-inline constexpr std::array<VerilatedConfig, 30> kVerilatedConfigs = {{
+// The VGA census core in the lean memory architecture as an FPGA runs it: 64 labels 8 per clock.
+inline constexpr Params kFullCensusLean{kFull.width, kFull.height, kFull.ndisp, kFull.window,
+                                        kUnset,      kUnset,       kUnset,      kCostCensus,
+                                        8,           kUnset,       kUnset,      1};
+
+inline constexpr std::array<VerilatedConfig, 31> kVerilatedConfigs = {{
     {"Vstereo_top_small", "stereo_top", kSmall, ""},
     {"Vstereo_top_lanes4", "stereo_top", kSmallLanes4, ""},
     {"Vstereo_top_lanes1", "stereo_top", kSmallLanes1, ""},
@@ -373,6 +378,8 @@ inline constexpr std::array<VerilatedConfig, 30> kVerilatedConfigs = {{
      ""},
     // Its C++ takes minutes to compile: only with -DSTEREO_COSIM_FULL=ON.
     {"Vstereo_top_full", "stereo_top", kFull, "STEREO_COSIM_FULL"},
+    // ... and the lean census core at that size: -DSTEREO_COSIM_CONFIGS=full_census_lean.
+    {"Vstereo_top_full_census_lean", "stereo_top", kFullCensusLean, "STEREO_COSIM_FULL_CENSUS"},
 }};
 
 // The configuration built under `prefix` (a compile-time error when there is none).
