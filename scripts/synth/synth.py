@@ -619,15 +619,16 @@ DEPTH_CELLS = {
 
 
 def logic_depth(netlist_path, target):
-    """The most LUT levels between two registers (or ports) in a flattened Yosys JSON netlist, and
-    how many carry cells lie on that path: {"lut_levels": n, "carry_cells": c}."""
+    """The most LUT levels between two registers (or ports) in a flattened Yosys JSON netlist, how
+    many carry cells lie on that path, and its cells: {"lut_levels", "carry_cells", "path"}."""
     kinds = DEPTH_CELLS[target]
     modules = json.loads(Path(netlist_path).read_text())["modules"]
     top = next((m for name, m in modules.items() if m.get("attributes", {}).get("top")),
                None) or next(iter(modules.values()))
     driver = {}  # net bit -> index of the combinational cell that drives it
     cells = []   # (weight (lut levels, carries), input bits)
-    for cell in top["cells"].values():
+    names = []   # the cells' (flattened, hierarchical) names
+    for cell_name, cell in top["cells"].items():
         kind = cell["type"].lstrip("\\$")
         if re.fullmatch(kinds["level"], kind):
             weight = (1, 0)
@@ -644,7 +645,9 @@ def logic_depth(netlist_path, target):
                     if directions.get(port) == "output":
                         driver[bit] = index
         cells.append((weight, inputs))
+        names.append(cell_name)
     depth = [None] * len(cells)
+    before = [None] * len(cells)  # the predecessor on the deepest path into each cell
     on_stack = [False] * len(cells)  # a combinational loop (none expected) is cut, not followed
     for start in range(len(cells)):  # iterative depth-first, memoised
         stack = [start]
@@ -663,14 +666,22 @@ def logic_depth(netlist_path, target):
             best = (0, 0)
             for b in cells[node][1]:
                 d = driver.get(b)
-                if d is not None and d != node and depth[d] is not None:
-                    best = max(best, depth[d])
+                if d is not None and d != node and depth[d] is not None and depth[d] > best:
+                    best, before[node] = depth[d], d
             weight = cells[node][0]
             depth[node] = (best[0] + weight[0], best[1] + weight[1])
             on_stack[node] = False
             stack.pop()
-    deepest = max(depth, default=(0, 0))
-    return {"lut_levels": deepest[0], "carry_cells": deepest[1]}
+    if not depth:
+        return {"lut_levels": 0, "carry_cells": 0, "path": []}
+    end = max(range(len(depth)), key=lambda i: depth[i])
+    path = []
+    while end is not None:
+        path.append(names[end])
+        end = before[end]
+    levels, carries = max(depth)
+    # The cells of that path, first to last: their names say which stages it crosses.
+    return {"lut_levels": levels, "carry_cells": carries, "path": path[::-1]}
 
 
 # Stage names in pipeline order; each is also the name of the stage's instance in stereo_top.

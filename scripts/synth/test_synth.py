@@ -553,12 +553,12 @@ class LogicDepth(unittest.TestCase):
             path = Path(folder) / "netlist.json"
             path.write_text(json.dumps(NETLIST))
             self.assertEqual(synth.logic_depth(path, "xilinx"),
-                             {"lut_levels": 3, "carry_cells": 0})
+                             {"lut_levels": 3, "carry_cells": 0, "path": ["a", "b", "c"]})
             # Without LUT b the deepest path is a -> carry -> c: two levels and one carry.
             del NETLIST["modules"]["top"]["cells"]["b"]
             path.write_text(json.dumps(NETLIST))
             self.assertEqual(synth.logic_depth(path, "xilinx"),
-                             {"lut_levels": 2, "carry_cells": 1})
+                             {"lut_levels": 2, "carry_cells": 1, "path": ["a", "carry", "c"]})
 
 
 class Boards(unittest.TestCase):
