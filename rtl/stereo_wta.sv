@@ -104,44 +104,123 @@ module stereo_wta #(
       logic running_pending;  // the winner is the last label: E(k1 + 1) comes next
       logic [BITS-1:0] second_cost, scan_rest, scan_last;
       logic scan_pending;
+      // The group's labels are combined in trees, not one after the other (a chain of LANES
+      // comparisons was the core's longest path, docs/synthesis.md "Logic depth"): the group's
+      // minimum m and its first lane j (a comparator tree, ties to the left), the minima of the
+      // lanes before and after each lane (parallel prefix, log2 LANES levels), and then one merge
+      // with the running state that gives exactly what the scan in label order gave: the winner
+      // changes to label first_label + j where m is strictly below the running winner's cost (or
+      // at group 0, which restarts), and C2 is then the minimum over the labels <= k1 - 2 and,
+      // within the group, >= k1 + 2; otherwise the group's labels lower C2, except a first lane
+      // that is the pending E(k1 + 1).
+      localparam int LEVELS = (LANES > 1) ? $clog2(LANES) : 1;
+      localparam int LEAVES = 1 << LEVELS;
+      localparam logic [BITS-1:0] NONE = BITS'(fx_pkg::NO_SECOND_COST);
+      logic [LANES*BITS-1:0] cost;  // absent labels carry the largest code: they never win
+      for (genvar l = 0; l < LANES; l++) begin : g_lane_cost
+        assign cost[l*BITS +: BITS] = ($signed(first_label + l) < $signed(32'(cfg_ndisp)))
+                                          ? group_costs[l*BITS +: BITS] : {BITS{1'b1}};
+      end
+      // Heap-ordered argmin tree: node n has children 2n+1 and 2n+2; leaf LEAVES-1+l is lane l.
+      logic [(2*LEAVES-1)*BITS-1:0] node_value  /*verilator split_var*/;
+      logic [(2*LEAVES-1)*LEVELS-1:0] node_lane  /*verilator split_var*/;
+      for (genvar l = 0; l < LEAVES; l++) begin : g_leaf
+        assign node_value[(LEAVES-1+l)*BITS +: BITS] =
+            (l < LANES) ? cost[((l < LANES) ? l : 0)*BITS +: BITS] : {BITS{1'b1}};
+        assign node_lane[(LEAVES-1+l)*LEVELS +: LEVELS] = LEVELS'(l);
+      end
+      for (genvar n = 0; n < LEAVES - 1; n++) begin : g_node
+        logic take_left;
+        assign take_left = node_value[(2*n+1)*BITS +: BITS] <= node_value[(2*n+2)*BITS +: BITS];
+        assign node_value[n*BITS +: BITS] = take_left ? node_value[(2*n+1)*BITS +: BITS]
+                                                      : node_value[(2*n+2)*BITS +: BITS];
+        assign node_lane[n*LEVELS +: LEVELS] = take_left ? node_lane[(2*n+1)*LEVELS +: LEVELS]
+                                                         : node_lane[(2*n+2)*LEVELS +: LEVELS];
+      end
+      logic [BITS-1:0] group_min;
+      logic [LEVELS-1:0] group_lane;
+      assign group_min = node_value[0 +: BITS];
+      assign group_lane = (LANES > 1) ? node_lane[0 +: LEVELS] : '0;
+      // from_start[l] = min(cost[0 .. l]), to_end[l] = min(cost[l .. LANES-1]) (Kogge-Stone), at
+      // [l*BITS +: BITS].
+      logic [LANES*BITS-1:0] from_start, to_end;
+      always_comb begin
+        logic [LANES*BITS-1:0] up, down;
+        from_start = cost;
+        to_end = cost;
+        for (int span = 1; span < LANES; span = span * 2) begin
+          up = from_start;
+          down = to_end;
+          for (int l = 0; l < LANES; l++) begin
+            // The lanes span before and after (clamped: the test in front excludes them).
+            int earlier, later;
+            earlier = (l >= span) ? l - span : l;
+            later = (l + span < LANES) ? l + span : l;
+            if (l >= span && up[earlier*BITS +: BITS] < up[l*BITS +: BITS])
+              from_start[l*BITS +: BITS] = up[earlier*BITS +: BITS];
+            if (l + span < LANES && down[later*BITS +: BITS] < down[l*BITS +: BITS])
+              to_end[l*BITS +: BITS] = down[later*BITS +: BITS];
+          end
+        end
+      end
+      // What the merge needs of lane j = group_lane: the lanes around it, the minima before
+      // j - 1 and after j + 1 (NONE where there are none).
+      logic [BITS-1:0] lane_before, lane_after, below_before, above_after, all_but_first;
+      always_comb begin
+        lane_before = '0;
+        lane_after = running_after;
+        below_before = NONE;
+        above_after = NONE;
+        for (int l = 0; l < LANES; l++) begin
+          if (32'(group_lane) == l) begin
+            if (l >= 1) lane_before = cost[(l-1)*BITS +: BITS];
+            if (l + 1 < LANES) lane_after = cost[(l+1)*BITS +: BITS];
+            if (l >= 2) below_before = from_start[(l-2)*BITS +: BITS];
+            if (l + 2 < LANES) above_after = to_end[(l+2)*BITS +: BITS];
+          end
+        end
+        all_but_first = (LANES > 1) ? to_end[((LANES > 1) ? 1 : 0)*BITS +: BITS] : NONE;
+      end
+      function automatic logic [BITS-1:0] smaller(input logic [BITS-1:0] a,
+                                                  input logic [BITS-1:0] b);
+        smaller = (b < a) ? b : a;
+      endfunction
+      logic restart, new_winner;
+      logic [BITS-1:0] prior_all;  // the minimum over the labels of the groups before
+      assign restart = group_now == '0;
+      assign new_winner = restart || group_min < running_cost;
+      assign prior_all = restart ? NONE : smaller(running_rest, running_last);
       always_comb begin
         winner = running_label;
         winner_cost = running_cost;
         cost_before = running_before;
         cost_after = running_after;
         second_cost = running_second;
-        scan_rest = running_rest;
-        scan_last = running_last;
         scan_pending = running_pending;
-        for (int l = 0; l < LANES; l++) begin
-          logic [BITS-1:0] cost;
-          // Absent labels carry the largest code, above any aggregated cost: they never win.
-          cost = ($signed(first_label + l) < $signed(32'(cfg_ndisp))) ? group_costs[l*BITS +: BITS]
-                                                                        : {BITS{1'b1}};
-          if (l == 0 && group_now == '0) begin  // label 0 restarts the scan
-            winner = '0;
-            winner_cost = cost;
-            cost_before = '0;
-            second_cost = BITS'(fx_pkg::NO_SECOND_COST);
-            scan_rest = BITS'(fx_pkg::NO_SECOND_COST);
-            scan_pending = 1'b1;
-          end else begin
-            if (cost < winner_cost) begin  // a new winner k: C2 over the labels <= k - 2
-              winner = DISP_BITS'(first_label + l);
-              winner_cost = cost;
-              cost_before = scan_last;
-              second_cost = scan_rest;
-              scan_pending = 1'b1;
-            end else if (scan_pending) begin  // k1 + 1
-              cost_after = cost;
-              scan_pending = 1'b0;
-            end else if (cost < second_cost) begin  // above k1 + 1
-              second_cost = cost;
-            end
-            if (scan_last < scan_rest) scan_rest = scan_last;
-          end
-          scan_last = cost;
+        if (new_winner) begin
+          winner = DISP_BITS'(first_label + 32'(group_lane));
+          winner_cost = group_min;
+          // E(k1 - 1): the lane before, or the previous group's last label (0 before label 0)
+          cost_before = (group_lane != '0) ? lane_before : (restart ? '0 : running_last);
+          cost_after = lane_after;  // the last lane's comes with the next group (pending)
+          scan_pending = 32'(group_lane) == LANES - 1;
+          // C2: the labels <= k1 - 2 (before the group: all but its last when j = 0) and the
+          // group's labels >= k1 + 2.
+          second_cost = smaller(smaller((group_lane != '0) ? prior_all
+                                                           : (restart ? NONE : running_rest),
+                                        below_before), above_after);
+        end else if (running_pending) begin  // the first lane is E(k1 + 1)
+          cost_after = cost[0 +: BITS];
+          scan_pending = 1'b0;
+          second_cost = smaller(running_second, all_but_first);
+        end else begin
+          second_cost = smaller(running_second, group_min);
         end
+        // The minimum over every label but the group's last, and the last one's cost.
+        scan_rest = (LANES > 1)
+            ? smaller(prior_all, from_start[((LANES > 1) ? LANES - 2 : 0)*BITS +: BITS])
+            : prior_all;
+        scan_last = cost[(LANES-1)*BITS +: BITS];
       end
       always_ff @(posedge clk) begin
         if (ce) out_second <= second_cost;
