@@ -20,13 +20,14 @@
 // out_group is in_data.
 // Time-multiplexed lanes (LANES < NDISP, docs/rtl.md): the clock of label group g (`group`; the
 // step, ce, at group G-1, G = NDISP / LANES; in_data is the previous stage's result of the
-// clock's group, held G group clocks in a RAM ring) scans labels [g*LANES +: LANES] in label order, one
-// lane after the other, updating a running state that groups 0 .. G-2 register and group 0
-// restarts: the winner (cost, label; a label replaces it only with a strictly smaller cost, so
-// ties go to the smallest label), its neighbours' costs (E(k1 - 1) is the last label's cost when
-// the winner changes; E(k1 + 1) is the next label's), C2 over the labels so far (when the winner
-// changes to k, C2 restarts from the minimum over labels <= k - 2, kept beside the last label's
-// cost; later labels above k1 + 1 lower it). At the step the last group's scan is registered.
+// clock's group, held G group clocks in a RAM ring) combines labels [g*LANES +: LANES] with a
+// running state that groups 0 .. G-2 register and group 0 restarts, with the result a scan in
+// label order would give: the winner (cost, label; a label replaces it only with a strictly
+// smaller cost, so ties go to the smallest label), its neighbours' costs E(k1 - 1), E(k1 + 1) and
+// C2 = min { E(k) : |k - k1| > 1 }. The group is reduced in trees (its minimum and first lane of
+// it, the minima before and after each lane) and merged with the running state once, so the
+// logic depth grows with log2 LANES, not LANES (docs/synthesis.md "Logic depth"). At the step
+// the last group's merge is registered.
 // Absent labels (>= cfg_ndisp) count as the largest code, which never wins and is NO_SECOND_COST.
 `default_nettype none
 
