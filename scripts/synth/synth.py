@@ -613,7 +613,9 @@ def estimate(config, target, work=None, use_dsp=True):
 DEPTH_CELLS = {
     "xilinx": {"level": r"LUT[1-6]|RAM(32|64|128|256)(X1[SD]|M)\w*",
                "free": r"CARRY4|MUXF[78]"},
-    "ecp5": {"level": r"LUT4|TRELLIS_DPR16X4|CCU2C", "free": r"PFUMX|L6MUX21"},
+    # A CCU2C is two LUT4s and their carry: counted as carry, like the 7-series CARRY4 (the LUT
+    # in front of a chain is the level there; on the ECP5 it sits inside the CCU2C).
+    "ecp5": {"level": r"LUT4|TRELLIS_DPR16X4", "free": r"CCU2C|PFUMX|L6MUX21"},
     "ice40": {"level": r"SB_LUT4", "free": r"SB_CARRY"},
 }
 

@@ -615,5 +615,30 @@ class Boards(unittest.TestCase):
             self.run_boards({"a.json": ecp5}, "arty-a7-35t")
 
 
+class LeanReport(unittest.TestCase):
+    """The checked-in 7-series estimate of the lean VGA core (docs/synthesis.md "Lean memory"):
+    its fields, and its block RAM against the memory formulas of docs/rtl.md."""
+    REPORT = (Path(__file__).resolve().parents[2] / "docs" / "figures" / "synthesis" / "boards" /
+              "xilinx_640x480_64_11x11_lanes8_census_lean.json")
+
+    def test_block_ram_follows_the_formulas(self):
+        report = json.loads(self.REPORT.read_text())
+        config = report["config"]
+        self.assertEqual((config["width"], config["ndisp"], config["window"], config["cost"],
+                          config["recompute_costs"]), (640, 64, 11, "census", 1))
+        for key in ("luts", "lut_sites", "ffs", "brams", "dsps"):
+            self.assertGreater(report["resources"][key], 0, key)
+        self.assertGreater(report["logic_depth"]["lut_levels"], 0)
+        stages = report["stages"]
+        # The aggregation keeps no rows: its per-label line buffer is gone.
+        self.assertEqual(stages["aggregate"]["brams"], 0)
+        # The cost stage's rows of codes: W (WINDOW - 1) 48 bits, a 480-bit word per column, 640
+        # deep: one RAMB18 is 1024 x 18 deep enough, so ceil(480 / 18) = 27 of them.
+        self.assertEqual(stages["cost"]["ramb18"], -(-10 * 48 // 18))
+        # Each CA window: 2 W NDISP 14 bits = 1,120 Kib at least, whatever the packing.
+        for rule in ("ca_rule1", "ca_rule2"):
+            self.assertGreaterEqual(stages[rule]["bram_kbits"], 2 * 640 * 64 * 14 / 1024)
+
+
 if __name__ == "__main__":
     unittest.main()
