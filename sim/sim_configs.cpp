@@ -240,7 +240,7 @@ const TopConfig& top_config_named(const std::string& name) {
         return census_lanes_top_config();
     }
     for (const auto* list : {&built_top_configs(), &lanes_top_configs(), &fpga_top_configs(),
-                              &census_recompute_top_configs()}) {
+                             &census_recompute_top_configs()}) {
         for (const TopConfig& config : *list) {
             if (config.name == name) {
                 return config;

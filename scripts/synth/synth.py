@@ -339,6 +339,7 @@ def ice40_report(config, args, work):
         "top": TOP, "config": config, "resources": resources_ice40(cells),
         "capacity": {k: device[k] for k in ("luts", "brams", "dsps")},
         "yosys_seconds": round(yosys_seconds, 1),
+        "logic_depth": logic_depth(netlist, "ice40"),
         "tools": {"yosys": tool_version(["yosys", "-V"]),
                   "nextpnr": tool_version(["nextpnr-ice40", "--version"])},
     }
@@ -426,6 +427,7 @@ def board_report(config, args, work):
         "dsp_min_product_width": dsp_threshold,
         "capacity": {k: device[k] for k in ("luts", "brams", "dsps")} | {"sprams": 4},
         "yosys_seconds": round(yosys_seconds, 1),
+        "logic_depth": logic_depth(netlist, "ice40"),
         "tools": {"yosys": tool_version(["yosys", "-V"]),
                   "nextpnr": tool_version(["nextpnr-ice40", "--version"]),
                   "icepack": "icepack (fpga-icestorm)"},
@@ -1328,7 +1330,8 @@ def boards_markdown(result):
                          "| | |")
             continue
         c = best["config"]
-        text = f"{c['width']}x{c['height']}, {c['ndisp']} labels, {c['window']}x{c['window']}"
+        text = (f"{c['width']}x{c['height']}, {c['ndisp']} label{'s' if c['ndisp'] > 1 else ''}, "
+                f"{c['window']}x{c['window']}")
         for key, label in (("cost", "cost"), ("lanes", "LANES"), ("max_min_disp", "MAX_MIN_DISP")):
             if key in c:
                 text += f", {label} {c[key]}"

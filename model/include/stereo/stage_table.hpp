@@ -285,11 +285,12 @@ inline constexpr Params kSmallCensusLanes4{kSmall.width,  kSmall.height, kSmall.
 // of census codes and recomputes every label's vertical window, all labels in parallel and 4 per
 // clock; tb_stereo_top_cost runs every census check on both.
 inline constexpr Params kSmallCensusRecompute{
-    kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window, kUnset, kUnset, kUnset, kCostCensus,
-    kUnset,       kUnset,        kUnset,       1};
-inline constexpr Params kSmallCensusRecomputeLanes4{
-    kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window, kUnset, kUnset, kUnset, kCostCensus,
-    4,            kUnset,        kUnset,       1};
+    kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window, kUnset, kUnset,
+    kUnset,       kCostCensus,   kUnset,       kUnset,        kUnset, 1};
+inline constexpr Params kSmallCensusRecomputeLanes4{kSmall.width,  kSmall.height, kSmall.ndisp,
+                                                    kSmall.window, kUnset,        kUnset,
+                                                    kUnset,        kCostCensus,   4,
+                                                    kUnset,        kUnset,        1};
 // The iCE40 cores: one label (no delay line, C2 a constant, the certainty divider folded away)
 // and two labels one per clock (C2 a constant in the lanes mode too).
 inline constexpr Params kNdisp1{kSmall.width, kSmall.height, 1, kSmall.window, kUnset};
@@ -406,7 +407,8 @@ inline constexpr std::array<LintConfig, 24> kExtraLintConfigs = {{
     {"stereo_top",
      {kFull.width, kFull.height, kFull.ndisp, kFull.window, kUnset, kUnset, kUnset, kCostCensus, 8,
       kUnset, kUnset, 1}},
-    {"stereo_top", {kUnset, kUnset, 1, 3, kUnset, kUnset, 0, kCostCensus, kUnset, kUnset, kUnset, 1}},
+    {"stereo_top",
+     {kUnset, kUnset, 1, 3, kUnset, kUnset, 0, kCostCensus, kUnset, kUnset, kUnset, 1}},
     {"stereo_synth_top",
      {kFull.width, kFull.height, kFull.ndisp, kFull.window, kUnset, kUnset, kUnset, kCostCensus, 8,
       kUnset, 1, 1}},
