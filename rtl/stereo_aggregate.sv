@@ -28,10 +28,10 @@
 // COST_OUTSIDE * (the sum of the taps whose rows lie inside) when the centre row's code says
 // outside. A vertical sum whose centre row lies outside the frame is never used.
 //
-// RECOMPUTE (census codes only; stereo_top RECOMPUTE_COSTS, docs/rtl.md "Lean memory"): in_data
-// carries, for each label, the codes of all WINDOW rows of the column (stereo_cost ROWS = WINDOW
-// recomputes them from its line buffer of census codes), row in_y - 2R + j at
-// [(d*WINDOW + j)*COST_BITS +: CENSUS_CODE_BITS]; this stage then has no line buffer. The
+// RECOMPUTE (census or AD; stereo_top RECOMPUTE_COSTS, docs/rtl.md "Lean memory"): in_data
+// carries, for each label, the codes (AD: costs) of all WINDOW rows of the column (stereo_cost
+// ROWS = WINDOW recomputes them from its line buffer of census codes or RGB), row in_y - 2R + j at
+// [(d*WINDOW + j)*COST_BITS +: LINE_BITS]; this stage then has no line buffer. The
 // arithmetic after the taps is the same, so is the output.
 `default_nettype none
 
@@ -54,7 +54,8 @@ module stereo_aggregate #(
     // has them): 0 none; 1 the census codes' vertical products (6-bit operands, not worth a DSP
     // block); 2 every product.
     parameter int SHIFT_ADD = 0,
-    // 1 (COST_CENSUS only): every row's code arrives with the column (above), no line buffer.
+    // 1 (COST_CENSUS or COST_AD): every row's code (cost) arrives with the column (above), no line
+    // buffer.
     parameter int RECOMPUTE = 0
 ) (
 `include "stereo_stage_ports.svh"
@@ -95,7 +96,7 @@ module stereo_aggregate #(
 
   initial begin
     assert (LANES >= 1 && NDISP % LANES == 0);
-    assert (RECOMPUTE == 0 || (RECOMPUTE == 1 && CODES));
+    assert (RECOMPUTE == 0 || (RECOMPUTE == 1 && (CODES || COST == fx_pkg::COST_AD)));
   end
 
   // The group of this clock; G = 1: 0 whatever the port carries (stage testbenches leave it open).

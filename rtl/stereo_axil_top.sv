@@ -36,7 +36,7 @@ module stereo_axil_top #(
     parameter int COST           = 0,
     parameter int LANES          = NDISP,  // labels per clock: NDISP / LANES clocks per pixel
     parameter int SHIFT_ADD      = 0,  // RUNTIME_KERNEL = 0: tap products from shifts and adds
-    parameter int RECOMPUTE_COSTS = 0,       // census: the lean memory architecture (stereo_top)
+    parameter int RECOMPUTE_COSTS = 0,       // census, AD: the lean memory architecture (stereo_top)
     parameter int ADDR_BITS      = 8                               // AXI4-Lite address width
 ) (
     input  wire logic                            clk,

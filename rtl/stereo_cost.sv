@@ -34,11 +34,12 @@
 // CENSUS_CODES = 1 (census only; what stereo_top sets for its aggregation): each label's field
 // carries the census code instead, the distance or CENSUS_CODE_OUTSIDE where xr lies outside,
 // zero-extended to COST_BITS (stereo_aggregate's narrow line buffer, docs/rtl.md "Census codes").
-// ROWS > 1 (census codes only; stereo_top RECOMPUTE_COSTS, docs/rtl.md "Lean memory"): the stage
-// keeps a line buffer of ROWS - 1 rows of both images' census codes (48 bits a column, whatever
-// the label count) and the delay lines carry column stacks of ROWS codes (rows in_y - ROWS + 1 ..
-// in_y of one column) instead of single codes; each label's field then holds ROWS codes, row j
-// (in_y - ROWS + 1 + j) at [j*COST_BITS +: CENSUS_CODE_BITS], so the aggregation's vertical pass
+// ROWS > 1 (census codes or AD; stereo_top RECOMPUTE_COSTS, docs/rtl.md "Lean memory"): the stage
+// keeps a line buffer of ROWS - 1 rows of both images' census codes or RGB pixels (48 bits a
+// column, whatever the label count) and the delay lines carry column stacks of ROWS of them (rows
+// in_y - ROWS + 1 .. in_y of one column) instead of single ones; each label's field then holds
+// ROWS codes (costs), row j (in_y - ROWS + 1 + j) at [j*COST_BITS +: COST_BITS], so the
+// aggregation's vertical pass
 // needs no per-label line buffer: memory grows with the width, not with the label count.
 // Latency: 1 + K pixel steps. Throughput: one pixel per ce.
 `default_nettype none
@@ -92,7 +93,9 @@ module stereo_cost #(
     assert (COST == fx_pkg::COST_AD || COST == fx_pkg::COST_LCDM || COST == fx_pkg::COST_CENSUS);
     assert (!CENSUS_CODES || COST == fx_pkg::COST_CENSUS);
     assert (LANES >= 1 && NDISP % LANES == 0);
-    assert (ROWS >= 1 && (ROWS == 1 || CENSUS_CODES));
+    // Row stacks: census codes (CENSUS_CODES) or RGB (AD); not LCDM, whose points are computed
+    // in front of the delay lines.
+    assert (ROWS >= 1 && (ROWS == 1 || CENSUS_CODES || COST == fx_pkg::COST_AD));
   end
 
   // The pixels the delay lines carry.
@@ -112,10 +115,10 @@ module stereo_cost #(
       );
       assign new_left  = {left_a, left_b};
       assign new_right = {right_a, right_b};
-    end else if (ROWS > 1) begin : g_code_stacks
-      // The line buffer keeps rows in_y - 1 .. in_y - ROWS + 1 of both codes at column in_x
+    end else if (ROWS > 1) begin : g_row_stacks
+      // The line buffer keeps rows in_y - 1 .. in_y - ROWS + 1 of both codes (RGB) at column in_x
       // (read a step ahead); the stack's row j is in_y - ROWS + 1 + j, the incoming one last.
-      localparam int PAIR_BITS = 2 * fx_pkg::RGB_BITS;  // {right code, left code}
+      localparam int PAIR_BITS = 2 * fx_pkg::RGB_BITS;  // {right, left}
       logic [(ROWS-1)*PAIR_BITS-1:0] rows_above;  // row in_y - 1 - k at slot k
       stereo_line_buffer #(
           .WIDTH(WIDTH),
@@ -296,10 +299,15 @@ module stereo_cost #(
       logic signed [17:0] right_x;  // xr
       logic [LANE_BITS-1:0] distance;
       assign right_x = lane_base_x - 18'(l);
-      if (ROWS > 1) begin : g_census_rows  // CENSUS_CODES: one code per row
+      if (ROWS > 1 && CENSUS_CODES) begin : g_census_rows  // one code per row
         for (genvar j = 0; j < ROWS; j++) begin : g_row
           assign distance[j*COST_BITS +: COST_BITS] =
               census_count(lane_left[j*24 +: 24], lane_right[l*PIXEL_BITS + j*24 +: 24]);
+        end
+      end else if (ROWS > 1) begin : g_ad_rows  // COST_AD: one cost per row
+        for (genvar j = 0; j < ROWS; j++) begin : g_row
+          assign distance[j*COST_BITS +: COST_BITS] =
+              abs_diff_rgb(lane_left[j*24 +: 24], lane_right[l*PIXEL_BITS + j*24 +: 24]);
         end
       end else if (COST == fx_pkg::COST_LCDM) begin : g_lcdm
         stereo_lcdm_distance lcdm (

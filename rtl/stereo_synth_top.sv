@@ -23,7 +23,7 @@ module stereo_synth_top #(
     parameter int COST = fx_pkg::COST_AD,  // COST_AD, COST_LCDM or COST_CENSUS (stereo_top)
     // Tap products from shifts and adds (stereo_top SHIFT_ADD): 0 none, 1 census vertical, 2 all
     parameter int SHIFT_ADD = 0,
-    // The lean memory architecture (stereo_top RECOMPUTE_COSTS; census only)
+    // The lean memory architecture (stereo_top RECOMPUTE_COSTS; census or AD)
     parameter int RECOMPUTE_COSTS = 0
 ) (
     input  wire logic                            clk,

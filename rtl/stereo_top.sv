@@ -63,11 +63,12 @@ module stereo_top #(
     // and adds (canonical signed digits) instead of being left to the tools (DSP blocks where the
     // target has them): 0 none, 1 the census codes' narrow vertical products, 2 all.
     parameter int SHIFT_ADD = 0,
-    // COST_CENSUS only. 1: the lean memory architecture (docs/rtl.md "Lean memory"): the cost
-    // stage keeps WINDOW - 1 rows of both census codes and recomputes every label's codes for the
-    // aggregation's vertical window, which then has no per-label line buffer (memory grows with
-    // WIDTH * WINDOW, not with NDISP). 0: the aggregation keeps each label's code (5 bits) for
-    // WINDOW - 1 rows, cheaper below about 10 labels.
+    // COST_CENSUS or COST_AD. 1: the lean memory architecture (docs/rtl.md "Lean memory"): the
+    // cost stage keeps WINDOW - 1 rows of both images' census codes (RGB) and recomputes every
+    // label's codes (costs) for the aggregation's vertical window, which then has no per-label
+    // line buffer (memory grows with WIDTH * WINDOW, not with NDISP). 0: the aggregation keeps
+    // each label's code (5 bits; AD: cost, 10 bits) for WINDOW - 1 rows, cheaper below about 10
+    // labels (5 with AD).
     parameter int RECOMPUTE_COSTS = 0
 ) (
     input  wire logic                               clk,
@@ -92,7 +93,8 @@ module stereo_top #(
     assert (MAX_MIN_DISP >= 0 && MAX_MIN_DISP <= fx_pkg::MAX_MIN_DISPARITY);
     assert (WIDTH >= 1 && WIDTH <= fx_pkg::MAX_FRAME_SIDE && HEIGHT >= 1 &&
             HEIGHT <= fx_pkg::MAX_FRAME_SIDE);
-    assert (RECOMPUTE_COSTS == 0 || (RECOMPUTE_COSTS == 1 && COST == fx_pkg::COST_CENSUS));
+    assert (RECOMPUTE_COSTS == 0 ||
+            (RECOMPUTE_COSTS == 1 && (COST == fx_pkg::COST_CENSUS || COST == fx_pkg::COST_AD)));
   end
   // Rows of codes per label between the cost stage and the aggregation.
   localparam int COST_ROWS = (RECOMPUTE_COSTS != 0) ? WINDOW : 1;

@@ -21,6 +21,7 @@
 #include "Vstereo_top_lanes4.h"
 #include "Vstereo_top_lcdm.h"
 #include "Vstereo_top_lcdm_lanes4.h"
+#include "Vstereo_top_lean_lanes4.h"
 #include "Vstereo_top_ndisp1.h"
 #include "Vstereo_top_ndisp2_lanes1.h"
 #include "Vstereo_top_ndisp8_lanes2.h"
@@ -211,6 +212,7 @@ const std::vector<TopConfig>& lanes_top_configs() {
         top_config(table::verilated("Vstereo_top_ndisp8_lanes2"), "ndisp8-lanes2"),
         top_config(table::verilated("Vstereo_top_ndisp2_lanes1"), "ndisp2-lanes1"),
         top_config(table::verilated("Vstereo_top_ndisp1"), "ndisp1"),
+        top_config(table::verilated("Vstereo_top_lean_lanes4"), "lean-lanes4"),
     };
     return configs;
 }
@@ -327,6 +329,7 @@ const std::pair<std::string_view, TopFactory> kFactories[] = {
     {"ndisp8-lanes2", &make_verilated<Vstereo_top_ndisp8_lanes2>},
     {"ndisp2-lanes1", &make_verilated<Vstereo_top_ndisp2_lanes1>},
     {"ndisp1", &make_verilated<Vstereo_top_ndisp1>},
+    {"lean-lanes4", &make_verilated<Vstereo_top_lean_lanes4>},
     {"ice40-ndisp1", &make_verilated<Vstereo_synth_top_ice40_ndisp1>},
     {"ice40-ndisp4-lanes1", &make_verilated<Vstereo_synth_top_ice40_ndisp4_lanes1>},
     {"fpga-census-ndisp8-lanes2", &make_verilated<Vstereo_synth_top_census_ndisp8_lanes2>},

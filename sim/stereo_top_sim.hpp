@@ -49,8 +49,9 @@ const TopConfig& census_lanes_top_config();
 const std::vector<TopConfig>& census_recompute_top_configs();
 
 // stereo_top with time-multiplexed lanes (LANES < NDISP), AD cost: "lanes4" (16 labels, 4 per
-// clock), "lanes1" (16, 1), "ndisp8-lanes2" (8, 2), "ndisp2-lanes1" (2, 1), and the one-label
-// core "ndisp1". Not among built_top_configs().
+// clock), "lanes1" (16, 1), "ndisp8-lanes2" (8, 2), "ndisp2-lanes1" (2, 1), the one-label
+// core "ndisp1", and "lean-lanes4" (16, 4, in the lean memory architecture, RECOMPUTE_COSTS = 1).
+// Not among built_top_configs().
 const std::vector<TopConfig>& lanes_top_configs();
 // The FPGA builds (stereo_synth_top: constant default kernel, MAX_MIN_DISP = 0) that
 // tb_stereo_synth_top co-simulates: "ice40-ndisp1", "ice40-ndisp4-lanes1".

@@ -8,6 +8,7 @@ stereo_verilated_config(Vstereo_top_lanes1 stereo_top "" WIDTH=64 HEIGHT=48 NDIS
 stereo_verilated_config(Vstereo_top_ndisp8_lanes2 stereo_top "" WIDTH=64 HEIGHT=48 NDISP=8 WINDOW=5 LANES=2)
 stereo_verilated_config(Vstereo_top_ndisp2_lanes1 stereo_top "" WIDTH=64 HEIGHT=48 NDISP=2 WINDOW=5 LANES=1)
 stereo_verilated_config(Vstereo_top_ndisp1 stereo_top "" WIDTH=64 HEIGHT=48 NDISP=1 WINDOW=5)
+stereo_verilated_config(Vstereo_top_lean_lanes4 stereo_top "" WIDTH=64 HEIGHT=48 NDISP=16 WINDOW=5 LANES=4 RECOMPUTE_COSTS=1)
 stereo_verilated_config(Vstereo_border_flags stereo_border_flags "")
 stereo_verilated_config(Vstereo_cost stereo_cost "" NDISP=16)
 stereo_verilated_config(Vstereo_top_lcdm stereo_top "" WIDTH=64 HEIGHT=48 NDISP=16 WINDOW=5 COST=1)

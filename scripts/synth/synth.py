@@ -102,8 +102,9 @@ def config_from_args(args):
         config["shift_add"] = args.shift_add
     # stereo_top's RECOMPUTE_COSTS (the lean memory architecture, census only), likewise.
     if getattr(args, "recompute", False):
-        if config.get("cost") != "census":
-            raise ReportError("--recompute (the lean memory architecture) needs --cost census")
+        if config.get("cost", "ad") not in ("census", "ad"):
+            raise ReportError("--recompute (the lean memory architecture) is for the census and "
+                              "AD costs")
         config["recompute_costs"] = 1
     # stereo_top's MAX_MIN_DISP, likewise recorded only when given.
     if getattr(args, "max_min_disp", None) is not None and getattr(args, "command", None) != "board":
@@ -1369,8 +1370,8 @@ def add_config_arguments(parser, width=64, height=48, ndisp=4, window=5):
                              "are shifts and adds instead of multipliers (DSP blocks): none, "
                              "narrow (the census codes' vertical pass) or all (default: none)")
     parser.add_argument("--recompute", action="store_true",
-                        help="stereo_top RECOMPUTE_COSTS (with --cost census): the lean memory "
-                             "architecture, rows of census codes instead of per-label rows "
+                        help="stereo_top RECOMPUTE_COSTS (census or AD): the lean memory "
+                             "architecture, rows of census codes (RGB) instead of per-label rows "
                              "(docs/rtl.md \"Lean memory\")")
     parser.add_argument("--work", help="folder for netlists and logs (default: a temp folder)")
     parser.add_argument("--out", help="JSON report file (default: stdout)")

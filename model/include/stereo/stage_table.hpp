@@ -291,6 +291,11 @@ inline constexpr Params kSmallCensusRecomputeLanes4{kSmall.width,  kSmall.height
                                                     kSmall.window, kUnset,        kUnset,
                                                     kUnset,        kCostCensus,   4,
                                                     kUnset,        kUnset,        1};
+// ... and the AD core in the lean memory architecture, 4 labels per clock (tb_stereo_top).
+inline constexpr Params kSmallLeanLanes4{kSmall.width,  kSmall.height, kSmall.ndisp,
+                                         kSmall.window, kUnset,        kUnset,
+                                         kUnset,        kUnset,        4,
+                                         kUnset,        kUnset,        1};
 // The iCE40 cores: one label (no delay line, C2 a constant, the certainty divider folded away)
 // and two labels one per clock (C2 a constant in the lanes mode too).
 inline constexpr Params kNdisp1{kSmall.width, kSmall.height, 1, kSmall.window, kUnset};
@@ -316,13 +321,14 @@ inline constexpr Params kFullCensusLean{kFull.width, kFull.height, kFull.ndisp, 
                                         kUnset,      kUnset,       kUnset,      kCostCensus,
                                         8,           kUnset,       kUnset,      1};
 
-inline constexpr std::array<VerilatedConfig, 31> kVerilatedConfigs = {{
+inline constexpr std::array<VerilatedConfig, 32> kVerilatedConfigs = {{
     {"Vstereo_top_small", "stereo_top", kSmall, ""},
     {"Vstereo_top_lanes4", "stereo_top", kSmallLanes4, ""},
     {"Vstereo_top_lanes1", "stereo_top", kSmallLanes1, ""},
     {"Vstereo_top_ndisp8_lanes2", "stereo_top", kNdisp8Lanes2, ""},
     {"Vstereo_top_ndisp2_lanes1", "stereo_top", kNdisp2Lanes1, ""},
     {"Vstereo_top_ndisp1", "stereo_top", kNdisp1, ""},
+    {"Vstereo_top_lean_lanes4", "stereo_top", kSmallLeanLanes4, ""},
     // The frame-border test of every window stage, at its default offsets (-2 .. 2).
     {"Vstereo_border_flags", "stereo_border_flags", {}, ""},
     {"Vstereo_cost", "stereo_cost", {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset}, ""},
