@@ -39,8 +39,8 @@
 // column, whatever the label count) and the delay lines carry column stacks of ROWS of them (rows
 // in_y - ROWS + 1 .. in_y of one column) instead of single ones; each label's field then holds
 // ROWS codes (costs), row j (in_y - ROWS + 1 + j) at [j*COST_BITS +: COST_BITS], so the
-// aggregation's vertical pass
-// needs no per-label line buffer: memory grows with the width, not with the label count.
+// aggregation's vertical pass needs no per-label line buffer: memory grows with the width, not
+// with the label count.
 // Latency: 1 + K pixel steps. Throughput: one pixel per ce.
 `default_nettype none
 
@@ -50,8 +50,9 @@ module stereo_cost #(
     parameter int COST         = fx_pkg::COST_AD,  // COST_AD, COST_LCDM or COST_CENSUS
     parameter int LANES        = NDISP,  // labels computed per clock (divides NDISP)
     parameter bit CENSUS_CODES = 1'b0,  // census: the code (distance or outside) per label
-    // Rows of codes per label (CENSUS_CODES only above 1): the vertical window of the
-    // aggregation, recomputed from a line buffer of codes (above); WIDTH sizes that buffer.
+    // Rows of codes (AD: costs) per label, above 1 only with CENSUS_CODES or COST_AD: the
+    // aggregation's vertical window, recomputed from a line buffer of the image rows (above);
+    // WIDTH sizes that buffer.
     parameter int ROWS  = 1,
     parameter int WIDTH = 64,  // longest row (ROWS > 1 only)
     // LANES < NDISP: the right history's ring (stereo_group_ring BLOCK_RAM, BLOCK_MIN_FILL)
