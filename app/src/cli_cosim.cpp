@@ -272,12 +272,21 @@ void add_cosim_command(CLI::App& app) {
     for (const sim::TopConfig& config : sim::built_top_configs()) {
         built += "\n  " + config.name + ": " + config_text(config) + ", cost ad";
     }
+    built += "\n  " + sim::lcdm_top_config().name + ": " + config_text(sim::lcdm_top_config()) +
+             ", cost lcdm\n  " + sim::census_top_config().name + ": " +
+             config_text(sim::census_top_config()) + ", cost census";
+    // The census builds in the lean memory architecture (RECOMPUTE_COSTS) larger than the small
+    // one are chosen for pairs it does not cover (full-census-lean with
+    // -DSTEREO_COSIM_CONFIGS=full_census_lean).
+    for (const sim::TopConfig& config : sim::census_recompute_top_configs()) {
+        if (config.width > sim::census_top_config().width) {
+            built +=
+                "\n  " + config.name + ": " + config_text(config) + ", cost census, lean memory";
+        }
+    }
     built +=
-        "\n  " + sim::lcdm_top_config().name + ": " + config_text(sim::lcdm_top_config()) +
-        ", cost lcdm\n  " + sim::census_top_config().name + ": " +
-        config_text(sim::census_top_config()) +
-        ", cost census\nMore: -DSTEREO_COSIM_CONFIGS=full or -DSTEREO_COSIM_USER=WxH:NDISP:WINDOW "
-        "(docs/gtkwave.md).";
+        "\nMore: -DSTEREO_COSIM_CONFIGS=full, full_census_lean or "
+        "-DSTEREO_COSIM_USER=WxH:NDISP:WINDOW (docs/gtkwave.md).";
     command->footer(built);
     add_cosim_options(*command, *options);
 }
