@@ -1,4 +1,5 @@
 // `stereo match LEFT RIGHT -o DISP.png [options]`: run any registered matcher on a pair.
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdio>
@@ -36,7 +37,16 @@ struct MatchOptions {
     bool png16 = false;       // pipeline: offset16 PNG (signed sub-pixel) instead of 8-bit
     std::string vertical;     // 2-D methods: vertical offset PNG, empty: none
     std::string dump_levels;  // hierarchical: folder for the per-level maps, empty: none
+    std::string certainty;    // stage-6 methods: certainty PNG (0..255), empty: none
+    std::string reasons;      // stage-6 methods: invalid-reason PNG (fx::kReason...), empty: none
 };
+
+// One byte per pixel of stage 6's output (certainty or reason code) as an 8-bit PNG.
+cv::Mat bytes_to_mat(const std::vector<std::uint8_t>& bytes, int width, int height) {
+    cv::Mat out(height, width, CV_8UC1);
+    std::copy(bytes.begin(), bytes.end(), out.data);
+    return out;
+}
 
 // The vertical offset map as a PNG byte: 128 + v where valid, 0 where invalid.
 cv::Mat vertical_to_mat(const std::vector<std::int16_t>& vertical,
@@ -114,6 +124,11 @@ void run_match(const MatchOptions& options) {
             "PFM and --png16 outputs hold the pipeline's validated disparities: use --method "
             "pipeline, asw, vertical or diagonal");
     }
+    if ((!options.certainty.empty() || !options.reasons.empty()) && !stage6) {
+        throw std::invalid_argument(
+            "--certainty and --reasons write stage 6's outputs: use --method pipeline, asw, "
+            "vertical or diagonal");
+    }
     MatchConfig config = options.matcher.resolved();
     if (!stage6) {
         // Stage 6 belongs to the 1-D pipeline, ASW and the quad pairs; the other methods
@@ -132,10 +147,12 @@ void run_match(const MatchOptions& options) {
     // Everything that can be checked cheaply is checked before loading and matching, and all
     // outputs are encoded before the first file is written.
     io::check_disparity_scale(ndisp, options.scale);
-    io::check_outputs_distinct({options.output, options.colour, options.vertical},
-                               {options.left, options.right});
+    io::check_outputs_distinct(
+        {options.output, options.colour, options.vertical, options.certainty, options.reasons},
+        {options.left, options.right});
     io::check_writable_location(options.output);
-    for (const std::string& extra : {options.colour, options.vertical}) {
+    for (const std::string& extra :
+         {options.colour, options.vertical, options.certainty, options.reasons}) {
         if (!extra.empty()) {
             io::check_writable_location(extra);
         }
@@ -177,6 +194,19 @@ void run_match(const MatchOptions& options) {
     }
     if (!vertical.empty()) {
         files.emplace_back(options.vertical, io::encode_png(vertical, options.vertical));
+    }
+    const ValidatedDisparity& validated = result.validated;
+    if (!options.certainty.empty()) {
+        files.emplace_back(
+            options.certainty,
+            io::encode_png(bytes_to_mat(validated.certainty, validated.width, validated.height),
+                           options.certainty));
+    }
+    if (!options.reasons.empty()) {
+        files.emplace_back(
+            options.reasons,
+            io::encode_png(bytes_to_mat(validated.reason, validated.width, validated.height),
+                           options.reasons));
     }
     for (const auto& [name, mat] : levels) {
         const std::filesystem::path path = std::filesystem::path(options.dump_levels) / name;
@@ -302,6 +332,13 @@ void add_match_command(CLI::App& app) {
                      "Multiply disparities by K in the PNG (16-bit when (N-1)*K > 255)")
         ->capture_default_str();
     command->add_option("--color", options->colour, "Also write a colour-mapped view");
+    command->add_option("--certainty", options->certainty,
+                        "pipeline, asw, vertical, diagonal: also write stage 6's certainty of "
+                        "every pixel (8-bit PNG, 0..255)");
+    command->add_option("--reasons", options->reasons,
+                        "pipeline, asw, vertical, diagonal: also write stage 6's reason code of "
+                        "every pixel (8-bit PNG: 0 valid, 1 border, 2 uniqueness, 3 left-right, "
+                        "4 speckle)");
     command->add_option("--downscale", options->downscale, "Shrink both images by integer F first")
         ->capture_default_str();
     command->add_flag("--json", options->json, "Print the summary as one JSON object");

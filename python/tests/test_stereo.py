@@ -54,26 +54,66 @@ def test_version_matches_cli():
     assert stereo.__version__ in out.stdout
 
 
-def test_match_equals_cli_bit_for_bit(fixture_pair, tmp_path):
-    left_path, right_path = fixture_pair
-    pfm = tmp_path / "cli.pfm"
-    # The CLI's defaults: the census cost, every stage-6 step on (uniqueness 0, left-right 1,
-    # sub-pixel; stereo/defaults.hpp), then the speckle filter (size 100, range 1). The binding
-    # keeps the library's defaults (AD, stage 6 off), so they are spelled out here.
-    subprocess.run([CLI, "match", left_path, right_path, "--ndisp", "16", "-o", str(pfm)],
+def grey_png(path):
+    """An 8-bit grey PNG (stereo match --reasons / --certainty) as uint8 (H, W)."""
+    image = stereo.load_image(str(path))
+    return image if image.ndim == 2 else image[:, :, 0]
+
+
+@pytest.fixture
+def scene_pair():
+    """The equality-test scene of make_cli_fixtures: planes at 2, 7 and -2.5, a slanted plane,
+    occlusions and speckle islands (issue 52)."""
+    if not FIXTURES or not os.path.exists(os.path.join(FIXTURES, "scene_left.png")):
+        pytest.skip("the CLI fixtures (ctest fixture stereo_cli_images) are absent")
+    return os.path.join(FIXTURES, "scene_left.png"), os.path.join(FIXTURES, "scene_right.png")
+
+
+# The CLI's defaults: the census cost, every stage-6 step on (uniqueness 0, left-right 1,
+# sub-pixel; stereo/defaults.hpp), then the speckle filter (size 100, range 1). The binding keeps
+# the library's defaults (AD, stage 6 off), so they are spelled out here.
+CLI_DEFAULTS = dict(ndisp=16, min_disp=-4, cost="census", uniqueness=0, lr_check=1,
+                    subpixel=True, speckle_size=100, speckle_range=1)
+
+
+def test_match_equals_cli_bit_for_bit(scene_pair, tmp_path):
+    left_path, right_path = scene_pair
+    pfm, reasons, certainty = (tmp_path / name for name in ("cli.pfm", "r.png", "c.png"))
+    subprocess.run([CLI, "match", left_path, right_path, "--ndisp", "16", "--min-disp", "-4",
+                    "-o", str(pfm), "--reasons", str(reasons), "--certainty", str(certainty)],
                    check=True, capture_output=True)
     expected = read_pfm(pfm)
+    expected_valid = np.isfinite(expected)
+    # The scene exercises what the comparison claims: enough valid pixels, fractional and
+    # negative disparities, pixels removed by the left-right check and the speckle filter.
+    assert expected_valid.mean() >= 0.3
+    values = expected[expected_valid]
+    assert (values != np.floor(values)).any() and (values < 0).any()
+    expected_reasons = grey_png(reasons)
+    assert {1, 3, 4} <= set(np.unique(expected_reasons).tolist())
+
     left = stereo.load_image(left_path)
     right = stereo.load_image(right_path)
-    result = stereo.match(left, right, ndisp=16, cost="census", uniqueness=0, lr_check=1,
-                          subpixel=True, speckle_size=100, speckle_range=1)
+    result = stereo.match(left, right, **CLI_DEFAULTS)
     got = result["disparity_px"]
     assert got.shape == expected.shape
-    expected_valid = np.isfinite(expected)
     assert np.array_equal(np.isfinite(got), expected_valid)
     assert np.array_equal(got[expected_valid], expected[expected_valid])
-    assert expected_valid.any()
     assert np.array_equal(result["valid"], expected_valid)
+    assert np.array_equal(result["fixed"][expected_valid],
+                          (expected[expected_valid] * 16).astype(np.int16))
+    assert np.array_equal(result["reason"], expected_reasons)
+    assert np.array_equal(result["certainty"], grey_png(certainty))
+
+    # Every option the binding forwards changes the map when flipped, so a binding that dropped
+    # one would fail the comparison above.
+    for name, flipped in (("cost", "ad"), ("uniqueness", 10), ("lr_check", 3),
+                          ("subpixel", False), ("speckle_size", 0), ("speckle_range", 3),
+                          ("min_disp", -2)):
+        options = dict(CLI_DEFAULTS, **{name: flipped})
+        other = stereo.match(left, right, **options)
+        assert not np.array_equal(np.nan_to_num(other["disparity_px"], nan=-99),
+                                  np.nan_to_num(got, nan=-99)), name
 
 
 def test_match_labels_equal_cli_without_validation(fixture_pair, tmp_path):

@@ -14,6 +14,7 @@
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "fixture_main.hpp"
 #include "stereo_io/io.hpp"
@@ -46,6 +47,78 @@ cv::Mat shifted(const cv::Mat& left, int shift) {
         }
     }
     return right;
+}
+
+// The equality-test scene (issue 52): a pair whose true disparity varies, so that two engines
+// that agree on it agree on more than one constant plane. Disparity in the partner image's
+// coordinates (the model compares reference (x, y) with partner (x - d sx, y - d sy)):
+//   background 2; a slanted plane 3 .. 5.9 (fractional everywhere); a box at 7 (occludes what lies
+//   beside it); a plane at -2.5 (negative, fractional); four 7 x 7 islands at 9 (speckles).
+constexpr int kSceneWidth = 64;
+constexpr int kSceneHeight = 48;
+
+double scene_disparity(int u, int v) {
+    const auto in = [&](int x0, int y0, int x1, int y1) {
+        return u >= x0 && u < x1 && v >= y0 && v < y1;
+    };
+    for (const auto& [sx, sy] :
+         {std::pair{18, 10}, std::pair{47, 4}, std::pair{28, 33}, std::pair{54, 24}}) {
+        if (in(sx, sy, sx + 7, sy + 7)) {
+            return 9.0;
+        }
+    }
+    if (in(36, 26, 56, 44)) {
+        return 7.0;
+    }
+    if (in(4, 30, 28, 46)) {
+        return -2.5;
+    }
+    if (in(6, 4, 40, 24)) {
+        return 3.0 + 0.0875 * (u - 6);
+    }
+    return 2.0;
+}
+
+// The texture at a real position, bilinear between pixels, clamped at the edges.
+cv::Vec3b sample(const cv::Mat& texture, double x, double y) {
+    x = std::clamp(x, 0.0, texture.cols - 1.0);
+    y = std::clamp(y, 0.0, texture.rows - 1.0);
+    const int x0 = std::min(static_cast<int>(x), texture.cols - 2);
+    const int y0 = std::min(static_cast<int>(y), texture.rows - 2);
+    const double fx = x - x0;
+    const double fy = y - y0;
+    cv::Vec3b out;
+    for (int c = 0; c < 3; ++c) {
+        const auto at = [&](int yy, int xx) { return texture.at<cv::Vec3b>(yy, xx)[c]; };
+        const double value = (1 - fy) * ((1 - fx) * at(y0, x0) + fx * at(y0, x0 + 1)) +
+                             fy * ((1 - fx) * at(y0 + 1, x0) + fx * at(y0 + 1, x0 + 1));
+        out[c] = cv::saturate_cast<uchar>(value);
+    }
+    return out;
+}
+
+// The partner image along step (sx, sy): partner(u, v) = reference(u + d sx, v + d sy).
+cv::Mat scene_partner(const cv::Mat& reference, int sx, int sy) {
+    cv::Mat partner(reference.size(), reference.type());
+    for (int v = 0; v < reference.rows; ++v) {
+        for (int u = 0; u < reference.cols; ++u) {
+            const double d = scene_disparity(u, v);
+            partner.at<cv::Vec3b>(v, u) = sample(reference, u + d * sx, v + d * sy);
+        }
+    }
+    return partner;
+}
+
+void write_scene(const fs::path& dir, std::mt19937& rng) {
+    // Random colour blurred a little, so that a fractional shift is a real interpolation and the
+    // three channels differ (LCDM needs colour).
+    cv::Mat reference;
+    cv::GaussianBlur(random_texture(kSceneWidth, kSceneHeight, rng), reference, cv::Size(3, 3),
+                     0.7);
+    io::write_png(dir / "scene_left.png", reference);
+    io::write_png(dir / "scene_right.png", scene_partner(reference, 1, 0));
+    io::write_png(dir / "scene_vertical.png", scene_partner(reference, 0, 1));
+    io::write_png(dir / "scene_diagonal.png", scene_partner(reference, 1, 1));
 }
 
 void write_fixtures(const fs::path& dir) {
@@ -129,6 +202,8 @@ void write_fixtures(const fs::path& dir) {
     io::write_png(dir / "gt_narrow.png", cv::Mat(kHeight, kWidth - 4, CV_8UC1, cv::Scalar(16)));
     io::write_png(dir / "mask.png", cv::Mat(kHeight, kWidth, CV_8UC1, cv::Scalar(255)));
     io::write_png(dir / "mask_short.png", cv::Mat(kHeight - 2, kWidth, CV_8UC1, cv::Scalar(255)));
+
+    write_scene(dir, rng);
 }
 
 }  // namespace

@@ -1,0 +1,33 @@
+#!/bin/sh
+# same_validated.sh OUT CHECKER "REQUIREMENTS" STEREO ARGS_A... -- ARGS_B...: runs
+# `STEREO ARGS_A` and `STEREO ARGS_B`, each writing stage 6's whole output (the disparity as PFM,
+# so every 1/16 pixel counts, the reason codes and the certainty), and requires both runs to
+# succeed and the three files to be identical bytes. Then CHECKER (map_exercises) must find that
+# the map exercises the path: `CHECKER OUT.a.pfm --reasons OUT.a.reasons.png REQUIREMENTS`
+# (e.g. "--min-valid 0.3 --fractional --negative --reason-codes 1,3,4"), so that the test fails
+# when its fixture stops exercising what it claims (issue 52).
+set -eu
+out=$1
+checker=$2
+requirements=$3
+stereo=$4
+shift 4
+a=""
+while [ "$#" -gt 0 ] && [ "$1" != "--" ]; do a="$a $1"; shift; done
+[ "$#" -gt 0 ] || { echo "usage: same_validated.sh OUT CHECKER REQUIREMENTS STEREO ARGS_A -- ARGS_B"; exit 2; }
+shift
+for side in a b; do
+  rm -f "$out.$side.pfm" "$out.$side.reasons.png" "$out.$side.certainty.png"
+done
+# shellcheck disable=SC2086
+"$stereo" $a -o "$out.a.pfm" --reasons "$out.a.reasons.png" --certainty "$out.a.certainty.png"
+"$stereo" "$@" -o "$out.b.pfm" --reasons "$out.b.reasons.png" --certainty "$out.b.certainty.png"
+for part in pfm reasons.png certainty.png; do
+  if ! cmp -s "$out.a.$part" "$out.b.$part"; then
+    echo "outputs differ ($part): $a  vs  $*"
+    exit 1
+  fi
+done
+echo "identical disparity, reasons and certainty: $a  vs  $*"
+# shellcheck disable=SC2086
+"$checker" "$out.a.pfm" --reasons "$out.a.reasons.png" $requirements
