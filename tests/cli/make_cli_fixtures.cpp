@@ -1,10 +1,12 @@
 // Writes the small images the command-line tests run `stereo` on, into the folder given as the
 // only argument. Deterministic (fixed seed), so every run sees the same files.
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -17,6 +19,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "fixture_main.hpp"
+#include "stereo_io/disparity_files.hpp"
 #include "stereo_io/io.hpp"
 
 namespace {
@@ -109,6 +112,28 @@ cv::Mat scene_partner(const cv::Mat& reference, int sx, int sy) {
     return partner;
 }
 
+// The reference image's true disparity (horizontal pair): every partner pixel u lands at
+// x = u + d(u); where two land on one pixel the nearer surface (larger d) wins; a reference pixel
+// no partner pixel reaches is occluded (NaN, unknown).
+cv::Mat scene_ground_truth() {
+    cv::Mat truth(kSceneHeight, kSceneWidth, CV_32FC1,
+                  cv::Scalar(std::numeric_limits<float>::quiet_NaN()));
+    for (int v = 0; v < kSceneHeight; ++v) {
+        for (int u = 0; u < kSceneWidth; ++u) {
+            const double d = scene_disparity(u, v);
+            const long x = std::lround(u + d);
+            if (x < 0 || x >= kSceneWidth) {
+                continue;
+            }
+            float& at = truth.at<float>(v, static_cast<int>(x));
+            if (std::isnan(at) || d > at) {
+                at = static_cast<float>(d);
+            }
+        }
+    }
+    return truth;
+}
+
 void write_scene(const fs::path& dir, std::mt19937& rng) {
     // Random colour blurred a little, so that a fractional shift is a real interpolation and the
     // three channels differ (LCDM needs colour).
@@ -119,6 +144,7 @@ void write_scene(const fs::path& dir, std::mt19937& rng) {
     io::write_png(dir / "scene_right.png", scene_partner(reference, 1, 0));
     io::write_png(dir / "scene_vertical.png", scene_partner(reference, 0, 1));
     io::write_png(dir / "scene_diagonal.png", scene_partner(reference, 1, 1));
+    std::ofstream(dir / "scene_gt.pfm", std::ios::binary) << io::encode_pfm(scene_ground_truth());
 }
 
 void write_fixtures(const fs::path& dir) {
