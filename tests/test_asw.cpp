@@ -144,6 +144,23 @@ std::string first_difference(const Dsi& a, const Dsi& b) {
     return "none";
 }
 
+// The first pixel where two validated maps differ: (x, y) and fixed / reason / certainty of each.
+std::string first_difference(const ValidatedDisparity& a, const ValidatedDisparity& b) {
+    for (std::size_t i = 0; i < a.fixed.size() && i < b.fixed.size(); ++i) {
+        if (a.fixed[i] != b.fixed[i] || a.reason[i] != b.reason[i] ||
+            a.certainty[i] != b.certainty[i]) {
+            const auto show = [i](const ValidatedDisparity& m) {
+                return std::to_string(m.fixed[i]) + "/" + std::to_string(m.reason[i]) + "/" +
+                       std::to_string(m.certainty[i]);
+            };
+            return "(" + std::to_string(i % static_cast<std::size_t>(a.width)) + ", " +
+                   std::to_string(i / static_cast<std::size_t>(a.width)) +
+                   ") fixed/reason/certainty " + show(a) + " vs " + show(b);
+        }
+    }
+    return a.fixed.size() == b.fixed.size() ? "none" : "the sizes";
+}
+
 struct Variant {
     const char* name;
     asw::Params params;
@@ -207,21 +224,203 @@ TEST(AswAggregate, ResultDoesNotDependOnThreads) {
               asw::aggregate(cost, left, right, 0, many, labels));
 }
 
-TEST(AswMatch, EqualsNaiveWithStageSixAndLcdm) {
-    std::mt19937 rng(test::test_seed() + 2);
-    const auto [left, right] = test::shifted_pair(34, 22, 3, 3, 8, rng);
-    for (const char* cost : {"ad", "lcdm"}) {
-        MatchParams match;
-        match.ndisp = 7;
-        match.min_disp = -1;
-        match.cost = cost;
-        match.validation = ValidationParams::all_on();
-        for (const Variant& v : variants()) {
-            EXPECT_EQ(asw::match(left, right, match, v.params),
-                      asw::match_naive(left, right, match, v.params))
-                << v.name << ", cost " << cost;
+// ---- Stage 6 on ASW volumes: fixtures that exercise it --------------------------------------
+
+// One surface of a layered scene: the columns [x0, x1) and rows [y0, y1) of the left view and
+// the disparity d0 + slope (x - x0) at left column x. Its look: random colours every kKnot
+// surface columns, linearly interpolated (textured: smooth enough for a parabola through three
+// costs to find a fraction); one colour (flat); or vertical stripes one column wide in four random
+// colours, the same in every row (stripes: labels 4 apart match equally well).
+enum class Look { textured, flat, stripes };
+struct Surface {
+    int x0, x1, y0, y1;
+    double d0, slope;
+    Look look;
+    std::vector<std::array<double, 3>> colours;  // textured: the knots, row by row; else 1 or 4
+};
+
+constexpr int kMargin = 16;  // surface columns left and right of the image
+constexpr double kKnot = 3.0;
+
+// A textured RGB scene rendered into both views, so that stage 6 has every case to decide:
+// a background at d = -1 (negative disparities); a slanted plane whose disparity runs from 0.5
+// to 1.45 (sub-pixel values); boxes at d = 4 and 3 that hide the background pixels left of them
+// from the right view (occlusions: the left-right check's case); a flat patch and a striped patch
+// (ambiguous costs: the uniqueness check's case). Each view shows, per pixel, the surface of the
+// largest disparity there (the nearest; the later one on a tie); the right view adds noise of
+// +-2. At least 64 x 24.
+io::ImagePair layered_scene(int width, int height, std::mt19937& rng) {
+    std::vector<Surface> surfaces = {
+        {-kMargin, width + kMargin, 0, height, -1.0, 0.0, Look::textured, {}},  // background
+        {8, 28, 2, 12, 0.5, 0.05, Look::textured, {}},                          // slanted plane
+        {30, 40, 10, 20, 4.0, 0.0, Look::textured, {}},                         // box
+        {4, 14, 15, 22, -1.0, 0.0, Look::flat, {}},                             // flat patch
+        {44, 60, 2, 13, 2.0, 0.0, Look::stripes, {}},                           // stripes
+        {48, 58, 15, 23, 3.0, 0.0, Look::textured, {}},                         // second box
+    };
+    const int knots = static_cast<int>((width + 2 * kMargin) / kKnot) + 2;
+    std::uniform_int_distribution<int> value(0, 255);
+    for (Surface& s : surfaces) {
+        const int count = s.look == Look::textured  ? height * knots
+                          : s.look == Look::stripes ? 4
+                                                    : 1;
+        s.colours.resize(static_cast<std::size_t>(count));
+        for (auto& colour : s.colours) {
+            for (double& c : colour) {
+                c = value(rng);
+            }
         }
     }
+    // The colour of surface column u (a real number in the right view of the slanted plane).
+    const auto colour_at = [&](const Surface& s, double u, int y, int c) {
+        const auto channel = static_cast<std::size_t>(c);
+        if (s.look == Look::flat) {
+            return s.colours[0][channel];
+        }
+        if (s.look == Look::stripes) {
+            return s.colours[static_cast<std::size_t>(((std::lround(u) % 4) + 4) % 4)][channel];
+        }
+        const double k = std::clamp((u + kMargin) / kKnot, 0.0, knots - 1.001);
+        const auto i = static_cast<std::size_t>(k);
+        const double t = k - static_cast<double>(i);
+        const std::size_t row = static_cast<std::size_t>(y) * static_cast<std::size_t>(knots);
+        return (1 - t) * s.colours[row + i][channel] + t * s.colours[row + i + 1][channel];
+    };
+    Image left(width, height, 3);
+    Image right(width, height, 3);
+    std::uniform_int_distribution<int> noise(-2, 2);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            // Left view: the surface covering (x, y) with the largest disparity.
+            const Surface* seen_left = nullptr;
+            double best_left = -1e9;
+            // Right view: the surface point u with u - d(u) = x, the largest disparity.
+            const Surface* seen_right = nullptr;
+            double best_right = -1e9;
+            double u_right = 0.0;
+            for (const Surface& s : surfaces) {
+                if (y < s.y0 || y >= s.y1) {
+                    continue;
+                }
+                const double d_left = s.d0 + s.slope * (x - s.x0);
+                if (x >= s.x0 && x < s.x1 && d_left >= best_left) {
+                    seen_left = &s;
+                    best_left = d_left;
+                }
+                const double u = (x + s.d0 - s.slope * s.x0) / (1.0 - s.slope);
+                const double d_right = s.d0 + s.slope * (u - s.x0);
+                if (u >= s.x0 && u < s.x1 && d_right >= best_right) {
+                    seen_right = &s;
+                    best_right = d_right;
+                    u_right = u;
+                }
+            }
+            for (int c = 0; c < 3; ++c) {
+                left.at(x, y, c) = static_cast<std::uint8_t>(
+                    std::lround(std::clamp(colour_at(*seen_left, x, y, c), 0.0, 255.0)));
+                const double r = colour_at(*seen_right, u_right, y, c) + noise(rng);
+                right.at(x, y, c) =
+                    static_cast<std::uint8_t>(std::lround(std::clamp(r, 0.0, 255.0)));
+            }
+        }
+    }
+    return {std::move(left), std::move(right)};
+}
+
+struct StageSixCounts {
+    int pixels = 0;
+    int valid = 0;
+    int fractional = 0;  // valid, fixed % 16 != 0
+    int negative = 0;    // valid, fixed < 0
+    int uniqueness = 0;  // invalidated by the uniqueness check
+    int left_right = 0;  // invalidated by the left-right check
+};
+
+std::ostream& operator<<(std::ostream& os, const StageSixCounts& c) {
+    return os << c.valid << " of " << c.pixels << " valid ("
+              << 100.0 * c.valid / std::max(1, c.pixels) << " %), " << c.fractional
+              << " fractional, " << c.negative << " negative, " << c.uniqueness << " uniqueness, "
+              << c.left_right << " left-right";
+}
+
+// Each count's smallest value over the cases of a test, printed once.
+StageSixCounts fewest(const StageSixCounts& a, const StageSixCounts& b) {
+    if (a.pixels == 0) {
+        return b;
+    }
+    return {a.pixels,
+            std::min(a.valid, b.valid),
+            std::min(a.fractional, b.fractional),
+            std::min(a.negative, b.negative),
+            std::min(a.uniqueness, b.uniqueness),
+            std::min(a.left_right, b.left_right)};
+}
+
+// Asserts that an expected (reference) map exercises stage 6: at least 30 % valid pixels,
+// sub-pixel values with a fraction when sub-pixel refinement is on, negative disparities when the
+// range has them, and at least one pixel invalidated by each check that is on.
+StageSixCounts expect_exercises_stage_six(const ValidatedDisparity& expected,
+                                          const MatchParams& match, const std::string& what) {
+    StageSixCounts c;
+    c.pixels = static_cast<int>(expected.fixed.size());
+    for (std::size_t i = 0; i < expected.fixed.size(); ++i) {
+        if (expected.valid(i)) {
+            ++c.valid;
+            c.fractional += expected.fixed[i] % fx::kSubpixelScale != 0 ? 1 : 0;
+            c.negative += expected.fixed[i] < 0 ? 1 : 0;
+        }
+        c.uniqueness += expected.reason[i] == fx::kReasonUniqueness ? 1 : 0;
+        c.left_right += expected.reason[i] == fx::kReasonLeftRight ? 1 : 0;
+    }
+    EXPECT_GE(10 * c.valid, 3 * c.pixels) << what << ": " << c;
+    if (match.validation.subpixel) {
+        EXPECT_GT(c.fractional, 0) << what << ": " << c;
+    }
+    if (match.min_disp < 0) {
+        EXPECT_GT(c.negative, 0) << what << ": " << c;
+    }
+    if (match.validation.uniqueness) {
+        EXPECT_GT(c.uniqueness, 0) << what << ": " << c;
+    }
+    if (match.validation.left_right) {
+        EXPECT_GT(c.left_right, 0) << what << ": " << c;
+    }
+    return c;
+}
+
+TEST(AswMatch, EqualsNaiveWithStageSixAndLcdm) {
+    // Every stage-6 step on over a signed range, every cost ASW takes, on a scene with every case
+    // (layered_scene): the model's cost and selector against the naive reference's own cost and
+    // its own scan of the volume (stereo::naive::validate_inside_matches). Two ranges: d = -2 .. 5
+    // holds every surface; d = -6 .. 1 leaves a pixel of the last column two candidates (d = 0, 1)
+    // far from label 0, so its second cost is none (kNoSecondCost), never an excluded label's cell.
+    std::mt19937 rng(test::test_seed() + 2);
+    const auto [left, right] = layered_scene(64, 24, rng);
+    StageSixCounts least;
+    for (const int min_disp : {-2, -6}) {
+        for (const char* cost : {"ad", "lcdm", "census", "zncc"}) {
+            MatchParams match;
+            match.ndisp = 8;
+            match.min_disp = min_disp;
+            match.cost = cost;
+            match.validation = ValidationParams::all_on();
+            for (Variant v : variants()) {
+                if (match.cost == "zncc") {
+                    // T = 40 leaves ZNCC (765 at no correlation) too few levels to tell the
+                    // labels of this scene apart; untruncated it exercises stage 6 like the rest.
+                    v.params.truncation = 0;
+                }
+                const std::string what = std::string(v.name) + ", cost " + cost + ", min_disp " +
+                                         std::to_string(min_disp);
+                const ValidatedDisparity expected = asw::match_naive(left, right, match, v.params);
+                least = fewest(least, expect_exercises_stage_six(expected, match, what));
+                const ValidatedDisparity model = asw::match(left, right, match, v.params);
+                EXPECT_EQ(model, expected)
+                    << what << ", first difference " << first_difference(model, expected);
+            }
+        }
+    }
+    std::cout << "fewest over the cases: " << least << '\n';
 }
 
 TEST(AswCost, TruncationCapsEveryCell) {
@@ -397,13 +596,22 @@ TEST_F(AswReal, CropEqualsNaive) {
     MatchParams match;
     match.ndisp = 16;
     match.validation = ValidationParams::all_on();
-    for (asw::Params params : {small(11), small(9)}) {
-        EXPECT_EQ(asw::match(pair_.left, pair_.right, match, params),
-                  asw::match_naive(pair_.left, pair_.right, match, params));
-        params.separable = true;
-        EXPECT_EQ(asw::match(pair_.left, pair_.right, match, params),
-                  asw::match_naive(pair_.left, pair_.right, match, params));
+    StageSixCounts least;
+    for (const asw::Params& full : {small(11), small(9)}) {
+        for (const bool separable : {false, true}) {
+            asw::Params params = full;
+            params.separable = separable;
+            const std::string what =
+                "w " + std::to_string(params.diameter) + (separable ? ", separable" : ", full");
+            const ValidatedDisparity expected =
+                asw::match_naive(pair_.left, pair_.right, match, params);
+            least = fewest(least, expect_exercises_stage_six(expected, match, what));
+            const ValidatedDisparity model = asw::match(pair_.left, pair_.right, match, params);
+            EXPECT_EQ(model, expected)
+                << what << ", first difference " << first_difference(model, expected);
+        }
     }
+    std::cout << "fewest over the cases: " << least << '\n';
 }
 
 TEST_F(AswReal, FixedPointAgreesWithRealValuedReference) {

@@ -30,6 +30,13 @@ ValidatedDisparity validate_along(const Dsi& dsi, int step_x, int step_y, int mi
                                   const ValidationParams& params, int reach);
 ValidatedDisparity validate(const Dsi& dsi, int min_disp, const ValidationParams& params,
                             const InvalidBorder& border);
+// Stage 6 over the ASW matcher's volume (docs/asw.md, "Border and validity"): label k of pixel
+// (x, y) is a candidate only where its match x - d (d = min_disp + k) lies inside the right image,
+// whatever its cell holds. A label that is no candidate is never the winner, the second cost or
+// a parabola point (no sub-pixel offset next to it); a pixel with no candidate at all is invalid
+// (border) with certainty 0. No invalid border otherwise: the support region is clipped.
+ValidatedDisparity validate_inside_matches(const Dsi& dsi, int min_disp,
+                                           const ValidationParams& params);
 ValidatedDisparity match_validated(const Image& left, const Image& right,
                                    const MatchParams& params);
 
@@ -52,8 +59,8 @@ namespace stereo::lcdm::naive {
 
 // LCDM cost by its definition (docs/fixed-point.md): every pixel converted again for every
 // comparison, the trigonometric table entries from std::cos / std::sin on the spot, an integer
-// square root bit by bit. Throws like the plug-in on a grey image.
-Dsi cost(const Image& left, const Image& right, int ndisp, int dark_floor);
+// square root bit by bit. Throws like the plug-in on a grey image. Label k is d = min_disp + k.
+Dsi cost(const Image& left, const Image& right, int ndisp, int dark_floor, int min_disp = 0);
 Dsi cost(const Image& left, const Image& right, int ndisp);
 // The cost of left pixel (x, y) against right pixel (xr, yr), both inside, by the definition.
 int pixel_cost(const Image& left, int x, int y, const Image& right, int xr, int yr, int dark_floor);
@@ -62,8 +69,9 @@ int pixel_cost(const Image& left, int x, int y, const Image& right, int xr, int 
 
 namespace stereo::zncc::naive {
 
-// ZNCC cost by its definition: the 15x15 window summed directly for every cell.
-Dsi cost(const Image& left, const Image& right, int ndisp);
+// ZNCC cost by its definition: the 15x15 window summed directly for every cell. Label k is
+// d = min_disp + k.
+Dsi cost(const Image& left, const Image& right, int ndisp, int min_disp = 0);
 
 }  // namespace stereo::zncc::naive
 

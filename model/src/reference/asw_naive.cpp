@@ -9,9 +9,7 @@
 #include <vector>
 
 #include "stereo/asw.hpp"
-#include "stereo/search.hpp"
-#include "stereo/stages.hpp"
-#include "stereo/stages/validate.hpp"
+#include "stereo/reference.hpp"
 
 namespace stereo::asw {
 namespace {
@@ -74,35 +72,31 @@ Dsi naive_pass(const Dsi& in, const Image& left, const Image& right, int min_dis
     return out;
 }
 
+// Whether label k of a pixel in column x is a candidate: its match x - d lies inside the right
+// image (docs/asw.md, "Border and validity").
+bool has_partner(int x, int k, int min_disp, int width) {
+    const int xr = x - (min_disp + k);
+    return xr >= 0 && xr < width;
+}
+
+// The preliminary map: each pixel's first smallest cost among its candidates; a pixel with none
+// takes min_disp (label 0).
 std::vector<std::int16_t> naive_winners(const Dsi& volume, int min_disp) {
     std::vector<std::int16_t> winners(static_cast<std::size_t>(volume.width()) * volume.height());
     for (int y = 0; y < volume.height(); ++y) {
         for (int x = 0; x < volume.width(); ++x) {
-            int best = 0;
-            for (int k = 1; k < volume.ndisp(); ++k) {
-                if (volume.at(x, y, k) < volume.at(x, y, best)) {
+            int best = -1;
+            for (int k = 0; k < volume.ndisp(); ++k) {
+                if (has_partner(x, k, min_disp, volume.width()) &&
+                    (best < 0 || volume.at(x, y, k) < volume.at(x, y, best))) {
                     best = k;  // strict: ties stay with the smaller label
                 }
             }
             winners[static_cast<std::size_t>(y) * volume.width() + x] =
-                static_cast<std::int16_t>(min_disp + best);
+                static_cast<std::int16_t>(min_disp + std::max(best, 0));
         }
     }
     return winners;
-}
-
-// A pixel's own match outside the right image is no candidate (one cell at a time).
-void naive_exclude_outside(Dsi& volume, int min_disp) {
-    for (int y = 0; y < volume.height(); ++y) {
-        for (int x = 0; x < volume.width(); ++x) {
-            for (int k = 0; k < volume.ndisp(); ++k) {
-                const int xr = x - (min_disp + k);
-                if (xr < 0 || xr >= volume.width()) {
-                    volume.at(x, y, k) = kNoCandidate;
-                }
-            }
-        }
-    }
 }
 
 }  // namespace
@@ -128,11 +122,16 @@ Dsi aggregate_naive(const Dsi& cost, const Image& left, const Image& right, int 
 
 namespace {
 
-// The matching cost, then min(C, truncation) cell by cell (outside matches too).
+// The matching cost by its naive reference, then min(C, T) cell by cell (outside matches too).
+// T by docs/asw.md "The truncated cost": params.truncation, or by the cost (census none, every
+// other cost kDefaultTruncation); 0 is none.
 Dsi truncated_cost_volume(const Image& left, const Image& right, const MatchParams& match,
                           const Params& params) {
-    Dsi cost = cost_volume(*make_cost(match.cost), left, right, match.ndisp, match.min_disp);
-    const int truncation = truncation_for(params.truncation, match.cost);
+    Dsi cost = stereo::naive::cost_volume(match.cost, left, right, match.ndisp, match.min_disp);
+    int truncation = params.truncation;
+    if (truncation == kTruncationByCost) {
+        truncation = match.cost == "census" ? 0 : kDefaultTruncation;
+    }
     if (truncation == 0) {
         return cost;
     }
@@ -158,12 +157,12 @@ ValidatedDisparity match_naive(const Image& left, const Image& right, const Matc
     first.continuity = false;
     Dsi aggregated = aggregate_naive(cost, left, right, match.min_disp, first, {});
     if (params.continuity) {
-        naive_exclude_outside(aggregated, match.min_disp);
         aggregated = aggregate_naive(cost, left, right, match.min_disp, params,
                                      naive_winners(aggregated, match.min_disp));
     }
-    naive_exclude_outside(aggregated, match.min_disp);
-    return select_validated(aggregated, match);
+    // Stage 6 by its definition, a pixel's outside matches no candidates (the naive reference's
+    // own scan of the volume, not the model's selector).
+    return stereo::naive::validate_inside_matches(aggregated, match.min_disp, match.validation);
 }
 
 namespace {

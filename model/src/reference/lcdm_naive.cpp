@@ -95,12 +95,12 @@ int pixel_cost(const Image& left, int x, int y, const Image& right, int xr, int 
     return static_cast<int>(value > fx::kCostMax ? fx::kCostMax : value);
 }
 
-Dsi cost(const Image& left, const Image& right, int ndisp, int dark_floor) {
+Dsi cost(const Image& left, const Image& right, int ndisp, int dark_floor, int min_disp) {
     check_pair(left, right);
     require_colour(left);
     require_colour(right);
     return reference::pixel_cost_volume(
-        left, ndisp, 0, fx::kCostOutside, [&](int x, int y, int right_x) {
+        left, ndisp, min_disp, fx::kCostOutside, [&](int x, int y, int right_x) {
             return pixel_cost(left, x, y, right, right_x, y, dark_floor);
         });
 }

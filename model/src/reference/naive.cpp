@@ -8,6 +8,7 @@
 #include "stereo/reference.hpp"
 #include "stereo/stage_table.hpp"
 #include "stereo/stages.hpp"
+#include "stereo/stages/lcdm.hpp"
 
 namespace stereo::naive {
 using reference::for_each_cell;
@@ -140,10 +141,10 @@ Dsi cost_volume(const std::string& name, const Image& left, const Image& right, 
         return census::naive::cost(left, right, ndisp, min_disp);
     }
     if (name == "lcdm") {
-        return lcdm::naive::cost(left, right, ndisp);
+        return lcdm::naive::cost(left, right, ndisp, lcdm::kDarkFloor, min_disp);
     }
     if (name == "zncc") {
-        return zncc::naive::cost(left, right, ndisp);
+        return zncc::naive::cost(left, right, ndisp, min_disp);
     }
     (void)make_cost(name);  // throws on an unknown name
     return naive::cost(left, right, ndisp, min_disp);
@@ -186,8 +187,13 @@ DisparityMap match(const Image& left, const Image& right, const MatchParams& par
     return naive::wta(final_volume(left, right, params), invalid_border(params));
 }
 
-ValidatedDisparity validate_along(const Dsi& dsi, int step_x, int step_y, int min_disp,
-                                  const ValidationParams& params, int reach) {
+namespace {
+
+// Stage 6 along (step_x, step_y). With only_inside_matches, label k of pixel (x, y) is a
+// candidate only where its partner pixel (x - d step_x, y - d step_y) lies inside the image (the
+// ASW matcher's rule, docs/asw.md "Border and validity"); otherwise every label is one.
+ValidatedDisparity stage_six(const Dsi& dsi, int step_x, int step_y, int min_disp,
+                             const ValidationParams& params, int reach, bool only_inside_matches) {
     const auto inside = [](int x, int y, int width, int height, int margin) {
         return x >= margin && y >= margin && x < width - margin && y < height - margin;
     };
@@ -198,10 +204,18 @@ ValidatedDisparity validate_along(const Dsi& dsi, int step_x, int step_y, int mi
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
             const auto cost = [&](int k) { return static_cast<int>(dsi.at(x, y, k)); };
-            const int winner = first_minimum(
-                ndisp, [](int) { return true; }, cost);
+            const auto candidate = [&](int k) {
+                const int dd = min_disp + k;
+                return !only_inside_matches ||
+                       inside(x - dd * step_x, y - dd * step_y, width, height, 0);
+            };
+            const int winner = first_minimum(ndisp, candidate, cost);
+            if (winner < 0) {
+                continue;  // no candidate at all: invalid (border), certainty 0, disparity 0
+            }
             const int second = first_minimum(
-                ndisp, [&](int k) { return k < winner - 1 || k > winner + 1; }, cost);
+                ndisp, [&](int k) { return candidate(k) && (k < winner - 1 || k > winner + 1); },
+                cost);
             const std::int64_t c1 = cost(winner);
             const std::int64_t c2 = second < 0 ? fx::kNoSecondCost : cost(second);
             const std::size_t q = out.index(x, y);
@@ -220,7 +234,8 @@ ValidatedDisparity validate_along(const Dsi& dsi, int step_x, int step_y, int mi
             }
             if (params.left_right) {
                 // The partner pixel's own winner: the first minimum over the reference pixels
-                // that see it, (xs + d' * step.x, ys + d' * step.y).
+                // that see it, (xs + d' * step.x, ys + d' * step.y) (each of those cells has its
+                // partner, xs, inside: a candidate under either rule).
                 const int right_winner = first_minimum(
                     ndisp,
                     [&](int k) {
@@ -238,7 +253,9 @@ ValidatedDisparity validate_along(const Dsi& dsi, int step_x, int step_y, int mi
             }
             out.reason[q] = fx::kReasonValid;
             double offset = 0.0;
-            if (params.subpixel && winner > 0 && winner < ndisp - 1) {
+            // A neighbour that is no candidate is no parabola point: the offset stays 0.
+            if (params.subpixel && winner > 0 && winner < ndisp - 1 && candidate(winner - 1) &&
+                candidate(winner + 1)) {
                 const double before = cost(winner - 1);
                 const double after = cost(winner + 1);
                 const double curvature = before + after - 2.0 * static_cast<double>(c1);
@@ -256,9 +273,21 @@ ValidatedDisparity validate_along(const Dsi& dsi, int step_x, int step_y, int mi
     return out;
 }
 
+}  // namespace
+
+ValidatedDisparity validate_along(const Dsi& dsi, int step_x, int step_y, int min_disp,
+                                  const ValidationParams& params, int reach) {
+    return stage_six(dsi, step_x, step_y, min_disp, params, reach, false);
+}
+
 ValidatedDisparity validate(const Dsi& dsi, int min_disp, const ValidationParams& params,
                             const InvalidBorder& border) {
     return validate_along(dsi, 1, 0, min_disp, params, border.reach);
+}
+
+ValidatedDisparity validate_inside_matches(const Dsi& dsi, int min_disp,
+                                           const ValidationParams& params) {
+    return stage_six(dsi, 1, 0, min_disp, params, 0, true);
 }
 
 ValidatedDisparity match_validated(const Image& left, const Image& right,

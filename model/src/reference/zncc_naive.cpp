@@ -27,12 +27,12 @@ bool inside(const Image& image, int x, int y) {
 
 }  // namespace
 
-Dsi cost(const Image& left, const Image& right, int ndisp) {
+Dsi cost(const Image& left, const Image& right, int ndisp, int min_disp) {
     check_pair(left, right);
     const Image l = edge_frontend::naive::luma(left);
     const Image r = edge_frontend::naive::luma(right);
     return reference::pixel_cost_volume(
-        left, ndisp, 0, fx::kCostOutside, [&](int x, int y, int right_x) {
+        left, ndisp, min_disp, fx::kCostOutside, [&](int x, int y, int right_x) {
             const int d = x - right_x;
             std::int64_t n = 0, sl = 0, sr = 0, sll = 0, srr = 0, slr = 0;
             for (int j = -kRadius; j <= kRadius; ++j) {
