@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <iostream>
@@ -612,6 +614,64 @@ MatchParams with_stage6(MatchParams params, int min_disp, int uniqueness, int lr
     return params;
 }
 
+// A scene with two surfaces: a random background plane whose disparity grows from `far` at the
+// left edge to `far + slant` at the right edge (the right image samples it between pixels,
+// linearly interpolated), and a random box in front of it at the integer disparity `near`; plus
+// noise, cut from a larger image (no clamped pixels). The background just left of the box is
+// hidden in the right image, so stage 6's left-right check rejects it, and the slant makes the
+// two images' winners differ by one label here and there (what the tolerance decides); the
+// background the box hides in the left image is new texture in the right one; the box edges
+// and the noise give the uniqueness test work, the slant the sub-pixel parabola.
+io::ImagePair slanted_scene(int width, int height, int far, int slant, int near, int noise,
+                            std::mt19937& rng) {
+    constexpr int kMargin = 16;
+    const Image big = test::random_image(width + 2 * kMargin, height + 2 * kMargin, 3, rng);
+    const Image left = io::crop(big, kMargin, kMargin, width, height);
+    const int x0 = width / 3;
+    const int x1 = 2 * width / 3;
+    const int y0 = height / 4;
+    const int y1 = 3 * height / 4;
+    Image right(width, height, 3);
+    std::uniform_int_distribution<int> jitter(-noise, noise);
+    std::uniform_int_distribution<int> byte(0, 255);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const bool rows = y >= y0 && y < y1;
+            const bool box = rows && x + near >= x0 && x + near < x1;
+            const double source = x + far + static_cast<double>(slant) * x / width;
+            // Background that the box hides in the left image: new texture.
+            const bool hidden = !box && rows && source >= x0 - 1 && source < x1;
+            const int sx = static_cast<int>(std::floor(source));
+            const double t = source - sx;
+            for (int c = 0; c < 3; ++c) {
+                const double background = (1 - t) * big.at(kMargin + sx, kMargin + y, c) +
+                                          t * big.at(kMargin + sx + 1, kMargin + y, c);
+                const int v = hidden ? byte(rng)
+                              : box  ? big.at(kMargin + x + near, kMargin + y, c)
+                                     : static_cast<int>(std::lround(background));
+                right.at(x, y, c) = static_cast<std::uint8_t>(std::clamp(v + jitter(rng), 0, 255));
+            }
+        }
+    }
+    return {left, std::move(right)};
+}
+
+// How often each reason occurs and how many valid pixels have a fractional disparity.
+struct Stage6Counts {
+    std::array<int, 8> reason{};
+    int fractional = 0;
+    int negative = 0;
+};
+Stage6Counts stage6_counts(const ValidatedDisparity& map) {
+    Stage6Counts counts;
+    for (std::size_t i = 0; i < map.fixed.size(); ++i) {
+        ++counts.reason[map.reason[i] & 7];
+        counts.fractional += map.valid(i) && map.fixed[i] % fx::kSubpixelScale != 0 ? 1 : 0;
+        counts.negative += map.valid(i) && map.fixed[i] < 0 ? 1 : 0;
+    }
+    return counts;
+}
+
 TEST(HlsMatchValidated, EqualsMatchValidatedOverStage6Parameters) {
     auto rng = seeded(15);
     for (const int shift : {-4, 3}) {
@@ -773,6 +833,20 @@ TEST(HlsMatchValidated, TheMatcherRegistryRunsStage6) {
     const MatchResult result = registry.create("pipeline", "hls", config)->compute(left, right);
     EXPECT_TRUE(same_validated(match_validated(left, right, config.pipeline), result.validated));
     EXPECT_TRUE(same_map(to_label_map(result.validated), result.disparity));
+    // The census cost, as test_matcher's registry test runs the model's engines: every stage-6
+    // step at work on a slanted scene with an occluding box.
+    const auto [scene_left, scene_right] = slanted_scene(72, 56, -1, 3, 6, 6, rng);
+    config.pipeline = with_stage6(MatchParams{16, 5, 1.5, true}, -2, 15, 1, true);
+    config.pipeline.cost = "census";
+    const ValidatedDisparity model = match_validated(scene_left, scene_right, config.pipeline);
+    const MatchResult census =
+        registry.create("pipeline", "hls", config)->compute(scene_left, scene_right);
+    EXPECT_TRUE(same_validated(model, census.validated));
+    EXPECT_TRUE(same_map(to_label_map(model), census.disparity));
+    const Stage6Counts counts = stage6_counts(model);
+    EXPECT_GT(counts.reason[fx::kReasonUniqueness], 0);
+    EXPECT_GT(counts.reason[fx::kReasonLeftRight], 0);
+    EXPECT_GT(counts.fractional, 0);
 }
 
 TEST(HlsMatchValidated, MiddleburyCropsWithStage6) {
@@ -946,18 +1020,37 @@ TEST(HlsMatch, PicksTheSmallestCoveringVariant) {
 
 // ---- the synthesisable top and the stream -------------------------------------------------
 
+// The synthesisable top, frame after frame through its one static state: every configuration
+// port reaches the pipeline. Frames with stage 6 off compare the 8-bit labels with stereo::match;
+// frames with a signed range and every stage-6 step on compare stage 6's whole output (fixed
+// disparity, reason, certainty) with stereo::match_validated. Their ratios and tolerances differ
+// from FrameConfig's defaults (0), so a port that is not assigned changes the output.
 TEST(HlsSynthTop, FramesBackToBackEqualModel) {
     namespace synth = hls::synth;
     auto rng = seeded(14);
     const auto [full_left, full_right] =
         test::shifted_pair(synth::kWidth, synth::kHeight, 3, 9, 4, rng);
-    const std::vector<std::tuple<Image, Image, MatchParams>> frames = {
-        {full_left, full_right,
-         MatchParams{synth::kNdisp, synth::kWindow, fx::kDefaultSigma, true}},
-        {io::crop(full_left, 3, 5, 100, 60), io::crop(full_right, 3, 5, 100, 60),
-         MatchParams{16, 5, 2.0, false}},
+    const auto [scene_left, scene_right] = slanted_scene(96, 64, -4, 4, 6, 6, rng);
+    struct Frame {
+        Image left;
+        Image right;
+        MatchParams params;
+        bool stage6;
     };
-    for (const auto& [left, right, params] : frames) {
+    const std::vector<Frame> frames = {
+        {full_left, full_right, MatchParams{synth::kNdisp, synth::kWindow, fx::kDefaultSigma, true},
+         false},
+        {scene_left, scene_right,
+         with_stage6(MatchParams{16, 5, fx::kDefaultSigma, true}, -5, 15, 1, true), true},
+        {io::crop(full_left, 3, 5, 100, 60), io::crop(full_right, 3, 5, 100, 60),
+         MatchParams{16, 5, 2.0, false}, false},
+        {io::crop(scene_left, 2, 3, 90, 58), io::crop(scene_right, 2, 3, 90, 58),
+         with_stage6(MatchParams{20, 7, 2.0, true}, -5, 30, 2, true), true},
+    };
+    for (const auto& [left, right, params, stage6] : frames) {
+        SCOPED_TRACE(std::to_string(left.width) + "x" + std::to_string(left.height) + " min_disp " +
+                     std::to_string(params.min_disp) +
+                     (stage6 ? " with stage 6" : " without stage 6"));
         const auto cfg = hls::frame_config<synth::kWindow>(params, left.width, left.height);
         hls::stream<hls::InputBeat> in;
         hls::stream<hls::OutputBeat> out;
@@ -970,9 +1063,26 @@ TEST(HlsSynthTop, FramesBackToBackEqualModel) {
                       static_cast<std::uint8_t>(cfg.uniqueness_ratio), cfg.left_right,
                       static_cast<std::uint8_t>(cfg.lr_tolerance), cfg.subpixel),
                   0);
-        EXPECT_TRUE(
-            same_map(match(left, right, params), hls::collect_frame(out, left.width, left.height)))
-            << left.width << "x" << left.height;
+        if (!stage6) {
+            EXPECT_TRUE(same_map(match(left, right, params),
+                                 hls::collect_frame(out, left.width, left.height)));
+            continue;
+        }
+        const ValidatedDisparity model = match_validated(left, right, params);
+        EXPECT_TRUE(same_validated(model, hls::collect_validated(out, left.width, left.height)));
+        // The frame exercises what it configures: negative and fractional disparities, and
+        // rejections by the uniqueness test and by the left-right check.
+        const Stage6Counts counts = stage6_counts(model);
+        std::cout << "[scene] " << left.width << "x" << left.height << ": valid "
+                  << counts.reason[fx::kReasonValid] << ", border "
+                  << counts.reason[fx::kReasonBorder] << ", uniqueness "
+                  << counts.reason[fx::kReasonUniqueness] << ", left-right "
+                  << counts.reason[fx::kReasonLeftRight] << ", fractional " << counts.fractional
+                  << ", negative " << counts.negative << '\n';
+        EXPECT_GT(counts.reason[fx::kReasonUniqueness], 0);
+        EXPECT_GT(counts.reason[fx::kReasonLeftRight], 0);
+        EXPECT_GT(counts.fractional, 0);
+        EXPECT_GT(counts.negative, 0);
     }
 }
 

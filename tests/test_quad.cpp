@@ -4,11 +4,14 @@
 // one, and the errors for views that do not fit.
 #include <gtest/gtest.h>
 
-#include <random>
-#include <stdexcept>
-
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
+#include <iostream>
+#include <random>
+#include <stdexcept>
+#include <string>
 
 #include "stereo/quad.hpp"
 #include "stereo_io/data_dir.hpp"
@@ -22,6 +25,21 @@ namespace {
 
 using test::same_validated;
 
+// docs/quad.md's geometry table, written out here rather than read from quad::step (which the
+// model and the naive reference share): reference (x, y) sees partner (x - d sx, y - d sy).
+Step documented_step(Pair pair) {
+    switch (pair) {
+        case Pair::horizontal:
+            return {1, 0};
+        case Pair::vertical:
+            return {0, 1};
+        case Pair::diagonal:
+            return {1, 1};
+    }
+    ADD_FAILURE() << "no documented step for pair " << static_cast<int>(pair);
+    return {};
+}
+
 // Reference (x, y) sees partner (x - d sx, y - d sy): the partner is the crop shifted by +d step.
 // Crops of one random image make a pair whose true disparity is d everywhere, with no clamped or
 // invented pixels.
@@ -29,9 +47,85 @@ std::pair<Image, Image> shifted_views(Pair pair, int d, int width, int height, i
                                       std::mt19937& rng) {
     constexpr int kMargin = 16;
     const Image big = test::random_image(width + 2 * kMargin, height + 2 * kMargin, channels, rng);
-    const Step s = step(pair);
+    const Step s = documented_step(pair);
     return {io::crop(big, kMargin, kMargin, width, height),
             io::crop(big, kMargin + d * s.x, kMargin + d * s.y, width, height)};
+}
+
+// A scene seen by the reference camera (the centre of `big`, kSceneMargin from each edge) and by
+// a partner along `pair` (documented_step): a background plane whose disparity grows from `far`
+// at the top left to `far + slant` at the bottom right (the partner samples it between pixels,
+// linearly interpolated along the step), and a box in the middle in front of it at the integer
+// disparity `near`; plus noise. Beside the box the background is hidden in the partner (stage
+// 6's left-right check rejects it there), the background the box hides in the reference is new
+// texture in the partner, and the slant gives the parabola fractions and the left-right check
+// one-label disagreements. Every partner of one `big` shows the same scene.
+constexpr int kSceneMargin = 16;
+struct Scene {
+    int far = 0;
+    int slant = 0;
+    int near = 0;
+    int noise = 0;
+};
+Image reference_view(const Image& big) {
+    return io::crop(big, kSceneMargin, kSceneMargin, big.width - 2 * kSceneMargin,
+                    big.height - 2 * kSceneMargin);
+}
+Image partner_view(const Image& big, Pair pair, const Scene& scene, std::mt19937& rng) {
+    const int width = big.width - 2 * kSceneMargin;
+    const int height = big.height - 2 * kSceneMargin;
+    const Step s = documented_step(pair);
+    const auto at = [&](int x, int y, int c) {
+        return int{big.at(kSceneMargin + x, kSceneMargin + y, c)};
+    };
+    const auto in_box = [&](int x, int y) {
+        return x >= width / 3 && x < 2 * width / 3 && y >= height / 3 && y < 2 * height / 3;
+    };
+    Image partner(width, height, big.channels);
+    std::uniform_int_distribution<int> jitter(-scene.noise, scene.noise);
+    std::uniform_int_distribution<int> byte(0, 255);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const bool box = in_box(x + scene.near * s.x, y + scene.near * s.y);
+            const double d =
+                scene.far + static_cast<double>(scene.slant) * (x + y) / (width + height);
+            const int k = static_cast<int>(std::floor(d));
+            const double t = d - k;
+            const bool hidden = !box && (in_box(x + k * s.x, y + k * s.y) ||
+                                         in_box(x + (k + 1) * s.x, y + (k + 1) * s.y));
+            for (int c = 0; c < big.channels; ++c) {
+                const double background = (1 - t) * at(x + k * s.x, y + k * s.y, c) +
+                                          t * at(x + (k + 1) * s.x, y + (k + 1) * s.y, c);
+                const int v = hidden ? byte(rng)
+                              : box  ? at(x + scene.near * s.x, y + scene.near * s.y, c)
+                                     : static_cast<int>(std::lround(background));
+                partner.at(x, y, c) =
+                    static_cast<std::uint8_t>(std::clamp(v + jitter(rng), 0, 255));
+            }
+        }
+    }
+    return partner;
+}
+
+// How often each reason occurs, and the valid pixels with a fractional disparity.
+struct Stage6Counts {
+    std::array<int, 8> reason{};
+    int fractional = 0;
+};
+Stage6Counts stage6_counts(const ValidatedDisparity& map) {
+    Stage6Counts counts;
+    for (std::size_t i = 0; i < map.fixed.size(); ++i) {
+        ++counts.reason[map.reason[i] & 7];
+        counts.fractional += map.valid(i) && map.fixed[i] % fx::kSubpixelScale != 0 ? 1 : 0;
+    }
+    return counts;
+}
+std::string describe(const Stage6Counts& counts, std::size_t pixels) {
+    return "valid " + std::to_string(counts.reason[fx::kReasonValid]) + ", border " +
+           std::to_string(counts.reason[fx::kReasonBorder]) + ", uniqueness " +
+           std::to_string(counts.reason[fx::kReasonUniqueness]) + ", left-right " +
+           std::to_string(counts.reason[fx::kReasonLeftRight]) + ", fractional " +
+           std::to_string(counts.fractional) + " of " + std::to_string(pixels);
 }
 
 MatchParams small_params(int ndisp, int min_disp, bool validation) {
@@ -46,8 +140,22 @@ MatchParams small_params(int ndisp, int min_disp, bool validation) {
     return params;
 }
 
+// The steps are docs/quad.md's: the fixtures below build their partners from that table, and
+// the model and the naive reference read quad::step, so a wrong step cannot cancel out.
+TEST(QuadPairs, StepsAreTheDocumentedOnes) {
+    for (const Pair pair : kPairs) {
+        EXPECT_EQ(step(pair).x, documented_step(pair).x) << name(pair);
+        EXPECT_EQ(step(pair).y, documented_step(pair).y) << name(pair);
+    }
+}
+
 TEST(QuadPairs, ModelEqualsNaiveAndVolumeForm) {
     auto rng = test::seeded_rng(22);
+    // Odd sizes, a signed range; a slanted background and an occluding box along each pair's
+    // direction, with noise, so that the CA rules and every stage-6 step act: with validation,
+    // the uniqueness test and the left-right check reject pixels and the parabola gives
+    // fractions (asserted).
+    const Scene scene{-3, 2, 1, 8};  // background -3 .. -1, the box at 1; the range is -4 .. 2
     for (const std::string_view cost : kPairCosts) {
         for (const Pair pair : kPairs) {
             for (const int channels : {1, 3}) {
@@ -55,23 +163,29 @@ TEST(QuadPairs, ModelEqualsNaiveAndVolumeForm) {
                     continue;  // colour only (QuadErrors)
                 }
                 for (const bool validation : {false, true}) {
-                    // Odd sizes, a signed range, noise so that the CA rules and stage 6 all act.
-                    const auto [reference, partner] =
-                        shifted_views(pair, -2, 31, 27, channels, rng);
-                    Image noisy = partner;
-                    std::uniform_int_distribution<int> noise(-12, 12);
-                    for (auto& v : noisy.pixels) {
-                        v = static_cast<std::uint8_t>(std::clamp(v + noise(rng), 0, 255));
-                    }
+                    const Image big = test::random_image(41 + 2 * kSceneMargin,
+                                                         37 + 2 * kSceneMargin, channels, rng);
+                    const Image reference = reference_view(big);
+                    const Image partner = partner_view(big, pair, scene, rng);
                     MatchParams params = small_params(7, -4, validation);
                     params.cost = cost;
-                    const auto model = match_pair(pair, reference, noisy, params);
-                    SCOPED_TRACE(std::string(cost) + " " + std::string(name(pair)) + " channels " +
-                                 std::to_string(channels) + (validation ? " validated" : " plain"));
+                    const auto model = match_pair(pair, reference, partner, params);
+                    const std::string what = std::string(cost) + " " + std::string(name(pair)) +
+                                             " channels " + std::to_string(channels) +
+                                             (validation ? " validated" : " plain");
+                    SCOPED_TRACE(what);
                     EXPECT_TRUE(
-                        same_validated(naive::match_pair(pair, reference, noisy, params), model));
+                        same_validated(naive::match_pair(pair, reference, partner, params), model));
                     EXPECT_TRUE(
-                        same_validated(match_pair_volume(pair, reference, noisy, params), model));
+                        same_validated(match_pair_volume(pair, reference, partner, params), model));
+                    if (validation) {
+                        const Stage6Counts counts = stage6_counts(model);
+                        std::cout << "[scene] " << what << ": "
+                                  << describe(counts, model.fixed.size()) << '\n';
+                        EXPECT_GT(counts.reason[fx::kReasonUniqueness], 0);
+                        EXPECT_GT(counts.reason[fx::kReasonLeftRight], 0);
+                        EXPECT_GT(counts.fractional, 0);
+                    }
                 }
             }
         }
@@ -88,7 +202,7 @@ TEST(QuadPairs, KnownShiftsAreRecoveredExactly) {
                 params.cost = cost;
                 const auto result = match_pair(pair, reference, partner, params);
                 const int reach = invalid_border(params).reach;
-                const Step s = step(pair);
+                const Step s = documented_step(pair);
                 int checked = 0;
                 for (int y = reach; y < reference.height - reach; ++y) {
                     for (int x = reach; x < reference.width - reach; ++x) {
@@ -204,11 +318,16 @@ TEST(QuadPairs, WinnerCostsEqualNaive) {
 }
 
 TEST(QuadMatch, ThreadedModelEqualsSequentialAndNaive) {
+    // One scene through four cameras: each partner sees it along its own direction (a slanted
+    // background, a box in front), so every pair has true matches and its own occlusions, and
+    // fusion chooses among pairs that are valid together.
     auto rng = test::seeded_rng(25);
-    const Image reference = test::random_image(33, 29, 3, rng);
-    const Image right = test::random_image(33, 29, 3, rng);
-    const Image below = test::random_image(33, 29, 3, rng);
-    const Image diagonal = test::random_image(33, 29, 3, rng);
+    const Image big = test::random_image(33 + 2 * kSceneMargin, 29 + 2 * kSceneMargin, 3, rng);
+    const Scene scene{-1, 2, 3, 6};  // background -1 .. 1, the box at 3; the range is -2 .. 3
+    const Image reference = reference_view(big);
+    const Image right = partner_view(big, Pair::horizontal, scene, rng);
+    const Image below = partner_view(big, Pair::vertical, scene, rng);
+    const Image diagonal = partner_view(big, Pair::diagonal, scene, rng);
     const QuadViews views{reference, right, below, diagonal};
     const MatchParams params = small_params(6, -2, true);
     const QuadResult threaded = match_quad(views, params, true);
@@ -220,6 +339,34 @@ TEST(QuadMatch, ThreadedModelEqualsSequentialAndNaive) {
     for (std::size_t p = 0; p < 3; ++p) {
         EXPECT_TRUE(same_validated(slow.pairs[p], threaded.pairs[p]));
     }
+    // What the fixture exercises: a dense fused map, pixels where two or three pairs compete,
+    // and every pair winning somewhere.
+    const std::size_t pixels = threaded.fused.fixed.size();
+    std::size_t fused_valid = 0;
+    std::size_t competing = 0;
+    std::array<std::size_t, 4> sources{};
+    for (std::size_t i = 0; i < pixels; ++i) {
+        fused_valid += threaded.fused.valid(i) ? 1 : 0;
+        int valid_pairs = 0;
+        for (const auto& pair : threaded.pairs) {
+            valid_pairs += pair.valid(i) ? 1 : 0;
+        }
+        competing += valid_pairs >= 2 ? 1 : 0;
+        ++sources[threaded.source[i] & 3];
+    }
+    std::cout << "[scene] fused valid " << fused_valid << " of " << pixels << ", competing "
+              << competing << ", won by horizontal " << sources[1] << ", vertical " << sources[2]
+              << ", diagonal " << sources[3] << '\n';
+    for (const Pair pair : kPairs) {
+        std::cout << "[scene] " << name(pair) << ": "
+                  << describe(stage6_counts(threaded.pairs[static_cast<std::size_t>(pair)]), pixels)
+                  << '\n';
+    }
+    EXPECT_GE(fused_valid * 10, pixels * 3);  // >= 30 %
+    EXPECT_GT(competing, pixels / 10);
+    EXPECT_GT(sources[1], 0U);
+    EXPECT_GT(sources[2], 0U);
+    EXPECT_GT(sources[3], 0U);
     // Fused by cost, with and without stage 6's checks: the same three pairs, another choice.
     for (const bool validation : {true, false}) {
         const MatchParams p6 = small_params(6, -2, validation);
