@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "middlebury_crop.hpp"
+#include "shifted_pairs.hpp"
 #include "stereo/hierarchical_reference.hpp"
 #include "stereo/reference.hpp"
 #include "stereo/stages.hpp"
@@ -25,6 +26,9 @@
 
 namespace stereo {
 namespace {
+
+using test::same_level;
+using test::shifted_2d;
 
 Image pixel(int r, int g, int b) {
     Image image(1, 1, 3);
@@ -134,43 +138,6 @@ TEST(Lcdm, GreyImageIsAClearError) {
         EXPECT_NE(std::string(error.what()).find("colour"), std::string::npos) << error.what();
     }
     EXPECT_THROW((void)lcdm::naive::cost(grey, grey, 2), std::invalid_argument);
-}
-
-// right(x', y') = left(x' + dx, y' - dy) plus noise, random where that leaves the left image:
-// true displacement (dx, dy) everywhere (the hierarchical search's d = dx, v = dy).
-Image shifted_2d(const Image& left, int dx, int dy, int noise, std::mt19937& rng) {
-    Image right = test::random_image(left.width, left.height, left.channels, rng);
-    std::uniform_int_distribution<int> jitter(-noise, noise);
-    for (int y = 0; y < left.height; ++y) {
-        for (int x = 0; x < left.width; ++x) {
-            const int sx = x + dx;
-            const int sy = y - dy;
-            if (sx < 0 || sx >= left.width || sy < 0 || sy >= left.height) {
-                continue;
-            }
-            for (int c = 0; c < left.channels; ++c) {
-                right.at(x, y, c) =
-                    static_cast<std::uint8_t>(std::clamp(left.at(sx, sy, c) + jitter(rng), 0, 255));
-            }
-        }
-    }
-    return right;
-}
-
-// Horizontal and vertical disparity and the valid flag of every pixel of a level.
-::testing::AssertionResult same_level(const Winners& expected, const Winners& actual) {
-    return test::same_pixels(
-        expected, actual,
-        [&](std::size_t i) {
-            return expected.disparity[i] != actual.disparity[i] ||
-                   expected.vertical[i] != actual.vertical[i] ||
-                   expected.valid[i] != actual.valid[i];
-        },
-        [](const Winners& map, std::size_t i) {
-            return "(d " + std::to_string(map.disparity[i]) + ", v " +
-                   std::to_string(map.vertical[i]) + ", valid " + std::to_string(map.valid[i]) +
-                   ")";
-        });
 }
 
 // The hierarchical 2-D search with the LCDM cost equals its naive reference at every level

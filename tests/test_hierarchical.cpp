@@ -10,6 +10,7 @@
 #include <random>
 
 #include "middlebury_crop.hpp"
+#include "shifted_pairs.hpp"
 #include "stereo/hierarchical.hpp"
 #include "stereo/hierarchical_reference.hpp"
 #include "stereo/pipeline.hpp"
@@ -22,41 +23,8 @@
 namespace stereo::hierarchical {
 namespace {
 
-// Horizontal and vertical disparity and the valid flag of every pixel.
-::testing::AssertionResult same_level(const LevelMap& expected, const LevelMap& actual) {
-    return test::same_pixels(
-        expected, actual,
-        [&](std::size_t i) {
-            return expected.disparity[i] != actual.disparity[i] ||
-                   expected.vertical[i] != actual.vertical[i] ||
-                   expected.valid[i] != actual.valid[i];
-        },
-        [](const LevelMap& map, std::size_t i) {
-            return "(d " + std::to_string(map.disparity[i]) + ", v " +
-                   std::to_string(map.vertical[i]) + ", valid " + std::to_string(map.valid[i]) +
-                   ")";
-        });
-}
-
-// right(x', y') = left(x' + dx, y' - dy) plus noise: true displacement (dx, dy) everywhere.
-Image shifted_2d(const Image& left, int dx, int dy, int noise, std::mt19937& rng) {
-    Image right = test::random_image(left.width, left.height, left.channels, rng);
-    std::uniform_int_distribution<int> jitter(-noise, noise);
-    for (int y = 0; y < left.height; ++y) {
-        for (int x = 0; x < left.width; ++x) {
-            const int sx = x + dx;
-            const int sy = y - dy;
-            if (sx < 0 || sx >= left.width || sy < 0 || sy >= left.height) {
-                continue;
-            }
-            for (int c = 0; c < left.channels; ++c) {
-                right.at(x, y, c) =
-                    static_cast<std::uint8_t>(std::clamp(left.at(sx, sy, c) + jitter(rng), 0, 255));
-            }
-        }
-    }
-    return right;
-}
+using test::same_level;
+using test::shifted_2d;
 
 // ---- down-scaling --------------------------------------------------------------------------
 

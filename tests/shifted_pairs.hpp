@@ -1,0 +1,56 @@
+// Test pairs with a known 2-D displacement and the per-level comparison of the hierarchical
+// search, shared by the hierarchical, matcher and LCDM tests.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <random>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "stereo/image.hpp"
+#include "stereo/search.hpp"
+#include "stereo_io/test_compare.hpp"
+#include "stereo_io/test_support.hpp"
+
+namespace stereo::test {
+
+// right(x', y') = left(x' + dx, y' - dy) plus noise, random where that leaves the left image:
+// true displacement (dx, dy) everywhere (the hierarchical search's d = dx, v = dy).
+inline Image shifted_2d(const Image& left, int dx, int dy, int noise, std::mt19937& rng) {
+    Image right = random_image(left.width, left.height, left.channels, rng);
+    std::uniform_int_distribution<int> jitter(-noise, noise);
+    for (int y = 0; y < left.height; ++y) {
+        for (int x = 0; x < left.width; ++x) {
+            const int sx = x + dx;
+            const int sy = y - dy;
+            if (sx < 0 || sx >= left.width || sy < 0 || sy >= left.height) {
+                continue;
+            }
+            for (int c = 0; c < left.channels; ++c) {
+                right.at(x, y, c) =
+                    static_cast<std::uint8_t>(std::clamp(left.at(sx, sy, c) + jitter(rng), 0, 255));
+            }
+        }
+    }
+    return right;
+}
+
+// Horizontal and vertical disparity and the valid flag of every pixel of a level.
+inline ::testing::AssertionResult same_level(const Winners& expected, const Winners& actual) {
+    return same_pixels(
+        expected, actual,
+        [&](std::size_t i) {
+            return expected.disparity[i] != actual.disparity[i] ||
+                   expected.vertical[i] != actual.vertical[i] ||
+                   expected.valid[i] != actual.valid[i];
+        },
+        [](const Winners& map, std::size_t i) {
+            return "(d " + std::to_string(map.disparity[i]) + ", v " +
+                   std::to_string(map.vertical[i]) + ", valid " + std::to_string(map.valid[i]) +
+                   ")";
+        });
+}
+
+}  // namespace stereo::test
