@@ -5,6 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config
+  ccache                           # compiler cache (CMakeLists.txt uses it when present)
   libopencv-dev opencv-doc          # image I/O, StereoBM/SGBM baselines; opencv-doc ships Aloe
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libeigen3-dev

@@ -65,33 +65,30 @@ class VerilatedTop final : public TopSim {
     }
 
     void set_params(const CoreParams& params) override {
-        model_->cfg_width = static_cast<std::uint16_t>(params.width);
-        model_->cfg_height = static_cast<std::uint16_t>(params.height);
-        model_->cfg_ndisp = static_cast<std::uint16_t>(params.match.ndisp);
-        model_->cfg_use_ca = params.match.use_ca ? 1 : 0;
-        // Two's complement in the port's kCfgMinDispBits.
-        model_->cfg_min_disp = static_cast<std::uint16_t>(
-            static_cast<unsigned>(params.match.min_disp) & ((1U << table::kCfgMinDispBits) - 1));
-        const ValidationParams& v = params.match.validation;
-        model_->cfg_uniqueness_en = v.uniqueness ? 1 : 0;
-        model_->cfg_uniqueness = static_cast<std::uint8_t>(v.uniqueness_ratio);
-        model_->cfg_lr_en = v.left_right ? 1 : 0;
-        model_->cfg_lr_tolerance = static_cast<std::uint8_t>(v.lr_tolerance);
-        model_->cfg_subpixel_en = v.subpixel ? 1 : 0;
-        const auto taps = centred_kernel(params.match, config_.window);
+        const PortValues ports = port_values(config_, params);
+        model_->cfg_width = ports.width;
+        model_->cfg_height = ports.height;
+        model_->cfg_ndisp = ports.ndisp;
+        model_->cfg_use_ca = ports.use_ca;
+        model_->cfg_min_disp = ports.min_disp;
+        model_->cfg_uniqueness_en = ports.uniqueness_en;
+        model_->cfg_uniqueness = ports.uniqueness;
+        model_->cfg_lr_en = ports.lr_en;
+        model_->cfg_lr_tolerance = ports.lr_tolerance;
+        model_->cfg_subpixel_en = ports.subpixel_en;
         if constexpr (requires(Model & m) { m.cfg_kernel; }) {
-            model_->cfg_radius = static_cast<std::uint8_t>(params.match.window / 2);
-            for (int i = 0; i < config_.window; ++i) {
-                put_bits(model_->cfg_kernel, i * table::kTapBits, table::kTapBits,
-                         static_cast<std::uint64_t>(taps[static_cast<std::size_t>(i)]));
+            model_->cfg_radius = ports.radius;
+            for (std::size_t i = 0; i < ports.kernel.size(); ++i) {
+                put_bits(model_->cfg_kernel, static_cast<int>(i) * table::kTapBits, table::kTapBits,
+                         static_cast<std::uint64_t>(ports.kernel[i]));
             }
         } else {
             // stereo_synth_top: the default kernel of its window is a constant and the radius is
             // WINDOW/2, so only that matching can be compared.
             if (params.match.window != config_.window ||
-                taps != centred_kernel(MatchParams{params.match.ndisp, config_.window,
-                                                   fx::kDefaultSigma, true},
-                                       config_.window)) {
+                ports.kernel != centred_kernel(MatchParams{params.match.ndisp, config_.window,
+                                                           fx::kDefaultSigma, true},
+                                               config_.window)) {
                 throw std::invalid_argument(
                     "co-simulation model '" + config_.name + "' has the constant default " +
                     std::to_string(config_.window) + "x" + std::to_string(config_.window) +
@@ -412,6 +409,26 @@ ValidatedDisparity assemble_validated(const std::vector<OutputBeat>& beats, std:
 DisparityMap assemble_frame(const std::vector<OutputBeat>& beats, std::size_t first, int width,
                             int height) {
     return to_label_map(assemble_validated(beats, first, width, height));
+}
+
+PortValues port_values(const TopConfig& config, const CoreParams& params) {
+    PortValues ports;
+    ports.width = static_cast<std::uint16_t>(params.width);
+    ports.height = static_cast<std::uint16_t>(params.height);
+    ports.ndisp = static_cast<std::uint16_t>(params.match.ndisp);
+    ports.use_ca = params.match.use_ca ? 1 : 0;
+    // Two's complement in the port's kCfgMinDispBits.
+    ports.min_disp = static_cast<std::uint16_t>(static_cast<unsigned>(params.match.min_disp) &
+                                                ((1U << table::kCfgMinDispBits) - 1));
+    const ValidationParams& v = params.match.validation;
+    ports.uniqueness_en = v.uniqueness ? 1 : 0;
+    ports.uniqueness = static_cast<std::uint8_t>(v.uniqueness_ratio);
+    ports.lr_en = v.left_right ? 1 : 0;
+    ports.lr_tolerance = static_cast<std::uint8_t>(v.lr_tolerance);
+    ports.subpixel_en = v.subpixel ? 1 : 0;
+    ports.radius = static_cast<std::uint8_t>(params.match.window / 2);
+    ports.kernel = centred_kernel(params.match, config.window);
+    return ports;
 }
 
 std::vector<std::int32_t> centred_kernel(const MatchParams& params, int window) {

@@ -106,6 +106,25 @@ struct CoreParams {
     MatchParams match;
 };
 
+// The cfg_* port values of stereo_top for a frame (port_values()): what set_params() drives,
+// also sent to a co-simulation runner built on demand (cosim_protocol.hpp).
+struct PortValues {
+    std::uint16_t width = 0;
+    std::uint16_t height = 0;
+    std::uint16_t ndisp = 0;
+    std::uint16_t min_disp = 0;  // two's complement in table::kCfgMinDispBits
+    std::uint8_t use_ca = 0;
+    std::uint8_t uniqueness_en = 0;
+    std::uint8_t uniqueness = 0;
+    std::uint8_t lr_en = 0;
+    std::uint8_t lr_tolerance = 0;
+    std::uint8_t subpixel_en = 0;
+    std::uint8_t radius = 0;           // cfg_radius: the window's radius
+    std::vector<std::int32_t> kernel;  // cfg_kernel: the model's taps centred in config.window
+};
+// Throws std::invalid_argument when the window exceeds the configuration's.
+PortValues port_values(const TopConfig& config, const CoreParams& params);
+
 class TopSim {
   public:
     virtual ~TopSim() = default;

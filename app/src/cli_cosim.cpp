@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -18,6 +20,8 @@
 #include "cli_cosim_options.hpp"
 #include "cli_matcher_options.hpp"
 #include "cli_progress.hpp"
+#include "on_demand.hpp"
+#include "stereo/stage_table.hpp"
 #include "stereo_io/disparity_files.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/output.hpp"
@@ -54,6 +58,32 @@ io::ImagePair apply_crop(io::ImagePair pair, const std::string& geometry) {
 std::string config_text(const sim::TopConfig& config) {
     return std::to_string(config.width) + "x" + std::to_string(config.height) + ", " +
            std::to_string(config.ndisp) + " disparities, window " + std::to_string(config.window);
+}
+
+// The core --size and its companions ask for (NDISP, WINDOW and COST from the matching options).
+sim::CoreRequest core_request(const CosimOptions& options, const MatchParams& params) {
+    static const std::regex pattern(R"((\d{1,6})x(\d{1,6}))");
+    std::smatch parts;
+    if (!std::regex_match(options.size, parts, pattern)) {
+        throw std::invalid_argument("--size must be WIDTHxHEIGHT, got '" + options.size + "'");
+    }
+    sim::CoreRequest request;
+    request.width = std::stoi(parts[1]);
+    request.height = std::stoi(parts[2]);
+    request.ndisp = params.ndisp;
+    request.window = params.window;
+    request.cost = params.cost;
+    request.lanes = options.lanes;
+    request.max_min_disp = options.max_min_disp >= 0
+                               ? options.max_min_disp
+                               : std::max(table::kDefaultMaxMinDisp, std::abs(params.min_disp));
+    request.lean = options.lean;
+    if (std::abs(params.min_disp) > request.max_min_disp) {
+        throw std::invalid_argument("--min-disp " + std::to_string(params.min_disp) +
+                                    " is beyond --max-min-disp " +
+                                    std::to_string(request.max_min_disp));
+    }
+    return request;
 }
 
 void run_cosim(const CosimOptions& options) {
@@ -94,8 +124,36 @@ void run_cosim(const CosimOptions& options) {
     const int width = pair.left.width;
     const int height = pair.left.height;
     model->validate(width, height);
-    const sim::TopConfig* config = sim::covering_config(width, height, params.ndisp, params.window,
-                                                        params.min_disp, params.cost);
+    const bool on_demand = !options.size.empty();
+    if (!on_demand && (options.lanes != 0 || options.max_min_disp != -1 || options.lean ||
+                       !options.cache.empty())) {
+        throw std::invalid_argument(
+            "--lanes, --max-min-disp, --lean and --cache choose a core built on demand: give "
+            "--size WxH too");
+    }
+    std::optional<sim::TopConfig> demanded;
+    std::filesystem::path runner;
+    if (on_demand) {
+        const sim::CoreRequest request = core_request(options, params);
+        demanded = sim::on_demand_config(request);
+        if (width > request.width || height > request.height) {
+            throw std::invalid_argument("the pair is " + std::to_string(width) + "x" +
+                                        std::to_string(height) + ", larger than --size " +
+                                        options.size);
+        }
+        if (options.reset_at >= width * height) {
+            throw std::invalid_argument("--reset-at must be below the frame's " +
+                                        std::to_string(width * height) + " beats");
+        }
+        runner = sim::ensure_runner(request,
+                                    options.cache.empty() ? sim::default_cache_folder()
+                                                          : std::filesystem::path(options.cache),
+                                    std::cerr);
+    }
+    const sim::TopConfig* config =
+        on_demand ? &*demanded
+                  : sim::covering_config(width, height, params.ndisp, params.window,
+                                         params.min_disp, params.cost);
     if (config == nullptr) {
         const sim::TopConfig& largest = params.cost == "lcdm"     ? sim::lcdm_top_config()
                                         : params.cost == "census" ? sim::census_top_config()
@@ -105,7 +163,7 @@ void run_cosim(const CosimOptions& options) {
             std::to_string(height) + " with ndisp " + std::to_string(params.ndisp) + ", window " +
             std::to_string(params.window) + " and min_disp " + std::to_string(params.min_disp) +
             "; the largest built is " + config_text(largest) +
-            " (use --downscale or --crop, or build with -DSTEREO_COSIM_FULL=ON)");
+            " (use --downscale or --crop, or --size WxH to build a core on demand)");
     }
 
     // Stage 6's full output: fixed disparity, reason and certainty of every pixel.
@@ -118,7 +176,7 @@ void run_cosim(const CosimOptions& options) {
     if (!options.trace.empty()) {
         trace_file.emplace(options.trace);
     }
-    auto sim = sim::make_top_sim(*config);
+    auto sim = on_demand ? sim::make_runner_sim(*config, runner) : sim::make_top_sim(*config);
     if (trace_file) {
         sim->trace_to(trace_file->path().string());
     }

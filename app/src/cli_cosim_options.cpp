@@ -34,6 +34,21 @@ void add_cosim_options(CLI::App& command, CosimOptions& options) {
     command.add_option("--trace", options.trace,
                        "Write an FST waveform of the run (TRACE.fst; other "
                        "extensions, .vcd included, are refused)");
+    command.add_option("--size", options.size,
+                       "Co-simulate a core of WIDTHxHEIGHT (with NDISP --ndisp, WINDOW --window, "
+                       "COST --cost) built on demand into the cache, instead of one of this "
+                       "build's configurations");
+    command.add_option("--lanes", options.lanes, "With --size: LANES, labels per clock (0: NDISP)")
+        ->capture_default_str();
+    command
+        .add_option("--max-min-disp", options.max_min_disp,
+                    "With --size: MAX_MIN_DISP (-1: 8, or |--min-disp| when larger)")
+        ->capture_default_str();
+    command.add_flag("--lean", options.lean,
+                     "With --size: the lean memory architecture (RECOMPUTE_COSTS = 1; ad, census)");
+    command.add_option("--cache", options.cache,
+                       "With --size: the folder of the built cores (default $STEREO_COSIM_CACHE, "
+                       "else ~/.cache/stereo/cosim)");
     command.add_flag("--json", options.json,
                      "Print one JSON object (mismatches, cycles, pixels, ...)");
 }

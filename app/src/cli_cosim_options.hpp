@@ -26,6 +26,12 @@ struct CosimOptions {
     bool json = false;
     int frames = 1;     // frames streamed, traffic seed + f for frame f
     int reset_at = -1;  // before every frame: this many beats of it, then a mid-frame reset
+    // A core built on demand (sim/on_demand.hpp) instead of a configuration of this build:
+    std::string size;       // WxH: the core's WIDTH x HEIGHT; given = on demand
+    int lanes = 0;          // LANES (0: NDISP)
+    int max_min_disp = -1;  // MAX_MIN_DISP (-1: 8, or |--min-disp| when larger)
+    bool lean = false;      // RECOMPUTE_COSTS = 1
+    std::string cache;      // the runners' folder (empty: sim::default_cache_folder())
 };
 
 // LEFT, RIGHT, the matcher options with stage 6 (ndisp 16 and window 5 by default: the smallest

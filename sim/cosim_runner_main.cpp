@@ -1,0 +1,125 @@
+// The main of a co-simulation runner built on demand (sim/on_demand.cpp): one Verilated
+// stereo_top of the requested parameters, driven by the requests of sim/cosim_protocol.hpp on
+// standard input, answered on standard output. It owns nothing but the model: the caller computes
+// the port values, the input beats and the golden model's answer.
+#include <verilated.h>
+#include <verilated_fst_c.h>
+
+#include <cstdio>
+#include <exception>
+#include <string>
+
+#include "Vstereo_top.h"
+#include "axis_driver.hpp"
+#include "cosim_protocol.hpp"
+#include "port_bits.hpp"
+#include "stereo/stage_table.hpp"
+#include "verilated_harness.hpp"
+
+namespace {
+
+using stereo::sim::VerilatedHarness;
+namespace protocol = stereo::sim::protocol;
+
+void idle_inputs(Vstereo_top& model) {
+    model.s_axis_tvalid = 0;
+    model.s_axis_tdata = 0;
+    model.s_axis_tlast = 0;
+    model.s_axis_tuser = 0;
+    model.m_axis_tready = 0;
+}
+
+void set_ports(Vstereo_top& model, const protocol::PortValues& p) {
+    model.cfg_width = p.width;
+    model.cfg_height = p.height;
+    model.cfg_ndisp = p.ndisp;
+    model.cfg_min_disp = p.min_disp;
+    model.cfg_use_ca = p.use_ca;
+    model.cfg_uniqueness_en = p.uniqueness_en;
+    model.cfg_uniqueness = p.uniqueness;
+    model.cfg_lr_en = p.lr_en;
+    model.cfg_lr_tolerance = p.lr_tolerance;
+    model.cfg_subpixel_en = p.subpixel_en;
+    model.cfg_radius = p.radius;
+    for (std::size_t i = 0; i < p.kernel.size(); ++i) {
+        stereo::sim::put_bits(model.cfg_kernel, static_cast<int>(i) * stereo::table::kTapBits,
+                              stereo::table::kTapBits, static_cast<std::uint64_t>(p.kernel[i]));
+    }
+}
+
+// One request; false at the end of input.
+bool serve(protocol::Channel& channel, VerilatedHarness<Vstereo_top>& harness) {
+    char tag = 0;
+    if (!channel.read_bytes(&tag, 1, true)) {
+        return false;
+    }
+    Vstereo_top& model = harness.model();
+    switch (tag) {
+        case protocol::kParams:
+            set_ports(model, protocol::get_ports(channel));
+            channel.put(protocol::kOk);
+            break;
+        case protocol::kReset:
+            idle_inputs(model);
+            model.rst = 1;
+            harness.tick();
+            harness.tick();
+            model.rst = 0;
+            channel.put(protocol::kOk);
+            break;
+        case protocol::kStream: {
+            const auto beats = protocol::get_beats(channel, std::uint64_t{1} << 30);
+            const auto expected = channel.get<std::uint64_t>();
+            stereo::sim::Traffic traffic;
+            traffic.input_gap = channel.get<double>();
+            traffic.output_stall = channel.get<double>();
+            traffic.seed = channel.get<std::uint32_t>();
+            const auto max_cycles = channel.get<std::uint64_t>();
+            stereo::sim::StreamResult result =
+                stereo::sim::stream_axis(harness, beats, expected, traffic, max_cycles);
+            idle_inputs(model);
+            result.status = model.status;
+            channel.put(protocol::kOk);
+            protocol::put_result(channel, result);
+            break;
+        }
+        case protocol::kTrace: {
+            const std::string path = channel.get_string(4096);
+            try {
+                harness.trace_to(path);
+                channel.put(protocol::kOk);
+            } catch (const std::exception& error) {
+                channel.put(protocol::kError);
+                channel.put_string(error.what());
+            }
+            break;
+        }
+        default:
+            throw std::runtime_error("co-simulation runner: unknown request " +
+                                     std::to_string(static_cast<int>(tag)));
+    }
+    channel.flush();
+    return true;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc == 2 && std::string(argv[1]) == "--protocol") {
+        std::printf("%d\n", protocol::kVersion);
+        return 0;
+    }
+    try {
+        VerilatedHarness<Vstereo_top> harness("stereo_top");
+        idle_inputs(harness.model());
+        harness.model().clk = 0;
+        harness.model().eval();
+        protocol::Channel channel(0, 1);
+        while (serve(channel, harness)) {
+        }
+        return 0;
+    } catch (const std::exception& error) {
+        std::fprintf(stderr, "stereo cosim runner: %s\n", error.what());
+        return 1;
+    }
+}

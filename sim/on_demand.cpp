@@ -1,0 +1,538 @@
+// Co-simulation on demand (on_demand.hpp): the cache of Verilated runners and the process that
+// drives one.
+#include "on_demand.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <chrono>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <optional>
+#include <ostream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+#include <thread>
+#include <vector>
+
+#include "cosim_protocol.hpp"
+#include "stereo/constants.hpp"
+#include "stereo/stage_table.hpp"
+
+extern char** environ;
+
+namespace stereo::sim {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Where the sources a runner is built from live: $STEREO_SOURCE_DIR, else the source tree this
+// tool was built from (STEREO_SOURCE_DIR, sim/CMakeLists.txt).
+fs::path source_root() {
+    if (const char* root = std::getenv("STEREO_SOURCE_DIR"); root != nullptr && *root != '\0') {
+        return root;
+    }
+    return STEREO_SOURCE_DIR;
+}
+
+int cost_parameter(const std::string& cost) {
+    if (cost == "ad") {
+        return table::kCostAd;
+    }
+    if (cost == "lcdm") {
+        return table::kCostLcdm;
+    }
+    if (cost == "census") {
+        return table::kCostCensus;
+    }
+    throw std::invalid_argument("cost must be ad, lcdm or census, got '" + cost + "'");
+}
+
+int lanes_of(const CoreRequest& request) {
+    return request.lanes == 0 ? request.ndisp : request.lanes;
+}
+
+std::string read_file(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        throw std::runtime_error("cosim: cannot read " + path.string() +
+                                 " (the runner is built from the project's sources; set "
+                                 "STEREO_SOURCE_DIR to the source tree)");
+    }
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// The RTL sources in rtl/files.f order (lines that are not comments).
+std::vector<fs::path> rtl_sources(const fs::path& rtl) {
+    std::istringstream list(read_file(rtl / "files.f"));
+    std::vector<fs::path> sources;
+    for (std::string line; std::getline(list, line);) {
+        if (!line.empty() && line[0] != '/') {
+            sources.push_back(rtl / line);
+        }
+    }
+    return sources;
+}
+
+// Every file the runner is built from, in a fixed order.
+std::vector<fs::path> runner_inputs(const fs::path& root) {
+    std::vector<fs::path> inputs = rtl_sources(root / "rtl");
+    std::vector<fs::path> headers;
+    for (const fs::path folder : {root / "rtl", root / "model" / "include" / "stereo"}) {
+        for (const auto& entry : fs::directory_iterator(folder)) {
+            const auto extension = entry.path().extension();
+            if (extension == ".svh" || extension == ".hpp") {
+                headers.push_back(entry.path());
+            }
+        }
+    }
+    std::sort(headers.begin(), headers.end());
+    inputs.insert(inputs.end(), headers.begin(), headers.end());
+    for (const char* name : {"cosim_runner_main.cpp", "cosim_protocol.hpp", "axis_driver.hpp",
+                             "verilated_harness.hpp", "port_bits.hpp", "stereo_top_sim.hpp"}) {
+        inputs.push_back(root / "sim" / name);
+    }
+    return inputs;
+}
+
+// FNV-1a, 64 bits: a cache key, not a security boundary.
+std::uint64_t fnv1a(std::uint64_t hash, const std::string& bytes) {
+    for (const char c : bytes) {
+        hash ^= static_cast<unsigned char>(c);
+        hash *= 1099511628211ULL;
+    }
+    return hash;
+}
+
+std::string verilator_program() {
+    const char* chosen = std::getenv("STEREO_VERILATOR");
+    return chosen != nullptr && *chosen != '\0' ? chosen : "verilator";
+}
+
+// Runs `argv` with stdout and stderr into `log` (or /dev/null), in `folder` when given; returns
+// the exit status, or -1 when the program could not be started.
+int run_program(const std::vector<std::string>& argv, const fs::path& log,
+                const std::vector<std::string>& extra_env = {}) {
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    const std::string log_path = log.empty() ? "/dev/null" : log.string();
+    posix_spawn_file_actions_addopen(&actions, 1, log_path.c_str(), O_WRONLY | O_CREAT | O_APPEND,
+                                     0644);
+    posix_spawn_file_actions_adddup2(&actions, 1, 2);
+    posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+    std::vector<char*> args;
+    for (const std::string& arg : argv) {
+        args.push_back(const_cast<char*>(arg.c_str()));
+    }
+    args.push_back(nullptr);
+    std::vector<std::string> env_strings(extra_env);
+    for (char** e = environ; *e != nullptr; ++e) {
+        env_strings.emplace_back(*e);
+    }
+    std::vector<char*> env;
+    for (std::string& entry : env_strings) {
+        env.push_back(entry.data());
+    }
+    env.push_back(nullptr);
+    pid_t pid = 0;
+    const int spawned = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), env.data());
+    posix_spawn_file_actions_destroy(&actions);
+    if (spawned != 0) {
+        return -1;
+    }
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0) {
+        if (errno != EINTR) {
+            return -1;
+        }
+    }
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+// The first line of `program --version`, empty when it does not run.
+std::string version_of(const std::string& program, const fs::path& scratch) {
+    const fs::path out = scratch / "version.txt";
+    std::error_code ignored;
+    fs::remove(out, ignored);
+    if (run_program({program, "--version"}, out) != 0) {
+        return {};
+    }
+    std::istringstream text(read_file(out));
+    std::string line;
+    std::getline(text, line);
+    fs::remove(out, ignored);
+    return line;
+}
+
+std::string last_line(const fs::path& log) {
+    std::ifstream in(log);
+    std::string line;
+    std::string last;
+    std::string error;
+    while (std::getline(in, line)) {
+        if (!line.empty()) {
+            last = line;
+            if (error.empty() && line.find("%Error") != std::string::npos) {
+                error = line;
+            }
+        }
+    }
+    return error.empty() ? last : error;
+}
+
+std::string describe(const CoreRequest& request) {
+    return std::to_string(request.width) + "x" + std::to_string(request.height) + ", " +
+           std::to_string(request.ndisp) + " labels, window " + std::to_string(request.window) +
+           ", cost " + request.cost + ", LANES " + std::to_string(lanes_of(request)) +
+           ", MAX_MIN_DISP " + std::to_string(request.max_min_disp) +
+           (request.lean ? ", lean memory" : "");
+}
+
+std::string folder_name(const CoreRequest& request) {
+    return std::to_string(request.width) + "x" + std::to_string(request.height) + "-n" +
+           std::to_string(request.ndisp) + "-w" + std::to_string(request.window) + "-" +
+           request.cost + "-l" + std::to_string(lanes_of(request)) + "-m" +
+           std::to_string(request.max_min_disp) + (request.lean ? "-lean" : "");
+}
+
+}  // namespace
+
+void check_request(const CoreRequest& r) {
+    const auto fail = [&r](const std::string& what) {
+        throw std::invalid_argument("co-simulation core " + std::to_string(r.width) + "x" +
+                                    std::to_string(r.height) + " / " + std::to_string(r.ndisp) +
+                                    " labels / window " + std::to_string(r.window) + ": " + what);
+    };
+    if (r.width < 1 || r.height < 1 || r.width > kMaxCoreSide || r.height > kMaxCoreSide) {
+        fail("the frame must be 1.." + std::to_string(kMaxCoreSide) +
+             " pixels on each side (the limit of the on-demand cache)");
+    }
+    if (r.ndisp < 1 || r.ndisp > kMaxCoreNdisp) {
+        fail("NDISP must be in 1.." + std::to_string(kMaxCoreNdisp));
+    }
+    if (r.window < 1 || r.window > fx::kMaxWindow || r.window % 2 == 0) {
+        fail("the window must be odd, 1.." + std::to_string(fx::kMaxWindow));
+    }
+    if (r.window > r.width || r.window > r.height) {
+        fail("the window is larger than the frame");
+    }
+    const int lanes = lanes_of(r);
+    if (lanes < 1 || lanes > r.ndisp || r.ndisp % lanes != 0) {
+        fail("LANES " + std::to_string(lanes) + " must divide NDISP " + std::to_string(r.ndisp));
+    }
+    if (r.max_min_disp < 0 || r.max_min_disp > fx::kMaxMinDisparity) {
+        fail("MAX_MIN_DISP must be in 0.." + std::to_string(fx::kMaxMinDisparity));
+    }
+    cost_parameter(r.cost);
+    if (r.lean && r.cost == "lcdm") {
+        fail("the lean memory architecture has no LCDM form (ad or census)");
+    }
+}
+
+TopConfig on_demand_config(const CoreRequest& request) {
+    check_request(request);
+    return {"on-demand " + folder_name(request),
+            request.width,
+            request.height,
+            request.ndisp,
+            request.window,
+            request.max_min_disp,
+            lanes_of(request),
+            cost_parameter(request.cost)};
+}
+
+fs::path default_cache_folder() {
+    if (const char* chosen = std::getenv("STEREO_COSIM_CACHE");
+        chosen != nullptr && *chosen != '\0') {
+        return chosen;
+    }
+    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg != nullptr && *xdg != '\0') {
+        return fs::path(xdg) / "stereo" / "cosim";
+    }
+    if (const char* home = std::getenv("HOME"); home != nullptr && *home != '\0') {
+        return fs::path(home) / ".cache" / "stereo" / "cosim";
+    }
+    return fs::temp_directory_path() / "stereo-cosim";
+}
+
+fs::path ensure_runner(const CoreRequest& request, const fs::path& cache, std::ostream& progress) {
+    check_request(request);
+    const fs::path root = source_root();
+    const std::vector<fs::path> inputs = runner_inputs(root);
+
+    std::error_code error;
+    fs::create_directories(cache, error);
+    if (error || !fs::is_directory(cache)) {
+        throw std::runtime_error("cosim: cannot use the cache folder " + cache.string() + " (" +
+                                 (error ? error.message() : "not a folder") + ")");
+    }
+    // A private scratch folder: everything of this build goes there and is renamed into place.
+    fs::path scratch =
+        cache / (".build-" + folder_name(request) + "-" + std::to_string(::getpid()));
+    fs::remove_all(scratch, error);
+    if (!fs::create_directory(scratch, error) || error) {
+        throw std::runtime_error("cosim: the cache folder " + cache.string() +
+                                 " is not writable (" +
+                                 (error ? error.message() : "cannot create a folder") + ")");
+    }
+    struct RemoveOnExit {
+        fs::path path;
+        ~RemoveOnExit() {
+            std::error_code ignored;
+            fs::remove_all(path, ignored);
+        }
+    } cleanup{scratch};
+
+    const std::string verilator = verilator_program();
+    const std::string version = version_of(verilator, scratch);
+    if (version.empty()) {
+        throw std::runtime_error("cosim: cannot run '" + verilator + " --version': Verilator " +
+                                 "is needed to build the core " + describe(request) +
+                                 " on demand (Debian: apt-get install verilator; or set " +
+                                 "STEREO_VERILATOR)");
+    }
+    std::uint64_t hash = 14695981039346656037ULL;
+    hash = fnv1a(hash, std::to_string(protocol::kVersion) + "\n" + folder_name(request) + "\n" +
+                           version + "\n");
+    for (const fs::path& input : inputs) {
+        hash = fnv1a(hash, input.filename().string() + "\n" + read_file(input));
+    }
+    char key[17];
+    std::snprintf(key, sizeof key, "%016llx", static_cast<unsigned long long>(hash));
+    const fs::path folder = cache / (folder_name(request) + "-" + key);
+    const fs::path runner = folder / "runner";
+    if (fs::is_regular_file(runner)) {
+        return runner;
+    }
+
+    progress << "cosim: building the Verilated core " << describe(request) << " into "
+             << folder.string() << " (first use of this configuration; a minute or more)"
+             << std::endl;
+    const auto start = std::chrono::steady_clock::now();
+    const fs::path log = scratch / "build.log";
+    const unsigned jobs = std::max(1U, std::thread::hardware_concurrency());
+    std::vector<std::string> argv = {verilator,
+                                     "--cc",
+                                     "--exe",
+                                     "--build",
+                                     "-j",
+                                     std::to_string(jobs),
+                                     "--Mdir",
+                                     (scratch / "obj").string(),
+                                     "-o",
+                                     (scratch / "runner").string(),
+                                     "-Wno-fatal",
+                                     "-Wno-lint",
+                                     "-Wno-style",
+                                     "--x-assign",
+                                     "fast",
+                                     "--x-initial",
+                                     "unique",
+                                     "-O3",
+                                     "--trace-fst",
+                                     "--top-module",
+                                     "stereo_top",
+                                     "--prefix",
+                                     "Vstereo_top",
+                                     "-GWIDTH=" + std::to_string(request.width),
+                                     "-GHEIGHT=" + std::to_string(request.height),
+                                     "-GNDISP=" + std::to_string(request.ndisp),
+                                     "-GWINDOW=" + std::to_string(request.window),
+                                     "-GLANES=" + std::to_string(lanes_of(request)),
+                                     "-GMAX_MIN_DISP=" + std::to_string(request.max_min_disp),
+                                     "-GCOST=" + std::to_string(cost_parameter(request.cost)),
+                                     "-GRECOMPUTE_COSTS=" + std::string(request.lean ? "1" : "0"),
+                                     "-I" + (root / "rtl").string(),
+                                     "-CFLAGS",
+                                     "-std=c++20 -O2 -I" + (root / "sim").string() + " -I" +
+                                         (root / "model" / "include").string()};
+    for (const fs::path& source : rtl_sources(root / "rtl")) {
+        argv.push_back(source.string());
+    }
+    argv.push_back((root / "sim" / "cosim_runner_main.cpp").string());
+    std::vector<std::string> env;
+    if (version_of("ccache", scratch).size() > 0) {
+        env.emplace_back("OBJCACHE=ccache");  // verilated.mk compiles through it
+    }
+    const int status = run_program(argv, log, env);
+    if (status != 0 || !fs::is_regular_file(scratch / "runner")) {
+        throw std::runtime_error(
+            "cosim: building the core " + describe(request) + " failed (" + verilator +
+            (status < 0 ? " could not start" : " exited with status " + std::to_string(status)) +
+            "): " + last_line(log));
+    }
+    // Only the runner is kept; the rename makes it visible whole.
+    const fs::path staged =
+        cache / (".ready-" + folder_name(request) + "-" + std::to_string(::getpid()));
+    fs::remove_all(staged, error);
+    fs::create_directory(staged, error);
+    fs::rename(scratch / "runner", staged / "runner", error);
+    if (!error) {
+        fs::rename(staged, folder, error);
+    }
+    if (error) {
+        std::error_code ignored;
+        fs::remove_all(staged, ignored);
+        if (!fs::is_regular_file(runner)) {  // another process may have put the same one there
+            throw std::runtime_error("cosim: cannot move the built core into " + folder.string() +
+                                     " (" + error.message() + ")");
+        }
+    }
+    progress << "cosim: built in "
+             << std::chrono::duration_cast<std::chrono::seconds>(std::chrono::steady_clock::now() -
+                                                                 start)
+                    .count()
+             << " s" << std::endl;
+    return runner;
+}
+
+namespace {
+
+// The runner as a child process; closing its input ends it.
+class RunnerSim final : public TopSim {
+  public:
+    RunnerSim(TopConfig config, const fs::path& runner) : config_(std::move(config)) {
+        // A runner that dies must turn into an error here, not a SIGPIPE of the tool.
+        struct sigaction ignore = {};
+        ignore.sa_handler = SIG_IGN;
+        sigaction(SIGPIPE, &ignore, nullptr);
+        std::array<int, 2> to_child{};
+        std::array<int, 2> from_child{};
+        if (::pipe2(to_child.data(), O_CLOEXEC) != 0) {
+            throw std::runtime_error("cosim: cannot create a pipe to the runner");
+        }
+        if (::pipe2(from_child.data(), O_CLOEXEC) != 0) {
+            ::close(to_child[0]);
+            ::close(to_child[1]);
+            throw std::runtime_error("cosim: cannot create a pipe from the runner");
+        }
+        posix_spawn_file_actions_t actions;
+        posix_spawn_file_actions_init(&actions);
+        posix_spawn_file_actions_adddup2(&actions, to_child[0], 0);
+        posix_spawn_file_actions_adddup2(&actions, from_child[1], 1);
+        const std::string path = runner.string();
+        char* argv[] = {const_cast<char*>(path.c_str()), nullptr};
+        const int spawned = posix_spawn(&pid_, path.c_str(), &actions, nullptr, argv, environ);
+        posix_spawn_file_actions_destroy(&actions);
+        ::close(to_child[0]);
+        ::close(from_child[1]);
+        write_fd_ = to_child[1];
+        read_fd_ = from_child[0];
+        if (spawned != 0) {
+            pid_ = -1;
+            close_pipes();
+            throw std::runtime_error("cosim: cannot start the runner " + path + " (" +
+                                     std::strerror(spawned) + ")");
+        }
+        channel_.emplace(read_fd_, write_fd_);
+    }
+    RunnerSim(const RunnerSim&) = delete;
+    RunnerSim& operator=(const RunnerSim&) = delete;
+    ~RunnerSim() override {
+        close_pipes();  // the runner sees the end of its input and exits
+        if (pid_ > 0) {
+            int status = 0;
+            while (waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+            }
+        }
+    }
+
+    const TopConfig& config() const override { return config_; }
+
+    void reset() override {
+        channel_->put(protocol::kReset);
+        request_ok();
+    }
+
+    void set_params(const CoreParams& params) override {
+        channel_->put(protocol::kParams);
+        protocol::put_ports(*channel_, port_values(config_, params));
+        request_ok();
+    }
+
+    StreamResult stream(const std::vector<InputBeat>& beats, std::size_t expected_outputs,
+                        const Traffic& traffic, std::uint64_t max_cycles) override {
+        channel_->put(protocol::kStream);
+        protocol::put_beats(*channel_, beats);
+        channel_->put(static_cast<std::uint64_t>(expected_outputs));
+        channel_->put(traffic.input_gap);
+        channel_->put(traffic.output_stall);
+        channel_->put(static_cast<std::uint32_t>(traffic.seed));
+        channel_->put(max_cycles);
+        request_ok();
+        return protocol::get_result(*channel_, expected_outputs);
+    }
+
+    void trace_to(const std::string& path) override {
+        check_trace_path(path);
+        channel_->put(protocol::kTrace);
+        channel_->put_string(path);
+        request_ok();
+    }
+
+  private:
+    void request_ok() {
+        try {
+            channel_->flush();
+            const auto reply = channel_->get<char>();
+            if (reply == protocol::kError) {
+                throw std::runtime_error(channel_->get_string());
+            }
+            if (reply != protocol::kOk) {
+                throw std::runtime_error("cosim: unexpected reply from the runner");
+            }
+        } catch (const std::runtime_error&) {
+            if (!runner_alive()) {
+                throw std::runtime_error("cosim: the co-simulation runner of '" + config_.name +
+                                         "' ended unexpectedly");
+            }
+            throw;
+        }
+    }
+
+    bool runner_alive() {
+        if (pid_ <= 0) {
+            return false;
+        }
+        int status = 0;
+        if (waitpid(pid_, &status, WNOHANG) == pid_) {
+            pid_ = -1;
+            return false;
+        }
+        return true;
+    }
+
+    void close_pipes() {
+        for (int* fd : {&write_fd_, &read_fd_}) {
+            if (*fd >= 0) {
+                ::close(*fd);
+                *fd = -1;
+            }
+        }
+    }
+
+    TopConfig config_;
+    pid_t pid_ = -1;
+    int write_fd_ = -1;
+    int read_fd_ = -1;
+    std::optional<protocol::Channel> channel_;
+};
+
+}  // namespace
+
+std::unique_ptr<TopSim> make_runner_sim(const TopConfig& config, const fs::path& runner) {
+    return std::make_unique<RunnerSim>(config, runner);
+}
+
+}  // namespace stereo::sim
