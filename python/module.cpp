@@ -2,8 +2,11 @@
 // co-simulation of the Verilated RTL on numpy arrays (docs/python.md). Images are uint8 arrays
 // of shape (H, W) or (H, W, 3) in RGB order (the model's); results are dicts of numpy arrays
 // that own the C++ buffers they came from (no copy on the way out).
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
+#include <iostream>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -26,6 +29,8 @@
 #include "stereo_io/output.hpp"
 #include "stereo_robot/decision.hpp"
 #ifdef STEREO_WITH_RTL
+#include "on_demand.hpp"
+#include "stereo/stage_table.hpp"
 #include "stereo_top_sim.hpp"
 #endif
 
@@ -265,8 +270,11 @@ const stereo::sparse::Params kSparse{};
 
 // One frame through the smallest built stereo_top that covers it, with random input gaps and
 // output stalls, compared pixel by pixel with the model (fixed, reason, certainty).
+// With `core` (stereo.cosim(..., size=(W, H))): that core, Verilated on demand into `cache`
+// (sim/on_demand.hpp), instead of a configuration of this build.
 py::dict cosim(const py::array& left, const py::array& right, const MatchOptions& options,
-               double stall, double gap, std::uint32_t seed, const std::string& trace) {
+               double stall, double gap, std::uint32_t seed, const std::string& trace,
+               const std::optional<stereo::sim::CoreRequest>& core, const std::string& cache) {
     const Image l = to_image(left, "left");
     const Image r = to_image(right, "right");
     const stereo::MatchParams& params = options.config.pipeline;
@@ -275,8 +283,26 @@ py::dict cosim(const py::array& left, const py::array& right, const MatchOptions
     if (l.width != r.width || l.height != r.height) {
         throw std::invalid_argument("left and right differ in size");
     }
-    const stereo::sim::TopConfig* config = stereo::sim::covering_config(
-        l.width, l.height, params.ndisp, params.window, params.min_disp, params.cost);
+    std::optional<stereo::sim::TopConfig> demanded;
+    std::filesystem::path runner;
+    if (core) {
+        demanded = stereo::sim::on_demand_config(*core);
+        if (l.width > core->width || l.height > core->height) {
+            throw std::invalid_argument("the pair is larger than size");
+        }
+        if (std::abs(params.min_disp) > core->max_min_disp) {
+            throw std::invalid_argument("min_disp is beyond max_min_disp");
+        }
+        py::gil_scoped_release release;
+        runner = stereo::sim::ensure_runner(
+            *core,
+            cache.empty() ? stereo::sim::default_cache_folder() : std::filesystem::path(cache),
+            std::cerr);
+    }
+    const stereo::sim::TopConfig* config =
+        core ? &*demanded
+             : stereo::sim::covering_config(l.width, l.height, params.ndisp, params.window,
+                                            params.min_disp, params.cost);
     if (config == nullptr) {
         throw std::invalid_argument(
             "no built co-simulation configuration covers this pair and "
@@ -294,7 +320,8 @@ py::dict cosim(const py::array& left, const py::array& right, const MatchOptions
             stereo::sim::check_trace_path(trace);
             trace_file.emplace(trace);
         }
-        auto top = stereo::sim::make_top_sim(*config);
+        auto top = core ? stereo::sim::make_runner_sim(*config, runner)
+                        : stereo::sim::make_top_sim(*config);
         if (trace_file) {
             top->trace_to(trace_file->path().string());
         }
@@ -423,21 +450,43 @@ PYBIND11_MODULE(stereo, m) {
         [](const py::array& left, const py::array& right, int ndisp, int window, double sigma,
            bool ca, const std::string& cost, int min_disp, std::optional<int> uniqueness,
            std::optional<int> lr_check, bool subpixel, double stall, double gap, std::uint32_t seed,
-           const std::string& trace) {
+           const std::string& trace, std::optional<std::pair<int, int>> size, int lanes,
+           std::optional<int> max_min_disp, bool lean, const std::string& cache) {
+            std::optional<stereo::sim::CoreRequest> core;
+            if (size) {
+                core.emplace();
+                core->width = size->first;
+                core->height = size->second;
+                core->ndisp = ndisp;
+                core->window = window;
+                core->cost = cost;
+                core->lanes = lanes;
+                core->max_min_disp = max_min_disp.value_or(
+                    std::max(stereo::table::kDefaultMaxMinDisp, std::abs(min_disp)));
+                core->lean = lean;
+            } else if (lanes != 0 || max_min_disp || lean || !cache.empty()) {
+                throw std::invalid_argument(
+                    "lanes, max_min_disp, lean and cache choose a core built on demand: give "
+                    "size=(width, height) too");
+            }
             return cosim(left, right,
                          match_options("pipeline", "model", ndisp, window, sigma, ca, cost,
                                        min_disp, uniqueness, lr_check, subpixel, 0, "horizontal",
                                        kEdges.log_window, kEdges.log_sigma, kEdges.edge_value,
                                        kEdges.truncation, kSparse.uniqueness, kSparse.lr_tolerance),
-                         stall, gap, seed, trace);
+                         stall, gap, seed, trace, core, cache);
         },
         py::arg("left"), py::arg("right"), py::kw_only(), py::arg("ndisp") = 16,
         py::arg("window") = 5, py::arg("sigma") = defaults.sigma, py::arg("ca") = true,
         py::arg("cost") = "ad", py::arg("min_disp") = 0, py::arg("uniqueness") = py::none(),
         py::arg("lr_check") = py::none(), py::arg("subpixel") = false, py::arg("stall") = 0.0,
         py::arg("gap") = 0.0, py::arg("seed") = 1u, py::arg("trace") = "",
+        py::arg("size") = py::none(), py::arg("lanes") = 0, py::arg("max_min_disp") = py::none(),
+        py::arg("lean") = false, py::arg("cache") = "",
         "Stream the pair through the Verilated stereo_top (random output stalls and input gaps) "
         "and compare it with the model: dict with mismatches, cycles, config and the RTL's "
-        "stage-6 arrays.");
+        "stage-6 arrays. size=(W, H) (with lanes, max_min_disp, lean, cache) co-simulates a core "
+        "of that size, ndisp, window and cost Verilated on demand into the cache "
+        "(~/.cache/stereo/cosim) the first time.");
 #endif
 }

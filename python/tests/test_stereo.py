@@ -293,3 +293,24 @@ def test_cosim_equals_model_under_stalls():
     assert np.array_equal(result["reason"], model["reason"])
     assert result["cycles"] >= 64 * 48
     assert result["config"] in stereo.cosim_configs()
+
+
+def test_cosim_on_demand_core_equals_model(tmp_path):
+    """size=: a core this build does not have (48x32, 8 labels 4 per clock, window 3), Verilated
+    into an empty cache on first use, bit-exact with the model under stalls."""
+    left, right = shifted_pair(width=48, height=32, shift=3)
+    options = dict(ndisp=8, window=3, uniqueness=10, lr_check=1, subpixel=True)
+    result = stereo.cosim(left, right, **options, stall=0.3, gap=0.2, seed=SEED, size=(48, 32),
+                          lanes=4, cache=str(tmp_path))
+    assert result["config"] == "on-demand 48x32-n8-w3-ad-l4-m8"
+    assert result["config"] not in stereo.cosim_configs()
+    assert result["mismatches"] == 0
+    model = stereo.match(left, right, **options)
+    assert np.array_equal(result["fixed"], model["fixed"])
+    assert np.array_equal(result["reason"], model["reason"])
+    assert np.count_nonzero(result["reason"] == 0) > 48 * 32 // 2
+    assert len([p for p in tmp_path.iterdir() if not p.name.startswith(".")]) == 1
+    with pytest.raises(ValueError, match="LANES 3 must divide NDISP 8"):
+        stereo.cosim(left, right, ndisp=8, window=3, size=(48, 32), lanes=3, cache=str(tmp_path))
+    with pytest.raises(ValueError, match="give size"):
+        stereo.cosim(left, right, ndisp=8, window=3, lanes=4)
