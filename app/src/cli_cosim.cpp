@@ -167,7 +167,10 @@ void run_cosim(const CosimOptions& options) {
     }
 
     // Stage 6's full output: fixed disparity, reason and certainty of every pixel.
+    const auto model_start = std::chrono::steady_clock::now();
     const ValidatedDisparity expected = model->compute(pair.left, pair.right).validated;
+    const double model_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - model_start).count();
 
     // The waveform goes to a temporary file beside the destination and replaces it only once
     // the run is over and the tracer closed (io::StagedOutput): a failed or killed run leaves an
@@ -284,6 +287,9 @@ void run_cosim(const CosimOptions& options) {
             {"status", result.status},
             {"sim_seconds", seconds},
             {"sim_cycles_per_second", total_cycles / seconds},
+            // The golden model's time for one frame, and the RTL's per frame against it.
+            {"model_seconds", model_seconds},
+            {"sim_to_model_time", seconds / options.frames / model_seconds},
         });
         std::cout << io::versioned(summary).dump() << '\n';
     } else {
