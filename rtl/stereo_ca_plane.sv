@@ -182,7 +182,13 @@ module stereo_ca_plane #(
           // sum * MEAN9_MUL with MEAN9_MUL = 29127 = 7 * (2^12 + 2^6 + 1): three adders instead
           // of one per set bit (nine), exactly the same integer (checked at elaboration below).
           sum7 = (32'(sum) << 3) - 32'(sum);
+`ifdef STEREO_TEST_BREAK_RULE1_ROUNDING
+          // Test hook, never defined in a real build: rounds the mean down instead of to the
+          // nearest, a known culprit for the co-simulation's stage localisation (docs/gtkwave.md).
+          product = sum7 + (sum7 << 6) + (sum7 << 12);
+`else
           product = sum7 + (sum7 << 6) + (sum7 << 12) + 32'(1 << (fx_pkg::MEAN9_SHIFT - 1));
+`endif
           result[d*BITS +: BITS] = (cfg_use_ca && (below_agrees || above_agrees))
                                        ? BITS'(product >> fx_pkg::MEAN9_SHIFT) : centre;
         end
@@ -202,8 +208,13 @@ module stereo_ca_plane #(
           // centre * DIV13_MUL with DIV13_MUL = 100825 = 25 * (2^12 - 2^6 + 1): four adders
           // instead of one per set bit (nine), the same integer (checked at elaboration below).
           centre25 = (32'(centre) << 4) + (32'(centre) << 3) + 32'(centre);
+`ifdef STEREO_TEST_BREAK_RULE2_ROUNDING
+          // Test hook, never defined in a real build: the quotient rounded down (see rule 1's).
+          product = (centre25 << 12) - (centre25 << 6) + centre25;
+`else
           product = (centre25 << 12) - (centre25 << 6) + centre25 +
                     32'(1 << (fx_pkg::DIV13_SHIFT - 1));
+`endif
           result[d*BITS +: BITS] = (cfg_use_ca && $signed(32'(count)) >= fx_pkg::RULE2_MIN_COUNT)
                                        ? BITS'(product >> fx_pkg::DIV13_SHIFT) : centre;
         end

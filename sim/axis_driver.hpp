@@ -17,10 +17,15 @@ namespace stereo::sim {
 // Streams `beats` (possibly several frames back to back) and collects `expected_outputs` output
 // beats, or stops after `max_cycles`. The cycle count starts at the first accepted input beat.
 // Leaves the stream inputs as they were in the last cycle; `status` is not read.
-template <typename Model>
+// `after_edge(model)` runs after every rising edge (the co-simulation runner's stage probes).
+struct NoProbe {
+    template <typename Model>
+    void operator()(const Model&) const {}
+};
+template <typename Model, typename AfterEdge = NoProbe>
 StreamResult stream_axis(VerilatedHarness<Model>& harness, const std::vector<InputBeat>& beats,
                          std::size_t expected_outputs, const Traffic& traffic,
-                         std::uint64_t max_cycles) {
+                         std::uint64_t max_cycles, AfterEdge&& after_edge = {}) {
     Model& model = harness.model();
     StreamResult result;
     std::mt19937 rng(traffic.seed);
@@ -77,6 +82,7 @@ StreamResult stream_axis(VerilatedHarness<Model>& harness, const std::vector<Inp
         model.clk = 1;
         model.eval();
         harness.dump();
+        after_edge(model);
         if (!started) {
             --cycle;  // count from the first accepted beat
         }

@@ -9,11 +9,15 @@
 //   'R'                                    two reset cycles          -> 'K'
 //   'S' beats, expected, traffic, limit    stream                    -> 'K' StreamResult
 //   'T' path                               FST trace from now on     -> 'K'
+//   'W' pixels                             watch these pixels' stage outputs in the next
+//                                          streams (probe runners only) -> 'K'
+//   'G'                                    what the watched pixels got -> 'K' StageProbes
 // A reply 'E' carries an error message instead.
 #pragma once
 
 #include <unistd.h>
 
+#include <array>
 #include <cerrno>
 #include <cstdint>
 #include <cstring>
@@ -33,6 +37,8 @@ enum Tag : char {
     kReset = 'R',
     kStream = 'S',
     kTrace = 'T',
+    kWatch = 'W',
+    kGetProbes = 'G',
     kOk = 'K',
     kError = 'E',
 };
@@ -209,6 +215,59 @@ inline StreamResult get_result(Channel& channel, std::uint64_t limit) {
     result.completed = channel.get<std::uint8_t>() != 0;
     result.protocol_error = channel.get_string();
     return result;
+}
+
+// The stages a probe runner watches, in pipeline order (stereo_top's signals agg_*, rule1_* and
+// wta_in_* / rule2_data: each label's value at the stage's output for the pixel).
+inline constexpr const char* kProbedStages[] = {"aggregate", "ca_rule1", "ca_rule2"};
+inline constexpr int kProbedStageCount = 3;
+
+// What one watched pixel got from each probed stage: `seen` false when the stage's output never
+// showed the pixel; values per label otherwise.
+struct PixelProbe {
+    int x = 0;
+    int y = 0;
+    std::array<bool, kProbedStageCount> seen{};
+    std::array<std::vector<std::uint16_t>, kProbedStageCount> values;
+};
+
+inline void put_probes(Channel& channel, const std::vector<PixelProbe>& probes) {
+    channel.put(static_cast<std::uint32_t>(probes.size()));
+    for (const PixelProbe& probe : probes) {
+        channel.put(static_cast<std::int32_t>(probe.x));
+        channel.put(static_cast<std::int32_t>(probe.y));
+        for (int stage = 0; stage < kProbedStageCount; ++stage) {
+            channel.put(static_cast<std::uint8_t>(probe.seen[stage] ? 1 : 0));
+            channel.put(static_cast<std::uint32_t>(probe.values[stage].size()));
+            for (const std::uint16_t value : probe.values[stage]) {
+                channel.put(value);
+            }
+        }
+    }
+}
+
+inline std::vector<PixelProbe> get_probes(Channel& channel) {
+    const auto count = channel.get<std::uint32_t>();
+    if (count > 4096) {
+        throw std::runtime_error("co-simulation runner: too many probed pixels");
+    }
+    std::vector<PixelProbe> probes(count);
+    for (PixelProbe& probe : probes) {
+        probe.x = channel.get<std::int32_t>();
+        probe.y = channel.get<std::int32_t>();
+        for (int stage = 0; stage < kProbedStageCount; ++stage) {
+            probe.seen[stage] = channel.get<std::uint8_t>() != 0;
+            const auto labels = channel.get<std::uint32_t>();
+            if (labels > 4096) {
+                throw std::runtime_error("co-simulation runner: too many probed labels");
+            }
+            probe.values[stage].resize(labels);
+            for (std::uint16_t& value : probe.values[stage]) {
+                value = channel.get<std::uint16_t>();
+            }
+        }
+    }
+    return probes;
 }
 
 }  // namespace stereo::sim::protocol

@@ -8,13 +8,29 @@
 #include <cstdio>
 #include <exception>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "Vstereo_top.h"
 #include "axis_driver.hpp"
 #include "cosim_protocol.hpp"
 #include "port_bits.hpp"
+#include "stereo/constants.hpp"
 #include "stereo/stage_table.hpp"
 #include "verilated_harness.hpp"
+
+// Set by on_demand.cpp for a probe build (--public-flat-rw); STEREO_PROBE_NDISP is NDISP.
+#ifndef STEREO_RUNNER_PROBES
+#define STEREO_RUNNER_PROBES 0
+#endif
+#ifndef STEREO_PROBE_NDISP
+#define STEREO_PROBE_NDISP 1
+#endif
+
+#if STEREO_RUNNER_PROBES
+// A probe build (--public-flat-rw): stereo_top's internal signals are members of the root.
+#include "Vstereo_top___024root.h"
+#endif
 
 namespace {
 
@@ -47,8 +63,52 @@ void set_ports(Vstereo_top& model, const protocol::PortValues& p) {
     }
 }
 
+// The stage outputs of the watched pixels (probe builds; LANES = NDISP, so each stage's registered
+// output holds all labels of one pixel, with that pixel's coordinates beside it).
+class StageProbes {
+  public:
+    void watch(std::vector<protocol::PixelProbe> pixels) { probes_ = std::move(pixels); }
+    const std::vector<protocol::PixelProbe>& probes() const { return probes_; }
+
+    void operator()([[maybe_unused]] const Vstereo_top& model) {
+#if STEREO_RUNNER_PROBES
+        if (probes_.empty()) {
+            return;
+        }
+        const auto* root = model.rootp;
+        sample(0, root->stereo_top__DOT__agg_x, root->stereo_top__DOT__agg_y,
+               root->stereo_top__DOT__agg_data);
+        sample(1, root->stereo_top__DOT__rule1_x, root->stereo_top__DOT__rule1_y,
+               root->stereo_top__DOT__rule1_data);
+        sample(2, root->stereo_top__DOT__wta_in_x, root->stereo_top__DOT__wta_in_y,
+               root->stereo_top__DOT__rule2_data);
+#endif
+    }
+
+  private:
+    template <typename Data>
+    void sample(int stage, std::uint16_t x_port, std::uint16_t y_port, const Data& data) {
+        const int x = static_cast<std::int16_t>(x_port);
+        const int y = static_cast<std::int16_t>(y_port);
+        for (protocol::PixelProbe& probe : probes_) {
+            if (!probe.seen[stage] && probe.x == x && probe.y == y) {
+                probe.seen[stage] = true;
+                auto& values = probe.values[stage];
+                values.resize(STEREO_PROBE_NDISP);
+                for (int k = 0; k < STEREO_PROBE_NDISP; ++k) {
+                    values[k] = static_cast<std::uint16_t>(stereo::sim::get_bits(
+                        data, k * stereo::fx::kAggBits, stereo::fx::kAggBits));
+                }
+            }
+        }
+    }
+
+    std::vector<protocol::PixelProbe> probes_;
+};
+
 // One request; false at the end of input.
-bool serve(protocol::Channel& channel, VerilatedHarness<Vstereo_top>& harness) {
+bool serve(protocol::Channel& channel, VerilatedHarness<Vstereo_top>& harness,
+           StageProbes& probes) {
     char tag = 0;
     if (!channel.read_bytes(&tag, 1, true)) {
         return false;
@@ -76,7 +136,7 @@ bool serve(protocol::Channel& channel, VerilatedHarness<Vstereo_top>& harness) {
             traffic.seed = channel.get<std::uint32_t>();
             const auto max_cycles = channel.get<std::uint64_t>();
             stereo::sim::StreamResult result =
-                stereo::sim::stream_axis(harness, beats, expected, traffic, max_cycles);
+                stereo::sim::stream_axis(harness, beats, expected, traffic, max_cycles, probes);
             idle_inputs(model);
             result.status = model.status;
             channel.put(protocol::kOk);
@@ -94,6 +154,29 @@ bool serve(protocol::Channel& channel, VerilatedHarness<Vstereo_top>& harness) {
             }
             break;
         }
+        case protocol::kWatch: {
+            const auto count = channel.get<std::uint32_t>();
+            if (count > 4096) {
+                throw std::runtime_error("co-simulation runner: too many pixels to watch");
+            }
+            std::vector<protocol::PixelProbe> pixels(count);
+            for (protocol::PixelProbe& pixel : pixels) {
+                pixel.x = channel.get<std::int32_t>();
+                pixel.y = channel.get<std::int32_t>();
+            }
+            if (STEREO_RUNNER_PROBES) {
+                probes.watch(std::move(pixels));
+                channel.put(protocol::kOk);
+            } else {
+                channel.put(protocol::kError);
+                channel.put_string("this runner was built without stage probes");
+            }
+            break;
+        }
+        case protocol::kGetProbes:
+            channel.put(protocol::kOk);
+            protocol::put_probes(channel, probes.probes());
+            break;
         default:
             throw std::runtime_error("co-simulation runner: unknown request " +
                                      std::to_string(static_cast<int>(tag)));
@@ -115,7 +198,8 @@ int main(int argc, char** argv) {
         harness.model().clk = 0;
         harness.model().eval();
         protocol::Channel channel(0, 1);
-        while (serve(channel, harness)) {
+        StageProbes probes;
+        while (serve(channel, harness, probes)) {
         }
         return 0;
     } catch (const std::exception& error) {

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cstdint>
@@ -206,6 +207,33 @@ std::string folder_name(const CoreRequest& request) {
            std::to_string(request.max_min_disp) + (request.lean ? "-lean" : "");
 }
 
+// $STEREO_COSIM_DEFINES: macro names for the RTL (the test hooks), checked.
+std::vector<std::string> rtl_defines() {
+    std::vector<std::string> names;
+    const char* text = std::getenv("STEREO_COSIM_DEFINES");
+    if (text == nullptr) {
+        return names;
+    }
+    std::istringstream words(text);
+    for (std::string name; words >> name;) {
+        const bool valid = (std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_') &&
+                           std::all_of(name.begin(), name.end(), [](char c) {
+                               return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+                           });
+        if (!valid) {
+            throw std::invalid_argument("STEREO_COSIM_DEFINES: '" + name + "' is not a macro name");
+        }
+        names.push_back(name);
+    }
+    return names;
+}
+
+// The cache folder's name: the configuration, then what else changes the runner.
+std::string entry_name(const CoreRequest& request, const std::vector<std::string>& defines) {
+    return folder_name(request) + (request.probes ? "-probes" : "") +
+           (defines.empty() ? "" : "-defines");
+}
+
 }  // namespace
 
 void check_request(const CoreRequest& r) {
@@ -235,6 +263,9 @@ void check_request(const CoreRequest& r) {
         fail("MAX_MIN_DISP must be in 0.." + std::to_string(fx::kMaxMinDisparity));
     }
     cost_parameter(r.cost);
+    if (r.probes && lanes != r.ndisp) {
+        fail("stage probes need every label in one clock (LANES = NDISP)");
+    }
     if (r.lean && r.cost == "lcdm") {
         fail("the lean memory architecture has no LCDM form (ad or census)");
     }
@@ -268,6 +299,7 @@ fs::path default_cache_folder() {
 
 fs::path ensure_runner(const CoreRequest& request, const fs::path& cache, std::ostream& progress) {
     check_request(request);
+    const std::vector<std::string> defines = rtl_defines();
     const fs::path root = source_root();
     const std::vector<fs::path> inputs = runner_inputs(root);
 
@@ -279,7 +311,7 @@ fs::path ensure_runner(const CoreRequest& request, const fs::path& cache, std::o
     }
     // A private scratch folder: everything of this build goes there and is renamed into place.
     fs::path scratch =
-        cache / (".build-" + folder_name(request) + "-" + std::to_string(::getpid()));
+        cache / (".build-" + entry_name(request, defines) + "-" + std::to_string(::getpid()));
     fs::remove_all(scratch, error);
     if (!fs::create_directory(scratch, error) || error) {
         throw std::runtime_error("cosim: the cache folder " + cache.string() +
@@ -303,20 +335,26 @@ fs::path ensure_runner(const CoreRequest& request, const fs::path& cache, std::o
                                  "STEREO_VERILATOR)");
     }
     std::uint64_t hash = 14695981039346656037ULL;
-    hash = fnv1a(hash, std::to_string(protocol::kVersion) + "\n" + folder_name(request) + "\n" +
-                           version + "\n");
+    std::string defines_text;
+    for (const std::string& name : defines) {
+        defines_text += name + " ";
+    }
+    hash = fnv1a(hash, std::to_string(protocol::kVersion) + "\n" + entry_name(request, defines) +
+                           "\n" + version + "\n" + defines_text + "\n");
     for (const fs::path& input : inputs) {
         hash = fnv1a(hash, input.filename().string() + "\n" + read_file(input));
     }
     char key[17];
     std::snprintf(key, sizeof key, "%016llx", static_cast<unsigned long long>(hash));
-    const fs::path folder = cache / (folder_name(request) + "-" + key);
+    const fs::path folder = cache / (entry_name(request, defines) + "-" + key);
     const fs::path runner = folder / "runner";
     if (fs::is_regular_file(runner)) {
         return runner;
     }
 
-    progress << "cosim: building the Verilated core " << describe(request) << " into "
+    progress << "cosim: building the Verilated core " << describe(request)
+             << (request.probes ? " with stage probes" : "")
+             << (defines.empty() ? "" : " with " + defines_text + "defined") << " into "
              << folder.string() << " (first use of this configuration; a minute or more)"
              << std::endl;
     const auto start = std::chrono::steady_clock::now();
@@ -357,6 +395,15 @@ fs::path ensure_runner(const CoreRequest& request, const fs::path& cache, std::o
                                      "-CFLAGS",
                                      "-std=c++20 -O2 -I" + (root / "sim").string() + " -I" +
                                          (root / "model" / "include").string()};
+    if (request.probes) {
+        argv.emplace_back("--public-flat-rw");
+        argv.emplace_back("-CFLAGS");
+        argv.emplace_back("-DSTEREO_RUNNER_PROBES=1 -DSTEREO_PROBE_NDISP=" +
+                          std::to_string(request.ndisp));
+    }
+    for (const std::string& name : defines) {
+        argv.push_back("+define+" + name);
+    }
     for (const fs::path& source : rtl_sources(root / "rtl")) {
         argv.push_back(source.string());
     }
@@ -374,7 +421,7 @@ fs::path ensure_runner(const CoreRequest& request, const fs::path& cache, std::o
     }
     // Only the runner is kept; the rename makes it visible whole.
     const fs::path staged =
-        cache / (".ready-" + folder_name(request) + "-" + std::to_string(::getpid()));
+        cache / (".ready-" + entry_name(request, defines) + "-" + std::to_string(::getpid()));
     fs::remove_all(staged, error);
     fs::create_directory(staged, error);
     fs::rename(scratch / "runner", staged / "runner", error);
@@ -481,6 +528,25 @@ class RunnerSim final : public TopSim {
         request_ok();
     }
 
+    std::vector<protocol::PixelProbe> probe(const std::vector<InputBeat>& beats,
+                                            const std::vector<std::pair<int, int>>& pixels) {
+        channel_->put(protocol::kWatch);
+        channel_->put(static_cast<std::uint32_t>(pixels.size()));
+        for (const auto& [x, y] : pixels) {
+            channel_->put(static_cast<std::int32_t>(x));
+            channel_->put(static_cast<std::int32_t>(y));
+        }
+        request_ok();
+        const StreamResult result =
+            stream(beats, beats.size(), Traffic{}, 100 * beats.size() + 100000);
+        if (!result.completed) {
+            throw std::runtime_error("cosim: the probe run stalled");
+        }
+        channel_->put(protocol::kGetProbes);
+        request_ok();
+        return protocol::get_probes(*channel_);
+    }
+
   private:
     void request_ok() {
         try {
@@ -533,6 +599,31 @@ class RunnerSim final : public TopSim {
 
 std::unique_ptr<TopSim> make_runner_sim(const TopConfig& config, const fs::path& runner) {
     return std::make_unique<RunnerSim>(config, runner);
+}
+
+std::vector<std::string> probed_stages() {
+    return {std::begin(protocol::kProbedStages), std::end(protocol::kProbedStages)};
+}
+
+std::vector<PixelStages> probe_stages(CoreRequest request, const fs::path& cache,
+                                      const CoreParams& params, const std::vector<InputBeat>& beats,
+                                      const std::vector<std::pair<int, int>>& pixels,
+                                      std::ostream& progress) {
+    request.probes = true;
+    const fs::path runner = ensure_runner(request, cache, progress);
+    RunnerSim sim(on_demand_config(request), runner);
+    sim.reset();
+    sim.set_params(params);
+    std::vector<PixelStages> out;
+    for (const protocol::PixelProbe& probe : sim.probe(beats, pixels)) {
+        PixelStages pixel{probe.x, probe.y, {}, {}};
+        for (int stage = 0; stage < protocol::kProbedStageCount; ++stage) {
+            pixel.seen.push_back(probe.seen[stage]);
+            pixel.values.push_back(probe.values[stage]);
+        }
+        out.push_back(std::move(pixel));
+    }
+    return out;
 }
 
 }  // namespace stereo::sim

@@ -8,6 +8,8 @@
 #include <iosfwd>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "stereo_top_sim.hpp"
 
@@ -23,6 +25,9 @@ struct CoreRequest {
     int lanes = 0;            // 0: NDISP (every label in one clock)
     int max_min_disp = 8;     // largest |cfg_min_disp|
     bool lean = false;        // RECOMPUTE_COSTS = 1 (ad and census only)
+    // A probe build: the stage outputs readable (Verilator --public-flat-rw) for probe_stages();
+    // needs LANES = NDISP. A separate cache entry from the plain runner.
+    bool probes = false;
 };
 
 // Limits of a request (the cache keeps one runner per configuration; these bound its size).
@@ -44,8 +49,26 @@ std::filesystem::path default_cache_folder();
 // failed or interrupted build leaves nothing a later run would use; it throws std::runtime_error
 // with the failing step (Verilator absent, the cache not writable, the build failing).
 // $STEREO_VERILATOR names the verilator program (default: verilator on the PATH).
+// $STEREO_COSIM_DEFINES (macro names, space-separated) are defined for the RTL: the test hooks
+// STEREO_TEST_BREAK_RULE1_ROUNDING / _RULE2_ROUNDING of stereo_ca_plane break one stage on
+// purpose (tests of the localisation); they are part of the cache key.
 std::filesystem::path ensure_runner(const CoreRequest& request, const std::filesystem::path& cache,
                                     std::ostream& progress);
+
+// What the probed stages gave the watched pixels: the probe build of `request` streams `beats`
+// (one frame, configured by `params`) without stalls. Throws std::invalid_argument unless
+// LANES = NDISP.
+struct PixelStages {
+    int x = 0;
+    int y = 0;
+    std::vector<bool> seen;                          // per probed stage
+    std::vector<std::vector<std::uint16_t>> values;  // per probed stage, per label
+};
+std::vector<std::string> probed_stages();  // aggregate, ca_rule1, ca_rule2
+std::vector<PixelStages> probe_stages(CoreRequest request, const std::filesystem::path& cache,
+                                      const CoreParams& params, const std::vector<InputBeat>& beats,
+                                      const std::vector<std::pair<int, int>>& pixels,
+                                      std::ostream& progress);
 
 // A TopSim that drives a runner process (ensure_runner's path) over pipes.
 std::unique_ptr<TopSim> make_runner_sim(const TopConfig& config,

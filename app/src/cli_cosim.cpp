@@ -11,9 +11,12 @@
 #include <regex>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
 
 #include "cli.hpp"
 #include "cli_command.hpp"
@@ -21,6 +24,7 @@
 #include "cli_matcher_options.hpp"
 #include "cli_progress.hpp"
 #include "on_demand.hpp"
+#include "stereo/pipeline.hpp"
 #include "stereo/stage_table.hpp"
 #include "stereo_io/disparity_files.hpp"
 #include "stereo_io/io.hpp"
@@ -58,6 +62,79 @@ io::ImagePair apply_crop(io::ImagePair pair, const std::string& geometry) {
 std::string config_text(const sim::TopConfig& config) {
     return std::to_string(config.width) + "x" + std::to_string(config.height) + ", " +
            std::to_string(config.ndisp) + " disparities, window " + std::to_string(config.window);
+}
+
+// The --diff map: 0 where RTL and model agree, kDiffOther where only the reason or the
+// certainty differs, kDiffDisparity where the disparity does.
+constexpr std::uint8_t kDiffOther = 128;
+constexpr std::uint8_t kDiffDisparity = 255;
+// The mismatching pixels (first in raster order) whose stage outputs the localisation compares.
+constexpr std::size_t kWatchedPixels = 16;
+
+cv::Mat grey_image(const std::vector<std::uint8_t>& values, int width, int height) {
+    cv::Mat image(height, width, CV_8UC1);
+    std::copy(values.begin(), values.end(), image.ptr<std::uint8_t>(0));
+    return image;
+}
+
+// Compares the model's stage outputs with the probe build's at the watched pixels, stage by
+// stage in pipeline order: the first stage that differs anywhere is where the mismatch starts.
+nlohmann::json localise(const sim::CoreRequest& request, const std::filesystem::path& cache,
+                        const sim::CoreParams& core, const io::ImagePair& pair,
+                        const MatchParams& params, const std::vector<sim::InputBeat>& beats,
+                        const std::vector<std::pair<int, int>>& watched) {
+    const auto model = stage_values_at(pair.left, pair.right, params, watched);
+    const auto rtl = sim::probe_stages(request, cache, core, beats, watched, std::cerr);
+    const std::vector<std::string> stages = sim::probed_stages();
+    for (std::size_t s = 0; s < stages.size(); ++s) {
+        for (std::size_t n = 0; n < watched.size(); ++n) {
+            const std::vector<std::uint16_t>& expected = s == 0   ? model[n].aggregate
+                                                         : s == 1 ? model[n].rule1
+                                                                  : model[n].rule2;
+            if (!rtl[n].seen[s]) {
+                return {{"stage", stages[s]},
+                        {"x", watched[n].first},
+                        {"y", watched[n].second},
+                        {"problem", "the stage's output never showed the pixel"},
+                        {"pixels_watched", watched.size()}};
+            }
+            for (std::size_t k = 0; k < expected.size(); ++k) {
+                if (expected[k] != rtl[n].values[s][k]) {
+                    return {{"stage", stages[s]},
+                            {"x", watched[n].first},
+                            {"y", watched[n].second},
+                            {"label", k},
+                            {"model", expected[k]},
+                            {"rtl", rtl[n].values[s][k]},
+                            {"pixels_watched", watched.size()}};
+                }
+            }
+        }
+    }
+    return {{"stage", "after " + stages.back() + " (wta or stage 6)"},
+            {"pixels_watched", watched.size()}};
+}
+
+std::string localisation_text(const nlohmann::json& localisation) {
+    if (localisation.contains("unavailable")) {
+        return "no stage localisation: " + localisation["unavailable"].get<std::string>();
+    }
+    const std::string stage = localisation["stage"].get<std::string>();
+    const std::string watched =
+        std::to_string(localisation["pixels_watched"].get<std::size_t>()) + " mismatching pixels";
+    if (localisation.contains("label")) {
+        return "the first stage that differs is " + stage + ": at (" +
+               std::to_string(localisation["x"].get<int>()) + ", " +
+               std::to_string(localisation["y"].get<int>()) + ") label " +
+               std::to_string(localisation["label"].get<int>()) + " the model gives " +
+               std::to_string(localisation["model"].get<int>()) + ", the RTL " +
+               std::to_string(localisation["rtl"].get<int>()) + " (earlier stages agree at the " +
+               watched + " watched)";
+    }
+    if (localisation.contains("problem")) {
+        return "stage " + stage + ": " + localisation["problem"].get<std::string>();
+    }
+    return "the probed stages agree at the " + watched + " watched: the difference starts " + stage;
 }
 
 // The core --size and its companions ask for (NDISP, WINDOW and COST from the matching options).
@@ -109,8 +186,9 @@ void run_cosim(const CosimOptions& options) {
         throw std::invalid_argument("--reset-at must be >= 0 (or -1: no reset), got " +
                                     std::to_string(options.reset_at));
     }
-    io::check_outputs_distinct({options.output, options.trace}, {options.left, options.right});
-    for (const std::string& output : {options.output, options.trace}) {
+    io::check_outputs_distinct({options.output, options.trace, options.diff},
+                               {options.left, options.right});
+    for (const std::string& output : {options.output, options.trace, options.diff}) {
         if (!output.empty()) {
             io::check_writable_location(output);
         }
@@ -132,11 +210,14 @@ void run_cosim(const CosimOptions& options) {
             "--size WxH too");
     }
     std::optional<sim::TopConfig> demanded;
+    std::optional<sim::CoreRequest> request;
     std::filesystem::path runner;
+    const std::filesystem::path cache =
+        options.cache.empty() ? sim::default_cache_folder() : std::filesystem::path(options.cache);
     if (on_demand) {
-        const sim::CoreRequest request = core_request(options, params);
-        demanded = sim::on_demand_config(request);
-        if (width > request.width || height > request.height) {
+        request = core_request(options, params);
+        demanded = sim::on_demand_config(*request);
+        if (width > request->width || height > request->height) {
             throw std::invalid_argument("the pair is " + std::to_string(width) + "x" +
                                         std::to_string(height) + ", larger than --size " +
                                         options.size);
@@ -145,10 +226,7 @@ void run_cosim(const CosimOptions& options) {
             throw std::invalid_argument("--reset-at must be below the frame's " +
                                         std::to_string(width * height) + " beats");
         }
-        runner = sim::ensure_runner(request,
-                                    options.cache.empty() ? sim::default_cache_folder()
-                                                          : std::filesystem::path(options.cache),
-                                    std::cerr);
+        runner = sim::ensure_runner(*request, cache, std::cerr);
     }
     const sim::TopConfig* config =
         on_demand ? &*demanded
@@ -194,6 +272,10 @@ void run_cosim(const CosimOptions& options) {
     // frame, under the frame's own traffic seed; every pixel compared with the model.
     std::size_t mismatches = 0;
     nlohmann::json first = nlohmann::json::array();
+    // The first frame with a mismatch: its map (--diff) and the pixels the localisation watches.
+    std::vector<std::uint8_t> diff(static_cast<std::size_t>(width) * height, 0);
+    std::vector<std::pair<int, int>> watched;
+    int diff_frame = -1;
     sim::StreamResult result;
     std::uint64_t total_cycles = 0;
     const auto start = std::chrono::steady_clock::now();
@@ -232,6 +314,13 @@ void run_cosim(const CosimOptions& options) {
                 const auto i = rtl.index(x, y);
                 if (rtl.fixed[i] != expected.fixed[i] || rtl.reason[i] != expected.reason[i] ||
                     rtl.certainty[i] != expected.certainty[i]) {
+                    if (diff_frame == -1 || diff_frame == frame) {
+                        diff_frame = frame;
+                        diff[i] = rtl.fixed[i] != expected.fixed[i] ? kDiffDisparity : kDiffOther;
+                        if (watched.size() < kWatchedPixels) {
+                            watched.emplace_back(x, y);
+                        }
+                    }
                     if (mismatches++ < 10) {
                         auto fields = [i](const ValidatedDisparity& v) {
                             return nlohmann::json{{"fixed", v.fixed[i]},
@@ -264,6 +353,25 @@ void run_cosim(const CosimOptions& options) {
         throw std::runtime_error(failure);
     }
 
+    if (!options.diff.empty()) {
+        io::write_file_atomic(options.diff,
+                              io::encode_png(grey_image(diff, width, height), options.diff));
+    }
+    // Where the first mismatching frame's difference starts: the probe build of the same core.
+    nlohmann::json localisation;
+    if (mismatches != 0) {
+        if (!request) {
+            localisation = {{"unavailable",
+                             "stage localisation runs on a core built on demand: repeat with "
+                             "--size WxH"}};
+        } else if (request->lanes != 0 && request->lanes != request->ndisp) {
+            localisation = {{"unavailable", "stage localisation needs --lanes equal to --ndisp"}};
+        } else {
+            localisation =
+                localise(*request, cache, {width, height, params}, pair, params, beats, watched);
+        }
+    }
+
     const std::size_t pixels = beats.size();
     const double per_pixel = static_cast<double>(result.cycles) / pixels;
     if (options.json) {
@@ -291,6 +399,9 @@ void run_cosim(const CosimOptions& options) {
             {"model_seconds", model_seconds},
             {"sim_to_model_time", seconds / options.frames / model_seconds},
         });
+        if (mismatches != 0) {
+            summary["localisation"] = localisation;
+        }
         std::cout << io::versioned(summary).dump() << '\n';
     } else {
         std::printf(
@@ -321,7 +432,11 @@ void run_cosim(const CosimOptions& options) {
         }
     }
     if (mismatches != 0) {
-        throw MismatchError(std::to_string(mismatches) + " pixels differ from the golden model");
+        if (!options.json) {
+            std::printf("%s\n", localisation_text(localisation).c_str());
+        }
+        throw MismatchError(std::to_string(mismatches) + " pixels differ from the golden model; " +
+                            localisation_text(localisation));
     }
 }
 

@@ -49,6 +49,9 @@ void add_cosim_options(CLI::App& command, CosimOptions& options) {
     command.add_option("--cache", options.cache,
                        "With --size: the folder of the built cores (default $STEREO_COSIM_CACHE, "
                        "else ~/.cache/stereo/cosim)");
+    command.add_option("--diff", options.diff,
+                       "Write a PNG of the first mismatching frame: 255 where the disparity "
+                       "differs, 128 where only the reason or certainty does, 0 elsewhere");
     command.add_flag("--json", options.json,
                      "Print one JSON object (mismatches, cycles, pixels, ...)");
 }

@@ -4,6 +4,8 @@
 #include <array>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "stereo/search.hpp"
 #include "stereo/stages.hpp"
@@ -211,7 +213,117 @@ void run_pipeline(const CostFunction& cost, const std::vector<std::int32_t>& ker
            {cost, *aggregator, std::span(ca.data(), params.use_ca ? ca.size() : 0), selector});
 }
 
+// Keeps the values of some pixels from each plane it sees, in candidate order.
+class PixelRecorder {
+  public:
+    PixelRecorder(std::vector<std::size_t> indices, std::size_t pixels_per_plane)
+        : indices_(std::move(indices)), plane_size_(pixels_per_plane) {}
+    void record(const CostValue* plane) {
+        for (const std::size_t index : indices_) {
+            values_.push_back(plane[index]);
+        }
+    }
+    // Pixel n's value in plane k.
+    std::uint16_t at(std::size_t n, std::size_t k) const {
+        return values_[k * indices_.size() + n];
+    }
+    std::size_t plane_size() const { return plane_size_; }
+
+  private:
+    std::vector<std::size_t> indices_;
+    std::size_t plane_size_;
+    std::vector<std::uint16_t> values_;
+};
+
+class RecordingAggregator final : public Aggregator {
+  public:
+    RecordingAggregator(Aggregator& inner, PixelRecorder& recorder)
+        : inner_(inner), recorder_(recorder) {}
+    int radius() const override { return inner_.radius(); }
+    void plane(const CostValue* in, CostValue* out) override {
+        inner_.plane(in, out);
+        recorder_.record(out);
+    }
+
+  private:
+    Aggregator& inner_;
+    PixelRecorder& recorder_;
+};
+
+// A refiner that changes nothing and records what the previous one wrote.
+class RecordingRefiner final : public Refiner {
+  public:
+    explicit RecordingRefiner(PixelRecorder& recorder) : recorder_(recorder) {}
+    bool reads_neighbour_planes() const override { return false; }
+    void plane(const CostValue* centre, std::span<const NeighbourPlanes> /*neighbours*/,
+               CostValue* out) override {
+        std::copy_n(centre, recorder_.plane_size(), out);
+        recorder_.record(centre);
+    }
+
+  private:
+    PixelRecorder& recorder_;
+};
+
+class RecordingSelector final : public Selector {
+  public:
+    explicit RecordingSelector(PixelRecorder& recorder) : recorder_(recorder) {}
+    void update(const CostValue* plane, int /*i*/, int /*j*/) override { recorder_.record(plane); }
+
+  private:
+    PixelRecorder& recorder_;
+};
+
 }  // namespace
+
+std::vector<PixelStageValues> stage_values_at(const Image& left, const Image& right,
+                                              const MatchParams& params,
+                                              const std::vector<std::pair<int, int>>& pixels) {
+    check_pair(left, right);
+    validate(params, left.width, left.height);
+    const int width = left.width;
+    const int height = left.height;
+    std::vector<std::size_t> indices;
+    for (const auto& [x, y] : pixels) {
+        if (x < 0 || y < 0 || x >= width || y >= height) {
+            throw std::invalid_argument("stage_values_at: pixel outside the image");
+        }
+        indices.push_back(static_cast<std::size_t>(y) * width + x);
+    }
+    const std::size_t plane_size = static_cast<std::size_t>(width) * height;
+    PixelRecorder aggregated(indices, plane_size);
+    PixelRecorder after_rule1(indices, plane_size);
+    PixelRecorder after_rule2(indices, plane_size);
+
+    const auto cost = make_cost(params.cost);
+    const PlanarImage left_planes = cost->prepare(left);
+    const PlanarImage right_planes = cost->prepare(right);
+    const auto grid = CandidateGrid::horizontal(width, height, params.ndisp, params.min_disp);
+    const auto gaussian =
+        make_gaussian_aggregator(gaussian_kernel(params.window, params.sigma), width, height);
+    RecordingAggregator aggregator(*gaussian, aggregated);
+    const auto rule1 = make_ca_rule1(width, height);
+    RecordingRefiner record_rule1(after_rule1);
+    const auto rule2 = make_ca_rule2(width, height);
+    const std::array<Refiner*, 3> ca = {rule1.get(), &record_rule1, rule2.get()};
+    RecordingSelector selector(after_rule2);
+    search(left_planes, right_planes, grid,
+           {*cost, aggregator, std::span(ca.data(), params.use_ca ? ca.size() : 0), selector});
+
+    std::vector<PixelStageValues> out;
+    for (std::size_t n = 0; n < pixels.size(); ++n) {
+        PixelStageValues values{pixels[n].first, pixels[n].second, {}, {}, {}};
+        for (int k = 0; k < params.ndisp; ++k) {
+            const auto plane = static_cast<std::size_t>(k);
+            values.aggregate.push_back(aggregated.at(n, plane));
+            values.rule2.push_back(after_rule2.at(n, plane));
+            values.rule1.push_back(params.use_ca ? after_rule1.at(n, plane)
+                                                 : aggregated.at(n, plane));
+        }
+        out.push_back(std::move(values));
+    }
+    return out;
+}
 
 DisparityMap match_with(const CostFunction& cost, const std::vector<std::int32_t>& kernel,
                         const Image& left, const Image& right, const MatchParams& params) {

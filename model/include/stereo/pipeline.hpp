@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "stereo/constants.hpp"
@@ -120,6 +121,20 @@ DisparityMap match_with(const CostFunction& cost, const std::vector<std::int32_t
 ValidatedDisparity match_validated_with(const CostFunction& cost,
                                         const std::vector<std::int32_t>& kernel, const Image& left,
                                         const Image& right, const MatchParams& params);
+
+// What the stages after the cost gave some pixels, each label k (disparity min_disp + k): the
+// aggregate, CA rule 1 and CA rule 2 (both equal to the aggregate with use_ca off). `stereo
+// cosim` compares them with the RTL's stage outputs to say which stage a mismatch starts in.
+struct PixelStageValues {
+    int x = 0;
+    int y = 0;
+    std::vector<std::uint16_t> aggregate;
+    std::vector<std::uint16_t> rule1;
+    std::vector<std::uint16_t> rule2;
+};
+std::vector<PixelStageValues> stage_values_at(const Image& left, const Image& right,
+                                              const MatchParams& params,
+                                              const std::vector<std::pair<int, int>>& pixels);
 
 // Throws std::invalid_argument unless the two images have the same size and channel count.
 void check_pair(const Image& left, const Image& right);
