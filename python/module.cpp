@@ -464,6 +464,7 @@ PYBIND11_MODULE(stereo, m) {
                 core->max_min_disp = max_min_disp.value_or(
                     std::max(stereo::table::kDefaultMaxMinDisp, std::abs(min_disp)));
                 core->lean = lean;
+                core->trace = !trace.empty();
             } else if (lanes != 0 || max_min_disp || lean || !cache.empty()) {
                 throw std::invalid_argument(
                     "lanes, max_min_disp, lean and cache choose a core built on demand: give "

@@ -152,15 +152,30 @@ module stereo_top #(
     end
   end
 
-  // What the stages see: the ports while idle (the start-of-frame step uses them), the latched
-  // values during the frame and its flush. A setting whose clamped range is one value is that
+  // The clamped ports and the kernel registered every clock (idle_cfg): nothing of the datapath
+  // depends on a port combinationally, so the configuration registers in front of the core
+  // (stereo_axil_top) have no timing path into the stages, and a simulator evaluates the
+  // datapath once per clock instead of on every change of an input. The ports must therefore
+  // hold their values from the clock before a frame's first beat is stepped (one clock after the
+  // input slice takes it, so ports set with or before that beat are in time).
+  fx_pkg::config_t idle_cfg;
+  logic idle_cfg_error;
+  logic [WINDOW*fx_pkg::TAP_BITS-1:0] idle_kernel;
+  always_ff @(posedge clk) begin
+    idle_cfg <= port_cfg;
+    idle_cfg_error <= port_cfg_error;
+    idle_kernel <= cfg_kernel;
+  end
+
+  // What the stages see: the registered ports while idle (the start-of-frame step uses them), the
+  // latched values during the frame and its flush. A setting whose clamped range is one value is that
   // constant for the stages (the one-label core: cfg_ndisp is 1; MAX_MIN_DISP = 0: cfg_min_disp
   // is 0), so no multiplexer from the frame state runs in front of their logic (the one-label
-  // iCE40 core's critical path). The clamps and the status bit still see the ports.
+  // iCE40 core's critical path). The clamps and the status bit see the registered ports.
   fx_pkg::config_t use_cfg;
   always_comb begin
-    use_cfg = (state == IDLE) ? port_cfg : frame_cfg;
-    use_kernel = (state == IDLE) ? cfg_kernel : frame_kernel;
+    use_cfg = (state == IDLE) ? idle_cfg : frame_cfg;
+    use_kernel = (state == IDLE) ? idle_kernel : frame_kernel;
     if (NDISP == 1) use_cfg.ndisp = fx_pkg::CFG_NDISP_BITS'(1);
     if (MAX_MIN_DISP == 0) use_cfg.min_disp = '0;
   end
@@ -267,9 +282,9 @@ module stereo_top #(
     end else begin
       if (step) begin
         if (state == IDLE) begin
-          frame_cfg <= port_cfg;
-          frame_kernel <= cfg_kernel;
-          if (port_cfg_error) status[fx_pkg::STATUS_CONFIG_CLAMPED] <= 1'b1;
+          frame_cfg <= idle_cfg;
+          frame_kernel <= idle_kernel;
+          if (idle_cfg_error) status[fx_pkg::STATUS_CONFIG_CLAMPED] <= 1'b1;
         end
         if (state != FLUSH) begin
           if (in_main.last != (x_in == fx_pkg::COORD_BITS'($signed(32'(use_cfg.width)) - 1)))

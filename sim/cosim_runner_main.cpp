@@ -3,7 +3,9 @@
 // standard input, answered on standard output. It owns nothing but the model: the caller computes
 // the port values, the input beats and the golden model's answer.
 #include <verilated.h>
+#if VM_TRACE_FST
 #include <verilated_fst_c.h>
+#endif
 
 #include <cstdio>
 #include <exception>

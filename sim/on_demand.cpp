@@ -231,6 +231,8 @@ std::vector<std::string> rtl_defines() {
 // The cache folder's name: the configuration, then what else changes the runner.
 std::string entry_name(const CoreRequest& request, const std::vector<std::string>& defines) {
     return folder_name(request) + (request.probes ? "-probes" : "") +
+           (request.trace ? "-trace" : "") +
+           (request.threads > 1 ? "-t" + std::to_string(request.threads) : "") +
            (defines.empty() ? "" : "-defines");
 }
 
@@ -263,6 +265,9 @@ void check_request(const CoreRequest& r) {
         fail("MAX_MIN_DISP must be in 0.." + std::to_string(fx::kMaxMinDisparity));
     }
     cost_parameter(r.cost);
+    if (r.threads < 1 || r.threads > kMaxCoreThreads) {
+        fail("the simulation threads must be 1.." + std::to_string(kMaxCoreThreads));
+    }
     if (r.probes && lanes != r.ndisp) {
         fail("stage probes need every label in one clock (LANES = NDISP)");
     }
@@ -297,8 +302,11 @@ fs::path default_cache_folder() {
     return fs::temp_directory_path() / "stereo-cosim";
 }
 
-fs::path ensure_runner(const CoreRequest& request, const fs::path& cache, std::ostream& progress) {
+fs::path ensure_runner(const CoreRequest& request, const fs::path& cache_folder,
+                       std::ostream& progress) {
     check_request(request);
+    // Absolute: Verilator runs make in its object folder, where a relative path means another.
+    const fs::path cache = fs::absolute(cache_folder);
     const std::vector<std::string> defines = rtl_defines();
     const fs::path root = source_root();
     const std::vector<fs::path> inputs = runner_inputs(root);
@@ -378,7 +386,6 @@ fs::path ensure_runner(const CoreRequest& request, const fs::path& cache, std::o
                                      "--x-initial",
                                      "unique",
                                      "-O3",
-                                     "--trace-fst",
                                      "--top-module",
                                      "stereo_top",
                                      "--prefix",
@@ -395,6 +402,13 @@ fs::path ensure_runner(const CoreRequest& request, const fs::path& cache, std::o
                                      "-CFLAGS",
                                      "-std=c++20 -O2 -I" + (root / "sim").string() + " -I" +
                                          (root / "model" / "include").string()};
+    if (request.trace) {
+        argv.emplace_back("--trace-fst");
+    }
+    if (request.threads > 1) {
+        argv.emplace_back("--threads");
+        argv.push_back(std::to_string(request.threads));
+    }
     if (request.probes) {
         argv.emplace_back("--public-flat-rw");
         argv.emplace_back("-CFLAGS");
@@ -610,6 +624,8 @@ std::vector<PixelStages> probe_stages(CoreRequest request, const fs::path& cache
                                       const std::vector<std::pair<int, int>>& pixels,
                                       std::ostream& progress) {
     request.probes = true;
+    request.trace = false;
+    request.threads = 1;
     const fs::path runner = ensure_runner(request, cache, progress);
     RunnerSim sim(on_demand_config(request), runner);
     sim.reset();

@@ -28,12 +28,15 @@ struct CoreRequest {
     // A probe build: the stage outputs readable (Verilator --public-flat-rw) for probe_stages();
     // needs LANES = NDISP. A separate cache entry from the plain runner.
     bool probes = false;
+    bool trace = false;  // FST tracing compiled in (only then can the runner write a trace)
+    int threads = 1;     // Verilator --threads of the model (1..kMaxCoreThreads)
 };
 
 // Limits of a request (the cache keeps one runner per configuration; these bound its size).
 inline constexpr int kMaxCoreSide = 4096;
 inline constexpr int kMaxCoreNdisp = 256;
 inline constexpr int kMaxCoreMinDisp = 1024;
+inline constexpr int kMaxCoreThreads = 16;
 
 // Throws std::invalid_argument naming the first impossible parameter.
 void check_request(const CoreRequest& request);

@@ -155,6 +155,8 @@ sim::CoreRequest core_request(const CosimOptions& options, const MatchParams& pa
                                ? options.max_min_disp
                                : std::max(table::kDefaultMaxMinDisp, std::abs(params.min_disp));
     request.lean = options.lean;
+    request.trace = !options.trace.empty();
+    request.threads = options.sim_threads;
     if (std::abs(params.min_disp) > request.max_min_disp) {
         throw std::invalid_argument("--min-disp " + std::to_string(params.min_disp) +
                                     " is beyond --max-min-disp " +
@@ -204,10 +206,10 @@ void run_cosim(const CosimOptions& options) {
     model->validate(width, height);
     const bool on_demand = !options.size.empty();
     if (!on_demand && (options.lanes != 0 || options.max_min_disp != -1 || options.lean ||
-                       !options.cache.empty())) {
+                       !options.cache.empty() || options.sim_threads != 1)) {
         throw std::invalid_argument(
-            "--lanes, --max-min-disp, --lean and --cache choose a core built on demand: give "
-            "--size WxH too");
+            "--lanes, --max-min-disp, --lean, --cache and --sim-threads choose a core built on "
+            "demand: give --size WxH too");
     }
     std::optional<sim::TopConfig> demanded;
     std::optional<sim::CoreRequest> request;

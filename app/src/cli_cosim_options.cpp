@@ -49,6 +49,13 @@ void add_cosim_options(CLI::App& command, CosimOptions& options) {
     command.add_option("--cache", options.cache,
                        "With --size: the folder of the built cores (default $STEREO_COSIM_CACHE, "
                        "else ~/.cache/stereo/cosim)");
+    command
+        .add_option("--sim-threads", options.sim_threads,
+                    "With --size: Verilator threads of the core (2 gains about 10 % on a "
+                    "640x480 / 64-label core with every label per clock, nothing on the lean "
+                    "one)")
+        ->check(CLI::Range(1, 16))
+        ->capture_default_str();
     command.add_option("--diff", options.diff,
                        "Write a PNG of the first mismatching frame: 255 where the disparity "
                        "differs, 128 where only the reason or certainty does, 0 elsewhere");

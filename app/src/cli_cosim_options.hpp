@@ -32,6 +32,7 @@ struct CosimOptions {
     int max_min_disp = -1;  // MAX_MIN_DISP (-1: 8, or |--min-disp| when larger)
     bool lean = false;      // RECOMPUTE_COSTS = 1
     std::string cache;      // the runners' folder (empty: sim::default_cache_folder())
+    int sim_threads = 1;    // Verilator --threads of an on-demand core
     std::string diff;       // PNG: where RTL and model differ in the first mismatching frame
 };
 

@@ -5,7 +5,8 @@
 # census, window 5): the first run Verilates it into an empty cache (one progress line on
 # stderr) and co-simulates bit-exactly against the model with stalls, two frames and a
 # mid-frame reset; the cache then holds exactly that runner and nothing half-written; the
-# second run reuses it (no build line) with the same result.
+# second run reuses it (no build line) with the same result; a --trace run builds the traced
+# runner beside it and writes the FST.
 set -u
 stereo=$1
 left=$2
@@ -43,4 +44,13 @@ ls -A "$cache" | grep -q '^\.' && fail "a hidden (half-built) entry was left"
 
 run second
 [ ! -s "$work/second.err" ] || fail "the second run built again"
-echo "on-demand core built once, reused, bit-exact"
+
+# A trace needs FST tracing compiled in: a runner of its own, next to the plain one; built here
+# through a relative cache path (Verilator's make runs in another folder).
+(cd "$work" && "$stereo" cosim "$left" "$right" --size 64x48 --ndisp 8 --window 5 --cost census \
+    --lanes 2 --cache cache --trace run.fst --json >trace.json 2>trace.err) ||
+    fail "trace run exited with $?"
+grep -q '"mismatches":0,' "$work/trace.json" || fail "trace run: mismatches"
+[ -s "$work/run.fst" ] || fail "no FST trace written"
+[ "$(ls -A "$cache" | wc -l)" -eq 2 ] || fail "the cache holds $(ls -A "$cache") after the trace run"
+echo "on-demand core built once, reused, bit-exact; traced by its own runner"
