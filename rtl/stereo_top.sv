@@ -75,7 +75,9 @@ module stereo_top #(
     input  wire logic                               rst,
     // The window, sampled with the rest of the configuration (stereo_core_ports.svh).
     input  wire fx_pkg::cfg_radius_t                cfg_radius,
+    /* verilator lint_off UNUSEDSIGNAL */  // ignored with RUNTIME_KERNEL = 0
     input  wire logic [WINDOW*fx_pkg::TAP_BITS-1:0] cfg_kernel,
+    /* verilator lint_on UNUSEDSIGNAL */
 `include "stereo_core_ports.svh"
 );
   localparam int R = WINDOW / 2;
@@ -164,7 +166,6 @@ module stereo_top #(
   always_ff @(posedge clk) begin
     idle_cfg <= port_cfg;
     idle_cfg_error <= port_cfg_error;
-    idle_kernel <= cfg_kernel;
   end
 
   // What the stages see: the registered ports while idle (the start-of-frame step uses them), the
@@ -283,7 +284,6 @@ module stereo_top #(
       if (step) begin
         if (state == IDLE) begin
           frame_cfg <= idle_cfg;
-          frame_kernel <= idle_kernel;
           if (idle_cfg_error) status[fx_pkg::STATUS_CONFIG_CLAMPED] <= 1'b1;
         end
         if (state != FLUSH) begin
@@ -310,6 +310,20 @@ module stereo_top #(
       end
     end
   end
+
+  // The kernel's registers exist with the runtime kernel only: with RUNTIME_KERNEL = 0 the stages
+  // use their constant kernel and never read use_kernel.
+  generate
+    if (RUNTIME_KERNEL) begin : g_kernel_registers
+      always_ff @(posedge clk) begin
+        idle_kernel <= cfg_kernel;
+        if (!rst && step && state == IDLE) frame_kernel <= idle_kernel;
+      end
+    end else begin : g_constant_kernel
+      assign idle_kernel = '0;
+      assign frame_kernel = '0;
+    end
+  endgenerate
 
   // ---- the pipeline ------------------------------------------------------------------------
   // When a frame's last output enters the output register, everything still in the stages is flush filler
