@@ -287,12 +287,7 @@ py::dict cosim(const py::array& left, const py::array& right, const MatchOptions
     std::filesystem::path runner;
     if (core) {
         demanded = stereo::sim::on_demand_config(*core);
-        if (l.width > core->width || l.height > core->height) {
-            throw std::invalid_argument("the pair is larger than size");
-        }
-        if (std::abs(params.min_disp) > core->max_min_disp) {
-            throw std::invalid_argument("min_disp is beyond max_min_disp");
-        }
+        stereo::sim::check_fits(*core, l.width, l.height, params.min_disp);
         py::gil_scoped_release release;
         runner = stereo::sim::ensure_runner(
             *core,

@@ -276,6 +276,20 @@ void check_request(const CoreRequest& r) {
     }
 }
 
+void check_fits(const CoreRequest& request, int width, int height, int min_disp) {
+    if (width > request.width || height > request.height) {
+        throw std::invalid_argument("the pair is " + std::to_string(width) + "x" +
+                                    std::to_string(height) + ", larger than the core's " +
+                                    std::to_string(request.width) + "x" +
+                                    std::to_string(request.height));
+    }
+    if (std::abs(min_disp) > request.max_min_disp) {
+        throw std::invalid_argument("minimum disparity " + std::to_string(min_disp) +
+                                    " is beyond the core's MAX_MIN_DISP " +
+                                    std::to_string(request.max_min_disp));
+    }
+}
+
 TopConfig on_demand_config(const CoreRequest& request) {
     check_request(request);
     return {"on-demand " + folder_name(request),

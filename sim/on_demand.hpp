@@ -41,6 +41,11 @@ inline constexpr int kMaxCoreThreads = 16;
 // Throws std::invalid_argument naming the first impossible parameter.
 void check_request(const CoreRequest& request);
 
+// Throws std::invalid_argument unless a pair of width x height with minimum disparity
+// `min_disp` can stream through the core of `request` (the frame within its size, |min_disp|
+// within its MAX_MIN_DISP).
+void check_fits(const CoreRequest& request, int width, int height, int min_disp);
+
 // The configuration a request builds (its name starts with "on-demand").
 TopConfig on_demand_config(const CoreRequest& request);
 

@@ -157,11 +157,6 @@ sim::CoreRequest core_request(const CosimOptions& options, const MatchParams& pa
     request.lean = options.lean;
     request.trace = !options.trace.empty();
     request.threads = options.sim_threads;
-    if (std::abs(params.min_disp) > request.max_min_disp) {
-        throw std::invalid_argument("--min-disp " + std::to_string(params.min_disp) +
-                                    " is beyond --max-min-disp " +
-                                    std::to_string(request.max_min_disp));
-    }
     return request;
 }
 
@@ -219,11 +214,7 @@ void run_cosim(const CosimOptions& options) {
     if (on_demand) {
         request = core_request(options, params);
         demanded = sim::on_demand_config(*request);
-        if (width > request->width || height > request->height) {
-            throw std::invalid_argument("the pair is " + std::to_string(width) + "x" +
-                                        std::to_string(height) + ", larger than --size " +
-                                        options.size);
-        }
+        sim::check_fits(*request, width, height, params.min_disp);
         if (options.reset_at >= width * height) {
             throw std::invalid_argument("--reset-at must be below the frame's " +
                                         std::to_string(width * height) + " beats");
