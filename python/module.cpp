@@ -20,6 +20,8 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 
+#include "stereo/catalogue.hpp"
+#include "stereo/defaults.hpp"
 #include "stereo/hls/match.hpp"
 #include "stereo/matcher.hpp"
 #include "stereo/validated.hpp"
@@ -160,26 +162,60 @@ py::dict run_match(const py::array& left, const py::array& right, const MatchOpt
     return out;
 }
 
+// Stage 6 and the speckle filter as a call asks for them, on top of the defaults of `stereo match`
+// (defaults::match_config): validation=False turns every step off, as --no-validation does; a
+// given cost brings its own ratio and tolerance; each given keyword turns its step on (or, for
+// subpixel=False and speckle_size=0, off) with its value.
+struct ValidationKeywords {
+    std::optional<std::string> cost;
+    bool validation = true;
+    std::optional<int> uniqueness;
+    std::optional<int> lr_check;
+    std::optional<bool> subpixel;
+    std::optional<int> speckle_size;
+    int speckle_range = stereo::speckle::kDefaultRange;
+};
+
+void apply(const ValidationKeywords& k, stereo::MatchConfig& config) {
+    stereo::MatchParams& p = config.pipeline;
+    stereo::ValidationParams& v = p.validation;
+    if (k.cost) {
+        p.cost = *k.cost;
+        const auto chosen = stereo::defaults::validation_for(p.cost);
+        v.uniqueness_ratio = chosen.uniqueness;
+        v.lr_tolerance = chosen.lr_tolerance;
+    }
+    if (!k.validation) {
+        v.uniqueness = v.left_right = v.subpixel = false;
+        config.speckle.max_size = 0;
+    }
+    if (k.uniqueness) {
+        v.uniqueness = true;
+        v.uniqueness_ratio = *k.uniqueness;
+    }
+    if (k.lr_check) {
+        v.left_right = true;
+        v.lr_tolerance = *k.lr_check;
+    }
+    v.subpixel = k.subpixel.value_or(v.subpixel);
+    config.speckle.max_size = k.speckle_size.value_or(config.speckle.max_size);
+    config.speckle.range = k.speckle_range;
+}
+
 MatchOptions match_options(const std::string& method, const std::string& engine, int ndisp,
-                           int window, double sigma, bool ca, const std::string& cost, int min_disp,
-                           std::optional<int> uniqueness, std::optional<int> lr_check,
-                           bool subpixel, int vrange, const std::string& neighbours, int log_window,
-                           double log_sigma, int edge_value, int truncation, int sparse_uniqueness,
-                           int sparse_lr, const std::optional<py::dict>& asw = std::nullopt,
-                           stereo::speckle::Params speckle = {}) {
-    MatchOptions o{method, engine, {}};
+                           int window, double sigma, bool ca, int min_disp,
+                           const ValidationKeywords& validation, int vrange,
+                           const std::string& neighbours, int log_window, double log_sigma,
+                           int edge_value, int truncation, int sparse_uniqueness, int sparse_lr,
+                           const std::optional<py::dict>& asw = std::nullopt) {
+    MatchOptions o{method, engine, stereo::defaults::match_config(method, engine)};
     stereo::MatchParams& p = o.config.pipeline;
     p.ndisp = ndisp;
     p.window = window;
     p.sigma = sigma;
     p.use_ca = ca;
-    p.cost = cost;
     p.min_disp = min_disp;
-    p.validation.uniqueness = uniqueness.has_value();
-    p.validation.uniqueness_ratio = uniqueness.value_or(p.validation.uniqueness_ratio);
-    p.validation.left_right = lr_check.has_value();
-    p.validation.lr_tolerance = lr_check.value_or(p.validation.lr_tolerance);
-    p.validation.subpixel = subpixel;
+    apply(validation, o.config);
     o.config.vrange = vrange;
     if (neighbours == "horizontal") {
         o.config.neighbours = stereo::CaNeighbours::horizontal;
@@ -195,7 +231,6 @@ MatchOptions match_options(const std::string& method, const std::string& engine,
     o.config.edges.truncation = truncation;
     o.config.sparse.uniqueness = sparse_uniqueness;
     o.config.sparse.lr_tolerance = sparse_lr;
-    o.config.speckle = speckle;
     if (asw) {
         // method "asw": the keys of stereo::asw::Params (docs/asw.md), each optional.
         stereo::asw::Params& a = o.config.asw;
@@ -391,36 +426,42 @@ PYBIND11_MODULE(stereo, m) {
         "match",
         [](const py::array& left, const py::array& right, const std::string& method,
            const std::string& engine, int ndisp, int window, double sigma, bool ca,
-           const std::string& cost, int min_disp, std::optional<int> uniqueness,
-           std::optional<int> lr_check, bool subpixel, int vrange, const std::string& neighbours,
-           int log_window, double log_sigma, int edge_value, int truncation, int sparse_uniqueness,
-           int sparse_lr, const std::optional<py::dict>& asw, int speckle_size, int speckle_range) {
+           std::optional<std::string> cost, int min_disp, bool validation,
+           std::optional<int> uniqueness, std::optional<int> lr_check, std::optional<bool> subpixel,
+           int vrange, const std::string& neighbours, int log_window, double log_sigma,
+           int edge_value, int truncation, int sparse_uniqueness, int sparse_lr,
+           const std::optional<py::dict>& asw, std::optional<int> speckle_size, int speckle_range) {
+            const ValidationKeywords keywords{std::move(cost), validation,   uniqueness,   lr_check,
+                                              subpixel,        speckle_size, speckle_range};
             return run_match(
                 left, right,
-                match_options(method, engine, ndisp, window, sigma, ca, cost, min_disp, uniqueness,
-                              lr_check, subpixel, vrange, neighbours, log_window, log_sigma,
-                              edge_value, truncation, sparse_uniqueness, sparse_lr, asw,
-                              {speckle_size, speckle_range}));
+                match_options(method, engine, ndisp, window, sigma, ca, min_disp, keywords, vrange,
+                              neighbours, log_window, log_sigma, edge_value, truncation,
+                              sparse_uniqueness, sparse_lr, asw));
         },
         py::arg("left"), py::arg("right"), py::kw_only(), py::arg("method") = "pipeline",
         py::arg("engine") = "model", py::arg("ndisp") = defaults.ndisp,
         py::arg("window") = defaults.window, py::arg("sigma") = defaults.sigma,
-        py::arg("ca") = defaults.use_ca, py::arg("cost") = defaults.cost,
-        py::arg("min_disp") = defaults.min_disp, py::arg("uniqueness") = py::none(),
-        py::arg("lr_check") = py::none(), py::arg("subpixel") = false, py::arg("vrange") = 0,
+        py::arg("ca") = defaults.use_ca, py::arg("cost") = py::none(),
+        py::arg("min_disp") = defaults.min_disp, py::arg("validation") = true,
+        py::arg("uniqueness") = py::none(), py::arg("lr_check") = py::none(),
+        py::arg("subpixel") = py::none(), py::arg("vrange") = 0,
         py::arg("neighbours") = "horizontal", py::arg("log_window") = edges.log_window,
         py::arg("log_sigma") = edges.log_sigma, py::arg("edge_value") = edges.edge_value,
         py::arg("truncation") = edges.truncation, py::arg("sparse_uniqueness") = sparse.uniqueness,
         py::arg("sparse_lr") = sparse.lr_tolerance, py::arg("asw") = py::none(),
-        py::arg("speckle_size") = 0, py::arg("speckle_range") = stereo::speckle::kDefaultRange,
-        "Match a pair with (method, engine) of stereo.matchers(). Returns a dict: disparity "
-        "(uint8 labels), valid (bool), and for the pipeline and asw stage 6's disparity_px "
-        "(float32, NaN invalid), fixed (int16, x16), reason, certainty; subpixel (sparse), "
-        "vertical (2-D methods), counts. uniqueness / lr_check: None = that stage off. asw: a "
-        "dict of method asw's options (diameter, response, shape, continuity, right_weights, "
-        "separable, threads), defaults as stereo match --aggregation asw. speckle_size / "
-        "speckle_range: the speckle filter after stage 6 (0 = off; stereo match's defaults are "
-        "100 / 1).");
+        py::arg("speckle_size") = py::none(),
+        py::arg("speckle_range") = stereo::speckle::kDefaultRange,
+        "Match a pair with (method, engine) of stereo.matchers(); the defaults are stereo "
+        "match's (census where the method and engine have it, stage 6 with the cost's ratio and "
+        "tolerance, sub-pixel, the speckle filter). Returns a dict: disparity (uint8 labels), "
+        "valid (bool), and for the methods with stage 6 disparity_px (float32, NaN invalid), "
+        "fixed (int16, x16), reason, certainty; subpixel (sparse), vertical (2-D methods), "
+        "counts. cost: None = the method's default. validation=False: plain winners, as "
+        "--no-validation. uniqueness / lr_check / subpixel / speckle_size: None = the default; a "
+        "value turns that step on with it (subpixel=False, speckle_size=0: off). asw: a dict of "
+        "method asw's options (diameter, response, shape, continuity, right_weights, separable, "
+        "threads), defaults as stereo match --aggregation asw.");
 
     m.def("evaluate", &evaluate, py::arg("disparity"), py::arg("ground_truth"), py::kw_only(),
           py::arg("threshold") = 1.0, py::arg("nonocc") = py::none(), py::arg("all") = py::none(),
@@ -435,18 +476,30 @@ PYBIND11_MODULE(stereo, m) {
 #ifdef STEREO_WITH_RTL
     m.def("cosim_configs", [] {
         std::vector<std::string> names;
-        for (const auto& c : stereo::sim::built_top_configs()) {
-            names.push_back(c.name);
+        for (const stereo::sim::TopConfig* c : stereo::sim::all_top_configs()) {
+            names.push_back(c->name);
         }
         return names;
     });
     m.def(
         "cosim",
         [](const py::array& left, const py::array& right, int ndisp, int window, double sigma,
-           bool ca, const std::string& cost, int min_disp, std::optional<int> uniqueness,
-           std::optional<int> lr_check, bool subpixel, double stall, double gap, std::uint32_t seed,
-           const std::string& trace, std::optional<std::pair<int, int>> size, int lanes,
-           std::optional<int> max_min_disp, bool lean, const std::string& cache) {
+           bool ca, std::optional<std::string> cost_name, int min_disp, bool validation,
+           std::optional<int> uniqueness, std::optional<int> lr_check, std::optional<bool> subpixel,
+           double stall, double gap, std::uint32_t seed, const std::string& trace,
+           std::optional<std::pair<int, int>> size, int lanes, std::optional<int> max_min_disp,
+           bool lean, const std::string& cache) {
+            // stereo cosim's defaults: stereo match's, without the speckle filter (not in the
+            // core).
+            const std::string cost =
+                cost_name.value_or(std::string(stereo::catalogue::default_cost("pipeline", "rtl")));
+            const ValidationKeywords keywords{cost,
+                                              validation,
+                                              uniqueness,
+                                              lr_check,
+                                              subpixel,
+                                              0,
+                                              stereo::speckle::kDefaultRange};
             std::optional<stereo::sim::CoreRequest> core;
             if (size) {
                 core.emplace();
@@ -465,22 +518,25 @@ PYBIND11_MODULE(stereo, m) {
                     "lanes, max_min_disp, lean and cache choose a core built on demand: give "
                     "size=(width, height) too");
             }
-            return cosim(left, right,
-                         match_options("pipeline", "model", ndisp, window, sigma, ca, cost,
-                                       min_disp, uniqueness, lr_check, subpixel, 0, "horizontal",
-                                       kEdges.log_window, kEdges.log_sigma, kEdges.edge_value,
-                                       kEdges.truncation, kSparse.uniqueness, kSparse.lr_tolerance),
-                         stall, gap, seed, trace, core, cache);
+            return cosim(
+                left, right,
+                match_options("pipeline", "model", ndisp, window, sigma, ca, min_disp, keywords, 0,
+                              "horizontal", kEdges.log_window, kEdges.log_sigma, kEdges.edge_value,
+                              kEdges.truncation, kSparse.uniqueness, kSparse.lr_tolerance),
+                stall, gap, seed, trace, core, cache);
         },
         py::arg("left"), py::arg("right"), py::kw_only(), py::arg("ndisp") = 16,
         py::arg("window") = 5, py::arg("sigma") = defaults.sigma, py::arg("ca") = true,
-        py::arg("cost") = "ad", py::arg("min_disp") = 0, py::arg("uniqueness") = py::none(),
-        py::arg("lr_check") = py::none(), py::arg("subpixel") = false, py::arg("stall") = 0.0,
-        py::arg("gap") = 0.0, py::arg("seed") = 1u, py::arg("trace") = "",
-        py::arg("size") = py::none(), py::arg("lanes") = 0, py::arg("max_min_disp") = py::none(),
-        py::arg("lean") = false, py::arg("cache") = "",
+        py::arg("cost") = py::none(), py::arg("min_disp") = 0, py::arg("validation") = true,
+        py::arg("uniqueness") = py::none(), py::arg("lr_check") = py::none(),
+        py::arg("subpixel") = py::none(), py::arg("stall") = 0.0, py::arg("gap") = 0.0,
+        py::arg("seed") = 1u, py::arg("trace") = "", py::arg("size") = py::none(),
+        py::arg("lanes") = 0, py::arg("max_min_disp") = py::none(), py::arg("lean") = false,
+        py::arg("cache") = "",
         "Stream the pair through the Verilated stereo_top (random output stalls and input gaps) "
-        "and compare it with the model: dict with mismatches, cycles, config and the RTL's "
+        "and compare it with the model. Defaults as stereo cosim: stereo match's cost and stage "
+        "6, 16 labels, window 5, no speckle filter (not in the core). Returns a dict with "
+        "mismatches, cycles, config and the RTL's "
         "stage-6 arrays. size=(W, H) (with lanes, max_min_disp, lean, cache) co-simulates a core "
         "of that size, ndisp, window and cost Verilated on demand into the cache "
         "(~/.cache/stereo/cosim) the first time.");

@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "cosim_protocol.hpp"
+#include "stereo/catalogue.hpp"
 #include "stereo/constants.hpp"
 #include "stereo/stage_table.hpp"
 
@@ -48,16 +49,8 @@ fs::path source_root() {
 }
 
 int cost_parameter(const std::string& cost) {
-    if (cost == "ad") {
-        return table::kCostAd;
-    }
-    if (cost == "lcdm") {
-        return table::kCostLcdm;
-    }
-    if (cost == "census") {
-        return table::kCostCensus;
-    }
-    throw std::invalid_argument("cost must be ad, lcdm or census, got '" + cost + "'");
+    catalogue::require_cost(cost, catalogue::CostUse::hardware, "a core built on demand");
+    return catalogue::cost(cost).hardware_code;
 }
 
 int lanes_of(const CoreRequest& request) {

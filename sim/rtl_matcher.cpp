@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "stereo/catalogue.hpp"
 #include "stereo/stages/lcdm.hpp"
 #include "stereo_top_sim.hpp"
 
@@ -13,20 +14,15 @@ namespace {
 ValidatedDisparity run_rtl(const Image& left, const Image& right, const MatchParams& params) {
     check_pair(left, right);
     validate(params, left.width, left.height);
-    if (params.cost != "ad" && params.cost != "lcdm" && params.cost != "census") {
-        throw std::invalid_argument("the RTL has the ad, census and lcdm costs, not \"" +
-                                    params.cost + "\"");
-    }
-    const bool lcdm = params.cost == "lcdm";
+    catalogue::require_cost(params.cost, catalogue::CostUse::hardware, "the RTL");
+    const bool lcdm = catalogue::cost(params.cost).id == catalogue::Cost::lcdm;
     if (lcdm) {
         lcdm::require_colour(left);
     }
     const TopConfig* config = covering_config(left.width, left.height, params.ndisp, params.window,
                                               params.min_disp, params.cost);
     if (config == nullptr) {
-        const TopConfig& largest = lcdm                      ? lcdm_top_config()
-                                   : params.cost == "census" ? census_top_config()
-                                                             : built_top_configs().back();
+        const TopConfig& largest = largest_config(params.cost);
         throw std::invalid_argument(
             "no Verilated configuration covers " + std::to_string(left.width) + "x" +
             std::to_string(left.height) + " ndisp " + std::to_string(params.ndisp) + " window " +

@@ -28,6 +28,7 @@
 #include "Vstereo_top_small.h"
 #include "axis_driver.hpp"
 #include "port_bits.hpp"
+#include "stereo/catalogue.hpp"
 #include "stereo/stage_table.hpp"
 #include "stereo_top_sim.hpp"
 #include "verilated_harness.hpp"
@@ -225,25 +226,25 @@ const std::vector<TopConfig>& fpga_top_configs() {
     return configs;
 }
 
-const TopConfig& top_config_named(const std::string& name) {
-    if (name == lcdm_top_config().name) {
-        return lcdm_top_config();
-    }
-    if (name == lcdm_lanes_top_config().name) {
-        return lcdm_lanes_top_config();
-    }
-    if (name == census_top_config().name) {
-        return census_top_config();
-    }
-    if (name == census_lanes_top_config().name) {
-        return census_lanes_top_config();
-    }
+std::vector<const TopConfig*> all_top_configs() {
+    std::vector<const TopConfig*> all;
     for (const auto* list : {&built_top_configs(), &lanes_top_configs(), &fpga_top_configs(),
                              &census_recompute_top_configs()}) {
         for (const TopConfig& config : *list) {
-            if (config.name == name) {
-                return config;
-            }
+            all.push_back(&config);
+        }
+    }
+    for (const TopConfig* config : {&lcdm_top_config(), &lcdm_lanes_top_config(),
+                                    &census_top_config(), &census_lanes_top_config()}) {
+        all.push_back(config);
+    }
+    return all;
+}
+
+const TopConfig& top_config_named(const std::string& name) {
+    for (const TopConfig* config : all_top_configs()) {
+        if (config->name == name) {
+            return *config;
         }
     }
     throw std::invalid_argument("no co-simulation model named '" + name + "' was built");
@@ -259,14 +260,30 @@ bool covers(const TopConfig& config, int width, int height, int ndisp, int windo
 
 }  // namespace
 
+const TopConfig& largest_config(const std::string& cost) {
+    switch (catalogue::cost(cost).id) {
+        case catalogue::Cost::lcdm:
+            return lcdm_top_config();
+        case catalogue::Cost::census:
+            return census_top_config();
+        case catalogue::Cost::ad:
+            return built_top_configs().back();
+        case catalogue::Cost::zncc:
+            break;
+    }
+    throw std::invalid_argument("no Verilated configuration has the cost " + cost);
+}
+
 const TopConfig* covering_config(int width, int height, int ndisp, int window, int min_disp,
                                  const std::string& cost) {
-    if (cost == "lcdm" || cost == "census") {
-        const TopConfig& config = cost == "lcdm" ? lcdm_top_config() : census_top_config();
+    const catalogue::Cost id = catalogue::cost(cost).id;
+    if (id == catalogue::Cost::lcdm || id == catalogue::Cost::census) {
+        const TopConfig& config = largest_config(cost);
         if (covers(config, width, height, ndisp, window, min_disp)) {
             return &config;
         }
-        if (cost == "census") {  // the larger census builds (the small lean ones are not larger)
+        if (id == catalogue::Cost::census) {  // the larger census builds (the small lean ones are
+                                              // not larger)
             for (const TopConfig& lean : census_recompute_top_configs()) {
                 if (lean.width > config.width &&
                     covers(lean, width, height, ndisp, window, min_disp)) {

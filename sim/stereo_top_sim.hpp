@@ -61,7 +61,13 @@ const std::vector<TopConfig>& fpga_top_configs();
 // census-lanes4, full, the lanes and
 // FPGA ones); throws std::invalid_argument for an unknown name.
 const TopConfig& top_config_named(const std::string& name);
+// Every built configuration, of every cost and family.
+std::vector<const TopConfig*> all_top_configs();
 
+// The largest built configuration of a hardware cost (ad: the last of built_top_configs(), lcdm:
+// lcdm_top_config(), census: census_top_config()), for error messages; throws
+// std::invalid_argument for a cost without hardware (stereo/catalogue.hpp).
+const TopConfig& largest_config(const std::string& cost);
 // The smallest built configuration with the cost `cost` ("ad": built_top_configs(), "lcdm":
 // lcdm_top_config(), "census": census_top_config()) that covers a request; nullptr when none does.
 const TopConfig* covering_config(int width, int height, int ndisp, int window, int min_disp = 0,

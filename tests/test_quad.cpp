@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "stereo/catalogue.hpp"
 #include "stereo/quad.hpp"
 #include "stereo_io/data_dir.hpp"
 #include "stereo_io/disparity_files.hpp"
@@ -156,7 +157,7 @@ TEST(QuadPairs, ModelEqualsNaiveAndVolumeForm) {
     // the uniqueness test and the left-right check reject pixels and the parabola gives
     // fractions (asserted).
     const Scene scene{-3, 2, 1, 8};  // background -3 .. -1, the box at 1; the range is -4 .. 2
-    for (const std::string_view cost : kPairCosts) {
+    for (const std::string& cost : catalogue::cost_names(catalogue::CostUse::pixel_pair)) {
         for (const Pair pair : kPairs) {
             for (const int channels : {1, 3}) {
                 if (cost == "lcdm" && channels == 1) {
@@ -194,7 +195,7 @@ TEST(QuadPairs, ModelEqualsNaiveAndVolumeForm) {
 
 TEST(QuadPairs, KnownShiftsAreRecoveredExactly) {
     auto rng = test::seeded_rng(23);
-    for (const std::string_view cost : kPairCosts) {
+    for (const std::string& cost : catalogue::cost_names(catalogue::CostUse::pixel_pair)) {
         for (const Pair pair : {Pair::vertical, Pair::diagonal, Pair::horizontal}) {
             for (const int d : {-3, 0, 4}) {
                 const auto [reference, partner] = shifted_views(pair, d, 40, 36, 3, rng);

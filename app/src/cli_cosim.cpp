@@ -226,9 +226,7 @@ void run_cosim(const CosimOptions& options) {
                   : sim::covering_config(width, height, params.ndisp, params.window,
                                          params.min_disp, params.cost);
     if (config == nullptr) {
-        const sim::TopConfig& largest = params.cost == "lcdm"     ? sim::lcdm_top_config()
-                                        : params.cost == "census" ? sim::census_top_config()
-                                                                  : sim::built_top_configs().back();
+        const sim::TopConfig& largest = sim::largest_config(params.cost);
         throw std::invalid_argument(
             "no co-simulation model covers " + std::to_string(width) + "x" +
             std::to_string(height) + " with ndisp " + std::to_string(params.ndisp) + ", window " +

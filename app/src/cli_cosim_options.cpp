@@ -1,20 +1,33 @@
 #include "cli_cosim_options.hpp"
 
+#include "stereo/catalogue.hpp"
+
 namespace stereo::cli {
 
 void add_cosim_options(CLI::App& command, CosimOptions& options) {
     command.add_option("LEFT", options.left, "Left image")->required();
     command.add_option("RIGHT", options.right, "Right image, same size as LEFT")->required();
-    // The smallest Verilated configurations cover these; larger ones need a full build.
+    // stereo match's defaults where the core has them (defaults::match_config: the census cost,
+    // stage 6 with its ratio and tolerance, sub-pixel), but 16 labels and a 5x5 window, which the
+    // built configurations cover (larger ones: --size), and no speckle filter (not in the core;
+    // docs/cli.md).
     options.matcher.config.pipeline.ndisp = 16;
     options.matcher.config.pipeline.window = 5;
-    add_matcher_options(command, options.matcher, MatcherChoice::fixed, {.validation = true});
-    command
-        .add_option("--cost", options.matcher.config.pipeline.cost,
-                    "Cost stage of the core: ad (COST = 0), lcdm (COST = 1, colour pairs) or "
-                    "census (COST = 2, the census stage in front)")
-        ->check(CLI::IsMember({"ad", "lcdm", "census"}))
-        ->capture_default_str();
+    add_matcher_options(
+        command, options.matcher, MatcherChoice::fixed,
+        {.validation = true, .validation_on_by_default = true, .default_cost = true});
+    std::string cost_help = "Cost stage of the core:";
+    for (const catalogue::CostRow& row : catalogue::kCosts) {
+        if (catalogue::usable(row, catalogue::CostUse::hardware)) {
+            cost_help += " " + std::string(row.name) +
+                         " (COST = " + std::to_string(row.hardware_code) + ", " +
+                         std::string(row.summary) + ")";
+        }
+    }
+    options.matcher.cost =
+        command.add_option("--cost", options.matcher.config.pipeline.cost, cost_help)
+            ->check(CLI::IsMember(catalogue::cost_names(catalogue::CostUse::hardware)))
+            ->capture_default_str();
     command.add_option("--downscale", options.downscale, "Shrink both images by integer F")
         ->capture_default_str();
     command.add_option("--crop", options.crop, "Use the region WxH+X+Y (after --downscale)");

@@ -15,6 +15,7 @@
 #include "cli.hpp"
 #include "cli_command.hpp"
 #include "cli_matcher_options.hpp"
+#include "stereo/catalogue.hpp"
 #include "stereo/hierarchical.hpp"
 #include "stereo_io/disparity_files.hpp"
 #include "stereo_io/io.hpp"
@@ -91,13 +92,23 @@ std::vector<std::pair<std::string, cv::Mat>> level_files(const MatchResult& resu
     return files;
 }
 
+// "pipeline, vertical, diagonal, asw": the methods with stage 6, for error messages.
+std::string stage6_methods() {
+    std::string names;
+    for (const catalogue::MethodRow& row : catalogue::kMethods) {
+        if (row.stage6) {
+            names += (names.empty() ? "" : ", ") + std::string(row.name);
+        }
+    }
+    return names;
+}
+
 void run_match(const MatchOptions& options) {
     const std::string method = options.matcher.resolved_method();
     const std::string& engine = options.matcher.engine;
-    const bool two_d = method == "hierarchical";
-    // The methods with stage 6: the 1-D pipeline, ASW and the quad pair geometries.
-    const bool stage6 =
-        method == "pipeline" || method == "asw" || method == "vertical" || method == "diagonal";
+    const catalogue::MethodRow& row = catalogue::method(method);
+    const bool two_d = row.two_d;
+    const bool stage6 = row.stage6;
     if (!two_d && (options.matcher.config.vrange != 0 || !options.vertical.empty() ||
                    !options.dump_levels.empty())) {
         throw std::invalid_argument(
@@ -121,13 +132,14 @@ void run_match(const MatchOptions& options) {
                                                           : io::DisparityEncoding::scaled);
     if (output_encoding != io::DisparityEncoding::scaled && !stage6) {
         throw std::invalid_argument(
-            "PFM and --png16 outputs hold the pipeline's validated disparities: use --method "
-            "pipeline, asw, vertical or diagonal");
+            "PFM and --png16 outputs hold the pipeline's validated disparities: use a method "
+            "with stage 6 (" +
+            stage6_methods() + ")");
     }
     if ((!options.certainty.empty() || !options.reasons.empty()) && !stage6) {
         throw std::invalid_argument(
-            "--certainty and --reasons write stage 6's outputs: use --method pipeline, asw, "
-            "vertical or diagonal");
+            "--certainty and --reasons write stage 6's outputs: use a method with stage 6 (" +
+            stage6_methods() + ")");
     }
     MatchConfig config = options.matcher.resolved();
     if (!stage6) {
@@ -135,8 +147,9 @@ void run_match(const MatchOptions& options) {
         // validate in their own way.
         if (options.matcher.explicit_validation() || config.pipeline.min_disp != 0) {
             throw std::invalid_argument(
-                "--min-disp, --uniqueness, --lr-check, --subpixel and --speckle-size need "
-                "--method pipeline, asw, vertical or diagonal");
+                "--min-disp, --uniqueness, --lr-check, --subpixel and --speckle-size need a "
+                "method with stage 6 (" +
+                stage6_methods() + ")");
         }
         config.pipeline.validation = {};
         config.speckle = {};
@@ -219,7 +232,7 @@ void run_match(const MatchOptions& options) {
 
     const double valid = valid_fraction(map);
     const MatchParams& params = config.pipeline;
-    const bool ca = params.use_ca && method != "edges" && method != "sparse" && method != "asw";
+    const bool ca = params.use_ca && row.ca;
     nlohmann::json summary = {
         {"width", map.width}, {"height", map.height}, {"method", method},       {"ndisp", ndisp},
         {"ca", ca},           {"engine", engine},     {"valid_fraction", valid}};
@@ -268,7 +281,7 @@ void run_match(const MatchOptions& options) {
                               {"uniqueness", reasons[fx::kReasonUniqueness]},
                               {"left_right", reasons[fx::kReasonLeftRight]},
                               {"speckle", reasons[fx::kReasonSpeckle]}};
-        if (method == "asw") {
+        if (row.id == catalogue::Method::asw) {
             const asw::Params& weights = config.asw;
             summary["window"] = weights.diameter;
             summary.erase("sigma");

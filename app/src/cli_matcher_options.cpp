@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "stereo/catalogue.hpp"
 #include "stereo/defaults.hpp"
 #include "stereo/hls/match.hpp"
 #ifdef STEREO_WITH_RTL
@@ -70,13 +71,17 @@ bool given(const CLI::Option* option) {
     return option != nullptr && option->count() > 0;
 }
 
-// The matchers that have the default cost: every pipeline and ASW engine but the double-precision
-// one.
-bool has_default_cost(const std::string& method, const std::string& engine) {
-    // The quad pair geometries take every pixel-pair cost (quad::kPairCosts), census included.
-    return (method == "pipeline" || method == "asw" || method == "vertical" ||
-            method == "diagonal") &&
-           engine != "float";
+// "ad (absolute differences ...), census (...), ...": every cost with its summary, the default
+// named, for --cost's help.
+std::string cost_help(bool defaults_per_cost) {
+    std::string text = "Matching cost: " + catalogue::cost_help();
+    if (defaults_per_cost) {
+        text += ". Default: " + std::string(defaults::kCost) + " for the methods " +
+                "with stage 6 where the engine has it, else " +
+                std::string(defaults::kFallbackCost) +
+                "; the --uniqueness and --lr-check defaults follow the cost (docs/results.md)";
+    }
+    return text;
 }
 
 }  // namespace
@@ -86,8 +91,8 @@ MatchConfig MatcherOptions::resolved() const {
     resolved_config.pipeline.use_ca = !no_ca;
     if (defaults_per_cost) {
         MatchParams& params = resolved_config.pipeline;
-        if (!given(cost) && !has_default_cost(resolved_method(), engine)) {
-            params.cost = std::string(defaults::kFallbackCost);
+        if (!given(cost)) {
+            params.cost = std::string(catalogue::default_cost(resolved_method(), engine));
         }
         const defaults::Validation chosen = defaults::validation_for(params.cost);
         if (!given(uniqueness)) {
@@ -139,15 +144,15 @@ void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoi
         ValidationParams& v = params.validation;
         if (exposed.validation_on_by_default) {
             v = ValidationParams::all_on();
-            if (exposed.speckle) {
-                // The cost's ratio and tolerance in front of the speckle filter
-                // (stereo/defaults.hpp). Where the subcommand chooses the matcher, the default
-                // cost too, and resolved() applies another cost's when --cost or the method
-                // changes it; elsewhere (board: the AD core) the subcommand's cost.
-                if (choice == MatcherChoice::selectable) {
-                    options.defaults_per_cost = true;
-                    params.cost = std::string(defaults::kCost);
-                }
+            if ((exposed.speckle && choice == MatcherChoice::selectable) || exposed.default_cost) {
+                // The one default run (defaults::match_config): its cost and stage 6; resolved()
+                // applies another cost's ratio and tolerance when --cost or the method changes it.
+                options.defaults_per_cost = true;
+                const MatchConfig standard = defaults::match_config();
+                params.cost = standard.pipeline.cost;
+                v = standard.pipeline.validation;
+            } else if (exposed.speckle) {
+                // The subcommand's cost (board: the AD core) with its ratio and tolerance.
                 const defaults::Validation chosen = defaults::validation_for(params.cost);
                 v.uniqueness_ratio = chosen.uniqueness;
                 v.lr_tolerance = chosen.lr_tolerance;
@@ -201,30 +206,14 @@ void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoi
                                        const std::vector<std::string>& choices) {
         command.add_option(name, value, help)->check(CLI::IsMember(choices))->capture_default_str();
     };
-    options.cost =
-        command
-            .add_option("--cost", params.cost,
-                        options.defaults_per_cost
-                            ? "Matching cost: census (5x5 of the luma, Hamming; the default of "
-                              "the pipeline, asw and the vertical / diagonal pairs), ad (absolute "
-                              "differences over RGB, thesis Sec. 3.1; the default of the other "
-                              "methods and of --engine float), "
-                              "lcdm (hue-saturation distance, colour only, thesis Sec. 3.5) or "
-                              "zncc (15x15; use with --window 1 --no-ca). The --uniqueness and "
-                              "--lr-check defaults follow the cost (docs/results.md)"
-                            : "Matching cost: ad (absolute differences over RGB), census (5x5, "
-                              "Hamming), lcdm (hue-saturation distance, colour only, thesis Sec. "
-                              "3.5) or zncc (15x15; use with --window 1 --no-ca)")
-            ->check(CLI::IsMember(cost_names()))
-            ->capture_default_str();
-    add_choice("--method", options.method,
-               "pipeline (1-D, rectified pairs), edges (LoG front end), hierarchical (2-D, "
-               "uncalibrated pairs) or sparse (validated sub-pixel)",
-               matchers().methods());
-    add_choice("--engine", options.engine,
-               "model (bit-exact), naive, float, hls (C-simulated HLS kernels), rtl "
-               "(Verilated RTL) or full-search; not every method has every engine",
-               matchers().engines());
+    options.cost = command.add_option("--cost", params.cost, cost_help(options.defaults_per_cost))
+                       ->check(CLI::IsMember(catalogue::cost_names()))
+                       ->capture_default_str();
+    const std::string method_help = "Method: " + catalogue::method_help();
+    add_choice("--method", options.method, method_help.c_str(), matchers().methods());
+    const std::string engine_help =
+        "Engine: " + catalogue::engine_help() + "; not every method has every engine";
+    add_choice("--engine", options.engine, engine_help.c_str(), matchers().engines());
     add_choice("--frontend", options.frontend, "model, or edges (the same as --method edges)",
                {"model", "edges"});
     add_choice("--aggregation", options.aggregation,

@@ -76,6 +76,10 @@ struct ExposedParams {
     bool speckle = false;
     // Stage 6 on unless --no-validation (stereo match); otherwise each option turns its step on.
     bool validation_on_by_default = false;
+    // A fixed-matcher subcommand (cosim) whose --cost defaults to the catalogue's and whose
+    // --uniqueness and --lr-check defaults follow the cost, as stereo match's do (the subcommand
+    // registers its own --cost and sets MatcherOptions::cost to it).
+    bool default_cost = false;
 };
 
 // Registers the options on `command`. The defaults shown by --help are the values

@@ -16,6 +16,7 @@
 #include "cli.hpp"
 #include "cli_command.hpp"
 #include "cli_matcher_options.hpp"
+#include "stereo/catalogue.hpp"
 #include "stereo/defaults.hpp"
 #include "stereo/quad.hpp"
 #include "stereo_io/disparity_files.hpp"
@@ -158,16 +159,14 @@ void add_quad_command(CLI::App& app) {
         ->required();
     options->matcher.config.pipeline.window = 13;  // the thesis' quad window
     // `stereo match`'s default cost (chosen on the Middlebury scenes, stereo/defaults.hpp); every
-    // pair geometry takes the pixel-pair costs (quad::kPairCosts).
+    // pair geometry takes the pixel-pair costs of the catalogue.
     options->matcher.config.pipeline.cost = std::string(defaults::kCost);
     add_matcher_options(*command, options->matcher, MatcherChoice::fixed, {.validation = true});
     command
         ->add_option("--cost", options->matcher.config.pipeline.cost,
-                     "Matching cost of the three pairs: census (5x5 of the luma, Hamming; "
-                     "stereo match's default), ad (absolute differences over RGB, the thesis') or "
-                     "lcdm (hue-saturation distance, colour only)")
-        ->check(CLI::IsMember(
-            std::vector<std::string>(quad::kPairCosts.begin(), quad::kPairCosts.end())))
+                     "Matching cost of the three pairs (default: stereo match's): " +
+                         catalogue::cost_help(catalogue::CostUse::pixel_pair))
+        ->check(CLI::IsMember(catalogue::cost_names(catalogue::CostUse::pixel_pair)))
         ->capture_default_str();
     std::vector<std::string> keys;  // the model's names of the fusion keys
     for (const quad::FusionKey key : quad::kFusionKeys) {

@@ -20,6 +20,7 @@
 #include "cli_command.hpp"
 #include "cli_matcher_options.hpp"
 #include "cli_progress.hpp"
+#include "stereo/catalogue.hpp"
 #include "stereo/stages.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/output.hpp"
@@ -332,8 +333,8 @@ void add_slam_command(CLI::App& app) {
                         {.ndisp = true, .no_ca = false});
     command
         ->add_option("--cost", frontend.cost,
-                     "Matching cost of the front end: ad, census, lcdm or zncc (docs/slam.md)")
-        ->check(CLI::IsMember(cost_names()))
+                     "Matching cost of the front end (docs/slam.md): " + catalogue::cost_help())
+        ->check(CLI::IsMember(catalogue::cost_names()))
         ->capture_default_str();
     add_number_options(
         *command,

@@ -28,6 +28,7 @@
 
 #include "cli_command.hpp"
 #include "experiments.hpp"
+#include "stereo/catalogue.hpp"
 #include "stereo/defaults.hpp"
 #include "stereo/quad.hpp"
 #include "stereo_io/data_dir.hpp"
@@ -909,8 +910,7 @@ void add_quad_eval_command(CLI::App& app) {
     command
         ->add_option("--costs", options->costs,
                      "Matching costs of the pairs and the two-camera rows (first: figures)")
-        ->check(CLI::IsMember(
-            std::vector<std::string>(quad::kPairCosts.begin(), quad::kPairCosts.end())))
+        ->check(CLI::IsMember(catalogue::cost_names(catalogue::CostUse::pixel_pair)))
         ->capture_default_str();
 }
 

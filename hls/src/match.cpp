@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "stereo/catalogue.hpp"
 #include "stereo/hls/host.hpp"
 #include "stereo/hls/stream.hpp"
 #include "stereo/hls/top.hpp"
@@ -47,13 +48,17 @@ ValidatedDisparity run_cost(const Image& left, const Image& right, const MatchPa
 template <int NDISP>
 ValidatedDisparity run_window(const Image& left, const Image& right, const MatchParams& params,
                               const Variant& variant) {
-    if (params.cost == "lcdm") {
-        return run_cost<NDISP, lcdm_measure>(left, right, params, variant);
+    switch (catalogue::cost(params.cost).id) {
+        case catalogue::Cost::lcdm:
+            return run_cost<NDISP, lcdm_measure>(left, right, params, variant);
+        case catalogue::Cost::census:
+            return run_cost<NDISP, census_measure>(left, right, params, variant);
+        case catalogue::Cost::ad:
+            return run_cost<NDISP, ad_measure>(left, right, params, variant);
+        case catalogue::Cost::zncc:  // refused by require_cost
+            break;
     }
-    if (params.cost == "census") {
-        return run_cost<NDISP, census_measure>(left, right, params, variant);
-    }
-    return run_cost<NDISP, ad_measure>(left, right, params, variant);
+    throw std::invalid_argument("the HLS kernels have no " + params.cost + " cost");
 }
 
 }  // namespace
@@ -83,11 +88,8 @@ ValidatedDisparity match_validated(const Image& left, const Image& right,
             " is larger than the HLS variants' " + std::to_string(kHostMaxWidth) + "x" +
             std::to_string(kHostMaxHeight));
     }
-    if (params.cost != "ad" && params.cost != "lcdm" && params.cost != "census") {
-        throw std::invalid_argument("the HLS kernels have the ad, census and lcdm costs, not \"" +
-                                    params.cost + "\"");
-    }
-    if (params.cost == "lcdm") {
+    catalogue::require_cost(params.cost, catalogue::CostUse::hardware, "the HLS kernels");
+    if (catalogue::cost(params.cost).id == catalogue::Cost::lcdm) {
         lcdm::require_colour(left);
     }
     const Variant variant = variant_for(params);

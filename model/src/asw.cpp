@@ -3,6 +3,7 @@
 // offsets are computed once (for every disparity), then summed disparity by disparity, offset by
 // offset, with the innermost loop over the tile's contiguous pixels (it vectorises).
 #include "stereo/asw.hpp"
+#include "stereo/catalogue.hpp"
 
 #include <algorithm>
 #include <array>
@@ -529,7 +530,7 @@ int truncation_for(int truncation, std::string_view cost) {
     if (truncation != kTruncationByCost) {
         return truncation;
     }
-    return cost == "census" ? 0 : kDefaultTruncation;
+    return catalogue::cost(cost).asw_truncation;
 }
 
 void truncate_cost(Dsi& cost, int truncation) {

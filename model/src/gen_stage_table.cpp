@@ -337,17 +337,36 @@ std::string json_text() {
     for (std::size_t i = 0; i < t::kRtlModules.size(); ++i) {
         out << (i == 0 ? "" : ", ") << '"' << t::kRtlModules[i] << '"';
     }
-    out << "],\n  \"stages\": [\n";
+    // The hardware costs of the catalogue (stereo/catalogue.hpp): name, COST code, summary.
+    out << "],\n  \"costs\": [\n";
+    std::vector<const stereo::catalogue::CostRow*> hardware;
+    for (const auto& row : stereo::catalogue::kCosts) {
+        if (row.hardware_code != stereo::catalogue::kNoHardware) {
+            hardware.push_back(&row);
+        }
+    }
+    for (std::size_t i = 0; i < hardware.size(); ++i) {
+        out << "    {\"name\": \"" << hardware[i]->name
+            << "\", \"code\": " << hardware[i]->hardware_code << ", \"summary\": \""
+            << hardware[i]->summary << "\"}" << (i + 1 < hardware.size() ? "," : "") << '\n';
+    }
+    const auto stage_json = [](const t::Stage& stage) {
+        std::ostringstream text;
+        text << "{\"name\": \"" << stage.name << "\", \"module\": \"" << stage.module
+             << "\", \"in_lane_bits\": " << stage.in_lane_bits
+             << ", \"out_lane_bits\": " << stage.out_lane_bits
+             << ", \"latency\": {\"radius_rows\": " << stage.rtl.radius_rows
+             << ", \"rows\": " << stage.rtl.rows << ", \"radius_steps\": " << stage.rtl.radius_steps
+             << ", \"steps\": " << stage.rtl.steps << ", \"ndisp_steps\": " << stage.rtl.ndisp_steps
+             << ", \"left_delay\": " << stage.rtl.left_delay << "}}";
+        return text.str();
+    };
+    // The census stage runs in front of the cost stage with the census cost only
+    // (stage_table.hpp pipeline_latency).
+    out << "  ],\n  \"census_stage\": " << stage_json(t::kCensusStage) << ",\n  \"stages\": [\n";
     for (std::size_t i = 0; i < t::kStages.size(); ++i) {
-        const auto& stage = t::kStages[i];
-        out << "    {\"name\": \"" << stage.name << "\", \"module\": \"" << stage.module
-            << "\", \"in_lane_bits\": " << stage.in_lane_bits
-            << ", \"out_lane_bits\": " << stage.out_lane_bits
-            << ", \"latency\": {\"radius_rows\": " << stage.rtl.radius_rows
-            << ", \"rows\": " << stage.rtl.rows << ", \"radius_steps\": " << stage.rtl.radius_steps
-            << ", \"steps\": " << stage.rtl.steps << ", \"ndisp_steps\": " << stage.rtl.ndisp_steps
-            << ", \"left_delay\": " << stage.rtl.left_delay << "}}"
-            << (i + 1 < t::kStages.size() ? "," : "") << '\n';
+        out << "    " << stage_json(t::kStages[i]) << (i + 1 < t::kStages.size() ? "," : "")
+            << '\n';
     }
     out << "  ],\n  \"lint\": [\n";
     for (std::size_t i = 0; i < t::kExtraLintConfigs.size(); ++i) {

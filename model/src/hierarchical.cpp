@@ -1,4 +1,5 @@
 #include "stereo/hierarchical.hpp"
+#include "stereo/catalogue.hpp"
 
 #include <algorithm>
 #include <cstdlib>
@@ -139,11 +140,7 @@ void validate(const Params& params, int width, int height) {
                                         std::to_string(value));
         }
     };
-    if (std::find(kCosts.begin(), kCosts.end(), params.cost) == kCosts.end()) {
-        throw std::invalid_argument(
-            "the hierarchical search has the ad, lcdm and census costs, not \"" + params.cost +
-            "\"");
-    }
+    catalogue::require_cost(params.cost, catalogue::CostUse::pixel_pair, "the hierarchical search");
     check_range("ndisp", params.ndisp, fx::kMaxDisparities);
     if (params.vrange < 0) {
         throw std::invalid_argument("vrange must be >= 0 (0 = same as ndisp), got " +

@@ -3,6 +3,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "stereo/catalogue.hpp"
+#include "stereo/defaults.hpp"
 #include "stereo/hierarchical.hpp"
 #include "stereo/hierarchical_reference.hpp"
 #include "stereo/matcher.hpp"
@@ -84,7 +86,7 @@ MatcherFactory edges_factory(EdgeFunction run) {
         MatchParams params = config.pipeline;
         params.use_ca = false;  // the front end has no CA stage
         const edge_frontend::EdgeParams edges = config.edges;
-        if (params.cost != "ad") {
+        if (catalogue::cost(params.cost).id != catalogue::Cost::ad) {
             throw std::invalid_argument("the edge front end has its own cost (truncated AD)");
         }
         return std::make_unique<FunctionMatcher>(
@@ -272,6 +274,14 @@ MatcherFactory asw_floating_factory() {
 }  // namespace
 
 void MatcherRegistry::add(MatcherEntry entry) {
+    // Every method and engine has its catalogue row (throws std::invalid_argument otherwise).
+    try {
+        catalogue::method(entry.method);
+        catalogue::engine(entry.engine);
+    } catch (const std::invalid_argument& error) {
+        throw std::logic_error("matcher " + entry.method + "/" + entry.engine +
+                               " is not in the catalogue: " + error.what());
+    }
     for (const auto& existing : entries_) {
         if (existing.method == entry.method && existing.engine == entry.engine) {
             throw std::logic_error("matcher " + entry.method + "/" + entry.engine +
@@ -358,6 +368,22 @@ void register_model_matchers(MatcherRegistry& registry) {
                   asw_factory(&asw::match_naive)});
     registry.add(
         {"asw", "float", "adaptive support weights in double precision", asw_floating_factory()});
+}
+
+MatchConfig defaults::match_config(std::string_view method, std::string_view engine) {
+    const catalogue::MethodRow& row = catalogue::method(method);
+    const catalogue::EngineRow& runner = catalogue::engine(engine);
+    MatchConfig config;
+    MatchParams& params = config.pipeline;
+    params.cost = std::string(catalogue::default_cost(method, engine));
+    if (row.stage6 && runner.stage6) {
+        const Validation chosen = validation_for(params.cost);
+        params.validation = ValidationParams::all_on();
+        params.validation.uniqueness_ratio = chosen.uniqueness;
+        params.validation.lr_tolerance = chosen.lr_tolerance;
+        config.speckle = speckle::Params::defaults();
+    }
+    return config;
 }
 
 }  // namespace stereo

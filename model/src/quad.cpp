@@ -1,5 +1,6 @@
 // Quad-camera matching (docs/quad.md): the three pair geometries and the certainty fusion.
 #include "stereo/quad.hpp"
+#include "stereo/catalogue.hpp"
 
 #include <algorithm>
 #include <cstdlib>
@@ -28,7 +29,7 @@ bool partner_inside(Step s, int x, int y, int d, int width, int height, int reac
 
 // Stage 1 along the direction, through the cost plug-in (stages.hpp): plane k holds d =
 // min_disp + k, kCostOutside where the partner pixel leaves the image. The plug-in's row() takes
-// the partner row and column offset, so every pixel-pair cost (quad::kPairCosts) runs along any
+// the partner row and column offset, so every pixel-pair cost (stereo/catalogue.hpp) runs along any
 // direction.
 Dsi direction_cost(Step s, const Image& reference, const Image& partner,
                    const MatchParams& params) {
@@ -238,12 +239,9 @@ FusionKey fusion_key(std::string_view name) {
 
 void validate_pair(Pair pair, const MatchParams& params, int width, int height) {
     validate_params(params);
-    if (pair != Pair::horizontal &&
-        std::find(kPairCosts.begin(), kPairCosts.end(), params.cost) == kPairCosts.end()) {
-        throw std::invalid_argument(
-            "the " + std::string(name(pair)) +
-            " pair supports the pixel-pair costs ad, census and lcdm, not " + params.cost +
-            " (a window cost that is defined along rows)");
+    if (pair != Pair::horizontal) {
+        catalogue::require_cost(params.cost, catalogue::CostUse::pixel_pair,
+                                "the " + std::string(name(pair)) + " pair (pixel-pair costs)");
     }
     // The disparity range runs along the search axis: the width for the horizontal pair, the
     // height for the vertical pair, both for the diagonal.

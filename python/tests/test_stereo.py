@@ -119,6 +119,42 @@ def test_match_equals_cli_bit_for_bit(scene_pair, tmp_path):
                                   np.nan_to_num(got, nan=-99)), name
 
 
+def test_default_map_is_the_same_through_cli_python_and_cosim(scene_pair, tmp_path):
+    """One definition of a default run (stereo/defaults.hpp, match_config): `stereo match` with no
+    option but the label count, stereo.match with none, and stereo cosim's model and RTL (whose
+    defaults are stereo match's but for the 5x5 window of the built cores and no speckle filter),
+    bit for bit, on a scene that exercises stage 6 and the speckle filter (issue 44)."""
+    left_path, right_path = scene_pair
+    pfm, reasons, certainty = (tmp_path / name for name in ("cli.pfm", "r.png", "c.png"))
+    subprocess.run([CLI, "match", left_path, right_path, "--ndisp", "16", "-o", str(pfm),
+                    "--reasons", str(reasons), "--certainty", str(certainty)],
+                   check=True, capture_output=True)
+    expected = read_pfm(pfm)
+    valid = np.isfinite(expected)
+    assert valid.mean() >= 0.3
+    assert (expected[valid] != np.floor(expected[valid])).any()  # sub-pixel on by default
+    assert {1, 3, 4} <= set(np.unique(grey_png(reasons)).tolist())  # border, left-right, speckle
+    left = stereo.load_image(left_path)
+    right = stereo.load_image(right_path)
+    got = stereo.match(left, right, ndisp=16)
+    assert np.array_equal(np.isfinite(got["disparity_px"]), valid)
+    assert np.array_equal(got["disparity_px"][valid], expected[valid])
+    assert np.array_equal(got["reason"], grey_png(reasons))
+    assert np.array_equal(got["certainty"], grey_png(certainty))
+    if not stereo.has_rtl:
+        return
+    core_pfm = tmp_path / "core.pfm"
+    subprocess.run([CLI, "match", left_path, right_path, "--ndisp", "16", "--window", "5",
+                    "--speckle-size", "0", "-o", str(core_pfm)], check=True, capture_output=True)
+    core_expected = read_pfm(core_pfm)
+    core_valid = np.isfinite(core_expected)
+    assert core_valid.mean() >= 0.3
+    rtl = stereo.cosim(left, right)
+    assert rtl["mismatches"] == 0
+    assert np.array_equal(rtl["fixed"][core_valid], (core_expected[core_valid] * 16).astype(np.int16))
+    assert np.array_equal(rtl["reason"] == 0, core_valid)
+
+
 def test_match_labels_equal_cli_without_validation(fixture_pair, tmp_path):
     left_path, right_path = fixture_pair
     pfm = tmp_path / "plain.pfm"
@@ -126,7 +162,7 @@ def test_match_labels_equal_cli_without_validation(fixture_pair, tmp_path):
                     "--no-validation", "-o", str(pfm)], check=True, capture_output=True)
     expected = read_pfm(pfm)
     result = stereo.match(stereo.load_image(left_path), stereo.load_image(right_path),
-                          ndisp=12, window=3, cost="census")
+                          ndisp=12, window=3, validation=False)
     labels = np.where(result["valid"], result["disparity"].astype(np.float32), np.nan)
     both = np.isfinite(expected)
     assert np.array_equal(np.isfinite(labels), both)
@@ -199,7 +235,7 @@ def test_asw_options_reach_the_matcher(fixture_pair, tmp_path):
     expected = read_pfm(pfm)
     left = stereo.load_image(left_path)
     right = stereo.load_image(right_path)
-    result = stereo.match(left, right, method="asw", ndisp=8, cost="census",
+    result = stereo.match(left, right, method="asw", ndisp=8, validation=False,
                           asw={"diameter": 9, "separable": True})
     got = result["disparity_px"]
     both = np.isfinite(expected)
@@ -213,7 +249,8 @@ def test_asw_options_reach_the_matcher(fixture_pair, tmp_path):
     subprocess.run([CLI, "match", left_path, right_path, "--ndisp", "8", "--aggregation", "asw",
                     "--window", "9", "--cost", "ad", "--truncation", "0", "--no-validation", "-o",
                     str(untruncated)], check=True, capture_output=True)
-    plain = stereo.match(left, right, method="asw", ndisp=8, asw={"diameter": 9, "truncation": 0})
+    plain = stereo.match(left, right, method="asw", ndisp=8, cost="ad", validation=False,
+                         asw={"diameter": 9, "truncation": 0})
     expected0 = read_pfm(untruncated)
     both0 = np.isfinite(expected0)
     assert np.array_equal(np.isfinite(plain["disparity_px"]), both0)
@@ -233,7 +270,7 @@ def test_speckle_filter_counts_what_it_removes():
     left = rng.integers(0, 256, size=(48, 64, 3), dtype=np.uint8)
     right = rng.integers(0, 256, size=(48, 64, 3), dtype=np.uint8)
     options = dict(ndisp=8, window=5, uniqueness=8, lr_check=0, subpixel=True)
-    plain = stereo.match(left, right, **options)
+    plain = stereo.match(left, right, speckle_size=0, **options)
     filtered = stereo.match(left, right, speckle_size=30, speckle_range=1, **options)
     removed = filtered["reason"] == 4
     assert removed.any()
@@ -288,7 +325,7 @@ def test_cosim_equals_model_under_stalls():
     result = stereo.cosim(left, right, ndisp=16, window=5, uniqueness=10, lr_check=1,
                           stall=0.3, gap=0.2, seed=SEED)
     assert result["mismatches"] == 0
-    model = stereo.match(left, right, ndisp=16, window=5, uniqueness=10, lr_check=1)
+    model = stereo.match(left, right, ndisp=16, window=5, uniqueness=10, lr_check=1, speckle_size=0)
     assert np.array_equal(result["fixed"], model["fixed"])
     assert np.array_equal(result["reason"], model["reason"])
     assert result["cycles"] >= 64 * 48
@@ -302,10 +339,10 @@ def test_cosim_on_demand_core_equals_model(tmp_path):
     options = dict(ndisp=8, window=3, uniqueness=10, lr_check=1, subpixel=True)
     result = stereo.cosim(left, right, **options, stall=0.3, gap=0.2, seed=SEED, size=(48, 32),
                           lanes=4, cache=str(tmp_path))
-    assert result["config"] == "on-demand 48x32-n8-w3-ad-l4-m8"
+    assert result["config"] == "on-demand 48x32-n8-w3-census-l4-m8"  # stereo cosim's default
     assert result["config"] not in stereo.cosim_configs()
     assert result["mismatches"] == 0
-    model = stereo.match(left, right, **options)
+    model = stereo.match(left, right, speckle_size=0, **options)
     assert np.array_equal(result["fixed"], model["fixed"])
     assert np.array_equal(result["reason"], model["reason"])
     assert np.count_nonzero(result["reason"] == 0) > 48 * 32 // 2

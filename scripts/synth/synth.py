@@ -263,14 +263,28 @@ def resources_ecp5(cells):
     }
 
 
+def stage_latency(stage, config):
+    """Pixel steps of one stage of the stage table (stage_table.hpp Latency::at)."""
+    lat, r = stage["latency"], config["window"] // 2
+    k = max(0, -config.get("min_disp", 0))
+    return ((lat["radius_rows"] * r + lat["rows"]) * config["width"] + lat["radius_steps"] * r
+            + lat["steps"] + lat["ndisp_steps"] * config["ndisp"] + lat["left_delay"] * k)
+
+
+def pipeline_latency(config):
+    """Pixel steps from a pixel entering stereo_top to its output beat (stage_table.hpp
+    pipeline_latency): every stage of the table, and the census stage with the census cost."""
+    steps = sum(stage_latency(stage, config) for stage in STAGE_TABLE["stages"])
+    if config.get("cost") == "census":
+        steps += stage_latency(STAGE_TABLE["census_stage"], config)
+    return steps
+
+
 def throughput(config, fmax_mhz):
     """Frames per second and million disparity evaluations per second at Fmax (no stalls)."""
     if fmax_mhz is None:
         return None, None
-    r = config["window"] // 2
-    steps = config["width"] * config["height"] + (r + 2) * config["width"] + r + 10
-    if config.get("cost") == "census":
-        steps += 2 * config["width"] + 4  # the census stage's latency (stage_table kCensusStage)
+    steps = config["width"] * config["height"] + pipeline_latency(config)
     cycles = steps * clocks_per_step(config)
     fps = fmax_mhz * 1e6 / cycles
     mdes = fps * config["width"] * config["height"] * config["ndisp"] / 1e6
@@ -699,8 +713,8 @@ DEFAULT_MAX_MIN_DISP = int(re.search(r"DEFAULT_MAX_MIN_DISP\s*=\s*(\d+)",
 # stereo_top's SHIFT_ADD values by name.
 SHIFT_ADD = {"none": 0, "narrow": 1, "all": 2}
 # stereo_top's COST values by name, read from the generated package.
-COSTS = {name.lower(): int(value) for name, value in
-         re.findall(r"COST_(AD|LCDM|CENSUS)\s*=\s*(\d+)", (REPO / "rtl" / "fx_pkg.sv").read_text())}
+# The hardware costs of the catalogue (model/include/stereo/catalogue.hpp), by name.
+COSTS = {cost["name"]: cost["code"] for cost in STAGE_TABLE["costs"]}
 
 
 def module_kind(name):
@@ -1362,7 +1376,7 @@ def add_config_arguments(parser, width=64, height=48, ndisp=4, window=5):
                         help="stereo_top RING_BLOCK_MIN_FILL (iCE40): a group ring goes to block "
                              "RAM when it fills each 16-bit block column with at least this many "
                              "bits (default: the RTL's, 50)")
-    parser.add_argument("--cost", choices=["ad", "lcdm", "census"], default=None,
+    parser.add_argument("--cost", choices=list(COSTS), default=None,
                         help="stereo_top COST (default: the RTL's, AD); census keeps 5-bit codes "
                              "in the aggregation's line buffer")
     parser.add_argument("--shift-add", choices=sorted(SHIFT_ADD), default=None,

@@ -147,21 +147,23 @@ class StatParsing(unittest.TestCase):
 
 class Throughput(unittest.TestCase):
     def test_cycles_per_frame(self):
-        # 640x480, R = 5: 307200 + 7 * 640 + 5 + 10 = 311695 cycles (docs/rtl.md); at 100 MHz
-        # 320.83 fps, and 640 * 480 * 64 * 100e6 / 311695 / 1e6 = 6307.7 M disparity evaluations/s.
+        # 640x480, R = 5, N = 64: the pipeline latency (R + 2) W + R + 11 + N (stage_table.hpp)
+        # is 7 * 640 + 5 + 11 + 64 = 4560 steps, so 307200 + 4560 = 311760 cycles; at 100 MHz
+        # 320.76 fps, and 640 * 480 * 64 * 100e6 / 311760 / 1e6 = 6306.4 M disparity
+        # evaluations/s.
         fps, mdes = synth.throughput({"width": 640, "height": 480, "ndisp": 64, "window": 11},
                                      100.0)
-        self.assertEqual(fps, 320.83)
-        self.assertEqual(mdes, 6307.7)
+        self.assertEqual(fps, 320.76)
+        self.assertEqual(mdes, 6306.4)
         self.assertEqual(synth.throughput({"width": 1, "height": 1, "ndisp": 1, "window": 1},
                                           None), (None, None))
 
     def test_lanes_divide_the_frame_rate(self):
-        # LANES = 8 of 64 labels: 8 clocks per pixel step, 311695 * 8 cycles per frame.
+        # LANES = 8 of 64 labels: 8 clocks per pixel step, 311760 * 8 cycles per frame.
         fps, mdes = synth.throughput({"width": 640, "height": 480, "ndisp": 64, "window": 11,
                                       "lanes": 8}, 100.0)
-        self.assertEqual(fps, 40.1)
-        self.assertEqual(mdes, 788.5)
+        self.assertEqual(fps, 40.09)
+        self.assertEqual(mdes, 788.3)
         with self.assertRaises(synth.ReportError):
             synth.config_from_args(type("Args", (), {"width": 64, "height": 48, "ndisp": 6,
                                                      "window": 5, "lanes": 4})())
@@ -374,9 +376,9 @@ class Tables(unittest.TestCase):
             self.assertTrue(rows[0].startswith("| xilinx | 640 x 480 | 16 |"))
             self.assertIn("| xilinx (no DSP) | 640 x 480 | 64 |", rows[2])
             self.assertIn("| XC7K325T |", rows[2])
-            # By hand: 640*480 + 7*640 + 15 = 311,695 cycles; 1e8 / 311,695 = 320.8 fps;
-            # 320.8 * 640 * 480 * 64 / 1e6 = 6,307.9 M disparity evaluations/s.
-            self.assertTrue(rows[2].endswith("| 321 | 6,308 |"))
+            # By hand: 640*480 + 7*640 + 5 + 11 + 64 = 311,760 cycles; 1e8 / 311,760 = 320.76
+            # fps; 320.76 * 640 * 480 * 64 / 1e6 = 6,306.4 M disparity evaluations/s.
+            self.assertTrue(rows[2].endswith("| 321 | 6,306 |"))
             # The stage split is the DSP point's where both variants of a configuration exist.
             self.assertIn("| xilinx 640x480 / 64 / 11x11: stage |", text)
             self.assertIn("| aggregate | 88,948 (100 %) |", text)
@@ -411,9 +413,10 @@ class Configs(unittest.TestCase):
         plain = synth.config_from_args(SimpleNamespace(width=64, height=48, ndisp=8, window=7))
         self.assertNotIn("cost", plain)
         self.assertNotIn("COST", synth.chparam(plain))
-        # The census stage adds 2W + 4 = 132 steps: (3072 + 5 * 64 + 3 + 10 + 132) * 4 clocks.
+        # The census stage adds 2W + 4 = 132 steps to (R + 2) W + R + 11 + N:
+        # (3072 + 5 * 64 + 3 + 11 + 8 + 132) * 4 clocks.
         fps, _ = synth.throughput(dict(config, lanes=2), 100.0)
-        self.assertEqual(fps, round(100e6 / ((3072 + 5 * 64 + 3 + 10 + 132) * 4), 2))
+        self.assertEqual(fps, round(100e6 / ((3072 + 5 * 64 + 3 + 11 + 8 + 132) * 4), 2))
 
     def test_board_refuses_core_options(self):
         for extra in ({"cost": "census"}, {"shift_add": "all"}):
@@ -588,13 +591,13 @@ class Boards(unittest.TestCase):
         # XC7A35T: 85 % of 20,800 LUTs is 17,680, of 50 RAMB36 42.5. 64 labels at 17,000 LUTs and
         # 43 blocks is over (43 > 42.5); 32 labels at 17,680 LUTs and 42.5 blocks is exactly on
         # the budget, so it is the largest that fits. At 100 MHz and 4 clocks per step
-        # (32 / 8) it runs 100e6 / (4 * (640*480 + 7*640 + 5 + 10 + 2*0)) = 80.21 frames/s.
+        # (32 / 8) it runs 100e6 / (4 * (640*480 + 7*640 + 5 + 11 + 32)) = 80.20 frames/s.
         result = self.run_boards({"a.json": self.estimate(64, 17000, 43, lanes=8),
                                   "b.json": self.estimate(32, 17680, 42.5, lanes=8),
                                   "c.json": self.estimate(16, 9000, 20, lanes=4)}, "basys3")
         best = result["boards"]["basys3"]["largest"]
         self.assertEqual(best["report"], "b.json")
-        self.assertEqual(best["frames_per_second"], round(100e6 / (4 * 311695), 2))
+        self.assertEqual(best["frames_per_second"], round(100e6 / (4 * 311728), 2))
         self.assertEqual(best["usage"]["luts"]["percent"], 85.0)
         self.assertEqual(best["logic_depth"]["lut_levels"], 7)
 

@@ -16,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "stereo/catalogue.hpp"
 #include "stereo/dsi.hpp"
 #include "stereo/image.hpp"
 #include "stereo/pipeline.hpp"
@@ -49,7 +50,8 @@ inline constexpr int kOutputFracBits = 4;         // A(p, d) carries 4 fraction 
 // The matching cost is truncated before the aggregation, C' = min(C, T): Yoon and Kweon's T = 40
 // (in units of |dR| + |dG| + |dB|), part of the ASW framework the thesis builds on (docs/asw.md,
 // "The truncated cost"). 0 switches it off.
-inline constexpr int kDefaultTruncation = 40;
+inline constexpr int kDefaultTruncation =
+    catalogue::cost(catalogue::Cost::ad).asw_truncation;  // 40
 // The default of Params::truncation: T follows the cost (truncation_for). Yoon and Kweon's T is
 // in intensity steps and caps the outliers of a difference of intensities (ad, lcdm, zncc); the
 // census cost is a Hamming distance, bounded and rank-based, whose every bit already saturates,

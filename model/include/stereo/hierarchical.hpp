@@ -42,9 +42,8 @@ inline constexpr int kLevels = 3;  // quarter, half, full
 inline constexpr std::array<int, kLevels> kLevelFactor = {4, 2, 1};
 inline constexpr std::array<const char*, kLevels> kLevelNames = {"quarter", "half", "full"};
 inline constexpr int kMaxVerticalRange = 252;  // offsets fit an int8 and 128 + v a PNG byte
-// The costs the search (and its naive reference) can use: AD over RGB, LCDM (colour only) and
-// the 5x5 census of the luma (computed on each level's image).
-inline constexpr std::array<const char*, 3> kCosts = {"ad", "lcdm", "census"};
+// The costs the search (and its naive reference) can use are the catalogue's pixel-pair costs
+// (AD over RGB, LCDM, the 5x5 census of the luma, each computed on each level's image).
 
 struct Params {
     int ndisp = fx::kDefaultDisparities;  // D: horizontal labels 0..D-1 at full size
@@ -53,7 +52,7 @@ struct Params {
                                                default_level(23)};
     bool use_ca = true;
     CaNeighbours neighbours = CaNeighbours::horizontal;
-    std::string cost = "ad";  // one of kCosts
+    std::string cost = "ad";  // a pixel-pair cost of the catalogue
 
     int vertical_range() const { return vrange == 0 ? ndisp : vrange; }
 };

@@ -37,10 +37,10 @@ constexpr Step step(Pair pair) {
 }
 std::string_view name(Pair pair);  // "horizontal", "vertical", "diagonal"
 
-// The costs every pair geometry takes: those of one pixel against one pixel (census compares two
-// per-image codes), which read the same along any direction. ZNCC's window mask depends on the
-// horizontal search, so it stays with the horizontal pair.
-inline constexpr std::array<std::string_view, 3> kPairCosts = {"ad", "census", "lcdm"};
+// The costs every pair geometry takes are the catalogue's pixel-pair costs
+// (catalogue::cost_names(catalogue::CostUse::pixel_pair)): those of one pixel against one pixel
+// (census compares two per-image codes), which read the same along any direction. ZNCC's window
+// mask depends on the horizontal search, so it stays with the horizontal pair.
 
 // The source map's values: which pair a fused pixel comes from (0: none was valid).
 inline constexpr std::uint8_t kSourceNone = 0;
@@ -50,7 +50,7 @@ constexpr std::uint8_t source_code(Pair pair) {
 
 // Throws std::invalid_argument (one line) when `params` cannot run on a pair of this size along
 // this direction: stereo::validate along the search axis (both axes for the diagonal), and a
-// cost outside kPairCosts for the vertical and diagonal pairs.
+// cost that is not a pixel-pair cost for the vertical and diagonal pairs.
 void validate_pair(Pair pair, const MatchParams& params, int width, int height);
 
 // One pair through the Sec. 3.1 pipeline and stage 6 along its direction. Horizontal:

@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <string_view>
 
+#include "stereo/catalogue.hpp"
 #include "stereo/constants.hpp"
 
 namespace stereo::fx {
@@ -133,11 +134,18 @@ inline constexpr std::array<Stage, 7> kStages = {{
     {"lr_check", "stereo_lr_check", fx::kAggBits, kOutBeatBits, {0, 0, 0, 0, 1}, 0},
 }};
 
-// The matching costs of the hardware: stereo_top's COST parameter, the HLS pipeline's measure.
-inline constexpr int kCostAd = 0;      // absolute differences over RGB (thesis Sec. 3.1)
-inline constexpr int kCostLcdm = 1;    // LCDM, the hue-saturation distance (thesis Sec. 3.5)
-inline constexpr int kCostCensus = 2;  // 5x5 census of the luma, Hamming distance x 31
-inline constexpr int kCostCount = 3;
+// The matching costs of the hardware: stereo_top's COST parameter, the HLS pipeline's measure
+// (the catalogue's hardware codes, stereo/catalogue.hpp).
+inline constexpr int kCostAd = catalogue::cost(catalogue::Cost::ad).hardware_code;
+inline constexpr int kCostLcdm = catalogue::cost(catalogue::Cost::lcdm).hardware_code;
+inline constexpr int kCostCensus = catalogue::cost(catalogue::Cost::census).hardware_code;
+inline constexpr int kCostCount = [] {
+    int count = 0;
+    for (const catalogue::CostRow& row : catalogue::kCosts) {
+        count += row.hardware_code != catalogue::kNoHardware;
+    }
+    return count;
+}();
 
 // The census transform (COST = kCostCensus only), in front of the cost stage: it turns each
 // image's RGB stream into a stream of census codes, which the cost stage's delay lines carry in

@@ -100,7 +100,7 @@ std::unique_ptr<CostFunction> make_lcdm_cost(int dark_floor);
 // aggregation window 1 without CA.
 std::unique_ptr<CostFunction> make_zncc_cost();
 
-// The costs a matcher can be asked for by name: "ad", "census", "lcdm", "zncc".
+// The costs a matcher can be asked for by name (stereo/catalogue.hpp, catalogue order).
 const std::vector<std::string>& cost_names();
 // Throws std::invalid_argument naming the known costs when `name` is not one of them.
 std::unique_ptr<CostFunction> make_cost(std::string_view name);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "stereo/asw.hpp"
+#include "stereo/catalogue.hpp"
 #include "stereo/reference.hpp"
 
 namespace stereo::asw {
@@ -130,7 +131,7 @@ Dsi truncated_cost_volume(const Image& left, const Image& right, const MatchPara
     Dsi cost = stereo::naive::cost_volume(match.cost, left, right, match.ndisp, match.min_disp);
     int truncation = params.truncation;
     if (truncation == kTruncationByCost) {
-        truncation = match.cost == "census" ? 0 : kDefaultTruncation;
+        truncation = catalogue::cost(match.cost).asw_truncation;
     }
     if (truncation == 0) {
         return cost;

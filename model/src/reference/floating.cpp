@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cells.hpp"
+#include "stereo/catalogue.hpp"
 #include "stereo/reference.hpp"
 
 namespace stereo::floating {
@@ -116,9 +117,8 @@ Volume ca_rule2(const Volume& in) {
 DisparityMap match(const Image& left, const Image& right, const MatchParams& params) {
     check_pair(left, right);
     validate(params, left.width, left.height);
-    if (params.cost != "ad") {
-        throw std::invalid_argument("the floating-point reference has only the AD cost");
-    }
+    catalogue::require_cost(params.cost, catalogue::CostUse::floating,
+                            "the floating-point reference");
     Volume dsi = aggregate(stereo::cost(left, right, params.ndisp), params.window, params.sigma);
     if (params.use_ca) {
         dsi = ca_rule2(ca_rule1(dsi));

@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "stereo/catalogue.hpp"
 #include "stereo/edge_frontend.hpp"
 #include "stereo/hierarchical_reference.hpp"
 #include "stereo/pipeline.hpp"
@@ -43,7 +44,7 @@ bool agree(std::int64_t neighbour, std::int64_t centre) {
 struct CostImages {
     const Image& left;
     const Image& right;
-    std::string_view cost;  // "ad", "lcdm" or "census"
+    catalogue::Cost cost;  // a pixel-pair cost
     Image left_grey;
     Image right_grey;
 };
@@ -57,11 +58,14 @@ std::int64_t pixel_cost(const CostImages& images, int x, int y, int d, int v) {
     if (xr < 0 || xr >= right.width || yr < 0 || yr >= right.height) {
         return fx::kCostOutside;
     }
-    if (images.cost == "lcdm") {
-        return lcdm::naive::pixel_cost(left, x, y, right, xr, yr, lcdm::kDarkFloor);
-    }
-    if (images.cost == "census") {
-        return census::naive::pixel_cost(images.left_grey, x, y, images.right_grey, xr, yr);
+    switch (images.cost) {
+        case catalogue::Cost::lcdm:
+            return lcdm::naive::pixel_cost(left, x, y, right, xr, yr, lcdm::kDarkFloor);
+        case catalogue::Cost::census:
+            return census::naive::pixel_cost(images.left_grey, x, y, images.right_grey, xr, yr);
+        case catalogue::Cost::ad:
+        case catalogue::Cost::zncc:  // refused by match_level
+            break;
     }
     std::int64_t sum = 0;
     for (int c = 0; c < fx::kChannels; ++c) {
@@ -96,12 +100,10 @@ Image downscale_area(const Image& image, int factor) {
 LevelMap match_level(const Image& left, const Image& right, const CandidateGrid& grid,
                      const LevelParams& level, bool use_ca, CaNeighbours neighbours,
                      std::string_view cost) {
-    if (cost != "ad" && cost != "lcdm" && cost != "census") {
-        throw std::invalid_argument(
-            "the naive hierarchical search has only the ad, census and lcdm costs");
-    }
-    const bool census = cost == "census";
-    const CostImages images{left, right, cost, census ? edge_frontend::naive::luma(left) : Image{},
+    catalogue::require_cost(cost, catalogue::CostUse::pixel_pair, "the naive hierarchical search");
+    const catalogue::Cost id = catalogue::cost(cost).id;
+    const bool census = id == catalogue::Cost::census;
+    const CostImages images{left, right, id, census ? edge_frontend::naive::luma(left) : Image{},
                             census ? edge_frontend::naive::luma(right) : Image{}};
     const int width = left.width;
     const int height = left.height;

@@ -5,6 +5,7 @@
 #include <cstdlib>
 
 #include "cells.hpp"
+#include "stereo/catalogue.hpp"
 #include "stereo/reference.hpp"
 #include "stereo/stage_table.hpp"
 #include "stereo/stages.hpp"
@@ -137,17 +138,17 @@ DisparityMap wta(const Dsi& dsi, const InvalidBorder& border) {
 
 Dsi cost_volume(const std::string& name, const Image& left, const Image& right, int ndisp,
                 int min_disp) {
-    if (name == "census") {
-        return census::naive::cost(left, right, ndisp, min_disp);
+    switch (catalogue::cost(name).id) {  // throws on an unknown name
+        case catalogue::Cost::ad:
+            return naive::cost(left, right, ndisp, min_disp);
+        case catalogue::Cost::census:
+            return census::naive::cost(left, right, ndisp, min_disp);
+        case catalogue::Cost::lcdm:
+            return lcdm::naive::cost(left, right, ndisp, lcdm::kDarkFloor, min_disp);
+        case catalogue::Cost::zncc:
+            return zncc::naive::cost(left, right, ndisp, min_disp);
     }
-    if (name == "lcdm") {
-        return lcdm::naive::cost(left, right, ndisp, lcdm::kDarkFloor, min_disp);
-    }
-    if (name == "zncc") {
-        return zncc::naive::cost(left, right, ndisp, min_disp);
-    }
-    (void)make_cost(name);  // throws on an unknown name
-    return naive::cost(left, right, ndisp, min_disp);
+    throw std::logic_error("naive::cost_volume: a catalogue cost without a naive reference");
 }
 
 namespace {

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "stereo/catalogue.hpp"
 #include "stereo/edge_frontend.hpp"
 #include "stereo/quad.hpp"
 #include "stereo/reference.hpp"
@@ -22,11 +23,15 @@ bool inside(int x, int y, int width, int height, int margin) {
 int pixel_cost(const MatchParams& params, const Image& reference, int x, int y,
                const Image& partner, int xs, int ys, const Image& reference_grey,
                const Image& partner_grey) {
-    if (params.cost == "census") {
-        return census::naive::pixel_cost(reference_grey, x, y, partner_grey, xs, ys);
-    }
-    if (params.cost == "lcdm") {
-        return lcdm::naive::pixel_cost(reference, x, y, partner, xs, ys, lcdm::kDarkFloor);
+    switch (catalogue::cost(params.cost).id) {
+        case catalogue::Cost::census:
+            return census::naive::pixel_cost(reference_grey, x, y, partner_grey, xs, ys);
+        case catalogue::Cost::lcdm:
+            return lcdm::naive::pixel_cost(reference, x, y, partner, xs, ys, lcdm::kDarkFloor);
+        case catalogue::Cost::ad:
+            break;
+        case catalogue::Cost::zncc:  // not a pixel-pair cost: refused by validate_pair
+            throw std::invalid_argument("the naive pair matcher has no zncc cost");
     }
     int sum = 0;
     for (int c = 0; c < 3; ++c) {
@@ -37,7 +42,8 @@ int pixel_cost(const MatchParams& params, const Image& reference, int x, int y,
 }
 
 Dsi cost(Step s, const Image& reference, const Image& partner, const MatchParams& params) {
-    if (params.cost == "lcdm" && (reference.channels != 3 || partner.channels != 3)) {
+    if (catalogue::cost(params.cost).id == catalogue::Cost::lcdm &&
+        (reference.channels != 3 || partner.channels != 3)) {
         throw std::invalid_argument("the lcdm cost needs colour images");
     }
     const Image reference_grey = edge_frontend::naive::luma(reference);

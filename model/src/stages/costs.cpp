@@ -2,6 +2,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "stereo/catalogue.hpp"
 #include "stereo/stages.hpp"
 #include "stereo/stages/lcdm.hpp"
 
@@ -25,29 +26,22 @@ PlanarImage::PlanarImage(const Image& image)
 }
 
 const std::vector<std::string>& cost_names() {
-    static const std::vector<std::string> names = {"ad", "census", "lcdm", "zncc"};
+    static const std::vector<std::string> names = catalogue::cost_names();
     return names;
 }
 
 std::unique_ptr<CostFunction> make_cost(std::string_view name) {
-    if (name == "ad") {
-        return make_ad_cost();
+    switch (catalogue::cost(name).id) {  // throws, naming the known costs, for an unknown name
+        case catalogue::Cost::ad:
+            return make_ad_cost();
+        case catalogue::Cost::census:
+            return make_census_cost();
+        case catalogue::Cost::lcdm:
+            return make_lcdm_cost(lcdm::kDarkFloor);
+        case catalogue::Cost::zncc:
+            return make_zncc_cost();
     }
-    if (name == "census") {
-        return make_census_cost();
-    }
-    if (name == "lcdm") {
-        return make_lcdm_cost(lcdm::kDarkFloor);
-    }
-    if (name == "zncc") {
-        return make_zncc_cost();
-    }
-    std::string known;
-    for (const auto& n : cost_names()) {
-        known += (known.empty() ? "" : ", ") + n;
-    }
-    throw std::invalid_argument("unknown cost \"" + std::string(name) + "\" (known: " + known +
-                                ")");
+    throw std::logic_error("make_cost: a catalogue cost without a factory");
 }
 
 }  // namespace stereo
