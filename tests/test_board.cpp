@@ -246,6 +246,16 @@ TEST(BoardProtocol, PixelsBeatsAndIdentityRoundTrip) {
     std::vector<std::uint8_t> padded = beats;
     padded[2] |= 0x80;  // a padding bit of the first beat
     EXPECT_THROW(board::decode_beats(padded, 9, 5), std::runtime_error);
+    // Beats by hand (docs/board.md): fixed disparity x 16 as 16-bit two's complement, low byte
+    // first, then reason and certainty. The random pair above has no negative disparity:
+    // -35 = 0xFFDD, 4000 = 0x0FA0.
+    ValidatedDisparity hand(3, 1);
+    hand.fixed = {-35, 4000, 0};
+    hand.reason = {fx::kReasonValid, fx::kReasonValid, fx::kReasonUniqueness};
+    hand.certainty = {7, 200, 0};
+    const std::vector<std::uint8_t> hand_beats{0xDD, 0xFF, 0, 7, 0xA0, 0x0F, 0, 200, 0, 0, 2, 0};
+    EXPECT_EQ(board::encode_beats(hand), hand_beats);
+    EXPECT_EQ(board::decode_beats(hand_beats, 3, 1), hand);
 
     const board::Identity identity = small_board();
     EXPECT_EQ(board::decode_identity(board::identify_reply(identity)), identity);
