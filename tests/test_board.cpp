@@ -25,6 +25,7 @@
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "cli.hpp"
 #include "stereo/pipeline.hpp"
@@ -246,6 +247,16 @@ TEST(BoardProtocol, PixelsBeatsAndIdentityRoundTrip) {
     std::vector<std::uint8_t> padded = beats;
     padded[2] |= 0x80;  // a padding bit of the first beat
     EXPECT_THROW(board::decode_beats(padded, 9, 5), std::runtime_error);
+    // Beats by hand (docs/board.md): fixed disparity x 16 as 16-bit two's complement, low byte
+    // first, then reason and certainty. The random pair above has no negative disparity:
+    // -35 = 0xFFDD, 4000 = 0x0FA0.
+    ValidatedDisparity hand(3, 1);
+    hand.fixed = {-35, 4000, 0};
+    hand.reason = {fx::kReasonValid, fx::kReasonValid, fx::kReasonUniqueness};
+    hand.certainty = {7, 200, 0};
+    const std::vector<std::uint8_t> hand_beats{0xDD, 0xFF, 0, 7, 0xA0, 0x0F, 0, 200, 0, 0, 2, 0};
+    EXPECT_EQ(board::encode_beats(hand), hand_beats);
+    EXPECT_EQ(board::decode_beats(hand_beats, 3, 1), hand);
 
     const board::Identity identity = small_board();
     EXPECT_EQ(board::decode_identity(board::identify_reply(identity)), identity);
@@ -373,7 +384,11 @@ class BoardCli : public ::testing::Test {
     void SetUp() override {
         std::mt19937 rng(5);
         const Image left = test::random_image(32, 24, 3, rng);
-        const Image right = test::shifted_copy(left, 4, 12, rng);
+        // Disparity 4, and -2 in the bottom quarter: signed output over --min-disp -3.
+        Image right = test::shifted_copy(left, 4, 12, rng);
+        const Image behind = test::shifted_copy(left, -2, 12, rng);
+        const std::size_t quarter = right.pixels.size() / 4;
+        std::copy(behind.pixels.end() - quarter, behind.pixels.end(), right.pixels.end() - quarter);
         io::write_png(path("left.png"), io::to_bgr(left));
         io::write_png(path("right.png"), io::to_bgr(right));
         io::write_png(path("big.png"), io::to_bgr(test::random_image(40, 24, 3, rng)));
@@ -386,6 +401,7 @@ class BoardCli : public ::testing::Test {
 
 TEST_F(BoardCli, BoardOutputEqualsStereoMatchByteForByte) {
     const EmulatedBoard device(small_board());
+    int negative = 0;  // valid negative disparities in the 16-bit outputs
     for (const std::vector<std::string>& options :
          {std::vector<std::string>{"--ndisp", "12", "--window", "5"},
           std::vector<std::string>{"--ndisp", "9", "--window", "5", "--min-disp", "-3", "--no-ca",
@@ -409,7 +425,12 @@ TEST_F(BoardCli, BoardOutputEqualsStereoMatchByteForByte) {
         const std::string bytes = file_bytes(path("board.png"));
         EXPECT_FALSE(bytes.empty());
         EXPECT_EQ(bytes, file_bytes(path("match.png"))) << options.back();
+        if (options.back() == "--png16") {
+            const cv::Mat codes = cv::imread(path("match.png"), cv::IMREAD_UNCHANGED);
+            negative += cv::countNonZero(codes > 0 & codes < 32768);
+        }
     }
+    EXPECT_GT(negative, 0);
     EXPECT_EQ(device.frames(), 3);
 }
 
@@ -423,7 +444,8 @@ TEST_F(BoardCli, JsonSummaryAndTheBoardsWindowByDefault) {
     EXPECT_EQ(summary["width"], 32);
     EXPECT_EQ(summary["board"]["ndisp"], 12);
     EXPECT_EQ(summary["bytes_sent"], 2 + 14 + 2 + 6 * 32 * 24 + 2);
-    EXPECT_GT(summary["valid_fraction"].get<double>(), 0.5);
+    // Disparity 4 is found; the bottom quarter's -2 lies outside 0 .. 11.
+    EXPECT_GT(summary["valid_fraction"].get<double>(), 0.4);
 }
 
 // An earlier run stopped half way through a frame: the board answers only the clear command,
@@ -435,7 +457,7 @@ TEST_F(BoardCli, BoardLeftInsideAFrameIsClearedFirst) {
                     "--ndisp", "12", "--timeout", "300", "-o", path("board.png")});
     ASSERT_EQ(board.exit_code, 0) << board.err;
     const Outcome match = run_stereo({"match", path("left.png"), path("right.png"), "--ndisp", "12",
-                                      "--window", "5", "-o", path("match.png")});
+                                      "--window", "5", "--cost", "ad", "-o", path("match.png")});
     ASSERT_EQ(match.exit_code, 0) << match.err;
     EXPECT_EQ(file_bytes(path("board.png")), file_bytes(path("match.png")));
     EXPECT_EQ(device.frames(), 1);

@@ -3,9 +3,12 @@
 // the cost count, and the lens-distortion model of the evaluation.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <iostream>
 #include <opencv2/imgproc.hpp>
 #include <random>
 
@@ -223,7 +226,23 @@ TEST(MatchEqualsNaive, MiddleburyCrop) {
     Params params;
     params.ndisp = 16;
     const Result model = match(pair->left, pair->right, params);
-    EXPECT_EQ(naive::match(pair->left, pair->right, params).disparity, model.disparity);
+    const Result reference = naive::match(pair->left, pair->right, params);
+    for (int l = 0; l < kLevels; ++l) {
+        EXPECT_TRUE(same_level(reference.levels[static_cast<std::size_t>(l)],
+                               model.levels[static_cast<std::size_t>(l)]))
+            << "level " << l;
+    }
+    EXPECT_EQ(reference.disparity, model.disparity);
+    EXPECT_EQ(reference.vertical, model.vertical);
+    // A real scene exercises both axes: most full-size pixels valid, some vertical offsets.
+    const auto& full = model.levels[2];
+    const auto valid = std::count(full.valid.begin(), full.valid.end(), 1);
+    const auto moved =
+        std::count_if(model.vertical.begin(), model.vertical.end(), [](auto v) { return v != 0; });
+    std::cout << "[fixture] tsukuba crop: valid " << valid << ", v != 0 " << moved << " of "
+              << full.valid.size() << '\n';
+    EXPECT_GT(valid, static_cast<std::ptrdiff_t>(full.valid.size() / 2));
+    EXPECT_GT(moved, 0);
 }
 
 // ---- hand-checked cases --------------------------------------------------------------------

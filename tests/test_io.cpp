@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <random>
 #include <stdexcept>
@@ -556,13 +557,15 @@ TEST(DisparityFiles, PfmRoundTripKeepsSignedZeroAndInvalid) {
 
 TEST(DisparityFiles, PfmBigEndianIsRead) {
     std::string bytes = "Pf\n1 1\n1.0\n";
-    const float value = 7.5F;
+    // 0x40490FDB: four different non-zero bytes, so that each lane of the byte swap is checked
+    // (7.5 = 0x40F00000 left the two low lanes unchecked).
+    const float value = std::numbers::pi_v<float>;
     std::uint32_t word = 0;
     std::memcpy(&word, &value, sizeof word);
     for (int shift = 24; shift >= 0; shift -= 8) {  // most significant byte first
         bytes += static_cast<char>((word >> shift) & 0xFFU);
     }
-    EXPECT_EQ(io::decode_pfm(bytes, "big").at<float>(0, 0), 7.5F);
+    EXPECT_EQ(io::decode_pfm(bytes, "big").at<float>(0, 0), value);
 }
 
 TEST(DisparityFiles, BadPfmIsRefusedWithItsName) {

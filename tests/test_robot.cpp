@@ -403,6 +403,13 @@ TEST(Threshold, CentreObstacleTurnsToTheFreerSide) {
     d = decide_threshold(map, 10, 64);
     EXPECT_EQ(d.direction, Direction::right);
     EXPECT_NEAR(d.certainty, (20.0 - 5.0) / 20.0, 1e-12);
+
+    // Equal sides (avL = avR = 5): ties go left (docs/avoidance.md), with certainty 0.
+    map = flat_map(5);
+    paint(map, 73, 126, 20, 80, 40);
+    d = decide_threshold(map, 10, 64);
+    EXPECT_EQ(d.direction, Direction::left);
+    EXPECT_DOUBLE_EQ(d.certainty, 0.0);
 }
 
 TEST(Threshold, RateDecidesAtTheBoundary) {

@@ -117,10 +117,18 @@ class StatParsing(unittest.TestCase):
         self.assertEqual(totals["$paramod$dd\\stereo_wta"], {"FF": 64, "LUT4": 1})
 
     def test_stage_modules_from_the_instance_listings(self):
-        # What stage_module_query writes: `<module>/clk`, or a warning when nothing matched.
-        listings = dict(STAGE_LISTINGS)
-        self.assertEqual(synth.stage_modules(listings)["$paramod$de\\stereo_ca_plane"],
-                         "ca_rule2")
+        # What stage_module_query writes: `<module>/clk`, or a warning when nothing matched. A
+        # module without parameters is listed with a leading backslash, which is dropped (as
+        # stage_breakdown drops it from the `stat` names).
+        listings = dict(STAGE_LISTINGS, wta="\\stereo_wta/clk\n")
+        self.assertEqual(synth.stage_modules(listings), {
+            "$paramod\\stereo_cost\\NDISP=s32'00000000000000000000000000000100": "cost",
+            "$paramod$bb\\stereo_aggregate": "aggregate",
+            "$paramod$dd\\stereo_ca_plane": "ca_rule1",
+            "$paramod$de\\stereo_ca_plane": "ca_rule2",
+            "stereo_wta": "wta",
+            "$paramod$ef\\stereo_validate": "validate",
+            "$paramod$eg\\stereo_lr_check": "lr_check"})
         listings["wta"] = 'Warning: Selection "*stereo_top/wta" did not match any object.\n'
         with self.assertRaises(synth.ReportError):
             synth.stage_modules(listings)
