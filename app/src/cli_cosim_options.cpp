@@ -64,9 +64,8 @@ void add_cosim_options(CLI::App& command, CosimOptions& options) {
                        "else ~/.cache/stereo/cosim)");
     command
         .add_option("--sim-threads", options.sim_threads,
-                    "With --size: Verilator threads of the core (2 gains about 10 % on a "
-                    "640x480 / 64-label core with every label per clock, nothing on the lean "
-                    "one)")
+                    "With --size: Verilator threads of the core (measured: 2 threads are slower "
+                    "than 1 on the 640x480 / 64-label cores, docs/gtkwave.md)")
         ->check(CLI::Range(1, 16))
         ->capture_default_str();
     command.add_option("--diff", options.diff,
