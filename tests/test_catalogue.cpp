@@ -167,7 +167,11 @@ TEST(Catalogue, EachEngineAndMethodTakesExactlyItsCosts) {
                                             ->compute(pair.left, pair.right)
                                             .disparity;
                 EXPECT_EQ(map == ad, row.id == catalogue::Cost::ad) << method;
-                // ... and by its definition along that direction: the naive reference agrees.
+                // ... and by its definition along that direction: the naive reference agrees (the
+                // vertical pair's; the hierarchical one is slow here and has its own tests).
+                if (method != "vertical") {
+                    continue;
+                }
                 config.pipeline.cost = name;
                 EXPECT_EQ(registry.create(method, "naive", config)
                               ->compute(pair.left, pair.right)
