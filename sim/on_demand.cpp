@@ -48,6 +48,17 @@ fs::path source_root() {
     return STEREO_SOURCE_DIR;
 }
 
+// "ad or census": the costs of the lean memory core.
+std::string lean_costs() {
+    std::string names;
+    for (const catalogue::CostRow& row : catalogue::kCosts) {
+        if (row.lean_core) {
+            names += (names.empty() ? "" : " or ") + std::string(row.name);
+        }
+    }
+    return names;
+}
+
 int cost_parameter(const std::string& cost) {
     catalogue::require_cost(cost, catalogue::CostUse::hardware, "a core built on demand");
     return catalogue::cost(cost).hardware_code;
@@ -288,8 +299,8 @@ void check_request(const CoreRequest& r) {
     if (r.probes && lanes != r.ndisp) {
         fail("stage probes need every label in one clock (LANES = NDISP)");
     }
-    if (r.lean && r.cost == "lcdm") {
-        fail("the lean memory architecture has no LCDM form (ad or census)");
+    if (r.lean && !catalogue::cost(r.cost).lean_core) {
+        fail("the lean memory architecture has no " + r.cost + " form (" + lean_costs() + ")");
     }
 }
 

@@ -41,7 +41,8 @@ bool MatcherOptions::window_given() const {
 
 std::string MatcherOptions::resolved_method() const {
     if (aggregation == "asw") {
-        if (method != "pipeline" && method != "asw") {
+        const catalogue::Method chosen = catalogue::method(method).id;
+        if (chosen != catalogue::Method::pipeline && chosen != catalogue::Method::asw) {
             throw std::invalid_argument("--aggregation asw runs only with --method pipeline");
         }
         if (frontend != "model") {
@@ -53,7 +54,7 @@ std::string MatcherOptions::resolved_method() const {
     if (frontend == "model") {
         return method;
     }
-    if (method != "pipeline") {
+    if (catalogue::method(method).id != catalogue::Method::pipeline) {
         throw std::invalid_argument("--frontend " + frontend + " runs only with --method pipeline");
     }
     return frontend;  // "edges"

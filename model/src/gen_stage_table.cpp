@@ -347,8 +347,10 @@ std::string json_text() {
     }
     for (std::size_t i = 0; i < hardware.size(); ++i) {
         out << "    {\"name\": \"" << hardware[i]->name
-            << "\", \"code\": " << hardware[i]->hardware_code << ", \"summary\": \""
-            << hardware[i]->summary << "\"}" << (i + 1 < hardware.size() ? "," : "") << '\n';
+            << "\", \"code\": " << hardware[i]->hardware_code
+            << ", \"lean_core\": " << (hardware[i]->lean_core ? "true" : "false")
+            << ", \"summary\": \"" << hardware[i]->summary << "\"}"
+            << (i + 1 < hardware.size() ? "," : "") << '\n';
     }
     const auto stage_json = [](const t::Stage& stage) {
         std::ostringstream text;

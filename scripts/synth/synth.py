@@ -100,11 +100,13 @@ def config_from_args(args):
         if getattr(args, "command", None) == "board":
             raise ReportError("--shift-add is for the core, not the board top")
         config["shift_add"] = args.shift_add
-    # stereo_top's RECOMPUTE_COSTS (the lean memory architecture, census only), likewise.
+    # stereo_top's RECOMPUTE_COSTS (the lean memory architecture; the catalogue's lean_core
+    # costs), likewise.
     if getattr(args, "recompute", False):
-        if config.get("cost", "ad") not in ("census", "ad"):
-            raise ReportError("--recompute (the lean memory architecture) is for the census and "
-                              "AD costs")
+        lean = [cost["name"] for cost in STAGE_TABLE["costs"] if cost["lean_core"]]
+        if config.get("cost", "ad") not in lean:
+            raise ReportError("--recompute (the lean memory architecture) is for the costs "
+                              + ", ".join(lean))
         config["recompute_costs"] = 1
     # stereo_top's MAX_MIN_DISP, likewise recorded only when given.
     if getattr(args, "max_min_disp", None) is not None and getattr(args, "command", None) != "board":

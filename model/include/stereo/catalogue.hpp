@@ -32,6 +32,8 @@ struct CostRow {
     // stereo_top's and stereo_cost's COST parameter (fx_pkg::COST_*), and the HLS kernel's cost
     // switch; kNoHardware: model engines only.
     int hardware_code;
+    // The lean memory core (stereo_top RECOMPUTE_COSTS = 1) recomputes it from image rows.
+    bool lean_core;
     // A cost of two pixels (not of two windows): the hierarchical search, the quad-camera pairs
     // and every direction of a partner take it.
     bool pixel_pair;
@@ -48,6 +50,7 @@ inline constexpr std::array<CostRow, 4> kCosts = {{
     {.id = Cost::ad,
      .name = "ad",
      .hardware_code = 0,
+     .lean_core = true,
      .pixel_pair = true,
      .floating = true,
      .validation = {.uniqueness = 6, .lr_tolerance = 0},
@@ -56,6 +59,7 @@ inline constexpr std::array<CostRow, 4> kCosts = {{
     {.id = Cost::census,
      .name = "census",
      .hardware_code = 2,
+     .lean_core = true,
      .pixel_pair = true,
      .floating = false,
      .validation = {.uniqueness = 0, .lr_tolerance = 1},
@@ -64,6 +68,7 @@ inline constexpr std::array<CostRow, 4> kCosts = {{
     {.id = Cost::lcdm,
      .name = "lcdm",
      .hardware_code = 1,
+     .lean_core = false,
      .pixel_pair = true,
      .floating = false,
      .validation = {.uniqueness = 6, .lr_tolerance = 0},  // AD's: the rule was not run for it
@@ -72,6 +77,7 @@ inline constexpr std::array<CostRow, 4> kCosts = {{
     {.id = Cost::zncc,
      .name = "zncc",
      .hardware_code = kNoHardware,
+     .lean_core = false,
      .pixel_pair = false,  // a window measure along rows
      .floating = false,
      .validation = {.uniqueness = 6, .lr_tolerance = 0},  // AD's
