@@ -160,11 +160,8 @@ sim::CoreRequest core_request(const CosimOptions& options, const MatchParams& pa
     return request;
 }
 
-void run_cosim(const CosimOptions& options) {
-    const MatchConfig match_config = options.matcher.resolved();
-    const MatchParams& params = match_config.pipeline;
-    // The expected map: the golden model, made (and its parameters checked) before any file.
-    const auto model = matchers().create("pipeline", "model", match_config);
+// The checks of the options that need no image: probabilities, counts, outputs.
+void check_options(const CosimOptions& options) {
     for (const double probability : {options.stall, options.gap}) {
         if (!(probability >= 0.0 && probability < 1.0)) {
             throw std::invalid_argument("--stall and --gap must be in [0, 1), got " +
@@ -190,15 +187,23 @@ void run_cosim(const CosimOptions& options) {
             io::check_writable_location(output);
         }
     }
-    const auto output_encoding = io::output_encoding(options.output, io::DisparityEncoding::scaled);
+    // -o's format by its extension: an unknown one is refused here, before any work.
+    io::output_encoding(options.output, io::DisparityEncoding::scaled);
     if (!options.trace.empty()) {
         sim::check_trace_path(options.trace);  // .fst only: refused before any work
     }
-    const io::ImagePair pair =
-        apply_crop(io::load_pair(options.left, options.right, options.downscale), options.crop);
-    const int width = pair.left.width;
-    const int height = pair.left.height;
-    model->validate(width, height);
+}
+
+// The core a run streams through: a configuration of this build, or one built on demand.
+struct Core {
+    std::optional<sim::CoreRequest> request;  // on demand
+    std::optional<sim::TopConfig> demanded;   // on demand: its configuration
+    const sim::TopConfig* config = nullptr;
+    std::filesystem::path runner;  // on demand: the built runner
+    std::filesystem::path cache;
+};
+
+Core choose_core(const CosimOptions& options, const MatchParams& params, int width, int height) {
     const bool on_demand = !options.size.empty();
     if (!on_demand && (options.lanes != 0 || options.max_min_disp != -1 || options.lean ||
                        !options.cache.empty() || options.sim_threads != 1)) {
@@ -206,26 +211,24 @@ void run_cosim(const CosimOptions& options) {
             "--lanes, --max-min-disp, --lean, --cache and --sim-threads choose a core built on "
             "demand: give --size WxH too");
     }
-    std::optional<sim::TopConfig> demanded;
-    std::optional<sim::CoreRequest> request;
-    std::filesystem::path runner;
-    const std::filesystem::path cache =
+    Core core;
+    core.cache =
         options.cache.empty() ? sim::default_cache_folder() : std::filesystem::path(options.cache);
     if (on_demand) {
-        request = core_request(options, params);
-        demanded = sim::on_demand_config(*request);
-        sim::check_fits(*request, width, height, params.min_disp);
+        core.request = core_request(options, params);
+        core.demanded = sim::on_demand_config(*core.request);
+        sim::check_fits(*core.request, width, height, params.min_disp);
         if (options.reset_at >= width * height) {
             throw std::invalid_argument("--reset-at must be below the frame's " +
                                         std::to_string(width * height) + " beats");
         }
-        runner = sim::ensure_runner(*request, cache, std::cerr);
+        core.runner = sim::ensure_runner(*core.request, core.cache, std::cerr);
+        core.config = &*core.demanded;
+        return core;
     }
-    const sim::TopConfig* config =
-        on_demand ? &*demanded
-                  : sim::covering_config(width, height, params.ndisp, params.window,
-                                         params.min_disp, params.cost);
-    if (config == nullptr) {
+    core.config = sim::covering_config(width, height, params.ndisp, params.window, params.min_disp,
+                                       params.cost);
+    if (core.config == nullptr) {
         const sim::TopConfig& largest = sim::largest_config(params.cost);
         throw std::invalid_argument(
             "no co-simulation model covers " + std::to_string(width) + "x" +
@@ -234,6 +237,217 @@ void run_cosim(const CosimOptions& options) {
             "; the largest built is " + config_text(largest) +
             " (use --downscale or --crop, or --size WxH to build a core on demand)");
     }
+    return core;
+}
+
+// The frames' pixels against the model's: the count, the first ten, and for the first frame
+// with a mismatch its map (--diff) and the pixels the localisation watches.
+struct Comparison {
+    std::size_t mismatches = 0;
+    nlohmann::json first = nlohmann::json::array();
+    std::vector<std::uint8_t> diff;
+    std::vector<std::pair<int, int>> watched;
+    int diff_frame = -1;
+
+    void compare(const ValidatedDisparity& rtl, const ValidatedDisparity& expected, int frame) {
+        for (int y = 0; y < rtl.height; ++y) {
+            for (int x = 0; x < rtl.width; ++x) {
+                const auto i = rtl.index(x, y);
+                if (rtl.fixed[i] == expected.fixed[i] && rtl.reason[i] == expected.reason[i] &&
+                    rtl.certainty[i] == expected.certainty[i]) {
+                    continue;
+                }
+                if (diff_frame == -1 || diff_frame == frame) {
+                    diff_frame = frame;
+                    diff[i] = rtl.fixed[i] != expected.fixed[i] ? kDiffDisparity : kDiffOther;
+                    if (watched.size() < kWatchedPixels) {
+                        watched.emplace_back(x, y);
+                    }
+                }
+                if (mismatches++ < 10) {
+                    auto fields = [i](const ValidatedDisparity& v) {
+                        return nlohmann::json{{"fixed", v.fixed[i]},
+                                              {"reason", v.reason[i]},
+                                              {"certainty", v.certainty[i]}};
+                    };
+                    first.push_back({{"frame", frame},
+                                     {"x", x},
+                                     {"y", y},
+                                     {"model", fields(expected)},
+                                     {"rtl", fields(rtl)}});
+                }
+            }
+        }
+    }
+};
+
+// What streaming the frames gave.
+struct Streamed {
+    sim::StreamResult last;  // the last frame's
+    std::uint64_t total_cycles = 0;
+    double seconds = 0.0;
+    std::string failure;  // a stall or a protocol error ended the run
+};
+
+// Every frame: optionally the first beats of it and a reset in the middle, then the whole frame,
+// under the frame's own traffic seed; every pixel compared with the model. The last frame's
+// output goes to -o.
+Streamed stream_frames(const CosimOptions& options, sim::TopSim& sim,
+                       const std::vector<sim::InputBeat>& beats,
+                       const sim::CoreParams& frame_params, const ValidatedDisparity& expected,
+                       Comparison& comparison) {
+    const int width = expected.width;
+    const int height = expected.height;
+    const auto output_encoding = io::output_encoding(options.output, io::DisparityEncoding::scaled);
+    Streamed out;
+    const auto start = std::chrono::steady_clock::now();
+    const ProgressBar progress("cosim", options.frames);  // stderr, only on a terminal
+    for (int frame = 0; frame < options.frames; ++frame) {
+        progress.update(frame, std::to_string(comparison.mismatches) + " mismatches");
+        const sim::Traffic traffic{options.gap, options.stall,
+                                   options.seed + static_cast<std::uint32_t>(frame)};
+        if (options.reset_at >= 0) {
+            const std::vector<sim::InputBeat> part(beats.begin(), beats.begin() + options.reset_at);
+            // Stop once a quarter of them came out (or the cycle budget ends): the reset then
+            // lands with beats still inside the pipeline.
+            out.total_cycles += sim.stream(part, std::max<std::size_t>(1, part.size() / 4), traffic,
+                                           10 * part.size() + 10000)
+                                    .cycles;
+            sim.reset();
+            sim.set_params(frame_params);
+        }
+        out.last = sim.stream(beats, beats.size(), traffic, 100 * beats.size() + 100000);
+        out.total_cycles += out.last.cycles;
+        // A stall or a protocol error ends the run; the waveform up to it is still written.
+        if (!out.last.completed) {
+            out.failure = "the core stalled in frame " + std::to_string(frame) + ": " +
+                          std::to_string(out.last.outputs.size()) + " of " +
+                          std::to_string(beats.size()) + " outputs arrived";
+            break;
+        }
+        if (!out.last.protocol_error.empty()) {
+            out.failure = "AXI4-Stream protocol error: " + out.last.protocol_error;
+            break;
+        }
+        const ValidatedDisparity rtl = sim::assemble_validated(out.last.outputs, 0, width, height);
+        comparison.compare(rtl, expected, frame);
+        if (frame + 1 == options.frames && !options.output.empty()) {
+            // The format by the extension, as `stereo match -o` (PFM: stage 6's pixels).
+            io::write_file_atomic(
+                options.output, io::encode_disparity(rtl, output_encoding, frame_params.match.ndisp,
+                                                     1, options.output));
+        }
+    }
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return out;
+}
+
+// The --json summary or the text report of a run.
+struct Run {
+    const MatchParams& params;
+    int width;
+    int height;
+    std::size_t pixels;  // per frame
+    const sim::TopConfig& config;
+    double model_seconds;  // the golden model's time for one frame
+};
+
+void report(const CosimOptions& options, const Run& run, const Streamed& streamed,
+            const Comparison& comparison, const nlohmann::json& localisation) {
+    const MatchParams& params = run.params;
+    const sim::StreamResult& result = streamed.last;
+    const double per_pixel = static_cast<double>(result.cycles) / run.pixels;
+    const double cycles_per_second = streamed.total_cycles / streamed.seconds;
+    const int uniqueness = params.validation.uniqueness ? params.validation.uniqueness_ratio : -1;
+    const int lr_check = params.validation.left_right ? params.validation.lr_tolerance : -1;
+    if (options.json) {
+        nlohmann::json summary = pipeline_json(run.width, run.height, params);
+        summary.update({
+            {"mismatches", comparison.mismatches},
+            {"frames", options.frames},
+            {"reset_at", options.reset_at},
+            {"cycles", result.cycles},
+            {"total_cycles", streamed.total_cycles},
+            {"pixels", run.pixels},
+            {"pixels_compared", run.pixels * static_cast<std::size_t>(options.frames)},
+            {"cycles_per_pixel", per_pixel},
+            {"first_mismatches", comparison.first},
+            {"config", run.config.name},
+            {"uniqueness", uniqueness},
+            {"lr_check", lr_check},
+            {"seed", options.seed},
+            {"stall", options.stall},
+            {"gap", options.gap},
+            {"status", result.status},
+            {"sim_seconds", streamed.seconds},
+            {"sim_cycles_per_second", cycles_per_second},
+            // The golden model's time for one frame, and the RTL's per frame against it.
+            {"model_seconds", run.model_seconds},
+            {"sim_to_model_time", streamed.seconds / options.frames / run.model_seconds},
+        });
+        if (comparison.mismatches != 0) {
+            summary["localisation"] = localisation;
+        }
+        std::cout << io::versioned(summary).dump() << '\n';
+        return;
+    }
+    std::printf(
+        "%dx%d ndisp %d window %d ca %s min-disp %d uniqueness %d lr-check %d subpixel %s on "
+        "the '%s' model (%s), seed %u, stall %.2f, gap %.2f\n%zu mismatching pixels "
+        "of %zu (fixed, reason and certainty compared); %llu cycles, %.3f cycles/pixel; "
+        "simulated at "
+        "%.0f cycles/s\n",
+        run.width, run.height, params.ndisp, params.window, params.use_ca ? "on" : "off",
+        params.min_disp, uniqueness, lr_check, params.validation.subpixel ? "on" : "off",
+        run.config.name.c_str(), config_text(run.config).c_str(), options.seed, options.stall,
+        options.gap, comparison.mismatches, run.pixels,
+        static_cast<unsigned long long>(result.cycles), per_pixel, cycles_per_second);
+    if (options.frames > 1 || options.reset_at >= 0) {
+        std::printf("%d frames, reset after %d beats of each (-1 = none): %zu mismatches\n",
+                    options.frames, options.reset_at, comparison.mismatches);
+    }
+    for (const auto& m : comparison.first) {
+        std::printf(
+            "  mismatch in frame %d at (%d, %d): model fixed %d reason %d certainty %d, rtl "
+            "fixed %d reason %d certainty %d\n",
+            m["frame"].get<int>(), m["x"].get<int>(), m["y"].get<int>(),
+            m["model"]["fixed"].get<int>(), m["model"]["reason"].get<int>(),
+            m["model"]["certainty"].get<int>(), m["rtl"]["fixed"].get<int>(),
+            m["rtl"]["reason"].get<int>(), m["rtl"]["certainty"].get<int>());
+    }
+}
+
+// Where the first mismatching frame's difference starts: the probe build of the same core.
+nlohmann::json localisation_of(const Core& core, const sim::CoreParams& frame_params,
+                               const io::ImagePair& pair, const MatchParams& params,
+                               const std::vector<sim::InputBeat>& beats,
+                               const Comparison& comparison) {
+    if (comparison.mismatches == 0) {
+        return {};
+    }
+    if (!core.request) {
+        return {{"unavailable",
+                 "stage localisation runs on a core built on demand: repeat with --size WxH"}};
+    }
+    if (core.request->lanes != 0 && core.request->lanes != core.request->ndisp) {
+        return {{"unavailable", "stage localisation needs --lanes equal to --ndisp"}};
+    }
+    return localise(*core.request, core.cache, frame_params, pair, params, beats,
+                    comparison.watched);
+}
+
+void run_cosim(const CosimOptions& options) {
+    const MatchConfig match_config = options.matcher.resolved();
+    const MatchParams& params = match_config.pipeline;
+    // The expected map: the golden model, made (and its parameters checked) before any file.
+    const auto model = matchers().create("pipeline", "model", match_config);
+    check_options(options);
+    const io::ImagePair pair =
+        apply_crop(io::load_pair(options.left, options.right, options.downscale), options.crop);
+    const int width = pair.left.width;
+    const int height = pair.left.height;
+    model->validate(width, height);
+    const Core core = choose_core(options, params, width, height);
 
     // Stage 6's full output: fixed disparity, reason and certainty of every pixel.
     const auto model_start = std::chrono::steady_clock::now();
@@ -248,7 +462,8 @@ void run_cosim(const CosimOptions& options) {
     if (!options.trace.empty()) {
         trace_file.emplace(options.trace);
     }
-    auto sim = on_demand ? sim::make_runner_sim(*config, runner) : sim::make_top_sim(*config);
+    auto sim = core.request ? sim::make_runner_sim(*core.config, core.runner)
+                            : sim::make_top_sim(*core.config);
     if (trace_file) {
         sim->trace_to(trace_file->path().string());
     }
@@ -257,176 +472,34 @@ void run_cosim(const CosimOptions& options) {
         throw std::invalid_argument("--reset-at must be below the frame's " +
                                     std::to_string(beats.size()) + " beats");
     }
+    const sim::CoreParams frame_params{width, height, params};
     sim->reset();
-    sim->set_params({width, height, params});
-    // Every frame: optionally the first beats of it and a reset in the middle, then the whole
-    // frame, under the frame's own traffic seed; every pixel compared with the model.
-    std::size_t mismatches = 0;
-    nlohmann::json first = nlohmann::json::array();
-    // The first frame with a mismatch: its map (--diff) and the pixels the localisation watches.
-    std::vector<std::uint8_t> diff(static_cast<std::size_t>(width) * height, 0);
-    std::vector<std::pair<int, int>> watched;
-    int diff_frame = -1;
-    sim::StreamResult result;
-    std::uint64_t total_cycles = 0;
-    const auto start = std::chrono::steady_clock::now();
-    std::string failure;
-    const ProgressBar progress("cosim", options.frames);  // stderr, only on a terminal
-    for (int frame = 0; frame < options.frames; ++frame) {
-        progress.update(frame, std::to_string(mismatches) + " mismatches");
-        const sim::Traffic traffic{options.gap, options.stall,
-                                   options.seed + static_cast<std::uint32_t>(frame)};
-        if (options.reset_at >= 0) {
-            const std::vector<sim::InputBeat> part(beats.begin(), beats.begin() + options.reset_at);
-            // Stop once a quarter of them came out (or the cycle budget ends): the reset then
-            // lands with beats still inside the pipeline.
-            total_cycles += sim->stream(part, std::max<std::size_t>(1, part.size() / 4), traffic,
-                                        10 * part.size() + 10000)
-                                .cycles;
-            sim->reset();
-            sim->set_params({width, height, params});
-        }
-        result = sim->stream(beats, beats.size(), traffic, 100 * beats.size() + 100000);
-        total_cycles += result.cycles;
-        // A stall or a protocol error ends the run; the waveform up to it is still written.
-        if (!result.completed) {
-            failure = "the core stalled in frame " + std::to_string(frame) + ": " +
-                      std::to_string(result.outputs.size()) + " of " +
-                      std::to_string(beats.size()) + " outputs arrived";
-            break;
-        }
-        if (!result.protocol_error.empty()) {
-            failure = "AXI4-Stream protocol error: " + result.protocol_error;
-            break;
-        }
-        const ValidatedDisparity rtl = sim::assemble_validated(result.outputs, 0, width, height);
-        for (int y = 0; y < height; ++y) {
-            for (int x = 0; x < width; ++x) {
-                const auto i = rtl.index(x, y);
-                if (rtl.fixed[i] != expected.fixed[i] || rtl.reason[i] != expected.reason[i] ||
-                    rtl.certainty[i] != expected.certainty[i]) {
-                    if (diff_frame == -1 || diff_frame == frame) {
-                        diff_frame = frame;
-                        diff[i] = rtl.fixed[i] != expected.fixed[i] ? kDiffDisparity : kDiffOther;
-                        if (watched.size() < kWatchedPixels) {
-                            watched.emplace_back(x, y);
-                        }
-                    }
-                    if (mismatches++ < 10) {
-                        auto fields = [i](const ValidatedDisparity& v) {
-                            return nlohmann::json{{"fixed", v.fixed[i]},
-                                                  {"reason", v.reason[i]},
-                                                  {"certainty", v.certainty[i]}};
-                        };
-                        first.push_back({{"frame", frame},
-                                         {"x", x},
-                                         {"y", y},
-                                         {"model", fields(expected)},
-                                         {"rtl", fields(rtl)}});
-                    }
-                }
-            }
-        }
-        if (frame + 1 == options.frames && !options.output.empty()) {
-            // The format by the extension, as `stereo match -o` (PFM: stage 6's pixels).
-            io::write_file_atomic(
-                options.output,
-                io::encode_disparity(rtl, output_encoding, params.ndisp, 1, options.output));
-        }
-    }
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    sim->set_params(frame_params);
+    Comparison comparison;
+    comparison.diff.assign(static_cast<std::size_t>(width) * height, 0);
+    const Streamed streamed =
+        stream_frames(options, *sim, beats, frame_params, expected, comparison);
     sim.reset();  // closes the waveform
     if (trace_file) {
         trace_file->commit();
     }
-    if (!failure.empty()) {
-        throw std::runtime_error(failure);
+    if (!streamed.failure.empty()) {
+        throw std::runtime_error(streamed.failure);
     }
-
     if (!options.diff.empty()) {
-        io::write_file_atomic(options.diff,
-                              io::encode_png(grey_image(diff, width, height), options.diff));
+        io::write_file_atomic(
+            options.diff, io::encode_png(grey_image(comparison.diff, width, height), options.diff));
     }
-    // Where the first mismatching frame's difference starts: the probe build of the same core.
-    nlohmann::json localisation;
-    if (mismatches != 0) {
-        if (!request) {
-            localisation = {{"unavailable",
-                             "stage localisation runs on a core built on demand: repeat with "
-                             "--size WxH"}};
-        } else if (request->lanes != 0 && request->lanes != request->ndisp) {
-            localisation = {{"unavailable", "stage localisation needs --lanes equal to --ndisp"}};
-        } else {
-            localisation =
-                localise(*request, cache, {width, height, params}, pair, params, beats, watched);
-        }
-    }
-
-    const std::size_t pixels = beats.size();
-    const double per_pixel = static_cast<double>(result.cycles) / pixels;
-    if (options.json) {
-        nlohmann::json summary = pipeline_json(width, height, params);
-        summary.update({
-            {"mismatches", mismatches},
-            {"frames", options.frames},
-            {"reset_at", options.reset_at},
-            {"cycles", result.cycles},
-            {"total_cycles", total_cycles},
-            {"pixels", pixels},
-            {"pixels_compared", pixels * static_cast<std::size_t>(options.frames)},
-            {"cycles_per_pixel", per_pixel},
-            {"first_mismatches", first},
-            {"config", config->name},
-            {"uniqueness", params.validation.uniqueness ? params.validation.uniqueness_ratio : -1},
-            {"lr_check", params.validation.left_right ? params.validation.lr_tolerance : -1},
-            {"seed", options.seed},
-            {"stall", options.stall},
-            {"gap", options.gap},
-            {"status", result.status},
-            {"sim_seconds", seconds},
-            {"sim_cycles_per_second", total_cycles / seconds},
-            // The golden model's time for one frame, and the RTL's per frame against it.
-            {"model_seconds", model_seconds},
-            {"sim_to_model_time", seconds / options.frames / model_seconds},
-        });
-        if (mismatches != 0) {
-            summary["localisation"] = localisation;
-        }
-        std::cout << io::versioned(summary).dump() << '\n';
-    } else {
-        std::printf(
-            "%dx%d ndisp %d window %d ca %s min-disp %d uniqueness %d lr-check %d subpixel %s on "
-            "the '%s' model (%s), seed %u, stall %.2f, gap %.2f\n%zu mismatching pixels "
-            "of %zu (fixed, reason and certainty compared); %llu cycles, %.3f cycles/pixel; "
-            "simulated at "
-            "%.0f cycles/s\n",
-            width, height, params.ndisp, params.window, params.use_ca ? "on" : "off",
-            params.min_disp, params.validation.uniqueness ? params.validation.uniqueness_ratio : -1,
-            params.validation.left_right ? params.validation.lr_tolerance : -1,
-            params.validation.subpixel ? "on" : "off", config->name.c_str(),
-            config_text(*config).c_str(), options.seed, options.stall, options.gap, mismatches,
-            pixels, static_cast<unsigned long long>(result.cycles), per_pixel,
-            total_cycles / seconds);
-        if (options.frames > 1 || options.reset_at >= 0) {
-            std::printf("%d frames, reset after %d beats of each (-1 = none): %zu mismatches\n",
-                        options.frames, options.reset_at, mismatches);
-        }
-        for (const auto& m : first) {
-            std::printf(
-                "  mismatch in frame %d at (%d, %d): model fixed %d reason %d certainty %d, rtl "
-                "fixed %d reason %d certainty %d\n",
-                m["frame"].get<int>(), m["x"].get<int>(), m["y"].get<int>(),
-                m["model"]["fixed"].get<int>(), m["model"]["reason"].get<int>(),
-                m["model"]["certainty"].get<int>(), m["rtl"]["fixed"].get<int>(),
-                m["rtl"]["reason"].get<int>(), m["rtl"]["certainty"].get<int>());
-        }
-    }
-    if (mismatches != 0) {
+    const nlohmann::json localisation =
+        localisation_of(core, frame_params, pair, params, beats, comparison);
+    report(options, {params, width, height, beats.size(), *core.config, model_seconds}, streamed,
+           comparison, localisation);
+    if (comparison.mismatches != 0) {
         if (!options.json) {
             std::printf("%s\n", localisation_text(localisation).c_str());
         }
-        throw MismatchError(std::to_string(mismatches) + " pixels differ from the golden model; " +
+        throw MismatchError(std::to_string(comparison.mismatches) +
+                            " pixels differ from the golden model; " +
                             localisation_text(localisation));
     }
 }

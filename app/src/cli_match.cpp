@@ -103,18 +103,16 @@ std::string stage6_methods() {
     return names;
 }
 
-void run_match(const MatchOptions& options) {
-    const std::string method = options.matcher.resolved_method();
-    const std::string& engine = options.matcher.engine;
-    const catalogue::MethodRow& row = catalogue::method(method);
-    const bool two_d = row.two_d;
-    const bool stage6 = row.stage6;
-    if (!two_d && (options.matcher.config.vrange != 0 || !options.vertical.empty() ||
-                   !options.dump_levels.empty())) {
+// The configuration of the run after every check that needs no image: options that belong to
+// another method, impossible scales, outputs the method cannot write.
+MatchConfig checked_config(const MatchOptions& options, const catalogue::MethodRow& row,
+                           io::DisparityEncoding output_encoding) {
+    if (!row.two_d && (options.matcher.config.vrange != 0 || !options.vertical.empty() ||
+                       !options.dump_levels.empty())) {
         throw std::invalid_argument(
             "--vrange, --vertical and --dump-levels need --method hierarchical");
     }
-    if (two_d && options.matcher.window_given()) {
+    if (row.two_d && options.matcher.window_given()) {
         throw std::invalid_argument(
             "--window and --sigma apply to --method pipeline; the hierarchical levels use "
             "9, 15 and 23 (docs/hierarchical.md)");
@@ -126,23 +124,19 @@ void run_match(const MatchOptions& options) {
         throw std::invalid_argument("--downscale must be >= 1, got " +
                                     std::to_string(options.downscale));
     }
-    // No extension is a PNG, as before; a folder or device fails the file checks (exit 1).
-    const auto output_encoding =
-        io::output_encoding(options.output, options.png16 ? io::DisparityEncoding::offset16
-                                                          : io::DisparityEncoding::scaled);
-    if (output_encoding != io::DisparityEncoding::scaled && !stage6) {
+    if (output_encoding != io::DisparityEncoding::scaled && !row.stage6) {
         throw std::invalid_argument(
             "PFM and --png16 outputs hold the pipeline's validated disparities: use a method "
             "with stage 6 (" +
             stage6_methods() + ")");
     }
-    if ((!options.certainty.empty() || !options.reasons.empty()) && !stage6) {
+    if ((!options.certainty.empty() || !options.reasons.empty()) && !row.stage6) {
         throw std::invalid_argument(
             "--certainty and --reasons write stage 6's outputs: use a method with stage 6 (" +
             stage6_methods() + ")");
     }
     MatchConfig config = options.matcher.resolved();
-    if (!stage6) {
+    if (!row.stage6) {
         // Stage 6 belongs to the 1-D pipeline, ASW and the quad pairs; the other methods
         // validate in their own way.
         if (options.matcher.explicit_validation() || config.pipeline.min_disp != 0) {
@@ -154,11 +148,11 @@ void run_match(const MatchOptions& options) {
         config.pipeline.validation = {};
         config.speckle = {};
     }
-    const auto matcher = matchers().create(method, engine, config);
-    const int ndisp = config.pipeline.ndisp;
+    return config;
+}
 
-    // Everything that can be checked cheaply is checked before loading and matching, and all
-    // outputs are encoded before the first file is written.
+// Every output file can be written, and none is an input or another output.
+void check_outputs(const MatchOptions& options, int ndisp) {
     io::check_disparity_scale(ndisp, options.scale);
     io::check_outputs_distinct(
         {options.output, options.colour, options.vertical, options.certainty, options.reasons},
@@ -173,6 +167,158 @@ void run_match(const MatchOptions& options) {
     if (!options.dump_levels.empty()) {
         io::check_output_folder(options.dump_levels);
     }
+}
+
+// Every output encoded, in memory, before the first file is written.
+std::vector<std::pair<std::filesystem::path, std::string>> encoded_outputs(
+    const MatchOptions& options, const MatchResult& result, int ndisp,
+    io::DisparityEncoding output_encoding) {
+    const DisparityMap& map = result.disparity;
+    std::vector<std::pair<std::filesystem::path, std::string>> files;
+    if (output_encoding == io::DisparityEncoding::pfm) {
+        files.emplace_back(options.output,
+                           io::encode_pfm(io::to_float_disparity(result.validated)));
+    } else if (output_encoding == io::DisparityEncoding::offset16) {
+        files.emplace_back(options.output,
+                           io::encode_png(io::to_offset16(result.validated), options.output));
+    } else {
+        files.emplace_back(
+            options.output,
+            io::encode_png(io::disparity_to_mat(map, ndisp, options.scale), options.output));
+    }
+    if (!options.colour.empty()) {
+        files.emplace_back(options.colour,
+                           io::encode_png(io::disparity_to_colour(map, ndisp), options.colour));
+    }
+    if (!options.vertical.empty() && !result.levels.empty()) {
+        const Winners& full = result.levels.back();
+        files.emplace_back(
+            options.vertical,
+            io::encode_png(vertical_to_mat(full.vertical, full.valid, map.width, map.height),
+                           options.vertical));
+    }
+    const ValidatedDisparity& validated = result.validated;
+    for (const auto& [path, bytes] : {std::pair{&options.certainty, &validated.certainty},
+                                      std::pair{&options.reasons, &validated.reason}}) {
+        if (!path->empty()) {
+            files.emplace_back(
+                *path,
+                io::encode_png(bytes_to_mat(*bytes, validated.width, validated.height), *path));
+        }
+    }
+    if (!options.dump_levels.empty()) {
+        for (const auto& [name, mat] : level_files(result, ndisp, options.scale)) {
+            const std::filesystem::path path = std::filesystem::path(options.dump_levels) / name;
+            files.emplace_back(path, io::encode_png(mat, path));
+        }
+    }
+    return files;
+}
+
+// The --json summary and the settings of the text line.
+struct Summary {
+    nlohmann::json json;
+    std::string settings;  // "window 11 sigma 3 cost census ca on method pipeline engine model"
+    std::string extra;     // the 2-D methods: ", 1.23 cost evaluations per pixel"
+};
+
+// The hierarchical search's part: its levels and cost evaluations.
+void summarise_levels(Summary& summary, const MatchResult& result, const MatchConfig& config,
+                      const std::string& engine, const std::string& method, bool ca) {
+    const DisparityMap& map = result.disparity;
+    const hierarchical::Params levels_params;
+    std::int64_t total = 0;
+    for (const char* name : hierarchical::kLevelNames) {
+        const std::int64_t count = result.count(std::string("cost_evaluations.") + name);
+        summary.json["cost_evaluations"][name] = count;
+        total += count;
+    }
+    const double per_pixel = static_cast<double>(total) / (map.width * map.height);
+    const int vrange = config.vrange == 0 ? config.pipeline.ndisp : config.vrange;
+    const auto& windows = levels_params.levels;
+    summary.json["vrange"] = vrange;
+    summary.json["windows"] = {windows[0].window, windows[1].window, windows[2].window};
+    summary.json["cost_evaluations_per_pixel"] = per_pixel;
+    char settings[200];
+    std::snprintf(settings, sizeof settings, "vrange %d windows %d/%d/%d ca %s method %s engine %s",
+                  vrange, windows[0].window, windows[1].window, windows[2].window,
+                  ca ? "on" : "off", method.c_str(), engine.c_str());
+    summary.settings = settings;
+    char extra[80];
+    std::snprintf(extra, sizeof extra, ", %.2f cost evaluations per pixel", per_pixel);
+    summary.extra = extra;
+}
+
+// The 1-D methods' part: window, cost, stage 6 and what it invalidated, ASW's options.
+void summarise_plane_search(Summary& summary, const MatchOptions& options,
+                            const MatchResult& result, const MatchConfig& config,
+                            const catalogue::MethodRow& row, const std::string& engine, bool ca) {
+    const MatchParams& params = config.pipeline;
+    nlohmann::json& json = summary.json;
+    json["window"] = params.window;
+    json["sigma"] = params.sigma;
+    json["cost"] = params.cost;
+    json["min_disp"] = params.min_disp;
+    const ValidationParams& v = params.validation;
+    json["uniqueness"] =
+        v.uniqueness ? nlohmann::json(v.uniqueness_ratio) : nlohmann::json(nullptr);
+    json["lr_check"] = v.left_right ? nlohmann::json(v.lr_tolerance) : nlohmann::json(nullptr);
+    json["subpixel"] = v.subpixel;
+    json["speckle"] = config.speckle.enabled() ? nlohmann::json{{"size", config.speckle.max_size},
+                                                                {"range", config.speckle.range}}
+                                               : nlohmann::json(nullptr);
+    std::array<std::int64_t, fx::kReasonSpeckle + 1> reasons{};
+    for (const auto reason : result.validated.reason) {
+        reasons[std::min<std::size_t>(reason, reasons.size() - 1)] += 1;
+    }
+    json["invalid"] = {{"border", reasons[fx::kReasonBorder]},
+                       {"uniqueness", reasons[fx::kReasonUniqueness]},
+                       {"left_right", reasons[fx::kReasonLeftRight]},
+                       {"speckle", reasons[fx::kReasonSpeckle]}};
+    const std::string method(row.name);
+    char settings[200];
+    if (row.id == catalogue::Method::asw) {
+        const asw::Params& weights = config.asw;
+        json["window"] = weights.diameter;
+        json.erase("sigma");
+        json["asw"] = {{"diameter", weights.diameter},
+                       {"response", options.matcher.asw_response},
+                       {"shape", options.matcher.asw_shape},
+                       {"continuity", weights.continuity},
+                       {"right_weights", weights.right_weights},
+                       {"separable", weights.separable},
+                       {"truncation", asw::truncation_for(weights.truncation, params.cost)}};
+        std::snprintf(settings, sizeof settings,
+                      "asw diameter %d %s %s%s%s%s cost %s method %s engine %s", weights.diameter,
+                      options.matcher.asw_response.c_str(), options.matcher.asw_shape.c_str(),
+                      weights.continuity ? " continuity" : "",
+                      weights.right_weights ? " both-weights" : " left-weights",
+                      weights.separable ? " separable" : "", params.cost.c_str(), method.c_str(),
+                      engine.c_str());
+    } else {
+        std::snprintf(settings, sizeof settings,
+                      "window %d sigma %g cost %s ca %s method %s engine %s", params.window,
+                      params.sigma, params.cost.c_str(), ca ? "on" : "off", method.c_str(),
+                      engine.c_str());
+    }
+    summary.settings = settings;
+}
+
+void run_match(const MatchOptions& options) {
+    const std::string method = options.matcher.resolved_method();
+    const std::string& engine = options.matcher.engine;
+    const catalogue::MethodRow& row = catalogue::method(method);
+    // No extension is a PNG, as before; a folder or device fails the file checks (exit 1).
+    const auto output_encoding =
+        io::output_encoding(options.output, options.png16 ? io::DisparityEncoding::offset16
+                                                          : io::DisparityEncoding::scaled);
+    const MatchConfig config = checked_config(options, row, output_encoding);
+    const auto matcher = matchers().create(method, engine, config);
+    const int ndisp = config.pipeline.ndisp;
+
+    // Everything that can be checked cheaply is checked before loading and matching, and all
+    // outputs are encoded before the first file is written.
+    check_outputs(options, ndisp);
     const io::ImagePair pair = io::load_pair(options.left, options.right, options.downscale);
     matcher->validate(pair.left.width, pair.left.height);
 
@@ -181,139 +327,33 @@ void run_match(const MatchOptions& options) {
     const std::chrono::duration<double, std::milli> elapsed =
         std::chrono::steady_clock::now() - start;
 
-    const DisparityMap& map = result.disparity;
-    std::string stored_bytes;
-    if (output_encoding == io::DisparityEncoding::pfm) {
-        stored_bytes = io::encode_pfm(io::to_float_disparity(result.validated));
-    } else if (output_encoding == io::DisparityEncoding::offset16) {
-        stored_bytes = io::encode_png(io::to_offset16(result.validated), options.output);
-    } else {
-        stored_bytes =
-            io::encode_png(io::disparity_to_mat(map, ndisp, options.scale), options.output);
-    }
-    const cv::Mat colour = options.colour.empty() ? cv::Mat() : io::disparity_to_colour(map, ndisp);
-    cv::Mat vertical;
-    if (!options.vertical.empty() && !result.levels.empty()) {
-        const Winners& full = result.levels.back();
-        vertical = vertical_to_mat(full.vertical, full.valid, map.width, map.height);
-    }
-    const auto levels = options.dump_levels.empty() ? std::vector<std::pair<std::string, cv::Mat>>{}
-                                                    : level_files(result, ndisp, options.scale);
     // Every output together, all or nothing (io::write_files_atomic).
-    std::vector<std::pair<std::filesystem::path, std::string>> files;
-    files.emplace_back(options.output, stored_bytes);
-    if (!colour.empty()) {
-        files.emplace_back(options.colour, io::encode_png(colour, options.colour));
-    }
-    if (!vertical.empty()) {
-        files.emplace_back(options.vertical, io::encode_png(vertical, options.vertical));
-    }
-    const ValidatedDisparity& validated = result.validated;
-    if (!options.certainty.empty()) {
-        files.emplace_back(
-            options.certainty,
-            io::encode_png(bytes_to_mat(validated.certainty, validated.width, validated.height),
-                           options.certainty));
-    }
-    if (!options.reasons.empty()) {
-        files.emplace_back(
-            options.reasons,
-            io::encode_png(bytes_to_mat(validated.reason, validated.width, validated.height),
-                           options.reasons));
-    }
-    for (const auto& [name, mat] : levels) {
-        const std::filesystem::path path = std::filesystem::path(options.dump_levels) / name;
-        files.emplace_back(path, io::encode_png(mat, path));
-    }
-    if (!levels.empty()) {
+    const auto files = encoded_outputs(options, result, ndisp, output_encoding);
+    if (!options.dump_levels.empty()) {
         std::filesystem::create_directories(options.dump_levels);
     }
     io::write_files_atomic(files);
 
+    const DisparityMap& map = result.disparity;
     const double valid = valid_fraction(map);
-    const MatchParams& params = config.pipeline;
-    const bool ca = params.use_ca && row.ca;
-    nlohmann::json summary = {
+    const bool ca = config.pipeline.use_ca && row.ca;
+    Summary summary;
+    summary.json = {
         {"width", map.width}, {"height", map.height}, {"method", method},       {"ndisp", ndisp},
         {"ca", ca},           {"engine", engine},     {"valid_fraction", valid}};
-    // The text line: "<W>x<H> ndisp <N> <settings>: <valid>% valid, <ms> ms<extra>".
-    char settings[200];
-    char extra[80] = "";
-    if (two_d) {
-        const hierarchical::Params levels_params;
-        std::int64_t total = 0;
-        for (const char* name : hierarchical::kLevelNames) {
-            const std::int64_t count = result.count(std::string("cost_evaluations.") + name);
-            summary["cost_evaluations"][name] = count;
-            total += count;
-        }
-        const double per_pixel = static_cast<double>(total) / (map.width * map.height);
-        const int vrange = config.vrange == 0 ? ndisp : config.vrange;
-        const auto& windows = levels_params.levels;
-        summary["vrange"] = vrange;
-        summary["windows"] = {windows[0].window, windows[1].window, windows[2].window};
-        summary["cost_evaluations_per_pixel"] = per_pixel;
-        std::snprintf(settings, sizeof settings,
-                      "vrange %d windows %d/%d/%d ca %s method %s engine %s", vrange,
-                      windows[0].window, windows[1].window, windows[2].window, ca ? "on" : "off",
-                      method.c_str(), engine.c_str());
-        std::snprintf(extra, sizeof extra, ", %.2f cost evaluations per pixel", per_pixel);
+    if (row.two_d) {
+        summarise_levels(summary, result, config, engine, method, ca);
     } else {
-        summary["window"] = params.window;
-        summary["sigma"] = params.sigma;
-        summary["cost"] = params.cost;
-        summary["min_disp"] = params.min_disp;
-        const ValidationParams& v = params.validation;
-        summary["uniqueness"] =
-            v.uniqueness ? nlohmann::json(v.uniqueness_ratio) : nlohmann::json(nullptr);
-        summary["lr_check"] =
-            v.left_right ? nlohmann::json(v.lr_tolerance) : nlohmann::json(nullptr);
-        summary["subpixel"] = v.subpixel;
-        summary["speckle"] =
-            config.speckle.enabled()
-                ? nlohmann::json{{"size", config.speckle.max_size}, {"range", config.speckle.range}}
-                : nlohmann::json(nullptr);
-        std::array<std::int64_t, fx::kReasonSpeckle + 1> reasons{};
-        for (const auto reason : result.validated.reason) {
-            reasons[std::min<std::size_t>(reason, reasons.size() - 1)] += 1;
-        }
-        summary["invalid"] = {{"border", reasons[fx::kReasonBorder]},
-                              {"uniqueness", reasons[fx::kReasonUniqueness]},
-                              {"left_right", reasons[fx::kReasonLeftRight]},
-                              {"speckle", reasons[fx::kReasonSpeckle]}};
-        if (row.id == catalogue::Method::asw) {
-            const asw::Params& weights = config.asw;
-            summary["window"] = weights.diameter;
-            summary.erase("sigma");
-            summary["asw"] = {{"diameter", weights.diameter},
-                              {"response", options.matcher.asw_response},
-                              {"shape", options.matcher.asw_shape},
-                              {"continuity", weights.continuity},
-                              {"right_weights", weights.right_weights},
-                              {"separable", weights.separable},
-                              {"truncation", asw::truncation_for(weights.truncation, params.cost)}};
-            std::snprintf(settings, sizeof settings,
-                          "asw diameter %d %s %s%s%s%s cost %s method %s engine %s",
-                          weights.diameter, options.matcher.asw_response.c_str(),
-                          options.matcher.asw_shape.c_str(),
-                          weights.continuity ? " continuity" : "",
-                          weights.right_weights ? " both-weights" : " left-weights",
-                          weights.separable ? " separable" : "", params.cost.c_str(),
-                          method.c_str(), engine.c_str());
-        } else {
-            std::snprintf(settings, sizeof settings,
-                          "window %d sigma %g cost %s ca %s method %s engine %s", params.window,
-                          params.sigma, params.cost.c_str(), ca ? "on" : "off", method.c_str(),
-                          engine.c_str());
-        }
+        summarise_plane_search(summary, options, result, config, row, engine, ca);
     }
-    summary["ms"] = elapsed.count();
+    summary.json["ms"] = elapsed.count();
     if (options.json) {
-        std::cout << io::versioned(summary).dump() << '\n';
+        std::cout << io::versioned(summary.json).dump() << '\n';
         return;
     }
+    // "<W>x<H> ndisp <N> <settings>: <valid>% valid, <ms> ms<extra>".
     std::printf("%dx%d ndisp %d %s: %.1f%% valid, %.1f ms%s\n", map.width, map.height, ndisp,
-                settings, 100.0 * valid, elapsed.count(), extra);
+                summary.settings.c_str(), 100.0 * valid, elapsed.count(), summary.extra.c_str());
 }
 
 }  // namespace
