@@ -171,7 +171,7 @@ void print_text(const std::string& name, const nlohmann::json& frame) {
                 frame["ms"].get<double>());
 }
 
-void run_avoid(const AvoidOptions& o) {
+void check_options(const AvoidOptions& o) {
     if (o.downscale < 1) {
         throw std::invalid_argument("--downscale must be >= 1, got " + std::to_string(o.downscale));
     }
@@ -180,10 +180,65 @@ void run_avoid(const AvoidOptions& o) {
     if (!(o.ground_params.max_height > 0.0) || !(o.ground_params.fit.tolerance >= 0.0)) {
         throw std::invalid_argument("--max-height must be > 0 and --ground-tolerance >= 0");
     }
-    const auto geometry = geometry_of(o);
     if (o.threads < 0) {
         throw std::invalid_argument("--threads must be >= 0 (0: every core)");
     }
+}
+
+// One frame: the edge front end on row bands, the ground fit, the decision, its report line and
+// overlay.
+void avoid_frame(const AvoidOptions& o, const std::filesystem::path& left_path,
+                 const io::ImagePair& pair, std::chrono::steady_clock::time_point start,
+                 int threads, double threshold, bool sequence,
+                 const std::optional<robot::StereoGeometry>& geometry,
+                 std::optional<robot::SequenceWriter>& writer) {
+    // The registry's edge matcher, run on row bands in parallel (bit-exact, bands.hpp).
+    const MatchConfig config = o.matcher.resolved();
+    MatchParams params = config.pipeline;
+    params.use_ca = false;
+    const DisparityMap map =
+        robot::edge_match_bands(pair.left, pair.right, params, config.edges, threads);
+    std::optional<robot::GroundModel> ground;
+    if (geometry && o.ground == "fit") {
+        ground = robot::fit_ground(
+            map, o.matcher.config.pipeline.ndisp,
+            robot::avoidance_camera(*geometry, o.downscale, map.width, map.height),
+            o.ground_params);
+    }
+    const robot::GroundModel* ground_ptr = ground ? &*ground : nullptr;
+    FrameResult result = decide(o, map, threshold, ground_ptr);
+    const std::chrono::duration<double, std::milli> elapsed =
+        std::chrono::steady_clock::now() - start;
+
+    nlohmann::json& frame = result.json;
+    frame["frame"] = left_path.filename().string();
+    frame["threshold_px"] = threshold;
+    frame["occupancy"] = result.overlay.occupancy;
+    frame["ms"] = elapsed.count();
+    frame["ground"] = ground ? nlohmann::json{{"slope", ground->line.slope},
+                                              {"intercept", ground->line.intercept}}
+                             : nlohmann::json(nullptr);
+    if (sequence || o.json) {
+        std::cout << io::versioned(frame).dump() << std::endl;
+    } else {
+        print_text(left_path.filename().string(), frame);
+    }
+    if (!o.overlay.empty()) {
+        result.overlay.caption = left_path.filename().string() + " " + result.overlay.caption;
+        const cv::Mat picture =
+            robot::draw_overlay(io::to_bgr(pair.left), map, threshold, o.threshold_params.border,
+                                result.overlay, ground_ptr);
+        if (writer) {
+            writer->add(picture);
+        } else {
+            io::write_png(o.overlay, picture);
+        }
+    }
+}
+
+void run_avoid(const AvoidOptions& o) {
+    check_options(o);
+    const auto geometry = geometry_of(o);
     const int threads = o.threads == 0 ? robot::default_threads() : o.threads;
     // The edge front end; it checks its parameters once the image size is known.
     const auto matcher = matchers().create("edges", "model", o.matcher.resolved());
@@ -221,48 +276,7 @@ void run_avoid(const AvoidOptions& o) {
             next = std::async(std::launch::async, load, index + 1);
         }
         matcher->validate(pair.left.width, pair.left.height);
-        // The registry's edge matcher, run on row bands in parallel (bit-exact, bands.hpp).
-        const MatchConfig config = o.matcher.resolved();
-        MatchParams params = config.pipeline;
-        params.use_ca = false;
-        const DisparityMap map =
-            robot::edge_match_bands(pair.left, pair.right, params, config.edges, threads);
-        std::optional<robot::GroundModel> ground;
-        if (geometry && o.ground == "fit") {
-            ground = robot::fit_ground(
-                map, o.matcher.config.pipeline.ndisp,
-                robot::avoidance_camera(*geometry, o.downscale, map.width, map.height),
-                o.ground_params);
-        }
-        const robot::GroundModel* ground_ptr = ground ? &*ground : nullptr;
-        FrameResult result = decide(o, map, threshold, ground_ptr);
-        const std::chrono::duration<double, std::milli> elapsed =
-            std::chrono::steady_clock::now() - start;
-
-        nlohmann::json& frame = result.json;
-        frame["frame"] = left_path.filename().string();
-        frame["threshold_px"] = threshold;
-        frame["occupancy"] = result.overlay.occupancy;
-        frame["ms"] = elapsed.count();
-        frame["ground"] = ground ? nlohmann::json{{"slope", ground->line.slope},
-                                                  {"intercept", ground->line.intercept}}
-                                 : nlohmann::json(nullptr);
-        if (sequence || o.json) {
-            std::cout << io::versioned(frame).dump() << std::endl;
-        } else {
-            print_text(left_path.filename().string(), frame);
-        }
-        if (!o.overlay.empty()) {
-            result.overlay.caption = left_path.filename().string() + " " + result.overlay.caption;
-            const cv::Mat picture =
-                robot::draw_overlay(io::to_bgr(pair.left), map, threshold,
-                                    o.threshold_params.border, result.overlay, ground_ptr);
-            if (writer) {
-                writer->add(picture);
-            } else {
-                io::write_png(o.overlay, picture);
-            }
-        }
+        avoid_frame(o, left_path, pair, start, threads, threshold, sequence, geometry, writer);
     }
     if (writer) {
         writer->finish();

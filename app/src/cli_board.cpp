@@ -49,7 +49,7 @@ nlohmann::json identity_json(const board::Identity& identity) {
             {"status", identity.status}};
 }
 
-void run_board(const BoardOptions& options) {
+void check_options(const BoardOptions& options) {
     if (options.downscale < 1) {
         throw std::invalid_argument("--downscale must be >= 1, got " +
                                     std::to_string(options.downscale));
@@ -62,6 +62,39 @@ void run_board(const BoardOptions& options) {
         throw std::invalid_argument("--baud " + std::to_string(options.baud) +
                                     " is not a standard rate (e.g. 115200, 1000000, 3000000)");
     }
+}
+
+// The board's identity. A board left inside an abandoned frame (an earlier run stopped half way)
+// answers only the clear command: clear it and ask again; a board that answers neither is not
+// there.
+board::Identity identify(board::Client& client) {
+    try {
+        return client.identify();
+    } catch (const board::NoAnswer&) {
+        (void)client.clear();
+        return client.identify();
+    }
+}
+
+// -o in the format of its extension, as stereo match writes it.
+void write_output(const BoardOptions& options, io::DisparityEncoding output_encoding,
+                  const ValidatedDisparity& validated, const DisparityMap& map, int ndisp) {
+    if (options.output.empty()) {
+        return;
+    }
+    std::string bytes;
+    if (output_encoding == io::DisparityEncoding::pfm) {
+        bytes = io::encode_pfm(io::to_float_disparity(validated));
+    } else if (output_encoding == io::DisparityEncoding::offset16) {
+        bytes = io::encode_png(io::to_offset16(validated), options.output);
+    } else {
+        bytes = io::encode_png(io::disparity_to_mat(map, ndisp, 1), options.output);
+    }
+    io::write_file_atomic(options.output, bytes);
+}
+
+void run_board(const BoardOptions& options) {
+    check_options(options);
     MatchConfig config = options.matcher.resolved();
     const auto output_encoding =
         options.output.empty()
@@ -78,16 +111,7 @@ void run_board(const BoardOptions& options) {
 
     io::SerialPort port(options.port, options.baud);
     board::Client client(port, std::chrono::milliseconds(options.timeout_ms));
-    // A board left inside an abandoned frame (an earlier run stopped half way) answers only the
-    // clear command: clear it and ask again; a board that answers neither is not there.
-    const board::Identity identity = [&client] {
-        try {
-            return client.identify();
-        } catch (const board::NoAnswer&) {
-            (void)client.clear();
-            return client.identify();
-        }
-    }();
+    const board::Identity identity = identify(client);
     // The board's kernel is fixed: without --window the board's window is used; a --sigma other
     // than the default kernel's is refused.
     MatchParams& params = config.pipeline;
@@ -119,18 +143,7 @@ void run_board(const BoardOptions& options) {
 
     // The host-side speckle filter, as stereo match runs it after any engine.
     speckle::filter(validated, config.speckle);
-    const DisparityMap map = to_label_map(validated);
-    if (!options.output.empty()) {
-        std::string bytes;
-        if (output_encoding == io::DisparityEncoding::pfm) {
-            bytes = io::encode_pfm(io::to_float_disparity(validated));
-        } else if (output_encoding == io::DisparityEncoding::offset16) {
-            bytes = io::encode_png(io::to_offset16(validated), options.output);
-        } else {
-            bytes = io::encode_png(io::disparity_to_mat(map, params.ndisp, 1), options.output);
-        }
-        io::write_file_atomic(options.output, bytes);
-    }
+    write_output(options, output_encoding, validated, to_label_map(validated), params.ndisp);
     std::size_t valid = 0;
     for (std::size_t i = 0; i < validated.reason.size(); ++i) {
         valid += validated.valid(i) ? 1 : 0;

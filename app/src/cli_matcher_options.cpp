@@ -127,20 +127,13 @@ MatchConfig MatcherOptions::resolved() const {
     return resolved_config;
 }
 
-void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoice choice,
-                         ExposedParams exposed) {
+namespace {
+
+// Stage 6's options (--min-disp, --uniqueness, --lr-check, --subpixel, --no-validation) and the
+// speckle filter's, where the subcommand exposes them, with their defaults.
+void add_validation_options(CLI::App& command, MatcherOptions& options, MatcherChoice choice,
+                            ExposedParams exposed) {
     MatchParams& params = options.config.pipeline;
-    if (exposed.ndisp) {
-        command.add_option("--ndisp", params.ndisp, "Number of disparity labels 0..N-1")
-            ->capture_default_str();
-    }
-    options.window = command.add_option("--window", params.window, "Odd aggregation window side")
-                         ->capture_default_str();
-    options.sigma = command.add_option("--sigma", params.sigma, "Gaussian sigma in pixels")
-                        ->capture_default_str();
-    if (exposed.no_ca) {
-        command.add_flag("--no-ca", options.no_ca, "Skip the cellular-automata rules");
-    }
     if (exposed.validation) {
         ValidationParams& v = params.validation;
         if (exposed.validation_on_by_default) {
@@ -199,9 +192,12 @@ void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoi
                         "Largest disparity step, in pixels, inside one speckle region")
             ->capture_default_str();
     }
-    if (choice == MatcherChoice::fixed) {
-        return;
-    }
+}
+
+// --cost, --method, --engine, --frontend, --aggregation and ASW's options: the subcommands that
+// choose the matcher.
+void add_selection_options(CLI::App& command, MatcherOptions& options) {
+    MatchParams& params = options.config.pipeline;
     // An option whose value must be one of `choices`, its default shown in --help.
     const auto add_choice = [&command](const char* name, std::string& value, const char* help,
                                        const std::vector<std::string>& choices) {
@@ -242,6 +238,28 @@ void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoi
         ->capture_default_str();
     command.add_option("--threads", weights.threads, "ASW: worker threads, 0 = every core")
         ->capture_default_str();
+}
+
+}  // namespace
+
+void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoice choice,
+                         ExposedParams exposed) {
+    MatchParams& params = options.config.pipeline;
+    if (exposed.ndisp) {
+        command.add_option("--ndisp", params.ndisp, "Number of disparity labels 0..N-1")
+            ->capture_default_str();
+    }
+    options.window = command.add_option("--window", params.window, "Odd aggregation window side")
+                         ->capture_default_str();
+    options.sigma = command.add_option("--sigma", params.sigma, "Gaussian sigma in pixels")
+                        ->capture_default_str();
+    if (exposed.no_ca) {
+        command.add_flag("--no-ca", options.no_ca, "Skip the cellular-automata rules");
+    }
+    add_validation_options(command, options, choice, exposed);
+    if (choice == MatcherChoice::selectable) {
+        add_selection_options(command, options);
+    }
 }
 
 nlohmann::json pipeline_json(int width, int height, const MatchParams& params) {

@@ -110,6 +110,81 @@ nlohmann::json row_json(const MethodRow& row) {
     return json;
 }
 
+// The report as it grows scene by scene: the tables, the JSON and the figure files.
+struct Report {
+    std::ostringstream md;
+    std::ostringstream float_md;
+    nlohmann::json json = nlohmann::json::array();
+    std::vector<std::pair<fs::path, std::string>> files;
+};
+
+// One scene: the model with and without CA, OpenCV's StereoBM and SGBM, the float reference's
+// disagreement, the thesis' quoted figures, the figure.
+void add_scene(Report& report, const Options& options, const io::MiddleburyScene& scene,
+               const io::SceneData& data) {
+    // Made outside the timed calls, as the bare functions these replace had nothing to make.
+    const auto matcher = [&](const std::string& engine, bool use_ca) {
+        return pipeline(options, engine, scene.ndisp, use_ca);
+    };
+    const auto model_with_ca = matcher("model", true);
+    const auto model_without_ca = matcher("model", false);
+    const auto compute = [&](const Matcher& m) {
+        return m.compute(data.pair.left, data.pair.right).disparity;
+    };
+
+    std::vector<MethodRow> rows;
+    double ms = 0.0;
+    const DisparityMap model_ca = timed([&] { return compute(*model_with_ca); }, ms);
+    const cv::Mat model_ca_f = io::to_float_disparity(model_ca);
+    rows.push_back({"model, CA", io::evaluate_scene(data, model_ca_f), ms});
+    const DisparityMap model_no_ca = timed([&] { return compute(*model_without_ca); }, ms);
+    rows.push_back(
+        {"model, no CA", io::evaluate_scene(data, io::to_float_disparity(model_no_ca)), ms});
+    const cv::Mat bm =
+        timed([&] { return io::run_stereo_bm(data, options.matcher.config.pipeline.window); }, ms);
+    rows.push_back({"OpenCV StereoBM", io::evaluate_scene(data, bm), ms});
+    const cv::Mat sgbm = timed([&] { return io::run_stereo_sgbm(data); }, ms);
+    rows.push_back({"OpenCV StereoSGBM", io::evaluate_scene(data, sgbm), ms});
+
+    const DisparityMap float_ca = compute(*matcher("float", true));
+    const DisparityMap float_no_ca = compute(*matcher("float", false));
+    const double differ_ca = io::disagreement(model_ca, float_ca);
+    const double differ_no_ca = io::disagreement(model_no_ca, float_no_ca);
+    char line[160];
+    std::snprintf(line, sizeof line, "| %s | %.2f %% | %.2f %% |\n", scene.name.c_str(),
+                  100.0 * differ_ca, 100.0 * differ_no_ca);
+    report.float_md << line;
+
+    nlohmann::json scene_json = {{"pair", scene.name},
+                                 {"ndisp", scene.ndisp},
+                                 {"float_disagreement_ca", differ_ca},
+                                 {"float_disagreement_no_ca", differ_no_ca},
+                                 {"methods", nlohmann::json::array()}};
+    for (const MethodRow& row : rows) {
+        report.md << "| " << scene.name << " | " << row.method << " | "
+                  << percent(row.result.nonocc) << " | " << percent(row.result.all) << " | "
+                  << percent(row.result.disc) << " | " << number(row.result.nmse, "%.4f") << " | "
+                  << number(row.result.coverage, "%.3f") << " | " << number(row.ms, "%.0f")
+                  << " |\n";
+        scene_json["methods"].push_back(row_json(row));
+    }
+    for (const ThesisFigures& thesis : kThesis) {
+        if (scene.name == thesis.scene) {
+            std::snprintf(line, sizeof line,
+                          "| %s | thesis (quoted) | %.2f | %.2f | %.2f | %.4f (no CA %.4f) | - "
+                          "| - |\n",
+                          scene.name.c_str(), thesis.nonocc, thesis.all, thesis.disc,
+                          thesis.nmse_ca, thesis.nmse_no_ca);
+            report.md << line;
+        }
+    }
+    report.json.push_back(scene_json);
+    if (!options.figures.empty()) {
+        const fs::path figure = fs::path(options.figures) / (scene.name + ".png");
+        report.files.emplace_back(figure, figure_png(data, model_ca_f, figure));
+    }
+}
+
 void run_report(const Options& options) {
     const fs::path data_dir = options.data_dir;
     // The report files are checked before minutes of matching, not after.
@@ -124,15 +199,13 @@ void run_report(const Options& options) {
         io::check_output_folder(options.figures);
     }
     // Every output file (figures, Markdown, JSON), written together at the end: all or nothing.
-    std::vector<std::pair<fs::path, std::string>> files;
-    std::ostringstream md;
-    md << "| pair | method | bad nonocc % | bad all % | bad disc % | NMSE | coverage | ms |\n"
-       << "|---|---|---|---|---|---|---|---|\n";
-    std::ostringstream float_md;
-    float_md << "| pair | pixels differing, CA on | pixels differing, CA off |\n|---|---|---|\n";
-    nlohmann::json json = nlohmann::json::array();
+    Report report;
+    report.md
+        << "| pair | method | bad nonocc % | bad all % | bad disc % | NMSE | coverage | ms |\n"
+        << "|---|---|---|---|---|---|---|---|\n";
+    report.float_md
+        << "| pair | pixels differing, CA on | pixels differing, CA off |\n|---|---|---|\n";
     int scenes_found = 0;
-
     const auto& scenes = io::middlebury2003_scenes();
     const ProgressBar progress("middlebury", static_cast<int>(scenes.size()));
     int scenes_done = 0;
@@ -145,84 +218,26 @@ void run_report(const Options& options) {
             continue;
         }
         ++scenes_found;
-        // Made outside the timed calls, as the bare functions these replace had nothing to make.
-        const auto matcher = [&](const std::string& engine, bool use_ca) {
-            return pipeline(options, engine, scene.ndisp, use_ca);
-        };
-        const auto model_with_ca = matcher("model", true);
-        const auto model_without_ca = matcher("model", false);
-        const auto compute = [&](const Matcher& m) {
-            return m.compute(data->pair.left, data->pair.right).disparity;
-        };
-
-        std::vector<MethodRow> rows;
-        double ms = 0.0;
-        const DisparityMap model_ca = timed([&] { return compute(*model_with_ca); }, ms);
-        const cv::Mat model_ca_f = io::to_float_disparity(model_ca);
-        rows.push_back({"model, CA", io::evaluate_scene(*data, model_ca_f), ms});
-        const DisparityMap model_no_ca = timed([&] { return compute(*model_without_ca); }, ms);
-        rows.push_back(
-            {"model, no CA", io::evaluate_scene(*data, io::to_float_disparity(model_no_ca)), ms});
-        const cv::Mat bm = timed(
-            [&] { return io::run_stereo_bm(*data, options.matcher.config.pipeline.window); }, ms);
-        rows.push_back({"OpenCV StereoBM", io::evaluate_scene(*data, bm), ms});
-        const cv::Mat sgbm = timed([&] { return io::run_stereo_sgbm(*data); }, ms);
-        rows.push_back({"OpenCV StereoSGBM", io::evaluate_scene(*data, sgbm), ms});
-
-        const DisparityMap float_ca = compute(*matcher("float", true));
-        const DisparityMap float_no_ca = compute(*matcher("float", false));
-        const double differ_ca = io::disagreement(model_ca, float_ca);
-        const double differ_no_ca = io::disagreement(model_no_ca, float_no_ca);
-        char line[160];
-        std::snprintf(line, sizeof line, "| %s | %.2f %% | %.2f %% |\n", scene.name.c_str(),
-                      100.0 * differ_ca, 100.0 * differ_no_ca);
-        float_md << line;
-
-        nlohmann::json scene_json = {{"pair", scene.name},
-                                     {"ndisp", scene.ndisp},
-                                     {"float_disagreement_ca", differ_ca},
-                                     {"float_disagreement_no_ca", differ_no_ca},
-                                     {"methods", nlohmann::json::array()}};
-        for (const MethodRow& row : rows) {
-            md << "| " << scene.name << " | " << row.method << " | " << percent(row.result.nonocc)
-               << " | " << percent(row.result.all) << " | " << percent(row.result.disc) << " | "
-               << number(row.result.nmse, "%.4f") << " | " << number(row.result.coverage, "%.3f")
-               << " | " << number(row.ms, "%.0f") << " |\n";
-            scene_json["methods"].push_back(row_json(row));
-        }
-        for (const ThesisFigures& thesis : kThesis) {
-            if (scene.name == thesis.scene) {
-                std::snprintf(line, sizeof line,
-                              "| %s | thesis (quoted) | %.2f | %.2f | %.2f | %.4f (no CA %.4f) | - "
-                              "| - |\n",
-                              scene.name.c_str(), thesis.nonocc, thesis.all, thesis.disc,
-                              thesis.nmse_ca, thesis.nmse_no_ca);
-                md << line;
-            }
-        }
-        json.push_back(scene_json);
-        if (!options.figures.empty()) {
-            const fs::path figure = fs::path(options.figures) / (scene.name + ".png");
-            files.emplace_back(figure, figure_png(*data, model_ca_f, figure));
-        }
+        add_scene(report, options, scene, *data);
     }
     if (scenes_found == 0) {
         throw std::runtime_error("no Middlebury 2003 scene found under " +
                                  (data_dir / "middlebury2003").string());
     }
-    const std::string report =
-        md.str() + "\nFixed point against the float reference:\n\n" + float_md.str();
+    const std::string text =
+        report.md.str() + "\nFixed point against the float reference:\n\n" + report.float_md.str();
     if (!options.markdown.empty()) {
-        files.emplace_back(options.markdown, report);
+        report.files.emplace_back(options.markdown, text);
     }
     if (!options.json_path.empty()) {
-        files.emplace_back(options.json_path, io::versioned({{"scenes", json}}).dump(2) + '\n');
+        report.files.emplace_back(options.json_path,
+                                  io::versioned({{"scenes", report.json}}).dump(2) + '\n');
     }
     if (!options.figures.empty()) {
         fs::create_directories(options.figures);
     }
-    io::write_files_atomic(files);
-    std::cout << report;  // after the files: no report on stdout for a run that then fails
+    io::write_files_atomic(report.files);
+    std::cout << text;  // after the files: no report on stdout for a run that then fails
 }
 
 void run_middlebury(const Options& options) {

@@ -57,6 +57,29 @@ double valid_fraction(const ValidatedDisparity& map) {
     return map.reason.empty() ? 0.0 : static_cast<double>(valid) / map.reason.size();
 }
 
+// -o (PFM or offset16 PNG), --certainty and --source, all or nothing.
+void write_outputs(const QuadOptions& options, const std::string& extension,
+                   const quad::QuadResult& result) {
+    const ValidatedDisparity& fused = result.fused;
+    std::vector<std::pair<std::filesystem::path, std::string>> files;
+    files.emplace_back(options.output,
+                       extension == ".pfm"
+                           ? io::encode_pfm(io::to_float_disparity(fused))
+                           : io::encode_png(io::to_offset16(fused), options.output));
+    if (!options.certainty.empty()) {
+        files.emplace_back(
+            options.certainty,
+            io::encode_png(bytes_to_mat(fused.certainty, fused.width, fused.height, 1),
+                           options.certainty));
+    }
+    if (!options.source.empty()) {
+        files.emplace_back(options.source, io::encode_png(bytes_to_mat(result.source, fused.width,
+                                                                       fused.height, kSourceStep),
+                                                          options.source));
+    }
+    io::write_files_atomic(files);
+}
+
 void run_quad(const QuadOptions& options) {
     const MatchConfig config = options.matcher.resolved();
     const MatchParams& params = config.pipeline;
@@ -90,23 +113,7 @@ void run_quad(const QuadOptions& options) {
         std::chrono::steady_clock::now() - start;
 
     const ValidatedDisparity& fused = result.fused;
-    std::vector<std::pair<std::filesystem::path, std::string>> files;
-    files.emplace_back(options.output,
-                       extension == ".pfm"
-                           ? io::encode_pfm(io::to_float_disparity(fused))
-                           : io::encode_png(io::to_offset16(fused), options.output));
-    if (!options.certainty.empty()) {
-        files.emplace_back(
-            options.certainty,
-            io::encode_png(bytes_to_mat(fused.certainty, fused.width, fused.height, 1),
-                           options.certainty));
-    }
-    if (!options.source.empty()) {
-        files.emplace_back(options.source, io::encode_png(bytes_to_mat(result.source, fused.width,
-                                                                       fused.height, kSourceStep),
-                                                          options.source));
-    }
-    io::write_files_atomic(files);
+    write_outputs(options, extension, result);
 
     std::array<std::int64_t, 4> sources{};
     for (const auto s : result.source) {

@@ -94,15 +94,17 @@ double fps(int frames, double ms) {
     return ms > 0.0 ? 1000.0 * frames / ms : 0.0;
 }
 
-void run_slam(SlamOptions o) {
-    const MatchParams& frontend = o.matcher.config.pipeline;
-    o.params.frontend.ndisp = frontend.ndisp;
-    o.params.frontend.window = frontend.window;
-    o.params.frontend.sigma = frontend.sigma;
-    o.params.frontend.cost = frontend.cost;
-    if (o.params.threads == 0) {
-        o.params.threads = robot::default_threads();
-    }
+// The sequence and the frames a run reads, after every check that reads no image.
+struct Input {
+    slam::Layout layout;
+    slam::Sequence sequence;
+    slam::FrameRange range;
+    int frames;
+    int width;
+    int height;
+};
+
+Input checked_input(const SlamOptions& o) {
     if (o.downscale < 1) {
         throw std::invalid_argument("--downscale must be >= 1, got " + std::to_string(o.downscale));
     }
@@ -113,7 +115,7 @@ void run_slam(SlamOptions o) {
     const slam::Layout layout = slam::parse_layout(o.layout, o.sequence);
     const std::optional<fs::path> calib =
         o.calib.empty() ? std::nullopt : std::optional<fs::path>(o.calib);
-    const slam::Sequence sequence = slam::open_sequence(o.sequence, layout, calib);
+    slam::Sequence sequence = slam::open_sequence(o.sequence, layout, calib);
     const int count = static_cast<int>(sequence.frames.size());
     const slam::FrameRange range = slam::parse_frames(o.frames, count);
     const int frames = range.end - range.begin;
@@ -142,17 +144,18 @@ void run_slam(SlamOptions o) {
             io::check_writable_location(output);
         }
     }
+    return {layout, std::move(sequence), range, frames, width, height};
+}
 
-    const slam::Camera camera = sequence.camera.downscaled(o.downscale);
-    slam::validate_camera(camera, width, height);
-    slam::Slam slam(camera, o.params);
+// Every frame through the SLAM system; the v-disparity picture of --vdisparity-frame.
+Totals run_frames(const SlamOptions& o, const Input& in, slam::Slam& slam,
+                  cv::Mat& vdisparity_picture) {
     Totals totals;
-    cv::Mat vdisparity_picture;
-    const ProgressBar progress("slam", frames);
-    const auto start = std::chrono::steady_clock::now();
-    for (int i = 0; i < frames; ++i) {
+    const ProgressBar progress("slam", in.frames);
+    for (int i = 0; i < in.frames; ++i) {
         const auto load_start = std::chrono::steady_clock::now();
-        const slam::StereoFrame frame = slam::load_frame(sequence, range.begin + i, o.downscale);
+        const slam::StereoFrame frame =
+            slam::load_frame(in.sequence, in.range.begin + i, o.downscale);
         totals.load_ms +=
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - load_start)
                 .count();
@@ -173,22 +176,21 @@ void run_slam(SlamOptions o) {
         }
         progress.update(i + 1);
     }
-    const double total_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return totals;
+}
 
-    std::optional<slam::Trajectory> truth;
-    if (sequence.truth) {
-        truth = slam::relative_to_first(slam::Trajectory(sequence.truth->begin() + range.begin,
-                                                         sequence.truth->begin() + range.end));
-    }
-
+// The --json summary without the map: the run, its speeds, the motion and the errors.
+nlohmann::json run_summary(const SlamOptions& o, const Input& in, const Totals& totals,
+                           double total_ms, const slam::Slam& slam,
+                           const std::optional<slam::Trajectory>& truth) {
+    const int frames = in.frames;
     nlohmann::json summary;
     summary["sequence"] = o.sequence;
-    summary["layout"] = layout == slam::Layout::kitti ? "kitti" : "euroc";
+    summary["layout"] = in.layout == slam::Layout::kitti ? "kitti" : "euroc";
     summary["frames"] = frames;
-    summary["first_frame"] = range.begin;
-    summary["width"] = width;
-    summary["height"] = height;
+    summary["first_frame"] = in.range.begin;
+    summary["width"] = in.width;
+    summary["height"] = in.height;
     summary["downscale"] = o.downscale;
     summary["merge"] = o.params.merge_enabled;
     summary["cost"] = o.params.frontend.cost;
@@ -206,7 +208,6 @@ void run_slam(SlamOptions o) {
                          {"mean_inliers", totals.inliers / per_pair}};
     summary["ground_line_frames"] = totals.ground_found;
     summary["merges_applied"] = totals.merges_applied;
-
     const slam::Trajectory& estimate = slam.trajectory();
     const slam::Trajectory& odometry = slam.odometry();
     summary["drift"] = {{"odometry", drift_json(slam::drift(odometry))},
@@ -221,8 +222,15 @@ void run_slam(SlamOptions o) {
         summary["poses"] = truth ? "too few frames" : "absent";
         summary["errors"] = nullptr;
     }
+    return summary;
+}
 
-    // The map: bounding box of the evidence and of both paths, CA-cleaned.
+// The map (bounding box of the evidence and of both paths, CA-cleaned) into the summary, and the
+// output files: map, v-disparity and trajectory, encoded.
+std::vector<std::pair<fs::path, std::string>> map_and_files(
+    const SlamOptions& o, const slam::Slam& slam, const std::optional<slam::Trajectory>& truth,
+    const cv::Mat& vdisparity_picture, nlohmann::json& summary) {
+    const slam::Trajectory& estimate = slam.trajectory();
     std::vector<slam::CellIndex> path_cells;
     const auto estimate_path = slam::plane_path(estimate);
     std::vector<Eigen::Vector2d> truth_path;
@@ -247,8 +255,6 @@ void run_slam(SlamOptions o) {
                       {"ca_passes", o.ca_passes},
                       {"occupied_after_ca", cleaned.count(slam::Cell::occupied)},
                       {"free_after_ca", cleaned.count(slam::Cell::free)}};
-
-    // Map, v-disparity and trajectory together, all or nothing.
     std::vector<std::pair<fs::path, std::string>> files;
     if (!o.map.empty()) {
         std::vector<slam::Polyline> paths;
@@ -265,16 +271,14 @@ void run_slam(SlamOptions o) {
     if (!o.trajectory.empty()) {
         files.emplace_back(o.trajectory, slam::format_kitti_poses(estimate));
     }
-    io::write_files_atomic(files);
+    return files;
+}
 
-    if (o.json) {
-        std::cout << io::versioned(summary).dump() << std::endl;
-        return;
-    }
+void print_summary(const nlohmann::json& summary, const Input& in, const Totals& totals) {
     std::printf(
         "%d frames %dx%d: %.2f fps (front end %.2f, motion %.2f, local map %.1f, global "
         "map %.1f), %d motion fallbacks, %d merges applied\n",
-        frames, width, height, summary["fps"]["total"].get<double>(),
+        in.frames, in.width, in.height, summary["fps"]["total"].get<double>(),
         summary["fps"]["frontend"].get<double>(), summary["fps"]["motion"].get<double>(),
         summary["fps"]["local_map"].get<double>(), summary["fps"]["global_map"].get<double>(),
         totals.fallbacks, totals.merges_applied);
@@ -282,16 +286,51 @@ void run_slam(SlamOptions o) {
         const auto& d = summary["drift"]["merged"];
         std::printf("no ground-truth poses; drift %.3f m, %.2f deg at the last frame\n",
                     d["final_translation_m"].get<double>(), d["final_rotation_deg"].get<double>());
-    } else {
-        for (const char* name : {"odometry", "merged"}) {
-            const auto& e = summary["errors"][name];
-            std::printf("%-8s ATE %.3f m (%.2f %% of %.1f m), RPE/%d frames %.2f %% %.3f deg\n",
-                        name, e["ate_rmse_m"].get<double>(), e["ate_percent"].get<double>(),
-                        summary["path_length_m"].get<double>(), kRpeGap,
-                        e["rpe_translation_percent"].get<double>(),
-                        e["rpe_rotation_deg"].get<double>());
-        }
+        return;
     }
+    for (const char* name : {"odometry", "merged"}) {
+        const auto& e = summary["errors"][name];
+        std::printf("%-8s ATE %.3f m (%.2f %% of %.1f m), RPE/%d frames %.2f %% %.3f deg\n", name,
+                    e["ate_rmse_m"].get<double>(), e["ate_percent"].get<double>(),
+                    summary["path_length_m"].get<double>(), kRpeGap,
+                    e["rpe_translation_percent"].get<double>(),
+                    e["rpe_rotation_deg"].get<double>());
+    }
+}
+
+void run_slam(SlamOptions o) {
+    const MatchParams& frontend = o.matcher.config.pipeline;
+    o.params.frontend.ndisp = frontend.ndisp;
+    o.params.frontend.window = frontend.window;
+    o.params.frontend.sigma = frontend.sigma;
+    o.params.frontend.cost = frontend.cost;
+    if (o.params.threads == 0) {
+        o.params.threads = robot::default_threads();
+    }
+    const Input in = checked_input(o);
+    const slam::Camera camera = in.sequence.camera.downscaled(o.downscale);
+    slam::validate_camera(camera, in.width, in.height);
+    slam::Slam slam(camera, o.params);
+    cv::Mat vdisparity_picture;
+    const auto start = std::chrono::steady_clock::now();
+    const Totals totals = run_frames(o, in, slam, vdisparity_picture);
+    const double total_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+
+    std::optional<slam::Trajectory> truth;
+    if (in.sequence.truth) {
+        truth =
+            slam::relative_to_first(slam::Trajectory(in.sequence.truth->begin() + in.range.begin,
+                                                     in.sequence.truth->begin() + in.range.end));
+    }
+    nlohmann::json summary = run_summary(o, in, totals, total_ms, slam, truth);
+    // Map, v-disparity and trajectory together, all or nothing.
+    io::write_files_atomic(map_and_files(o, slam, truth, vdisparity_picture, summary));
+    if (o.json) {
+        std::cout << io::versioned(summary).dump() << std::endl;
+        return;
+    }
+    print_summary(summary, in, totals);
 }
 
 }  // namespace
