@@ -50,13 +50,9 @@ fs::path source_root() {
 
 // "ad or census": the costs of the lean memory core.
 std::string lean_costs() {
-    std::string names;
-    for (const catalogue::CostRow& row : catalogue::kCosts) {
-        if (row.lean_core) {
-            names += (names.empty() ? "" : " or ") + std::string(row.name);
-        }
-    }
-    return names;
+    return catalogue::join(
+        catalogue::cost_names_if([](const catalogue::CostRow& row) { return row.lean_core; }),
+        " or ");
 }
 
 int cost_parameter(const std::string& cost) {

@@ -427,7 +427,7 @@ TEST_F(BoardCli, BoardOutputEqualsStereoMatchByteForByte) {
         EXPECT_EQ(bytes, file_bytes(path("match.png"))) << options.back();
         if (options.back() == "--png16") {
             const cv::Mat codes = cv::imread(path("match.png"), cv::IMREAD_UNCHANGED);
-            negative += cv::countNonZero(codes > 0 & codes < 32768);
+            negative += cv::countNonZero((codes > 0) & (codes < 32768));
         }
     }
     EXPECT_GT(negative, 0);

@@ -94,13 +94,8 @@ std::vector<std::pair<std::string, cv::Mat>> level_files(const MatchResult& resu
 
 // "pipeline, vertical, diagonal, asw": the methods with stage 6, for error messages.
 std::string stage6_methods() {
-    std::string names;
-    for (const catalogue::MethodRow& row : catalogue::kMethods) {
-        if (row.stage6) {
-            names += (names.empty() ? "" : ", ") + std::string(row.name);
-        }
-    }
-    return names;
+    return catalogue::join(
+        catalogue::method_names([](const catalogue::MethodRow& row) { return row.stage6; }));
 }
 
 // The configuration of the run after every check that needs no image: options that belong to

@@ -6,25 +6,61 @@ namespace stereo::catalogue {
 namespace {
 
 // Rows are indexed by their id: the tables must list them in enum order.
-constexpr bool costs_in_order() {
-    for (std::size_t i = 0; i < kCosts.size(); ++i) {
-        if (static_cast<std::size_t>(kCosts[i].id) != i) {
+template <typename Row, std::size_t N>
+constexpr bool in_order(const std::array<Row, N>& rows) {
+    for (std::size_t i = 0; i < N; ++i) {
+        if (static_cast<std::size_t>(rows[i].id) != i) {
             return false;
         }
     }
     return true;
 }
-constexpr bool methods_in_order() {
-    for (std::size_t i = 0; i < kMethods.size(); ++i) {
-        if (static_cast<std::size_t>(kMethods[i].id) != i) {
-            return false;
-        }
-    }
-    return true;
-}
-static_assert(costs_in_order() && methods_in_order());
+static_assert(in_order(kCosts) && in_order(kMethods));
 
-std::string joined(const std::vector<std::string>& names, std::string_view last_separator) {
+// The names of the rows `keep` accepts, in table order.
+template <typename Row, std::size_t N, typename Keep>
+std::vector<std::string> names_of(const std::array<Row, N>& rows, Keep keep) {
+    std::vector<std::string> names;
+    for (const Row& row : rows) {
+        if (keep(row)) {
+            names.emplace_back(row.name);
+        }
+    }
+    return names;
+}
+
+// "a (summary), b (summary)": the rows `keep` accepts, for --help.
+template <typename Row, std::size_t N, typename Keep>
+std::string help_of(const std::array<Row, N>& rows, Keep keep) {
+    std::string text;
+    for (const Row& row : rows) {
+        if (keep(row)) {
+            text += (text.empty() ? "" : ", ") + std::string(row.name) + " (" +
+                    std::string(row.summary) + ")";
+        }
+    }
+    return text;
+}
+
+// The row named `name`; throws std::invalid_argument "unknown <kind> "x" (<known>: a, b)".
+template <typename Row, std::size_t N>
+const Row& row_named(const std::array<Row, N>& rows, std::string_view name, const char* kind,
+                     const char* known) {
+    for (const Row& row : rows) {
+        if (row.name == name) {
+            return row;
+        }
+    }
+    throw std::invalid_argument("unknown " + std::string(kind) + " \"" + std::string(name) +
+                                "\" (" + known + ": " +
+                                join(names_of(rows, [](const Row&) { return true; }), ", ") + ")");
+}
+
+constexpr auto kEvery = [](const auto&) { return true; };
+
+}  // namespace
+
+std::string join(const std::vector<std::string>& names, std::string_view last_separator) {
     std::string text;
     for (std::size_t i = 0; i < names.size(); ++i) {
         if (i > 0) {
@@ -34,8 +70,6 @@ std::string joined(const std::vector<std::string>& names, std::string_view last_
     }
     return text;
 }
-
-}  // namespace
 
 bool is_cost(std::string_view name) {
     for (const CostRow& row : kCosts) {
@@ -47,13 +81,7 @@ bool is_cost(std::string_view name) {
 }
 
 const CostRow& cost(std::string_view name) {
-    for (const CostRow& row : kCosts) {
-        if (row.name == name) {
-            return row;
-        }
-    }
-    throw std::invalid_argument("unknown cost \"" + std::string(name) +
-                                "\" (known: " + joined(cost_names(), ", ") + ")");
+    return row_named(kCosts, name, "cost", "known");
 }
 
 bool usable(const CostRow& row, CostUse use) {
@@ -71,28 +99,19 @@ bool usable(const CostRow& row, CostUse use) {
 }
 
 std::vector<std::string> cost_names(CostUse use) {
-    std::vector<std::string> names;
-    for (const CostRow& row : kCosts) {
-        if (usable(row, use)) {
-            names.emplace_back(row.name);
-        }
-    }
-    return names;
+    return names_of(kCosts, [use](const CostRow& row) { return usable(row, use); });
+}
+
+std::vector<std::string> cost_names_if(bool (*keep)(const CostRow&)) {
+    return names_of(kCosts, keep);
 }
 
 std::string cost_list(CostUse use) {
-    return joined(cost_names(use), " and ");
+    return join(cost_names(use), " and ");
 }
 
 std::string cost_help(CostUse use) {
-    std::string text;
-    for (const CostRow& row : kCosts) {
-        if (usable(row, use)) {
-            text += (text.empty() ? "" : ", ") + std::string(row.name) + " (" +
-                    std::string(row.summary) + ")";
-        }
-    }
-    return text;
+    return help_of(kCosts, [use](const CostRow& row) { return usable(row, use); });
 }
 
 void require_cost(std::string_view name, CostUse use, std::string_view what) {
@@ -103,57 +122,27 @@ void require_cost(std::string_view name, CostUse use, std::string_view what) {
 }
 
 const MethodRow& method(std::string_view name) {
-    for (const MethodRow& row : kMethods) {
-        if (row.name == name) {
-            return row;
-        }
-    }
-    throw std::invalid_argument("unknown method \"" + std::string(name) +
-                                "\" (methods: " + joined(method_names(), ", ") + ")");
+    return row_named(kMethods, name, "method", "methods");
 }
 
-std::vector<std::string> method_names() {
-    std::vector<std::string> names;
-    for (const MethodRow& row : kMethods) {
-        names.emplace_back(row.name);
-    }
-    return names;
+std::vector<std::string> method_names(bool (*keep)(const MethodRow&)) {
+    return keep == nullptr ? names_of(kMethods, kEvery) : names_of(kMethods, keep);
 }
 
 std::string method_help() {
-    std::string text;
-    for (const MethodRow& row : kMethods) {
-        text += (text.empty() ? "" : ", ") + std::string(row.name) + " (" +
-                std::string(row.summary) + ")";
-    }
-    return text;
+    return help_of(kMethods, kEvery);
 }
 
 const EngineRow& engine(std::string_view name) {
-    for (const EngineRow& row : kEngines) {
-        if (row.name == name) {
-            return row;
-        }
-    }
-    throw std::invalid_argument("unknown engine \"" + std::string(name) +
-                                "\" (engines: " + joined(engine_names(), ", ") + ")");
+    return row_named(kEngines, name, "engine", "engines");
 }
 
 std::vector<std::string> engine_names() {
-    std::vector<std::string> names;
-    for (const EngineRow& row : kEngines) {
-        names.emplace_back(row.name);
-    }
-    return names;
+    return names_of(kEngines, kEvery);
 }
 
 std::string engine_help() {
-    std::string text;
-    for (const EngineRow& row : kEngines) {
-        text += (text.empty() ? "" : ", ") + std::string(row.name) + " (" +
-                std::string(row.summary) + ")";
-    }
-    return text;
+    return help_of(kEngines, kEvery);
 }
 
 std::string_view default_cost(std::string_view method_name, std::string_view engine_name) {

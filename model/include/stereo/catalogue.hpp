@@ -104,6 +104,8 @@ enum class CostUse {
 bool usable(const CostRow& row, CostUse use);
 // The names of the costs usable for `use`, in catalogue order.
 std::vector<std::string> cost_names(CostUse use = CostUse::any);
+// The names of the costs `keep` accepts (e.g. the lean core's), in catalogue order.
+std::vector<std::string> cost_names_if(bool (*keep)(const CostRow&));
 // "ad, census and lcdm": the names of cost_names(use) for an error message.
 std::string cost_list(CostUse use);
 // "ad (absolute differences ...), census (...)": the usable costs with their summaries, for --help.
@@ -218,7 +220,8 @@ const MethodRow& method(std::string_view name);  // throws std::invalid_argument
 constexpr const MethodRow& method(Method id) {
     return kMethods[static_cast<std::size_t>(id)];
 }
-std::vector<std::string> method_names();
+// The names of the methods `keep` accepts (every method when it is null), in catalogue order.
+std::vector<std::string> method_names(bool (*keep)(const MethodRow&) = nullptr);
 // "pipeline (1-D ...), edges (...), ...": every method with its summary, for --help.
 std::string method_help();
 
@@ -262,6 +265,9 @@ inline constexpr std::array<EngineRow, 6> kEngines = {{
 const EngineRow& engine(std::string_view name);  // throws std::invalid_argument when unknown
 std::vector<std::string> engine_names();
 std::string engine_help();  // "model (the bit-exact ...), naive (...), ..."
+
+// "a, b<last_separator>c": names for a message ("a, b and c", "a, b or c").
+std::string join(const std::vector<std::string>& names, std::string_view last_separator = ", ");
 
 // ---- defaults ------------------------------------------------------------------------------
 // The validated default cost (stereo/defaults.hpp says how it was chosen) and the thesis' cost,
