@@ -24,20 +24,6 @@ void validate(const EdgeParams& params) {
     check_truncation(params.truncation);
 }
 
-Image luma(const Image& image) {
-    if (image.channels == 1) {
-        return image;
-    }
-    Image grey(image.width, image.height, 1);
-    const std::size_t count = grey.pixels.size();
-    const std::uint8_t* src = image.pixels.data();
-    for (std::size_t i = 0; i < count; ++i, src += 3) {
-        const int sum = kLumaR * src[0] + kLumaG * src[1] + kLumaB * src[2];
-        grey.pixels[i] = static_cast<std::uint8_t>((sum + (1 << (kLumaShift - 1))) >> kLumaShift);
-    }
-    return grey;
-}
-
 Response log_response(const Image& grey, const std::vector<std::int32_t>& kernel) {
     const auto [w, h, r] = log_shape(grey, kernel);
     const auto row_start = [w = w](int y) { return static_cast<std::size_t>(y) * w; };

@@ -9,6 +9,7 @@
 
 #include "stereo/dsi.hpp"
 #include "stereo/image.hpp"
+#include "stereo/luma.hpp"
 #include "stereo/pipeline.hpp"
 
 namespace stereo::edge_frontend {
@@ -35,8 +36,8 @@ struct Response {
 // Throws std::invalid_argument with a one-line message for impossible parameters.
 void validate(const EdgeParams& params);
 
-// ITU-R BT.601 integer luma, (77 R + 150 G + 29 B + 128) >> 8; a grey image is returned as is.
-Image luma(const Image& image);
+// ITU-R BT.601 integer luma (stereo/luma.hpp, shared with the census and ZNCC stages).
+using stereo::luma;
 
 // Integer LoG of a grey image: separable smoothing with gaussian_kernel(window, sigma) (taps
 // summing to 256, replicated border), then the 4-neighbour Laplacian (replicated border).

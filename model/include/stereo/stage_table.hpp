@@ -5,7 +5,7 @@
 // (scripts/) must agree on: the interface constants of stereo_top's ports, the five hardware
 // stages in pipeline order with their widths and latencies (the pipeline latency formula lives
 // here and nowhere else), the RTL source list in compile order, and the Verilated
-// configurations. `gen_stage_table` (model/src/gen_stage_table.cpp) writes rtl/fx_pkg.sv,
+// configurations. `gen_stage_table` (model/tools/gen_stage_table.cpp) writes rtl/fx_pkg.sv,
 // rtl/files.f, sim/verilated_configs.cmake and scripts/stage_table.json from it:
 //   cmake --build build --target update_generated
 // and the ctest rtl.generated_files_current fails, naming the file, while one of them is stale.

@@ -1,7 +1,7 @@
 // Census cost plug-in (stereo/stages/census.hpp); naive reference in reference/census_naive.cpp.
 #include <bit>
 
-#include "stereo/edge_frontend.hpp"
+#include "stereo/luma.hpp"
 #include "stereo/stages.hpp"
 #include "stereo/stages/census.hpp"
 
@@ -9,7 +9,7 @@ namespace stereo {
 namespace census {
 
 std::vector<std::uint32_t> transform(const Image& image) {
-    const Image grey = edge_frontend::luma(image);
+    const Image grey = luma(image);
     const int w = grey.width;
     const int h = grey.height;
     std::vector<std::uint32_t> codes(static_cast<std::size_t>(w) * h, 0);

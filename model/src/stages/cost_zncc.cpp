@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "stereo/edge_frontend.hpp"
+#include "stereo/luma.hpp"
 #include "stereo/stages.hpp"
 #include "stereo/stages/zncc.hpp"
 
@@ -43,9 +43,7 @@ namespace {
 
 class ZnccCost final : public CostFunction {
   public:
-    PlanarImage prepare(const Image& image) const override {
-        return PlanarImage(edge_frontend::luma(image));
-    }
+    PlanarImage prepare(const Image& image) const override { return PlanarImage(luma(image)); }
 
     void row(const PlanarImage& left, const PlanarImage& right, int y, int yr, int x0, int count,
              int shift, CostValue* out) const override {

@@ -1,7 +1,7 @@
 // Stage 5, winner takes all over a candidate grid with its tie rule (stereo/search.hpp).
 #include <cstdlib>
 
-#include "stereo/search.hpp"
+#include "stereo/stages/wta.hpp"
 
 namespace stereo {
 
