@@ -151,7 +151,8 @@ def test_default_map_is_the_same_through_cli_python_and_cosim(scene_pair, tmp_pa
     assert core_valid.mean() >= 0.3
     rtl = stereo.cosim(left, right)
     assert rtl["mismatches"] == 0
-    assert np.array_equal(rtl["fixed"][core_valid], (core_expected[core_valid] * 16).astype(np.int16))
+    assert np.array_equal(rtl["fixed"][core_valid],
+                          (core_expected[core_valid] * 16).astype(np.int16))
     assert np.array_equal(rtl["reason"] == 0, core_valid)
 
 
@@ -325,7 +326,8 @@ def test_cosim_equals_model_under_stalls():
     result = stereo.cosim(left, right, ndisp=16, window=5, uniqueness=10, lr_check=1,
                           stall=0.3, gap=0.2, seed=SEED)
     assert result["mismatches"] == 0
-    model = stereo.match(left, right, ndisp=16, window=5, uniqueness=10, lr_check=1, speckle_size=0)
+    model = stereo.match(left, right, ndisp=16, window=5, uniqueness=10, lr_check=1,
+                         speckle_size=0)
     assert np.array_equal(result["fixed"], model["fixed"])
     assert np.array_equal(result["reason"], model["reason"])
     assert result["cycles"] >= 64 * 48
