@@ -367,14 +367,23 @@ void add_match_command(CLI::App& app) {
     command->add_flag("--png16", options->png16,
                       "pipeline: write a 16-bit PNG of 32768 + 16 d (signed, 1/16 pixel), 0 = "
                       "invalid; a .pfm output holds float disparities with +inf invalid");
+    // The 2-D search's own options, under its heading (the catalogue's summary).
+    const std::string two_d =
+        "--method hierarchical: " +
+        std::string(catalogue::method(catalogue::Method::hierarchical).summary);
     command
         ->add_option("--vrange", options->matcher.config.vrange,
-                     "hierarchical: vertical labels V (offsets -V/2..V/2-1), 0 = ndisp")
-        ->capture_default_str();
-    command->add_option("--vertical", options->vertical,
-                        "hierarchical: write the vertical offsets (128 + v, 0 = invalid)");
-    command->add_option("--dump-levels", options->dump_levels,
-                        "hierarchical: write each level's maps into this folder");
+                     "Vertical labels V (offsets -V/2..V/2-1), 0 = ndisp")
+        ->capture_default_str()
+        ->group(two_d);
+    command
+        ->add_option("--vertical", options->vertical,
+                     "Write the vertical offsets (128 + v, 0 = invalid)")
+        ->group(two_d);
+    command
+        ->add_option("--dump-levels", options->dump_levels,
+                     "Write each level's maps into this folder")
+        ->group(two_d);
     command
         ->add_option("--scale", options->scale,
                      "Multiply disparities by K in the PNG (16-bit when (N-1)*K > 255)")

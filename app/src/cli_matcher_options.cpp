@@ -129,11 +129,21 @@ MatchConfig MatcherOptions::resolved() const {
 
 namespace {
 
+// Puts every option of `command` from the `first`-th on under the --help heading `group`.
+void group_options_since(CLI::App& command, std::size_t first, const std::string& group) {
+    const std::vector<CLI::Option*> all = command.get_options();
+    for (std::size_t i = first; i < all.size(); ++i) {
+        all[i]->group(group);
+    }
+}
+
 // Stage 6's options (--min-disp, --uniqueness, --lr-check, --subpixel, --no-validation) and the
 // speckle filter's, where the subcommand exposes them, with their defaults.
 void add_validation_options(CLI::App& command, MatcherOptions& options, MatcherChoice choice,
                             ExposedParams exposed) {
     MatchParams& params = options.config.pipeline;
+    // Under their own --help heading, which names the methods that have them (the catalogue's).
+    const std::size_t first = command.get_options().size();
     if (exposed.validation) {
         ValidationParams& v = params.validation;
         if (exposed.validation_on_by_default) {
@@ -192,6 +202,12 @@ void add_validation_options(CLI::App& command, MatcherOptions& options, MatcherC
                         "Largest disparity step, in pixels, inside one speckle region")
             ->capture_default_str();
     }
+    const std::string methods = catalogue::join(
+        catalogue::method_names([](const catalogue::MethodRow& row) { return row.stage6; }));
+    group_options_since(
+        command, first,
+        std::string(exposed.speckle ? "Stage 6 and the speckle filter" : "Stage 6") + " (methods " +
+            methods + ")");
 }
 
 // --cost, --method, --engine, --frontend, --aggregation and ASW's options: the subcommands that
@@ -219,6 +235,7 @@ void add_selection_options(CLI::App& command, MatcherOptions& options) {
                "--method asw)",
                {"gaussian", "asw"});
     asw::Params& weights = options.config.asw;
+    const std::size_t asw_first = command.get_options().size();
     command.add_flag("--no-continuity", options.asw_no_continuity,
                      "ASW: one pass, without the continuity (preliminary disparity) weight");
     add_choice("--response", options.asw_response,
@@ -238,6 +255,9 @@ void add_selection_options(CLI::App& command, MatcherOptions& options) {
         ->capture_default_str();
     command.add_option("--threads", weights.threads, "ASW: worker threads, 0 = every core")
         ->capture_default_str();
+    group_options_since(
+        command, asw_first,
+        "--method asw: " + std::string(catalogue::method(catalogue::Method::asw).summary));
 }
 
 }  // namespace
