@@ -36,9 +36,9 @@ struct MatchParams {
     int window = fx::kDefaultWindow;      // odd side of the square aggregation window
     double sigma = fx::kDefaultSigma;     // Gaussian sigma in pixels
     bool use_ca = true;                   // apply CA rules 1 and 2
-    std::string cost = "ad";  // a cost of the catalogue (stereo/catalogue.hpp)
-    int min_disp = 0;         // smallest disparity searched (may be negative)
-    ValidationParams validation{};  // 1-D pipeline only
+    std::string cost = "ad";              // a cost of the catalogue (stereo/catalogue.hpp)
+    int min_disp = 0;                     // smallest disparity searched (may be negative)
+    ValidationParams validation{};        // 1-D pipeline only
 };
 
 // Which outputs are valid. `reach` is how far a result looks from its pixel: the aggregation
