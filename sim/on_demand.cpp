@@ -200,6 +200,18 @@ std::string processor_features() {
     return {};
 }
 
+// "-march=native " when `compiler` (empty: c++) accepts it (older clang++ on AArch64 does not),
+// else nothing: the runner is then built for the generic target.
+std::string native_flag(const std::string& compiler, const fs::path& scratch) {
+    const fs::path source = scratch / "native.cpp";
+    std::ofstream(source) << "int main() { return 0; }\n";
+    const int status =
+        run_program({compiler.empty() ? std::string{"c++"} : compiler, "-march=native", "-c",
+                     source.string(), "-o", (scratch / "native.o").string()},
+                    {});
+    return status == 0 ? "-march=native " : "";
+}
+
 std::string last_line(const fs::path& log) {
     std::ifstream in(log);
     std::string line;
@@ -386,11 +398,12 @@ fs::path ensure_runner(const CoreRequest& request, const fs::path& cache_folder,
         defines_text += name + " ";
     }
     const std::string compiler = simulation_compiler(scratch);
+    const std::string native = native_flag(compiler, scratch);
     const std::string compiler_version =
         version_of(compiler.empty() ? std::string{"c++"} : compiler, scratch);
     hash = fnv1a(hash, std::to_string(protocol::kVersion) + "\n" + entry_name(request, defines) +
                            "\n" + version + "\n" + defines_text + "\n" + compiler_version + "\n" +
-                           processor_features() + "\n");
+                           processor_features() + "\n" + native + "\n");
     for (const fs::path& input : inputs) {
         hash = fnv1a(hash, input.filename().string() + "\n" + read_file(input));
     }
@@ -426,7 +439,7 @@ fs::path ensure_runner(const CoreRequest& request, const fs::path& cache_folder,
         // OPT_FAST (-Os by default): -O2 simulates 20 % faster,
         // -O3 no faster (measured, docs/gtkwave.md).
         "-MAKEFLAGS", "OPT_FAST=-O2", "-CFLAGS",
-        "-std=c++20 -O2 -march=native -I" + (root / "sim").string() + " -I" +
+        "-std=c++20 -O2 " + native + "-I" + (root / "sim").string() + " -I" +
             (root / "model" / "include").string()};
     if (!compiler.empty()) {
         argv.emplace_back("-MAKEFLAGS");
