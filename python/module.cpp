@@ -162,51 +162,15 @@ py::dict run_match(const py::array& left, const py::array& right, const MatchOpt
     return out;
 }
 
-// Stage 6 and the speckle filter as a call asks for them, on top of the defaults of `stereo match`
-// (defaults::match_config): validation=False turns every step off, as --no-validation does; a
-// given cost brings its own ratio and tolerance; each given keyword turns its step on (or, for
-// subpixel=False and speckle_size=0, off) with its value.
-struct ValidationKeywords {
-    std::optional<std::string> cost;
-    bool validation = true;
-    std::optional<int> uniqueness;
-    std::optional<int> lr_check;
-    std::optional<bool> subpixel;
-    std::optional<int> speckle_size;
-    int speckle_range = stereo::speckle::kDefaultRange;
-};
-
-void apply(const ValidationKeywords& k, stereo::MatchConfig& config) {
-    stereo::MatchParams& p = config.pipeline;
-    stereo::ValidationParams& v = p.validation;
-    if (k.cost) {
-        p.cost = *k.cost;
-        const auto chosen = stereo::defaults::validation_for(p.cost);
-        v.uniqueness_ratio = chosen.uniqueness;
-        v.lr_tolerance = chosen.lr_tolerance;
-    }
-    if (!k.validation) {
-        v.uniqueness = v.left_right = v.subpixel = false;
-        config.speckle.max_size = 0;
-    }
-    if (k.uniqueness) {
-        v.uniqueness = true;
-        v.uniqueness_ratio = *k.uniqueness;
-    }
-    if (k.lr_check) {
-        v.left_right = true;
-        v.lr_tolerance = *k.lr_check;
-    }
-    v.subpixel = k.subpixel.value_or(v.subpixel);
-    config.speckle.max_size = k.speckle_size.value_or(config.speckle.max_size);
-    config.speckle.range = k.speckle_range;
-}
+// The keywords a call gives, applied to the defaults of `stereo match` by the CLI's rule
+// (defaults::apply).
+using stereo::defaults::Overrides;
 
 MatchOptions match_options(const std::string& method, const std::string& engine, int ndisp,
                            int window, double sigma, bool ca, int min_disp,
-                           const ValidationKeywords& validation, int vrange,
-                           const std::string& neighbours, int log_window, double log_sigma,
-                           int edge_value, int truncation, int sparse_uniqueness, int sparse_lr,
+                           const Overrides& validation, int vrange, const std::string& neighbours,
+                           int log_window, double log_sigma, int edge_value, int truncation,
+                           int sparse_uniqueness, int sparse_lr,
                            const std::optional<py::dict>& asw = std::nullopt) {
     MatchOptions o{method, engine, stereo::defaults::match_config(method, engine)};
     stereo::MatchParams& p = o.config.pipeline;
@@ -215,7 +179,7 @@ MatchOptions match_options(const std::string& method, const std::string& engine,
     p.sigma = sigma;
     p.use_ca = ca;
     p.min_disp = min_disp;
-    apply(validation, o.config);
+    stereo::defaults::apply(validation, o.config);
     o.config.vrange = vrange;
     if (neighbours == "horizontal") {
         o.config.neighbours = stereo::CaNeighbours::horizontal;
@@ -431,8 +395,8 @@ PYBIND11_MODULE(stereo, m) {
            int vrange, const std::string& neighbours, int log_window, double log_sigma,
            int edge_value, int truncation, int sparse_uniqueness, int sparse_lr,
            const std::optional<py::dict>& asw, std::optional<int> speckle_size, int speckle_range) {
-            const ValidationKeywords keywords{std::move(cost), validation,   uniqueness,   lr_check,
-                                              subpixel,        speckle_size, speckle_range};
+            const Overrides keywords{std::move(cost), validation,   uniqueness,   lr_check,
+                                     subpixel,        speckle_size, speckle_range};
             return run_match(
                 left, right,
                 match_options(method, engine, ndisp, window, sigma, ca, min_disp, keywords, vrange,
@@ -493,13 +457,13 @@ PYBIND11_MODULE(stereo, m) {
             // core).
             const std::string cost =
                 cost_name.value_or(std::string(stereo::catalogue::default_cost("pipeline", "rtl")));
-            const ValidationKeywords keywords{cost,
-                                              validation,
-                                              uniqueness,
-                                              lr_check,
-                                              subpixel,
-                                              0,
-                                              stereo::speckle::kDefaultRange};
+            const Overrides keywords{cost,
+                                     validation,
+                                     uniqueness,
+                                     lr_check,
+                                     subpixel,
+                                     0,
+                                     stereo::speckle::kDefaultRange};
             std::optional<stereo::sim::CoreRequest> core;
             if (size) {
                 core.emplace();

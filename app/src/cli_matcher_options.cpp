@@ -90,32 +90,30 @@ std::string cost_help(bool defaults_per_cost) {
 MatchConfig MatcherOptions::resolved() const {
     MatchConfig resolved_config = config;
     resolved_config.pipeline.use_ca = !no_ca;
+    // The options given, applied by the rule every interface shares (defaults::apply): where the
+    // subcommand has per-cost defaults, the cost (--cost, else the method's default on this
+    // engine) brings its ratio and tolerance first; the given ones win.
+    const MatchParams& parsed = config.pipeline;
+    defaults::Overrides overrides;
     if (defaults_per_cost) {
-        MatchParams& params = resolved_config.pipeline;
-        if (!given(cost)) {
-            params.cost = std::string(catalogue::default_cost(resolved_method(), engine));
-        }
-        const defaults::Validation chosen = defaults::validation_for(params.cost);
-        if (!given(uniqueness)) {
-            params.validation.uniqueness_ratio = chosen.uniqueness;
-        }
-        if (!given(lr_check)) {
-            params.validation.lr_tolerance = chosen.lr_tolerance;
-        }
+        overrides.cost = given(cost)
+                             ? parsed.cost
+                             : std::string(catalogue::default_cost(resolved_method(), engine));
     }
-    // --no-validation clears the steps a subcommand turns on by default; an explicit option
-    // turns its own step (back) on.
-    ValidationParams& validation = resolved_config.pipeline.validation;
-    if (no_validation) {
-        validation.uniqueness = validation.left_right = validation.subpixel = false;
-        if (speckle_size == nullptr || speckle_size->count() == 0) {
-            resolved_config.speckle.max_size = 0;
-        }
+    overrides.validation = !no_validation;
+    if (given(uniqueness)) {
+        overrides.uniqueness = parsed.validation.uniqueness_ratio;
     }
-    validation.uniqueness =
-        validation.uniqueness || (uniqueness != nullptr && uniqueness->count() > 0);
-    validation.left_right = validation.left_right || (lr_check != nullptr && lr_check->count() > 0);
-    validation.subpixel = validation.subpixel || subpixel;
+    if (given(lr_check)) {
+        overrides.lr_tolerance = parsed.validation.lr_tolerance;
+    }
+    if (subpixel) {
+        overrides.subpixel = true;
+    }
+    if (given(speckle_size)) {
+        overrides.speckle_size = config.speckle.max_size;
+    }
+    defaults::apply(overrides, resolved_config);
     asw::Params& weights = resolved_config.asw;
     if (window != nullptr && window->count() > 0) {
         weights.diameter = config.pipeline.window;

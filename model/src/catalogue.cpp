@@ -42,14 +42,23 @@ std::string help_of(const std::array<Row, N>& rows, Keep keep) {
     return text;
 }
 
+// The row named `name`, or null.
+template <typename Row, std::size_t N>
+const Row* find_row(const std::array<Row, N>& rows, std::string_view name) {
+    for (const Row& row : rows) {
+        if (row.name == name) {
+            return &row;
+        }
+    }
+    return nullptr;
+}
+
 // The row named `name`; throws std::invalid_argument "unknown <kind> "x" (<known>: a, b)".
 template <typename Row, std::size_t N>
 const Row& row_named(const std::array<Row, N>& rows, std::string_view name, const char* kind,
                      const char* known) {
-    for (const Row& row : rows) {
-        if (row.name == name) {
-            return row;
-        }
+    if (const Row* row = find_row(rows, name)) {
+        return *row;
     }
     throw std::invalid_argument("unknown " + std::string(kind) + " \"" + std::string(name) +
                                 "\" (" + known + ": " +
@@ -72,12 +81,7 @@ std::string join(const std::vector<std::string>& names, std::string_view last_se
 }
 
 bool is_cost(std::string_view name) {
-    for (const CostRow& row : kCosts) {
-        if (row.name == name) {
-            return true;
-        }
-    }
-    return false;
+    return find_row(kCosts, name) != nullptr;
 }
 
 const CostRow& cost(std::string_view name) {

@@ -370,6 +370,32 @@ void register_model_matchers(MatcherRegistry& registry) {
         {"asw", "float", "adaptive support weights in double precision", asw_floating_factory()});
 }
 
+void defaults::apply(const Overrides& overrides, MatchConfig& config) {
+    MatchParams& params = config.pipeline;
+    ValidationParams& v = params.validation;
+    if (overrides.cost) {
+        params.cost = *overrides.cost;
+        const Validation chosen = validation_for(params.cost);
+        v.uniqueness_ratio = chosen.uniqueness;
+        v.lr_tolerance = chosen.lr_tolerance;
+    }
+    if (!overrides.validation) {
+        v.uniqueness = v.left_right = v.subpixel = false;
+        config.speckle.max_size = 0;
+    }
+    if (overrides.uniqueness) {
+        v.uniqueness = true;
+        v.uniqueness_ratio = *overrides.uniqueness;
+    }
+    if (overrides.lr_tolerance) {
+        v.left_right = true;
+        v.lr_tolerance = *overrides.lr_tolerance;
+    }
+    v.subpixel = overrides.subpixel.value_or(v.subpixel);
+    config.speckle.max_size = overrides.speckle_size.value_or(config.speckle.max_size);
+    config.speckle.range = overrides.speckle_range.value_or(config.speckle.range);
+}
+
 MatchConfig defaults::match_config(std::string_view method, std::string_view engine) {
     const catalogue::MethodRow& row = catalogue::method(method);
     const catalogue::EngineRow& runner = catalogue::engine(engine);

@@ -11,6 +11,8 @@
 // (`stereo_experiments validation-eval --cost C --lr-check T`, docs/results.md "Defaults").
 #pragma once
 
+#include <optional>
+#include <string>
 #include <string_view>
 
 #include "stereo/catalogue.hpp"
@@ -64,5 +66,20 @@ constexpr Validation validation_for(std::string_view cost) {
 // speckle filter's defaults (stereo/speckle.hpp). Throws std::invalid_argument for an unknown
 // method or engine.
 MatchConfig match_config(std::string_view method = "pipeline", std::string_view engine = "model");
+
+// What a caller changes of a run, by the one rule every interface follows (stereo match's options,
+// Python's keywords): a cost brings its own uniqueness ratio and left-right tolerance;
+// validation = false turns every stage-6 step and the speckle filter off (--no-validation); then
+// each given value turns its step on with it (subpixel = false and speckle_size = 0: off).
+struct Overrides {
+    std::optional<std::string> cost;
+    bool validation = true;
+    std::optional<int> uniqueness;
+    std::optional<int> lr_tolerance;
+    std::optional<bool> subpixel;
+    std::optional<int> speckle_size;
+    std::optional<int> speckle_range;
+};
+void apply(const Overrides& overrides, MatchConfig& config);
 
 }  // namespace stereo::defaults
