@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include "stereo/hierarchical.hpp"
+#include "stereo/hierarchical_reference.hpp"
 #include "stereo/image.hpp"
 #include "stereo/search.hpp"
 #include "stereo_io/test_compare.hpp"
@@ -51,6 +53,22 @@ inline ::testing::AssertionResult same_level(const Winners& expected, const Winn
                    std::to_string(map.vertical[i]) + ", valid " + std::to_string(map.valid[i]) +
                    ")";
         });
+}
+
+// Runs the hierarchical search through the model and the naive reference and expects every
+// level, the disparities and the vertical offsets equal; returns the model's result.
+inline hierarchical::Result match_hierarchical_as_naive(const Image& left, const Image& right,
+                                                        const hierarchical::Params& params) {
+    const hierarchical::Result model = hierarchical::match(left, right, params);
+    const hierarchical::Result reference = hierarchical::naive::match(left, right, params);
+    for (std::size_t l = 0; l < static_cast<std::size_t>(hierarchical::kLevels); ++l) {
+        EXPECT_TRUE(same_level(reference.levels[l], model.levels[l]))
+            << hierarchical::kLevelNames[l];
+    }
+    EXPECT_EQ(reference.disparity, model.disparity);
+    EXPECT_EQ(reference.vertical, model.vertical) << "the vertical offsets differ";
+    EXPECT_EQ(reference.cost_evaluations.level, model.cost_evaluations.level);
+    return model;
 }
 
 }  // namespace stereo::test

@@ -32,16 +32,6 @@ using test::shifted_2d;
 // ---- down-scaling --------------------------------------------------------------------------
 
 // Every level's winners, the disparity and the vertical offsets of `model` equal `reference`'s.
-void expect_equal_results(const Result& reference, const Result& model) {
-    for (int l = 0; l < kLevels; ++l) {
-        EXPECT_TRUE(same_level(reference.levels[static_cast<std::size_t>(l)],
-                               model.levels[static_cast<std::size_t>(l)]))
-            << "level " << l;
-    }
-    EXPECT_EQ(reference.disparity, model.disparity);
-    EXPECT_EQ(reference.vertical, model.vertical);
-}
-
 TEST(DownscaleArea, HandComputed) {
     // One grey row pair, factor 2: blocks {1,2,3,4} -> 10/4 = 2.5 -> 3 (half up),
     // {0,0,0,1} -> 0.25 -> 0, {1,1,1,0} -> 0.75 -> 1; the fifth column is dropped (floor).
@@ -216,10 +206,7 @@ TEST(MatchEqualsNaive, RandomPair) {
         params.ndisp = 16;
         params.vrange = 12;
         params.neighbours = neighbours;
-        const Result model = match(left, right, params);
-        const Result reference = naive::match(left, right, params);
-        expect_equal_results(reference, model);
-        EXPECT_EQ(reference.cost_evaluations.level, model.cost_evaluations.level);
+        test::match_hierarchical_as_naive(left, right, params);
     }
 }
 
@@ -230,8 +217,7 @@ TEST(MatchEqualsNaive, MiddleburyCrop) {
     }
     Params params;
     params.ndisp = 16;
-    const Result model = match(pair->left, pair->right, params);
-    expect_equal_results(naive::match(pair->left, pair->right, params), model);
+    const Result model = test::match_hierarchical_as_naive(pair->left, pair->right, params);
     // A real scene exercises both axes: most full-size pixels valid, some vertical offsets.
     const auto& full = model.levels[2];
     const auto valid = std::count(full.valid.begin(), full.valid.end(), 1);

@@ -29,13 +29,12 @@ using test::same_validated;
 // docs/quad.md's geometry table, written out here rather than read from quad::step (which the
 // model and the naive reference share): reference (x, y) sees partner (x - d sx, y - d sy).
 Step documented_step(Pair pair) {
-    switch (pair) {
-        case Pair::horizontal:
-            return {1, 0};
-        case Pair::vertical:
-            return {0, 1};
-        case Pair::diagonal:
-            return {1, 1};
+    constexpr std::array<std::pair<Pair, Step>, 3> kTable{
+        {{Pair::horizontal, {1, 0}}, {Pair::vertical, {0, 1}}, {Pair::diagonal, {1, 1}}}};
+    for (const auto& [listed, listed_step] : kTable) {
+        if (listed == pair) {
+            return listed_step;
+        }
     }
     ADD_FAILURE() << "no documented step for pair " << static_cast<int>(pair);
     return {};

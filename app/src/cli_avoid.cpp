@@ -69,11 +69,7 @@ std::optional<robot::StereoGeometry> geometry_of(const AvoidOptions& o) {
 // The disparity threshold in pixels of the matched (possibly downscaled) images.
 double pixel_threshold(const AvoidOptions& o) {
     if (o.threshold) {
-        // A disparity: at most the 256 labels any matcher has (inf and NaN fail too).
-        if (!(*o.threshold >= 0.0 && *o.threshold <= 256.0)) {
-            throw std::invalid_argument("--threshold must be in [0, 256] pixels");
-        }
-        return *o.threshold;
+        return *o.threshold;  // checked by its option: [0, 256], the labels any matcher has
     }
     if (!o.safe_distance) {
         throw std::invalid_argument("give --safe-distance Z (with a calibration) or --threshold T");
@@ -172,17 +168,8 @@ void print_text(const std::string& name, const nlohmann::json& frame) {
 }
 
 void check_options(const AvoidOptions& o) {
-    if (o.downscale < 1) {
-        throw std::invalid_argument("--downscale must be >= 1, got " + std::to_string(o.downscale));
-    }
     robot::check_fraction(o.threshold_params.rate, "--rate");
     robot::check_fraction(o.fis.backwards_threshold, "--backwards-threshold");
-    if (!(o.ground_params.max_height > 0.0) || !(o.ground_params.fit.tolerance >= 0.0)) {
-        throw std::invalid_argument("--max-height must be > 0 and --ground-tolerance >= 0");
-    }
-    if (o.threads < 0) {
-        throw std::invalid_argument("--threads must be >= 0 (0: every core)");
-    }
 }
 
 // One frame: the edge front end on row bands, the ground fit, the decision, its report line and
@@ -305,13 +292,13 @@ void add_avoid_command(CLI::App& app) {
     auto* safe = command->add_option("--safe-distance", o->safe_distance,
                                      "Safety distance Z, metres: T = f B / Z");
     auto* threshold =
-        command->add_option("--threshold", o->threshold, "Disparity threshold T in pixels");
+        command->add_option("--threshold", o->threshold, "Disparity threshold T in pixels")
+            ->check(checks::real_in(0, 256));
     safe->excludes(threshold);
     command->add_option("--overlay", o->overlay,
                         "Overlay PNG; for a sequence a PNG contact sheet or an MJPG .avi");
     command->add_flag("--json", o->json, "One JSON object per frame (always for sequences)");
-    command->add_option("--downscale", o->downscale, "Shrink both images by integer F first")
-        ->capture_default_str();
+    add_downscale_option(*command, o->downscale);
     // The edge front end has no CA rules: no --no-ca.
     add_matcher_options(*command, o->matcher, MatcherChoice::fixed,
                         {.ndisp = true, .no_ca = false});
@@ -329,11 +316,13 @@ void add_avoid_command(CLI::App& app) {
           "Fuzzy: back off when 'move backwards' exceeds this"},
          {"--forward-band", &o->fis.forward_band, "Fuzzy: |angle| up to this (deg) is no turn"},
          {"--ground-tolerance", &o->ground_params.fit.tolerance,
-          "Ground band, pixels of disparity above the v-disparity line"},
+          "Ground band, pixels of disparity above the v-disparity line", checks::real_in(0, 256)},
          {"--max-height", &o->ground_params.max_height,
-          "Metres above the ground: higher pixels are not obstacles"}});
+          "Metres above the ground: higher pixels are not obstacles",
+          checks::real_in(0, 1e6, checks::Bound::exclusive)}});
     command->add_option("--threads", o->threads, "Row bands matched in parallel; 0: every core")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(thread_count());
     command
         ->add_option("--ground", o->ground,
                      "Ground removal: fit (v-disparity line; needs a calibration) or off")

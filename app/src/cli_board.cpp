@@ -50,14 +50,6 @@ nlohmann::json identity_json(const board::Identity& identity) {
 }
 
 void check_options(const BoardOptions& options) {
-    if (options.downscale < 1) {
-        throw std::invalid_argument("--downscale must be >= 1, got " +
-                                    std::to_string(options.downscale));
-    }
-    if (options.timeout_ms < 1) {
-        throw std::invalid_argument("--timeout must be >= 1 ms, got " +
-                                    std::to_string(options.timeout_ms));
-    }
     if (!io::supported_baud(options.baud)) {
         throw std::invalid_argument("--baud " + std::to_string(options.baud) +
                                     " is not a standard rate (e.g. 115200, 1000000, 3000000)");
@@ -196,7 +188,8 @@ void add_board_command(CLI::App& app) {
     add_number_options(*command,
                        {{"--baud", &options->baud, "Baud rate the bitstream was built for"},
                         {"--timeout", &options->timeout_ms,
-                         "Milliseconds of silence after which the board counts as not answering"}});
+                         "Milliseconds of silence after which the board counts as not answering",
+                         checks::integer_in(1, 3'600'000)}});
     command->add_option("-o,--output", options->output,
                         "Disparity file as `stereo match -o` writes it (PNG, or .pfm)");
     // The defaults of `stereo match --cost ad` (the core's cost), so that the same options give
@@ -206,8 +199,7 @@ void add_board_command(CLI::App& app) {
                         {.validation = true, .speckle = true, .validation_on_by_default = true});
     command->add_flag("--png16", options->png16,
                       "Write a 16-bit PNG of 32768 + 16 d (signed, 1/16 pixel), 0 = invalid");
-    command->add_option("--downscale", options->downscale, "Shrink both images by integer F first")
-        ->capture_default_str();
+    add_downscale_option(*command, options->downscale);
     command->add_flag("--json", options->json, "Print the summary as one JSON object");
 }
 

@@ -44,9 +44,6 @@ void run_cloud(const CloudOptions& options) {
     if (options.calib.empty() && (std::isnan(options.focal) || std::isnan(options.baseline))) {
         throw std::invalid_argument("give --focal and --baseline, or --calib");
     }
-    if (!(options.scale > 0.0)) {
-        throw std::invalid_argument("--scale must be positive");
-    }
     io::check_outputs_distinct({options.output}, {options.disparity, options.left});
     io::check_writable_location(options.output);
     io::CloudGeometry geometry{options.focal, options.baseline, options.cx, options.cy,
@@ -104,7 +101,8 @@ void add_cloud_command(CLI::App& app) {
     add_number_options(*command,
                        {{"--doffs", &options->doffs,
                          "Disparity offset: Z = f B / (d + doffs) (Middlebury 2014's doffs)"},
-                        {"--scale", &options->scale, "PNG: stored value = d * scale"}});
+                        {"--scale", &options->scale, "PNG: stored value = d * scale",
+                         checks::real_in(1e-3, 1e6)}});
     command->add_flag("--png16", options->png16, "PNG in offset16 form (stereo match --png16)");
     command->add_flag("--binary", options->binary, "binary_little_endian PLY instead of ASCII");
 }

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <initializer_list>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -14,6 +15,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli_checks.hpp"
 #include "stereo_io/data_dir.hpp"
 
 namespace stereo::cli {
@@ -65,22 +67,46 @@ Command<Options> add_report_command(CLI::App& app, Run run) {
     return command;
 }
 
-// A numeric option whose --help shows its default. A run of them is registered as one table
-// instead of one add_option block each.
+// A numeric option whose --help shows its default, with its range check when it has one. A run
+// of them is registered as one table instead of one add_option block each.
 struct NumberOption {
     const char* name;
     std::variant<int*, double*, std::uint32_t*> value;
     const char* help;
+    std::optional<CLI::Validator> range = std::nullopt;
 };
 
 inline void add_number_options(CLI::App& command, std::initializer_list<NumberOption> options) {
     for (const NumberOption& option : options) {
         std::visit(
             [&](auto* value) {
-                command.add_option(option.name, *value, option.help)->capture_default_str();
+                CLI::Option* added =
+                    command.add_option(option.name, *value, option.help)->capture_default_str();
+                if (option.range) {
+                    added->check(*option.range);
+                }
             },
             option.value);
     }
+}
+
+// --downscale F (>= 1): every command that reads a pair shrinks it by the same rule.
+inline void add_downscale_option(CLI::App& command, int& factor,
+                                 const char* help = "Shrink both images by integer F first") {
+    command.add_option("--downscale", factor, help)
+        ->capture_default_str()
+        ->check(checks::integer_at_least(1));
+}
+
+// The K of a PNG that stores disparity * K: 1e-3 .. 1e6 covers every format in use (Middlebury
+// 1..16, KITTI 256); a denormal like 1e-320 made every disparity infinite.
+inline CLI::Validator disparity_scale() {
+    return checks::real_in(1e-3, 1e6);
+}
+
+// --threads N: 0 means every core; more than 256 is a typing error, not a machine.
+inline CLI::Validator thread_count() {
+    return checks::integer_in(0, 256);
 }
 
 }  // namespace stereo::cli

@@ -162,24 +162,6 @@ sim::CoreRequest core_request(const CosimOptions& options, const MatchParams& pa
 
 // The checks of the options that need no image: probabilities, counts, outputs.
 void check_options(const CosimOptions& options) {
-    for (const double probability : {options.stall, options.gap}) {
-        if (!(probability >= 0.0 && probability < 1.0)) {
-            throw std::invalid_argument("--stall and --gap must be in [0, 1), got " +
-                                        std::to_string(probability));
-        }
-    }
-    if (options.downscale < 1) {
-        throw std::invalid_argument("--downscale must be >= 1, got " +
-                                    std::to_string(options.downscale));
-    }
-    if (options.frames < 1 || options.frames > 1000000) {
-        throw std::invalid_argument("--frames must be in [1, 1000000], got " +
-                                    std::to_string(options.frames));
-    }
-    if (options.reset_at < -1) {
-        throw std::invalid_argument("--reset-at must be >= 0 (or -1: no reset), got " +
-                                    std::to_string(options.reset_at));
-    }
     io::check_outputs_distinct({options.output, options.trace, options.diff},
                                {options.left, options.right});
     for (const std::string& output : {options.output, options.trace, options.diff}) {

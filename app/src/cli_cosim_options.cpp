@@ -1,5 +1,6 @@
 #include "cli_cosim_options.hpp"
 
+#include "cli_command.hpp"
 #include "stereo/catalogue.hpp"
 
 namespace stereo::cli {
@@ -24,26 +25,31 @@ void add_cosim_options(CLI::App& command, CosimOptions& options) {
                          std::string(row.summary) + ")";
         }
     }
-    options.matcher.cost =
-        command.add_option("--cost", options.matcher.config.pipeline.cost, cost_help)
-            ->check(CLI::IsMember(catalogue::cost_names(catalogue::CostUse::hardware)))
-            ->capture_default_str();
-    command.add_option("--downscale", options.downscale, "Shrink both images by integer F")
-        ->capture_default_str();
+    command.add_option("--cost", options.matcher.given.cost, cost_help)
+        ->check(CLI::IsMember(catalogue::cost_names(catalogue::CostUse::hardware)))
+        ->default_str(options.matcher.config.pipeline.cost);
+    add_downscale_option(command, options.downscale, "Shrink both images by integer F");
     command.add_option("--crop", options.crop, "Use the region WxH+X+Y (after --downscale)");
     command.add_option("--seed", options.seed, "Seed of the stall/gap generator")
         ->capture_default_str();
+    const CLI::Validator probability =
+        checks::real_in(0, 1, checks::Bound::inclusive, checks::Bound::exclusive);
     command.add_option("--stall", options.stall, "Probability of m_axis_tready low per cycle")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(probability);
     command.add_option("--gap", options.gap, "Probability of s_axis_tvalid withheld per cycle")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(probability);
     command.add_option("-o,--output", options.output, "Write the RTL's disparity PNG");
     command
         .add_option("--frames", options.frames,
                     "Stream the pair this many times (traffic seed + frame), all compared")
-        ->capture_default_str();
-    command.add_option("--reset-at", options.reset_at,
-                       "Before each frame, stream this many of its beats and reset mid-frame");
+        ->capture_default_str()
+        ->check(checks::integer_in(1, 1'000'000));
+    command
+        .add_option("--reset-at", options.reset_at,
+                    "Before each frame, stream this many of its beats and reset mid-frame")
+        ->check(checks::integer_at_least(-1));  // -1: no reset
     command.add_option("--trace", options.trace,
                        "Write an FST waveform of the run (TRACE.fst; other "
                        "extensions, .vcd included, are refused)");

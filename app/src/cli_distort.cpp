@@ -41,10 +41,6 @@ void check_size(const cv::Mat& mat, const cv::Mat& left, const fs::path& path) {
 }
 
 void run_distort(const DistortOptions& options) {
-    // As `eval --gt-scale`: inf, NaN and denormals would store nonsense disparities.
-    if (!(options.gt_scale >= 1e-3 && options.gt_scale <= 1e6)) {
-        throw std::invalid_argument("--gt-scale must be in [0.001, 1e6]");
-    }
     const fs::path scene(options.scene);
     const fs::path out(options.output);
     std::error_code error;
@@ -114,7 +110,7 @@ void add_distort_command(CLI::App& app) {
          {"--shift-y", &options->warp.right_shift_y, "Move the right image down by S pixels"},
          {"--rotate", &options->warp.right_rotation_deg,
           "Rotate the right image by DEG degrees (counter-clockwise) about its centre"},
-         {"--gt-scale", &options->gt_scale, "gt.png holds disparity * G"}});
+         {"--gt-scale", &options->gt_scale, "gt.png holds disparity * G", disparity_scale()}});
     command
         ->add_option("--gt", options->gt_mode,
                      "warped: distort the GT like the left image (the thesis); exact: follow "

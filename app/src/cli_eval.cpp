@@ -43,17 +43,6 @@ std::string quoted(const std::string& path) {
     return "'" + path + "'";
 }
 
-// CLI11's own range validators print the full double range; these messages stay short.
-void require_positive(double value, const std::string& option) {
-    // Scales store disparity * K in a PNG: 1e-3 .. 1e6 covers every format in use (Middlebury
-    // 1..16, KITTI 256); a denormal like 1e-320 made every disparity infinite.
-    if (!(value >= 1e-3 && value <= 1e6)) {
-        std::ostringstream message;
-        message << option << " must be in [0.001, 1e6], got " << value;
-        throw std::invalid_argument(message.str());
-    }
-}
-
 std::optional<io::NamedMat> load_optional_mask(const std::string& path, const std::string& role,
                                                int downscale) {
     if (path.empty()) {
@@ -97,17 +86,6 @@ void print_text(const io::EvalResult& result) {
 }
 
 void run_eval(const EvalOptions& options) {
-    require_positive(options.scale, "--scale");
-    require_positive(options.gt_scale, "--gt-scale");
-    if (!(options.threshold >= 0.0) || !std::isfinite(options.threshold)) {
-        std::ostringstream message;
-        message << "--threshold must be a non-negative number, got " << options.threshold;
-        throw std::invalid_argument(message.str());
-    }
-    if (options.gt_downscale < 1) {
-        throw std::invalid_argument("--gt-downscale must be >= 1, got " +
-                                    std::to_string(options.gt_downscale));
-    }
     io::check_outputs_distinct(
         {options.error_map}, {options.disparity, options.ground_truth, options.nonocc, options.all,
                               options.disc, options.same_pixels});
@@ -175,17 +153,19 @@ void add_eval_command(CLI::App& app) {
     command->add_option("DISP", options->disparity, "Our disparity PNG or PFM")->required();
     command->add_option("GT", options->ground_truth, "Ground-truth PNG (0 = unknown) or PFM")
         ->required();
-    add_number_options(*command,
-                       {{"--scale", &options->scale, "DISP holds disparity * K"},
-                        {"--gt-scale", &options->gt_scale, "GT holds disparity * G"},
-                        {"--gt-downscale", &options->gt_downscale,
-                         "GT and masks are F times larger than DISP (match --downscale F)"}});
+    add_number_options(
+        *command, {{"--scale", &options->scale, "DISP holds disparity * K", disparity_scale()},
+                   {"--gt-scale", &options->gt_scale, "GT holds disparity * G", disparity_scale()},
+                   {"--gt-downscale", &options->gt_downscale,
+                    "GT and masks are F times larger than DISP (match --downscale F)",
+                    checks::integer_at_least(1)}});
     command->add_option("--nonocc", options->nonocc, "Mask of non-occluded pixels (255 = scored)");
     command->add_option("--all", options->all,
                         "Mask of scored pixels (255); default: every known GT pixel");
     command->add_option("--disc", options->disc, "Mask of pixels near discontinuities (255)");
     command->add_option("--threshold", options->threshold, "Bad when |d - gt| > T")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(checks::real_in(0, 1e6));
     command->add_option("--error-map", options->error_map,
                         "Write an RGB PNG: grey correct, red bad, blue invalid, black unscored");
     command->add_flag("--json", options->json, "Print the scores as one JSON object");

@@ -112,13 +112,6 @@ MatchConfig checked_config(const MatchOptions& options, const catalogue::MethodR
             "--window and --sigma apply to --method pipeline; the hierarchical levels use "
             "9, 15 and 23 (docs/hierarchical.md)");
     }
-    if (options.scale < 1) {
-        throw std::invalid_argument("--scale must be >= 1, got " + std::to_string(options.scale));
-    }
-    if (options.downscale < 1) {
-        throw std::invalid_argument("--downscale must be >= 1, got " +
-                                    std::to_string(options.downscale));
-    }
     if (output_encoding != io::DisparityEncoding::scaled && !row.stage6) {
         throw std::invalid_argument(
             "PFM and --png16 outputs hold the pipeline's validated disparities: use a method "
@@ -387,7 +380,8 @@ void add_match_command(CLI::App& app) {
     command
         ->add_option("--scale", options->scale,
                      "Multiply disparities by K in the PNG (16-bit when (N-1)*K > 255)")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(checks::integer_in(1, 65535));
     command->add_option("--color", options->colour, "Also write a colour-mapped view");
     command->add_option("--certainty", options->certainty,
                         "pipeline, asw, vertical, diagonal: also write stage 6's certainty of "
@@ -396,8 +390,7 @@ void add_match_command(CLI::App& app) {
                         "pipeline, asw, vertical, diagonal: also write stage 6's reason code of "
                         "every pixel (8-bit PNG: 0 valid, 1 border, 2 uniqueness, 3 left-right, "
                         "4 speckle)");
-    command->add_option("--downscale", options->downscale, "Shrink both images by integer F first")
-        ->capture_default_str();
+    add_downscale_option(*command, options->downscale);
     command->add_flag("--json", options->json, "Print the summary as one JSON object");
 }
 

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "cli_command.hpp"
 #include "stereo/catalogue.hpp"
 #include "stereo/defaults.hpp"
 #include "stereo/hls/match.hpp"
@@ -35,10 +36,6 @@ const MatcherRegistry& matchers() {
     return registry;
 }
 
-bool MatcherOptions::window_given() const {
-    return (window != nullptr && window->count() > 0) || (sigma != nullptr && sigma->count() > 0);
-}
-
 std::string MatcherOptions::resolved_method() const {
     if (aggregation == "asw") {
         const catalogue::Method chosen = catalogue::method(method).id;
@@ -60,17 +57,7 @@ std::string MatcherOptions::resolved_method() const {
     return frontend;  // "edges"
 }
 
-bool MatcherOptions::explicit_validation() const {
-    return (uniqueness != nullptr && uniqueness->count() > 0) ||
-           (lr_check != nullptr && lr_check->count() > 0) || subpixel ||
-           (speckle_size != nullptr && speckle_size->count() > 0);
-}
-
 namespace {
-
-bool given(const CLI::Option* option) {
-    return option != nullptr && option->count() > 0;
-}
 
 // "ad (absolute differences ...), census (...), ...": every cost with its summary, the default
 // named, for --cost's help.
@@ -93,29 +80,20 @@ MatchConfig MatcherOptions::resolved() const {
     // The options given, applied by the rule every interface shares (defaults::apply): where the
     // subcommand has per-cost defaults, the cost (--cost, else the method's default on this
     // engine) brings its ratio and tolerance first; the given ones win.
-    const MatchParams& parsed = config.pipeline;
-    defaults::Overrides overrides;
-    if (defaults_per_cost) {
-        overrides.cost = given(cost)
-                             ? parsed.cost
-                             : std::string(catalogue::default_cost(resolved_method(), engine));
+    defaults::Overrides overrides = given;
+    if (defaults_per_cost && !overrides.cost) {
+        overrides.cost = std::string(catalogue::default_cost(resolved_method(), engine));
+    } else if (!defaults_per_cost && overrides.cost) {
+        resolved_config.pipeline.cost = *overrides.cost;  // no per-cost ratio and tolerance
+        overrides.cost.reset();
     }
     overrides.validation = !no_validation;
-    if (given(uniqueness)) {
-        overrides.uniqueness = parsed.validation.uniqueness_ratio;
-    }
-    if (given(lr_check)) {
-        overrides.lr_tolerance = parsed.validation.lr_tolerance;
-    }
     if (subpixel) {
         overrides.subpixel = true;
     }
-    if (given(speckle_size)) {
-        overrides.speckle_size = config.speckle.max_size;
-    }
     defaults::apply(overrides, resolved_config);
     asw::Params& weights = resolved_config.asw;
-    if (window != nullptr && window->count() > 0) {
+    if (window_set) {
         weights.diameter = config.pipeline.window;
     }
     weights.response = asw::response_from_name(asw_response);
@@ -169,17 +147,17 @@ void add_validation_options(CLI::App& command, MatcherOptions& options, MatcherC
                         "Smallest disparity searched (may be negative): labels cover "
                         "min-disp .. min-disp + ndisp - 1")
             ->capture_default_str();
-        options.uniqueness =
-            command
-                .add_option("--uniqueness", v.uniqueness_ratio,
-                            "Invalidate a pixel whose best cost is not U percent below every "
-                            "cost outside its neighbours (0..255)")
-                ->capture_default_str();
-        options.lr_check = command
-                               .add_option("--lr-check", v.lr_tolerance,
-                                           "Invalidate a pixel whose right-image winner differs "
-                                           "by more than T labels (0..255)")
-                               ->capture_default_str();
+        // Their defaults follow the cost (resolved()), so they hold a value only when given.
+        command
+            .add_option("--uniqueness", options.given.uniqueness,
+                        "Invalidate a pixel whose best cost is not U percent below every "
+                        "cost outside its neighbours (0..255)")
+            ->default_str(std::to_string(v.uniqueness_ratio));
+        command
+            .add_option("--lr-check", options.given.lr_tolerance,
+                        "Invalidate a pixel whose right-image winner differs "
+                        "by more than T labels (0..255)")
+            ->default_str(std::to_string(v.lr_tolerance));
         command.add_flag("--subpixel", options.subpixel,
                          "Refine each disparity by the parabola through its neighbours' costs "
                          "(1/16 pixel)");
@@ -189,12 +167,11 @@ void add_validation_options(CLI::App& command, MatcherOptions& options, MatcherC
         if (exposed.validation_on_by_default) {
             speckles = speckle::Params::defaults();
         }
-        options.speckle_size =
-            command
-                .add_option("--speckle-size", speckles.max_size,
-                            "Invalidate every region of at most N connected valid pixels "
-                            "(neighbours within --speckle-range), after stage 6; 0: off")
-                ->capture_default_str();
+        command
+            .add_option("--speckle-size", options.given.speckle_size,
+                        "Invalidate every region of at most N connected valid pixels "
+                        "(neighbours within --speckle-range), after stage 6; 0: off")
+            ->default_str(std::to_string(speckles.max_size));
         command
             .add_option("--speckle-range", speckles.range,
                         "Largest disparity step, in pixels, inside one speckle region")
@@ -217,9 +194,9 @@ void add_selection_options(CLI::App& command, MatcherOptions& options) {
                                        const std::vector<std::string>& choices) {
         command.add_option(name, value, help)->check(CLI::IsMember(choices))->capture_default_str();
     };
-    options.cost = command.add_option("--cost", params.cost, cost_help(options.defaults_per_cost))
-                       ->check(CLI::IsMember(catalogue::cost_names()))
-                       ->capture_default_str();
+    command.add_option("--cost", options.given.cost, cost_help(options.defaults_per_cost))
+        ->check(CLI::IsMember(catalogue::cost_names()))
+        ->default_str(params.cost);
     const std::string method_help = "Method: " + catalogue::method_help();
     add_choice("--method", options.method, method_help.c_str(), matchers().methods());
     const std::string engine_help =
@@ -252,7 +229,8 @@ void add_selection_options(CLI::App& command, MatcherOptions& options) {
                     "(Yoon and Kweon's 40, census not truncated), 0: not truncated")
         ->capture_default_str();
     command.add_option("--threads", weights.threads, "ASW: worker threads, 0 = every core")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(thread_count());
     group_options_since(
         command, asw_first,
         "--method asw: " + std::string(catalogue::method(catalogue::Method::asw).summary));
@@ -267,10 +245,14 @@ void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoi
         command.add_option("--ndisp", params.ndisp, "Number of disparity labels 0..N-1")
             ->capture_default_str();
     }
-    options.window = command.add_option("--window", params.window, "Odd aggregation window side")
-                         ->capture_default_str();
-    options.sigma = command.add_option("--sigma", params.sigma, "Gaussian sigma in pixels")
-                        ->capture_default_str();
+    // Recorded when given: the board keeps its own window otherwise, and ASW's diameter has
+    // its own default.
+    command.add_option("--window", params.window, "Odd aggregation window side")
+        ->capture_default_str()
+        ->each([&options](const std::string&) { options.window_set = true; });
+    command.add_option("--sigma", params.sigma, "Gaussian sigma in pixels")
+        ->capture_default_str()
+        ->each([&options](const std::string&) { options.sigma_set = true; });
     if (exposed.no_ca) {
         command.add_flag("--no-ca", options.no_ca, "Skip the cellular-automata rules");
     }

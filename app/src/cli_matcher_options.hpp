@@ -7,11 +7,11 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "stereo/defaults.hpp"
 #include "stereo/matcher.hpp"
 
 namespace CLI {
 class App;
-class Option;
 }  // namespace CLI
 
 namespace stereo::cli {
@@ -30,12 +30,13 @@ struct MatcherOptions {
     std::string asw_shape = "circle";
     bool asw_no_continuity = false;
     bool asw_left_weights_only = false;
-    CLI::Option* window = nullptr;
-    CLI::Option* sigma = nullptr;
-    CLI::Option* uniqueness = nullptr;
-    CLI::Option* lr_check = nullptr;
-    CLI::Option* speckle_size = nullptr;
-    CLI::Option* cost = nullptr;
+    // The options whose defaults depend on other options (the cost brings its own stage-6 ratio
+    // and tolerance): empty unless given on the command line, applied by resolved() through
+    // defaults::apply, the rule every interface shares.
+    defaults::Overrides given;
+    // --window, --sigma given on the command line (recorded while parsing).
+    bool window_set = false;
+    bool sigma_set = false;
     // `stereo match`: the cost defaults to defaults::kCost where the method and engine have it
     // (else defaults::kFallbackCost), and stage 6's ratio and tolerance to that cost's defaults
     // (stereo/defaults.hpp), each unless given on the command line.
@@ -43,13 +44,15 @@ struct MatcherOptions {
     bool no_validation = false;
     bool subpixel = false;
 
-    // --window or --sigma was given on the command line.
-    bool window_given() const;
     // The method after --frontend and --aggregation; throws std::invalid_argument when they
     // contradict.
     std::string resolved_method() const;
+    // --window or --sigma was given on the command line.
+    bool window_given() const { return window_set || sigma_set; }
     // --uniqueness, --lr-check, --subpixel or --speckle-size was given on the command line.
-    bool explicit_validation() const;
+    bool explicit_validation() const {
+        return given.uniqueness || given.lr_tolerance || subpixel || given.speckle_size;
+    }
     // The configuration with --no-ca, the stage 6 switches, the per-cost defaults and the ASW
     // options applied (with --aggregation asw, --window is the support region's diameter, 55
     // when not given).
@@ -78,7 +81,7 @@ struct ExposedParams {
     bool validation_on_by_default = false;
     // A fixed-matcher subcommand (cosim) whose --cost defaults to the catalogue's and whose
     // --uniqueness and --lr-check defaults follow the cost, as stereo match's do (the subcommand
-    // registers its own --cost and sets MatcherOptions::cost to it).
+    // registers its own --cost, bound to MatcherOptions::given.cost).
     bool default_cost = false;
 };
 

@@ -11,6 +11,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/core/utils/logger.hpp>
 
+#include "cli_checks.hpp"
 #include "stereo_io/limits.hpp"
 
 namespace stereo::cli {
@@ -55,8 +56,9 @@ int run(CLI::App& app, int argc, char** argv) {
     app.add_option("--max-pixels",
                    "Largest image any input may declare, in pixels (default 2^26, "
                    "or STEREO_MAX_IMAGE_PIXELS)")
-        ->check(CLI::Range(std::int64_t{1}, std::int64_t{1} << 34))
+        ->check(checks::integer_in(1, std::int64_t{1} << 34))
         ->each([](const std::string& value) { io::set_max_image_pixels(std::stoll(value)); });
+    checks::plain_numbers(app);  // decimal integers, finite real numbers, in every subcommand
     for (CLI::App* command : app.get_subcommands({})) {
         command->fallthrough();  // also after the subcommand: `stereo match ... --max-pixels N`
     }

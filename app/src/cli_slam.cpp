@@ -105,13 +105,6 @@ struct Input {
 };
 
 Input checked_input(const SlamOptions& o) {
-    if (o.downscale < 1) {
-        throw std::invalid_argument("--downscale must be >= 1, got " + std::to_string(o.downscale));
-    }
-    if (o.ca_passes < 0 || o.ca_passes > 1000) {
-        throw std::invalid_argument("--ca-passes must be in 0..1000, got " +
-                                    std::to_string(o.ca_passes));
-    }
     const slam::Layout layout = slam::parse_layout(o.layout, o.sequence);
     const std::optional<fs::path> calib =
         o.calib.empty() ? std::nullopt : std::optional<fs::path>(o.calib);
@@ -342,7 +335,8 @@ void add_slam_command(CLI::App& app) {
     auto& p = o->params;
     p.threads = 0;  // the command line's default: every core
     command->add_option("--threads", p.threads, "Front-end row bands in parallel; 0: every core")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(thread_count());
     command
         ->add_option("SEQ_DIR", o->sequence,
                      "Sequence folder: image_l/ image_r/ calib.txt [poses.txt] (KITTI) or "
@@ -360,8 +354,7 @@ void add_slam_command(CLI::App& app) {
                      "Which frame of the range --vdisparity shows")
         ->capture_default_str();
     command->add_flag("--json", o->json, "Print a JSON summary");
-    command->add_option("--downscale", o->downscale, "Shrink the images by integer F first")
-        ->capture_default_str();
+    add_downscale_option(*command, o->downscale, "Shrink the images by integer F first");
     // The sparse front end has no CA rules: no --no-ca; its defaults are the SLAM layer's.
     MatchParams& frontend = o->matcher.config.pipeline;
     frontend.ndisp = p.frontend.ndisp;
@@ -405,7 +398,8 @@ void add_slam_command(CLI::App& app) {
           "Gain must exceed this times sqrt(score + base score); 0: off"},
          {"--merge-min-match", &p.merge.min_match,
           "Share of the placed local map's cells that must hit occupied cells; 0: off"},
-         {"--ca-passes", &o->ca_passes, "Clean-up passes over the final map"}});
+         {"--ca-passes", &o->ca_passes, "Clean-up passes over the final map",
+          checks::integer_in(0, 1000)}});
 }
 
 }  // namespace stereo::cli

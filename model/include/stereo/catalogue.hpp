@@ -46,44 +46,22 @@ struct CostRow {
     std::string_view summary;  // one line for --help, Python and the docs
 };
 
+// One line per cost; the columns are CostRow's fields in order (summary on the next line). zncc
+// is a window measure along rows, so not a pixel pair; lcdm and zncc keep AD's stage-6 defaults
+// (the rule of stereo/defaults.hpp was not run for them).
+// clang-format off
 inline constexpr std::array<CostRow, 4> kCosts = {{
-    {.id = Cost::ad,
-     .name = "ad",
-     .hardware_code = 0,
-     .lean_core = true,
-     .pixel_pair = true,
-     .floating = true,
-     .validation = {.uniqueness = 6, .lr_tolerance = 0},
-     .asw_truncation = 40,
-     .summary = "absolute differences over RGB (thesis Sec. 3.1)"},
-    {.id = Cost::census,
-     .name = "census",
-     .hardware_code = 2,
-     .lean_core = true,
-     .pixel_pair = true,
-     .floating = false,
-     .validation = {.uniqueness = 0, .lr_tolerance = 1},
-     .asw_truncation = 0,
-     .summary = "5x5 census of the luma, Hamming distance x 31 (validated default)"},
-    {.id = Cost::lcdm,
-     .name = "lcdm",
-     .hardware_code = 1,
-     .lean_core = false,
-     .pixel_pair = true,
-     .floating = false,
-     .validation = {.uniqueness = 6, .lr_tolerance = 0},  // AD's: the rule was not run for it
-     .asw_truncation = 40,
-     .summary = "hue-saturation distance, colour only (thesis Sec. 3.5)"},
-    {.id = Cost::zncc,
-     .name = "zncc",
-     .hardware_code = kNoHardware,
-     .lean_core = false,
-     .pixel_pair = false,  // a window measure along rows
-     .floating = false,
-     .validation = {.uniqueness = 6, .lr_tolerance = 0},  // AD's
-     .asw_truncation = 40,
-     .summary = "1 - ZNCC of 15x15 luma windows (use with --window 1 --no-ca)"},
+    //  id             name      hardware     lean   pixel  float  {U, T}  asw_truncation
+    {Cost::ad,      "ad",     0,           true,  true,  true,  {6, 0}, 40,
+     "absolute differences over RGB (thesis Sec. 3.1)"},
+    {Cost::census,  "census", 2,           true,  true,  false, {0, 1}, 0,
+     "5x5 census of the luma, Hamming distance x 31 (validated default)"},
+    {Cost::lcdm,    "lcdm",   1,           false, true,  false, {6, 0}, 40,
+     "hue-saturation distance, colour only (thesis Sec. 3.5)"},
+    {Cost::zncc,    "zncc",   kNoHardware, false, false, false, {6, 0}, 40,
+     "1 - ZNCC of 15x15 luma windows (use with --window 1 --no-ca)"},
 }};
+// clang-format on
 
 // The row of `name`; throws std::invalid_argument naming the known costs when there is none.
 const CostRow& cost(std::string_view name);
@@ -143,78 +121,26 @@ struct MethodRow {
     std::string_view summary;
 };
 
+// One line per method; the columns are MethodRow's fields in order (summary on the next line).
+// clang-format off
 inline constexpr std::array<MethodRow, 7> kMethods = {{
-    {.id = Method::pipeline,
-     .name = "pipeline",
-     .stage6 = true,
-     .validated_output = true,
-     .ca = true,
-     .two_d = false,
-     .takes_cost = true,
-     .costs = CostUse::any,
-     .census_default = true,
-     .summary = "1-D, rectified pairs: cost, Gaussian window, CA rules, WTA, stage 6 (Sec. 3.1)"},
-    {.id = Method::edges,
-     .name = "edges",
-     .stage6 = false,
-     .validated_output = false,
-     .ca = false,
-     .two_d = false,
-     .takes_cost = false,
-     .costs = CostUse::any,
-     .census_default = false,
-     .summary = "LoG edge front end with truncated AD, no CA (Sec. 4.1.1)"},
-    {.id = Method::hierarchical,
-     .name = "hierarchical",
-     .stage6 = false,
-     .validated_output = false,
-     .ca = true,
-     .two_d = true,
-     .takes_cost = true,
-     .costs = CostUse::pixel_pair,
-     .census_default = false,
-     .summary = "2-D search over three levels, for pairs nobody rectified (Sec. 3.3)"},
-    {.id = Method::sparse,
-     .name = "sparse",
-     .stage6 = false,
-     .validated_output = true,
-     .ca = false,
-     .two_d = false,
-     .takes_cost = true,
-     .costs = CostUse::any,
-     .census_default = false,
-     .summary = "validated sub-pixel disparities at features (SLAM front end)"},
-    {.id = Method::vertical,
-     .name = "vertical",
-     .stage6 = true,
-     .validated_output = true,
-     .ca = true,
-     .two_d = false,
-     .takes_cost = true,
-     .costs = CostUse::pixel_pair,
-     .census_default = true,
-     .summary = "the quad rig's vertical pair, partner below (Sec. 3.2)"},
-    {.id = Method::diagonal,
-     .name = "diagonal",
-     .stage6 = true,
-     .validated_output = true,
-     .ca = true,
-     .two_d = false,
-     .takes_cost = true,
-     .costs = CostUse::pixel_pair,
-     .census_default = true,
-     .summary = "the quad rig's diagonal pair, partner below-right (Sec. 3.2)"},
-    {.id = Method::asw,
-     .name = "asw",
-     .stage6 = true,
-     .validated_output = true,
-     .ca = false,
-     .two_d = false,
-     .takes_cost = true,
-     .costs = CostUse::any,
-     .census_default = true,
-     .summary = "adaptive support weights (Sec. 3.4)"},
+    //  id                    name            stage6 validated ca     two_d  takes  costs                census
+    {Method::pipeline,     "pipeline",     true,  true,     true,  false, true,  CostUse::any,        true,
+     "1-D, rectified pairs: cost, Gaussian window, CA rules, WTA, stage 6 (Sec. 3.1)"},
+    {Method::edges,        "edges",        false, false,    false, false, false, CostUse::any,        false,
+     "LoG edge front end with truncated AD, no CA (Sec. 4.1.1)"},
+    {Method::hierarchical, "hierarchical", false, false,    true,  true,  true,  CostUse::pixel_pair, false,
+     "2-D search over three levels, for pairs nobody rectified (Sec. 3.3)"},
+    {Method::sparse,       "sparse",       false, true,     false, false, true,  CostUse::any,        false,
+     "validated sub-pixel disparities at features (SLAM front end)"},
+    {Method::vertical,     "vertical",     true,  true,     true,  false, true,  CostUse::pixel_pair, true,
+     "the quad rig's vertical pair, partner below (Sec. 3.2)"},
+    {Method::diagonal,     "diagonal",     true,  true,     true,  false, true,  CostUse::pixel_pair, true,
+     "the quad rig's diagonal pair, partner below-right (Sec. 3.2)"},
+    {Method::asw,          "asw",          true,  true,     false, false, true,  CostUse::any,        true,
+     "adaptive support weights (Sec. 3.4)"},
 }};
+// clang-format on
 
 const MethodRow& method(std::string_view name);  // throws std::invalid_argument when unknown
 constexpr const MethodRow& method(Method id) {
@@ -235,32 +161,17 @@ struct EngineRow {
     std::string_view summary;
 };
 
+// clang-format off
 inline constexpr std::array<EngineRow, 6> kEngines = {{
-    {.name = "model",
-     .costs = CostUse::any,
-     .stage6 = true,
-     .summary = "the bit-exact golden model"},
-    {.name = "naive",
-     .costs = CostUse::any,
-     .stage6 = true,
-     .summary = "the naive reference (direct sums), for tests"},
-    {.name = "float",
-     .costs = CostUse::floating,
-     .stage6 = false,
-     .summary = "double precision, no stage 6"},
-    {.name = "hls",
-     .costs = CostUse::hardware,
-     .stage6 = true,
-     .summary = "the C-simulated HLS kernels"},
-    {.name = "rtl",
-     .costs = CostUse::hardware,
-     .stage6 = true,
-     .summary = "the Verilated RTL (built configurations)"},
-    {.name = "full-search",
-     .costs = CostUse::pixel_pair,
-     .stage6 = false,
-     .summary = "every D x V displacement at full size"},
+    //  name           costs                stage6 summary
+    {"model",       CostUse::any,        true,  "the bit-exact golden model"},
+    {"naive",       CostUse::any,        true,  "the naive reference (direct sums), for tests"},
+    {"float",       CostUse::floating,   false, "double precision, no stage 6"},
+    {"hls",         CostUse::hardware,   true,  "the C-simulated HLS kernels"},
+    {"rtl",         CostUse::hardware,   true,  "the Verilated RTL (built configurations)"},
+    {"full-search", CostUse::pixel_pair, false, "every D x V displacement at full size"},
 }};
+// clang-format on
 
 const EngineRow& engine(std::string_view name);  // throws std::invalid_argument when unknown
 std::vector<std::string> engine_names();

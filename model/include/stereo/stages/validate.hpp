@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "stereo/constants.hpp"
-#include "stereo/pipeline.hpp"
 #include "stereo/stages.hpp"
 #include "stereo/validated.hpp"
+#include "stereo/validation_params.hpp"
 
 namespace stereo::validation {
 
