@@ -113,6 +113,13 @@ void group_options_since(CLI::App& command, std::size_t first, const std::string
     }
 }
 
+// An option whose default follows another one (the cost brings its own ratio and tolerance,
+// resolved()): it holds a value only when given; --help shows the subcommand's default.
+void add_given(CLI::App& command, const char* name, std::optional<int>& value, const char* help,
+               int shown_default) {
+    command.add_option(name, value, help)->default_str(std::to_string(shown_default));
+}
+
 // Stage 6's options (--min-disp, --uniqueness, --lr-check, --subpixel, --no-validation) and the
 // speckle filter's, where the subcommand exposes them, with their defaults.
 void add_validation_options(CLI::App& command, MatcherOptions& options, MatcherChoice choice,
@@ -147,17 +154,14 @@ void add_validation_options(CLI::App& command, MatcherOptions& options, MatcherC
                         "Smallest disparity searched (may be negative): labels cover "
                         "min-disp .. min-disp + ndisp - 1")
             ->capture_default_str();
-        // Their defaults follow the cost (resolved()), so they hold a value only when given.
-        command
-            .add_option("--uniqueness", options.given.uniqueness,
-                        "Invalidate a pixel whose best cost is not U percent below every "
-                        "cost outside its neighbours (0..255)")
-            ->default_str(std::to_string(v.uniqueness_ratio));
-        command
-            .add_option("--lr-check", options.given.lr_tolerance,
-                        "Invalidate a pixel whose right-image winner differs "
-                        "by more than T labels (0..255)")
-            ->default_str(std::to_string(v.lr_tolerance));
+        add_given(command, "--uniqueness", options.given.uniqueness,
+                  "Invalidate a pixel whose best cost is not U percent below every cost outside "
+                  "its neighbours (0..255)",
+                  v.uniqueness_ratio);
+        add_given(command, "--lr-check", options.given.lr_tolerance,
+                  "Invalidate a pixel whose right-image winner differs by more than T labels "
+                  "(0..255)",
+                  v.lr_tolerance);
         command.add_flag("--subpixel", options.subpixel,
                          "Refine each disparity by the parabola through its neighbours' costs "
                          "(1/16 pixel)");
@@ -167,11 +171,10 @@ void add_validation_options(CLI::App& command, MatcherOptions& options, MatcherC
         if (exposed.validation_on_by_default) {
             speckles = speckle::Params::defaults();
         }
-        command
-            .add_option("--speckle-size", options.given.speckle_size,
-                        "Invalidate every region of at most N connected valid pixels "
-                        "(neighbours within --speckle-range), after stage 6; 0: off")
-            ->default_str(std::to_string(speckles.max_size));
+        add_given(command, "--speckle-size", options.given.speckle_size,
+                  "Invalidate every region of at most N connected valid pixels (neighbours "
+                  "within --speckle-range), after stage 6; 0: off",
+                  speckles.max_size);
         command
             .add_option("--speckle-range", speckles.range,
                         "Largest disparity step, in pixels, inside one speckle region")
