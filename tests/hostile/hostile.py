@@ -156,6 +156,24 @@ def generate(stereo, seed):
         for signum in (signal.SIGTERM, signal.SIGINT, signal.SIGHUP):
             for delay in (0.01, 0.05, 0.2):
                 cases.append(("signal", command, base, {"signal": signum, "delay": delay}))
+    # Signals while a large output is being written (@B@: a 3000 x 2000 noise image, whose PNG
+    # takes a second to encode), at delays drawn over the whole run.
+    delays = random.Random(seed + 1)
+    large = [["relight", "@B@/big.ppm", "@O@/relit.png"],
+             ["match", "@B@/big.ppm", "@B@/big.ppm", "--ndisp", "4", "--window", "3", "--no-ca",
+              "-o", "@O@/match.png", "--color", "@O@/color.png"],
+             # The waveform is written during the whole run (io::StagedOutput).
+             ["cosim", "@I@/left.png", "@I@/right.png", "--ndisp", "8", "--frames", "4",
+              "--trace", "@O@/wave.fst"]]
+    for argv in large:
+        for signum in (signal.SIGTERM, signal.SIGINT, signal.SIGHUP, signal.SIGQUIT):
+            for _ in range(10):
+                # A fraction of the run's undisturbed duration: most of the run is decoding and
+                # matching, so the draws lean towards its end, where the outputs are written.
+                cases.append(("signal-large", argv[0], argv,
+                              {"signal": signum, "fraction": round(delays.uniform(0.5, 1.05), 3)}))
+        for limit in (1 << 20, 5 << 20):
+            cases.append(("file-size-limit-large", argv[0], argv, {"fsize": limit}))
     # Corrupt images as the left input of the image commands.
     for command in ("match", "avoid", "relight", "cosim", "eval"):
         for mode in ("truncate", "flip"):
@@ -173,6 +191,17 @@ def generate(stereo, seed):
                 argv += [name, rng.choice(pool)]
             cases.append(("combination", command, argv, {}))
     return cases
+
+
+def write_noise_ppm(path, width, height, seed):
+    """A binary PPM of smooth noise (compresses a little, so PNG encoding takes its time)."""
+    rng = random.Random(seed)
+    row = bytes(rng.randrange(256) for _ in range(width * 3))
+    with open(path, "wb") as f:
+        f.write(b"P6\n%d %d\n255\n" % (width, height))
+        for y in range(height):
+            shift = (y * 7) % len(row)
+            f.write(row[shift:] + row[:shift])
 
 
 def without(argv, option):
@@ -198,6 +227,7 @@ class Sandbox:
     """A fresh copy of the fixtures for one case: inputs, outputs, and their snapshot."""
 
     def __init__(self, root, fixtures, slam_fixtures, with_sequences=True):
+        self.large = os.path.join(root, "large")  # shared, read-only
         self.root = tempfile.mkdtemp(dir=root)
         self.inputs = os.path.join(self.root, "in")
         self.slam = os.path.join(self.root, "seq")
@@ -218,7 +248,7 @@ class Sandbox:
 
     def expand(self, word):
         return (word.replace("@I@", self.inputs).replace("@S@", self.slam)
-                .replace("@O@", self.out))
+                .replace("@O@", self.out).replace("@B@", self.large))
 
     def snapshot(self):
         state = {}
@@ -324,12 +354,18 @@ def check_case(box, case, args):
             stderr=err, env=env, preexec_fn=limits, cwd=box.root,
             pass_fds=(), close_fds=True)
         sent = None
+        finished = None
         if "signal" in extra:
-            time.sleep(extra["delay"])
-            if process.poll() is None:
-                process.send_signal(extra["signal"])
+            time.sleep(extra["delay"] if "delay" in extra
+                       else extra["fraction"] * args.durations[tuple(template)])
+            pid, status, usage = os.wait4(process.pid, os.WNOHANG)  # not poll(): it would reap
+            if pid != 0:
+                finished = (status, usage)
+            else:
+                os.kill(process.pid, extra["signal"])
                 sent = extra["signal"]
-        status, usage = wait(process, args.timeout)
+        status, usage = finished or wait(process, args.timeout)
+        process.returncode = 0  # reaped here, not by Popen
         elapsed = time.monotonic() - started
         if out is not None:
             out.close()
@@ -382,6 +418,8 @@ def judge(box, case, argv, status, usage, elapsed, sent, before, after, stdout, 
         if not ERROR_LINE.match(stderr):
             breaks.append("failure without exactly one 'stereo: error:' line: " +
                           repr(stderr[:300]))
+    if sent is not None and os.path.exists(box.out) and code is None:
+        pass  # killed: the outputs must be the previous ones or complete (checked below)
     if extra.get("stdout") == "full" and code == 0 and writes_stdout(command, template):
         breaks.append("stdout is /dev/full, yet exit 0")
     if extra.get("fsize") and code == 0 and grew(before, after, extra["fsize"]):
@@ -441,7 +479,18 @@ def main():
     with open(args.no_verilator, "w") as f:
         f.write("#!/bin/sh\necho 'verilator is not available in the hostile suite' >&2\nexit 1\n")
     os.chmod(args.no_verilator, 0o755)
+    os.makedirs(os.path.join(args.work, "large"))
+    write_noise_ppm(os.path.join(args.work, "large", "big.ppm"), 3000, 2000, args.seed)
     cases = generate(args.stereo, args.seed)
+    args.durations = {}
+    for case in cases:
+        if "fraction" in case[3] and tuple(case[2]) not in args.durations:
+            box = Sandbox(args.work, args.fixtures, args.slam_fixtures, False)
+            started = time.monotonic()
+            subprocess.run([args.stereo] + [box.expand(w) for w in case[2]],
+                           capture_output=True, check=False)
+            args.durations[tuple(case[2])] = time.monotonic() - started
+            box.remove()
     if args.only:
         cases = [c for c in cases if c[0] == args.only]
     total = len(cases)
