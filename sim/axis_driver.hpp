@@ -39,7 +39,12 @@ StreamResult stream_axis(VerilatedHarness<Model>& harness, const std::vector<Inp
     bool held_user = false;
     std::uint64_t cycle = 0;
     bool started = false;
-    for (; cycle < max_cycles && result.outputs.size() < expected_outputs; ++cycle) {
+    // Every cycle run, the ones before the first accepted beat included: `cycle` does not count
+    // those, so with no beat ever taken (no input, or a core that never raises tready) only
+    // this ends the loop (`cosim --reset-at 0` ran forever).
+    std::uint64_t spent = 0;
+    for (; cycle < max_cycles && spent < 2 * max_cycles && result.outputs.size() < expected_outputs;
+         ++cycle, ++spent) {
         if (!offering && next < beats.size() && !gap(rng)) {
             offering = true;
         }

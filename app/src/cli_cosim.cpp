@@ -291,10 +291,12 @@ Streamed stream_frames(const CosimOptions& options, sim::TopSim& sim,
         if (options.reset_at >= 0) {
             const std::vector<sim::InputBeat> part(beats.begin(), beats.begin() + options.reset_at);
             // Stop once a quarter of them came out (or the cycle budget ends): the reset then
-            // lands with beats still inside the pipeline.
-            out.total_cycles += sim.stream(part, std::max<std::size_t>(1, part.size() / 4), traffic,
-                                           10 * part.size() + 10000)
-                                    .cycles;
+            // lands with beats still inside the pipeline. --reset-at 0: a reset before any beat.
+            if (!part.empty()) {
+                out.total_cycles += sim.stream(part, std::max<std::size_t>(1, part.size() / 4),
+                                               traffic, 10 * part.size() + 10000)
+                                        .cycles;
+            }
             sim.reset();
             sim.set_params(frame_params);
         }
