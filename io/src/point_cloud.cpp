@@ -70,6 +70,14 @@ std::vector<CloudPoint> disparity_to_points(const cv::Mat& disparity, const cv::
             p.x = static_cast<float>((x - geometry.cx) * z / geometry.focal);
             p.y = static_cast<float>((y - geometry.cy) * z / geometry.focal);
             p.z = static_cast<float>(z);
+            // A derived check: the PLY stores 32-bit floats, so a focal length and baseline
+            // whose depths overflow them (1e308 each gave a cloud of inf) are refused.
+            if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+                throw std::invalid_argument(
+                    "the geometry gives points beyond 32-bit floats (f x B / d = " +
+                    std::to_string(z) + " at pixel " + std::to_string(x) + "," +
+                    std::to_string(y) + "): check the focal length and the baseline");
+            }
             if (bgr.type() == CV_8UC3) {
                 const auto& c = bgr.at<cv::Vec3b>(y, x);
                 p.red = c[2];
