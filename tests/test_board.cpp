@@ -48,8 +48,12 @@ using namespace std::chrono_literals;
 // frame: like the RTL, it answers nothing but the clear command until it has been cleared.
 class EmulatedBoard {
   public:
-    explicit EmulatedBoard(board::Identity identity, bool mute = false, bool stuck = false)
-        : identity_(identity), mute_(mute), stuck_(stuck) {
+    // What a faulty link or core does to the frame's reply (the identity is faked by the test).
+    enum class Fault { none, reason_code, invalid_with_disparity, out_of_range };
+
+    explicit EmulatedBoard(board::Identity identity, bool mute = false, bool stuck = false,
+                           Fault fault = Fault::none)
+        : identity_(identity), mute_(mute), stuck_(stuck), fault_(fault) {
         if (::openpty(&master_, &slave_, nullptr, nullptr, nullptr) != 0) {
             throw std::runtime_error("openpty failed");
         }
@@ -152,12 +156,29 @@ class EmulatedBoard {
                     board::kPixelBytes * static_cast<std::size_t>(frame_.width * frame_.height)) {
                     const auto [left, right] =
                         board::decode_pixels(payload_, frame_.width, frame_.height);
-                    reply(board::encode_beats(match_validated(
-                        left, right, board::match_params(frame_, identity_.window))));
+                    ValidatedDisparity result =
+                        match_validated(left, right, board::match_params(frame_, identity_.window));
+                    spoil(result);
+                    reply(board::encode_beats(result));
                     ++frames_;
                     state_ = State::header;
                 }
                 return;
+        }
+    }
+
+    // The fault, at the last pixel (so the whole reply arrives first).
+    void spoil(ValidatedDisparity& result) const {
+        const std::size_t last = result.fixed.size() - 1;
+        if (fault_ == Fault::reason_code) {
+            result.reason[last] = 7;
+            result.fixed[last] = 0;
+        } else if (fault_ == Fault::invalid_with_disparity) {
+            result.reason[last] = fx::kReasonUniqueness;
+            result.fixed[last] = 48;
+        } else if (fault_ == Fault::out_of_range) {
+            result.reason[last] = fx::kReasonValid;
+            result.fixed[last] = 16 * (frame_.min_disp + frame_.ndisp + 3);
         }
     }
 
@@ -189,6 +210,7 @@ class EmulatedBoard {
     board::Identity identity_;
     bool mute_;
     bool stuck_;
+    Fault fault_;
     int master_ = -1;
     int slave_ = -1;
     std::string slave_path_;
@@ -302,6 +324,42 @@ TEST(BoardClient, FramesEqualTheModelAndClampingIsReported) {
     EXPECT_EQ(client.identify().status, 1U << board::kStatusConfigClamped);
     EXPECT_EQ(client.clear(), 1U << board::kStatusConfigClamped);
     EXPECT_EQ(client.identify().status, 0);
+}
+
+// Data no core can send is the board's fault (std::runtime_error, exit 1), not accepted and not
+// blamed on the options: an impossible identity, a reason code the core does not have, an
+// invalid pixel with a disparity, a valid one outside the searched range.
+TEST(BoardClient, ImpossibleDataFromTheBoardIsRefused) {
+    using Fault = EmulatedBoard::Fault;
+    std::mt19937 rng(12);
+    const Image left = test::random_image(32, 24, 3, rng);
+    const Image right = test::shifted_copy(left, 3, 10, rng);
+    const MatchParams params{12, 5, fx::kDefaultSigma, true};
+    for (const Fault fault :
+         {Fault::none, Fault::reason_code, Fault::invalid_with_disparity, Fault::out_of_range}) {
+        const EmulatedBoard device(small_board(), false, false, fault);
+        io::SerialPort port(device.path(), 115200);
+        board::Client client(port, 2000ms);
+        (void)client.identify();
+        (void)client.configure(board::config_for(32, 24, params));
+        if (fault == Fault::none) {
+            EXPECT_EQ(client.frame(left, right), match_validated(left, right, params));
+            continue;
+        }
+        try {
+            (void)client.frame(left, right);
+            ADD_FAILURE() << "fault " << static_cast<int>(fault) << " accepted";
+        } catch (const std::runtime_error& error) {
+            EXPECT_NE(std::string(error.what()).find("at pixel 31,23"), std::string::npos)
+                << error.what();
+        }
+    }
+    board::Identity impossible = small_board();
+    impossible.window = 0;
+    const EmulatedBoard device(impossible);
+    io::SerialPort port(device.path(), 115200);
+    board::Client client(port, 2000ms);
+    EXPECT_THROW((void)client.identify(), std::runtime_error);
 }
 
 TEST(BoardClient, LimitsOfTheBuildAreChecked) {

@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 
 #include "stereo/image.hpp"
@@ -34,7 +35,9 @@ class Client {
     // Clears the board's status (and a core left inside a frame); returns the status it cleared.
     std::uint8_t clear();
     // Streams the pair and decodes its width * height beats. The board must be configured for
-    // the pair's size first.
+    // the pair's size first. Throws std::runtime_error (the board's fault, not the options') when
+    // a beat is impossible for the configuration sent: a reason code the core does not have, an
+    // invalid pixel with a disparity, a valid one outside the searched range.
     ValidatedDisparity frame(const Image& left, const Image& right);
 
     std::uint64_t bytes_sent() const { return sent_; }
@@ -46,9 +49,20 @@ class Client {
 
     io::SerialPort& port_;
     std::chrono::milliseconds timeout_;
+    std::optional<Identity> identity_;  // the last identify reply
+    std::optional<Config> configured_;  // the last configuration acknowledged
     std::uint64_t sent_ = 0;
     std::uint64_t received_ = 0;
 };
+
+// Throws std::runtime_error when an identify reply is impossible for any build of the core
+// (a frame side, label count, window or |min-disp| outside fx_pkg's limits): a corrupt link or
+// another device, reported as such instead of as options the board cannot take.
+void check_identity(const Identity& board, const std::string& port);
+
+// Throws std::runtime_error naming the first beat of `frame` that the core cannot produce under
+// `config` (see Client::frame).
+void check_frame(const ValidatedDisparity& frame, const Config& config);
 
 // Checks that a frame and a configuration are within what the board was built for (its identify
 // reply); throws std::invalid_argument naming the first limit exceeded.
