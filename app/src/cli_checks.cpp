@@ -1,8 +1,10 @@
 #include "cli_checks.hpp"
 
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -88,6 +90,20 @@ CLI::Validator real_in(double min, double max, Bound lower, Bound upper) {
             return {};
         },
         "NUMBER in " + description, "real_in"};
+}
+
+CLI::Validator png_output() {
+    return {[](std::string& text) -> std::string {
+                std::string extension = std::filesystem::path(text).extension().string();
+                for (char& c : extension) {
+                    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+                }
+                if (extension != ".png") {
+                    return "must name a .png file (it is written as PNG), got '" + text + "'";
+                }
+                return {};
+            },
+            "", "png_output"};
 }
 
 void plain_numbers(CLI::App& app) {

@@ -20,6 +20,10 @@ enum class Bound { inclusive, exclusive };
 CLI::Validator real_in(double min, double max, Bound lower = Bound::inclusive,
                        Bound upper = Bound::inclusive);
 
+// An output that is written as PNG whatever its name: the name must end in .png (any case), so
+// that "map.jpg" or "map.xyz" is refused before any work instead of receiving PNG bytes.
+CLI::Validator png_output();
+
 // Adds the decimal-integer and finite-real rule to every numeric option of `app` and of its
 // subcommands, recursively (by the type name CLI11 gives the option: INT, UINT or FLOAT).
 void plain_numbers(CLI::App& app);

@@ -75,9 +75,11 @@ void add_cosim_options(CLI::App& command, CosimOptions& options) {
                     "than 1 on the 640x480 / 64-label cores, docs/gtkwave.md)")
         ->check(CLI::Range(1, 16))
         ->capture_default_str();
-    command.add_option("--diff", options.diff,
-                       "Write a PNG of the first mismatching frame: 255 where the disparity "
-                       "differs, 128 where only the reason or certainty does, 0 elsewhere");
+    command
+        .add_option("--diff", options.diff,
+                    "Write a PNG of the first mismatching frame: 255 where the disparity "
+                    "differs, 128 where only the reason or certainty does, 0 elsewhere")
+        ->check(checks::png_output());
     command.add_flag("--json", options.json,
                      "Print one JSON object (mismatches, cycles, pixels, ...)");
 }

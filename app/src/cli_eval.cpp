@@ -166,8 +166,10 @@ void add_eval_command(CLI::App& app) {
     command->add_option("--threshold", options->threshold, "Bad when |d - gt| > T")
         ->capture_default_str()
         ->check(checks::real_in(0, 1e6));
-    command->add_option("--error-map", options->error_map,
-                        "Write an RGB PNG: grey correct, red bad, blue invalid, black unscored");
+    command
+        ->add_option("--error-map", options->error_map,
+                     "Write an RGB PNG: grey correct, red bad, blue invalid, black unscored")
+        ->check(checks::png_output());
     command->add_flag("--json", options->json, "Print the scores as one JSON object");
     command
         ->add_option("--encoding", options->encoding,

@@ -372,6 +372,7 @@ void add_match_command(CLI::App& app) {
     command
         ->add_option("--vertical", options->vertical,
                      "Write the vertical offsets (128 + v, 0 = invalid)")
+        ->check(checks::png_output())
         ->group(two_d);
     command
         ->add_option("--dump-levels", options->dump_levels,
@@ -382,14 +383,19 @@ void add_match_command(CLI::App& app) {
                      "Multiply disparities by K in the PNG (16-bit when (N-1)*K > 255)")
         ->capture_default_str()
         ->check(checks::integer_in(1, 65535));
-    command->add_option("--color", options->colour, "Also write a colour-mapped view");
-    command->add_option("--certainty", options->certainty,
-                        "pipeline, asw, vertical, diagonal: also write stage 6's certainty of "
-                        "every pixel (8-bit PNG, 0..255)");
-    command->add_option("--reasons", options->reasons,
-                        "pipeline, asw, vertical, diagonal: also write stage 6's reason code of "
-                        "every pixel (8-bit PNG: 0 valid, 1 border, 2 uniqueness, 3 left-right, "
-                        "4 speckle)");
+    command->add_option("--color", options->colour, "Also write a colour-mapped view")
+        ->check(checks::png_output());
+    command
+        ->add_option("--certainty", options->certainty,
+                     "pipeline, asw, vertical, diagonal: also write stage 6's certainty of "
+                     "every pixel (8-bit PNG, 0..255)")
+        ->check(checks::png_output());
+    command
+        ->add_option("--reasons", options->reasons,
+                     "pipeline, asw, vertical, diagonal: also write stage 6's reason code of "
+                     "every pixel (8-bit PNG: 0 valid, 1 border, 2 uniqueness, 3 left-right, "
+                     "4 speckle)")
+        ->check(checks::png_output());
     add_downscale_option(*command, options->downscale);
     command->add_flag("--json", options->json, "Print the summary as one JSON object");
 }

@@ -185,11 +185,15 @@ void add_quad_command(CLI::App& app) {
                      "winner's aggregated cost, the smallest wins; docs/quad.md)")
         ->check(CLI::IsMember(keys))
         ->capture_default_str();
-    command->add_option("--certainty", options->certainty,
-                        "Also write the fused certainty (8-bit PNG, 0..255)");
-    command->add_option("--source", options->source,
-                        "Also write the source map (8-bit PNG: 0 none, 85 horizontal, 170 "
-                        "vertical, 255 diagonal)");
+    command
+        ->add_option("--certainty", options->certainty,
+                     "Also write the fused certainty (8-bit PNG, 0..255)")
+        ->check(checks::png_output());
+    command
+        ->add_option("--source", options->source,
+                     "Also write the source map (8-bit PNG: 0 none, 85 horizontal, 170 "
+                     "vertical, 255 diagonal)")
+        ->check(checks::png_output());
     command->add_flag("--json", options->json, "Print the summary as one JSON object");
 }
 

@@ -67,7 +67,9 @@ void add_relight_command(CLI::App& app) {
         "gain/offset/gamma, gradient, vignette).",
         [](RelightOptions& o) { run_relight(o); });
     command->add_option("IN", options->input, "Colour image to relight")->required();
-    command->add_option("OUT", options->output, "Output PNG (written atomically)")->required();
+    command->add_option("OUT", options->output, "Output PNG (written atomically)")
+        ->check(checks::png_output())
+        ->required();
     command
         ->add_option("--lightness", options->lighting.lightness_percent,
                      "Uniform HSL lightness change P % in [-100, 100] (thesis: -25..25)")

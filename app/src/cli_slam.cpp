@@ -346,9 +346,11 @@ void add_slam_command(CLI::App& app) {
     command->add_option("--calib", o->calib,
                         "Calibration (KITTI calib.txt, or the EuRoC rectification YAML)");
     command->add_option("--frames", o->frames, "Frame range A:B (0-based, half-open)");
-    command->add_option("--map", o->map, "Occupancy map PNG with the trajectories");
+    command->add_option("--map", o->map, "Occupancy map PNG with the trajectories")
+        ->check(checks::png_output());
     command->add_option("--trajectory", o->trajectory, "Estimated poses, KITTI format");
-    command->add_option("--vdisparity", o->vdisparity, "v-disparity PNG with the ground line");
+    command->add_option("--vdisparity", o->vdisparity, "v-disparity PNG with the ground line")
+        ->check(checks::png_output());
     command
         ->add_option("--vdisparity-frame", o->vdisparity_frame,
                      "Which frame of the range --vdisparity shows")
