@@ -19,6 +19,7 @@
 #include <opencv2/imgproc.hpp>
 #include "stereo_io/disparity_files.hpp"
 
+#include "hostile_images.hpp"
 #include "stereo_io/data_dir.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/limits.hpp"
@@ -493,6 +494,89 @@ TEST(Limits, HugeTiffAndUnknownFormatsAreRefusedBeforeDecoding) {
     ASSERT_FALSE(cv::imdecode(hdr, cv::IMREAD_UNCHANGED).empty());  // OpenCV would decode it
     expect_error<std::runtime_error>([&] { (void)load_image(dir.file("a.hdr")); },
                                      "a.hdr': not an image in a format whose size is checked");
+}
+
+namespace hostile = test::hostile;
+
+// Sets the pixel limit for one test and restores it.
+class ScopedLimit {
+  public:
+    explicit ScopedLimit(std::int64_t pixels) { set_max_image_pixels(pixels); }
+    ~ScopedLimit() { set_max_image_pixels(before_); }
+    ScopedLimit(const ScopedLimit&) = delete;
+    ScopedLimit& operator=(const ScopedLimit&) = delete;
+
+  private:
+    std::int64_t before_ = max_image_pixels();
+};
+
+constexpr std::int64_t kTestLimit = std::int64_t{1} << 20;
+
+// The bound the decode itself enforces (decode_bounded): whatever a header reader says, the
+// matrix the decoder sizes from its own parse is refused above the limit before it is allocated.
+// Each file here declares 4096 x 4096 (16 Mpixel) to a limit of 1 Mpixel.
+TEST(DecodeBound, RefusesWhatTheDecoderSizesAboveTheLimit) {
+    const ScopedLimit limit(kTestLimit);
+    hostile::TiffPage tiff_page;
+    tiff_page.width = 4096;
+    tiff_page.height = 4096;
+    tiff_page.pixels = false;
+    std::string bmp = hostile::encoded(".bmp", cv::Mat(8, 8, CV_8UC3, cv::Scalar(1, 2, 3)));
+    bmp.replace(18, 4, hostile::little_endian(4096, 4));
+    bmp.replace(22, 4, hostile::little_endian(4096, 4));
+    std::vector<std::pair<std::string, std::string>> files = {
+        {"jpeg", hostile::jpeg_declaring(4096, 4096)},
+        {"jpeg behind TEM", hostile::jpeg_hidden_frame(4096, 4096, 0x01)},
+        {"png", hostile::png_declaring(4096, 4096)},
+        {"pgm", "P5 4096 4096 255\n" + std::string(64, '\0')},
+        {"pgm behind '#'", "P5 4096#4096\n255 " + std::string(64, '\0')},
+        {"tiff", hostile::tiff({tiff_page})},
+        {"bigtiff", hostile::tiff({tiff_page}, true)},
+        {"bmp", bmp},
+    };
+    if (cv::haveImageWriter(".webp")) {
+        std::string webp = hostile::encoded(".webp", cv::Mat(16, 16, CV_8UC3, cv::Scalar(1)));
+        if (webp.substr(12, 4) == "VP8L") {  // lossless: 14-bit sizes minus one at byte 21
+            webp.replace(21, 4, hostile::little_endian(4095U | (4095U << 14), 4));
+        } else {  // lossy: 14-bit sizes at bytes 26 and 28
+            ASSERT_EQ(webp.substr(12, 4), "VP8 ");
+            webp.replace(26, 2, hostile::little_endian(4096, 2));
+            webp.replace(28, 2, hostile::little_endian(4096, 2));
+        }
+        files.emplace_back("webp", webp);
+    }
+    for (const auto& [what, bytes] : files) {
+        const std::vector<unsigned char> data(bytes.begin(), bytes.end());
+        for (const int flags : {cv::IMREAD_UNCHANGED, cv::IMREAD_GRAYSCALE, cv::IMREAD_COLOR}) {
+            SCOPED_TRACE(what + " flags " + std::to_string(flags));
+            expect_error<std::invalid_argument>(
+                [&] { (void)decode_bounded(data, flags, "'" + what + "'"); },
+                "image '" + what + "' decodes to 4096x4096 pixels, more than the limit of " +
+                    std::to_string(kTestLimit));
+        }
+    }
+}
+
+TEST(DecodeBound, DecodesUpToTheLimitAndLeavesOtherMatricesAlone) {
+    const ScopedLimit limit(kTestLimit);
+    const std::string at_limit = hostile::encoded(".png", cv::Mat(1024, 1024, CV_8UC1, 7));
+    const cv::Mat decoded = decode_bounded(
+        std::vector<unsigned char>(at_limit.begin(), at_limit.end()), cv::IMREAD_COLOR, "'a'");
+    EXPECT_EQ(decoded.size(), cv::Size(1024, 1024));
+    const std::string above = hostile::encoded(".png", cv::Mat(1024, 1025, CV_8UC1, 7));
+    expect_error<std::invalid_argument>(
+        [&] {
+            (void)decode_bounded(std::vector<unsigned char>(above.begin(), above.end()),
+                                 cv::IMREAD_COLOR, "'b'");
+        },
+        "decodes to 1025x1024 pixels");
+    // Outside a decode the same thread allocates any matrix, and a corrupt file is no refusal.
+    const cv::Mat large(2048, 2048, CV_8UC3, cv::Scalar(1, 2, 3));
+    EXPECT_EQ(large.total(), std::size_t{2048} * 2048);
+    const std::string corrupt = "\x89PNG\r\n\x1a\n not a png";
+    EXPECT_TRUE(decode_bounded(std::vector<unsigned char>(corrupt.begin(), corrupt.end()),
+                               cv::IMREAD_UNCHANGED, "'c'")
+                    .empty());
 }
 
 TEST(Limits, LimitIsSettableAndChecked) {
