@@ -95,14 +95,14 @@ std::string limit_text(std::int64_t limit) {
            " (--max-pixels or STEREO_MAX_IMAGE_PIXELS)";
 }
 
-// Two bounds, both before any pixel is decoded: the size the header declares (declared_size, for
-// a precise message at once), and the size the decoder itself computed, refused by
-// decode_bounded's allocator whatever the header reader said (docs/reliability.md, "Bounded
-// inputs").
+// Two bounds, both before any pixel is decoded: the size the header declares (declared_image,
+// with the largest buffer it makes the decoder allocate, for a precise message at once), and the
+// size the decoder itself computed, refused by decode_bounded's allocator whatever the header
+// reader said (docs/reliability.md, "Bounded inputs").
 cv::Mat decode(const fs::path& path, int flags = cv::IMREAD_UNCHANGED) {
     const std::vector<uchar> bytes = read_bytes(path);
     const auto declared =
-        declared_size(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+        declared_image(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
     if (!declared) {
         throw std::runtime_error("cannot read " + quoted(path) +
                                  ": not an image in a format whose size is checked before "
@@ -110,10 +110,17 @@ cv::Mat decode(const fs::path& path, int flags = cv::IMREAD_UNCHANGED) {
                                  "corrupt");
     }
     const std::int64_t limit = max_image_pixels();
-    if (declared->first > 0 && declared->second > limit / declared->first) {
-        throw std::invalid_argument(
-            "image " + quoted(path) + " declares " + std::to_string(declared->first) + "x" +
-            std::to_string(declared->second) + " pixels, " + limit_text(limit));
+    const std::string size =
+        std::to_string(declared->width) + "x" + std::to_string(declared->height);
+    if (declared->width > 0 && declared->height > limit / declared->width) {
+        throw std::invalid_argument("image " + quoted(path) + " declares " + size + " pixels, " +
+                                    limit_text(limit));
+    }
+    if (declared->largest_pixels > limit) {
+        throw std::invalid_argument("image " + quoted(path) + " declares " + size + " pixels but " +
+                                    declared->largest_what + " (" +
+                                    std::to_string(declared->largest_pixels) + " pixels), " +
+                                    limit_text(limit));
     }
     const cv::Mat mat = decode_bounded(bytes, flags, quoted(path));
     if (mat.empty()) {
