@@ -672,8 +672,9 @@ TEST(Limits, CraftedFilesAreRefusedBeforeDecoding) {
         {"pages.tif", hostile::tiff({small, huge})},
         {"huge_big.tif", hostile::tiff({huge}, true)},
     };
-    for (const auto& [name, bytes] : files) {
-        std::ofstream(dir.file(name), std::ios::binary) << bytes;
+    for (const auto& file : files) {
+        const std::string& name = file.first;  // no structured binding: clang 14 lambdas
+        std::ofstream(dir.file(name), std::ios::binary) << file.second;
         const std::string quoted_name = "'" + dir.file(name).string() + "'";
         const std::string limit_text = "more than the limit of 1048576";
         expect_error<std::invalid_argument>([&] { (void)load_image(dir.file(name)); }, quoted_name);
@@ -734,8 +735,9 @@ TEST(DecodeBound, RefusesWhatTheDecoderSizesAboveTheLimit) {
         }
         files.emplace_back("webp", webp);
     }
-    for (const auto& [what, bytes] : files) {
-        const std::vector<unsigned char> data(bytes.begin(), bytes.end());
+    for (const auto& file : files) {
+        const std::string& what = file.first;  // no structured binding: clang 14 lambdas
+        const std::vector<unsigned char> data(file.second.begin(), file.second.end());
         for (const int flags : {cv::IMREAD_UNCHANGED, cv::IMREAD_GRAYSCALE, cv::IMREAD_COLOR}) {
             SCOPED_TRACE(what + " flags " + std::to_string(flags));
             expect_error<std::invalid_argument>(
