@@ -1,6 +1,8 @@
-// Bounds on what an input may make the tools allocate (docs/reliability.md). An image's declared
-// size is read from its header and checked before it is decoded, so a small file that declares a
-// huge image fails at once with a clear message instead of exhausting memory.
+// Bounds on what an input may make the tools allocate (docs/reliability.md, "Bounded inputs"). An
+// image's declared size is read from its header (declared_image) and checked before it is
+// decoded, so a small file that declares a huge image fails at once with a clear message instead
+// of exhausting memory; the decode itself then refuses any matrix above the limit whatever the
+// header said (io::decode_bounded in stereo_io/io.hpp).
 #pragma once
 
 #include <cstdint>
