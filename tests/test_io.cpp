@@ -19,6 +19,7 @@
 #include <opencv2/imgproc.hpp>
 #include "stereo_io/disparity_files.hpp"
 
+#include "hostile_images.hpp"
 #include "stereo_io/data_dir.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/limits.hpp"
@@ -471,7 +472,7 @@ TEST(Limits, DeclaredSizeOfTiffAndWebp) {
     ASSERT_TRUE(big_size.has_value());
     EXPECT_EQ(*big_size, std::make_pair(std::int64_t{300}, std::int64_t{70000}));
     EXPECT_FALSE(declared_size(big.substr(0, 30)).has_value());  // directory cut off
-    EXPECT_FALSE(declared_size(std::string("II+\0\x08\0\0\0", 8)).has_value());  // BigTIFF
+    EXPECT_FALSE(declared_size(std::string("II+\0\x08\0\0\0", 8)).has_value());  // header cut off
 }
 
 TEST(Limits, HugeTiffAndUnknownFormatsAreRefusedBeforeDecoding) {
@@ -493,6 +494,282 @@ TEST(Limits, HugeTiffAndUnknownFormatsAreRefusedBeforeDecoding) {
     ASSERT_FALSE(cv::imdecode(hdr, cv::IMREAD_UNCHANGED).empty());  // OpenCV would decode it
     expect_error<std::runtime_error>([&] { (void)load_image(dir.file("a.hdr")); },
                                      "a.hdr': not an image in a format whose size is checked");
+}
+
+namespace hostile = test::hostile;
+
+// Sets the pixel limit for one test and restores it.
+class ScopedLimit {
+  public:
+    explicit ScopedLimit(std::int64_t pixels) { set_max_image_pixels(pixels); }
+    ~ScopedLimit() { set_max_image_pixels(before_); }
+    ScopedLimit(const ScopedLimit&) = delete;
+    ScopedLimit& operator=(const ScopedLimit&) = delete;
+
+  private:
+    std::int64_t before_ = max_image_pixels();
+};
+
+constexpr std::int64_t kTestLimit = std::int64_t{1} << 20;
+
+std::pair<std::int64_t, std::int64_t> size_pair(std::int64_t width, std::int64_t height) {
+    return {width, height};
+}
+
+// Issue 51: a marker without a length (TEM, RSTn, a stuffed zero FF 00) before the frame header
+// made the old walk read a length and land on a decoy frame declaring 16 x 16, while libjpeg
+// decoded the real 12000 x 12000 frame (499 MB in `stereo match`).
+TEST(Limits, JpegFrameBehindMarkersWithoutLengthIsFound) {
+    for (const unsigned char marker : {0x01, 0xD0, 0xD3, 0xD7, 0x00}) {
+        const std::string jpeg = hostile::jpeg_hidden_frame(12000, 9000, marker);
+        EXPECT_EQ(declared_size(jpeg), size_pair(12000, 9000)) << static_cast<int>(marker);
+        // Independent check: OpenCV decodes the real frame, not the decoy (at a size it can).
+        const std::string small = hostile::jpeg_hidden_frame(40, 24, marker);
+        EXPECT_EQ(declared_size(small), size_pair(40, 24));
+        const cv::Mat decoded =
+            cv::imdecode(std::vector<uchar>(small.begin(), small.end()), cv::IMREAD_UNCHANGED);
+        EXPECT_EQ(decoded.cols, 40);
+        EXPECT_EQ(decoded.rows, 24);
+    }
+    // Fill bytes before the frame header are skipped.
+    std::string filled = hostile::jpeg_declaring(300, 200);
+    const std::size_t frame = filled.find("\xFF\xC0");
+    filled.insert(frame, "\xFF\xFF\xFF");
+    EXPECT_EQ(declared_size(filled), size_pair(300, 200));
+    // A second SOI, a scan or the end of the image before any frame header: libjpeg stops with an
+    // error, and so does the walk (the file is refused, not read further).
+    const std::string jpeg = hostile::jpeg_declaring(300, 200);
+    EXPECT_FALSE(declared_size(jpeg.substr(0, 2) + "\xFF\xD8" + jpeg.substr(2)).has_value());
+    EXPECT_FALSE(declared_size(jpeg.substr(0, 2) + "\xFF\xDA" + jpeg.substr(2)).has_value());
+    EXPECT_FALSE(declared_size(jpeg.substr(0, 2) + "\xFF\xD9" + jpeg.substr(2)).has_value());
+    // FF D8 without the third FF of OpenCV's JPEG signature goes to another decoder: refused.
+    EXPECT_FALSE(declared_size(jpeg.substr(0, 2) + "x" + jpeg.substr(2)).has_value());
+}
+
+// OpenCV's PNM reader (ReadNumber) ends a number at ANY character and consumes it: "4096#65536"
+// is width 4096, height 65536; leading zeros are fine; the magic needs white space after it.
+TEST(Limits, PnmHeaderIsReadAsOpenCvReadsIt) {
+    EXPECT_EQ(declared_size(hostile::pgm_comment_terminator()), size_pair(4096, 65536));
+    const std::string zeros = "P5 0000000000000064 0032 255\n" + std::string(64 * 32, '\x40');
+    EXPECT_EQ(declared_size(zeros), size_pair(64, 32));
+    const cv::Mat decoded =
+        cv::imdecode(std::vector<uchar>(zeros.begin(), zeros.end()), cv::IMREAD_UNCHANGED);
+    EXPECT_EQ(decoded.size(), cv::Size(64, 32));  // what OpenCV makes of it
+    EXPECT_EQ(declared_size("P6 99999999999999999999999 2 255 ")->first,
+              std::numeric_limits<std::int64_t>::max());
+    EXPECT_FALSE(declared_size("P512 12 255\n").has_value());  // no white space after "P5"
+    EXPECT_FALSE(declared_size("P5 12 x 255\n").has_value());  // OpenCV: unexpected code
+    EXPECT_FALSE(declared_size("P5 12 # no end").has_value());
+}
+
+// A TIFF's strip or tile buffer is sized by OpenCV from the tile (or RowsPerStrip), not the
+// image: a 64 x 64 image in 12000 x 12000 tiles cleared 576 MB (640 MB peak in `stereo match`).
+TEST(Limits, TiffTilesStripsPagesAndBigTiff) {
+    hostile::TiffPage tiled;
+    tiled.width = 64;
+    tiled.height = 64;
+    tiled.tile = 12000;
+    tiled.pixels = false;
+    for (const bool big : {false, true}) {
+        const auto image = declared_image(hostile::tiff({tiled}, big));
+        ASSERT_TRUE(image.has_value()) << big;
+        EXPECT_EQ(image->width, 64);
+        EXPECT_EQ(image->height, 64);
+        EXPECT_EQ(image->largest_pixels, std::int64_t{12000} * 12000);
+        EXPECT_EQ(image->largest_what, "12000x12000 tiles");
+    }
+    hostile::TiffPage strips;
+    strips.width = 64;
+    strips.height = 64;
+    strips.rows_per_strip = 1U << 23;
+    const auto striped = declared_image(hostile::tiff({strips}));
+    ASSERT_TRUE(striped.has_value());
+    EXPECT_EQ(striped->largest_pixels, std::int64_t{64} << 23);
+    EXPECT_EQ(striped->largest_what, "64x8388608 strips");
+    // Every page counts, and a tag given twice counts with its larger value.
+    hostile::TiffPage small;
+    small.width = 64;
+    small.height = 32;
+    hostile::TiffPage huge;
+    huge.width = 40000;
+    huge.height = 40000;
+    huge.pixels = false;
+    const auto pages = declared_image(hostile::tiff({small, huge}));
+    ASSERT_TRUE(pages.has_value());
+    EXPECT_EQ(pages->width, 64);
+    EXPECT_EQ(pages->largest_pixels, std::int64_t{40000} * 40000);
+    EXPECT_EQ(pages->largest_what, "page 2, 40000x40000");
+    hostile::TiffPage twice = small;
+    twice.extra = {{256, 40000}};
+    EXPECT_EQ(declared_size(hostile::tiff({twice})), size_pair(40000, 32));
+    // BigTIFF is read (OpenCV decodes it, through libtiff) and decodes like the classic file.
+    const std::string classic = hostile::tiff({small});
+    const std::string big = hostile::tiff({small}, true);
+    EXPECT_EQ(declared_size(big), size_pair(64, 32));
+    const cv::Mat a = cv::imdecode(std::vector<uchar>(classic.begin(), classic.end()), -1);
+    const cv::Mat b = cv::imdecode(std::vector<uchar>(big.begin(), big.end()), -1);
+    ASSERT_EQ(a.size(), cv::Size(64, 32));
+    ASSERT_EQ(b.size(), cv::Size(64, 32));
+    EXPECT_EQ(cv::countNonZero(a != b), 0);
+    // A directory chain that loops, a size of another type (RATIONAL) or count: refused.
+    std::string loop = classic;
+    const std::size_t entries = static_cast<unsigned char>(classic[8]);
+    loop.replace(8 + 2 + entries * 12, 4, hostile::little_endian(8, 4));  // next: itself
+    EXPECT_FALSE(declared_size(loop).has_value());
+    std::string rational = classic;
+    rational.replace(8 + 2 + 2, 2, hostile::little_endian(5, 2));  // ImageWidth as RATIONAL
+    EXPECT_FALSE(declared_size(rational).has_value());
+    std::string counted = classic;
+    counted.replace(8 + 2 + 4, 4, hostile::little_endian(2, 4));  // ImageWidth count 2
+    EXPECT_FALSE(declared_size(counted).has_value());
+}
+
+// A file that looks like one format here but that OpenCV hands to another decoder is refused.
+TEST(Limits, FilesAnotherDecoderWouldTakeAreRefused) {
+    if (cv::haveImageWriter(".webp")) {
+        std::string webp = hostile::encoded(".webp", cv::Mat(16, 16, CV_8UC3, cv::Scalar(1)));
+        ASSERT_TRUE(declared_size(webp).has_value());
+        webp.resize(std::max<std::size_t>(webp.size(), 160), '\0');
+        webp.replace(128, 4, "DICM");  // DICOM's magic: GDCM's decoder, should WebP refuse it
+        EXPECT_FALSE(declared_size(webp).has_value());
+    }
+    EXPECT_FALSE(declared_size("#?RADIANCE\n").has_value());
+    EXPECT_FALSE(declared_size("P7\nWIDTH 4\n").has_value());  // PAM
+    EXPECT_FALSE(declared_size("Pf\n4 4\n-1\n").has_value());  // PFM: our own reader only
+}
+
+// Every crafted file is refused by every image loader, with one line naming the file.
+TEST(Limits, CraftedFilesAreRefusedBeforeDecoding) {
+    const ScopedLimit limit(kTestLimit);
+    const TempFolder dir;
+    hostile::TiffPage tiled;
+    tiled.width = 64;
+    tiled.height = 64;
+    tiled.tile = 12000;
+    tiled.pixels = false;
+    hostile::TiffPage strips = tiled;
+    strips.tile = 0;
+    strips.rows_per_strip = 1U << 23;
+    strips.pixels = true;
+    hostile::TiffPage small;
+    small.width = 64;
+    small.height = 32;
+    hostile::TiffPage huge = small;
+    huge.width = 40000;
+    huge.height = 40000;
+    huge.pixels = false;
+    const std::vector<std::pair<std::string, std::string>> files = {
+        {"tem.jpg", hostile::jpeg_hidden_frame(12000, 12000, 0x01)},
+        {"rst.jpg", hostile::jpeg_hidden_frame(12000, 12000, 0xD5)},
+        {"ff00.jpg", hostile::jpeg_hidden_frame(12000, 12000, 0x00)},
+        {"declared.jpg", hostile::jpeg_declaring(2048, 1024)},
+        {"declared.png", hostile::png_declaring(12000, 12000)},
+        {"comment.pgm", hostile::pgm_comment_terminator()},
+        {"huge.ppm", "P6 99999999999999 2 255\n"},
+        {"tiles.tif", hostile::tiff({tiled})},
+        {"tiles_big.tif", hostile::tiff({tiled}, true)},
+        {"strips.tif", hostile::tiff({strips})},
+        {"pages.tif", hostile::tiff({small, huge})},
+        {"huge_big.tif", hostile::tiff({huge}, true)},
+    };
+    for (const auto& file : files) {
+        const std::string& name = file.first;  // no structured binding: clang 14 lambdas
+        std::ofstream(dir.file(name), std::ios::binary) << file.second;
+        std::string quoted_name = "'";  // appended: "'" + string trips GCC 12's -Wrestrict
+        quoted_name += dir.file(name).string();
+        quoted_name += '\'';
+        const std::string limit_text = "more than the limit of 1048576";
+        expect_error<std::invalid_argument>([&] { (void)load_image(dir.file(name)); }, quoted_name);
+        expect_error<std::invalid_argument>([&] { (void)load_image(dir.file(name)); }, limit_text);
+        expect_error<std::invalid_argument>([&] { (void)load_grey(dir.file(name)); }, limit_text);
+        expect_error<std::invalid_argument>([&] { (void)load_mask(dir.file(name)); }, limit_text);
+    }
+    // A PFM declaring more than the limit, with a comment, with a number no decoder could hold,
+    // and a PFM given as an image (OpenCV would decode it; its size is not checked there).
+    std::ofstream(dir.file("huge.pfm"), std::ios::binary) << "Pf\n30000 30000\n-1\n";
+    expect_error<std::runtime_error>(
+        [&] { (void)load_disparity_file(dir.file("huge.pfm"), DisparityEncoding::pfm, 1.0); },
+        "30000x30000 is above the image limit of 1048576");
+    std::ofstream(dir.file("comment.pfm"), std::ios::binary) << "Pf\n# 1 1\n4 4\n-1\n";
+    expect_error<std::runtime_error>(
+        [&] { (void)load_disparity_file(dir.file("comment.pfm"), DisparityEncoding::pfm, 1.0); },
+        "bad PFM size '#'");
+    std::ofstream(dir.file("number.pfm"), std::ios::binary) << "Pf\n99999999999999 1\n-1\n";
+    expect_error<std::runtime_error>(
+        [&] { (void)load_disparity_file(dir.file("number.pfm"), DisparityEncoding::pfm, 1.0); },
+        "bad PFM size '99999999999999'");
+    std::ofstream(dir.file("image.pfm"), std::ios::binary) << "PF\n4000 4000\n-1\n"
+                                                           << std::string(48, '\0');
+    expect_error<std::runtime_error>([&] { (void)load_image(dir.file("image.pfm")); },
+                                     "not an image in a format whose size is checked");
+}
+
+// The bound the decode itself enforces (decode_bounded): whatever a header reader says, the
+// matrix the decoder sizes from its own parse is refused above the limit before it is allocated.
+// Each file here declares 4096 x 4096 (16 Mpixel) to a limit of 1 Mpixel.
+TEST(DecodeBound, RefusesWhatTheDecoderSizesAboveTheLimit) {
+    const ScopedLimit limit(kTestLimit);
+    hostile::TiffPage tiff_page;
+    tiff_page.width = 4096;
+    tiff_page.height = 4096;
+    tiff_page.pixels = false;
+    std::string bmp = hostile::encoded(".bmp", cv::Mat(8, 8, CV_8UC3, cv::Scalar(1, 2, 3)));
+    bmp.replace(18, 4, hostile::little_endian(4096, 4));
+    bmp.replace(22, 4, hostile::little_endian(4096, 4));
+    std::vector<std::pair<std::string, std::string>> files = {
+        {"jpeg", hostile::jpeg_declaring(4096, 4096)},
+        {"jpeg behind TEM", hostile::jpeg_hidden_frame(4096, 4096, 0x01)},
+        {"png", hostile::png_declaring(4096, 4096)},
+        {"pgm", "P5 4096 4096 255\n" + std::string(64, '\0')},
+        {"pgm behind '#'", "P5 4096#4096\n255 " + std::string(64, '\0')},
+        {"tiff", hostile::tiff({tiff_page})},
+        {"bigtiff", hostile::tiff({tiff_page}, true)},
+        {"bmp", bmp},
+    };
+    if (cv::haveImageWriter(".webp")) {
+        std::string webp = hostile::encoded(".webp", cv::Mat(16, 16, CV_8UC3, cv::Scalar(1)));
+        if (webp.substr(12, 4) == "VP8L") {  // lossless: 14-bit sizes minus one at byte 21
+            webp.replace(21, 4, hostile::little_endian(4095U | (4095U << 14), 4));
+        } else {  // lossy: 14-bit sizes at bytes 26 and 28
+            ASSERT_EQ(webp.substr(12, 4), "VP8 ");
+            webp.replace(26, 2, hostile::little_endian(4096, 2));
+            webp.replace(28, 2, hostile::little_endian(4096, 2));
+        }
+        files.emplace_back("webp", webp);
+    }
+    for (const auto& file : files) {
+        const std::string& what = file.first;  // no structured binding: clang 14 lambdas
+        const std::vector<unsigned char> data(file.second.begin(), file.second.end());
+        for (const int flags : {cv::IMREAD_UNCHANGED, cv::IMREAD_GRAYSCALE, cv::IMREAD_COLOR}) {
+            SCOPED_TRACE(what + " flags " + std::to_string(flags));
+            expect_error<std::invalid_argument>(
+                [&] { (void)decode_bounded(data, flags, "'" + what + "'"); },
+                "image '" + what + "' decodes to 4096x4096 pixels, more than the limit of " +
+                    std::to_string(kTestLimit));
+        }
+    }
+}
+
+TEST(DecodeBound, DecodesUpToTheLimitAndLeavesOtherMatricesAlone) {
+    const ScopedLimit limit(kTestLimit);
+    const std::string at_limit = hostile::encoded(".png", cv::Mat(1024, 1024, CV_8UC1, 7));
+    const cv::Mat decoded = decode_bounded(
+        std::vector<unsigned char>(at_limit.begin(), at_limit.end()), cv::IMREAD_COLOR, "'a'");
+    EXPECT_EQ(decoded.size(), cv::Size(1024, 1024));
+    const std::string above = hostile::encoded(".png", cv::Mat(1024, 1025, CV_8UC1, 7));
+    expect_error<std::invalid_argument>(
+        [&] {
+            (void)decode_bounded(std::vector<unsigned char>(above.begin(), above.end()),
+                                 cv::IMREAD_COLOR, "'b'");
+        },
+        "decodes to 1025x1024 pixels");
+    // Outside a decode the same thread allocates any matrix, and a corrupt file is no refusal.
+    const cv::Mat large(2048, 2048, CV_8UC3, cv::Scalar(1, 2, 3));
+    EXPECT_EQ(large.total(), std::size_t{2048} * 2048);
+    const std::string corrupt = "\x89PNG\r\n\x1a\n not a png";
+    EXPECT_TRUE(decode_bounded(std::vector<unsigned char>(corrupt.begin(), corrupt.end()),
+                               cv::IMREAD_UNCHANGED, "'c'")
+                    .empty());
 }
 
 TEST(Limits, LimitIsSettableAndChecked) {

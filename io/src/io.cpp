@@ -1,4 +1,5 @@
 #include "stereo_io/io.hpp"
+#include "decode_guard.hpp"
 #include "stereo_io/limits.hpp"
 #include "stereo_io/output.hpp"
 
@@ -10,6 +11,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -88,11 +90,19 @@ class SilencedStderr {
     int saved_ = -1;
 };
 
+std::string limit_text(std::int64_t limit) {
+    return "more than the limit of " + std::to_string(limit) +
+           " (--max-pixels or STEREO_MAX_IMAGE_PIXELS)";
+}
+
+// Two bounds, both before any pixel is decoded: the size the header declares (declared_image,
+// with the largest buffer it makes the decoder allocate, for a precise message at once), and the
+// size the decoder itself computed, refused by decode_bounded's allocator whatever the header
+// reader said (docs/reliability.md, "Bounded inputs").
 cv::Mat decode(const fs::path& path, int flags = cv::IMREAD_UNCHANGED) {
     const std::vector<uchar> bytes = read_bytes(path);
-    // The declared size, checked before the decoder allocates it.
     const auto declared =
-        declared_size(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+        declared_image(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
     if (!declared) {
         throw std::runtime_error("cannot read " + quoted(path) +
                                  ": not an image in a format whose size is checked before "
@@ -100,19 +110,19 @@ cv::Mat decode(const fs::path& path, int flags = cv::IMREAD_UNCHANGED) {
                                  "corrupt");
     }
     const std::int64_t limit = max_image_pixels();
-    if (declared->first > 0 && declared->second > limit / declared->first) {
-        throw std::invalid_argument(
-            "image " + quoted(path) + " declares " + std::to_string(declared->first) + "x" +
-            std::to_string(declared->second) + " pixels, more than the limit of " +
-            std::to_string(limit) + " (--max-pixels or STEREO_MAX_IMAGE_PIXELS)");
+    const std::string size =
+        std::to_string(declared->width) + "x" + std::to_string(declared->height);
+    if (declared->width > 0 && declared->height > limit / declared->width) {
+        throw std::invalid_argument("image " + quoted(path) + " declares " + size + " pixels, " +
+                                    limit_text(limit));
     }
-    cv::Mat mat;
-    try {
-        const SilencedStderr quiet;
-        mat = cv::imdecode(bytes, flags);
-    } catch (const cv::Exception&) {
-        mat.release();  // reported below, with the file name, as one line
+    if (declared->largest_pixels > limit) {
+        throw std::invalid_argument("image " + quoted(path) + " declares " + size + " pixels but " +
+                                    declared->largest_what + " (" +
+                                    std::to_string(declared->largest_pixels) + " pixels), " +
+                                    limit_text(limit));
     }
+    const cv::Mat mat = decode_bounded(bytes, flags, quoted(path));
     if (mat.empty()) {
         throw std::runtime_error("cannot read " + quoted(path) +
                                  ": not an image or a corrupt/unsupported format");
@@ -287,6 +297,30 @@ Image to_image(const cv::Mat& mat, const std::string& name) {
                     image.pixels.begin() + static_cast<std::ptrdiff_t>(y * row_bytes));
     }
     return image;
+}
+
+cv::Mat decode_bounded(const std::vector<unsigned char>& bytes, int flags,
+                       const std::string& name) {
+    const std::int64_t limit = max_image_pixels();
+    cv::Mat mat;
+    std::optional<std::pair<std::int64_t, std::int64_t>> refused;
+    {
+        const detail::PixelBudget budget(limit);
+        try {
+            const SilencedStderr quiet;
+            mat = cv::imdecode(bytes, flags);
+        } catch (const cv::Exception&) {
+            mat.release();  // reported by the caller, with the file name, as one line
+        }
+        refused = budget.refused();
+    }
+    if (refused) {
+        mat.release();
+        throw std::invalid_argument(
+            "image " + name + " decodes to " + std::to_string(refused->first) + "x" +
+            std::to_string(refused->second) + " pixels, " + limit_text(limit));
+    }
+    return mat;
 }
 
 void check_image_file(const fs::path& path) {

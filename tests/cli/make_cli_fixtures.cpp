@@ -18,6 +18,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "../hostile_images.hpp"
 #include "fixture_main.hpp"
 #include "stereo_io/disparity_files.hpp"
 #include "stereo_io/io.hpp"
@@ -147,6 +148,47 @@ void write_scene(const fs::path& dir, std::mt19937& rng) {
     std::ofstream(dir / "scene_gt.pfm", std::ios::binary) << io::encode_pfm(scene_ground_truth());
 }
 
+// Files that declare or hide a size above the limit (issue 51; tests/hostile_images.hpp), for
+// the hostile_* rows of bad_inputs.txt, run with --max-pixels 1048576; cli.hostile_peak_memory
+// also measures the peak memory of each. Before the fix the JPEGs decoded to 12000 x 12000
+// (499 MB) and the tiled TIFF cleared a 576 MB tile buffer (640 MB).
+void write_hostile(const fs::path& dir) {
+    namespace hostile = stereo::test::hostile;
+    const auto write = [&](const char* name, const std::string& bytes) {
+        std::ofstream(dir / name, std::ios::binary) << bytes;
+    };
+    write("hostile_jpeg_tem.jpg", hostile::jpeg_hidden_frame(12000, 12000, 0x01));
+    write("hostile_jpeg_rst.jpg", hostile::jpeg_hidden_frame(12000, 12000, 0xD0));
+    write("hostile_jpeg_ff00.jpg", hostile::jpeg_hidden_frame(12000, 12000, 0x00));
+    write("hostile_png.png", hostile::png_declaring(12000, 12000));
+    write("hostile_comment.pgm", hostile::pgm_comment_terminator());
+    write("hostile_huge.ppm", "P6 99999999999999 2 255\n");
+    hostile::TiffPage tiled;
+    tiled.width = 64;
+    tiled.height = 64;
+    tiled.tile = 12000;
+    tiled.pixels = false;
+    write("hostile_tiles.tif", hostile::tiff({tiled}));
+    write("hostile_tiles_bigtiff.tif", hostile::tiff({tiled}, true));
+    hostile::TiffPage strips = tiled;
+    strips.tile = 0;
+    strips.rows_per_strip = 1U << 23;
+    strips.pixels = true;
+    write("hostile_strips.tif", hostile::tiff({strips}));
+    hostile::TiffPage small;
+    small.width = kWidth;
+    small.height = kHeight;
+    hostile::TiffPage huge;
+    huge.width = 40000;
+    huge.height = 40000;
+    huge.pixels = false;
+    write("hostile_pages.tif", hostile::tiff({small, huge}));
+    write("hostile_bigtiff.tif", hostile::tiff({huge}, true));
+    write("hostile_image.pfm", "PF\n12000 12000\n-1\n" + std::string(48, '\0'));
+    // A BigTIFF of the left image's size that decodes (it was refused before: exit 1).
+    write("bigtiff_grey.tif", hostile::tiff({small}, true));
+}
+
 void write_fixtures(const fs::path& dir) {
     fs::create_directories(dir);
     std::mt19937 rng(20240611U);
@@ -201,6 +243,8 @@ void write_fixtures(const fs::path& dir) {
                                                             << std::string(4 * 2 * 4 - 4, '\0');
     std::ofstream(dir / "colour.pfm", std::ios::binary) << "PF\n1 1\n-1\n" << std::string(12, '\0');
     std::ofstream(dir / "huge_header.pfm", std::ios::binary) << "Pf\n30000 30000\n-1\n";
+
+    write_hostile(dir);
 
     // File kinds for the bad-input table (bad_inputs.txt): an empty file, a folder and a FIFO
     // named like images, a file nobody may read, and calibrations no rig has.

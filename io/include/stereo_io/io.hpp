@@ -49,6 +49,15 @@ void check_image_file(const std::filesystem::path& path);
 // checks and errors of load_image (regular file, size from the header, one-line messages).
 cv::Mat load_grey(const std::filesystem::path& path);
 
+// Decodes an image file's bytes with cv::imdecode(`flags`) under the pixel limit, enforced inside
+// the decode: while it runs, every matrix allocated on this thread (the image, which the decoder
+// sizes from its own reading of the header, and any temporary) is refused above
+// max_image_pixels() before its memory is reserved. Throws std::invalid_argument naming `name`
+// ("image NAME decodes to WxH pixels, more than the limit ...") for such a file; returns an empty
+// matrix when OpenCV cannot decode the bytes. Reads no header itself: the loaders above check
+// declared_image() first, for an early message and for the buffers that are no matrix (TIFF tiles).
+cv::Mat decode_bounded(const std::vector<unsigned char>& bytes, int flags, const std::string& name);
+
 // Converts an 8-bit OpenCV matrix (grey, BGR or BGRA) into an Image; `name` is for messages.
 Image to_image(const cv::Mat& mat, const std::string& name);
 

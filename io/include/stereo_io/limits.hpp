@@ -1,10 +1,13 @@
-// Bounds on what an input may make the tools allocate (docs/reliability.md). An image's declared
-// size is read from its header and checked before it is decoded, so a small file that declares a
-// huge image fails at once with a clear message instead of exhausting memory.
+// Bounds on what an input may make the tools allocate (docs/reliability.md, "Bounded inputs"). An
+// image's declared size is read from its header (declared_image) and checked before it is
+// decoded, so a small file that declares a huge image fails at once with a clear message instead
+// of exhausting memory; the decode itself then refuses any matrix above the limit whatever the
+// header said (io::decode_bounded in stereo_io/io.hpp).
 #pragma once
 
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <utility>
 
@@ -21,10 +24,30 @@ std::int64_t max_image_pixels();
 // Throws std::invalid_argument unless 1 <= pixels <= 2^34.
 void set_max_image_pixels(std::int64_t pixels);
 
-// Width and height a PNG, JPEG, PNM (PBM/PGM/PPM), BMP, TIFF or WebP file declares in its
-// header; nullopt for other formats or a header too short or malformed to tell. The image
-// loaders refuse such files before decoding them: a format whose size is not known up front
-// could make the decoder allocate without bound.
+// What an image file's header declares, read the way the decoder OpenCV picks for it reads it.
+struct DeclaredImage {
+    std::int64_t width = 0;
+    std::int64_t height = 0;
+    // The most pixels one buffer of the decode may hold: width x height, or more when the file
+    // makes the decoder allocate by another measure (a TIFF's tiles or strips, which OpenCV sizes
+    // from TileWidth x TileLength or ImageWidth x RowsPerStrip, not from the image; a later TIFF
+    // page). Saturates at INT64_MAX.
+    std::int64_t largest_pixels = 0;
+    // What largest_pixels measures when it is more than width x height ("12000x12000 tiles",
+    // "page 2, 9000x9000"), else empty.
+    std::string largest_what;
+};
+
+// The header of a PNG, JPEG, PNM (PBM/PGM/PPM), BMP, TIFF (classic or BigTIFF, every page) or
+// WebP file; nullopt for other formats, a header too short or malformed to tell, or a file that
+// OpenCV would hand to a decoder other than the one whose header was read (a polyglot). The
+// format is recognised by OpenCV 4's own signature rules in its own order, and each header is
+// walked as its decoder walks it (libjpeg's marker loop, OpenCV's PNM number reader, libtiff's
+// directory chain), so that a file cannot show this reader one size and the decoder another.
+// The image loaders refuse a file this returns nullopt for, before decoding it.
+std::optional<DeclaredImage> declared_image(std::string_view bytes);
+
+// declared_image's width and height.
 std::optional<std::pair<std::int64_t, std::int64_t>> declared_size(std::string_view bytes);
 
 }  // namespace stereo::io
