@@ -48,15 +48,15 @@ module stereo_aggregate #(
     parameter int RING_BLOCK_MIN_FILL = 50,  // stereo_group_ring BLOCK_MIN_FILL
     // COST_CENSUS: in_data carries census codes, kept narrow in the line buffer (above); any
     // other cost: in_data carries the costs.
-    parameter int COST = fx_pkg::COST_AD,
+    parameter fx_pkg::cost_e COST = fx_pkg::COST_AD,
     // RUNTIME_KERNEL = 0, which constant tap products are built from shifts and adds
     // (stereo_weighted_sum SHIFT_ADD) rather than left to the tools (DSP blocks where the target
-    // has them): 0 none; 1 the census codes' vertical products (6-bit operands, not worth a DSP
-    // block); 2 every product.
-    parameter int SHIFT_ADD = 0,
+    // has them): SHIFT_ADD_NONE; SHIFT_ADD_NARROW the census codes' vertical products (6-bit
+    // operands, not worth a DSP block); SHIFT_ADD_ALL every product.
+    parameter fx_pkg::shift_add_e SHIFT_ADD = fx_pkg::SHIFT_ADD_NONE,
     // 1 (COST_CENSUS or COST_AD): every row's code (cost) arrives with the column (above), no line
     // buffer.
-    parameter int RECOMPUTE = 0
+    parameter bit RECOMPUTE = 1'b0
 ) (
 `include "stereo_stage_ports.svh"
     // The in_y of the next step (stereo_top: stereo_cost's out_next_y, what its coordinate
@@ -64,7 +64,7 @@ module stereo_aggregate #(
     input  wire fx_pkg::coord_t                     in_next_y,
     // labels [group*LANES +: LANES]; census codes are zero-extended to COST_BITS
     /* verilator lint_off UNUSEDSIGNAL */  // the upper bits of census codes
-    input  wire logic [LANES*((RECOMPUTE != 0) ? WINDOW : 1)*fx_pkg::COST_BITS-1:0] in_data,
+    input  wire logic [LANES*(RECOMPUTE ? WINDOW : 1)*fx_pkg::COST_BITS-1:0] in_data,
     /* verilator lint_on UNUSEDSIGNAL */
     input  wire fx_pkg::cfg_size_t                  cfg_width,
     input  wire fx_pkg::cfg_size_t                  cfg_height,
@@ -92,7 +92,7 @@ module stereo_aggregate #(
   localparam int V_BITS = LANES * VSUM_BITS;       // one group's vertical sums
   localparam int OUT_BITS = LANES * AGG_BITS;      // one group's results
 
-  localparam int IN_ROWS = (RECOMPUTE != 0) ? WINDOW : 1;  // rows of codes per label in in_data
+  localparam int IN_ROWS = RECOMPUTE ? WINDOW : 1;  // rows of codes per label in in_data
 
   initial begin
     assert (LANES >= 1 && NDISP % LANES == 0);
@@ -133,7 +133,7 @@ module stereo_aggregate #(
   // ---- vertical pass -------------------------------------------------------------------
   logic [((R > 0) ? 2 * R : 1)*COLUMN_BITS-1:0] rows_above;  // row in_y-1-k at slot k
   generate
-    if (R > 0 && RECOMPUTE != 0) begin : g_rows_with_column
+    if (R > 0 && RECOMPUTE) begin : g_rows_with_column
       // Row in_y-1-k of label d is in_data's row 2R-1-k.
       always_comb begin
         for (int k = 0; k < 2 * R; k++)
@@ -220,7 +220,8 @@ module stereo_aggregate #(
       logic [(CODES ? CODE_SUM_BITS : VSUM_BITS)-1:0] column_sum;
       stereo_weighted_sum #(
           .WINDOW(WINDOW), .IN_BITS(LINE_BITS), .SUM_BITS(CODES ? CODE_SUM_BITS : VSUM_BITS),
-          .RUNTIME_KERNEL(RUNTIME_KERNEL), .SHIFT_ADD(SHIFT_ADD >= (CODES ? 1 : 2))
+          .RUNTIME_KERNEL(RUNTIME_KERNEL),
+          .SHIFT_ADD(SHIFT_ADD >= (CODES ? fx_pkg::SHIFT_ADD_NARROW : fx_pkg::SHIFT_ADD_ALL))
       ) vertical_sum (
           .taps(tap_cost), .kernel(kernel), .sum(column_sum));
       if (CODES) begin : g_codes
@@ -336,7 +337,7 @@ module stereo_aggregate #(
       logic [WSUM_BITS-1:0] sum;
       stereo_weighted_sum #(
           .WINDOW(WINDOW), .IN_BITS(VSUM_BITS), .SUM_BITS(WSUM_BITS),
-          .RUNTIME_KERNEL(RUNTIME_KERNEL), .SHIFT_ADD(SHIFT_ADD >= 2)
+          .RUNTIME_KERNEL(RUNTIME_KERNEL), .SHIFT_ADD(SHIFT_ADD >= fx_pkg::SHIFT_ADD_ALL)
       ) horizontal_sum (
           .taps(tap_sum), .kernel(kernel), .sum(sum));
       // Rounded to the nearest (half up) by the kernel's scale.

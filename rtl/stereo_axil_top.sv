@@ -33,11 +33,12 @@ module stereo_axil_top #(
     parameter int WINDOW         = 5,
     parameter bit RUNTIME_KERNEL = 1'b1,
     parameter int MAX_MIN_DISP   = fx_pkg::DEFAULT_MAX_MIN_DISP,
-    parameter int COST           = 0,
+    parameter fx_pkg::cost_e COST = fx_pkg::COST_AD,
     parameter int LANES          = NDISP,  // labels per clock: NDISP / LANES clocks per pixel
-    parameter int SHIFT_ADD      = 0,  // RUNTIME_KERNEL = 0: tap products from shifts and adds
-    parameter int RECOMPUTE_COSTS = 0,       // census, AD: the lean memory architecture (stereo_top)
-    parameter int ADDR_BITS      = 8                               // AXI4-Lite address width
+    // RUNTIME_KERNEL = 0: tap products from shifts and adds (stereo_top)
+    parameter fx_pkg::shift_add_e SHIFT_ADD = fx_pkg::SHIFT_ADD_NONE,
+    parameter bit RECOMPUTE_COSTS = 1'b0,  // census, AD: the lean memory architecture (stereo_top)
+    parameter int ADDR_BITS      = 8  // AXI4-Lite address width
 ) (
     input  wire logic                            clk,
     input  wire logic                            rst,

@@ -2,16 +2,16 @@
 // the 3x3 in-plane window of every disparity (stereo_window3x3: line buffers, coordinates, zero
 // padding at the borders), the per-cell update selected by RULE, and the result register.
 //
-//   RULE 1 (model stereo::ca_rule1): a cell whose d-1 or d+1 neighbour (d+1 < cfg_ndisp) agrees
-//          with it becomes round(sum of its 3x3 in-plane neighbourhood / 9), zero padding outside
-//          the frame, (sum * MEAN9_MUL + 2^(MEAN9_SHIFT-1)) >> MEAN9_SHIFT.
-//   RULE 2 (model stereo::ca_rule2): a cell with at least RULE2_MIN_COUNT of its 8 in-plane
-//          neighbours inside the frame agreeing with it becomes round(c / 1.3) =
-//          (c * DIV13_MUL + 2^(DIV13_SHIFT-1)) >> DIV13_SHIFT.
+//   CA_RULE1 (model stereo::ca_rule1): a cell whose d-1 or d+1 neighbour (d+1 < cfg_ndisp) agrees
+//            with it becomes round(sum of its 3x3 in-plane neighbourhood / 9), zero padding outside
+//            the frame, (sum * MEAN9_MUL + 2^(MEAN9_SHIFT-1)) >> MEAN9_SHIFT.
+//   CA_RULE2 (model stereo::ca_rule2): a cell with at least RULE2_MIN_COUNT of its 8 in-plane
+//            neighbours inside the frame agreeing with it becomes round(c / 1.3) =
+//            (c * DIV13_MUL + 2^(DIV13_SHIFT-1)) >> DIV13_SHIFT.
 // "Agrees" is fx_pkg::agrees, 2|n - c| < c. With cfg_use_ca low every cell passes unchanged.
 // Output pixel = input pixel moved back one row and one column. Latency: W + 3 pixel steps
 // (the window's input register, the centre one row and one column back, the result register).
-// stereo_top instantiates it twice: as ca_rule1 (RULE 1) and ca_rule2 (RULE 2).
+// stereo_top instantiates it twice: as ca_rule1 (RULE = CA_RULE1) and ca_rule2 (CA_RULE2).
 //
 // Time-multiplexed lanes (LANES < NDISP, docs/rtl.md): the clock of label group g (`group`; the
 // step, ce, at group G-1) computes labels d = g*LANES + l, l < LANES, on LANES copies of the
@@ -27,7 +27,7 @@
 module stereo_ca_plane #(
     parameter int WIDTH = 64,  // longest row
     parameter int NDISP = 16,  // disparities in parallel
-    parameter int RULE  = 1,   // 1 or 2
+    parameter fx_pkg::ca_rule_e RULE = fx_pkg::CA_RULE1,  // CA_RULE1 or CA_RULE2
     parameter int LANES = NDISP,  // labels computed per clock (divides NDISP)
     parameter bit RING_BLOCK_RAM = 1'b0,  // stereo_group_ring BLOCK_RAM (stereo_top)
     parameter int RING_BLOCK_MIN_FILL = 50  // stereo_group_ring BLOCK_MIN_FILL
@@ -97,7 +97,7 @@ module stereo_ca_plane #(
   logic [BITS-1:0] previous_centre;
   /* verilator lint_on UNUSEDSIGNAL */
   generate
-    if (GROUPS > 1 && RULE == 1) begin : g_previous_centre
+    if (GROUPS > 1 && RULE == fx_pkg::CA_RULE1) begin : g_previous_centre
       // Kept at every clock that processes a group (as in stereo_window3x3).
       always_ff @(posedge clk) begin
         if (ce || 32'(group_now) != GROUPS - 1)
@@ -148,7 +148,7 @@ module stereo_ca_plane #(
       // Lane d computes label group*LANES + d.
       logic [BITS-1:0] centre;
       assign centre = window[CENTRE*COLUMN + d*BITS +: BITS];
-      if (RULE == 1) begin : g_rule1
+      if (RULE == fx_pkg::CA_RULE1) begin : g_rule1
         logic below_agrees, above_agrees;
         if (d > 0) begin : g_below
           assign below_agrees = fx_pkg::agrees(window[CENTRE*COLUMN + (d-1)*BITS +: BITS], centre);

@@ -47,7 +47,7 @@
 module stereo_cost #(
     parameter int NDISP        = 16,                           // labels
     parameter int MAX_MIN_DISP = fx_pkg::DEFAULT_MAX_MIN_DISP,  // largest |cfg_min_disp|
-    parameter int COST         = fx_pkg::COST_AD,  // COST_AD, COST_LCDM or COST_CENSUS
+    parameter fx_pkg::cost_e COST = fx_pkg::COST_AD,  // COST_AD, COST_LCDM or COST_CENSUS
     parameter int LANES        = NDISP,  // labels computed per clock (divides NDISP)
     parameter bit CENSUS_CODES = 1'b0,  // census: the code (distance or outside) per label
     // Rows of codes (AD: costs) per label, above 1 only with CENSUS_CODES or COST_AD: the

@@ -49,7 +49,7 @@ module stereo_top #(
     // Matching cost: fx_pkg::COST_AD (0) over RGB, COST_LCDM (1, thesis Sec. 3.5; colour input;
     // same latency) or COST_CENSUS (2, 5x5 census of the luma: stereo_census in front of the
     // cost stage, 2 * W + 4 more pixel steps of latency, 4 rows of lumas more memory).
-    parameter int COST = fx_pkg::COST_AD,
+    parameter fx_pkg::cost_e COST = fx_pkg::COST_AD,
     // Labels computed per clock (divides NDISP). A pixel step takes G = NDISP / LANES clocks;
     // the converted stages compute LANES labels per clock on shared arithmetic (docs/rtl.md,
     // "Time-multiplexed lanes"). LANES = NDISP: one pixel per clock, every label in parallel.
@@ -61,15 +61,16 @@ module stereo_top #(
     parameter int RING_BLOCK_MIN_FILL = 50,  // stereo_group_ring BLOCK_MIN_FILL
     // RUNTIME_KERNEL = 0: which constant tap products of the aggregation are built from shifts
     // and adds (canonical signed digits) instead of being left to the tools (DSP blocks where the
-    // target has them): 0 none, 1 the census codes' narrow vertical products, 2 all.
-    parameter int SHIFT_ADD = 0,
+    // target has them): SHIFT_ADD_NONE (0), SHIFT_ADD_NARROW (1, the census codes' narrow vertical
+    // products) or SHIFT_ADD_ALL (2).
+    parameter fx_pkg::shift_add_e SHIFT_ADD = fx_pkg::SHIFT_ADD_NONE,
     // COST_CENSUS or COST_AD. 1: the lean memory architecture (docs/rtl.md "Lean memory"): the
     // cost stage keeps WINDOW - 1 rows of both images' census codes (RGB) and recomputes every
     // label's codes (costs) for the aggregation's vertical window, which then has no per-label
     // line buffer (memory grows with WIDTH * WINDOW, not with NDISP). 0: the aggregation keeps
     // each label's code (5 bits; AD: cost, 10 bits) for WINDOW - 1 rows, cheaper below about 10
     // labels (5 with AD).
-    parameter int RECOMPUTE_COSTS = 0
+    parameter bit RECOMPUTE_COSTS = 1'b0
 ) (
     input  wire logic                               clk,
     input  wire logic                               rst,
@@ -99,7 +100,7 @@ module stereo_top #(
             (RECOMPUTE_COSTS == 1 && (COST == fx_pkg::COST_CENSUS || COST == fx_pkg::COST_AD)));
   end
   // Rows of codes per label between the cost stage and the aggregation.
-  localparam int COST_ROWS = (RECOMPUTE_COSTS != 0) ? WINDOW : 1;
+  localparam int COST_ROWS = RECOMPUTE_COSTS ? WINDOW : 1;
 
   // ---- configuration: sanitised ports, latched at the start of a frame ----------------------
   typedef enum logic [1:0] {
@@ -433,7 +434,7 @@ module stereo_top #(
   stereo_ca_plane #(
       .WIDTH(WIDTH),
       .NDISP(NDISP),
-      .RULE (1),
+      .RULE(fx_pkg::CA_RULE1),
       .LANES(LANES),
       .RING_BLOCK_RAM(RING_BLOCK_RAM),
       .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
@@ -457,7 +458,7 @@ module stereo_top #(
   stereo_ca_plane #(
       .WIDTH(WIDTH),
       .NDISP(NDISP),
-      .RULE (2),
+      .RULE(fx_pkg::CA_RULE2),
       .LANES(LANES),
       .RING_BLOCK_RAM(RING_BLOCK_RAM),
       .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)

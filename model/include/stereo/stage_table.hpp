@@ -147,6 +147,16 @@ inline constexpr int kCostCount = [] {
     return count;
 }();
 
+// The two CA rules of stereo_ca_plane (its RULE parameter, fx_pkg::ca_rule_e): rule 1 (model
+// stereo::ca_rule1) and rule 2 (stereo::ca_rule2), docs/fixed-point.md stages 3 and 4.
+inline constexpr int kCaRule1 = 1;
+inline constexpr int kCaRule2 = 2;
+// stereo_top's SHIFT_ADD (fx_pkg::shift_add_e): which constant tap products of the aggregation
+// (RUNTIME_KERNEL = 0) are built from shifts and adds instead of being left to the tools.
+inline constexpr int kShiftAddNone = 0;    // none
+inline constexpr int kShiftAddNarrow = 1;  // the census codes' narrow vertical products
+inline constexpr int kShiftAddAll = 2;     // every product
+
 // The census transform (COST = kCostCensus only), in front of the cost stage: it turns each
 // image's RGB stream into a stream of census codes, which the cost stage's delay lines carry in
 // place of the RGB pixels. An input register, a window reaching r rows and r columns past its
