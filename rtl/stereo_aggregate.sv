@@ -34,6 +34,7 @@
 // [(d*WINDOW + j)*COST_BITS +: LINE_BITS]; this stage then has no line buffer. The
 // arithmetic after the taps is the same, so is the output.
 `default_nettype none
+`include "stereo_assert.svh"
 
 module stereo_aggregate #(
     parameter int WIDTH  = 64,  // longest row
@@ -94,10 +95,10 @@ module stereo_aggregate #(
 
   localparam int IN_ROWS = RECOMPUTE ? WINDOW : 1;  // rows of codes per label in in_data
 
-  initial begin
-    assert (LANES >= 1 && NDISP % LANES == 0);
-    assert (RECOMPUTE == 0 || (RECOMPUTE == 1 && (CODES || COST == fx_pkg::COST_AD)));
-  end
+  `STEREO_ASSERT(lanes_divide_ndisp, LANES >= 1 && NDISP % LANES == 0,
+                 "LANES must be at least 1 and divide NDISP")
+  `STEREO_ASSERT(recompute_cost, !RECOMPUTE || CODES || COST == fx_pkg::COST_AD,
+                 "COST must be COST_CENSUS or COST_AD when RECOMPUTE = 1")
 
   // The group of this clock; G = 1: 0 whatever the port carries (stage testbenches leave it open).
   logic [((GROUPS > 1) ? $clog2(GROUPS) : 1)-1:0] group_now;
@@ -122,10 +123,10 @@ module stereo_aggregate #(
       for (genvar i = 0; i < WINDOW; i++) begin : g_tap
         assign kernel[i*TAP_BITS+:TAP_BITS] = TAP_BITS'(fx_pkg::default_tap(WINDOW, i));
         // stereo_weighted_sum pairs mirrored taps: stop elaboration if the kernel is not symmetric.
-        if (fx_pkg::default_tap(WINDOW, i) != fx_pkg::default_tap(WINDOW, WINDOW - 1 - i))
-        begin : g_asymmetric
-          stereo_aggregate_default_kernel_is_not_symmetric asymmetric_kernel ();
-        end
+        `STEREO_ASSERT(default_kernel_symmetric,
+                       fx_pkg::default_tap(WINDOW, i) ==
+                           fx_pkg::default_tap(WINDOW, WINDOW - 1 - i),
+                       "the default kernel must be symmetric (RUNTIME_KERNEL = 0)")
       end
     end
   endgenerate

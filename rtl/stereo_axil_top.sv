@@ -25,6 +25,7 @@
 // effect from the next frame. One outstanding transaction per direction; the write address and
 // data may arrive in either order.
 `default_nettype none
+`include "stereo_assert.svh"
 
 module stereo_axil_top #(
     parameter int WIDTH          = 64,
@@ -69,10 +70,9 @@ module stereo_axil_top #(
   localparam logic [31:0] REGMAP_VERSION = 32'(fx_pkg::REGMAP_VERSION);
   localparam int KERNEL_BASE = 'h40;
 
-  initial begin
-    assert (ADDR_BITS >= 8 && ADDR_BITS <= 32);
-    assert (KERNEL_BASE + 4 * WINDOW <= (1 << ADDR_BITS));
-  end
+  `STEREO_ASSERT(addr_bits_range, ADDR_BITS >= 8 && ADDR_BITS <= 32, "ADDR_BITS must be 8 .. 32")
+  `STEREO_ASSERT(kernel_registers_fit, KERNEL_BASE + 4 * WINDOW <= (1 << ADDR_BITS),
+                 "the KERNEL registers of WINDOW taps must fit in the ADDR_BITS address space")
 
   // ---- registers ------------------------------------------------------------------------------
   fx_pkg::cfg_size_t cfg_width, cfg_height;

@@ -23,6 +23,7 @@
 // delays it); out_x/out_y still step with ce. G = 1: in_data and out_data carry all labels and
 // out_data is a register stepped with ce, as before lanes.
 `default_nettype none
+`include "stereo_assert.svh"
 
 module stereo_ca_plane #(
     parameter int WIDTH = 64,  // longest row
@@ -53,10 +54,10 @@ module stereo_ca_plane #(
   localparam int COLUMN = LANES * BITS;  // one group of one window position
   localparam int CENTRE = 4;  // slot of (0, 0)
 
-  initial begin
-    assert (RULE == 1 || RULE == 2);
-    assert (LANES >= 1 && NDISP % LANES == 0);
-  end
+  `STEREO_ASSERT(rule_known, RULE == fx_pkg::CA_RULE1 || RULE == fx_pkg::CA_RULE2,
+                 "RULE must be CA_RULE1 or CA_RULE2")
+  `STEREO_ASSERT(lanes_divide_ndisp, LANES >= 1 && NDISP % LANES == 0,
+                 "LANES must be at least 1 and divide NDISP")
 
   fx_pkg::coord_t centre_x, centre_y;
   // The group of this clock; G = 1: 0 whatever the port carries (stage testbenches leave it open).
@@ -110,14 +111,10 @@ module stereo_ca_plane #(
 
   // The factored constant products below hold only for these reciprocals (fx_pkg, generated
   // from the model's stage table): elaboration stops if they ever change.
-  generate
-    if (fx_pkg::MEAN9_MUL != 7 * 4161) begin : g_mean9_factors_changed
-      stereo_ca_plane_mean9_mul_is_not_7_times_4161 mean9_factors_changed ();
-    end
-    if (fx_pkg::DIV13_MUL != 25 * 4033) begin : g_div13_factors_changed
-      stereo_ca_plane_div13_mul_is_not_25_times_4033 div13_factors_changed ();
-    end
-  endgenerate
+  `STEREO_ASSERT(mean9_factors, fx_pkg::MEAN9_MUL == 7 * 4161,
+                 "the factored MEAN9_MUL product needs MEAN9_MUL = 7 * 4161")
+  `STEREO_ASSERT(div13_factors, fx_pkg::DIV13_MUL == 25 * 4033,
+                 "the factored DIV13_MUL product needs DIV13_MUL = 25 * 4033")
 
   // How many of eight flags are set, as boolean full and half adders: logic a few LUTs deep. A
   // running `count + 1` over the neighbours was eight small carry chains in a row, the one-label

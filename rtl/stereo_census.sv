@@ -20,6 +20,7 @@
 // (ce); with time-multiplexed lanes the stage steps once per G clocks like the others.
 // Reset clears the coordinates only; stale data is masked by them.
 `default_nettype none
+`include "stereo_assert.svh"
 
 module stereo_census #(
     parameter int WIDTH = 64  // longest row
@@ -44,9 +45,8 @@ module stereo_census #(
   localparam int PAIR_BITS = 2 * LUMA_BITS;  // {left luma, right luma}
   localparam int COLUMN_BITS = SIDE * PAIR_BITS;
 
-  initial begin
-    assert (fx_pkg::CENSUS_BITS == SIDE * SIDE - 1 && fx_pkg::CENSUS_BITS <= 24);
-  end
+  `STEREO_ASSERT(census_bits, fx_pkg::CENSUS_BITS == SIDE * SIDE - 1 && fx_pkg::CENSUS_BITS <= 24,
+                 "CENSUS_BITS must be the window's pixels but the centre, at most 24")
 
   localparam int SUM_BITS = LUMA_BITS + fx_pkg::LUMA_SHIFT;  // 255 * 256 + 128 fits
   // v * WEIGHT as a sum of shifted copies of v, one per set bit of the constant weight: adders,

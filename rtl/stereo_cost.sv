@@ -43,6 +43,7 @@
 // with the label count.
 // Latency: 1 + K pixel steps. Throughput: one pixel per ce.
 `default_nettype none
+`include "stereo_assert.svh"
 
 module stereo_cost #(
     parameter int NDISP        = 16,                           // labels
@@ -89,15 +90,21 @@ module stereo_cost #(
   localparam int LEFT_DELAY = (MAX_MIN_DISP > 0) ? MAX_MIN_DISP : 1;  // left pixels kept
   localparam int SHIFT_BITS = $clog2(MAX_MIN_DISP + 1) + 1;
 
-  initial begin
-    assert (MAX_MIN_DISP >= 0 && MAX_MIN_DISP <= fx_pkg::MAX_MIN_DISPARITY);
-    assert (COST == fx_pkg::COST_AD || COST == fx_pkg::COST_LCDM || COST == fx_pkg::COST_CENSUS);
-    assert (!CENSUS_CODES || COST == fx_pkg::COST_CENSUS);
-    assert (LANES >= 1 && NDISP % LANES == 0);
-    // Row stacks: census codes (CENSUS_CODES) or RGB (AD); not LCDM, whose points are computed
-    // in front of the delay lines.
-    assert (ROWS >= 1 && (ROWS == 1 || CENSUS_CODES || COST == fx_pkg::COST_AD));
-  end
+  `STEREO_ASSERT(max_min_disp_range,
+                 MAX_MIN_DISP >= 0 && MAX_MIN_DISP <= fx_pkg::MAX_MIN_DISPARITY,
+                 "MAX_MIN_DISP must be 0 .. MAX_MIN_DISPARITY")
+  `STEREO_ASSERT(cost_known,
+                 COST == fx_pkg::COST_AD || COST == fx_pkg::COST_LCDM ||
+                     COST == fx_pkg::COST_CENSUS,
+                 "COST must be COST_AD, COST_LCDM or COST_CENSUS")
+  `STEREO_ASSERT(census_codes_cost, !CENSUS_CODES || COST == fx_pkg::COST_CENSUS,
+                 "CENSUS_CODES = 1 needs COST = COST_CENSUS")
+  `STEREO_ASSERT(lanes_divide_ndisp, LANES >= 1 && NDISP % LANES == 0,
+                 "LANES must be at least 1 and divide NDISP")
+  // Row stacks: census codes (CENSUS_CODES) or RGB (AD); not LCDM, whose points are computed
+  // in front of the delay lines.
+  `STEREO_ASSERT(rows_cost, ROWS >= 1 && (ROWS == 1 || CENSUS_CODES || COST == fx_pkg::COST_AD),
+                 "ROWS must be at least 1, and 1 unless the stage carries census codes or AD")
 
   // The pixels the delay lines carry.
   logic [PIXEL_BITS-1:0] new_left, new_right;

@@ -35,6 +35,7 @@
 // Latency: NDISP pixel steps (the delay line and the output register), which is the output
 // register of stereo_top.
 `default_nettype none
+`include "stereo_assert.svh"
 
 module stereo_lr_check #(
     parameter int NDISP = 16,  // disparities
@@ -90,9 +91,8 @@ module stereo_lr_check #(
   localparam int PRODUCT_BITS = BITS + U_BITS + 1;  // signed: C1 U < 2^22, |100 (C2 - C1)| < 2^21
   localparam logic [BITS-1:0] UNSET = {BITS{1'b1}};  // above every cost
 
-  initial begin
-    assert (LANES >= 1 && NDISP % LANES == 0);
-  end
+  `STEREO_ASSERT(lanes_divide_ndisp, LANES >= 1 && NDISP % LANES == 0,
+                 "LANES must be at least 1 and divide NDISP")
 
   // The group of this clock; G = 1: 0 whatever the port carries (stage testbenches leave it open).
   /* verilator lint_off UNUSEDSIGNAL */  // G = 1: not needed

@@ -34,6 +34,7 @@
 //   [0] tlast not at the row end, [1] tuser inside a frame, [2] configuration out of range
 //   (clamped; |cfg_min_disp| > MAX_MIN_DISP included). Reset is synchronous, active high, and clears control state only.
 `default_nettype none
+`include "stereo_assert.svh"
 
 module stereo_top #(
     parameter int WIDTH  = 64,  // largest frame width
@@ -89,16 +90,21 @@ module stereo_top #(
   localparam int GROUPS = NDISP / LANES;  // clocks per pixel step
   localparam int GROUP_BITS = (GROUPS > 1) ? $clog2(GROUPS) : 1;
 
-  initial begin
-    assert (WINDOW % 2 == 1 && WINDOW <= fx_pkg::MAX_WINDOW);
-    assert (NDISP >= 1 && NDISP <= 256);
-    assert (LANES >= 1 && LANES <= NDISP && NDISP % LANES == 0);
-    assert (MAX_MIN_DISP >= 0 && MAX_MIN_DISP <= fx_pkg::MAX_MIN_DISPARITY);
-    assert (WIDTH >= 1 && WIDTH <= fx_pkg::MAX_FRAME_SIDE && HEIGHT >= 1 &&
-            HEIGHT <= fx_pkg::MAX_FRAME_SIDE);
-    assert (RECOMPUTE_COSTS == 0 ||
-            (RECOMPUTE_COSTS == 1 && (COST == fx_pkg::COST_CENSUS || COST == fx_pkg::COST_AD)));
-  end
+  `STEREO_ASSERT(window_odd, WINDOW % 2 == 1 && WINDOW <= fx_pkg::MAX_WINDOW,
+                 "WINDOW must be odd, at most MAX_WINDOW")
+  `STEREO_ASSERT(ndisp_range, NDISP >= 1 && NDISP <= 256, "NDISP must be 1 .. 256")
+  `STEREO_ASSERT(lanes_divide_ndisp, LANES >= 1 && LANES <= NDISP && NDISP % LANES == 0,
+                 "LANES must be 1 .. NDISP and divide NDISP")
+  `STEREO_ASSERT(max_min_disp_range,
+                 MAX_MIN_DISP >= 0 && MAX_MIN_DISP <= fx_pkg::MAX_MIN_DISPARITY,
+                 "MAX_MIN_DISP must be 0 .. MAX_MIN_DISPARITY")
+  `STEREO_ASSERT(frame_size_range,
+                 WIDTH >= 1 && WIDTH <= fx_pkg::MAX_FRAME_SIDE && HEIGHT >= 1 &&
+                     HEIGHT <= fx_pkg::MAX_FRAME_SIDE,
+                 "WIDTH and HEIGHT must be 1 .. MAX_FRAME_SIDE")
+  `STEREO_ASSERT(recompute_costs_cost,
+                 !RECOMPUTE_COSTS || COST == fx_pkg::COST_CENSUS || COST == fx_pkg::COST_AD,
+                 "COST must be COST_CENSUS or COST_AD when RECOMPUTE_COSTS = 1")
   // Rows of codes per label between the cost stage and the aggregation.
   localparam int COST_ROWS = RECOMPUTE_COSTS ? WINDOW : 1;
 

@@ -16,6 +16,7 @@
 //        subtractors) gives it; CORRECTION is the 9-entry table fx_pkg::subpixel_correction.
 // Latency: 1 pixel step.
 `default_nettype none
+`include "stereo_assert.svh"
 
 module stereo_validate #(
     parameter int NDISP = 16,  // disparities
@@ -48,9 +49,9 @@ module stereo_validate #(
 );
   localparam int BITS = fx_pkg::AGG_BITS;
 
-  initial begin
-    assert (fx_pkg::NO_SECOND_COST == (1 << BITS) - 1);  // a masked leaf is "no second cost"
-  end
+  // A masked leaf of the comparator tree (all ones) is "no second cost".
+  `STEREO_ASSERT(no_second_cost_all_ones, fx_pkg::NO_SECOND_COST == (1 << BITS) - 1,
+                 "NO_SECOND_COST must be all ones in AGG_BITS")
 
   // ---- C2: the minimum over labels away from the winner --------------------------------------
   logic [BITS-1:0] second;

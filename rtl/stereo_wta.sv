@@ -30,6 +30,7 @@
 // the last group's merge is registered.
 // Absent labels (>= cfg_ndisp) count as the largest code, which never wins and is NO_SECOND_COST.
 `default_nettype none
+`include "stereo_assert.svh"
 
 module stereo_wta #(
     parameter int NDISP = 16,  // disparities
@@ -63,9 +64,8 @@ module stereo_wta #(
   localparam int DISP_BITS = fx_pkg::DISP_BITS;
   localparam int GROUPS = NDISP / LANES;
 
-  initial begin
-    assert (LANES >= 1 && NDISP % LANES == 0);
-  end
+  `STEREO_ASSERT(lanes_divide_ndisp, LANES >= 1 && NDISP % LANES == 0,
+                 "LANES must be at least 1 and divide NDISP")
 
   // The group of this clock; G = 1: 0 whatever the port carries (stage testbenches leave it open).
   /* verilator lint_off UNUSEDSIGNAL */  // G = 1: not needed

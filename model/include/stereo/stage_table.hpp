@@ -233,9 +233,11 @@ inline constexpr std::array<std::string_view, 27> kRtlModules = {
     "stereo_synth_top",    "stereo_uart_rx",       "stereo_uart_tx",       "stereo_power_on_reset",
     "stereo_board_link",   "stereo_board_top",     "stereo_uart_echo_top",
 };
-// Port-list fragments the modules `include (found in rtl/: tools need rtl/ on the include path).
-inline constexpr std::array<std::string_view, 3> kRtlIncludes = {
-    "stereo_stage_ports.svh", "stereo_core_ports.svh", "stereo_stream_ports.svh"};
+// Port-list fragments and the parameter-check macro (`STEREO_ASSERT) the modules `include (found
+// in rtl/: tools need rtl/ on the include path).
+inline constexpr std::array<std::string_view, 4> kRtlIncludes = {
+    "stereo_stage_ports.svh", "stereo_core_ports.svh", "stereo_stream_ports.svh",
+    "stereo_assert.svh"};
 
 // ---- SoC wrapper (rtl/stereo_axil_top.sv, docs/integration.md) -------------------------------
 // The register map's version (VERSION register, 0xMMMMmmmm) and the FuseSoC core's version.
