@@ -62,7 +62,7 @@ package fx_pkg;
   typedef logic [CFG_UNIQUENESS_BITS-1:0] cfg_uniqueness_t;
   typedef logic [CFG_LR_TOLERANCE_BITS-1:0] cfg_lr_tolerance_t;
   // The run-time configuration but the kernel, as stereo_top holds it (clamped to its
-  // parameters, latched at the start of a frame).
+  // parameters, latched at the start of a frame) and hands it to its stages (`cfg`).
   typedef struct packed {
     cfg_size_t width;
     cfg_size_t height;

@@ -67,8 +67,9 @@ module stereo_aggregate #(
     /* verilator lint_off UNUSEDSIGNAL */  // the upper bits of census codes
     input  wire logic [LANES*(RECOMPUTE ? WINDOW : 1)*fx_pkg::COST_BITS-1:0] in_data,
     /* verilator lint_on UNUSEDSIGNAL */
-    input  wire fx_pkg::cfg_size_t                  cfg_width,
-    input  wire fx_pkg::cfg_size_t                  cfg_height,
+    /* verilator lint_off UNUSEDSIGNAL */  // reads width and height only
+    input  wire fx_pkg::config_t                    cfg,
+    /* verilator lint_on UNUSEDSIGNAL */
     /* verilator lint_off UNUSEDSIGNAL */  // ignored with RUNTIME_KERNEL = 0
     input  wire logic [WINDOW*fx_pkg::TAP_BITS-1:0] cfg_kernel,
     /* verilator lint_on UNUSEDSIGNAL */
@@ -153,7 +154,7 @@ module stereo_aggregate #(
           .ce(advance),
           .in_x(in_x),
           .group(group_now),
-          .cfg_width(cfg_width),
+          .cfg_width(cfg.width),
           .in_data(group_costs),
           .rows_above(rows_above)
       );
@@ -176,7 +177,7 @@ module stereo_aggregate #(
       .OFFSET_HI(0)
   ) row_flags (
       .position(18'(in_next_y)),
-      .limit(cfg_height),
+      .limit(cfg.height),
       .in_frame(next_row_inside)
   );
   always_ff @(posedge clk) begin
@@ -294,7 +295,7 @@ module stereo_aggregate #(
     next_centre_y = 18'(in_y) - 18'(R);
     for (int wrap = 0; wrap < ((R > 0) ? R : 1); wrap++) begin
       if (next_centre_x < 18'sd0) begin
-        next_centre_x = next_centre_x + $signed(18'(cfg_width));
+        next_centre_x = next_centre_x + $signed(18'(cfg.width));
         next_centre_y = next_centre_y - 18'sd1;
       end
     end
@@ -304,7 +305,7 @@ module stereo_aggregate #(
       .OFFSET_HI(R)
   ) column_flags (
       .position(next_centre_x),
-      .limit(cfg_width),
+      .limit(cfg.width),
       .in_frame(next_column_inside)
   );
 

@@ -2,13 +2,13 @@
 // the 3x3 in-plane window of every disparity (stereo_window3x3: line buffers, coordinates, zero
 // padding at the borders), the per-cell update selected by RULE, and the result register.
 //
-//   CA_RULE1 (model stereo::ca_rule1): a cell whose d-1 or d+1 neighbour (d+1 < cfg_ndisp) agrees
+//   CA_RULE1 (model stereo::ca_rule1): a cell whose d-1 or d+1 neighbour (d+1 < cfg.ndisp) agrees
 //            with it becomes round(sum of its 3x3 in-plane neighbourhood / 9), zero padding outside
 //            the frame, (sum * MEAN9_MUL + 2^(MEAN9_SHIFT-1)) >> MEAN9_SHIFT.
 //   CA_RULE2 (model stereo::ca_rule2): a cell with at least RULE2_MIN_COUNT of its 8 in-plane
 //            neighbours inside the frame agreeing with it becomes round(c / 1.3) =
 //            (c * DIV13_MUL + 2^(DIV13_SHIFT-1)) >> DIV13_SHIFT.
-// "Agrees" is fx_pkg::agrees, 2|n - c| < c. With cfg_use_ca low every cell passes unchanged.
+// "Agrees" is fx_pkg::agrees, 2|n - c| < c. With cfg.use_ca low every cell passes unchanged.
 // Output pixel = input pixel moved back one row and one column. Latency: W + 3 pixel steps
 // (the window's input register, the centre one row and one column back, the result register).
 // stereo_top instantiates it twice: as ca_rule1 (RULE = CA_RULE1) and ca_rule2 (CA_RULE2).
@@ -36,13 +36,9 @@ module stereo_ca_plane #(
 `include "stereo_stage_ports.svh"
     // G = 1: the pixel's NDISP values; G > 1: the producer's result of this clock's group.
     input  wire logic [LANES*fx_pkg::AGG_BITS-1:0] in_data,
-    input  wire fx_pkg::cfg_size_t                 cfg_width,
-    input  wire fx_pkg::cfg_size_t                 cfg_height,
-    // Rule 2 does not look across planes.
-    /* verilator lint_off UNUSEDSIGNAL */
-    input  wire fx_pkg::cfg_ndisp_t                cfg_ndisp,
+    /* verilator lint_off UNUSEDSIGNAL */  // reads width, height, use_ca; ndisp with rule 1
+    input  wire fx_pkg::config_t                   cfg,
     /* verilator lint_on UNUSEDSIGNAL */
-    input  wire logic                              cfg_use_ca,
     output      fx_pkg::coord_t                    out_x,
     output      fx_pkg::coord_t                    out_y,
     // G = 1: all labels, registered at ce; G > 1: this clock's group, combinational.
@@ -85,8 +81,8 @@ module stereo_ca_plane #(
       .in_x(in_x),
       .in_y(in_y),
       .in_data(in_data),
-      .cfg_width(cfg_width),
-      .cfg_height(cfg_height),
+      .cfg_width(cfg.width),
+      .cfg_height(cfg.height),
       .centre_x(centre_x),
       .centre_y(centre_y),
       .window_data(window),
@@ -155,11 +151,11 @@ module stereo_ca_plane #(
           assign below_agrees = 1'b0;
         end
         if (d + 1 < LANES) begin : g_above
-          assign above_agrees = 32'(group_now) * LANES + d + 1 < $signed(32'(cfg_ndisp)) &&
+          assign above_agrees = 32'(group_now) * LANES + d + 1 < $signed(32'(cfg.ndisp)) &&
                                 fx_pkg::agrees(window[CENTRE*COLUMN + (d+1)*BITS +: BITS], centre);
         end else if (GROUPS > 1) begin : g_above_next_group
           assign above_agrees = 32'(group_now) + 1 < GROUPS &&
-                                32'(group_now) * LANES + d + 1 < $signed(32'(cfg_ndisp)) &&
+                                32'(group_now) * LANES + d + 1 < $signed(32'(cfg.ndisp)) &&
                                 fx_pkg::agrees(next_centre, centre);
         end else begin : g_no_above
           assign above_agrees = 1'b0;
@@ -186,7 +182,7 @@ module stereo_ca_plane #(
 `else
           product = sum7 + (sum7 << 6) + (sum7 << 12) + 32'(1 << (fx_pkg::MEAN9_SHIFT - 1));
 `endif
-          result[d*BITS +: BITS] = (cfg_use_ca && (below_agrees || above_agrees))
+          result[d*BITS +: BITS] = (cfg.use_ca && (below_agrees || above_agrees))
                                        ? BITS'(product >> fx_pkg::MEAN9_SHIFT) : centre;
         end
       end else begin : g_rule2
@@ -212,7 +208,7 @@ module stereo_ca_plane #(
           product = (centre25 << 12) - (centre25 << 6) + centre25 +
                     32'(1 << (fx_pkg::DIV13_SHIFT - 1));
 `endif
-          result[d*BITS +: BITS] = (cfg_use_ca && $signed(32'(count)) >= fx_pkg::RULE2_MIN_COUNT)
+          result[d*BITS +: BITS] = (cfg.use_ca && $signed(32'(count)) >= fx_pkg::RULE2_MIN_COUNT)
                                        ? BITS'(product >> fx_pkg::DIV13_SHIFT) : centre;
         end
       end

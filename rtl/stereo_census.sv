@@ -32,8 +32,9 @@ module stereo_census #(
     input  wire fx_pkg::coord_t  in_y,
     input  wire logic [23:0]     in_left,   // {R, G, B}
     input  wire logic [23:0]     in_right,  // {R, G, B}
-    input  wire fx_pkg::cfg_size_t cfg_width,
-    input  wire fx_pkg::cfg_size_t cfg_height,
+    /* verilator lint_off UNUSEDSIGNAL */  // reads width and height only
+    input  wire fx_pkg::config_t   cfg,
+    /* verilator lint_on UNUSEDSIGNAL */
     output fx_pkg::coord_t       out_x,
     output fx_pkg::coord_t       out_y,
     output logic [23:0]          out_left,   // census code of the left image at (out_x, out_y)
@@ -75,7 +76,7 @@ module stereo_census #(
     cy = 18'(in_y) - 18'(RADIUS);
     for (int wrap = 0; wrap < RADIUS; wrap++) begin
       if (cx < 18'sd0) begin
-        cx = cx + $signed(18'(cfg_width));
+        cx = cx + $signed(18'(cfg.width));
         cy = cy - 18'sd1;
       end
     end
@@ -86,7 +87,7 @@ module stereo_census #(
       .OFFSET_HI(RADIUS)
   ) column_flags (
       .position(cx),
-      .limit(cfg_width),
+      .limit(cfg.width),
       .in_frame(column_inside)
   );
   stereo_border_flags #(
@@ -94,7 +95,7 @@ module stereo_census #(
       .OFFSET_HI(RADIUS)
   ) row_flags (
       .position(cy),
-      .limit(cfg_height),
+      .limit(cfg.height),
       .in_frame(row_inside)
   );
 
@@ -134,7 +135,7 @@ module stereo_census #(
       .ce(ce),
       .in_x(x_q),
       .group(1'b0),
-      .cfg_width(cfg_width),
+      .cfg_width(cfg.width),
       .in_data(luma_q),
       .rows_above(rows_above)
   );

@@ -179,7 +179,8 @@ module stereo_top #(
   // latched values during the frame and its flush. A setting whose clamped range is one value is that
   // constant for the stages (the one-label core: cfg_ndisp is 1; MAX_MIN_DISP = 0: cfg_min_disp
   // is 0), so no multiplexer from the frame state runs in front of their logic (the one-label
-  // iCE40 core's critical path). The clamps and the status bit see the registered ports.
+  // iCE40 core's critical path). The clamps and the status bit see the registered ports. Every
+  // stage takes use_cfg whole on its `cfg` port and reads the fields it needs.
   fx_pkg::config_t use_cfg;
   always_comb begin
     use_cfg = (state == IDLE) ? idle_cfg : frame_cfg;
@@ -359,8 +360,7 @@ module stereo_top #(
           .in_y(y_in),
           .in_left(left_pixel),
           .in_right(right_pixel),
-          .cfg_width(use_cfg.width),
-          .cfg_height(use_cfg.height),
+          .cfg(use_cfg),
           .out_x(match_x),
           .out_y(match_y),
           .out_left(match_left),
@@ -400,8 +400,7 @@ module stereo_top #(
       .in_y(match_y),
       .in_left(match_left),
       .in_right(match_right),
-      .cfg_width(use_cfg.width),
-      .cfg_min_disp(use_cfg.min_disp),
+      .cfg(use_cfg),
       .out_x(cost_x),
       .out_y(cost_y),
       .out_next_y(cost_next_y),
@@ -428,15 +427,15 @@ module stereo_top #(
       .in_y(cost_y),
       .in_next_y(cost_next_y),
       .in_data(cost_data),
-      .cfg_width(use_cfg.width),
-      .cfg_height(use_cfg.height),
+      .cfg(use_cfg),
       .cfg_kernel(use_kernel),
       .out_x(agg_x),
       .out_y(agg_y),
       .out_data(agg_data)
   );
 
-  // The two CA rules: the skeleton stereo_ca_plane with RULE 1 and 2 (rule 2 ignores cfg_ndisp).
+  // The two CA rules: the skeleton stereo_ca_plane with RULE CA_RULE1 and CA_RULE2 (rule 2 ignores
+  // cfg.ndisp).
   stereo_ca_plane #(
       .WIDTH(WIDTH),
       .NDISP(NDISP),
@@ -452,10 +451,7 @@ module stereo_top #(
       .in_x(agg_x),
       .in_y(agg_y),
       .in_data(agg_data),
-      .cfg_width(use_cfg.width),
-      .cfg_height(use_cfg.height),
-      .cfg_ndisp(use_cfg.ndisp),
-      .cfg_use_ca(use_cfg.use_ca),
+      .cfg(use_cfg),
       .out_x(rule1_x),
       .out_y(rule1_y),
       .out_data(rule1_data)
@@ -476,10 +472,7 @@ module stereo_top #(
       .in_x(rule1_x),
       .in_y(rule1_y),
       .in_data(rule1_data),
-      .cfg_width(use_cfg.width),
-      .cfg_height(use_cfg.height),
-      .cfg_ndisp(use_cfg.ndisp),
-      .cfg_use_ca(use_cfg.use_ca),
+      .cfg(use_cfg),
       .out_x(wta_in_x),
       .out_y(wta_in_y),
       .out_data(rule2_data)
@@ -507,12 +500,7 @@ module stereo_top #(
       .in_x(wta_in_x),
       .in_y(wta_in_y),
       .in_data(rule2_data),
-      .cfg_width(use_cfg.width),
-      .cfg_height(use_cfg.height),
-      .cfg_ndisp(use_cfg.ndisp),
-      .cfg_radius(use_cfg.radius),
-      .cfg_use_ca(use_cfg.use_ca),
-      .cfg_min_disp(use_cfg.min_disp),
+      .cfg(use_cfg),
       .out_x(wta_x),
       .out_y(wta_y),
       .out_label(wta_label),
@@ -541,9 +529,7 @@ module stereo_top #(
       .in_after(wta_after),
       .in_data(wta_data),
       .in_second(wta_second),
-      .cfg_ndisp(use_cfg.ndisp),
-      .cfg_min_disp(use_cfg.min_disp),
-      .cfg_subpixel_en(use_cfg.subpixel_en),
+      .cfg(use_cfg),
       .out_x(validate_x),
       .out_y(validate_y),
       .out_label(validate_label),
@@ -577,14 +563,7 @@ module stereo_top #(
       .in_cost(validate_cost),
       .in_second(validate_second),
       .in_fixed(validate_fixed),
-      .cfg_width(use_cfg.width),
-      .cfg_height(use_cfg.height),
-      .cfg_ndisp(use_cfg.ndisp),
-      .cfg_min_disp(use_cfg.min_disp),
-      .cfg_uniqueness_en(use_cfg.uniqueness_en),
-      .cfg_uniqueness(use_cfg.uniqueness),
-      .cfg_lr_en(use_cfg.lr_en),
-      .cfg_lr_tolerance(use_cfg.lr_tolerance),
+      .cfg(use_cfg),
       .next_x(final_x),
       .next_y(final_y),
       .out_x(out_x),

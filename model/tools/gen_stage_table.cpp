@@ -206,20 +206,12 @@ std::string package_text() {
           "  typedef logic [CFG_UNIQUENESS_BITS-1:0] cfg_uniqueness_t;\n"
           "  typedef logic [CFG_LR_TOLERANCE_BITS-1:0] cfg_lr_tolerance_t;\n"
           "  // The run-time configuration but the kernel, as stereo_top holds it (clamped to its\n"
-          "  // parameters, latched at the start of a frame).\n"
-          "  typedef struct packed {\n"
-          "    cfg_size_t width;\n"
-          "    cfg_size_t height;\n"
-          "    cfg_ndisp_t ndisp;\n"
-          "    cfg_radius_t radius;\n"
-          "    logic use_ca;\n"
-          "    cfg_min_disp_t min_disp;\n"
-          "    logic uniqueness_en;\n"
-          "    cfg_uniqueness_t uniqueness;\n"
-          "    logic lr_en;\n"
-          "    cfg_lr_tolerance_t lr_tolerance;\n"
-          "    logic subpixel_en;\n"
-          "  } config_t;\n";
+          "  // parameters, latched at the start of a frame) and hands it to its stages (`cfg`).\n"
+          "  typedef struct packed {\n";
+    for (const t::ConfigFieldRow& field : t::kConfigFields) {
+        sv << "    " << field.sv_type << ' ' << field.name << ";\n";
+    }
+    sv << "  } config_t;\n";
     params({
         {"RGB_BITS", t::kRgbBits, "one RGB pixel"},
         {"IN_BEAT_BITS", t::kInBeatBits, "s_axis_tdata = {right RGB, left RGB}"},
