@@ -1,8 +1,8 @@
 // stereo_cost: the matching cost over the signed disparity range d = m + k, k = 0 .. NDISP-1,
 // m = cfg.min_disp (model: stereo::cost and the cost plug-ins, docs/fixed-point.md stages 1 and 6,
-// "LCDM"). COST = 0: absolute differences over RGB; COST = 1: the LCDM cost (thesis Sec. 3.5),
+// "LCDM"). COST_AD: absolute differences over RGB; COST_LCDM: the LCDM cost (thesis Sec. 3.5),
 // each incoming pixel first converted to its point on the hue-saturation disc
-// (stereo_lcdm_convert), the per-label distance by stereo_lcdm_distance; COST = 2: the census
+// (stereo_lcdm_convert), the per-label distance by stereo_lcdm_distance; COST_CENSUS: the census
 // cost, in_left and in_right being census codes (stereo_census in front), the Hamming distance
 // times CENSUS_WEIGHT.
 // Below, "pixel" is what the delay lines carry: RGB or a census code (24 bits) or the LCDM point
