@@ -34,6 +34,7 @@
 // [(d*WINDOW + j)*COST_BITS +: LINE_BITS]; this stage then has no line buffer. The
 // arithmetic after the taps is the same, so is the output.
 `default_nettype none
+`include "stereo_assert.svh"
 
 module stereo_aggregate #(
     parameter int WIDTH  = 64,  // longest row
@@ -48,15 +49,15 @@ module stereo_aggregate #(
     parameter int RING_BLOCK_MIN_FILL = 50,  // stereo_group_ring BLOCK_MIN_FILL
     // COST_CENSUS: in_data carries census codes, kept narrow in the line buffer (above); any
     // other cost: in_data carries the costs.
-    parameter int COST = fx_pkg::COST_AD,
+    parameter fx_pkg::cost_e COST = fx_pkg::COST_AD,
     // RUNTIME_KERNEL = 0, which constant tap products are built from shifts and adds
     // (stereo_weighted_sum SHIFT_ADD) rather than left to the tools (DSP blocks where the target
-    // has them): 0 none; 1 the census codes' vertical products (6-bit operands, not worth a DSP
-    // block); 2 every product.
-    parameter int SHIFT_ADD = 0,
+    // has them): SHIFT_ADD_NONE; SHIFT_ADD_NARROW the census codes' vertical products (6-bit
+    // operands, not worth a DSP block); SHIFT_ADD_ALL every product.
+    parameter fx_pkg::shift_add_e SHIFT_ADD = fx_pkg::SHIFT_ADD_NONE,
     // 1 (COST_CENSUS or COST_AD): every row's code (cost) arrives with the column (above), no line
     // buffer.
-    parameter int RECOMPUTE = 0
+    parameter bit RECOMPUTE = 1'b0
 ) (
 `include "stereo_stage_ports.svh"
     // The in_y of the next step (stereo_top: stereo_cost's out_next_y, what its coordinate
@@ -64,10 +65,11 @@ module stereo_aggregate #(
     input  wire fx_pkg::coord_t                     in_next_y,
     // labels [group*LANES +: LANES]; census codes are zero-extended to COST_BITS
     /* verilator lint_off UNUSEDSIGNAL */  // the upper bits of census codes
-    input  wire logic [LANES*((RECOMPUTE != 0) ? WINDOW : 1)*fx_pkg::COST_BITS-1:0] in_data,
+    input  wire logic [LANES*(RECOMPUTE ? WINDOW : 1)*fx_pkg::COST_BITS-1:0] in_data,
     /* verilator lint_on UNUSEDSIGNAL */
-    input  wire fx_pkg::cfg_size_t                  cfg_width,
-    input  wire fx_pkg::cfg_size_t                  cfg_height,
+    /* verilator lint_off UNUSEDSIGNAL */  // reads width and height only
+    input  wire fx_pkg::config_t                    cfg,
+    /* verilator lint_on UNUSEDSIGNAL */
     /* verilator lint_off UNUSEDSIGNAL */  // ignored with RUNTIME_KERNEL = 0
     input  wire logic [WINDOW*fx_pkg::TAP_BITS-1:0] cfg_kernel,
     /* verilator lint_on UNUSEDSIGNAL */
@@ -92,12 +94,12 @@ module stereo_aggregate #(
   localparam int V_BITS = LANES * VSUM_BITS;       // one group's vertical sums
   localparam int OUT_BITS = LANES * AGG_BITS;      // one group's results
 
-  localparam int IN_ROWS = (RECOMPUTE != 0) ? WINDOW : 1;  // rows of codes per label in in_data
+  localparam int IN_ROWS = RECOMPUTE ? WINDOW : 1;  // rows of codes per label in in_data
 
-  initial begin
-    assert (LANES >= 1 && NDISP % LANES == 0);
-    assert (RECOMPUTE == 0 || (RECOMPUTE == 1 && (CODES || COST == fx_pkg::COST_AD)));
-  end
+  `STEREO_ASSERT(lanes_divide_ndisp, LANES >= 1 && NDISP % LANES == 0,
+                 "LANES must be at least 1 and divide NDISP")
+  `STEREO_ASSERT(recompute_cost, !RECOMPUTE || CODES || COST == fx_pkg::COST_AD,
+                 "COST must be COST_CENSUS or COST_AD when RECOMPUTE = 1")
 
   // The group of this clock; G = 1: 0 whatever the port carries (stage testbenches leave it open).
   logic [((GROUPS > 1) ? $clog2(GROUPS) : 1)-1:0] group_now;
@@ -122,10 +124,10 @@ module stereo_aggregate #(
       for (genvar i = 0; i < WINDOW; i++) begin : g_tap
         assign kernel[i*TAP_BITS+:TAP_BITS] = TAP_BITS'(fx_pkg::default_tap(WINDOW, i));
         // stereo_weighted_sum pairs mirrored taps: stop elaboration if the kernel is not symmetric.
-        if (fx_pkg::default_tap(WINDOW, i) != fx_pkg::default_tap(WINDOW, WINDOW - 1 - i))
-        begin : g_asymmetric
-          stereo_aggregate_default_kernel_is_not_symmetric asymmetric_kernel ();
-        end
+        `STEREO_ASSERT(default_kernel_symmetric,
+                       fx_pkg::default_tap(WINDOW, i) ==
+                           fx_pkg::default_tap(WINDOW, WINDOW - 1 - i),
+                       "the default kernel must be symmetric (RUNTIME_KERNEL = 0)")
       end
     end
   endgenerate
@@ -133,7 +135,7 @@ module stereo_aggregate #(
   // ---- vertical pass -------------------------------------------------------------------
   logic [((R > 0) ? 2 * R : 1)*COLUMN_BITS-1:0] rows_above;  // row in_y-1-k at slot k
   generate
-    if (R > 0 && RECOMPUTE != 0) begin : g_rows_with_column
+    if (R > 0 && RECOMPUTE) begin : g_rows_with_column
       // Row in_y-1-k of label d is in_data's row 2R-1-k.
       always_comb begin
         for (int k = 0; k < 2 * R; k++)
@@ -152,7 +154,7 @@ module stereo_aggregate #(
           .ce(advance),
           .in_x(in_x),
           .group(group_now),
-          .cfg_width(cfg_width),
+          .cfg_width(cfg.width),
           .in_data(group_costs),
           .rows_above(rows_above)
       );
@@ -175,7 +177,7 @@ module stereo_aggregate #(
       .OFFSET_HI(0)
   ) row_flags (
       .position(18'(in_next_y)),
-      .limit(cfg_height),
+      .limit(cfg.height),
       .in_frame(next_row_inside)
   );
   always_ff @(posedge clk) begin
@@ -220,7 +222,8 @@ module stereo_aggregate #(
       logic [(CODES ? CODE_SUM_BITS : VSUM_BITS)-1:0] column_sum;
       stereo_weighted_sum #(
           .WINDOW(WINDOW), .IN_BITS(LINE_BITS), .SUM_BITS(CODES ? CODE_SUM_BITS : VSUM_BITS),
-          .RUNTIME_KERNEL(RUNTIME_KERNEL), .SHIFT_ADD(SHIFT_ADD >= (CODES ? 1 : 2))
+          .RUNTIME_KERNEL(RUNTIME_KERNEL),
+          .SHIFT_ADD(SHIFT_ADD >= (CODES ? fx_pkg::SHIFT_ADD_NARROW : fx_pkg::SHIFT_ADD_ALL))
       ) vertical_sum (
           .taps(tap_cost), .kernel(kernel), .sum(column_sum));
       if (CODES) begin : g_codes
@@ -292,7 +295,7 @@ module stereo_aggregate #(
     next_centre_y = 18'(in_y) - 18'(R);
     for (int wrap = 0; wrap < ((R > 0) ? R : 1); wrap++) begin
       if (next_centre_x < 18'sd0) begin
-        next_centre_x = next_centre_x + $signed(18'(cfg_width));
+        next_centre_x = next_centre_x + $signed(18'(cfg.width));
         next_centre_y = next_centre_y - 18'sd1;
       end
     end
@@ -302,7 +305,7 @@ module stereo_aggregate #(
       .OFFSET_HI(R)
   ) column_flags (
       .position(next_centre_x),
-      .limit(cfg_width),
+      .limit(cfg.width),
       .in_frame(next_column_inside)
   );
 
@@ -336,7 +339,7 @@ module stereo_aggregate #(
       logic [WSUM_BITS-1:0] sum;
       stereo_weighted_sum #(
           .WINDOW(WINDOW), .IN_BITS(VSUM_BITS), .SUM_BITS(WSUM_BITS),
-          .RUNTIME_KERNEL(RUNTIME_KERNEL), .SHIFT_ADD(SHIFT_ADD >= 2)
+          .RUNTIME_KERNEL(RUNTIME_KERNEL), .SHIFT_ADD(SHIFT_ADD >= fx_pkg::SHIFT_ADD_ALL)
       ) horizontal_sum (
           .taps(tap_sum), .kernel(kernel), .sum(sum));
       // Rounded to the nearest (half up) by the kernel's scale.

@@ -25,6 +25,7 @@
 // effect from the next frame. One outstanding transaction per direction; the write address and
 // data may arrive in either order.
 `default_nettype none
+`include "stereo_assert.svh"
 
 module stereo_axil_top #(
     parameter int WIDTH          = 64,
@@ -33,11 +34,12 @@ module stereo_axil_top #(
     parameter int WINDOW         = 5,
     parameter bit RUNTIME_KERNEL = 1'b1,
     parameter int MAX_MIN_DISP   = fx_pkg::DEFAULT_MAX_MIN_DISP,
-    parameter int COST           = 0,
+    parameter fx_pkg::cost_e COST = fx_pkg::COST_AD,
     parameter int LANES          = NDISP,  // labels per clock: NDISP / LANES clocks per pixel
-    parameter int SHIFT_ADD      = 0,  // RUNTIME_KERNEL = 0: tap products from shifts and adds
-    parameter int RECOMPUTE_COSTS = 0,       // census, AD: the lean memory architecture (stereo_top)
-    parameter int ADDR_BITS      = 8                               // AXI4-Lite address width
+    // RUNTIME_KERNEL = 0: tap products from shifts and adds (stereo_top)
+    parameter fx_pkg::shift_add_e SHIFT_ADD = fx_pkg::SHIFT_ADD_NONE,
+    parameter bit RECOMPUTE_COSTS = 1'b0,  // census, AD: the lean memory architecture (stereo_top)
+    parameter int ADDR_BITS      = 8  // AXI4-Lite address width
 ) (
     input  wire logic                            clk,
     input  wire logic                            rst,
@@ -68,10 +70,9 @@ module stereo_axil_top #(
   localparam logic [31:0] REGMAP_VERSION = 32'(fx_pkg::REGMAP_VERSION);
   localparam int KERNEL_BASE = 'h40;
 
-  initial begin
-    assert (ADDR_BITS >= 8 && ADDR_BITS <= 32);
-    assert (KERNEL_BASE + 4 * WINDOW <= (1 << ADDR_BITS));
-  end
+  `STEREO_ASSERT(addr_bits_range, ADDR_BITS >= 8 && ADDR_BITS <= 32, "ADDR_BITS must be 8 .. 32")
+  `STEREO_ASSERT(kernel_registers_fit, KERNEL_BASE + 4 * WINDOW <= (1 << ADDR_BITS),
+                 "the KERNEL registers of WINDOW taps must fit in the ADDR_BITS address space")
 
   // ---- registers ------------------------------------------------------------------------------
   fx_pkg::cfg_size_t cfg_width, cfg_height;

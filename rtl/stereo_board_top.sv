@@ -41,6 +41,7 @@
 // LEDs (active low): green lit while idle (out of reset, no frame streaming), red lit while any
 // status bit is set.
 `default_nettype none
+`include "stereo_assert.svh"
 
 // A third top in rtl/files.f beside stereo_axil_top and stereo_synth_top.
 /* verilator lint_off MULTITOP */
@@ -87,11 +88,13 @@ module stereo_board_top #(
   localparam logic [31:0] ID = 32'(fx_pkg::REGMAP_ID);
   localparam logic [31:0] VERSION = 32'(fx_pkg::REGMAP_VERSION);
 
-  initial begin
-    assert (TX_FIFO_DEPTH >= 2 && (1 << FIFO_BITS) == TX_FIFO_DEPTH);
-    assert (WIDTH < 65536 && HEIGHT < 65536 && NDISP < 65536 && WINDOW < 256);
-    assert (MAX_MIN_DISP >= 0 && MAX_MIN_DISP < 256);
-  end
+  `STEREO_ASSERT(tx_fifo_depth, TX_FIFO_DEPTH >= 2 && (1 << FIFO_BITS) == TX_FIFO_DEPTH,
+                 "TX_FIFO_DEPTH must be a power of 2, at least 2")
+  `STEREO_ASSERT(identify_fields,
+                 WIDTH < 65536 && HEIGHT < 65536 && NDISP < 65536 && WINDOW < 256,
+                 "WIDTH, HEIGHT and NDISP must fit the identify reply's 2 bytes, WINDOW its byte")
+  `STEREO_ASSERT(max_min_disp_byte, MAX_MIN_DISP >= 0 && MAX_MIN_DISP < 256,
+                 "MAX_MIN_DISP must be 0 .. 255 (one byte of the identify reply)")
 
   // ---- reset (power-on counter, restarted by the button) and the UART ---------------------------
   logic rst;

@@ -12,6 +12,7 @@
 // Exact for every POS_BITS-bit p and 16-bit limit (room is computed one bit wider than p).
 // Purely combinational.
 `default_nettype none
+`include "stereo_assert.svh"
 
 module stereo_border_flags #(
     parameter int OFFSET_LO = -2,  // first offset
@@ -24,10 +25,9 @@ module stereo_border_flags #(
 );
   localparam int ROOM_BITS = POS_BITS + 1;
 
-  initial begin
-    assert (OFFSET_HI >= OFFSET_LO);
-    assert (POS_BITS > fx_pkg::CFG_SIZE_BITS);
-  end
+  `STEREO_ASSERT(offsets_ordered, OFFSET_HI >= OFFSET_LO, "OFFSET_HI must not be below OFFSET_LO")
+  `STEREO_ASSERT(position_bits, POS_BITS > fx_pkg::CFG_SIZE_BITS,
+                 "POS_BITS must exceed CFG_SIZE_BITS (limit - position must not overflow)")
 
   logic signed [ROOM_BITS-1:0] room;  // limit - position
   assign room = $signed(ROOM_BITS'(limit)) - ROOM_BITS'(position);

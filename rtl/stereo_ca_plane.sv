@@ -2,16 +2,16 @@
 // the 3x3 in-plane window of every disparity (stereo_window3x3: line buffers, coordinates, zero
 // padding at the borders), the per-cell update selected by RULE, and the result register.
 //
-//   RULE 1 (model stereo::ca_rule1): a cell whose d-1 or d+1 neighbour (d+1 < cfg_ndisp) agrees
-//          with it becomes round(sum of its 3x3 in-plane neighbourhood / 9), zero padding outside
-//          the frame, (sum * MEAN9_MUL + 2^(MEAN9_SHIFT-1)) >> MEAN9_SHIFT.
-//   RULE 2 (model stereo::ca_rule2): a cell with at least RULE2_MIN_COUNT of its 8 in-plane
-//          neighbours inside the frame agreeing with it becomes round(c / 1.3) =
-//          (c * DIV13_MUL + 2^(DIV13_SHIFT-1)) >> DIV13_SHIFT.
-// "Agrees" is fx_pkg::agrees, 2|n - c| < c. With cfg_use_ca low every cell passes unchanged.
+//   CA_RULE1 (model stereo::ca_rule1): a cell whose d-1 or d+1 neighbour (d+1 < cfg.ndisp) agrees
+//            with it becomes round(sum of its 3x3 in-plane neighbourhood / 9), zero padding outside
+//            the frame, (sum * MEAN9_MUL + 2^(MEAN9_SHIFT-1)) >> MEAN9_SHIFT.
+//   CA_RULE2 (model stereo::ca_rule2): a cell with at least RULE2_MIN_COUNT of its 8 in-plane
+//            neighbours inside the frame agreeing with it becomes round(c / 1.3) =
+//            (c * DIV13_MUL + 2^(DIV13_SHIFT-1)) >> DIV13_SHIFT.
+// "Agrees" is fx_pkg::agrees, 2|n - c| < c. With cfg.use_ca low every cell passes unchanged.
 // Output pixel = input pixel moved back one row and one column. Latency: W + 3 pixel steps
 // (the window's input register, the centre one row and one column back, the result register).
-// stereo_top instantiates it twice: as ca_rule1 (RULE 1) and ca_rule2 (RULE 2).
+// stereo_top instantiates it twice: as ca_rule1 (RULE = CA_RULE1) and ca_rule2 (CA_RULE2).
 //
 // Time-multiplexed lanes (LANES < NDISP, docs/rtl.md): the clock of label group g (`group`; the
 // step, ce, at group G-1) computes labels d = g*LANES + l, l < LANES, on LANES copies of the
@@ -23,11 +23,12 @@
 // delays it); out_x/out_y still step with ce. G = 1: in_data and out_data carry all labels and
 // out_data is a register stepped with ce, as before lanes.
 `default_nettype none
+`include "stereo_assert.svh"
 
 module stereo_ca_plane #(
     parameter int WIDTH = 64,  // longest row
     parameter int NDISP = 16,  // disparities in parallel
-    parameter int RULE  = 1,   // 1 or 2
+    parameter fx_pkg::ca_rule_e RULE = fx_pkg::CA_RULE1,  // CA_RULE1 or CA_RULE2
     parameter int LANES = NDISP,  // labels computed per clock (divides NDISP)
     parameter bit RING_BLOCK_RAM = 1'b0,  // stereo_group_ring BLOCK_RAM (stereo_top)
     parameter int RING_BLOCK_MIN_FILL = 50  // stereo_group_ring BLOCK_MIN_FILL
@@ -35,13 +36,9 @@ module stereo_ca_plane #(
 `include "stereo_stage_ports.svh"
     // G = 1: the pixel's NDISP values; G > 1: the producer's result of this clock's group.
     input  wire logic [LANES*fx_pkg::AGG_BITS-1:0] in_data,
-    input  wire fx_pkg::cfg_size_t                 cfg_width,
-    input  wire fx_pkg::cfg_size_t                 cfg_height,
-    // Rule 2 does not look across planes.
-    /* verilator lint_off UNUSEDSIGNAL */
-    input  wire fx_pkg::cfg_ndisp_t                cfg_ndisp,
+    /* verilator lint_off UNUSEDSIGNAL */  // reads width, height, use_ca; ndisp with rule 1
+    input  wire fx_pkg::config_t                   cfg,
     /* verilator lint_on UNUSEDSIGNAL */
-    input  wire logic                              cfg_use_ca,
     output      fx_pkg::coord_t                    out_x,
     output      fx_pkg::coord_t                    out_y,
     // G = 1: all labels, registered at ce; G > 1: this clock's group, combinational.
@@ -53,10 +50,10 @@ module stereo_ca_plane #(
   localparam int COLUMN = LANES * BITS;  // one group of one window position
   localparam int CENTRE = 4;  // slot of (0, 0)
 
-  initial begin
-    assert (RULE == 1 || RULE == 2);
-    assert (LANES >= 1 && NDISP % LANES == 0);
-  end
+  `STEREO_ASSERT(rule_known, RULE == fx_pkg::CA_RULE1 || RULE == fx_pkg::CA_RULE2,
+                 "RULE must be CA_RULE1 or CA_RULE2")
+  `STEREO_ASSERT(lanes_divide_ndisp, LANES >= 1 && NDISP % LANES == 0,
+                 "LANES must be at least 1 and divide NDISP")
 
   fx_pkg::coord_t centre_x, centre_y;
   // The group of this clock; G = 1: 0 whatever the port carries (stage testbenches leave it open).
@@ -84,8 +81,8 @@ module stereo_ca_plane #(
       .in_x(in_x),
       .in_y(in_y),
       .in_data(in_data),
-      .cfg_width(cfg_width),
-      .cfg_height(cfg_height),
+      .cfg_width(cfg.width),
+      .cfg_height(cfg.height),
       .centre_x(centre_x),
       .centre_y(centre_y),
       .window_data(window),
@@ -97,7 +94,7 @@ module stereo_ca_plane #(
   logic [BITS-1:0] previous_centre;
   /* verilator lint_on UNUSEDSIGNAL */
   generate
-    if (GROUPS > 1 && RULE == 1) begin : g_previous_centre
+    if (GROUPS > 1 && RULE == fx_pkg::CA_RULE1) begin : g_previous_centre
       // Kept at every clock that processes a group (as in stereo_window3x3).
       always_ff @(posedge clk) begin
         if (ce || 32'(group_now) != GROUPS - 1)
@@ -110,14 +107,10 @@ module stereo_ca_plane #(
 
   // The factored constant products below hold only for these reciprocals (fx_pkg, generated
   // from the model's stage table): elaboration stops if they ever change.
-  generate
-    if (fx_pkg::MEAN9_MUL != 7 * 4161) begin : g_mean9_factors_changed
-      stereo_ca_plane_mean9_mul_is_not_7_times_4161 mean9_factors_changed ();
-    end
-    if (fx_pkg::DIV13_MUL != 25 * 4033) begin : g_div13_factors_changed
-      stereo_ca_plane_div13_mul_is_not_25_times_4033 div13_factors_changed ();
-    end
-  endgenerate
+  `STEREO_ASSERT(mean9_factors, fx_pkg::MEAN9_MUL == 7 * 4161,
+                 "the factored MEAN9_MUL product needs MEAN9_MUL = 7 * 4161")
+  `STEREO_ASSERT(div13_factors, fx_pkg::DIV13_MUL == 25 * 4033,
+                 "the factored DIV13_MUL product needs DIV13_MUL = 25 * 4033")
 
   // How many of eight flags are set, as boolean full and half adders: logic a few LUTs deep. A
   // running `count + 1` over the neighbours was eight small carry chains in a row, the one-label
@@ -148,7 +141,7 @@ module stereo_ca_plane #(
       // Lane d computes label group*LANES + d.
       logic [BITS-1:0] centre;
       assign centre = window[CENTRE*COLUMN + d*BITS +: BITS];
-      if (RULE == 1) begin : g_rule1
+      if (RULE == fx_pkg::CA_RULE1) begin : g_rule1
         logic below_agrees, above_agrees;
         if (d > 0) begin : g_below
           assign below_agrees = fx_pkg::agrees(window[CENTRE*COLUMN + (d-1)*BITS +: BITS], centre);
@@ -158,11 +151,11 @@ module stereo_ca_plane #(
           assign below_agrees = 1'b0;
         end
         if (d + 1 < LANES) begin : g_above
-          assign above_agrees = 32'(group_now) * LANES + d + 1 < $signed(32'(cfg_ndisp)) &&
+          assign above_agrees = 32'(group_now) * LANES + d + 1 < $signed(32'(cfg.ndisp)) &&
                                 fx_pkg::agrees(window[CENTRE*COLUMN + (d+1)*BITS +: BITS], centre);
         end else if (GROUPS > 1) begin : g_above_next_group
           assign above_agrees = 32'(group_now) + 1 < GROUPS &&
-                                32'(group_now) * LANES + d + 1 < $signed(32'(cfg_ndisp)) &&
+                                32'(group_now) * LANES + d + 1 < $signed(32'(cfg.ndisp)) &&
                                 fx_pkg::agrees(next_centre, centre);
         end else begin : g_no_above
           assign above_agrees = 1'b0;
@@ -189,7 +182,7 @@ module stereo_ca_plane #(
 `else
           product = sum7 + (sum7 << 6) + (sum7 << 12) + 32'(1 << (fx_pkg::MEAN9_SHIFT - 1));
 `endif
-          result[d*BITS +: BITS] = (cfg_use_ca && (below_agrees || above_agrees))
+          result[d*BITS +: BITS] = (cfg.use_ca && (below_agrees || above_agrees))
                                        ? BITS'(product >> fx_pkg::MEAN9_SHIFT) : centre;
         end
       end else begin : g_rule2
@@ -215,7 +208,7 @@ module stereo_ca_plane #(
           product = (centre25 << 12) - (centre25 << 6) + centre25 +
                     32'(1 << (fx_pkg::DIV13_SHIFT - 1));
 `endif
-          result[d*BITS +: BITS] = (cfg_use_ca && $signed(32'(count)) >= fx_pkg::RULE2_MIN_COUNT)
+          result[d*BITS +: BITS] = (cfg.use_ca && $signed(32'(count)) >= fx_pkg::RULE2_MIN_COUNT)
                                        ? BITS'(product >> fx_pkg::DIV13_SHIFT) : centre;
         end
       end

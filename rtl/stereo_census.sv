@@ -20,6 +20,7 @@
 // (ce); with time-multiplexed lanes the stage steps once per G clocks like the others.
 // Reset clears the coordinates only; stale data is masked by them.
 `default_nettype none
+`include "stereo_assert.svh"
 
 module stereo_census #(
     parameter int WIDTH = 64  // longest row
@@ -31,8 +32,9 @@ module stereo_census #(
     input  wire fx_pkg::coord_t  in_y,
     input  wire logic [23:0]     in_left,   // {R, G, B}
     input  wire logic [23:0]     in_right,  // {R, G, B}
-    input  wire fx_pkg::cfg_size_t cfg_width,
-    input  wire fx_pkg::cfg_size_t cfg_height,
+    /* verilator lint_off UNUSEDSIGNAL */  // reads width and height only
+    input  wire fx_pkg::config_t   cfg,
+    /* verilator lint_on UNUSEDSIGNAL */
     output fx_pkg::coord_t       out_x,
     output fx_pkg::coord_t       out_y,
     output logic [23:0]          out_left,   // census code of the left image at (out_x, out_y)
@@ -44,9 +46,8 @@ module stereo_census #(
   localparam int PAIR_BITS = 2 * LUMA_BITS;  // {left luma, right luma}
   localparam int COLUMN_BITS = SIDE * PAIR_BITS;
 
-  initial begin
-    assert (fx_pkg::CENSUS_BITS == SIDE * SIDE - 1 && fx_pkg::CENSUS_BITS <= 24);
-  end
+  `STEREO_ASSERT(census_bits, fx_pkg::CENSUS_BITS == SIDE * SIDE - 1 && fx_pkg::CENSUS_BITS <= 24,
+                 "CENSUS_BITS must be the window's pixels but the centre, at most 24")
 
   localparam int SUM_BITS = LUMA_BITS + fx_pkg::LUMA_SHIFT;  // 255 * 256 + 128 fits
   // v * WEIGHT as a sum of shifted copies of v, one per set bit of the constant weight: adders,
@@ -75,7 +76,7 @@ module stereo_census #(
     cy = 18'(in_y) - 18'(RADIUS);
     for (int wrap = 0; wrap < RADIUS; wrap++) begin
       if (cx < 18'sd0) begin
-        cx = cx + $signed(18'(cfg_width));
+        cx = cx + $signed(18'(cfg.width));
         cy = cy - 18'sd1;
       end
     end
@@ -86,7 +87,7 @@ module stereo_census #(
       .OFFSET_HI(RADIUS)
   ) column_flags (
       .position(cx),
-      .limit(cfg_width),
+      .limit(cfg.width),
       .in_frame(column_inside)
   );
   stereo_border_flags #(
@@ -94,7 +95,7 @@ module stereo_census #(
       .OFFSET_HI(RADIUS)
   ) row_flags (
       .position(cy),
-      .limit(cfg_height),
+      .limit(cfg.height),
       .in_frame(row_inside)
   );
 
@@ -134,7 +135,7 @@ module stereo_census #(
       .ce(ce),
       .in_x(x_q),
       .group(1'b0),
-      .cfg_width(cfg_width),
+      .cfg_width(cfg.width),
       .in_data(luma_q),
       .rows_above(rows_above)
   );

@@ -1,8 +1,8 @@
 // stereo_cost: the matching cost over the signed disparity range d = m + k, k = 0 .. NDISP-1,
-// m = cfg_min_disp (model: stereo::cost and the cost plug-ins, docs/fixed-point.md stages 1 and 6,
-// "LCDM"). COST = 0: absolute differences over RGB; COST = 1: the LCDM cost (thesis Sec. 3.5),
+// m = cfg.min_disp (model: stereo::cost and the cost plug-ins, docs/fixed-point.md stages 1 and 6,
+// "LCDM"). COST_AD: absolute differences over RGB; COST_LCDM: the LCDM cost (thesis Sec. 3.5),
 // each incoming pixel first converted to its point on the hue-saturation disc
-// (stereo_lcdm_convert), the per-label distance by stereo_lcdm_distance; COST = 2: the census
+// (stereo_lcdm_convert), the per-label distance by stereo_lcdm_distance; COST_CENSUS: the census
 // cost, in_left and in_right being census codes (stereo_census in front), the Hamming distance
 // times CENSUS_WEIGHT.
 // Below, "pixel" is what the delay lines carry: RGB or a census code (24 bits) or the LCDM point
@@ -18,7 +18,7 @@
 //   |Lr - Rr(xr)| + |Lg - Rg(xr)| + |Lb - Rb(xr)|  (AD),  lcdm(L, R(xr))  (LCDM)  or
 //   popcount(L ^ R(xr)) * CENSUS_WEIGHT  (census),  xr = x - m - k,
 // or COST_OUTSIDE where xr lies outside [0, W): exactly where the tap holds a pixel of another
-// row (or none), so nothing is ever cleared. cfg_min_disp must stay within +-MAX_MIN_DISP
+// row (or none), so nothing is ever cleared. cfg.min_disp must stay within +-MAX_MIN_DISP
 // (stereo_top clamps it) and constant during a frame and its flush.
 //
 // LANES = NDISP (the all-parallel stage): NDISP distance units compute every label at the step
@@ -43,11 +43,12 @@
 // with the label count.
 // Latency: 1 + K pixel steps. Throughput: one pixel per ce.
 `default_nettype none
+`include "stereo_assert.svh"
 
 module stereo_cost #(
     parameter int NDISP        = 16,                           // labels
-    parameter int MAX_MIN_DISP = fx_pkg::DEFAULT_MAX_MIN_DISP,  // largest |cfg_min_disp|
-    parameter int COST         = fx_pkg::COST_AD,  // COST_AD, COST_LCDM or COST_CENSUS
+    parameter int MAX_MIN_DISP = fx_pkg::DEFAULT_MAX_MIN_DISP,  // largest |cfg.min_disp|
+    parameter fx_pkg::cost_e COST = fx_pkg::COST_AD,  // COST_AD, COST_LCDM or COST_CENSUS
     parameter int LANES        = NDISP,  // labels computed per clock (divides NDISP)
     parameter bit CENSUS_CODES = 1'b0,  // census: the code (distance or outside) per label
     // Rows of codes (AD: costs) per label, above 1 only with CENSUS_CODES or COST_AD: the
@@ -62,8 +63,9 @@ module stereo_cost #(
 `include "stereo_stage_ports.svh"
     input  wire logic [23:0]                        in_left,       // {R, G, B} or census code
     input  wire logic [23:0]                        in_right,      // {R, G, B} or census code
-    input  wire fx_pkg::cfg_size_t                  cfg_width,
-    input  wire fx_pkg::cfg_min_disp_t              cfg_min_disp,
+    /* verilator lint_off UNUSEDSIGNAL */  // reads width and min_disp only
+    input  wire fx_pkg::config_t                    cfg,
+    /* verilator lint_on UNUSEDSIGNAL */
     output      fx_pkg::coord_t                     out_x,
     output      fx_pkg::coord_t                     out_y,
     // The row out_y takes at this step (the coordinate register's input): the aggregation
@@ -89,15 +91,21 @@ module stereo_cost #(
   localparam int LEFT_DELAY = (MAX_MIN_DISP > 0) ? MAX_MIN_DISP : 1;  // left pixels kept
   localparam int SHIFT_BITS = $clog2(MAX_MIN_DISP + 1) + 1;
 
-  initial begin
-    assert (MAX_MIN_DISP >= 0 && MAX_MIN_DISP <= fx_pkg::MAX_MIN_DISPARITY);
-    assert (COST == fx_pkg::COST_AD || COST == fx_pkg::COST_LCDM || COST == fx_pkg::COST_CENSUS);
-    assert (!CENSUS_CODES || COST == fx_pkg::COST_CENSUS);
-    assert (LANES >= 1 && NDISP % LANES == 0);
-    // Row stacks: census codes (CENSUS_CODES) or RGB (AD); not LCDM, whose points are computed
-    // in front of the delay lines.
-    assert (ROWS >= 1 && (ROWS == 1 || CENSUS_CODES || COST == fx_pkg::COST_AD));
-  end
+  `STEREO_ASSERT(max_min_disp_range,
+                 MAX_MIN_DISP >= 0 && MAX_MIN_DISP <= fx_pkg::MAX_MIN_DISPARITY,
+                 "MAX_MIN_DISP must be 0 .. MAX_MIN_DISPARITY")
+  `STEREO_ASSERT(cost_known,
+                 COST == fx_pkg::COST_AD || COST == fx_pkg::COST_LCDM ||
+                     COST == fx_pkg::COST_CENSUS,
+                 "COST must be COST_AD, COST_LCDM or COST_CENSUS")
+  `STEREO_ASSERT(census_codes_cost, !CENSUS_CODES || COST == fx_pkg::COST_CENSUS,
+                 "CENSUS_CODES = 1 needs COST = COST_CENSUS")
+  `STEREO_ASSERT(lanes_divide_ndisp, LANES >= 1 && NDISP % LANES == 0,
+                 "LANES must be at least 1 and divide NDISP")
+  // Row stacks: census codes (CENSUS_CODES) or RGB (AD); not LCDM, whose points are computed
+  // in front of the delay lines.
+  `STEREO_ASSERT(rows_cost, ROWS >= 1 && (ROWS == 1 || CENSUS_CODES || COST == fx_pkg::COST_AD),
+                 "ROWS must be at least 1, and 1 unless the stage carries census codes or AD")
 
   // The pixels the delay lines carry.
   logic [PIXEL_BITS-1:0] new_left, new_right;
@@ -131,7 +139,7 @@ module stereo_cost #(
           .ce(ce),
           .in_x(in_x),
           .group(1'b0),
-          .cfg_width(cfg_width),
+          .cfg_width(cfg.width),
           .in_data({in_right, in_left}),
           .rows_above(rows_above)
       );
@@ -162,8 +170,8 @@ module stereo_cost #(
   always_comb begin
     left_wait = '0;
     right_skip = '0;
-    if (cfg_min_disp < 0) left_wait = SHIFT_BITS'(-cfg_min_disp);
-    else right_skip = SHIFT_BITS'(cfg_min_disp);
+    if (cfg.min_disp < 0) left_wait = SHIFT_BITS'(-cfg.min_disp);
+    else right_skip = SHIFT_BITS'(cfg.min_disp);
   end
 
   // The right pixel P steps old.
@@ -234,7 +242,7 @@ module stereo_cost #(
       end
       assign lane_left = left_q;
       // xr = x - m - k with the registered coordinates, k = group*LANES + l.
-      assign lane_base_x = 18'(out_x) - 18'(cfg_min_disp) - 18'(32'(group) * LANES);
+      assign lane_base_x = 18'(out_x) - 18'(cfg.min_disp) - 18'(32'(group) * LANES);
       // The history as a ring of G words of LANES entries (stereo_group_ring, block or LUT RAM):
       // the word at the head in the clock of group g holds entries [g*LANES +: LANES], so the
       // lanes read it without a multiplexer. At each advance the head's word moves one entry up
@@ -274,7 +282,7 @@ module stereo_cost #(
       );
     end else begin : g_parallel
       assign lane_left = left_pixel;
-      assign lane_base_x = 18'(left_x) - 18'(cfg_min_disp);
+      assign lane_base_x = 18'(left_x) - 18'(cfg.min_disp);
       // Tap k + P behind the newest right pixel: k behind the selected one.
       if (NDISP > 1) begin : g_history
         // right_history[i*PIXEL_BITS +: PIXEL_BITS] = the selected right pixel i + 1 steps ago.
@@ -327,7 +335,7 @@ module stereo_cost #(
       end
       // Outside: every row's field (a column is outside for all its rows).
       assign cost_d[l*LANE_BITS +: LANE_BITS] =
-          (right_x < 18'sd0 || right_x >= $signed(18'(cfg_width))) ? {ROWS{OUTSIDE}} : distance;
+          (right_x < 18'sd0 || right_x >= $signed(18'(cfg.width))) ? {ROWS{OUTSIDE}} : distance;
     end
   endgenerate
 

@@ -18,6 +18,7 @@
 // state register (index 0 starts from the operands); the quotient is complete, combinationally,
 // at the step clock. One segment of rows instead of QUOTIENT_BITS rows.
 `default_nettype none
+`include "stereo_assert.svh"
 
 module stereo_divider #(
     parameter int DIVISOR_BITS  = 15,  // the dividend has as many bits and is below the divisor
@@ -39,8 +40,10 @@ module stereo_divider #(
                                      : (QUOTIENT_BITS + STAGES - 1) / STAGES;
   localparam int BUSY_CLOCKS = (QUOTIENT_BITS + ROWS - 1) / ROWS;  // CLOCKS > 1: clocks with rows
 
-  initial assert (STAGES >= 1 && STAGES <= QUOTIENT_BITS && CLOCKS >= 1 &&
-                  (CLOCKS == 1 || STAGES == 1));
+  `STEREO_ASSERT(stages_clocks,
+                 STAGES >= 1 && STAGES <= QUOTIENT_BITS && CLOCKS >= 1 &&
+                     (CLOCKS == 1 || STAGES == 1),
+                 "STAGES must be 1 .. QUOTIENT_BITS and CLOCKS at least 1, one of them 1")
 
   // The division's state between rows, one packed vector (Yosys 0.23 parses no functions of
   // struct type): {remainder (< divisor), divisor, quotient bits so far}.

@@ -25,6 +25,7 @@
 // default: a ring of four words of 84 bits or eight of 14 goes to block RAM, four words of 14
 // bits or three of 52 stay in flip-flops, at any depth).
 `default_nettype none
+`include "stereo_assert.svh"
 
 module stereo_group_ring #(
     parameter int BITS   = 8,  // one group's state
@@ -37,9 +38,7 @@ module stereo_group_ring #(
     input  wire logic [BITS-1:0] next_state,  // the head group's state after this advance
     output      logic [BITS-1:0] head         // the state of the group computed at this clock
 );
-  initial begin
-    assert (GROUPS >= 1);
-  end
+  `STEREO_ASSERT(groups_positive, GROUPS >= 1, "GROUPS must be at least 1")
 
   localparam int POINTER_BITS = (GROUPS > 1) ? $clog2(GROUPS) : 1;
   localparam int FILL = GROUPS * BITS / ((BITS + 15) / 16);  // bits per block column

@@ -6,7 +6,7 @@
 // register, acc_*) meets right pixel xr = x - m - k at label k. NDISP accumulators of (cost,
 // label) form a shift structure: accumulator j holds right pixel xr = x - m - j and takes
 // (E(x, j), j) when E(x, j) is strictly below it (labels arrive in increasing k for one xr, so
-// ties keep the smaller label), j < cfg_ndisp, x is a frame pixel and xr lies in [0, W) of x's
+// ties keep the smaller label), j < cfg.ndisp, x is a frame pixel and xr lies in [0, W) of x's
 // row. Each step the entries move one place; the one leaving place NDISP - 1 is complete: kR of
 // xr = x - m - (NDISP - 1), the smallest k minimising E(xr + m + k, k) over the labels whose left
 // pixel is in the row. The last NDISP completed labels are kept (hist[i] = kR(xr - i)).
@@ -35,6 +35,7 @@
 // Latency: NDISP pixel steps (the delay line and the output register), which is the output
 // register of stereo_top.
 `default_nettype none
+`include "stereo_assert.svh"
 
 module stereo_lr_check #(
     parameter int NDISP = 16,  // disparities
@@ -67,14 +68,9 @@ module stereo_lr_check #(
     input  wire logic [fx_pkg::AGG_BITS-1:0]          in_cost,
     input  wire logic [fx_pkg::AGG_BITS-1:0]          in_second,
     input  wire logic signed [fx_pkg::FIXED_BITS-1:0] in_fixed,
-    input  wire fx_pkg::cfg_size_t                    cfg_width,
-    input  wire fx_pkg::cfg_size_t                    cfg_height,
-    input  wire fx_pkg::cfg_ndisp_t                   cfg_ndisp,
-    input  wire fx_pkg::cfg_min_disp_t                cfg_min_disp,
-    input  wire logic                                 cfg_uniqueness_en,
-    input  wire fx_pkg::cfg_uniqueness_t              cfg_uniqueness,
-    input  wire logic                                 cfg_lr_en,
-    input  wire fx_pkg::cfg_lr_tolerance_t            cfg_lr_tolerance,
+    /* verilator lint_off UNUSEDSIGNAL */  // reads all but radius, use_ca and subpixel_en
+    input  wire fx_pkg::config_t                      cfg,
+    /* verilator lint_on UNUSEDSIGNAL */
     // The pixel entering the output register at this step.
     output      fx_pkg::coord_t                       next_x,
     output      fx_pkg::coord_t                       next_y,
@@ -90,9 +86,8 @@ module stereo_lr_check #(
   localparam int PRODUCT_BITS = BITS + U_BITS + 1;  // signed: C1 U < 2^22, |100 (C2 - C1)| < 2^21
   localparam logic [BITS-1:0] UNSET = {BITS{1'b1}};  // above every cost
 
-  initial begin
-    assert (LANES >= 1 && NDISP % LANES == 0);
-  end
+  `STEREO_ASSERT(lanes_divide_ndisp, LANES >= 1 && NDISP % LANES == 0,
+                 "LANES must be at least 1 and divide NDISP")
 
   // The group of this clock; G = 1: 0 whatever the port carries (stage testbenches leave it open).
   /* verilator lint_off UNUSEDSIGNAL */  // G = 1: not needed
@@ -102,19 +97,19 @@ module stereo_lr_check #(
 
   // ---- right-referenced winners ---------------------------------------------------------------
   // Lane l of this clock's group takes label j = g*LANES + l: when x is a frame pixel, j is below
-  // cfg_ndisp and xr = x - m - j lies in [0, W), i.e. diagonal >= l and diagonal - W < l.
+  // cfg.ndisp and xr = x - m - j lies in [0, W), i.e. diagonal >= l and diagonal - W < l.
   logic acc_in_frame;
-  assign acc_in_frame = acc_x >= 0 && 32'(acc_x) < $signed(32'(cfg_width)) && acc_y >= 0 &&
-                        32'(acc_y) < $signed(32'(cfg_height));
+  assign acc_in_frame = acc_x >= 0 && 32'(acc_x) < $signed(32'(cfg.width)) && acc_y >= 0 &&
+                        32'(acc_y) < $signed(32'(cfg.height));
   logic signed [17:0] diagonal;  // xr of lane 0: x - m - g*LANES (18-bit signed arithmetic)
   logic signed [17:0] beyond;  // diagonal - W
-  assign diagonal = 18'(acc_x) - 18'(cfg_min_disp) - 18'(32'(group_now) * LANES);
-  assign beyond = diagonal - $signed(18'(cfg_width));
+  assign diagonal = 18'(acc_x) - 18'(cfg.min_disp) - 18'(32'(group_now) * LANES);
+  assign beyond = diagonal - $signed(18'(cfg.width));
   logic [LANES-1:0] take;
   logic [LANES*BITS-1:0] lane_cost;  // E(x, g*LANES + l) at [l*BITS +: BITS]
   always_comb begin
     for (int l = 0; l < LANES; l++) begin
-      take[l] = acc_in_frame && $signed(32'(group_now) * LANES + l) < $signed(32'(cfg_ndisp)) &&
+      take[l] = acc_in_frame && $signed(32'(group_now) * LANES + l) < $signed(32'(cfg.ndisp)) &&
                 diagonal >= $signed(18'(l)) && beyond < $signed(18'(l));
     end
   end
@@ -261,7 +256,7 @@ module stereo_lr_check #(
       logic [CHUNKS*CHUNK-1:0] factor;
       logic [PRODUCT_BITS-1:0] partial;  // registered: the chunks of the clocks before
       logic [CHUNK-1:0] chunk;
-      assign factor = (CHUNKS * CHUNK)'(cfg_uniqueness);
+      assign factor = (CHUNKS * CHUNK)'(cfg.uniqueness);
       always_comb begin
         chunk = '0;
         for (int c = 0; c < CHUNKS; c++) begin
@@ -276,7 +271,7 @@ module stereo_lr_check #(
         if (ce || 32'(group_now) != GROUPS - 1) partial <= scaled_best;
       end
     end else begin : g_product
-      assign scaled_best = PRODUCT_BITS'(in_cost) * PRODUCT_BITS'(cfg_uniqueness);
+      assign scaled_best = PRODUCT_BITS'(in_cost) * PRODUCT_BITS'(cfg.uniqueness);
     end
   endgenerate
   logic not_unique;
@@ -284,7 +279,7 @@ module stereo_lr_check #(
     logic signed [PRODUCT_BITS-1:0] scaled_margin;  // 100 (C2 - C1)
     scaled_margin = (PRODUCT_BITS'(in_second) - PRODUCT_BITS'(in_cost)) *
                     PRODUCT_BITS'(fx_pkg::UNIQUENESS_BASE);
-    not_unique = cfg_uniqueness_en && in_second != BITS'(fx_pkg::NO_SECOND_COST) &&
+    not_unique = cfg.uniqueness_en && in_second != BITS'(fx_pkg::NO_SECOND_COST) &&
                  $signed(scaled_best) >= scaled_margin;
   end
 
@@ -364,7 +359,7 @@ module stereo_lr_check #(
     beat.pad = '0;
     if (!leaving.border) beat.reason = fx_pkg::REASON_BITS'(fx_pkg::REASON_BORDER);
     else if (leaving.not_unique) beat.reason = fx_pkg::REASON_BITS'(fx_pkg::REASON_UNIQUENESS);
-    else if (cfg_lr_en && 32'(distance) > 32'(cfg_lr_tolerance))
+    else if (cfg.lr_en && 32'(distance) > 32'(cfg.lr_tolerance))
       beat.reason = fx_pkg::REASON_BITS'(fx_pkg::REASON_LEFT_RIGHT);
     else beat.reason = fx_pkg::REASON_BITS'(fx_pkg::REASON_VALID);
     beat.fixed = (beat.reason == fx_pkg::REASON_BITS'(fx_pkg::REASON_VALID)) ? leaving.fixed : '0;

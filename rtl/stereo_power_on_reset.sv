@@ -2,6 +2,7 @@
 // at their init values after configuration, so a counter that starts at 0 holds `rst` high for
 // 2^POR_BITS clocks; a button (active low, asynchronous: two synchroniser flops) restarts it.
 `default_nettype none
+`include "stereo_assert.svh"
 
 module stereo_power_on_reset #(
     parameter int POR_BITS = 8  // reset length: 2^POR_BITS clocks
@@ -10,9 +11,7 @@ module stereo_power_on_reset #(
     input  wire logic button_n,  // active low: held in reset while pressed
     output      logic rst        // active high, synchronous to clk
 );
-  initial begin
-    assert (POR_BITS >= 1);
-  end
+  `STEREO_ASSERT(por_bits_positive, POR_BITS >= 1, "POR_BITS must be at least 1")
 
   logic [POR_BITS:0] count = '0;
   logic button_meta = 1'b1;

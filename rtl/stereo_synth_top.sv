@@ -20,11 +20,11 @@ module stereo_synth_top #(
     // stereo_top RING_BLOCK_RAM: 1 for the iCE40 (synth.py sets it there).
     parameter bit RING_BLOCK_RAM = 1'b0,
     parameter int RING_BLOCK_MIN_FILL = 50,  // stereo_group_ring BLOCK_MIN_FILL
-    parameter int COST = fx_pkg::COST_AD,  // COST_AD, COST_LCDM or COST_CENSUS (stereo_top)
-    // Tap products from shifts and adds (stereo_top SHIFT_ADD): 0 none, 1 census vertical, 2 all
-    parameter int SHIFT_ADD = 0,
+    parameter fx_pkg::cost_e COST = fx_pkg::COST_AD,  // COST_AD, COST_LCDM or COST_CENSUS
+    // Tap products from shifts and adds (stereo_top SHIFT_ADD): none, census vertical, all
+    parameter fx_pkg::shift_add_e SHIFT_ADD = fx_pkg::SHIFT_ADD_NONE,
     // The lean memory architecture (stereo_top RECOMPUTE_COSTS; census or AD)
-    parameter int RECOMPUTE_COSTS = 0
+    parameter bit RECOMPUTE_COSTS = 1'b0
 ) (
     input  wire logic                            clk,
     input  wire logic                            rst,

@@ -34,6 +34,7 @@
 //   [0] tlast not at the row end, [1] tuser inside a frame, [2] configuration out of range
 //   (clamped; |cfg_min_disp| > MAX_MIN_DISP included). Reset is synchronous, active high, and clears control state only.
 `default_nettype none
+`include "stereo_assert.svh"
 
 module stereo_top #(
     parameter int WIDTH  = 64,  // largest frame width
@@ -49,7 +50,7 @@ module stereo_top #(
     // Matching cost: fx_pkg::COST_AD (0) over RGB, COST_LCDM (1, thesis Sec. 3.5; colour input;
     // same latency) or COST_CENSUS (2, 5x5 census of the luma: stereo_census in front of the
     // cost stage, 2 * W + 4 more pixel steps of latency, 4 rows of lumas more memory).
-    parameter int COST = fx_pkg::COST_AD,
+    parameter fx_pkg::cost_e COST = fx_pkg::COST_AD,
     // Labels computed per clock (divides NDISP). A pixel step takes G = NDISP / LANES clocks;
     // the converted stages compute LANES labels per clock on shared arithmetic (docs/rtl.md,
     // "Time-multiplexed lanes"). LANES = NDISP: one pixel per clock, every label in parallel.
@@ -61,15 +62,16 @@ module stereo_top #(
     parameter int RING_BLOCK_MIN_FILL = 50,  // stereo_group_ring BLOCK_MIN_FILL
     // RUNTIME_KERNEL = 0: which constant tap products of the aggregation are built from shifts
     // and adds (canonical signed digits) instead of being left to the tools (DSP blocks where the
-    // target has them): 0 none, 1 the census codes' narrow vertical products, 2 all.
-    parameter int SHIFT_ADD = 0,
+    // target has them): SHIFT_ADD_NONE (0), SHIFT_ADD_NARROW (1, the census codes' narrow vertical
+    // products) or SHIFT_ADD_ALL (2).
+    parameter fx_pkg::shift_add_e SHIFT_ADD = fx_pkg::SHIFT_ADD_NONE,
     // COST_CENSUS or COST_AD. 1: the lean memory architecture (docs/rtl.md "Lean memory"): the
     // cost stage keeps WINDOW - 1 rows of both images' census codes (RGB) and recomputes every
     // label's codes (costs) for the aggregation's vertical window, which then has no per-label
     // line buffer (memory grows with WIDTH * WINDOW, not with NDISP). 0: the aggregation keeps
     // each label's code (5 bits; AD: cost, 10 bits) for WINDOW - 1 rows, cheaper below about 10
     // labels (5 with AD).
-    parameter int RECOMPUTE_COSTS = 0
+    parameter bit RECOMPUTE_COSTS = 1'b0
 ) (
     input  wire logic                               clk,
     input  wire logic                               rst,
@@ -88,18 +90,23 @@ module stereo_top #(
   localparam int GROUPS = NDISP / LANES;  // clocks per pixel step
   localparam int GROUP_BITS = (GROUPS > 1) ? $clog2(GROUPS) : 1;
 
-  initial begin
-    assert (WINDOW % 2 == 1 && WINDOW <= fx_pkg::MAX_WINDOW);
-    assert (NDISP >= 1 && NDISP <= 256);
-    assert (LANES >= 1 && LANES <= NDISP && NDISP % LANES == 0);
-    assert (MAX_MIN_DISP >= 0 && MAX_MIN_DISP <= fx_pkg::MAX_MIN_DISPARITY);
-    assert (WIDTH >= 1 && WIDTH <= fx_pkg::MAX_FRAME_SIDE && HEIGHT >= 1 &&
-            HEIGHT <= fx_pkg::MAX_FRAME_SIDE);
-    assert (RECOMPUTE_COSTS == 0 ||
-            (RECOMPUTE_COSTS == 1 && (COST == fx_pkg::COST_CENSUS || COST == fx_pkg::COST_AD)));
-  end
+  `STEREO_ASSERT(window_odd, WINDOW % 2 == 1 && WINDOW <= fx_pkg::MAX_WINDOW,
+                 "WINDOW must be odd, at most MAX_WINDOW")
+  `STEREO_ASSERT(ndisp_range, NDISP >= 1 && NDISP <= 256, "NDISP must be 1 .. 256")
+  `STEREO_ASSERT(lanes_divide_ndisp, LANES >= 1 && LANES <= NDISP && NDISP % LANES == 0,
+                 "LANES must be 1 .. NDISP and divide NDISP")
+  `STEREO_ASSERT(max_min_disp_range,
+                 MAX_MIN_DISP >= 0 && MAX_MIN_DISP <= fx_pkg::MAX_MIN_DISPARITY,
+                 "MAX_MIN_DISP must be 0 .. MAX_MIN_DISPARITY")
+  `STEREO_ASSERT(frame_size_range,
+                 WIDTH >= 1 && WIDTH <= fx_pkg::MAX_FRAME_SIDE && HEIGHT >= 1 &&
+                     HEIGHT <= fx_pkg::MAX_FRAME_SIDE,
+                 "WIDTH and HEIGHT must be 1 .. MAX_FRAME_SIDE")
+  `STEREO_ASSERT(recompute_costs_cost,
+                 !RECOMPUTE_COSTS || COST == fx_pkg::COST_CENSUS || COST == fx_pkg::COST_AD,
+                 "COST must be COST_CENSUS or COST_AD when RECOMPUTE_COSTS = 1")
   // Rows of codes per label between the cost stage and the aggregation.
-  localparam int COST_ROWS = (RECOMPUTE_COSTS != 0) ? WINDOW : 1;
+  localparam int COST_ROWS = RECOMPUTE_COSTS ? WINDOW : 1;
 
   // ---- configuration: sanitised ports, latched at the start of a frame ----------------------
   typedef enum logic [1:0] {
@@ -172,7 +179,8 @@ module stereo_top #(
   // latched values during the frame and its flush. A setting whose clamped range is one value is that
   // constant for the stages (the one-label core: cfg_ndisp is 1; MAX_MIN_DISP = 0: cfg_min_disp
   // is 0), so no multiplexer from the frame state runs in front of their logic (the one-label
-  // iCE40 core's critical path). The clamps and the status bit see the registered ports.
+  // iCE40 core's critical path). The clamps and the status bit see the registered ports. Every
+  // stage takes use_cfg whole on its `cfg` port and reads the fields it needs.
   fx_pkg::config_t use_cfg;
   always_comb begin
     use_cfg = (state == IDLE) ? idle_cfg : frame_cfg;
@@ -352,8 +360,7 @@ module stereo_top #(
           .in_y(y_in),
           .in_left(left_pixel),
           .in_right(right_pixel),
-          .cfg_width(use_cfg.width),
-          .cfg_height(use_cfg.height),
+          .cfg(use_cfg),
           .out_x(match_x),
           .out_y(match_y),
           .out_left(match_left),
@@ -393,8 +400,7 @@ module stereo_top #(
       .in_y(match_y),
       .in_left(match_left),
       .in_right(match_right),
-      .cfg_width(use_cfg.width),
-      .cfg_min_disp(use_cfg.min_disp),
+      .cfg(use_cfg),
       .out_x(cost_x),
       .out_y(cost_y),
       .out_next_y(cost_next_y),
@@ -421,19 +427,19 @@ module stereo_top #(
       .in_y(cost_y),
       .in_next_y(cost_next_y),
       .in_data(cost_data),
-      .cfg_width(use_cfg.width),
-      .cfg_height(use_cfg.height),
+      .cfg(use_cfg),
       .cfg_kernel(use_kernel),
       .out_x(agg_x),
       .out_y(agg_y),
       .out_data(agg_data)
   );
 
-  // The two CA rules: the skeleton stereo_ca_plane with RULE 1 and 2 (rule 2 ignores cfg_ndisp).
+  // The two CA rules: the skeleton stereo_ca_plane with RULE CA_RULE1 and CA_RULE2 (rule 2 ignores
+  // cfg.ndisp).
   stereo_ca_plane #(
       .WIDTH(WIDTH),
       .NDISP(NDISP),
-      .RULE (1),
+      .RULE(fx_pkg::CA_RULE1),
       .LANES(LANES),
       .RING_BLOCK_RAM(RING_BLOCK_RAM),
       .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
@@ -445,10 +451,7 @@ module stereo_top #(
       .in_x(agg_x),
       .in_y(agg_y),
       .in_data(agg_data),
-      .cfg_width(use_cfg.width),
-      .cfg_height(use_cfg.height),
-      .cfg_ndisp(use_cfg.ndisp),
-      .cfg_use_ca(use_cfg.use_ca),
+      .cfg(use_cfg),
       .out_x(rule1_x),
       .out_y(rule1_y),
       .out_data(rule1_data)
@@ -457,7 +460,7 @@ module stereo_top #(
   stereo_ca_plane #(
       .WIDTH(WIDTH),
       .NDISP(NDISP),
-      .RULE (2),
+      .RULE(fx_pkg::CA_RULE2),
       .LANES(LANES),
       .RING_BLOCK_RAM(RING_BLOCK_RAM),
       .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
@@ -469,10 +472,7 @@ module stereo_top #(
       .in_x(rule1_x),
       .in_y(rule1_y),
       .in_data(rule1_data),
-      .cfg_width(use_cfg.width),
-      .cfg_height(use_cfg.height),
-      .cfg_ndisp(use_cfg.ndisp),
-      .cfg_use_ca(use_cfg.use_ca),
+      .cfg(use_cfg),
       .out_x(wta_in_x),
       .out_y(wta_in_y),
       .out_data(rule2_data)
@@ -500,12 +500,7 @@ module stereo_top #(
       .in_x(wta_in_x),
       .in_y(wta_in_y),
       .in_data(rule2_data),
-      .cfg_width(use_cfg.width),
-      .cfg_height(use_cfg.height),
-      .cfg_ndisp(use_cfg.ndisp),
-      .cfg_radius(use_cfg.radius),
-      .cfg_use_ca(use_cfg.use_ca),
-      .cfg_min_disp(use_cfg.min_disp),
+      .cfg(use_cfg),
       .out_x(wta_x),
       .out_y(wta_y),
       .out_label(wta_label),
@@ -534,9 +529,7 @@ module stereo_top #(
       .in_after(wta_after),
       .in_data(wta_data),
       .in_second(wta_second),
-      .cfg_ndisp(use_cfg.ndisp),
-      .cfg_min_disp(use_cfg.min_disp),
-      .cfg_subpixel_en(use_cfg.subpixel_en),
+      .cfg(use_cfg),
       .out_x(validate_x),
       .out_y(validate_y),
       .out_label(validate_label),
@@ -570,14 +563,7 @@ module stereo_top #(
       .in_cost(validate_cost),
       .in_second(validate_second),
       .in_fixed(validate_fixed),
-      .cfg_width(use_cfg.width),
-      .cfg_height(use_cfg.height),
-      .cfg_ndisp(use_cfg.ndisp),
-      .cfg_min_disp(use_cfg.min_disp),
-      .cfg_uniqueness_en(use_cfg.uniqueness_en),
-      .cfg_uniqueness(use_cfg.uniqueness),
-      .cfg_lr_en(use_cfg.lr_en),
-      .cfg_lr_tolerance(use_cfg.lr_tolerance),
+      .cfg(use_cfg),
       .next_x(final_x),
       .next_y(final_y),
       .out_x(out_x),

@@ -8,6 +8,7 @@
 // the same; the receiver then waits for the line to go idle (high) before it looks for the next
 // start bit). Reset is synchronous, active high.
 `default_nettype none
+`include "stereo_assert.svh"
 
 module stereo_uart_rx #(
     parameter int CLKS_PER_BIT = 4  // clock cycles per bit (clock / baud rate), at least 4
@@ -23,9 +24,7 @@ module stereo_uart_rx #(
   localparam logic [COUNT_BITS-1:0] FULL_BIT = COUNT_BITS'(CLKS_PER_BIT - 1);
   localparam logic [COUNT_BITS-1:0] HALF_BIT = COUNT_BITS'(CLKS_PER_BIT / 2 - 1);
 
-  initial begin
-    assert (CLKS_PER_BIT >= 4);
-  end
+  `STEREO_ASSERT(clks_per_bit_min, CLKS_PER_BIT >= 4, "CLKS_PER_BIT must be at least 4")
 
   // Two-flop synchroniser; the line is idle high, so the flops start high.
   logic rx_meta, rx_sync;

@@ -6,6 +6,7 @@
 // in the last clock of a stop bit). The line
 // is high while idle and in reset. Reset is synchronous, active high.
 `default_nettype none
+`include "stereo_assert.svh"
 
 module stereo_uart_tx #(
     parameter int CLKS_PER_BIT = 4  // clock cycles per bit (clock / baud rate), at least 1
@@ -20,9 +21,7 @@ module stereo_uart_tx #(
   localparam int COUNT_BITS = $clog2(CLKS_PER_BIT + 1);
   localparam logic [COUNT_BITS-1:0] FULL_BIT = COUNT_BITS'(CLKS_PER_BIT - 1);
 
-  initial begin
-    assert (CLKS_PER_BIT >= 1);
-  end
+  `STEREO_ASSERT(clks_per_bit_min, CLKS_PER_BIT >= 1, "CLKS_PER_BIT must be at least 1")
 
   logic busy;
   logic [COUNT_BITS-1:0] count;  // clocks left in the current bit

@@ -2,7 +2,7 @@
 // stereo::ValidatingSelector and stereo::validation::subpixel_offset, docs/fixed-point.md
 // stage 6), from stereo_wta's registered winner and cost vector.
 //
-//   C2 = min { E(k) : |k - k1| > 1, k < cfg_ndisp }: LANES = NDISP: a second comparator tree
+//   C2 = min { E(k) : |k - k1| > 1, k < cfg.ndisp }: LANES = NDISP: a second comparator tree
 //        whose leaves are masked by the winner; a masked leaf holds all ones = NO_SECOND_COST,
 //        which is what the tree yields when no label lies away from the winner. LANES < NDISP
 //        (time-multiplexed lanes, docs/rtl.md): stereo_wta computes C2 while it scans the label
@@ -11,11 +11,12 @@
 //        registered: stereo_lr_check's certainty divider then folds into a shift).
 //   fixed = 16 (m + k1) + offset, offset = sign(a - b) CORRECTION[p],
 //        p = floor((16 |a - b| + den) / (2 den)), a = E(k1 - 1), b = E(k1 + 1),
-//        den = a + b - 2 C1 > 0, when cfg_subpixel_en and 0 < k1 < cfg_ndisp - 1; else 0. Since
+//        den = a + b - 2 C1 > 0, when cfg.subpixel_en and 0 < k1 < cfg.ndisp - 1; else 0. Since
 //        p <= 8 (den >= |a - b|), a 4-bit restoring division of 16 |a - b| + den by 2 den (four
 //        subtractors) gives it; CORRECTION is the 9-entry table fx_pkg::subpixel_correction.
 // Latency: 1 pixel step.
 `default_nettype none
+`include "stereo_assert.svh"
 
 module stereo_validate #(
     parameter int NDISP = 16,  // disparities
@@ -35,9 +36,9 @@ module stereo_validate #(
     input  wire logic [NDISP*fx_pkg::AGG_BITS-1:0]  in_data,    // E(0 .. NDISP-1)
     input  wire logic [fx_pkg::AGG_BITS-1:0]        in_second,  // C2 from stereo_wta
     /* verilator lint_on UNUSEDSIGNAL */
-    input  wire fx_pkg::cfg_ndisp_t                 cfg_ndisp,
-    input  wire fx_pkg::cfg_min_disp_t              cfg_min_disp,
-    input  wire logic                               cfg_subpixel_en,
+    /* verilator lint_off UNUSEDSIGNAL */  // reads ndisp, min_disp and subpixel_en only
+    input  wire fx_pkg::config_t                    cfg,
+    /* verilator lint_on UNUSEDSIGNAL */
     output      fx_pkg::coord_t                     out_x,
     output      fx_pkg::coord_t                     out_y,
     output      logic [fx_pkg::DISP_BITS-1:0]       out_label,
@@ -48,9 +49,9 @@ module stereo_validate #(
 );
   localparam int BITS = fx_pkg::AGG_BITS;
 
-  initial begin
-    assert (fx_pkg::NO_SECOND_COST == (1 << BITS) - 1);  // a masked leaf is "no second cost"
-  end
+  // A masked leaf of the comparator tree (all ones) is "no second cost".
+  `STEREO_ASSERT(no_second_cost_all_ones, fx_pkg::NO_SECOND_COST == (1 << BITS) - 1,
+                 "NO_SECOND_COST must be all ones in AGG_BITS")
 
   // ---- C2: the minimum over labels away from the winner --------------------------------------
   logic [BITS-1:0] second;
@@ -73,7 +74,7 @@ module stereo_validate #(
           assign node[(LEAVES-1+k)*BITS +: BITS] =
               // A shift, not a part-select: Verilator's lint of several tops at once (different
               // NDISP) checks this select against another instance's width.
-              (away && k < $signed(32'(cfg_ndisp))) ? BITS'(in_data >> (k * BITS))
+              (away && k < $signed(32'(cfg.ndisp))) ? BITS'(in_data >> (k * BITS))
                                                      : BITS'(fx_pkg::NO_SECOND_COST);
         end else begin : g_padding
           assign node[(LEAVES-1+k)*BITS +: BITS] = BITS'(fx_pkg::NO_SECOND_COST);
@@ -123,12 +124,12 @@ module stereo_validate #(
         steps[r] = 1'b1;
       end
     end
-    // NDISP <= 2: no label has both neighbours (0 < k1 < cfg_ndisp - 1 <= 1 is empty), so the
+    // NDISP <= 2: no label has both neighbours (0 < k1 < cfg.ndisp - 1 <= 1 is empty), so the
     // offset is never applied and the division above folds away (it was the one- and two-label
     // cores' critical path).
-    refine = NDISP > 2 && cfg_subpixel_en && in_label != '0 &&
-             32'(in_label) + 1 < 32'(cfg_ndisp) && denominator != '0;
-    fixed = (fx_pkg::FIXED_BITS'(cfg_min_disp) + fx_pkg::FIXED_BITS'(in_label))
+    refine = NDISP > 2 && cfg.subpixel_en && in_label != '0 &&
+             32'(in_label) + 1 < 32'(cfg.ndisp) && denominator != '0;
+    fixed = (fx_pkg::FIXED_BITS'(cfg.min_disp) + fx_pkg::FIXED_BITS'(in_label))
             <<< fx_pkg::SUBPIXEL_BITS;
     // The calibrated correction of the vertex (fx_pkg::subpixel_correction, a 9-entry table).
     steps = fx_pkg::subpixel_correction(steps);

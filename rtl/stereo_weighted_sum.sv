@@ -9,6 +9,7 @@
 // canonical signed-digit form (46 = 64 - 16 - 2: three terms where its binary form has four), so
 // that no multiplier or DSP block is inferred; SHIFT_ADD = 0 leaves the products to the tools.
 `default_nettype none
+`include "stereo_assert.svh"
 
 module stereo_weighted_sum #(
     parameter int WINDOW         = 5,
@@ -25,6 +26,9 @@ module stereo_weighted_sum #(
 );
   localparam int R = WINDOW / 2;
   localparam int TAP_BITS = fx_pkg::TAP_BITS;
+
+  // Taps i and WINDOW - 1 - i are paired around the centre tap R.
+  `STEREO_ASSERT(window_odd, WINDOW >= 1 && WINDOW % 2 == 1, "WINDOW must be odd")
 
   // Digit `position` (-1, 0 or 1) of the canonical signed-digit form of `value` >= 0: no two
   // adjacent digits nonzero, the fewest nonzero digits of any signed-digit form.

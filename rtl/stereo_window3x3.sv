@@ -17,6 +17,7 @@
 // clock; the ring is a RAM (stereo_group_ring), not G registers. next_centre is the centre value of label (g+1)*LANES (the next group's first, not yet
 // advanced), for rule 1's d+1 across the group boundary.
 `default_nettype none
+`include "stereo_assert.svh"
 
 module stereo_window3x3 #(
     parameter int WIDTH = 64,  // longest row
@@ -39,6 +40,9 @@ module stereo_window3x3 #(
 );
   localparam int GROUPS = NDISP / LANES;
   localparam int COLUMN = LANES * BITS;  // one group of one position
+
+  `STEREO_ASSERT(lanes_divide_ndisp, LANES >= 1 && NDISP % LANES == 0,
+                 "LANES must be at least 1 and divide NDISP")
 
   // The group of this clock; G = 1: 0 whatever the port carries.
   logic [((GROUPS > 1) ? $clog2(GROUPS) : 1)-1:0] group_now;

@@ -2,15 +2,15 @@
 // stereo::ValidatingSelector, docs/fixed-point.md stages 5 and 6).
 //
 // A comparator tree over the NDISP values of a pixel finds the smallest; on equal values the
-// left (smaller k) input wins, so ties go to the smallest label. Labels k >= cfg_ndisp take no
-// part. Label k stands for disparity d = cfg_min_disp + k. The pixel passes the border rule when
+// left (smaller k) input wins, so ties go to the smallest label. Labels k >= cfg.ndisp take no
+// part. Label k stands for disparity d = cfg.min_disp + k. The pixel passes the border rule when
 // its window stays inside the frame and its winner's right-image samples do too:
 //   reach <= x < W - reach,  reach <= y < H - reach,  reach <= x - d < W - reach,
-// reach = cfg_radius + (cfg_use_ca ? 1 : 0).
+// reach = cfg.radius + (cfg.use_ca ? 1 : 0).
 // Registered outputs for stage 6 (stereo_validate, stereo_lr_check): the winner k1 (whatever
 // the border rule says), its cost C1, the costs at k1 - 1 and k1 + 1 (meaningful where those
 // labels exist), the border flag and, with LANES = NDISP, the whole cost vector (out_data); with
-// LANES < NDISP instead the second cost C2 = min { E(k) : |k - k1| > 1, k < cfg_ndisp }
+// LANES < NDISP instead the second cost C2 = min { E(k) : |k - k1| > 1, k < cfg.ndisp }
 // (NO_SECOND_COST when there is none), and out_group, this clock's group of the input pixel's
 // costs (combinational), from which stereo_lr_check's accumulators take the costs one step ahead.
 // Latency: 1 pixel step.
@@ -28,8 +28,9 @@
 // it, the minima before and after each lane) and merged with the running state once, so the
 // logic depth grows with log2 LANES, not LANES (docs/synthesis.md "Logic depth"). At the step
 // the last group's merge is registered.
-// Absent labels (>= cfg_ndisp) count as the largest code, which never wins and is NO_SECOND_COST.
+// Absent labels (>= cfg.ndisp) count as the largest code, which never wins and is NO_SECOND_COST.
 `default_nettype none
+`include "stereo_assert.svh"
 
 module stereo_wta #(
     parameter int NDISP = 16,  // disparities
@@ -40,12 +41,9 @@ module stereo_wta #(
 `include "stereo_stage_ports.svh"
     // G = 1: the pixel's NDISP costs; G > 1: the producer's result of this clock's group.
     input  wire logic [LANES*fx_pkg::AGG_BITS-1:0] in_data,
-    input  wire fx_pkg::cfg_size_t                 cfg_width,
-    input  wire fx_pkg::cfg_size_t                 cfg_height,
-    input  wire fx_pkg::cfg_ndisp_t                cfg_ndisp,
-    input  wire fx_pkg::cfg_radius_t               cfg_radius,
-    input  wire logic                              cfg_use_ca,
-    input  wire fx_pkg::cfg_min_disp_t             cfg_min_disp,
+    /* verilator lint_off UNUSEDSIGNAL */  // reads all but uniqueness, lr and subpixel fields
+    input  wire fx_pkg::config_t                   cfg,
+    /* verilator lint_on UNUSEDSIGNAL */
     output      fx_pkg::coord_t                    out_x,
     output      fx_pkg::coord_t                    out_y,
     output      logic [fx_pkg::DISP_BITS-1:0]      out_label,   // k1
@@ -63,9 +61,8 @@ module stereo_wta #(
   localparam int DISP_BITS = fx_pkg::DISP_BITS;
   localparam int GROUPS = NDISP / LANES;
 
-  initial begin
-    assert (LANES >= 1 && NDISP % LANES == 0);
-  end
+  `STEREO_ASSERT(lanes_divide_ndisp, LANES >= 1 && NDISP % LANES == 0,
+                 "LANES must be at least 1 and divide NDISP")
 
   // The group of this clock; G = 1: 0 whatever the port carries (stage testbenches leave it open).
   /* verilator lint_off UNUSEDSIGNAL */  // G = 1: not needed
@@ -119,7 +116,7 @@ module stereo_wta #(
       localparam logic [BITS-1:0] NONE = BITS'(fx_pkg::NO_SECOND_COST);
       logic [LANES*BITS-1:0] cost;  // absent labels carry the largest code: they never win
       for (genvar l = 0; l < LANES; l++) begin : g_lane_cost
-        assign cost[l*BITS +: BITS] = ($signed(first_label + l) < $signed(32'(cfg_ndisp)))
+        assign cost[l*BITS +: BITS] = ($signed(first_label + l) < $signed(32'(cfg.ndisp)))
                                           ? group_costs[l*BITS +: BITS] : {BITS{1'b1}};
       end
       // Heap-ordered argmin tree: node n has children 2n+1 and 2n+2; leaf LEAVES-1+l is lane l.
@@ -240,10 +237,10 @@ module stereo_wta #(
         end
       end
     end else if (NDISP == 1) begin : g_single_label
-      // One label: it wins (a cost of all ones when cfg_ndisp is 0), no comparator, so the
+      // One label: it wins (a cost of all ones when cfg.ndisp is 0), no comparator, so the
       // border rule below does not wait for one (it did on the one-label iCE40 core).
       assign winner = '0;
-      assign winner_cost = (cfg_ndisp != '0) ? in_data[0 +: BITS] : {BITS{1'b1}};
+      assign winner_cost = (cfg.ndisp != '0) ? in_data[0 +: BITS] : {BITS{1'b1}};
       assign cost_before = '0;
       assign cost_after = '0;
       assign out_second = '0;
@@ -264,7 +261,7 @@ module stereo_wta #(
         // Absent labels carry the largest code, above any aggregated cost: they never win.
         if (d < NDISP) begin : g_label
           assign node_value[(LEAVES-1+d)*BITS +: BITS] =
-              (d < $signed(32'(cfg_ndisp))) ? in_data[d*BITS +: BITS] : {BITS{1'b1}};
+              (d < $signed(32'(cfg.ndisp))) ? in_data[d*BITS +: BITS] : {BITS{1'b1}};
         end else begin : g_padding
           assign node_value[(LEAVES-1+d)*BITS +: BITS] = {BITS{1'b1}};
         end
@@ -305,11 +302,11 @@ module stereo_wta #(
     logic signed [17:0] reach;  // 18-bit signed coordinate arithmetic
     logic signed [17:0] inner_width;  // W - reach
     logic signed [17:0] shifted_x;  // x - m
-    reach = $signed(18'(cfg_radius)) + (cfg_use_ca ? 18'sd1 : 18'sd0);
-    inner_width = $signed(18'(cfg_width)) - reach;
-    shifted_x = 18'(in_x) - 18'(cfg_min_disp);
+    reach = $signed(18'(cfg.radius)) + (cfg.use_ca ? 18'sd1 : 18'sd0);
+    inner_width = $signed(18'(cfg.width)) - reach;
+    shifted_x = 18'(in_x) - 18'(cfg.min_disp);
     border_ok = 18'(in_x) >= reach && 18'(in_x) < inner_width &&
-                18'(in_y) >= reach && 18'(in_y) < $signed(18'(cfg_height)) - reach &&
+                18'(in_y) >= reach && 18'(in_y) < $signed(18'(cfg.height)) - reach &&
                 $signed(18'(winner)) <= shifted_x - reach &&
                 $signed(18'(winner)) > shifted_x - inner_width;
   end

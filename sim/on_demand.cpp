@@ -432,8 +432,9 @@ fs::path ensure_runner(const CoreRequest& request, const fs::path& cache_folder,
         "-GWINDOW=" + std::to_string(request.window),
         "-GLANES=" + std::to_string(lanes_of(request)),
         "-GMAX_MIN_DISP=" + std::to_string(request.max_min_disp),
-        "-GCOST=" + std::to_string(cost_parameter(request.cost)),
-        "-GRECOMPUTE_COSTS=" + std::string(request.lean ? "1" : "0"),
+        // COST is an fx_pkg::cost_e: its code needs -Wno-ENUMVALUE; RECOMPUTE_COSTS is a bit.
+        "-GCOST=" + std::to_string(cost_parameter(request.cost)), "-Wno-ENUMVALUE",
+        "-GRECOMPUTE_COSTS=" + std::string(request.lean ? "1'b1" : "1'b0"),
         "-I" + (root / "rtl").string(),
         // verilated.mk compiles the model's hot code with
         // OPT_FAST (-Os by default): -O2 simulates 20 % faster,

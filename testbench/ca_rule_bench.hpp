@@ -92,10 +92,10 @@ struct CaRuleBench {
     // Runs one frame of the NDISP-plane `input`; returns all NDISP output planes.
     static Dsi run(Driver& driver, const Dsi& input, int ndisp, bool use_ca) {
         auto& model = driver.model();
-        model.cfg_width = static_cast<std::uint16_t>(input.width());
-        model.cfg_height = static_cast<std::uint16_t>(input.height());
-        model.cfg_ndisp = static_cast<std::uint16_t>(ndisp);  // rule 2 ignores it
-        model.cfg_use_ca = use_ca ? 1 : 0;
+        put_config(model.cfg, {{ConfigField::width, input.width()},
+                               {ConfigField::height, input.height()},
+                               {ConfigField::ndisp, ndisp},  // rule 2 ignores it
+                               {ConfigField::use_ca, use_ca ? 1 : 0}});
         Dsi rtl(input.width(), input.height(), kDisparities);
         driver.run_frame(
             input.width(), input.height(),

@@ -21,12 +21,14 @@
 #include <algorithm>
 #include <concepts>
 #include <cstdint>
+#include <initializer_list>
 #include <memory>
 #include <ostream>
 #include <random>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "port_bits.hpp"
@@ -67,6 +69,18 @@ std::vector<std::uint32_t> port_words(const Port& port) {
     } else {
         const auto value = static_cast<std::uint64_t>(port);
         return {static_cast<std::uint32_t>(value), static_cast<std::uint32_t>(value >> 32)};
+    }
+}
+
+// Fields of fx_pkg::config_t on a stage's `cfg` port (the configuration stereo_top hands its stages
+// whole; the layout is stage_table.hpp's kConfigFields): each value's low bits at its field, a
+// negative min_disp in two's complement. Fields not named keep their bits.
+using table::ConfigField;
+template <typename Port>
+void put_config(Port& port, std::initializer_list<std::pair<ConfigField, std::int64_t>> fields) {
+    for (const auto& [field, value] : fields) {
+        put_bits(port, table::config_lsb(field), table::config_field(field).bits,
+                 static_cast<std::uint64_t>(value));
     }
 }
 

@@ -52,8 +52,8 @@ std::vector<std::int32_t> centred(const std::vector<std::int32_t>& taps) {
 template <typename Driver>
 Dsi run_aggregate(Driver& driver, const Dsi& costs, const std::vector<std::int32_t>& kernel) {
     auto& model = driver.model();
-    model.cfg_width = static_cast<std::uint16_t>(costs.width());
-    model.cfg_height = static_cast<std::uint16_t>(costs.height());
+    put_config(model.cfg,
+               {{ConfigField::width, costs.width()}, {ConfigField::height, costs.height()}});
     const auto field = centred(kernel);
     for (int i = 0; i < kWindow; ++i) {
         put_bits(model.cfg_kernel, i * kTapBits, kTapBits,

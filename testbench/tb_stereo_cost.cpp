@@ -80,9 +80,8 @@ class CostStage : public ::testing::Test {
 
     static Dsi run(Driver& driver, const Image& left, const Image& right, int min_disp = 0) {
         Dsi rtl(left.width, left.height, kDisparities);
-        driver.model().cfg_width = static_cast<std::uint16_t>(left.width);
-        driver.model().cfg_min_disp = static_cast<std::uint16_t>(
-            static_cast<unsigned>(min_disp) & ((1U << table::kCfgMinDispBits) - 1));
+        put_config(driver.model().cfg,
+                   {{ConfigField::width, left.width}, {ConfigField::min_disp, min_disp}});
         driver.run_frame(
             left.width, left.height,
             [&](Model& model, int x, int y) {

@@ -89,15 +89,14 @@ class Driver {
     ValidatedDisparity run(const Dsi& volume, const Config& c) {
         const int width = volume.width();
         const int height = volume.height();
-        m_->cfg_width = static_cast<std::uint16_t>(width);
-        m_->cfg_height = static_cast<std::uint16_t>(height);
-        m_->cfg_ndisp = static_cast<std::uint16_t>(c.ndisp);
-        m_->cfg_min_disp = static_cast<std::uint16_t>(static_cast<unsigned>(c.min_disp) &
-                                                      ((1U << table::kCfgMinDispBits) - 1));
-        m_->cfg_uniqueness_en = c.validation.uniqueness ? 1 : 0;
-        m_->cfg_uniqueness = static_cast<std::uint8_t>(c.validation.uniqueness_ratio);
-        m_->cfg_lr_en = c.validation.left_right ? 1 : 0;
-        m_->cfg_lr_tolerance = static_cast<std::uint8_t>(c.validation.lr_tolerance);
+        put_config(m_->cfg, {{ConfigField::width, width},
+                             {ConfigField::height, height},
+                             {ConfigField::ndisp, c.ndisp},
+                             {ConfigField::min_disp, c.min_disp},
+                             {ConfigField::uniqueness_en, c.validation.uniqueness ? 1 : 0},
+                             {ConfigField::uniqueness, c.validation.uniqueness_ratio},
+                             {ConfigField::lr_en, c.validation.left_right ? 1 : 0},
+                             {ConfigField::lr_tolerance, c.validation.lr_tolerance}});
         ValidatedDisparity out(width, height);
         std::vector<bool> seen(out.fixed.size(), false);
         std::size_t seen_count = 0;

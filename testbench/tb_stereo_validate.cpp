@@ -118,10 +118,9 @@ Dsi make_input(Input input, int width, int height, std::mt19937& rng) {
 ::testing::AssertionResult run_and_compare(ValidateDriver& driver, const Dsi& volume,
                                            const Config& config, std::mt19937& rng) {
     auto& model = driver.model();
-    model.cfg_ndisp = static_cast<std::uint16_t>(config.ndisp);
-    model.cfg_min_disp = static_cast<std::uint16_t>(static_cast<unsigned>(config.min_disp) &
-                                                    ((1U << table::kCfgMinDispBits) - 1));
-    model.cfg_subpixel_en = config.subpixel ? 1 : 0;
+    put_config(model.cfg, {{ConfigField::ndisp, config.ndisp},
+                           {ConfigField::min_disp, config.min_disp},
+                           {ConfigField::subpixel_en, config.subpixel ? 1 : 0}});
     const int width = volume.width();
     const int height = volume.height();
     std::vector<Pixel> want(static_cast<std::size_t>(width) * height);

@@ -47,12 +47,13 @@ struct WtaConfig {
 
 DisparityMap run_wta(WtaDriver& driver, const Dsi& input, const WtaConfig& config) {
     auto& model = driver.model();
-    model.cfg_width = static_cast<std::uint16_t>(input.width());
-    model.cfg_height = static_cast<std::uint16_t>(input.height());
-    model.cfg_ndisp = static_cast<std::uint16_t>(config.ndisp);
-    model.cfg_radius = static_cast<std::uint8_t>(config.radius);
-    model.cfg_use_ca = config.use_ca ? 1 : 0;
-    model.cfg_min_disp = 0;  // stage 6's signed range: tb_stereo_top and tb_stereo_validate
+    put_config(model.cfg, {{ConfigField::width, input.width()},
+                           {ConfigField::height, input.height()},
+                           {ConfigField::ndisp, config.ndisp},
+                           {ConfigField::radius, config.radius},
+                           {ConfigField::use_ca, config.use_ca ? 1 : 0},
+                           // stage 6's signed range: tb_stereo_top and tb_stereo_validate
+                           {ConfigField::min_disp, 0}});
     DisparityMap rtl(input.width(), input.height());
     driver.run_frame(
         input.width(), input.height(),

@@ -6,6 +6,7 @@
 // here (issue 44). The CLI and Python sides of the default run are tested in tests/cli and
 // python/tests (test_default_map_is_the_same_through_cli_python_and_cosim).
 #include <fstream>
+#include <iterator>
 #include <random>
 #include <regex>
 #include <set>
@@ -104,29 +105,39 @@ TEST(Catalogue, EveryCostHasItsFactoryAndNaiveReference) {
 TEST(Catalogue, HardwareCodesAreTheGeneratedOnes) {
     // fx_pkg.sv and stage_table.json are generated from the catalogue; a stale or hand-edited
     // file fails here.
-    const std::string package = source_file("rtl/fx_pkg.sv");
     const std::string json = source_file("scripts/stage_table.json");
+    // The items of fx_pkg::cost_e, stereo_top's COST type.
+    const std::string package_text = source_file("rtl/fx_pkg.sv");
+    std::smatch cost_type;
+    ASSERT_TRUE(std::regex_search(package_text, cost_type,
+                                  std::regex("typedef enum int \\{([^}]*)\\} cost_e;")));
+    const std::string cost_items = cost_type[1];
     int hardware = 0;
     for (const auto& row : catalogue::kCosts) {
         std::string upper(row.name);
         for (char& c : upper) {
             c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
         }
-        const std::regex sv("localparam int COST_" + upper + " = (\\d+);");
+        const std::regex sv("\\bCOST_" + upper + " = (\\d+)\\b");
         const std::regex entry("\"name\": \"" + std::string(row.name) + "\", \"code\": (\\d+)");
         std::smatch found;
         if (row.hardware_code == catalogue::kNoHardware) {
-            EXPECT_FALSE(std::regex_search(package, found, sv)) << row.name;
+            EXPECT_FALSE(std::regex_search(cost_items, found, sv)) << row.name;
             EXPECT_FALSE(std::regex_search(json, found, entry)) << row.name;
             continue;
         }
         ++hardware;
-        ASSERT_TRUE(std::regex_search(package, found, sv)) << row.name;
+        ASSERT_TRUE(std::regex_search(cost_items, found, sv)) << row.name;
         EXPECT_EQ(std::stoi(found[1]), row.hardware_code) << row.name;
         ASSERT_TRUE(std::regex_search(json, found, entry)) << row.name;
         EXPECT_EQ(std::stoi(found[1]), row.hardware_code) << row.name;
     }
     EXPECT_EQ(hardware, table::kCostCount);
+    // ... and nothing else: one item per hardware row.
+    const std::regex item("\\bCOST_\\w+ = \\d+");
+    EXPECT_EQ(std::distance(std::sregex_iterator(cost_items.begin(), cost_items.end(), item),
+                            std::sregex_iterator()),
+              table::kCostCount);
     EXPECT_EQ(table::kCostCensus, catalogue::cost(catalogue::Cost::census).hardware_code);
 }
 

@@ -57,6 +57,65 @@ inline constexpr int kCfgLrToleranceBits = 8;
 static_assert((1 << (kCfgMinDispBits - 1)) > fx::kMaxMinDisparity);
 static_assert((1 << kCfgUniquenessBits) > fx::kMaxUniqueness);
 static_assert((1 << kCfgLrToleranceBits) > fx::kMaxLrTolerance);
+// fx_pkg::config_t: the run-time configuration but the kernel, as stereo_top holds it (its cfg_*
+// ports, clamped and latched) and hands it whole to the stages (their `cfg` port, docs/rtl.md).
+// The fields from the most significant down, as the generated packed struct declares them;
+// config_lsb gives a field's position for the testbenches that drive a stage's `cfg` port.
+enum class ConfigField : unsigned char {
+    width,
+    height,
+    ndisp,
+    radius,
+    use_ca,
+    min_disp,
+    uniqueness_en,
+    uniqueness,
+    lr_en,
+    lr_tolerance,
+    subpixel_en
+};
+struct ConfigFieldRow {
+    ConfigField id;
+    std::string_view name;     // the struct member; stereo_top's port is cfg_<name>
+    std::string_view sv_type;  // its type in fx_pkg
+    int bits;
+};
+inline constexpr std::array<ConfigFieldRow, 11> kConfigFields = {{
+    {ConfigField::width, "width", "cfg_size_t", kCfgSizeBits},
+    {ConfigField::height, "height", "cfg_size_t", kCfgSizeBits},
+    {ConfigField::ndisp, "ndisp", "cfg_ndisp_t", kCfgNdispBits},
+    {ConfigField::radius, "radius", "cfg_radius_t", kCfgRadiusBits},
+    {ConfigField::use_ca, "use_ca", "logic", 1},
+    {ConfigField::min_disp, "min_disp", "cfg_min_disp_t", kCfgMinDispBits},  // signed
+    {ConfigField::uniqueness_en, "uniqueness_en", "logic", 1},
+    {ConfigField::uniqueness, "uniqueness", "cfg_uniqueness_t", kCfgUniquenessBits},
+    {ConfigField::lr_en, "lr_en", "logic", 1},
+    {ConfigField::lr_tolerance, "lr_tolerance", "cfg_lr_tolerance_t", kCfgLrToleranceBits},
+    {ConfigField::subpixel_en, "subpixel_en", "logic", 1},
+}};
+constexpr const ConfigFieldRow& config_field(ConfigField id) {
+    return kConfigFields[static_cast<std::size_t>(id)];
+}
+// The least significant bit of `id` in config_t: the widths of the fields declared after it.
+constexpr int config_lsb(ConfigField id) {
+    int lsb = 0;
+    for (std::size_t i = static_cast<std::size_t>(id) + 1; i < kConfigFields.size(); ++i) {
+        lsb += kConfigFields[i].bits;
+    }
+    return lsb;
+}
+inline constexpr int kConfigBits = config_lsb(ConfigField::width) + kCfgSizeBits;
+static_assert(
+    [] {
+        for (std::size_t i = 0; i < kConfigFields.size(); ++i) {
+            if (static_cast<std::size_t>(kConfigFields[i].id) != i) {
+                return false;
+            }
+        }
+        return true;
+    }(),
+    "kConfigFields lists the fields in ConfigField order");
+
 // The default of stereo_top's MAX_MIN_DISP, the largest |cfg_min_disp| the core takes: it sizes
 // the cost stage's delay lines (MAX_MIN_DISP more right pixels, MAX_MIN_DISP left pixels).
 inline constexpr int kDefaultMaxMinDisp = 8;
@@ -147,6 +206,16 @@ inline constexpr int kCostCount = [] {
     return count;
 }();
 
+// The two CA rules of stereo_ca_plane (its RULE parameter, fx_pkg::ca_rule_e): rule 1 (model
+// stereo::ca_rule1) and rule 2 (stereo::ca_rule2), docs/fixed-point.md stages 3 and 4.
+inline constexpr int kCaRule1 = 1;
+inline constexpr int kCaRule2 = 2;
+// stereo_top's SHIFT_ADD (fx_pkg::shift_add_e): which constant tap products of the aggregation
+// (RUNTIME_KERNEL = 0) are built from shifts and adds instead of being left to the tools.
+inline constexpr int kShiftAddNone = 0;    // none
+inline constexpr int kShiftAddNarrow = 1;  // the census codes' narrow vertical products
+inline constexpr int kShiftAddAll = 2;     // every product
+
 // The census transform (COST = kCostCensus only), in front of the cost stage: it turns each
 // image's RGB stream into a stream of census codes, which the cost stage's delay lines carry in
 // place of the RGB pixels. An input register, a window reaching r rows and r columns past its
@@ -223,9 +292,11 @@ inline constexpr std::array<std::string_view, 27> kRtlModules = {
     "stereo_synth_top",    "stereo_uart_rx",       "stereo_uart_tx",       "stereo_power_on_reset",
     "stereo_board_link",   "stereo_board_top",     "stereo_uart_echo_top",
 };
-// Port-list fragments the modules `include (found in rtl/: tools need rtl/ on the include path).
-inline constexpr std::array<std::string_view, 3> kRtlIncludes = {
-    "stereo_stage_ports.svh", "stereo_core_ports.svh", "stereo_stream_ports.svh"};
+// Port-list fragments and the parameter-check macro (`STEREO_ASSERT) the modules `include (found
+// in rtl/: tools need rtl/ on the include path).
+inline constexpr std::array<std::string_view, 4> kRtlIncludes = {
+    "stereo_stage_ports.svh", "stereo_core_ports.svh", "stereo_stream_ports.svh",
+    "stereo_assert.svh"};
 
 // ---- SoC wrapper (rtl/stereo_axil_top.sv, docs/integration.md) -------------------------------
 // The register map's version (VERSION register, 0xMMMMmmmm) and the FuseSoC core's version.
