@@ -132,6 +132,16 @@ int run_program(const std::vector<std::string>& argv, const fs::path& log,
                                      0644);
     posix_spawn_file_actions_adddup2(&actions, 1, 2);
     posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+    // Verilator, make and the compiler get the default SIGPIPE and SIGXFSZ back (the tool ignores
+    // both to report write errors itself, and an ignored signal would be inherited).
+    posix_spawnattr_t attributes;
+    posix_spawnattr_init(&attributes);
+    sigset_t defaults;
+    sigemptyset(&defaults);
+    sigaddset(&defaults, SIGPIPE);
+    sigaddset(&defaults, SIGXFSZ);
+    posix_spawnattr_setsigdefault(&attributes, &defaults);
+    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGDEF);
     std::vector<char*> args;
     for (const std::string& arg : argv) {
         args.push_back(const_cast<char*>(arg.c_str()));
@@ -147,8 +157,9 @@ int run_program(const std::vector<std::string>& argv, const fs::path& log,
     }
     env.push_back(nullptr);
     pid_t pid = 0;
-    const int spawned = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), env.data());
+    const int spawned = posix_spawnp(&pid, args[0], &actions, &attributes, args.data(), env.data());
     posix_spawn_file_actions_destroy(&actions);
+    posix_spawnattr_destroy(&attributes);
     if (spawned != 0) {
         return -1;
     }
@@ -264,6 +275,16 @@ std::vector<std::string> rtl_defines() {
     return names;
 }
 
+// A new folder `cache`/PREFIX-XXXXXX made by mkdtemp.
+fs::path private_folder(const fs::path& cache, const std::string& prefix) {
+    std::string pattern = (cache / (prefix + "-XXXXXX")).string();
+    if (::mkdtemp(pattern.data()) == nullptr) {
+        throw std::runtime_error("cosim: the cache folder " + cache.string() +
+                                 " is not writable (" + std::strerror(errno) + ")");
+    }
+    return pattern;
+}
+
 // The cache folder's name: the configuration, then what else changes the runner.
 std::string entry_name(const CoreRequest& request, const std::vector<std::string>& defines) {
     return folder_name(request) + (request.probes ? "-probes" : "") +
@@ -367,15 +388,9 @@ fs::path ensure_runner(const CoreRequest& request, const fs::path& cache_folder,
         throw std::runtime_error("cosim: cannot use the cache folder " + cache.string() + " (" +
                                  (error ? error.message() : "not a folder") + ")");
     }
-    // A private scratch folder: everything of this build goes there and is renamed into place.
-    fs::path scratch =
-        cache / (".build-" + entry_name(request, defines) + "-" + std::to_string(::getpid()));
-    fs::remove_all(scratch, error);
-    if (!fs::create_directory(scratch, error) || error) {
-        throw std::runtime_error("cosim: the cache folder " + cache.string() +
-                                 " is not writable (" +
-                                 (error ? error.message() : "cannot create a folder") + ")");
-    }
+    // A private scratch folder (mkdtemp: a fresh name no one can predict or plant a link at,
+    // mode 0700): everything of this build goes there and is renamed into place.
+    const fs::path scratch = private_folder(cache, ".build-" + entry_name(request, defines));
     struct RemoveOnExit {
         fs::path path;
         ~RemoveOnExit() {
@@ -478,10 +493,11 @@ fs::path ensure_runner(const CoreRequest& request, const fs::path& cache_folder,
             "): " + last_line(log));
     }
     // Only the runner is kept; the rename makes it visible whole.
-    const fs::path staged =
-        cache / (".ready-" + entry_name(request, defines) + "-" + std::to_string(::getpid()));
-    fs::remove_all(staged, error);
-    fs::create_directory(staged, error);
+    const fs::path staged = private_folder(cache, ".ready-" + entry_name(request, defines));
+    fs::permissions(staged,
+                    fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
+                        fs::perms::others_read | fs::perms::others_exec,
+                    error);  // the cache entry it becomes is read by everyone, as before
     fs::rename(scratch / "runner", staged / "runner", error);
     if (!error) {
         fs::rename(staged, folder, error);

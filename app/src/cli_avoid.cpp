@@ -205,11 +205,7 @@ void avoid_frame(const AvoidOptions& o, const std::filesystem::path& left_path,
     frame["ground"] = ground ? nlohmann::json{{"slope", ground->line.slope},
                                               {"intercept", ground->line.intercept}}
                              : nlohmann::json(nullptr);
-    if (sequence || o.json) {
-        std::cout << io::versioned(frame).dump() << std::endl;
-    } else {
-        print_text(left_path.filename().string(), frame);
-    }
+    // A single pair's overlay is written before its line: a failed write prints nothing.
     if (!o.overlay.empty()) {
         result.overlay.caption = left_path.filename().string() + " " + result.overlay.caption;
         const cv::Mat picture =
@@ -220,6 +216,14 @@ void avoid_frame(const AvoidOptions& o, const std::filesystem::path& left_path,
         } else {
             io::write_png(o.overlay, picture);
         }
+    }
+    if (sequence || o.json) {
+        std::cout << io::versioned(frame).dump() << std::endl;
+    } else {
+        print_text(left_path.filename().string(), frame);
+    }
+    if (sequence) {
+        check_stdout();  // a stream nobody receives stops at its first line
     }
 }
 
@@ -232,15 +236,17 @@ void run_avoid(const AvoidOptions& o) {
     const double threshold = pixel_threshold(o);
     bool sequence = false;
     const auto pairs = frames(o, sequence);
-    std::vector<std::filesystem::path> inputs = {o.left, o.right, o.calib};
+    // Every file it reads: the list file or the two folders (all they hold), the calibration
+    // and every frame (a list names frames anywhere).
+    io::Inputs inputs{.files = {o.left, o.right, o.calib}};
     for (const auto& [left, right] : pairs) {
-        inputs.push_back(left);
-        inputs.push_back(right);
+        inputs.files.push_back(left);
+        inputs.files.push_back(right);
         // Every frame file before the first line is printed (docs/cli.md).
         io::check_image_file(left);
         io::check_image_file(right);
     }
-    io::check_outputs_distinct({o.overlay}, inputs);
+    io::check_outputs({o.overlay}, inputs);
     if (!o.overlay.empty()) {
         robot::check_overlay_path(o.overlay, sequence);
         io::check_writable_location(o.overlay);

@@ -44,7 +44,7 @@ void run_cloud(const CloudOptions& options) {
     if (options.calib.empty() && (std::isnan(options.focal) || std::isnan(options.baseline))) {
         throw std::invalid_argument("give --focal and --baseline, or --calib");
     }
-    io::check_outputs_distinct({options.output}, {options.disparity, options.left});
+    io::check_outputs_distinct({options.output}, {options.disparity, options.left, options.calib});
     io::check_writable_location(options.output);
     io::CloudGeometry geometry{options.focal, options.baseline, options.cx, options.cy,
                                options.doffs};

@@ -48,8 +48,19 @@ void run_distort(const DistortOptions& options) {
         throw std::runtime_error("scene folder \"" + options.scene + "\" does not exist");
     }
     io::check_output_folder(out);
-    // Writing into the scene itself would replace the inputs with their distorted copies.
-    io::check_outputs_distinct({out}, {scene});
+    // Writing into the scene itself (or a folder inside it, or over a file a link in the scene
+    // points at) would replace the inputs with their distorted copies.
+    std::vector<fs::path> outputs;
+    for (const char* name :
+         {"left.png", "right.png", "gt.png", "nonocc.png", "all.png", "disc.png"}) {
+        outputs.push_back(out / name);
+    }
+    io::check_outputs(outputs, {.folders = {scene}});
+    if (fs::is_directory(out, error)) {
+        for (const fs::path& output : outputs) {
+            io::check_writable_location(output);
+        }
+    }
     const cv::Mat left = io::load_bgr(scene / "left.png");
     const cv::Mat right = io::load_bgr(scene / "right.png");
     check_size(right, left, scene / "right.png");

@@ -142,9 +142,17 @@ MatchConfig checked_config(const MatchOptions& options, const catalogue::MethodR
 // Every output file can be written, and none is an input or another output.
 void check_outputs(const MatchOptions& options, int ndisp) {
     io::check_disparity_scale(ndisp, options.scale);
-    io::check_outputs_distinct(
-        {options.output, options.colour, options.vertical, options.certainty, options.reasons},
-        {options.left, options.right});
+    std::vector<std::filesystem::path> outputs = {options.output, options.colour, options.vertical,
+                                                  options.certainty, options.reasons};
+    if (!options.dump_levels.empty()) {  // the nine level maps (level_files)
+        for (const char* level : hierarchical::kLevelNames) {
+            for (const char* map : {"_disparity.png", "_color.png", "_vertical.png"}) {
+                outputs.push_back(std::filesystem::path(options.dump_levels) /
+                                  (std::string(level) + map));
+            }
+        }
+    }
+    io::check_outputs(outputs, {.files = {options.left, options.right}});
     io::check_writable_location(options.output);
     for (const std::string& extra :
          {options.colour, options.vertical, options.certainty, options.reasons}) {

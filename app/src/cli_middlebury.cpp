@@ -187,8 +187,15 @@ void add_scene(Report& report, const Options& options, const io::MiddleburyScene
 
 void run_report(const Options& options) {
     const fs::path data_dir = options.data_dir;
-    // The report files are checked before minutes of matching, not after.
-    io::check_outputs_distinct({options.markdown, options.json_path}, {});
+    // The report files are checked before minutes of matching, not after; none of them, nor a
+    // figure, may replace a file of the scenes or lie among them.
+    std::vector<fs::path> outputs = {options.markdown, options.json_path};
+    if (!options.figures.empty()) {
+        for (const auto& scene : io::middlebury2003_scenes()) {
+            outputs.push_back(fs::path(options.figures) / (scene.name + ".png"));
+        }
+    }
+    io::check_outputs(outputs, {.folders = {data_dir / "middlebury2003"}});
     for (const std::string& report_file : {options.markdown, options.json_path}) {
         if (!report_file.empty()) {
             io::check_writable_location(report_file);
@@ -209,12 +216,13 @@ void run_report(const Options& options) {
     const auto& scenes = io::middlebury2003_scenes();
     const ProgressBar progress("middlebury", static_cast<int>(scenes.size()));
     int scenes_done = 0;
+    std::string skipped;  // printed once the run succeeded: a failure is one line
     for (const auto& scene : scenes) {
         progress.update(scenes_done++, scene.name);
         const auto data = io::load_scene(data_dir, scene);
         if (!data) {
-            std::cerr << "stereo middlebury: " << scene.name << " not found under "
-                      << io::scene_dir(data_dir, scene) << ", skipped\n";
+            skipped += "stereo middlebury: " + scene.name + " not found under " +
+                       io::scene_dir(data_dir, scene).string() + ", skipped\n";
             continue;
         }
         ++scenes_found;
@@ -238,6 +246,7 @@ void run_report(const Options& options) {
     }
     io::write_files_atomic(report.files);
     std::cout << text;  // after the files: no report on stdout for a run that then fails
+    std::cerr << skipped;
 }
 
 void run_middlebury(const Options& options) {

@@ -39,6 +39,7 @@ void run_relight(RelightOptions& options) {
     }
     io::validate(options.lighting);  // before reading anything
     io::check_outputs_distinct({options.output}, {options.input});
+    io::check_writable_location(options.output);
     const Image image = io::load_image(options.input);
     if (image.channels != 3) {
         throw std::invalid_argument(

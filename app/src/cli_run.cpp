@@ -1,9 +1,15 @@
 #include "cli_run.hpp"
 
+#include <cerrno>
 #include <cstdint>
+#include <cstdio>
+#include <cstring>
 #include <exception>
 #include <iostream>
 #include <string>
+
+#include <fcntl.h>
+#include <unistd.h>
 
 #include <new>
 
@@ -13,6 +19,7 @@
 
 #include "cli_checks.hpp"
 #include "stereo_io/limits.hpp"
+#include "stereo_io/output.hpp"
 
 namespace stereo::cli {
 namespace {
@@ -47,12 +54,43 @@ std::string opencv_message(const cv::Exception& error) {
     return message + ": " + what;
 }
 
-}  // namespace
+// Descriptors 0, 1 and 2 that are closed get /dev/null as a stand-in, so that no file the
+// command opens becomes its standard output or error (a temporary on descriptor 2 would receive
+// libpng's messages). Returns whether standard output was closed: every command prints a result
+// there, so that is an error before any work.
+bool reserve_standard_descriptors() {
+    bool stdout_closed = false;
+    for (const int descriptor : {STDIN_FILENO, STDOUT_FILENO, STDERR_FILENO}) {
+        if (::fcntl(descriptor, F_GETFD) != -1 || errno != EBADF) {
+            continue;
+        }
+        stdout_closed = stdout_closed || descriptor == STDOUT_FILENO;
+        const int opened = ::open("/dev/null", descriptor == STDIN_FILENO ? O_RDONLY : O_WRONLY);
+        if (opened >= 0 && opened != descriptor) {
+            ::dup2(opened, descriptor);
+            ::close(opened);
+        }
+    }
+    return stdout_closed;
+}
 
-int run(CLI::App& app, int argc, char** argv) {
-    // Our own messages name the file and the problem; OpenCV's log lines would only add noise.
-    cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
-    const std::string program = app.get_name();
+// Why what was printed did not all reach standard output (/dev/full, a pipe nobody reads);
+// empty when it did.
+std::string stdout_failure() {
+    errno = 0;
+    std::cout.flush();
+    int error = errno;
+    if (std::fflush(stdout) != 0) {
+        error = errno;
+    }
+    if (std::ferror(stdout) == 0 && std::cout.good()) {
+        return {};
+    }
+    const std::string message = "cannot write the standard output";
+    return error != 0 ? message + ": " + std::strerror(error) : message;
+}
+
+int run_command(CLI::App& app, int argc, char** argv, const std::string& program) {
     app.add_option("--max-pixels",
                    "Largest image any input may declare, in pixels (default 2^26, "
                    "or STEREO_MAX_IMAGE_PIXELS)")
@@ -85,6 +123,35 @@ int run(CLI::App& app, int argc, char** argv) {
     } catch (...) {
         return fail(program, "unexpected internal error", kExitIoError);
     }
+}
+
+}  // namespace
+
+void check_stdout() {
+    const std::string failure = stdout_failure();
+    if (!failure.empty()) {
+        throw std::runtime_error(failure);
+    }
+}
+
+int run(CLI::App& app, int argc, char** argv) {
+    // Our own messages name the file and the problem; OpenCV's log lines would only add noise.
+    cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
+    const std::string program = app.get_name();
+    if (reserve_standard_descriptors()) {
+        return fail(program, "cannot write the standard output: it is closed", kExitIoError);
+    }
+    // Temporaries removed on signals, SIGPIPE and SIGXFSZ turned into write errors, no output
+    // over a file the command read (stereo_io/output.hpp).
+    io::install_process_guards(program);
+    const int status = run_command(app, argc, argv, program);
+    // What could not be printed is an error, reported once: a command that failed already said
+    // why (and printed nothing on stdout).
+    const std::string failure = stdout_failure();
+    if (status == kExitOk && !failure.empty()) {
+        return fail(program, failure, kExitIoError);
+    }
+    return status;
 }
 
 }  // namespace stereo::cli

@@ -123,15 +123,10 @@ Input checked_input(const SlamOptions& o) {
         throw std::invalid_argument("--vdisparity-frame must be in 0.." +
                                     std::to_string(frames - 1));
     }
-    // The sequence's own files (poses, calibration, timestamps) must survive any output path.
-    std::vector<fs::path> inputs = {o.calib};
-    std::error_code listing;
-    for (const auto& entry : fs::directory_iterator(o.sequence, listing)) {
-        if (entry.is_regular_file(listing)) {
-            inputs.push_back(entry.path());
-        }
-    }
-    io::check_outputs_distinct({o.map, o.trajectory, o.vdisparity}, inputs);
+    // The sequence's files (frames, poses, calibration, timestamps, wherever its links lead)
+    // must survive any output path, and no output goes into the sequence folder.
+    io::check_outputs({o.map, o.trajectory, o.vdisparity},
+                      {.files = {o.calib}, .folders = {o.sequence}});
     for (const std::string& output : {o.map, o.trajectory, o.vdisparity}) {
         if (!output.empty()) {
             io::check_writable_location(output);

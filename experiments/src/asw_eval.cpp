@@ -534,7 +534,8 @@ std::string figure_png(const io::SceneData& data, const cv::Mat& ours, const fs:
 }
 
 void run_asw_eval(const AswEvalOptions& options) {
-    check_report_outputs({options.markdown, options.json_path}, {options.figures});
+    check_report_outputs({options.markdown, options.json_path}, {options.figures},
+                         options.data_dir);
     std::vector<io::SceneData> scenes = load_ground_truth_scenes(options.data_dir);
     if (options.quick) {
         std::erase_if(scenes, [](const io::SceneData& data) {

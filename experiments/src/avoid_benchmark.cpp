@@ -93,7 +93,9 @@ void run(const Options& o) {
         {"wall, 90 %, far", "wall", 0.9, false},
     };
     std::map<std::string, std::map<std::string, Tally>> tallies;  // clip -> case -> tally
-    io::check_writable_location(o.out);  // before the run; the table is written after it
+    // Before the run (the table is written after it), and not into the data it reads.
+    io::check_outputs({o.out}, {.folders = {o.data}});
+    io::check_writable_location(o.out);
     std::ostringstream md;
     double match_ms = 0.0;
     int matches = 0;

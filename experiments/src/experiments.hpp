@@ -55,16 +55,18 @@ void add_report_files(OutputFiles& files, const std::string& markdown_path,
                       const std::string& markdown, const std::string& json_path,
                       const nlohmann::json& report);
 
-// Prints `markdown` on stdout, then writes `files` followed by the report files (add_report_files)
-// all or nothing (io::write_files_atomic).
+// Writes `files` followed by the report files (add_report_files) all or nothing
+// (io::write_files_atomic), then prints `markdown` on stdout.
 void print_and_write_report(OutputFiles files, const std::string& markdown_path,
                             const std::string& markdown, const std::string& json_path,
                             const nlohmann::json& report);
 
 // Before any work: the output files (empty = not asked for) must be distinct and creatable
-// (io::check_outputs_distinct, io::check_writable_location) and each figure folder must exist,
-// so a run of many minutes does not end in an unwritable path.
+// (io::check_outputs, io::check_writable_location) and each figure folder must exist, so a run of
+// many minutes does not end in an unwritable path; neither may lie inside `data_dir`, the folder
+// the generator reads (empty: none).
 void check_report_outputs(const std::vector<std::string>& files,
-                          const std::vector<std::string>& folders = {});
+                          const std::vector<std::string>& folders = {},
+                          const std::string& data_dir = {});
 
 }  // namespace stereo::experiments

@@ -369,7 +369,8 @@ std::string markdown_report(const json& report) {
 }
 
 void run_eval(const EvalOptions& options) {
-    check_report_outputs({options.markdown, options.json_path}, {options.figures});
+    check_report_outputs({options.markdown, options.json_path}, {options.figures},
+                         options.data_dir);
     std::vector<io::SceneData> scenes;
     for (const auto& scene : io::middlebury2003_scenes()) {
         auto data = io::load_scene(options.data_dir, scene);

@@ -477,7 +477,7 @@ void speed(const std::vector<io::SceneData>& scenes) {
 }
 
 void run_illumination(const IlluminationOptions& options) {
-    check_report_outputs({options.figure});
+    check_report_outputs({options.figure}, {}, options.data_dir);
     const auto has = [&](const char* part) {
         return std::find(options.parts.begin(), options.parts.end(), part) != options.parts.end();
     };

@@ -704,7 +704,8 @@ json orientation_study(const fs::path& folder, const cv::Mat& g, const std::vect
 }
 
 void run_quad_eval(const Options& options) {
-    check_report_outputs({options.markdown, options.json_path}, {options.figures});
+    check_report_outputs({options.markdown, options.json_path}, {options.figures},
+                         options.data_dir);
     const fs::path folder = fs::path(options.data_dir) / "lightfield" / "antinous";
     const fs::path gt_path = folder / "gt_disp_lowres.pfm";
     if (!fs::exists(gt_path)) {

@@ -191,7 +191,7 @@ void run(const Options& options) {
     MatchParams check = defaults_for(options.cost, kCalibrationLabels);
     check.validation = ValidationParams::all_on();
     validate_params(check);
-    check_report_outputs({options.markdown, options.json_path});
+    check_report_outputs({options.markdown, options.json_path}, {}, options.data_dir);
     const Calibration cal = calibrate(options);
     const auto table = derived_table(cal);
     const bool same = std::equal(table.begin(), table.end(), fx::kSubpixelCorrection.begin());

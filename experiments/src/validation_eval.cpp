@@ -343,7 +343,8 @@ void run_validation_eval(const EvalOptions& given) {
             validate_params(check);
         }
     }
-    check_report_outputs({options.markdown, options.json_path, options.figure});
+    check_report_outputs({options.markdown, options.json_path, options.figure}, {},
+                         options.data_dir);
     const std::vector<io::SceneData> scenes = load_ground_truth_scenes(options.data_dir);
     if (scenes.empty()) {
         throw std::runtime_error("no scene with ground truth under '" + options.data_dir + "'");
@@ -404,13 +405,13 @@ void run_validation_eval(const EvalOptions& given) {
         report["speckle_grid"].push_back(setting);
     }
     const std::string md = markdown(report);
-    std::cout << md;
     OutputFiles files;
     add_report_files(files, options.markdown, md, options.json_path, report);
     if (!options.figure.empty()) {
         files.emplace_back(options.figure, io::encode_png(curve_figure(report), options.figure));
     }
     io::write_files_atomic(files);
+    std::cout << md;  // after the files: no report on stdout for a run that then fails
 }
 
 }  // namespace

@@ -49,6 +49,7 @@ std::string format_text(const cv::Mat& mat) {
 // or unreadable file and keeps OpenCV from printing its own warnings about it.
 std::vector<uchar> read_bytes(const fs::path& path) {
     check_image_file(path);
+    note_input_read(path);  // no output may replace it (stereo_io/output.hpp)
     std::ifstream in(path, std::ios::binary);
     if (!in) {
         throw std::runtime_error("cannot read " + quoted(path) + ": " + std::strerror(errno));
@@ -546,13 +547,9 @@ void check_writable_location(const fs::path& path) {
         throw std::runtime_error("cannot write " + quoted(path) + ": folder " + quoted(folder) +
                                  " does not exist");
     }
-    if (fs::is_directory(path, error)) {
-        throw std::runtime_error("cannot write " + quoted(path) + ": is a directory");
-    }
-    // Outputs replace regular files only (write_file_atomic): not /dev/null, a FIFO or a socket.
-    if (fs::exists(path, error) && !fs::is_regular_file(path, error)) {
-        throw std::runtime_error("cannot write " + quoted(path) + ": not a regular file");
-    }
+    // Outputs replace regular files only (write_file_atomic): not a folder, /dev/null, a FIFO or
+    // a socket; the folder must take a temporary file (check_can_stage).
+    check_can_stage(path);
 }
 
 void check_output_folder(const fs::path& folder) {

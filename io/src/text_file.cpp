@@ -1,4 +1,5 @@
 #include "stereo_io/text_file.hpp"
+#include "stereo_io/output.hpp"
 
 #include <fstream>
 #include <iterator>
@@ -32,6 +33,7 @@ std::string read_text_file(const fs::path& path, const std::string& what,
     if (!in) {
         throw std::runtime_error("cannot read " + name);
     }
+    note_input_read(path);  // no output may replace it (stereo_io/output.hpp)
     std::string text;
     // Read at most max_bytes + 1 bytes: the file may have grown since it was measured.
     std::istreambuf_iterator<char> it(in);

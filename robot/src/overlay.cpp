@@ -15,6 +15,7 @@
 #include <opencv2/videoio.hpp>
 
 #include "stereo_io/io.hpp"
+#include "stereo_io/output.hpp"
 #include "stereo_robot/ground.hpp"
 
 namespace stereo::robot {
@@ -103,35 +104,29 @@ std::string lower_extension(const std::filesystem::path& path) {
     return extension;
 }
 
-// OpenCV's VideoWriter writes in place: the video goes to a hidden file beside the destination
-// and is renamed over it once complete.
+// OpenCV's VideoWriter writes by name and ignores a failed write: the video goes to a private
+// staging folder beside the destination (io::StagedOutput, no name another user can predict or
+// redirect) and replaces the destination only once complete, its RIFF chunks checked whole (a
+// full disk or a file-size limit leaves the previous video, and the error is reported).
 void write_video(const std::filesystem::path& path, const std::vector<cv::Mat>& frames,
                  double fps) {
-    const std::filesystem::path folder =
-        path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
-    std::string name = ".";  // appended: `"." + string` trips a GCC 12 -Wrestrict false positive
-    name += path.filename().string();
-    name += ".partial.avi";
-    const std::filesystem::path partial = folder / name;
-    bool ok = false;
+    io::StagedOutput staged(path);
+    bool opened = false;
     {
-        cv::VideoWriter writer(partial.string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), fps,
-                               frames.front().size());
+        cv::VideoWriter writer(staged.path().string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'),
+                               fps, frames.front().size());
         if (writer.isOpened()) {
             for (const auto& frame : frames) {
                 writer.write(frame);
             }
-            ok = true;
+            opened = true;
         }
     }
-    std::error_code error;
-    if (ok) {
-        std::filesystem::rename(partial, path, error);
+    if (!opened) {
+        throw std::runtime_error("cannot write video " + path.string() +
+                                 ": OpenCV cannot open an MJPG writer");
     }
-    if (!ok || error) {
-        std::filesystem::remove(partial, error);
-        throw std::runtime_error("cannot write video " + path.string());
-    }
+    staged.commit();
 }
 
 }  // namespace
