@@ -75,8 +75,8 @@ std::vector<CloudPoint> disparity_to_points(const cv::Mat& disparity, const cv::
             if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
                 throw std::invalid_argument(
                     "the geometry gives points beyond 32-bit floats (f x B / d = " +
-                    std::to_string(z) + " at pixel " + std::to_string(x) + "," +
-                    std::to_string(y) + "): check the focal length and the baseline");
+                    std::to_string(z) + " at pixel " + std::to_string(x) + "," + std::to_string(y) +
+                    "): check the focal length and the baseline");
             }
             if (bgr.type() == CV_8UC3) {
                 const auto& c = bgr.at<cv::Vec3b>(y, x);
