@@ -33,20 +33,23 @@ std::int64_t& configured_limit() {
 
 constexpr std::int64_t kHuge = std::numeric_limits<std::int64_t>::max();
 
+// Unsigned integers of up to 8 bytes. An 8-byte value with its top bit set comes back negative
+// (two's complement, C++20); callers that read 8 bytes cast the result to std::uint64_t. The sum
+// is formed unsigned: a signed one overflowed on such values (fuzz.image_loaders, BigTIFF).
 std::int64_t big_endian(std::string_view bytes, std::size_t at, int count) {
-    std::int64_t value = 0;
+    std::uint64_t value = 0;
     for (int i = 0; i < count; ++i) {
         value = value * 256 + static_cast<unsigned char>(bytes[at + static_cast<std::size_t>(i)]);
     }
-    return value;
+    return static_cast<std::int64_t>(value);
 }
 
 std::int64_t little_endian(std::string_view bytes, std::size_t at, int count) {
-    std::int64_t value = 0;
+    std::uint64_t value = 0;
     for (int i = count - 1; i >= 0; --i) {
         value = value * 256 + static_cast<unsigned char>(bytes[at + static_cast<std::size_t>(i)]);
     }
-    return value;
+    return static_cast<std::int64_t>(value);
 }
 
 // a x b for sizes >= 0, saturated at kHuge.
