@@ -20,6 +20,7 @@ class App;
 namespace stereo::experiments {
 
 void add_hierarchical_eval_command(CLI::App& app);     // docs/results-hierarchical.md
+void add_hierarchical_validated_command(CLI::App& app);  // docs/results-hierarchical.md
 void add_sigma_sweep_command(CLI::App& app);           // docs/sigma-sweep.md
 void add_avoid_figures_command(CLI::App& app);         // docs/avoidance.md
 void add_validation_eval_command(CLI::App& app);       // docs/results.md, validated output

@@ -9,6 +9,7 @@ int main(int argc, char** argv) {
                  "stereo_experiments"};
     app.require_subcommand(1);
     stereo::experiments::add_hierarchical_eval_command(app);
+    stereo::experiments::add_hierarchical_validated_command(app);
     stereo::experiments::add_sigma_sweep_command(app);
     stereo::experiments::add_avoid_figures_command(app);
     stereo::experiments::add_validation_eval_command(app);

@@ -157,10 +157,15 @@ WarpedScene warp_scene(const SceneData& scene, const PairWarp& warp) {
                  to_image(data.right_bgr, scene.scene.name + " right" + label)};
     data.ground_truth = {warp_ground_truth(scene.ground_truth.mat, transform),
                          scene.ground_truth.name + label};
-    data.nonocc = {warp_left(scene.nonocc.mat, transform, cv::INTER_NEAREST),
-                   scene.nonocc.name + label};
-    data.all = {warp_left(scene.all.mat, transform, cv::INTER_NEAREST), scene.all.name + label};
-    data.disc = {warp_left(scene.disc.mat, transform, cv::INTER_NEAREST), scene.disc.name + label};
+    // A scene without masks (the 2005/2006 scenes, Aloe) keeps them empty.
+    const auto mask = [&](const NamedMat& m) -> NamedMat {
+        return m.mat.empty()
+                   ? m
+                   : NamedMat{warp_left(m.mat, transform, cv::INTER_NEAREST), m.name + label};
+    };
+    data.nonocc = mask(scene.nonocc);
+    data.all = mask(scene.all);
+    data.disc = mask(scene.disc);
     out.exact_ground_truth = {
         exact_ground_truth(scene.ground_truth.mat, transform, &out.exact_vertical),
         scene.ground_truth.name + " (exact warp)"};

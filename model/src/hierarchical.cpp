@@ -9,6 +9,7 @@
 #include "stereo/pipeline.hpp"
 #include "stereo/search.hpp"
 #include "stereo/stages.hpp"
+#include "stereo/stages/validate.hpp"
 
 namespace stereo::hierarchical {
 namespace {
@@ -103,6 +104,134 @@ LevelMap match_level(const Image& left, const Image& right, const CandidateGrid&
     return map;
 }
 
+std::vector<std::int8_t> vertical_field(const LevelMap& level, int radius) {
+    const int width = level.width;
+    const int height = level.height;
+    const std::size_t size = static_cast<std::size_t>(width) * height;
+    std::vector<std::int8_t> field(size, 0);
+    if (size == 0) {
+        return field;
+    }
+    int v_min = 0;
+    int v_max = 0;
+    for (std::size_t p = 0; p < size; ++p) {
+        if (level.valid[p] != 0) {
+            v_min = std::min<int>(v_min, level.vertical[p]);
+            v_max = std::max<int>(v_max, level.vertical[p]);
+        }
+    }
+    const int bins = v_max - v_min + 1;
+    // Bins in the order of preference (|v|, then v), so the first maximum found is the winner.
+    std::vector<int> order(static_cast<std::size_t>(bins));
+    for (int b = 0; b < bins; ++b) {
+        order[static_cast<std::size_t>(b)] = b;
+    }
+    std::sort(order.begin(), order.end(), [v_min](int a, int b) {
+        const int va = a + v_min;
+        const int vb = b + v_min;
+        return std::abs(va) != std::abs(vb) ? std::abs(va) < std::abs(vb) : va < vb;
+    });
+    // Column histograms over the rows of the window, slid down; the window's histogram slid right.
+    std::vector<int> columns(static_cast<std::size_t>(width) * bins, 0);
+    const auto add_row = [&](int y, int sign) {
+        for (int x = 0; x < width; ++x) {
+            const std::size_t p = level.index(x, y);
+            if (level.valid[p] != 0) {
+                columns[static_cast<std::size_t>(x) * bins +
+                        static_cast<std::size_t>(level.vertical[p] - v_min)] += sign;
+            }
+        }
+    };
+    for (int y = 0; y <= std::min(radius, height - 1); ++y) {
+        add_row(y, 1);
+    }
+    std::vector<int> window(static_cast<std::size_t>(bins));
+    const auto add_column = [&](int x, int sign) {
+        const int* column = columns.data() + static_cast<std::size_t>(x) * bins;
+        for (int b = 0; b < bins; ++b) {
+            window[static_cast<std::size_t>(b)] += sign * column[b];
+        }
+    };
+    for (int y = 0; y < height; ++y) {
+        if (y > 0) {
+            if (y + radius < height) {
+                add_row(y + radius, 1);
+            }
+            if (y - radius - 1 >= 0) {
+                add_row(y - radius - 1, -1);
+            }
+        }
+        std::fill(window.begin(), window.end(), 0);
+        for (int x = 0; x <= std::min(radius, width - 1); ++x) {
+            add_column(x, 1);
+        }
+        for (int x = 0; x < width; ++x) {
+            if (x > 0) {
+                if (x + radius < width) {
+                    add_column(x + radius, 1);
+                }
+                if (x - radius - 1 >= 0) {
+                    add_column(x - radius - 1, -1);
+                }
+            }
+            int best = -1;
+            int best_count = 0;
+            for (const int b : order) {
+                if (window[static_cast<std::size_t>(b)] > best_count) {
+                    best = b;
+                    best_count = window[static_cast<std::size_t>(b)];
+                }
+            }
+            field[level.index(x, y)] = static_cast<std::int8_t>(best < 0 ? 0 : best + v_min);
+        }
+    }
+    return field;
+}
+
+ValidatedDisparity match_along_field(const Image& left, const Image& right,
+                                     const std::vector<std::int8_t>& field, const Params& params,
+                                     std::int64_t& count) {
+    check_pair(left, right);
+    const int width = left.width;
+    const int height = left.height;
+    const std::size_t size = static_cast<std::size_t>(width) * height;
+    if (field.size() != size) {
+        throw std::invalid_argument("the vertical field does not fit the image");
+    }
+    CandidateGrid grid{width,
+                       height,
+                       params.ndisp,
+                       1,
+                       std::vector<std::int16_t>(size, 0),
+                       std::vector<std::int16_t>(field.begin(), field.end()),
+                       std::vector<std::int16_t>(size, 0),
+                       std::vector<std::int16_t>(field.begin(), field.end())};
+    const auto cost = make_cost(params.cost);
+    const LevelParams& level = params.field_level;
+    const auto aggregator =
+        make_gaussian_aggregator(gaussian_kernel(level.window, level.sigma), width, height);
+    const auto rule1 = make_ca_rule1(width, height);
+    const auto rule2 = make_ca_rule2(width, height);
+    const std::array<Refiner*, 2> ca = {rule1.get(), rule2.get()};
+    const InvalidBorder border{level.window / 2 + (params.use_ca ? 1 : 0)};
+    ValidatingSelector selector(width, height, params.ndisp, 0, params.validation, border);
+    count += search(cost->prepare(left), cost->prepare(right), grid,
+                    {*cost, *aggregator, std::span(ca.data(), params.use_ca ? ca.size() : 0),
+                     selector, CaNeighbours::horizontal});
+    ValidatedDisparity out = selector.result();
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const std::size_t p = out.index(x, y);
+            const int row = y + field[p];
+            if (out.valid(p) && (row < border.reach || row >= height - border.reach)) {
+                out.reason[p] = fx::kReasonBorder;
+                out.fixed[p] = 0;
+            }
+        }
+    }
+    return out;
+}
+
 Image downscale_area(const Image& image, int factor) {
     if (factor < 1 || image.width / factor < 1 || image.height / factor < 1) {
         throw std::invalid_argument("cannot downscale a " + std::to_string(image.width) + "x" +
@@ -160,10 +289,26 @@ void validate(const Params& params, int width, int height) {
                 level_message(level, level_width, level_height, error.what()));
         }
     }
+    if (params.output == Output::vertical_field) {
+        if (params.field_radius < 0 || params.field_radius > kMaxFieldRadius) {
+            throw std::invalid_argument("field radius must be in [0, " +
+                                        std::to_string(kMaxFieldRadius) + "], got " +
+                                        std::to_string(params.field_radius));
+        }
+        try {
+            stereo::validate(MatchParams{params.ndisp, params.field_level.window,
+                                         params.field_level.sigma, params.use_ca},
+                             width, height);
+        } catch (const std::invalid_argument& error) {
+            throw std::invalid_argument("1-D pass along the vertical field (" +
+                                        std::to_string(width) + "x" + std::to_string(height) +
+                                        "): " + error.what());
+        }
+    }
 }
 
 Result finish(std::array<LevelMap, kLevels> levels, const CostCount& count) {
-    Result result{{}, {}, std::move(levels), count};
+    Result result{{}, {}, std::move(levels), count, {}, {}};
     const LevelMap& full = result.levels[kLevels - 1];
     result.disparity = DisparityMap(full.width, full.height);
     result.vertical.assign(full.valid.size(), 0);
@@ -172,6 +317,19 @@ Result finish(std::array<LevelMap, kLevels> levels, const CostCount& count) {
             result.disparity.disparity[p] = static_cast<std::uint8_t>(full.disparity[p]);
             result.disparity.valid[p] = 1;
             result.vertical[p] = static_cast<std::int8_t>(full.vertical[p]);
+        }
+    }
+    return result;
+}
+
+Result finish_field(std::array<LevelMap, kLevels> levels, const CostCount& count,
+                    std::vector<std::int8_t> field, ValidatedDisparity validated) {
+    Result result{to_label_map(validated), std::vector<std::int8_t>(field.size(), 0),
+                  std::move(levels),       count,
+                  std::move(field),        std::move(validated)};
+    for (std::size_t p = 0; p < result.field.size(); ++p) {
+        if (result.validated.valid(p)) {
+            result.vertical[p] = result.field[p];
         }
     }
     return result;
@@ -194,7 +352,12 @@ Result match(const Image& left, const Image& right, const Params& params) {
         levels[l] = match_level(level_left, level_right, grid, params.levels[l], params.use_ca,
                                 params.neighbours, count.level[l], params.cost);
     }
-    return finish(std::move(levels), count);
+    if (params.output == Output::full_level) {
+        return finish(std::move(levels), count);
+    }
+    std::vector<std::int8_t> field = vertical_field(levels[kLevels - 1], params.field_radius);
+    ValidatedDisparity validated = match_along_field(left, right, field, params, count.field_pass);
+    return finish_field(std::move(levels), count, std::move(field), std::move(validated));
 }
 
 Result full_search(const Image& left, const Image& right, const Params& params) {

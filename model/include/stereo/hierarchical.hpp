@@ -19,6 +19,8 @@
 #include "stereo/constants.hpp"
 #include "stereo/image.hpp"
 #include "stereo/search.hpp"
+#include "stereo/validated.hpp"
+#include "stereo/validation_params.hpp"
 
 namespace stereo::hierarchical {
 
@@ -45,6 +47,15 @@ inline constexpr int kMaxVerticalRange = 252;  // offsets fit an int8 and 128 + 
 // The costs the search (and its naive reference) can use are the catalogue's pixel-pair costs
 // (AD over RGB, LCDM, the 5x5 census of the luma, each computed on each level's image).
 
+// What the search outputs (docs/hierarchical.md, "Output").
+enum class Output {
+    full_level,      // the thesis: the full level's 3x3 winners
+    vertical_field,  // the full level's offsets, filtered into a field, fix one right-image row per
+                     // pixel; a 1-D search over every disparity along it, with stage 6
+};
+
+inline constexpr int kMaxFieldRadius = 64;
+
 struct Params {
     int ndisp = fx::kDefaultDisparities;  // D: horizontal labels 0..D-1 at full size
     int vrange = 0;                       // V: vertical labels at full size; 0 = same as D
@@ -53,6 +64,13 @@ struct Params {
     bool use_ca = true;
     CaNeighbours neighbours = CaNeighbours::horizontal;
     std::string cost = "ad";  // a pixel-pair cost of the catalogue
+    Output output = Output::full_level;
+    // Output::vertical_field: the field is the most frequent valid full-level offset in a
+    // (2 field_radius + 1)^2 window; the 1-D pass aggregates with `field_level` (the pipeline's
+    // 11x11, sigma 3 by default) and CA as the levels, and validates with `validation`.
+    int field_radius = 16;
+    LevelParams field_level = {fx::kDefaultWindow, fx::kDefaultSigma};
+    ValidationParams validation{};
 
     int vertical_range() const { return vrange == 0 ? ndisp : vrange; }
 };
@@ -87,7 +105,8 @@ bool level_valid(int x, int y, int d, int v, int width, int height, int reach);
 // Cost evaluations (DSI cells: one AD of a pixel and a candidate) computed per level.
 struct CostCount {
     std::array<std::int64_t, kLevels> level{};  // quarter, half, full (full search: in [2])
-    std::int64_t total() const { return level[0] + level[1] + level[2]; }
+    std::int64_t field_pass = 0;                // Output::vertical_field: W H D
+    std::int64_t total() const { return level[0] + level[1] + level[2] + field_pass; }
 };
 
 // One level: cost (`cost`: AD over RGB or LCDM, fx::kCostOutside outside the right image), Gaussian
@@ -104,7 +123,8 @@ Image downscale_area(const Image& image, int factor);
 
 // Throws std::invalid_argument (one line) unless D and V are multiples of 4 in [8, 256] and
 // [8, kMaxVerticalRange], every level's window and sigma are valid and every level image is
-// larger than its border and than its horizontal range.
+// larger than its border and than its horizontal range; with Output::vertical_field also the field
+// radius (0..kMaxFieldRadius) and the 1-D pass at full size.
 void validate(const Params& params, int width, int height);
 
 struct Result {
@@ -113,11 +133,32 @@ struct Result {
         vertical;  // full size, vertical offset v (right row = y + v), 0 where invalid
     std::array<LevelMap, kLevels> levels;  // quarter, half, full (full search: only [2])
     CostCount cost_evaluations;
+    // Output::vertical_field: the field (every pixel) and stage 6's output of the 1-D pass, of
+    // which `disparity` is the 8-bit view; both empty for Output::full_level.
+    std::vector<std::int8_t> field;
+    ValidatedDisparity validated;
 };
+
+// The vertical field of a full-level map: for every pixel the offset v held by the most valid
+// winners of `level` in the (2 radius + 1)^2 window around it (clipped at the image), ties to the
+// smaller |v|, then the smaller v; 0 where the window holds no valid winner.
+std::vector<std::int8_t> vertical_field(const LevelMap& level, int radius);
+
+// The 1-D pass of Output::vertical_field: candidates d = 0..D-1 of pixel (x, y) against the right
+// pixel (x - d, y + field(x, y)), cost, `field_level` aggregation, CA as params.use_ca, stage 6
+// with params.validation. A pixel whose right row y + v lies within the reach of the top or bottom
+// edge is invalid (border), like one whose window leaves the image. Adds W H D to `count`.
+ValidatedDisparity match_along_field(const Image& left, const Image& right,
+                                     const std::vector<std::int8_t>& field, const Params& params,
+                                     std::int64_t& count);
 
 // The result of finished levels: the full level's valid winners as the disparity map and the
 // vertical offsets.
 Result finish(std::array<LevelMap, kLevels> levels, const CostCount& count);
+// Output::vertical_field: the validated 1-D pass as the disparity map, the field as the vertical
+// offsets of its valid pixels.
+Result finish_field(std::array<LevelMap, kLevels> levels, const CostCount& count,
+                    std::vector<std::int8_t> field, ValidatedDisparity validated);
 
 // The hierarchical search.
 Result match(const Image& left, const Image& right, const Params& params);
