@@ -68,6 +68,9 @@ inline hierarchical::Result match_hierarchical_as_naive(const Image& left, const
     EXPECT_EQ(reference.disparity, model.disparity);
     EXPECT_EQ(reference.vertical, model.vertical) << "the vertical offsets differ";
     EXPECT_EQ(reference.cost_evaluations.level, model.cost_evaluations.level);
+    EXPECT_EQ(reference.cost_evaluations.field_pass, model.cost_evaluations.field_pass);
+    EXPECT_EQ(reference.field, model.field) << "the vertical fields differ";
+    EXPECT_EQ(reference.validated, model.validated) << "the validated 1-D passes differ";
     return model;
 }
 

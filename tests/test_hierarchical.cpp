@@ -229,6 +229,171 @@ TEST(MatchEqualsNaive, MiddleburyCrop) {
     EXPECT_GT(moved, 0);
 }
 
+// ---- the vertical field and the validated 1-D pass (Output::vertical_field) -----------------
+
+// Every field model, validation on and off, against the naive reference on a pair whose right
+// image is moved by 3 rows and 6 columns (with noise), and on a random pair (no structure at all).
+TEST(VerticalFieldEqualsNaive, EveryFieldModel) {
+    auto rng = test::seeded_rng(21);
+    const Image left = test::random_image(84, 64, 3, rng);
+    const Image moved = shifted_2d(left, 6, 3, 15, rng);
+    const Image unrelated = test::random_image(84, 64, 3, rng);
+    struct Case {
+        const Image* right;
+        FieldModel model;
+        bool validate;
+    };
+    for (const auto& c :
+         {Case{&moved, FieldModel::mode, true}, Case{&moved, FieldModel::plane, true},
+          Case{&moved, FieldModel::mode_with_plane_prior, false},
+          Case{&moved, FieldModel::mode_with_plane_prior, true},
+          Case{&unrelated, FieldModel::mode_with_plane_prior, true}}) {
+        Params params;
+        params.ndisp = 16;
+        params.vrange = 12;
+        params.cost = "census";
+        params.output = Output::vertical_field;
+        params.field_model = c.model;
+        params.field_radius = 9;
+        params.field_level = {7, 2.0};
+        if (c.validate) {
+            params.validation = {true, 0, true, 1, true};
+        }
+        const Result result = test::match_hierarchical_as_naive(left, *c.right, params);
+        ASSERT_EQ(result.field.size(), result.disparity.valid.size());
+        if (c.right == &moved) {
+            // The field holds the 3 rows: everywhere with the plane; with the mode wherever the
+            // window saw enough right winners (not near the corners of this small random pair).
+            const auto three = std::count(result.field.begin(), result.field.end(), 3);
+            const auto size = static_cast<std::ptrdiff_t>(result.field.size());
+            const std::ptrdiff_t least = c.model == FieldModel::plane  ? size * 19 / 20
+                                         : c.model == FieldModel::mode ? size * 3 / 5
+                                                                       : size * 3 / 4;
+            EXPECT_GE(three, least) << static_cast<int>(c.model);
+        }
+    }
+}
+
+TEST(VerticalFieldEqualsNaive, MiddleburyCropWithAd) {
+    const auto pair = test::middlebury_crop("tsukuba", 150, 100, 104, 84);
+    if (!pair) {
+        GTEST_SKIP() << "Middlebury tsukuba not found under " << io::data_dir();
+    }
+    Params params;
+    params.ndisp = 16;
+    params.output = Output::vertical_field;
+    params.validation = {true, 6, true, 0, true};
+    test::match_hierarchical_as_naive(pair->left, pair->right, params);
+}
+
+// The mode by hand: a 5x3 map, radius 1, ties to the smaller |v| then the smaller v, invalid
+// winners not counted, a prior kept unless outvoted more than twice.
+TEST(VerticalField, HandComputed) {
+    LevelMap level{5, 3, std::vector<std::int16_t>(15, 0), {}, {}};
+    level.vertical = {2, 2, -1, 1,  1,  //
+                      2, 0, -1, 1,  1,  //
+                      0, 0, 5,  -1, -1};
+    level.valid = {1, 1, 1, 1, 1,  //
+                   1, 1, 1, 1, 1,  //
+                   1, 1, 0, 1, 1};
+    // (0,0): window x 0..1, y 0..1 holds 2,2,2,0 -> 2. (2,1): x 1..3, y 0..2 holds 2,-1,1,0,-1,1,
+    // 0,-1 (the 5 is invalid): -1 three times -> -1. (4,2): x 3..4, y 1..2: 1,1,-1,-1 -> tie of
+    // 1 and -1 at |v| = 1 -> -1. (1,2): x 0..2, y 1..2: 2,0,-1,0,0 -> 0.
+    const auto field = vertical_field(level, 1);
+    EXPECT_EQ(field[0], 2);
+    EXPECT_EQ(field[1 * 5 + 2], -1);
+    EXPECT_EQ(field[2 * 5 + 4], -1);
+    EXPECT_EQ(field[2 * 5 + 1], 0);
+    EXPECT_EQ(field, naive::vertical_field(level, 1, {}, 0));
+    // Prior 1 everywhere, factor 2: at (2,1) 1 has count 2 and -1 count 3 <= 4: the prior stays;
+    // at (0,0) 1 has count 0 and 2 has 3 > 0: the mode wins.
+    const std::vector<std::int8_t> prior(15, 1);
+    const auto with_prior = vertical_field(level, 1, prior, 2);
+    EXPECT_EQ(with_prior[1 * 5 + 2], 1);
+    EXPECT_EQ(with_prior[0], 2);
+    EXPECT_EQ(with_prior, naive::vertical_field(level, 1, prior, 2));
+}
+
+// The plane fit: winners on round(1.5 + 0.02 x - 0.01 y) with 20 % outliers; the fit must satisfy
+// the normal equations of its final inliers (the least-squares property, checked here in long
+// double independently of the fit's own arithmetic) and lie within a rounding of the true plane.
+TEST(VerticalPlane, LeastSquaresOverItsInliers) {
+    const int width = 120;
+    const int height = 90;
+    LevelMap level{width, height, std::vector<std::int16_t>(width * height, 0),
+                   std::vector<std::int16_t>(width * height),
+                   std::vector<std::uint8_t>(width * height, 1)};
+    auto rng = test::seeded_rng(3);
+    std::uniform_int_distribution<int> percent(0, 99);
+    std::uniform_int_distribution<int> wild(-8, 7);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const double truth = 1.5 + 0.02 * x - 0.01 * y;
+            level.vertical[level.index(x, y)] = static_cast<std::int16_t>(
+                percent(rng) < 20 ? wild(rng) : static_cast<int>(std::lround(truth)));
+        }
+    }
+    const Plane plane = vertical_plane(level);
+    const auto value = [&](int x, int y) {
+        return (static_cast<long double>(plane.a) + static_cast<long double>(plane.b) * x +
+                static_cast<long double>(plane.c) * y) /
+               kPlaneOne;
+    };
+    EXPECT_NEAR(static_cast<double>(plane.b) / kPlaneOne, 0.02, 0.002);
+    EXPECT_NEAR(static_cast<double>(plane.c) / kPlaneOne, -0.01, 0.002);
+    EXPECT_NEAR(static_cast<double>(value(60, 45)), 1.5 + 1.2 - 0.45, 0.05);
+    // Normal equations over the inliers of the plane found (within 1.5): the gradient of the
+    // squared residuals is ~0 (the coefficients are rounded to 1/65536, so up to that).
+    long double gradient[3] = {0, 0, 0};
+    long double scale[3] = {0, 0, 0};
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const long double v = level.vertical[level.index(x, y)];
+            const long double residual = v - value(x, y);
+            if (std::fabs(static_cast<double>(residual)) > 1.5) {
+                continue;
+            }
+            const long double row[3] = {1, static_cast<long double>(x),
+                                        static_cast<long double>(y)};
+            for (int i = 0; i < 3; ++i) {
+                gradient[i] += row[i] * residual;
+                scale[i] += row[i] * row[i];
+            }
+        }
+    }
+    for (int i = 0; i < 3; ++i) {
+        EXPECT_LT(std::fabs(static_cast<double>(gradient[i] / std::sqrt(scale[i]))), 0.05) << i;
+    }
+}
+
+TEST(PlaneField, RoundsHalvesUpAndClamps) {
+    // v = (a + b x) / 65536 with a = -0.5 and b = 0.25: x = 0 -> -0.5 -> 0 (halves up);
+    // x = 1 -> -0.25 -> 0; x = 2 -> 0; x = 4 -> 0.5 -> 1; x = 30 -> 7 clamped to 3.
+    const Plane plane{-kPlaneOne / 2, kPlaneOne / 4, 0};
+    const auto field = plane_field(plane, 31, 1, -4, 3);
+    EXPECT_EQ(field[0], 0);
+    EXPECT_EQ(field[1], 0);
+    EXPECT_EQ(field[4], 1);
+    EXPECT_EQ(field[6], 1);
+    EXPECT_EQ(field[30], 3);
+    const Plane down{-3 * kPlaneOne / 2, 0, 0};  // -1.5 -> -1
+    EXPECT_EQ(plane_field(down, 1, 1, -4, 3)[0], -1);
+    EXPECT_EQ(field, naive::plane_field(plane, 31, 1, -4, 3));
+}
+
+TEST(Validate, RefusesAnImpossibleField) {
+    Params params;
+    params.ndisp = 16;
+    params.output = Output::vertical_field;
+    params.field_radius = kMaxFieldRadius + 1;
+    EXPECT_THROW(validate(params, 200, 150), std::invalid_argument);
+    params.field_radius = 8;
+    params.field_level = {61, 3.0};  // the 1-D pass's window does not fit 60 rows
+    EXPECT_THROW(validate(params, 200, 60), std::invalid_argument);
+    params.field_level = {11, 3.0};
+    EXPECT_NO_THROW(validate(params, 200, 150));
+}
+
 // ---- hand-checked cases --------------------------------------------------------------------
 
 TEST(MatchLevel, ConstantImagesTieToThePreferredDisplacement) {

@@ -4,8 +4,11 @@
 // on every scene with ground truth, aligned and misaligned (the right image shifted by rows,
 // rotated, both images lens-distorted: stereo distort), scored against the exact ground truth
 // (every pixel followed through the warp): coverage and bad > 1 px among the output.
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -81,14 +84,66 @@ hierarchical::Params params_of(const Options& options, int ndisp) {
     params.output = options.thesis_output ? hierarchical::Output::full_level
                                           : hierarchical::Output::vertical_field;
     params.field_radius = options.field_radius;
+    params.field_model = options.field_radius < 0 ? hierarchical::FieldModel::plane
+                         : options.field_radius >= 1000
+                             ? hierarchical::FieldModel::mode_with_plane_prior
+                             : hierarchical::FieldModel::mode;
+    params.field_radius = std::max(options.field_radius % 1000, 0);
     const defaults::Validation chosen = defaults::validation_for(options.cost);
     params.validation = {true, chosen.uniqueness, true, chosen.lr_tolerance, true};
     return params;
 }
 
-cv::Mat run_hierarchical(const Options& options, const io::SceneData& data) {
+// Percent of the pixels with a known vertical disparity whose field value is its nearest integer.
+double field_agreement(const std::vector<std::int8_t>& field, const cv::Mat& exact_vertical) {
+    std::int64_t known = 0;
+    std::int64_t equal = 0;
+    for (int y = 0; y < exact_vertical.rows; ++y) {
+        for (int x = 0; x < exact_vertical.cols; ++x) {
+            const float v = exact_vertical.at<float>(y, x);
+            if (std::isnan(v)) {
+                continue;
+            }
+            ++known;
+            const std::size_t p = static_cast<std::size_t>(y) * exact_vertical.cols + x;
+            equal += field[p] == static_cast<int>(std::lround(v)) ? 1 : 0;
+        }
+    }
+    return known == 0 ? 0.0 : 100.0 * static_cast<double>(equal) / static_cast<double>(known);
+}
+
+cv::Mat run_hierarchical(const Options& options, const io::SceneData& data,
+                         const cv::Mat& exact_vertical, double& agreement) {
     hierarchical::Result result =
         hierarchical::match(data.pair.left, data.pair.right, params_of(options, data.scene.ndisp));
+    agreement = result.field.empty() ? 0.0 : field_agreement(result.field, exact_vertical);
+    if (std::getenv("FIELD_DEBUG") != nullptr) {
+        std::map<int, int> field_hist, level_hist;
+        for (auto v : result.field)
+            field_hist[v]++;
+        const auto& full = result.levels[2];
+        for (std::size_t p = 0; p < full.valid.size(); ++p)
+            if (full.valid[p])
+                level_hist[full.vertical[p]]++;
+        for (auto [v, n] : field_hist)
+            std::cerr << "field " << v << ": " << n << "\n";
+        for (auto [v, n] : level_hist)
+            std::cerr << "level " << v << ": " << n << "\n";
+        const auto& q = result.levels[0];
+        std::map<int, int> qh;
+        for (std::size_t p = 0; p < q.valid.size(); ++p)
+            if (q.valid[p])
+                qh[q.vertical[p]]++;
+        for (auto [v, n] : qh)
+            std::cerr << "quarter " << v << ": " << n << "\n";
+        const auto& h = result.levels[1];
+        std::map<int, int> hh;
+        for (std::size_t p = 0; p < h.valid.size(); ++p)
+            if (h.valid[p])
+                hh[h.vertical[p]]++;
+        for (auto [v, n] : hh)
+            std::cerr << "half " << v << ": " << n << "\n";
+    }
     if (options.thesis_output) {
         return nan_invalid(io::to_float_disparity(result.disparity));
     }
@@ -118,8 +173,8 @@ void run(const Options& options) {
                    {"rows", json::array()}};
     std::ostringstream md;
     md << "| scene | case | hierarchical coverage % / bad % | 1-D coverage % / bad % | SGBM "
-          "coverage % / bad % | hierarchical / 1-D | hierarchical / SGBM |\n|---|---|---|---|---|"
-          "---|---|\n";
+          "coverage % / bad % | hierarchical / 1-D | hierarchical / SGBM | field = exact v % "
+          "|\n|---|---|---|---|---|---|---|---|\n";
     for (const auto& scene : scenes) {
         if (!wanted(options.scenes, scene.scene.name)) {
             continue;
@@ -131,21 +186,24 @@ void run(const Options& options) {
             const io::WarpedScene warped = io::warp_scene(scene, c.warp);
             io::SceneData exact = warped.data;
             exact.ground_truth = warped.exact_ground_truth;
-            const Score h = score(exact, run_hierarchical(options, warped.data));
+            double agreement = 0;
+            const Score h = score(
+                exact, run_hierarchical(options, warped.data, warped.exact_vertical, agreement));
             const Score p = score(exact, run_pipeline(warped.data));
             const Score s = score(exact, nan_invalid(io::run_stereo_sgbm(warped.data)));
             report["rows"].push_back(json{{"scene", scene.scene.name},
                                           {"case", c.name},
+                                          {"field_agreement", agreement},
                                           {"hierarchical", json::array({h.coverage, h.bad})},
                                           {"pipeline", json::array({p.coverage, p.bad})},
                                           {"sgbm", json::array({s.coverage, s.bad})}});
             const auto pair = [](const Score& x) {
                 return fmt(x.coverage, 1) + " / " + fmt(x.bad);
             };
-            const std::string line = "| " + scene.scene.name + " | " + c.name + " | " + pair(h) +
-                                     " | " + pair(p) + " | " + pair(s) + " | " +
-                                     fmt(h.bad / std::max(p.bad, 1e-9)) + "x | " +
-                                     fmt(h.bad / std::max(s.bad, 1e-9)) + "x |\n";
+            const std::string line =
+                "| " + scene.scene.name + " | " + c.name + " | " + pair(h) + " | " + pair(p) +
+                " | " + pair(s) + " | " + fmt(h.bad / std::max(p.bad, 1e-9)) + "x | " +
+                fmt(h.bad / std::max(s.bad, 1e-9)) + "x | " + fmt(agreement, 1) + " |\n";
             md << line;
             std::cerr << line << std::flush;
         }

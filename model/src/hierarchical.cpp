@@ -2,7 +2,9 @@
 #include "stereo/catalogue.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
+#include <map>
 #include <stdexcept>
 #include <string>
 
@@ -104,7 +106,8 @@ LevelMap match_level(const Image& left, const Image& right, const CandidateGrid&
     return map;
 }
 
-std::vector<std::int8_t> vertical_field(const LevelMap& level, int radius) {
+std::vector<std::int8_t> vertical_field(const LevelMap& level, int radius,
+                                        const std::vector<std::int8_t>& prior, int prior_factor) {
     const int width = level.width;
     const int height = level.height;
     const std::size_t size = static_cast<std::size_t>(width) * height;
@@ -182,7 +185,106 @@ std::vector<std::int8_t> vertical_field(const LevelMap& level, int radius) {
                     best_count = window[static_cast<std::size_t>(b)];
                 }
             }
-            field[level.index(x, y)] = static_cast<std::int8_t>(best < 0 ? 0 : best + v_min);
+            const std::size_t p = level.index(x, y);
+            if (!prior.empty()) {
+                const int prior_bin = prior[p] - v_min;
+                const int prior_count = prior_bin >= 0 && prior_bin < bins
+                                            ? window[static_cast<std::size_t>(prior_bin)]
+                                            : 0;
+                if (best_count <= prior_factor * prior_count || best < 0) {
+                    field[p] = prior[p];
+                    continue;
+                }
+            }
+            field[p] = static_cast<std::int8_t>(best < 0 ? 0 : best + v_min);
+        }
+    }
+    return field;
+}
+
+Plane vertical_plane(const LevelMap& level, int iterations) {
+    // The most frequent valid offset starts the fit (ties: the smaller |v|, then the smaller v).
+    std::map<int, std::int64_t> counts;
+    for (std::size_t p = 0; p < level.valid.size(); ++p) {
+        if (level.valid[p] != 0) {
+            ++counts[level.vertical[p]];
+        }
+    }
+    int mode = 0;
+    std::int64_t best = 0;
+    for (const auto& [v, n] : counts) {
+        if (n > best || (n == best && std::abs(v) < std::abs(mode))) {
+            mode = v;
+            best = n;
+        }
+    }
+    double a = mode;
+    double b = 0;
+    double c = 0;
+    double tolerance = 2.0;
+    for (int iteration = 0; iteration < iterations; ++iteration) {
+        // Normal equations of v = a + b x + c y over the inliers, in double precision.
+        double s[3][3] = {};
+        double r[3] = {};
+        std::int64_t used = 0;
+        for (int y = 0; y < level.height; ++y) {
+            for (int x = 0; x < level.width; ++x) {
+                const std::size_t p = level.index(x, y);
+                const double v = level.vertical[p];
+                if (level.valid[p] == 0 || std::abs(v - (a + b * x + c * y)) > tolerance) {
+                    continue;
+                }
+                const double row[3] = {1.0, static_cast<double>(x), static_cast<double>(y)};
+                for (int i = 0; i < 3; ++i) {
+                    for (int j = 0; j < 3; ++j) {
+                        s[i][j] += row[i] * row[j];
+                    }
+                    r[i] += row[i] * v;
+                }
+                ++used;
+            }
+        }
+        tolerance = 1.5;
+        const double det = s[0][0] * (s[1][1] * s[2][2] - s[1][2] * s[2][1]) -
+                           s[0][1] * (s[1][0] * s[2][2] - s[1][2] * s[2][0]) +
+                           s[0][2] * (s[1][0] * s[2][1] - s[1][1] * s[2][0]);
+        if (used < 3 || std::abs(det) < 1e-9 * std::abs(s[0][0] * s[1][1] * s[2][2]) ||
+            det == 0.0) {
+            break;  // too few or collinear inliers: keep the last plane
+        }
+        const auto solve = [&](int column) {
+            double m[3][3];
+            for (int i = 0; i < 3; ++i) {
+                for (int j = 0; j < 3; ++j) {
+                    m[i][j] = j == column ? r[i] : s[i][j];
+                }
+            }
+            return (m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+                    m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                    m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])) /
+                   det;
+        };
+        a = solve(0);
+        b = solve(1);
+        c = solve(2);
+    }
+    const auto fixed = [](double value) {
+        return static_cast<std::int64_t>(std::llround(value * static_cast<double>(kPlaneOne)));
+    };
+    return {fixed(a), fixed(b), fixed(c)};
+}
+
+std::vector<std::int8_t> plane_field(const Plane& plane, int width, int height, int v_min,
+                                     int v_max) {
+    std::vector<std::int8_t> field(static_cast<std::size_t>(width) * height);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const std::int64_t value = plane.a + plane.b * x + plane.c * y + kPlaneOne / 2;
+            // Floor division: the rounding is halves up for negative values too.
+            const std::int64_t rounded =
+                value >= 0 ? value / kPlaneOne : -((-value + kPlaneOne - 1) / kPlaneOne);
+            field[static_cast<std::size_t>(y) * width + x] =
+                static_cast<std::int8_t>(std::clamp<std::int64_t>(rounded, v_min, v_max));
         }
     }
     return field;
@@ -355,7 +457,18 @@ Result match(const Image& left, const Image& right, const Params& params) {
     if (params.output == Output::full_level) {
         return finish(std::move(levels), count);
     }
-    std::vector<std::int8_t> field = vertical_field(levels[kLevels - 1], params.field_radius);
+    const LevelMap& full = levels[kLevels - 1];
+    const SearchRange range = level_range(params, 1);
+    std::vector<std::int8_t> field;
+    if (params.field_model == FieldModel::mode) {
+        field = vertical_field(full, params.field_radius);
+    } else {
+        field =
+            plane_field(vertical_plane(full), full.width, full.height, range.v_min, range.v_max);
+        if (params.field_model == FieldModel::mode_with_plane_prior) {
+            field = vertical_field(full, params.field_radius, field, params.prior_factor);
+        }
+    }
     ValidatedDisparity validated = match_along_field(left, right, field, params, count.field_pass);
     return finish_field(std::move(levels), count, std::move(field), std::move(validated));
 }

@@ -56,6 +56,22 @@ enum class Output {
 
 inline constexpr int kMaxFieldRadius = 64;
 
+// How the full level's offsets become the vertical field.
+enum class FieldModel {
+    mode,   // per pixel, the most frequent valid offset in a window (vertical_field)
+    plane,  // one plane v = a + b x + c y for the frame, fitted robustly (vertical_plane)
+    mode_with_plane_prior,  // the mode, the plane's offset kept unless clearly outvoted
+};
+
+// The plane's coefficients in 1/kPlaneOne pixel: v(x, y) = (a + b x + c y) / kPlaneOne.
+inline constexpr std::int64_t kPlaneOne = std::int64_t{1} << 16;
+struct Plane {
+    std::int64_t a = 0;
+    std::int64_t b = 0;
+    std::int64_t c = 0;
+    bool operator==(const Plane&) const = default;
+};
+
 struct Params {
     int ndisp = fx::kDefaultDisparities;  // D: horizontal labels 0..D-1 at full size
     int vrange = 0;                       // V: vertical labels at full size; 0 = same as D
@@ -68,7 +84,9 @@ struct Params {
     // Output::vertical_field: the field is the most frequent valid full-level offset in a
     // (2 field_radius + 1)^2 window; the 1-D pass aggregates with `field_level` (the pipeline's
     // 11x11, sigma 3 by default) and CA as the levels, and validates with `validation`.
-    int field_radius = 16;
+    FieldModel field_model = FieldModel::mode_with_plane_prior;
+    int field_radius = 48;
+    int prior_factor = 2;
     LevelParams field_level = {fx::kDefaultWindow, fx::kDefaultSigma};
     ValidationParams validation{};
 
@@ -142,7 +160,20 @@ struct Result {
 // The vertical field of a full-level map: for every pixel the offset v held by the most valid
 // winners of `level` in the (2 radius + 1)^2 window around it (clipped at the image), ties to the
 // smaller |v|, then the smaller v; 0 where the window holds no valid winner.
-std::vector<std::int8_t> vertical_field(const LevelMap& level, int radius);
+// With `prior` (one offset per pixel, e.g. plane_field), the prior's offset keeps the pixel unless
+// another offset has more than `prior_factor` times its count in the window.
+std::vector<std::int8_t> vertical_field(const LevelMap& level, int radius,
+                                        const std::vector<std::int8_t>& prior = {},
+                                        int prior_factor = 2);
+
+// The robust plane through the valid offsets of `level`: starting from the offsets within 2 of the
+// most frequent one, `iterations` least-squares fits, each over the valid winners within 1.5
+// pixels of the previous plane; the coefficients rounded to 1/kPlaneOne.
+Plane vertical_plane(const LevelMap& level, int iterations = 4);
+
+// The field of a plane: round(v(x, y)), halves up, clamped into [v_min, v_max].
+std::vector<std::int8_t> plane_field(const Plane& plane, int width, int height, int v_min,
+                                     int v_max);
 
 // The 1-D pass of Output::vertical_field: candidates d = 0..D-1 of pixel (x, y) against the right
 // pixel (x - d, y + field(x, y)), cost, `field_level` aggregation, CA as params.use_ca, stage 6

@@ -2,6 +2,7 @@
 // that tests/test_hierarchical.cpp can hold the streaming model against it bit for bit.
 #include <algorithm>
 #include <cstdlib>
+#include <map>
 #include <stdexcept>
 #include <string_view>
 #include <tuple>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "stereo/catalogue.hpp"
+#include "stereo/dsi.hpp"
 #include "stereo/edge_frontend.hpp"
 #include "stereo/hierarchical_reference.hpp"
 #include "stereo/pipeline.hpp"
@@ -97,9 +99,12 @@ Image downscale_area(const Image& image, int factor) {
     return out;
 }
 
-LevelMap match_level(const Image& left, const Image& right, const CandidateGrid& grid,
-                     const LevelParams& level, bool use_ca, CaNeighbours neighbours,
-                     std::string_view cost) {
+namespace {
+
+// The final (aggregated, CA-refined) volume of a level over its grid, plane k = j * cols + i.
+Volume final_volume(const Image& left, const Image& right, const CandidateGrid& grid,
+                    const LevelParams& level, bool use_ca, CaNeighbours neighbours,
+                    std::string_view cost) {
     catalogue::require_cost(cost, catalogue::CostUse::pixel_pair, "the naive hierarchical search");
     const catalogue::Cost id = catalogue::cost(cost).id;
     const bool census = id == catalogue::Cost::census;
@@ -201,6 +206,24 @@ LevelMap match_level(const Image& left, const Image& right, const CandidateGrid&
         }
     }
 
+    return final_volume;
+}
+
+}  // namespace
+
+LevelMap match_level(const Image& left, const Image& right, const CandidateGrid& grid,
+                     const LevelParams& level, bool use_ca, CaNeighbours neighbours,
+                     std::string_view cost) {
+    const Volume final_volume =
+        naive::final_volume(left, right, grid, level, use_ca, neighbours, cost);
+    const int width = left.width;
+    const int height = left.height;
+    const int planes = grid.cols * grid.rows;
+    const int r = level.window / 2;
+    auto displacement = [&](int x, int y, int k) {
+        const std::size_t p = static_cast<std::size_t>(y) * width + x;
+        return std::pair{grid.base_d[p] + k % grid.cols, grid.base_v[p] + k / grid.cols};
+    };
     // WTA: the smallest cost; among equal costs the smallest (|v - pv|, |d - pd|, v, d).
     LevelMap map{width, height, std::vector<std::int16_t>(static_cast<std::size_t>(width) * height),
                  std::vector<std::int16_t>(static_cast<std::size_t>(width) * height),
@@ -230,6 +253,103 @@ LevelMap match_level(const Image& left, const Image& right, const CandidateGrid&
         }
     }
     return map;
+}
+
+std::vector<std::int8_t> vertical_field(const LevelMap& level, int radius,
+                                        const std::vector<std::int8_t>& prior, int prior_factor) {
+    std::vector<std::int8_t> field(level.valid.size(), 0);
+    for (int y = 0; y < level.height; ++y) {
+        for (int x = 0; x < level.width; ++x) {
+            // Count every valid offset of the window, directly.
+            std::map<int, int> counts;
+            for (int j = std::max(0, y - radius); j <= std::min(level.height - 1, y + radius);
+                 ++j) {
+                for (int i = std::max(0, x - radius); i <= std::min(level.width - 1, x + radius);
+                     ++i) {
+                    const std::size_t q = static_cast<std::size_t>(j) * level.width + i;
+                    if (level.valid[q] != 0) {
+                        ++counts[level.vertical[q]];
+                    }
+                }
+            }
+            // The largest count; ties to the smaller |v|, then the smaller v.
+            std::tuple<int, int, int> best{0, 0, 0};  // (-count, |v|, v)
+            for (const auto& [v, n] : counts) {
+                best = std::min(best, std::tuple{-n, std::abs(v), v});
+            }
+            const std::size_t p = static_cast<std::size_t>(y) * level.width + x;
+            const int best_count = -std::get<0>(best);
+            if (!prior.empty()) {
+                const auto found = counts.find(prior[p]);
+                const int prior_count = found == counts.end() ? 0 : found->second;
+                if (best_count <= prior_factor * prior_count) {
+                    field[p] = prior[p];
+                    continue;
+                }
+            }
+            field[p] = static_cast<std::int8_t>(std::get<2>(best));
+        }
+    }
+    return field;
+}
+
+std::vector<std::int8_t> plane_field(const Plane& plane, int width, int height, int v_min,
+                                     int v_max) {
+    std::vector<std::int8_t> field(static_cast<std::size_t>(width) * height);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            // round half up of the exact rational (a + b x + c y) / 2^16, by long division
+            const std::int64_t numerator = plane.a + plane.b * x + plane.c * y;
+            std::int64_t v = numerator / kPlaneOne;
+            std::int64_t remainder = numerator - v * kPlaneOne;
+            if (remainder < 0) {
+                --v;
+                remainder += kPlaneOne;
+            }
+            if (2 * remainder >= kPlaneOne) {
+                ++v;
+            }
+            v = v < v_min ? v_min : v > v_max ? v_max : v;
+            field[static_cast<std::size_t>(y) * width + x] = static_cast<std::int8_t>(v);
+        }
+    }
+    return field;
+}
+
+ValidatedDisparity match_along_field(const Image& left, const Image& right,
+                                     const std::vector<std::int8_t>& field, const Params& params) {
+    const int width = left.width;
+    const int height = left.height;
+    const std::size_t size = static_cast<std::size_t>(width) * height;
+    CandidateGrid grid{width, height, params.ndisp, 1, {}, {}, {}, {}};
+    grid.base_d.assign(size, 0);
+    grid.prefer_d.assign(size, 0);
+    grid.base_v.assign(field.begin(), field.end());
+    grid.prefer_v.assign(field.begin(), field.end());
+    const Volume volume = naive::final_volume(left, right, grid, params.field_level, params.use_ca,
+                                              CaNeighbours::horizontal, params.cost);
+    Dsi dsi(width, height, params.ndisp);
+    for (int d = 0; d < params.ndisp; ++d) {
+        for (int y = 0; y < height; ++y) {
+            for (int x = 0; x < width; ++x) {
+                dsi.at(x, y, d) = static_cast<CostValue>(volume.at(x, y, d));
+            }
+        }
+    }
+    const int reach = params.field_level.window / 2 + (params.use_ca ? 1 : 0);
+    ValidatedDisparity out =
+        stereo::naive::validate(dsi, 0, params.validation, InvalidBorder{reach});
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const std::size_t p = static_cast<std::size_t>(y) * width + x;
+            const int row = y + field[p];
+            if (out.reason[p] == fx::kReasonValid && (row < reach || row >= height - reach)) {
+                out.reason[p] = fx::kReasonBorder;
+                out.fixed[p] = 0;
+            }
+        }
+    }
+    return out;
 }
 
 Result match(const Image& left, const Image& right, const Params& params) {
@@ -288,7 +408,27 @@ Result match(const Image& left, const Image& right, const Params& params) {
             static_cast<std::int64_t>(size) * grid.cols * grid.rows;
         coarse = &result.levels[l_index];
     }
-    return finish(std::move(result.levels), result.cost_evaluations);
+    if (params.output == Output::full_level) {
+        return finish(std::move(result.levels), result.cost_evaluations);
+    }
+    // The field (the plane fit is the model's, checked by its own test), then the 1-D pass.
+    const LevelMap& full = result.levels[kLevels - 1];
+    std::vector<std::int8_t> field;
+    if (params.field_model == FieldModel::mode) {
+        field = naive::vertical_field(full, params.field_radius, {}, 0);
+    } else {
+        const int v_min = -(vrange / 2);
+        field = naive::plane_field(hierarchical::vertical_plane(full), full.width, full.height,
+                                   v_min, v_min + vrange - 1);
+        if (params.field_model == FieldModel::mode_with_plane_prior) {
+            field = naive::vertical_field(full, params.field_radius, field, params.prior_factor);
+        }
+    }
+    ValidatedDisparity validated = naive::match_along_field(left, right, field, params);
+    result.cost_evaluations.field_pass =
+        static_cast<std::int64_t>(left.width) * left.height * params.ndisp;
+    return finish_field(std::move(result.levels), result.cost_evaluations, std::move(field),
+                        std::move(validated));
 }
 
 }  // namespace stereo::hierarchical::naive
