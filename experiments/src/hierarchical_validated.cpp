@@ -39,10 +39,11 @@ struct Options : cli::ReportOptions {
     std::string cost{defaults::kCost};
     int vrange = 16;
     std::vector<int> windows = {9, 15, 15};
-    int field_radius = 16;
-    bool thesis_output = false;       // Output::full_level instead of the vertical field
-    std::vector<std::string> scenes;  // empty: all
-    std::vector<std::string> cases;   // empty: all
+    int field_radius = hierarchical::Params{}.field_radius;
+    std::string field_model = "prior";  // mode, plane, prior (the mode with the plane as prior)
+    bool thesis_output = false;         // Output::full_level instead of the vertical field
+    std::vector<std::string> scenes;    // empty: all
+    std::vector<std::string> cases;     // empty: all
 };
 
 struct Case {
@@ -84,11 +85,10 @@ hierarchical::Params params_of(const Options& options, int ndisp) {
     params.output = options.thesis_output ? hierarchical::Output::full_level
                                           : hierarchical::Output::vertical_field;
     params.field_radius = options.field_radius;
-    params.field_model = options.field_radius < 0 ? hierarchical::FieldModel::plane
-                         : options.field_radius >= 1000
-                             ? hierarchical::FieldModel::mode_with_plane_prior
-                             : hierarchical::FieldModel::mode;
-    params.field_radius = std::max(options.field_radius % 1000, 0);
+    params.field_model = options.field_model == "mode" ? hierarchical::FieldModel::mode
+                         : options.field_model == "plane"
+                             ? hierarchical::FieldModel::plane
+                             : hierarchical::FieldModel::mode_with_plane_prior;
     const defaults::Validation chosen = defaults::validation_for(options.cost);
     params.validation = {true, chosen.uniqueness, true, chosen.lr_tolerance, true};
     return params;
@@ -117,33 +117,6 @@ cv::Mat run_hierarchical(const Options& options, const io::SceneData& data,
     hierarchical::Result result =
         hierarchical::match(data.pair.left, data.pair.right, params_of(options, data.scene.ndisp));
     agreement = result.field.empty() ? 0.0 : field_agreement(result.field, exact_vertical);
-    if (std::getenv("FIELD_DEBUG") != nullptr) {
-        std::map<int, int> field_hist, level_hist;
-        for (auto v : result.field)
-            field_hist[v]++;
-        const auto& full = result.levels[2];
-        for (std::size_t p = 0; p < full.valid.size(); ++p)
-            if (full.valid[p])
-                level_hist[full.vertical[p]]++;
-        for (auto [v, n] : field_hist)
-            std::cerr << "field " << v << ": " << n << "\n";
-        for (auto [v, n] : level_hist)
-            std::cerr << "level " << v << ": " << n << "\n";
-        const auto& q = result.levels[0];
-        std::map<int, int> qh;
-        for (std::size_t p = 0; p < q.valid.size(); ++p)
-            if (q.valid[p])
-                qh[q.vertical[p]]++;
-        for (auto [v, n] : qh)
-            std::cerr << "quarter " << v << ": " << n << "\n";
-        const auto& h = result.levels[1];
-        std::map<int, int> hh;
-        for (std::size_t p = 0; p < h.valid.size(); ++p)
-            if (h.valid[p])
-                hh[h.vertical[p]]++;
-        for (auto [v, n] : hh)
-            std::cerr << "half " << v << ": " << n << "\n";
-    }
     if (options.thesis_output) {
         return nan_invalid(io::to_float_disparity(result.disparity));
     }
@@ -169,6 +142,7 @@ void run(const Options& options) {
                    {"vrange", options.vrange},
                    {"windows", options.windows},
                    {"field_radius", options.field_radius},
+                   {"field_model", options.field_model},
                    {"thesis_output", options.thesis_output},
                    {"rows", json::array()}};
     std::ostringstream md;
@@ -223,6 +197,10 @@ void add_hierarchical_validated_command(CLI::App& app) {
         ->expected(3)
         ->capture_default_str();
     command->add_option("--field-radius", options->field_radius, "Vertical field radius")
+        ->check(CLI::Range(0, hierarchical::kMaxFieldRadius))
+        ->capture_default_str();
+    command->add_option("--field-model", options->field_model, "How the field is made")
+        ->check(CLI::IsMember({"mode", "plane", "prior"}))
         ->capture_default_str();
     command->add_flag("--thesis-output", options->thesis_output,
                       "The full level's 3x3 winners instead of the vertical field");
