@@ -71,7 +71,7 @@ TEST(DownscaleArea, EqualsNaive) {
 // ---- ranges, grids, validation -------------------------------------------------------------
 
 TEST(LevelRange, HandComputed) {
-    Params params;
+    Params params = Params::thesis();
     params.ndisp = 32;  // vrange 0: the same as ndisp
     EXPECT_EQ(params.vertical_range(), 32);
     const SearchRange quarter = level_range(params, 4);
@@ -110,7 +110,7 @@ TEST(RefineGrid, UpscalesAndClampsHandComputed) {
 }
 
 TEST(Validate, RefusesWhatThreeLevelsCannotDo) {
-    Params params;
+    Params params = Params::thesis();
     params.ndisp = 16;
     EXPECT_NO_THROW(validate(params, 128, 96));
     for (const int ndisp : {4, 6, 10, 260}) {
@@ -202,7 +202,7 @@ TEST(MatchEqualsNaive, RandomPair) {
     const Image right = shifted_2d(left, 6, 3, 15, rng);
     for (const auto neighbours :
          {CaNeighbours::horizontal, CaNeighbours::horizontal_and_vertical}) {
-        Params params;
+        Params params = Params::thesis();
         params.ndisp = 16;
         params.vrange = 12;
         params.neighbours = neighbours;
@@ -215,7 +215,7 @@ TEST(MatchEqualsNaive, MiddleburyCrop) {
     if (!pair) {
         GTEST_SKIP() << "Middlebury tsukuba not found under " << io::data_dir();
     }
-    Params params;
+    Params params = Params::thesis();
     params.ndisp = 16;
     const Result model = test::match_hierarchical_as_naive(pair->left, pair->right, params);
     // A real scene exercises both axes: most full-size pixels valid, some vertical offsets.
@@ -248,7 +248,7 @@ TEST(VerticalFieldEqualsNaive, EveryFieldModel) {
           Case{&moved, FieldModel::mode_with_plane_prior, false},
           Case{&moved, FieldModel::mode_with_plane_prior, true},
           Case{&unrelated, FieldModel::mode_with_plane_prior, true}}) {
-        Params params;
+        Params params = Params::thesis();
         params.ndisp = 16;
         params.vrange = 12;
         params.cost = "census";
@@ -279,7 +279,7 @@ TEST(VerticalFieldEqualsNaive, MiddleburyCropWithAd) {
     if (!pair) {
         GTEST_SKIP() << "Middlebury tsukuba not found under " << io::data_dir();
     }
-    Params params;
+    Params params = Params::thesis();
     params.ndisp = 16;
     params.output = Output::vertical_field;
     params.validation = {true, 6, true, 0, true};
@@ -382,7 +382,7 @@ TEST(PlaneField, RoundsHalvesUpAndClamps) {
 }
 
 TEST(Validate, RefusesAnImpossibleField) {
-    Params params;
+    Params params = Params::thesis();
     params.ndisp = 16;
     params.output = Output::vertical_field;
     params.field_radius = kMaxFieldRadius + 1;
@@ -514,7 +514,7 @@ TEST(ShiftField, VerticalTearRecoveredExactly) {
     const ShiftField field{192, 144, [](int, int) { return 8; },
                            [](int x, int) { return x < 96 ? 4 : -4; },
                            [](int x, int) { return x < 96 ? 0 : 1; }};
-    Params params;
+    Params params = Params::thesis();
     params.ndisp = 16;
     params.vrange = 16;
     expect_field_recovered(field, params);
@@ -524,7 +524,7 @@ TEST(ShiftField, DisparityStepRecoveredExactly) {
     // v = 4 everywhere; d = 8 above row 72, 16 from there on.
     const ShiftField field{192, 144, [](int, int y) { return y < 72 ? 8 : 16; },
                            [](int, int) { return 4; }, [](int, int y) { return y < 72 ? 0 : 1; }};
-    Params params;
+    Params params = Params::thesis();
     params.ndisp = 24;
     params.vrange = 16;
     expect_field_recovered(field, params);
@@ -536,7 +536,7 @@ TEST(CostCount, LevelsAndFullSearch) {
     auto rng = test::seeded_rng(13);
     const Image left = test::random_image(130, 98, 3, rng);  // quarter 32x24, half 65x49
     const Image right = shifted_2d(left, 4, 0, 5, rng);
-    Params params;
+    Params params = Params::thesis();
     params.ndisp = 32;
     params.vrange = 16;
     const Result hierarchical = match(left, right, params);
@@ -553,7 +553,7 @@ TEST(FullSearch, EqualsNaiveLevelOverTheWholeRange) {
     auto rng = test::seeded_rng(17);
     const Image left = test::random_image(72, 60, 3, rng);
     const Image right = shifted_2d(left, 5, -3, 10, rng);
-    Params params;
+    Params params = Params::thesis();
     params.ndisp = 12;
     params.vrange = 8;
     params.levels = {default_level(3), default_level(5), default_level(7)};

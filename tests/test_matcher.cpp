@@ -108,7 +108,7 @@ int vertical_offsets(const Winners& level) {
 // it finds the displacement.
 TEST(Census, HierarchicalSearchEqualsNaive) {
     std::mt19937 rng(test::test_seed() + 7);
-    hierarchical::Params params;
+    hierarchical::Params params = hierarchical::Params::thesis();
     params.ndisp = 16;
     params.vrange = 16;  // -8 .. 7: dy = +-3 lies inside every level's range
     params.cost = "census";
@@ -222,11 +222,20 @@ ValidatedDisparity model_validated(const std::string& method, const MatchConfig&
 
 // The registry's mapping, written out independently of hierarchical_factory.
 hierarchical::Params hierarchical_params(const MatchConfig& config) {
-    return {.ndisp = config.pipeline.ndisp,
-            .vrange = config.vrange,
-            .use_ca = config.pipeline.use_ca,
-            .neighbours = config.neighbours,
-            .cost = config.pipeline.cost};
+    hierarchical::Params params;
+    params.ndisp = config.pipeline.ndisp;
+    params.vrange = config.vrange;
+    params.use_ca = config.pipeline.use_ca;
+    params.neighbours = config.neighbours;
+    params.cost = config.pipeline.cost;
+    params.output = config.hierarchical_output;
+    params.field_model = config.field_model;
+    params.field_radius = config.field_radius;
+    for (std::size_t l = 0; l < 3; ++l) {
+        params.levels[l] = {config.level_windows[l], 3.0 * config.level_windows[l] / 11.0};
+    }
+    params.validation = config.pipeline.validation;
+    return params;
 }
 
 // ---- the registry -----------------------------------------------------------------------

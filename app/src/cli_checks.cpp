@@ -63,6 +63,18 @@ CLI::Validator integer_in(std::int64_t min, std::int64_t max) {
             "INT in " + range, "integer_in"};
 }
 
+CLI::Validator odd_in(std::int64_t min, std::int64_t max) {
+    const std::string range = "[" + std::to_string(min) + ", " + std::to_string(max) + "]";
+    return {[min, max, range](std::string& text) -> std::string {
+                const std::optional<std::int64_t> value = decimal(text);
+                if (!value || *value < min || *value > max || *value % 2 == 0) {
+                    return "must be an odd integer in " + range + got(text);
+                }
+                return {};
+            },
+            "odd INT in " + range, "odd_in"};
+}
+
 CLI::Validator integer_at_least(std::int64_t min) {
     return {[min](std::string& text) -> std::string {
                 const std::optional<std::int64_t> value = decimal(text);

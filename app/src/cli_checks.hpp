@@ -11,6 +11,8 @@ namespace stereo::cli::checks {
 
 // An integer option's value in [min, max].
 CLI::Validator integer_in(std::int64_t min, std::int64_t max);
+// An odd integer in [min, max] (a window's side).
+CLI::Validator odd_in(std::int64_t min, std::int64_t max);
 // An integer option's value >= min (no upper bound but the type's).
 CLI::Validator integer_at_least(std::int64_t min);
 

@@ -38,8 +38,13 @@ struct MatchOptions {
     bool png16 = false;       // pipeline: offset16 PNG (signed sub-pixel) instead of 8-bit
     std::string vertical;     // 2-D methods: vertical offset PNG, empty: none
     std::string dump_levels;  // hierarchical: folder for the per-level maps, empty: none
-    std::string certainty;    // stage-6 methods: certainty PNG (0..255), empty: none
-    std::string reasons;      // stage-6 methods: invalid-reason PNG (fx::kReason...), empty: none
+    // hierarchical: given values (-1 / empty: the defaults of MatchConfig)
+    int vrange = -1;
+    std::string field;  // prior, mode, plane or none (the thesis' full level)
+    int field_radius = -1;
+    std::vector<int> level_windows;  // hierarchical: empty = the defaults
+    std::string certainty;           // stage-6 methods: certainty PNG (0..255), empty: none
+    std::string reasons;  // stage-6 methods: invalid-reason PNG (fx::kReason...), empty: none
 };
 
 // One byte per pixel of stage 6's output (certainty or reason code) as an 8-bit PNG.
@@ -102,36 +107,62 @@ std::string stage6_methods() {
 // another method, impossible scales, outputs the method cannot write.
 MatchConfig checked_config(const MatchOptions& options, const catalogue::MethodRow& row,
                            io::DisparityEncoding output_encoding) {
-    if (!row.two_d && (options.matcher.config.vrange != 0 || !options.vertical.empty() ||
-                       !options.dump_levels.empty())) {
+    if (!row.two_d &&
+        (options.vrange >= 0 || !options.vertical.empty() || !options.dump_levels.empty() ||
+         !options.field.empty() || options.field_radius >= 0 || !options.level_windows.empty())) {
         throw std::invalid_argument(
-            "--vrange, --vertical and --dump-levels need --method hierarchical");
+            "--vrange, --field, --field-radius, --level-windows, --vertical and --dump-levels "
+            "need --method hierarchical");
     }
     if (row.two_d && options.matcher.window_given()) {
         throw std::invalid_argument(
-            "--window and --sigma apply to --method pipeline; the hierarchical levels use "
-            "9, 15 and 23 (docs/hierarchical.md)");
+            "--window and --sigma apply to the 1-D methods; the hierarchical levels use 9, 15 "
+            "and 15 and its 1-D pass 11x11, sigma 3 (docs/hierarchical.md)");
     }
-    if (output_encoding != io::DisparityEncoding::scaled && !row.stage6) {
+    // --field none: the thesis' output, the full level's 3x3 winners without stage 6.
+    const bool full_level_only = options.field == "none";
+    if (full_level_only && options.field_radius >= 0) {
+        throw std::invalid_argument(
+            "--field-radius needs a vertical field (--field none has none)");
+    }
+    const bool stage6 = row.stage6 && !full_level_only;
+    if (output_encoding != io::DisparityEncoding::scaled && !stage6) {
         throw std::invalid_argument(
             "PFM and --png16 outputs hold the pipeline's validated disparities: use a method "
             "with stage 6 (" +
-            stage6_methods() + ")");
+            stage6_methods() + (full_level_only ? "; --field none has none" : "") + ")");
     }
-    if ((!options.certainty.empty() || !options.reasons.empty()) && !row.stage6) {
+    if ((!options.certainty.empty() || !options.reasons.empty()) && !stage6) {
         throw std::invalid_argument(
             "--certainty and --reasons write stage 6's outputs: use a method with stage 6 (" +
-            stage6_methods() + ")");
+            stage6_methods() + (full_level_only ? "; --field none has none" : "") + ")");
     }
     MatchConfig config = options.matcher.resolved();
-    if (!row.stage6) {
+    if (row.two_d) {
+        config.vrange = options.vrange >= 0 ? options.vrange : config.vrange;
+        config.field_radius =
+            options.field_radius >= 0 ? options.field_radius : config.field_radius;
+        if (!options.level_windows.empty()) {
+            std::copy(options.level_windows.begin(), options.level_windows.end(),
+                      config.level_windows.begin());
+        }
+        if (full_level_only) {
+            config.hierarchical_output = hierarchical::Output::full_level;
+        } else if (!options.field.empty()) {
+            config.field_model = options.field == "mode" ? hierarchical::FieldModel::mode
+                                 : options.field == "plane"
+                                     ? hierarchical::FieldModel::plane
+                                     : hierarchical::FieldModel::mode_with_plane_prior;
+        }
+    }
+    if (!stage6) {
         // Stage 6 belongs to the 1-D pipeline, ASW and the quad pairs; the other methods
         // validate in their own way.
         if (options.matcher.explicit_validation() || config.pipeline.min_disp != 0) {
             throw std::invalid_argument(
                 "--min-disp, --uniqueness, --lr-check, --subpixel and --speckle-size need a "
                 "method with stage 6 (" +
-                stage6_methods() + ")");
+                stage6_methods() + (full_level_only ? "; --field none has none" : "") + ")");
         }
         config.pipeline.validation = {};
         config.speckle = {};
@@ -186,12 +217,12 @@ std::vector<std::pair<std::filesystem::path, std::string>> encoded_outputs(
         files.emplace_back(options.colour,
                            io::encode_png(io::disparity_to_colour(map, ndisp), options.colour));
     }
-    if (!options.vertical.empty() && !result.levels.empty()) {
-        const Winners& full = result.levels.back();
-        files.emplace_back(
-            options.vertical,
-            io::encode_png(vertical_to_mat(full.vertical, full.valid, map.width, map.height),
-                           options.vertical));
+    if (!options.vertical.empty() && !result.vertical.empty()) {
+        // The offsets of the output's valid pixels: the full level's winners, or the field.
+        const std::vector<std::int16_t> vertical(result.vertical.begin(), result.vertical.end());
+        files.emplace_back(options.vertical, io::encode_png(vertical_to_mat(vertical, map.valid,
+                                                                            map.width, map.height),
+                                                            options.vertical));
     }
     const ValidatedDisparity& validated = result.validated;
     for (const auto& [path, bytes] : {std::pair{&options.certainty, &validated.certainty},
@@ -222,22 +253,35 @@ struct Summary {
 void summarise_levels(Summary& summary, const MatchResult& result, const MatchConfig& config,
                       const std::string& engine, const std::string& method, bool ca) {
     const DisparityMap& map = result.disparity;
-    const hierarchical::Params levels_params;
     std::int64_t total = 0;
     for (const char* name : hierarchical::kLevelNames) {
         const std::int64_t count = result.count(std::string("cost_evaluations.") + name);
         summary.json["cost_evaluations"][name] = count;
         total += count;
     }
+    const std::int64_t pass = result.count("cost_evaluations.field_pass");
+    summary.json["cost_evaluations"]["field_pass"] = pass;
+    total += pass;
     const double per_pixel = static_cast<double>(total) / (map.width * map.height);
     const int vrange = config.vrange == 0 ? config.pipeline.ndisp : config.vrange;
-    const auto& windows = levels_params.levels;
+    const auto& windows = config.level_windows;
     summary.json["vrange"] = vrange;
-    summary.json["windows"] = {windows[0].window, windows[1].window, windows[2].window};
+    summary.json["windows"] = windows;
     summary.json["cost_evaluations_per_pixel"] = per_pixel;
+    const bool field = config.hierarchical_output == hierarchical::Output::vertical_field;
+    const char* const field_name = !field                                                 ? "none"
+                                   : config.field_model == hierarchical::FieldModel::mode ? "mode"
+                                   : config.field_model == hierarchical::FieldModel::plane
+                                       ? "plane"
+                                       : "prior";
+    summary.json["field"] = field_name;
+    summary.json["field_radius"] =
+        field ? nlohmann::json(config.field_radius) : nlohmann::json(nullptr);
+    summary.json["cost"] = config.pipeline.cost;
     char settings[200];
-    std::snprintf(settings, sizeof settings, "vrange %d windows %d/%d/%d ca %s method %s engine %s",
-                  vrange, windows[0].window, windows[1].window, windows[2].window,
+    std::snprintf(settings, sizeof settings,
+                  "vrange %d windows %d/%d/%d field %s cost %s ca %s method %s engine %s", vrange,
+                  windows[0], windows[1], windows[2], field_name, config.pipeline.cost.c_str(),
                   ca ? "on" : "off", method.c_str(), engine.c_str());
     summary.settings = settings;
     char extra[80];
@@ -373,9 +417,29 @@ void add_match_command(CLI::App& app) {
         "--method hierarchical: " +
         std::string(catalogue::method(catalogue::Method::hierarchical).summary);
     command
-        ->add_option("--vrange", options->matcher.config.vrange,
-                     "Vertical labels V (offsets -V/2..V/2-1), 0 = ndisp")
-        ->capture_default_str()
+        ->add_option("--vrange", options->vrange,
+                     "Vertical labels V (offsets -V/2..V/2-1), 0 = ndisp [" +
+                         std::to_string(hierarchical::kDefaultVerticalRange) + "]")
+        ->group(two_d);
+    command
+        ->add_option("--field", options->field,
+                     "The vertical field: prior (the mode, the frame's plane kept unless "
+                     "outvoted), mode, plane, or none (the thesis: the full level's 3x3 winners, "
+                     "no 1-D pass, no stage 6) [prior]")
+        ->check(CLI::IsMember({"prior", "mode", "plane", "none"}))
+        ->group(two_d);
+    command
+        ->add_option("--field-radius", options->field_radius,
+                     "Window radius of the field's mode [" +
+                         std::to_string(hierarchical::kDefaultFieldRadius) + "]")
+        ->check(checks::integer_in(0, hierarchical::kMaxFieldRadius))
+        ->group(two_d);
+    command
+        ->add_option("--level-windows", options->level_windows,
+                     "Windows of the quarter, half and full level, odd (sigma 3 N / 11) [9 15 "
+                     "15; the thesis: 9 15 23]")
+        ->expected(3)
+        ->check(checks::odd_in(1, hierarchical::kMaxLevelWindow))
         ->group(two_d);
     command
         ->add_option("--vertical", options->vertical,

@@ -65,7 +65,7 @@ double milliseconds_since(std::chrono::steady_clock::time_point start) {
 }
 
 hierarchical::Params hierarchical_params(int ndisp) {
-    hierarchical::Params params;
+    hierarchical::Params params = hierarchical::Params::thesis();
     params.ndisp = (ndisp + 3) / 4 * 4;  // the Middlebury ranges are multiples of 4 already
     return params;
 }

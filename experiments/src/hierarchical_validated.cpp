@@ -39,7 +39,7 @@ struct Options : cli::ReportOptions {
     std::string cost{defaults::kCost};
     int vrange = 16;
     std::vector<int> windows = {9, 15, 15};
-    int field_radius = hierarchical::Params{}.field_radius;
+    int field_radius = hierarchical::kDefaultFieldRadius;
     std::string field_model = "prior";  // mode, plane, prior (the mode with the plane as prior)
     bool thesis_output = false;         // Output::full_level instead of the vertical field
     std::vector<std::string> scenes;    // empty: all

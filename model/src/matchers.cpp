@@ -106,7 +106,8 @@ using HierarchicalFunction = hierarchical::Result (*)(const Image&, const Image&
                                                       const hierarchical::Params&);
 
 MatchResult to_match_result(hierarchical::Result result) {
-    MatchResult out{std::move(result.disparity), {}, std::move(result.vertical), {}, {}, {}};
+    MatchResult out{std::move(result.disparity), {}, std::move(result.vertical), {}, {},
+                    std::move(result.validated)};
     for (std::size_t l = 0; l < result.levels.size(); ++l) {
         if (!result.levels[l].valid.empty()) {
             out.levels.push_back(std::move(result.levels[l]));
@@ -114,6 +115,7 @@ MatchResult to_match_result(hierarchical::Result result) {
         out.counts.emplace_back(std::string("cost_evaluations.") + hierarchical::kLevelNames[l],
                                 result.cost_evaluations.level[l]);
     }
+    out.counts.emplace_back("cost_evaluations.field_pass", result.cost_evaluations.field_pass);
     return out;
 }
 
@@ -125,6 +127,13 @@ MatcherFactory hierarchical_factory(HierarchicalFunction run) {
         params.vrange = config.vrange;
         params.use_ca = config.pipeline.use_ca;
         params.neighbours = config.neighbours;
+        params.output = config.hierarchical_output;
+        params.field_model = config.field_model;
+        params.field_radius = config.field_radius;
+        for (std::size_t l = 0; l < hierarchical::kLevels; ++l) {
+            params.levels[l] = hierarchical::default_level(config.level_windows[l]);
+        }
+        params.validation = config.pipeline.validation;
         return std::make_unique<FunctionMatcher>(
             [params](int width, int height) { hierarchical::validate(params, width, height); },
             [params, run](const Image& left, const Image& right) {

@@ -2,8 +2,9 @@
 # Usage: cli_end_to_end.sh STEREO DATA_DIR WORKDIR
 #
 # `stereo match --method hierarchical` and `stereo distort` end to end on Middlebury Tsukuba:
-# writes the disparity, vertical-offset and per-level maps, checks that the golden model and the
-# naive engine write the same bytes (at half size, to keep the naive run short), distorts the
+# writes the disparity, vertical-offset and per-level maps, runs the thesis' output (--field none),
+# checks that the golden model and the naive engine write the same bytes (at half size, to keep
+# the naive run short; the vertical field and its validated 1-D pass included), distorts the
 # pair by 10 % and matches and scores the distorted copy. Exit 77 (skipped) without the data.
 set -eu
 stereo=$1
@@ -21,7 +22,14 @@ summary=$("$stereo" match "$scene/left.png" "$scene/right.png" -o "$work/disp.pn
     --json)
 echo "$summary"
 echo "$summary" | grep -q '"method":"hierarchical"'
-echo "$summary" | grep -q '"cost_evaluations_per_pixel":12.25'
+# D = V = 16: the levels' (4 x 4) / 16 + 9 / 4 + 9 = 12.25 per pixel, and the 1-D pass 16 more.
+echo "$summary" | grep -q '"cost_evaluations_per_pixel":28.25'
+echo "$summary" | grep -q '"field":"prior"'
+# The thesis' output (--field none): the levels alone, no 1-D pass.
+thesis=$("$stereo" match "$scene/left.png" "$scene/right.png" -o "$work/thesis.png" --ndisp 16 \
+    --scale 16 --method hierarchical --field none --json)
+echo "$thesis" | grep -q '"cost_evaluations_per_pixel":12.25'
+echo "$thesis" | grep -q '"field":"none"'
 for file in disp.png vertical.png levels/quarter_disparity.png levels/half_vertical.png \
     levels/full_color.png; do
     [ -s "$work/$file" ] || { echo "FAIL: $file not written"; exit 1; }

@@ -2,7 +2,8 @@
 # The default path's golden outputs (issue 52): one line per `stereo match` run with a method's
 # defaults, "<scene> <options...> <sha256 of each output>", where the outputs are the PFM
 # disparity, the reason PNG and the certainty PNG for the methods with stage 6 (pipeline, its
-# costs, asw, vertical, diagonal) and the label PNG for the others (hierarchical, edges, sparse).
+# costs, asw, vertical, diagonal, hierarchical) and the label PNG for the others (edges, sparse,
+# and the hierarchical search's thesis output, --field none).
 #
 #   tests/golden/default_digests.sh STEREO FIXTURES DATA_DIR ALOE_DIR record > default_digests.txt
 #   tests/golden/default_digests.sh STEREO FIXTURES DATA_DIR ALOE_DIR check
@@ -72,7 +73,9 @@ run scene yes yes "$f/scene_left.png" "$f/scene_vertical.png" --ndisp 16 --min-d
   --method vertical
 run scene yes yes "$f/scene_left.png" "$f/scene_diagonal.png" --ndisp 16 --min-disp -4 \
   --method diagonal
-run scene no yes "$f/scene_left.png" "$f/scene_right.png" --ndisp 16 --method hierarchical
+run scene yes yes "$f/scene_left.png" "$f/scene_right.png" --ndisp 16 --method hierarchical
+run scene no yes "$f/scene_left.png" "$f/scene_right.png" --ndisp 16 --method hierarchical \
+  --field none
 run scene no yes "$f/scene_left.png" "$f/scene_right.png" --ndisp 16 --method edges
 run scene no no "$f/scene_left.png" "$f/scene_right.png" --ndisp 16 --method sparse
 } >"$work/lines"
@@ -95,7 +98,8 @@ for scene in "${scenes[@]+"${scenes[@]}"}"; do
     run "$name" yes yes "$left" "$right" $options
     run "$name" yes yes "$left" "$right" $options --cost ad
     run "$name" yes no "$left" "$right" $options --method asw
-    run "$name" no yes "$left" "$right" $options --method hierarchical
+    run "$name" yes yes "$left" "$right" $options --method hierarchical
+    run "$name" no yes "$left" "$right" $options --method hierarchical --field none
     run "$name" no no "$left" "$right" $options --method edges
   }
 done >>"$work/lines"

@@ -50,9 +50,16 @@ for scene in "${scenes[@]}"; do
     # The maps of before stage 6: --no-validation keeps them reachable bit for bit, --cost ad
     # the cost every method had when the digests were recorded (the pipeline's default is now
     # census, stereo/defaults.hpp); neither is part of the printed line.
+    # The hierarchical search's digests are the thesis' configuration (V = D, windows 9 / 15 /
+    # 23, the full level's winners), which are no longer its defaults (docs/hierarchical.md,
+    # issue 45); these options reach it bit for bit and are not part of the line either.
+    thesis=()
+    case $variant in
+      *"--method hierarchical"*) thesis=(--field none --vrange 0 --level-windows 9 15 23) ;;
+    esac
     # shellcheck disable=SC2086
     "$stereo" match "$left" "$right" $options $variant --no-validation --cost ad \
-      -o "$work/d.png" >/dev/null
+      "${thesis[@]+"${thesis[@]}"}" -o "$work/d.png" >/dev/null
     echo "$name $options $variant $(sha256sum <"$work/d.png" | cut -c1-64)"
   done
 done

@@ -72,25 +72,48 @@ struct Plane {
     bool operator==(const Plane&) const = default;
 };
 
+// The defaults are the hardware-sized search with the vertical field (docs/hierarchical.md,
+// "Output"): V = 16 and windows 9 / 15 / 15, which a streaming core can hold; Params::thesis() is
+// the thesis' configuration (V = D, windows 9 / 15 / 23, the full level's winners).
+inline constexpr int kDefaultVerticalRange = 16;
+inline constexpr Output kDefaultOutput = Output::vertical_field;
+inline constexpr FieldModel kDefaultFieldModel = FieldModel::mode_with_plane_prior;
+inline constexpr int kDefaultFieldRadius = 48;
+inline constexpr std::array<int, 3> kDefaultLevelWindows = {9, 15, 15};
+inline constexpr std::array<int, 3> kThesisLevelWindows = {9, 15, 23};
+inline constexpr int kMaxLevelWindow = 31;
+
 struct Params {
     int ndisp = fx::kDefaultDisparities;  // D: horizontal labels 0..D-1 at full size
-    int vrange = 0;                       // V: vertical labels at full size; 0 = same as D
-    std::array<LevelParams, kLevels> levels = {default_level(9), default_level(15),
-                                               default_level(23)};
+    int vrange = kDefaultVerticalRange;   // V: vertical labels at full size; 0 = same as D
+    std::array<LevelParams, kLevels> levels = {default_level(kDefaultLevelWindows[0]),
+                                               default_level(kDefaultLevelWindows[1]),
+                                               default_level(kDefaultLevelWindows[2])};
     bool use_ca = true;
     CaNeighbours neighbours = CaNeighbours::horizontal;
     std::string cost = "ad";  // a pixel-pair cost of the catalogue
-    Output output = Output::full_level;
+    Output output = kDefaultOutput;
     // Output::vertical_field: the field is the most frequent valid full-level offset in a
     // (2 field_radius + 1)^2 window; the 1-D pass aggregates with `field_level` (the pipeline's
     // 11x11, sigma 3 by default) and CA as the levels, and validates with `validation`.
-    FieldModel field_model = FieldModel::mode_with_plane_prior;
-    int field_radius = 48;
+    FieldModel field_model = kDefaultFieldModel;
+    int field_radius = kDefaultFieldRadius;
     int prior_factor = 2;
     LevelParams field_level = {fx::kDefaultWindow, fx::kDefaultSigma};
     ValidationParams validation{};
 
     int vertical_range() const { return vrange == 0 ? ndisp : vrange; }
+
+    // The thesis' search (Sec. 3.3): V = D, windows 9 / 15 / 23, the full level's 3x3 winners.
+    static Params thesis() {
+        Params params;
+        params.vrange = 0;
+        params.levels = {default_level(kThesisLevelWindows[0]),
+                         default_level(kThesisLevelWindows[1]),
+                         default_level(kThesisLevelWindows[2])};
+        params.output = Output::full_level;
+        return params;
+    }
 };
 
 // Displacements a level may use, in its own pixels: d in [d_min, d_max], v in [v_min, v_max].

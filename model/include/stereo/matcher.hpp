@@ -4,6 +4,7 @@
 // docs/architecture.md lists what is registered and how to add an engine.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -14,6 +15,7 @@
 
 #include "stereo/asw.hpp"
 #include "stereo/edge_frontend.hpp"
+#include "stereo/hierarchical.hpp"
 #include "stereo/image.hpp"
 #include "stereo/pipeline.hpp"
 #include "stereo/search.hpp"
@@ -25,11 +27,17 @@ namespace stereo {
 // Everything a matcher may be asked. A method reads the fields it documents and ignores the rest.
 struct MatchConfig {
     MatchParams pipeline;  // ndisp, window, sigma, CA on/off, cost (every method)
-    int vrange = 0;        // hierarchical: vertical labels, 0 = ndisp
-    CaNeighbours neighbours = CaNeighbours::horizontal;  // hierarchical: CA rule 1 axes
-    edge_frontend::EdgeParams edges;                     // edges: LoG and truncation
-    sparse::Params sparse;  // sparse: stage 6 uniqueness ratio and left-right tolerance
-    asw::Params asw;        // asw: support region, responses, ablation switches
+    // hierarchical: vertical labels (0 = ndisp), CA rule 1's axes, and the output: the vertical
+    // field and the 1-D pass with stage 6 (config.pipeline.validation), or the thesis' full level.
+    int vrange = hierarchical::kDefaultVerticalRange;
+    CaNeighbours neighbours = CaNeighbours::horizontal;
+    hierarchical::Output hierarchical_output = hierarchical::kDefaultOutput;
+    hierarchical::FieldModel field_model = hierarchical::kDefaultFieldModel;
+    int field_radius = hierarchical::kDefaultFieldRadius;
+    std::array<int, 3> level_windows = hierarchical::kDefaultLevelWindows;  // sigma 3 N / 11
+    edge_frontend::EdgeParams edges;  // edges: LoG and truncation
+    sparse::Params sparse;            // sparse: stage 6 uniqueness ratio and left-right tolerance
+    asw::Params asw;                  // asw: support region, responses, ablation switches
     // Every method with a validated output (pipeline, asw, quad pairs), every engine: the
     // host-side speckle filter after stage 6 (MatcherRegistry::create applies it). Off here.
     speckle::Params speckle;
