@@ -202,7 +202,7 @@ std::vector<std::int8_t> vertical_field(const LevelMap& level, int radius,
     return field;
 }
 
-Plane vertical_plane(const LevelMap& level, int iterations) {
+Plane vertical_plane(const LevelMap& level, int max_iterations) {
     // The most frequent valid offset starts the fit (ties: the smaller |v|, then the smaller v).
     std::map<int, std::int64_t> counts;
     for (std::size_t p = 0; p < level.valid.size(); ++p) {
@@ -218,11 +218,16 @@ Plane vertical_plane(const LevelMap& level, int iterations) {
             best = n;
         }
     }
-    double a = mode;
-    double b = 0;
-    double c = 0;
-    double tolerance = 2.0;
-    for (int iteration = 0; iteration < iterations; ++iteration) {
+    // The plane is kept in fixed point after every fit, and the inliers are chosen from it in
+    // integers, so that the returned plane names exactly the winners of its own last fit.
+    const auto fixed = [](double value) {
+        return static_cast<std::int64_t>(std::llround(value * static_cast<double>(kPlaneOne)));
+    };
+    Plane plane{static_cast<std::int64_t>(mode) * kPlaneOne, 0, 0};
+    std::int64_t tolerance = 2 * kPlaneOne;
+    std::vector<std::uint8_t> inliers(level.valid.size(), 0);
+    std::vector<std::uint8_t> previous;
+    for (int iteration = 0; iteration < max_iterations; ++iteration) {
         // Normal equations of v = a + b x + c y over the inliers, in double precision.
         double s[3][3] = {};
         double r[3] = {};
@@ -230,8 +235,10 @@ Plane vertical_plane(const LevelMap& level, int iterations) {
         for (int y = 0; y < level.height; ++y) {
             for (int x = 0; x < level.width; ++x) {
                 const std::size_t p = level.index(x, y);
-                const double v = level.vertical[p];
-                if (level.valid[p] == 0 || std::abs(v - (a + b * x + c * y)) > tolerance) {
+                const std::int64_t residual =
+                    level.vertical[p] * kPlaneOne - (plane.a + plane.b * x + plane.c * y);
+                inliers[p] = level.valid[p] != 0 && std::abs(residual) <= tolerance ? 1 : 0;
+                if (inliers[p] == 0) {
                     continue;
                 }
                 const double row[3] = {1.0, static_cast<double>(x), static_cast<double>(y)};
@@ -239,12 +246,16 @@ Plane vertical_plane(const LevelMap& level, int iterations) {
                     for (int j = 0; j < 3; ++j) {
                         s[i][j] += row[i] * row[j];
                     }
-                    r[i] += row[i] * v;
+                    r[i] += row[i] * level.vertical[p];
                 }
                 ++used;
             }
         }
-        tolerance = 1.5;
+        tolerance = 3 * kPlaneOne / 2;
+        if (inliers == previous) {
+            break;  // the same winners as the last fit: the same plane
+        }
+        previous = inliers;
         const double det = s[0][0] * (s[1][1] * s[2][2] - s[1][2] * s[2][1]) -
                            s[0][1] * (s[1][0] * s[2][2] - s[1][2] * s[2][0]) +
                            s[0][2] * (s[1][0] * s[2][1] - s[1][1] * s[2][0]);
@@ -264,14 +275,9 @@ Plane vertical_plane(const LevelMap& level, int iterations) {
                     m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])) /
                    det;
         };
-        a = solve(0);
-        b = solve(1);
-        c = solve(2);
+        plane = {fixed(solve(0)), fixed(solve(1)), fixed(solve(2))};
     }
-    const auto fixed = [](double value) {
-        return static_cast<std::int64_t>(std::llround(value * static_cast<double>(kPlaneOne)));
-    };
-    return {fixed(a), fixed(b), fixed(c)};
+    return plane;
 }
 
 std::vector<std::int8_t> plane_field(const Plane& plane, int width, int height, int v_min,

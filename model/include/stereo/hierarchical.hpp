@@ -190,9 +190,10 @@ std::vector<std::int8_t> vertical_field(const LevelMap& level, int radius,
                                         int prior_factor = 2);
 
 // The robust plane through the valid offsets of `level`: starting from the offsets within 2 of the
-// most frequent one, `iterations` least-squares fits, each over the valid winners within 1.5
-// pixels of the previous plane; the coefficients rounded to 1/kPlaneOne.
-Plane vertical_plane(const LevelMap& level, int iterations = 4);
+// most frequent one, least-squares fits, each over the valid winners within 1.5 pixels of the
+// previous plane, until the set of those winners no longer changes (at most `max_iterations`
+// fits); the coefficients rounded to 1/kPlaneOne.
+Plane vertical_plane(const LevelMap& level, int max_iterations = 16);
 
 // The field of a plane: round(v(x, y)), halves up, clamped into [v_min, v_max].
 std::vector<std::int8_t> plane_field(const Plane& plane, int width, int height, int v_min,
