@@ -249,6 +249,26 @@ struct Summary {
     std::string extra;     // the 2-D methods: ", 1.23 cost evaluations per pixel"
 };
 
+// Stage 6's settings and what it invalidated, for the methods with a validated output.
+void summarise_stage6(nlohmann::json& json, const MatchResult& result, const MatchConfig& config) {
+    const ValidationParams& v = config.pipeline.validation;
+    json["uniqueness"] =
+        v.uniqueness ? nlohmann::json(v.uniqueness_ratio) : nlohmann::json(nullptr);
+    json["lr_check"] = v.left_right ? nlohmann::json(v.lr_tolerance) : nlohmann::json(nullptr);
+    json["subpixel"] = v.subpixel;
+    json["speckle"] = config.speckle.enabled() ? nlohmann::json{{"size", config.speckle.max_size},
+                                                                {"range", config.speckle.range}}
+                                               : nlohmann::json(nullptr);
+    std::array<std::int64_t, fx::kReasonSpeckle + 1> reasons{};
+    for (const auto reason : result.validated.reason) {
+        reasons[std::min<std::size_t>(reason, reasons.size() - 1)] += 1;
+    }
+    json["invalid"] = {{"border", reasons[fx::kReasonBorder]},
+                       {"uniqueness", reasons[fx::kReasonUniqueness]},
+                       {"left_right", reasons[fx::kReasonLeftRight]},
+                       {"speckle", reasons[fx::kReasonSpeckle]}};
+}
+
 // The hierarchical search's part: its levels and cost evaluations.
 void summarise_levels(Summary& summary, const MatchResult& result, const MatchConfig& config,
                       const std::string& engine, const std::string& method, bool ca) {
@@ -278,6 +298,9 @@ void summarise_levels(Summary& summary, const MatchResult& result, const MatchCo
     summary.json["field_radius"] =
         field ? nlohmann::json(config.field_radius) : nlohmann::json(nullptr);
     summary.json["cost"] = config.pipeline.cost;
+    if (field) {
+        summarise_stage6(summary.json, result, config);
+    }
     char settings[200];
     std::snprintf(settings, sizeof settings,
                   "vrange %d windows %d/%d/%d field %s cost %s ca %s method %s engine %s", vrange,
@@ -299,22 +322,7 @@ void summarise_plane_search(Summary& summary, const MatchOptions& options,
     json["sigma"] = params.sigma;
     json["cost"] = params.cost;
     json["min_disp"] = params.min_disp;
-    const ValidationParams& v = params.validation;
-    json["uniqueness"] =
-        v.uniqueness ? nlohmann::json(v.uniqueness_ratio) : nlohmann::json(nullptr);
-    json["lr_check"] = v.left_right ? nlohmann::json(v.lr_tolerance) : nlohmann::json(nullptr);
-    json["subpixel"] = v.subpixel;
-    json["speckle"] = config.speckle.enabled() ? nlohmann::json{{"size", config.speckle.max_size},
-                                                                {"range", config.speckle.range}}
-                                               : nlohmann::json(nullptr);
-    std::array<std::int64_t, fx::kReasonSpeckle + 1> reasons{};
-    for (const auto reason : result.validated.reason) {
-        reasons[std::min<std::size_t>(reason, reasons.size() - 1)] += 1;
-    }
-    json["invalid"] = {{"border", reasons[fx::kReasonBorder]},
-                       {"uniqueness", reasons[fx::kReasonUniqueness]},
-                       {"left_right", reasons[fx::kReasonLeftRight]},
-                       {"speckle", reasons[fx::kReasonSpeckle]}};
+    summarise_stage6(json, result, config);
     const std::string method(row.name);
     char settings[200];
     if (row.id == catalogue::Method::asw) {
