@@ -132,11 +132,27 @@ TEST(Validate, RefusesWhatThreeLevelsCannotDo) {
 }
 
 TEST(DefaultLevels, ThesisWindowsAndScaledSigma) {
+    const Params thesis = Params::thesis();
+    EXPECT_EQ(thesis.levels[0].window, 9);
+    EXPECT_EQ(thesis.levels[1].window, 15);
+    EXPECT_EQ(thesis.levels[2].window, 23);
+    EXPECT_DOUBLE_EQ(thesis.levels[2].sigma, 3.0 * 23 / 11);
+    EXPECT_EQ(thesis.vertical_range(), thesis.ndisp);
+    EXPECT_EQ(thesis.output, Output::full_level);
+}
+
+// The hardware-sized defaults of issue 45 (docs/hierarchical.md, "Output").
+TEST(DefaultLevels, HardwareSizedWithTheVerticalField) {
     const Params params;
     EXPECT_EQ(params.levels[0].window, 9);
     EXPECT_EQ(params.levels[1].window, 15);
-    EXPECT_EQ(params.levels[2].window, 23);
-    EXPECT_DOUBLE_EQ(params.levels[2].sigma, 3.0 * 23 / 11);
+    EXPECT_EQ(params.levels[2].window, 15);
+    EXPECT_DOUBLE_EQ(params.levels[2].sigma, 3.0 * 15 / 11);
+    EXPECT_EQ(params.vertical_range(), 16);
+    EXPECT_EQ(params.output, Output::vertical_field);
+    EXPECT_EQ(params.field_model, FieldModel::mode_with_plane_prior);
+    EXPECT_EQ(params.field_radius, 48);
+    EXPECT_EQ(params.field_level.window, fx::kDefaultWindow);
 }
 
 // ---- each level against the naive reference ------------------------------------------------
