@@ -19,16 +19,16 @@ class App;
 
 namespace stereo::experiments {
 
-void add_hierarchical_eval_command(CLI::App& app);     // docs/results-hierarchical.md
+void add_hierarchical_eval_command(CLI::App& app);       // docs/results-hierarchical.md
 void add_hierarchical_validated_command(CLI::App& app);  // docs/results-hierarchical.md
-void add_sigma_sweep_command(CLI::App& app);           // docs/sigma-sweep.md
-void add_avoid_figures_command(CLI::App& app);         // docs/avoidance.md
-void add_validation_eval_command(CLI::App& app);       // docs/results.md, validated output
-void add_avoid_benchmark_command(CLI::App& app);       // docs/results-avoidance.md
-void add_illumination_command(CLI::App& app);          // docs/results-illumination.md
-void add_quad_eval_command(CLI::App& app);             // docs/results-quad.md
-void add_asw_eval_command(CLI::App& app);              // docs/results-asw-tables.md
-void add_subpixel_calibration_command(CLI::App& app);  // docs/fixed-point.md, stage 6
+void add_sigma_sweep_command(CLI::App& app);             // docs/sigma-sweep.md
+void add_avoid_figures_command(CLI::App& app);           // docs/avoidance.md
+void add_validation_eval_command(CLI::App& app);         // docs/results.md, validated output
+void add_avoid_benchmark_command(CLI::App& app);         // docs/results-avoidance.md
+void add_illumination_command(CLI::App& app);            // docs/results-illumination.md
+void add_quad_eval_command(CLI::App& app);               // docs/results-quad.md
+void add_asw_eval_command(CLI::App& app);                // docs/results-asw-tables.md
+void add_subpixel_calibration_command(CLI::App& app);    // docs/fixed-point.md, stage 6
 
 // The Middlebury 2003 pairs under `root` that are present (with their masks), in the order of
 // io::middlebury2003_scenes(); absent ones are skipped, present but broken ones throw.
