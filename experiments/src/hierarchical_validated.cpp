@@ -37,8 +37,9 @@ struct Options : cli::ReportOptions {
         "Validated hierarchical search beside the validated 1-D pipeline and SGBM on every scene "
         "with ground truth, aligned and misaligned (docs/results-hierarchical.md).";
     std::string cost{defaults::kCost};
-    int vrange = 16;
-    std::vector<int> windows = {9, 15, 15};
+    int vrange = hierarchical::kDefaultVerticalRange;
+    std::vector<int> windows{hierarchical::kDefaultLevelWindows.begin(),
+                             hierarchical::kDefaultLevelWindows.end()};
     int field_radius = hierarchical::kDefaultFieldRadius;
     std::string field_model = "prior";  // mode, plane, prior (the mode with the plane as prior)
     bool thesis_output = false;         // Output::full_level instead of the vertical field
