@@ -5,12 +5,9 @@
 # build with an %Error line): `stereo cosim --size` exits 1 with the progress line and one error
 # line naming the failure, and leaves the cache empty (nothing half-built a later run would use).
 set -u
-stereo=$1
-left=$2
-right=$3
-work=$4
-rm -rf "$work"
-mkdir -p "$work"
+. "$(dirname "$0")/common.sh"
+named_args stereo left right work -- "$@"
+fresh_work "$work"
 cat >"$work/verilator" <<'FAKE'
 #!/bin/sh
 if [ "$1" = "--version" ]; then echo "Verilator 5.006 (stand-in)"; exit 0; fi

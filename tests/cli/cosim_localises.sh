@@ -6,14 +6,9 @@
 # whose output differs (its stage probes against the model's stage values at the first
 # mismatching pixels), in the JSON and in its error line, and write the --diff map.
 set -u
-stage=$1
-define=$2
-stereo=$3
-left=$4
-right=$5
-work=$6
-rm -rf "$work"
-mkdir -p "$work"
+. "$(dirname "$0")/common.sh"
+named_args stage define stereo left right work -- "$@"
+fresh_work "$work"
 fail() {
     echo "FAIL: $*"
     for f in "$work/out.json" "$work/err"; do echo "--- $f:"; cat "$f"; done

@@ -8,14 +8,10 @@
 # why it is a function of the limit: docs/reliability.md, "Bounded inputs". Prints a table of
 # the measured peaks.
 set -u
-stereo=$1
-table=$2
-fixtures=$3
-bound=$4
-work=$5
+. "$(dirname "$0")/common.sh"
+named_args stereo table fixtures bound work -- "$@"
 
-rm -rf "$work"
-mkdir -p "$work/out"
+fresh_work "$work" out
 stderr="$work/stderr"
 measure="$work/peak"
 
