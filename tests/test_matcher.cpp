@@ -108,10 +108,7 @@ int vertical_offsets(const Winners& level) {
 // it finds the displacement.
 TEST(Census, HierarchicalSearchEqualsNaive) {
     std::mt19937 rng(test::test_seed() + 7);
-    hierarchical::Params params;
-    params.ndisp = 16;
-    params.vrange = 16;  // -8 .. 7: dy = +-3 lies inside every level's range
-    params.cost = "census";
+    const hierarchical::Params params = test::displaced_pair_params("census");
     for (const auto& [channels, dy] : {std::pair{3, 3}, std::pair{1, -3}}) {
         SCOPED_TRACE(std::to_string(channels) + " channels, dy " + std::to_string(dy));
         const Image left = test::random_image(72, 56, channels, rng);
