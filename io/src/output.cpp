@@ -27,16 +27,15 @@
 #include <sys/syscall.h>
 #include <unistd.h>
 
+#include "quoted.hpp"
+
 namespace stereo::io {
 namespace fs = std::filesystem;
 namespace {
 
-// Built by appending: `"literal" + string` trips a GCC 12 -Wrestrict false positive.
+// The output layer names paths in double quotes.
 std::string quoted(const fs::path& path) {
-    std::string text = "\"";
-    text += path.string();
-    text += '"';
-    return text;
+    return detail::quoted(path, '"');
 }
 
 [[noreturn]] void fail_write(const fs::path& path, const std::string& reason) {
