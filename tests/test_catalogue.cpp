@@ -56,8 +56,7 @@ struct Pair {
     Image right;
 };
 Pair small_pair() {
-    std::mt19937 rng(test::test_seed());
-    auto [left, right] = test::shifted_pair(96, 80, 3, 3, 2, rng);
+    auto [left, right] = test::seeded_shifted_pair(96, 80, 3, 3, 2);
     return {std::move(left), std::move(right)};
 }
 

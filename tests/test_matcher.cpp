@@ -49,8 +49,7 @@ TEST(Census, CostVolumeEqualsNaive) {
 }
 
 TEST(Census, MatchEqualsNaiveAndFindsTheShift) {
-    std::mt19937 rng(test::test_seed());
-    const auto [left, right] = test::shifted_pair(48, 32, 3, 5, 4, rng);
+    const auto [left, right] = test::seeded_shifted_pair(48, 32, 3, 5, 4);
     MatchParams params{12, 5, 1.5, true, "census"};
     const DisparityMap model = match(left, right, params);
     EXPECT_EQ(model, naive::match(left, right, params));
