@@ -288,18 +288,14 @@ module stereo_aggregate #(
   // WINDOW columns lie inside the frame. It is computed from this step's coordinates and
   // registered with vertical_q, so that the coordinate arithmetic runs beside the vertical sums
   // instead of in front of the horizontal ones (the critical path before, docs/synthesis.md).
-  logic signed [17:0] next_centre_x, next_centre_y;  // 18 bits: positions, no-pixel code, wrap
+  logic signed [17:0] next_centre_x;  // 18 bits: positions, no-pixel code, wrap
+  /* verilator lint_off UNUSEDSIGNAL */  // its low 16 bits are the registered centre_y
+  logic signed [17:0] next_centre_y;
+  /* verilator lint_on UNUSEDSIGNAL */
   logic [WINDOW-1:0] next_column_inside;
-  always_comb begin
-    next_centre_x = 18'(in_x) - 18'(R);
-    next_centre_y = 18'(in_y) - 18'(R);
-    for (int wrap = 0; wrap < ((R > 0) ? R : 1); wrap++) begin
-      if (next_centre_x < 18'sd0) begin
-        next_centre_x = next_centre_x + $signed(18'(cfg.width));
-        next_centre_y = next_centre_y - 18'sd1;
-      end
-    end
-  end
+  stereo_window_centre #(.RADIUS(R)) window_centre (
+      .in_x(in_x), .in_y(in_y), .cfg_width(cfg.width), .centre_x(next_centre_x),
+      .centre_y(next_centre_y));
   stereo_border_flags #(
       .OFFSET_LO(-R),
       .OFFSET_HI(R)

@@ -71,16 +71,8 @@ module stereo_census #(
   // Its centre (x - r, y - r), wrapping to the previous row; up to r times, as a frame narrower
   // than r wraps more than once (at r = 2: width 1).
   logic signed [17:0] cx, cy;
-  always_comb begin
-    cx = 18'(in_x) - 18'(RADIUS);
-    cy = 18'(in_y) - 18'(RADIUS);
-    for (int wrap = 0; wrap < RADIUS; wrap++) begin
-      if (cx < 18'sd0) begin
-        cx = cx + $signed(18'(cfg.width));
-        cy = cy - 18'sd1;
-      end
-    end
-  end
+  stereo_window_centre #(.RADIUS(RADIUS)) window_centre (
+      .in_x(in_x), .in_y(in_y), .cfg_width(cfg.width), .centre_x(cx), .centre_y(cy));
   logic [SIDE-1:0] row_inside, column_inside;
   stereo_border_flags #(
       .OFFSET_LO(-RADIUS),
