@@ -6,6 +6,7 @@ stereo_shift_reg.sv
 stereo_border_flags.sv
 stereo_window_centre.sv
 stereo_line_buffer.sv
+stereo_row_stack.sv
 stereo_group_ring.sv
 stereo_window3x3.sv
 stereo_ca_plane.sv

@@ -116,32 +116,14 @@ module stereo_census #(
   end
 
   // ---- the window ---------------------------------------------------------------------------
-  logic [(SIDE-1)*PAIR_BITS-1:0] rows_above;  // row y-1-k at slot k
-  stereo_line_buffer #(
-      .WIDTH(WIDTH),
-      .DATA_BITS(PAIR_BITS),
-      .ROWS(SIDE - 1),
-      .GROUPS(1)
-  ) line_buffer (
-      .clk(clk),
-      .ce(ce),
-      .in_x(x_q),
-      .group(1'b0),
-      .cfg_width(cfg.width),
-      .in_data(luma_q),
-      .rows_above(rows_above)
-  );
-
   // columns[c] = the column c steps before the newest (c = 0: the registered pixel's); row slot j
   // of a column is row y - (SIDE-1) + j, so slot j is window row dy = j - r.
-  logic [COLUMN_BITS-1:0] column_new;
+  logic [COLUMN_BITS-1:0] column_new;  // the registered pixel and the SIDE-1 rows above it
+  stereo_row_stack #(.WIDTH(WIDTH), .DATA_BITS(PAIR_BITS), .ROWS(SIDE)) row_stack (
+      .clk(clk), .ce(ce), .in_x(x_q), .cfg_width(cfg.width), .in_data(luma_q), .column(column_new));
   logic [COLUMN_BITS-1:0] column_history[SIDE-1];  // columns 1 .. SIDE-1
   logic [COLUMN_BITS-1:0] columns[SIDE];
   always_comb begin
-    for (int j = 0; j < SIDE - 1; j++) begin
-      column_new[j*PAIR_BITS+:PAIR_BITS] = rows_above[(SIDE-2-j)*PAIR_BITS+:PAIR_BITS];
-    end
-    column_new[(SIDE-1)*PAIR_BITS+:PAIR_BITS] = luma_q;
     columns[0] = column_new;
     for (int c = 1; c < SIDE; c++) columns[c] = column_history[c-1];
   end
