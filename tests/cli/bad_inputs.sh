@@ -8,7 +8,9 @@
 # created or removed). In ARGS, @F@, @S@, @O@ and @K@ stand for FIXTURES, SLAM_FIXTURES, WORK/out
 # (outputs) and WORK/keep (copies of left.png, right.png, gt.png and a link left_link.png that
 # rows name as outputs). Rows named unreadable_* are skipped as root, who can read any file.
+# shellcheck disable=SC2154  # the arguments: named_args (common.sh) assigns them
 set -u
+# shellcheck source=tests/cli/common.sh
 . "$(dirname "$0")/common.sh"
 named_args stereo table fixtures slam_fixtures work -- "$@"
 

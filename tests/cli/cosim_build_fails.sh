@@ -4,7 +4,9 @@
 # A Verilator build that fails (a stand-in `verilator` that reports a version, then fails the
 # build with an %Error line): `stereo cosim --size` exits 1 with the progress line and one error
 # line naming the failure, and leaves the cache empty (nothing half-built a later run would use).
+# shellcheck disable=SC2154  # the arguments: named_args (common.sh) assigns them
 set -u
+# shellcheck source=tests/cli/common.sh
 . "$(dirname "$0")/common.sh"
 named_args stereo left right work -- "$@"
 fresh_work "$work"

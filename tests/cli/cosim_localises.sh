@@ -5,7 +5,9 @@
 # rounding) co-simulated on demand: `stereo cosim` must exit 3, name STAGE as the first stage
 # whose output differs (its stage probes against the model's stage values at the first
 # mismatching pixels), in the JSON and in its error line, and write the --diff map.
+# shellcheck disable=SC2154  # the arguments: named_args (common.sh) assigns them
 set -u
+# shellcheck source=tests/cli/common.sh
 . "$(dirname "$0")/common.sh"
 named_args stage define stereo left right work -- "$@"
 fresh_work "$work"

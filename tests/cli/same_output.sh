@@ -6,6 +6,7 @@
 # two settings apart, so an engine that ignored the option would fail an equality test on it
 # (issue 52).
 set -eu
+# shellcheck source=tests/cli/common.sh
 . "$(dirname "$0")/common.sh"
 expect=same
 if [ "${1:-}" = --differ ]; then expect=different; shift; fi

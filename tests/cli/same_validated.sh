@@ -7,6 +7,7 @@
 # (e.g. "--min-valid 0.3 --fractional --negative --reason-codes 1,3,4"), so that the test fails
 # when its fixture stops exercising what it claims (issue 52).
 set -eu
+# shellcheck source=tests/cli/common.sh
 . "$(dirname "$0")/common.sh"
 out=$1
 checker=$2
