@@ -4,7 +4,9 @@ stereo_coord_reg.sv
 stereo_stage_output.sv
 stereo_shift_reg.sv
 stereo_border_flags.sv
+stereo_window_centre.sv
 stereo_line_buffer.sv
+stereo_row_stack.sv
 stereo_group_ring.sv
 stereo_window3x3.sv
 stereo_ca_plane.sv

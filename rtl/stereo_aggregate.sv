@@ -205,18 +205,17 @@ module stereo_aggregate #(
     end
   endgenerate
 
+  // The column's WINDOW rows: slot k the row k above the incoming one (slot 0: group_costs).
+  logic [WINDOW*COLUMN_BITS-1:0] column_rows;
+  assign column_rows = (WINDOW * COLUMN_BITS)'({rows_above, group_costs});  // R = 0: no row above
   logic [V_BITS-1:0] vertical_d;
   generate
     for (genvar d = 0; d < LANES; d++) begin : g_vertical
       // Tap j covers row in_y - 2R + j, i.e. the row 2R - j above the incoming one.
       logic [WINDOW*LINE_BITS-1:0] tap_cost;  // cost (code) of tap j, 0 when its row is outside
-      always_comb begin
-        for (int j = 0; j < WINDOW; j++) begin
-          logic [LINE_BITS-1:0] cost;
-          if (j == 2 * R) cost = group_costs[d*LINE_BITS +: LINE_BITS];
-          else cost = rows_above[(2*R-1-j)*COLUMN_BITS + d*LINE_BITS +: LINE_BITS];
-          tap_cost[j*LINE_BITS +: LINE_BITS] = row_inside[j] ? cost : '0;
-        end
+      for (genvar j = 0; j < WINDOW; j++) begin : g_tap
+        assign tap_cost[j*LINE_BITS +: LINE_BITS] =
+            row_inside[j] ? column_rows[(2*R-j)*COLUMN_BITS + d*LINE_BITS +: LINE_BITS] : '0;
       end
       // One weighted sum of the taps: of census codes (narrow, CODE_SUM_BITS) or of costs.
       logic [(CODES ? CODE_SUM_BITS : VSUM_BITS)-1:0] column_sum;
@@ -249,24 +248,19 @@ module stereo_aggregate #(
   endgenerate
 
   // ---- horizontal pass -----------------------------------------------------------------
-  // The state of one group: its vertical sums of the incoming column (vertical_q, for centre
-  // row in_y - R) in the low V_BITS and above them history[k] = the vertical sums of the k+1-th
-  // column before the newest (same row, or masked), k = 0 .. 2R-1. ring[0] is the state of the
-  // group being computed; each advance moves ring[k+1] to ring[k] and puts the head's next state
-  // (vertical_d in, the oldest history out) into ring[G-1], so after G advances (one step) every
-  // group is back at its place, one column further. The ring is a RAM (stereo_group_ring).
+  // The state of one group: WINDOW slots of V_BITS, slot k the vertical sums of the k-th column
+  // before the newest (same row, or masked), k = 0 .. 2R; slot 0 holds the incoming column's (for
+  // centre row in_y - R). ring[0] is the state of the group being computed; each advance moves
+  // ring[k+1] to ring[k] and puts the head's next state (vertical_d in at slot 0, the oldest
+  // column out) into ring[G-1], so after G advances (one step) every group is back at its place,
+  // one column further. The ring is a RAM (stereo_group_ring).
   localparam int STATE_BITS = WINDOW * V_BITS;
   logic [STATE_BITS-1:0] head_state;  // ring[0], the head of stereo_group_ring
   logic [STATE_BITS-1:0] next_state;
-  logic [V_BITS-1:0] vertical_q;
-  logic [((R > 0) ? 2 * R : 1)*V_BITS-1:0] history;
-  assign vertical_q = head_state[0+:V_BITS];
   generate
     if (R > 0) begin : g_history
-      assign history = head_state[V_BITS+:2*R*V_BITS];
       assign next_state = {head_state[0+:2*R*V_BITS], vertical_d};
     end else begin : g_no_history
-      assign history = '0;
       assign next_state = vertical_d;
     end
   endgenerate
@@ -282,24 +276,20 @@ module stereo_aggregate #(
       .head(head_state)
   );
 
-  // Geometry of the horizontal window whose newest column enters vertical_q at this step:
-  // its centre is R pixels behind (in_x, in_y - R) in raster order, wrapping to earlier rows
-  // (more than one when the frame is narrower than R), and column_inside says which of its
+  // Geometry of the horizontal window whose newest column enters slot 0 of the state at this
+  // step: its centre is R pixels behind (in_x, in_y - R) in raster order, wrapping to earlier
+  // rows (more than one when the frame is narrower than R), and column_inside says which of its
   // WINDOW columns lie inside the frame. It is computed from this step's coordinates and
-  // registered with vertical_q, so that the coordinate arithmetic runs beside the vertical sums
+  // registered beside the state, so that the coordinate arithmetic runs beside the vertical sums
   // instead of in front of the horizontal ones (the critical path before, docs/synthesis.md).
-  logic signed [17:0] next_centre_x, next_centre_y;  // 18 bits: positions, no-pixel code, wrap
+  logic signed [17:0] next_centre_x;  // 18 bits: positions, no-pixel code, wrap
+  /* verilator lint_off UNUSEDSIGNAL */  // its low 16 bits are the registered centre_y
+  logic signed [17:0] next_centre_y;
+  /* verilator lint_on UNUSEDSIGNAL */
   logic [WINDOW-1:0] next_column_inside;
-  always_comb begin
-    next_centre_x = 18'(in_x) - 18'(R);
-    next_centre_y = 18'(in_y) - 18'(R);
-    for (int wrap = 0; wrap < ((R > 0) ? R : 1); wrap++) begin
-      if (next_centre_x < 18'sd0) begin
-        next_centre_x = next_centre_x + $signed(18'(cfg.width));
-        next_centre_y = next_centre_y - 18'sd1;
-      end
-    end
-  end
+  stereo_window_centre #(.RADIUS(R)) window_centre (
+      .in_x(in_x), .in_y(in_y), .cfg_width(cfg.width), .centre_x(next_centre_x),
+      .centre_y(next_centre_y));
   stereo_border_flags #(
       .OFFSET_LO(-R),
       .OFFSET_HI(R)
@@ -326,15 +316,11 @@ module stereo_aggregate #(
   logic [OUT_BITS-1:0] aggregate_d;  // this clock's group
   generate
     for (genvar d = 0; d < LANES; d++) begin : g_horizontal
-      // Tap i covers column centre_x - R + i, i.e. 2R - i columns behind the newest.
+      // Tap i covers column centre_x - R + i, i.e. 2R - i columns behind the newest (slot 2R - i).
       logic [WINDOW*VSUM_BITS-1:0] tap_sum;  // vertical sum of tap i, 0 when outside
-      always_comb begin
-        for (int i = 0; i < WINDOW; i++) begin
-          logic [VSUM_BITS-1:0] v;
-          if (i == 2 * R) v = vertical_q[d*VSUM_BITS +: VSUM_BITS];
-          else v = history[(2*R-1-i)*V_BITS + d*VSUM_BITS +: VSUM_BITS];
-          tap_sum[i*VSUM_BITS +: VSUM_BITS] = column_inside[i] ? v : '0;
-        end
+      for (genvar i = 0; i < WINDOW; i++) begin : g_tap
+        assign tap_sum[i*VSUM_BITS +: VSUM_BITS] =
+            column_inside[i] ? head_state[(2*R-i)*V_BITS + d*VSUM_BITS +: VSUM_BITS] : '0;
       end
       logic [WSUM_BITS-1:0] sum;
       stereo_weighted_sum #(

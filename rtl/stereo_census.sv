@@ -71,16 +71,8 @@ module stereo_census #(
   // Its centre (x - r, y - r), wrapping to the previous row; up to r times, as a frame narrower
   // than r wraps more than once (at r = 2: width 1).
   logic signed [17:0] cx, cy;
-  always_comb begin
-    cx = 18'(in_x) - 18'(RADIUS);
-    cy = 18'(in_y) - 18'(RADIUS);
-    for (int wrap = 0; wrap < RADIUS; wrap++) begin
-      if (cx < 18'sd0) begin
-        cx = cx + $signed(18'(cfg.width));
-        cy = cy - 18'sd1;
-      end
-    end
-  end
+  stereo_window_centre #(.RADIUS(RADIUS)) window_centre (
+      .in_x(in_x), .in_y(in_y), .cfg_width(cfg.width), .centre_x(cx), .centre_y(cy));
   logic [SIDE-1:0] row_inside, column_inside;
   stereo_border_flags #(
       .OFFSET_LO(-RADIUS),
@@ -124,32 +116,14 @@ module stereo_census #(
   end
 
   // ---- the window ---------------------------------------------------------------------------
-  logic [(SIDE-1)*PAIR_BITS-1:0] rows_above;  // row y-1-k at slot k
-  stereo_line_buffer #(
-      .WIDTH(WIDTH),
-      .DATA_BITS(PAIR_BITS),
-      .ROWS(SIDE - 1),
-      .GROUPS(1)
-  ) line_buffer (
-      .clk(clk),
-      .ce(ce),
-      .in_x(x_q),
-      .group(1'b0),
-      .cfg_width(cfg.width),
-      .in_data(luma_q),
-      .rows_above(rows_above)
-  );
-
   // columns[c] = the column c steps before the newest (c = 0: the registered pixel's); row slot j
   // of a column is row y - (SIDE-1) + j, so slot j is window row dy = j - r.
-  logic [COLUMN_BITS-1:0] column_new;
+  logic [COLUMN_BITS-1:0] column_new;  // the registered pixel and the SIDE-1 rows above it
+  stereo_row_stack #(.WIDTH(WIDTH), .DATA_BITS(PAIR_BITS), .ROWS(SIDE)) row_stack (
+      .clk(clk), .ce(ce), .in_x(x_q), .cfg_width(cfg.width), .in_data(luma_q), .column(column_new));
   logic [COLUMN_BITS-1:0] column_history[SIDE-1];  // columns 1 .. SIDE-1
   logic [COLUMN_BITS-1:0] columns[SIDE];
   always_comb begin
-    for (int j = 0; j < SIDE - 1; j++) begin
-      column_new[j*PAIR_BITS+:PAIR_BITS] = rows_above[(SIDE-2-j)*PAIR_BITS+:PAIR_BITS];
-    end
-    column_new[(SIDE-1)*PAIR_BITS+:PAIR_BITS] = luma_q;
     columns[0] = column_new;
     for (int c = 1; c < SIDE; c++) columns[c] = column_history[c-1];
   end

@@ -125,32 +125,16 @@ module stereo_cost #(
       assign new_left  = {left_a, left_b};
       assign new_right = {right_a, right_b};
     end else if (ROWS > 1) begin : g_row_stacks
-      // The line buffer keeps rows in_y - 1 .. in_y - ROWS + 1 of both codes (RGB) at column in_x
-      // (read a step ahead); the stack's row j is in_y - ROWS + 1 + j, the incoming one last.
+      // Rows in_y - ROWS + 1 .. in_y of both codes (RGB) at column in_x, from a line buffer (read
+      // a step ahead); row j is in_y - ROWS + 1 + j, the incoming one last.
       localparam int PAIR_BITS = 2 * fx_pkg::RGB_BITS;  // {right, left}
-      logic [(ROWS-1)*PAIR_BITS-1:0] rows_above;  // row in_y - 1 - k at slot k
-      stereo_line_buffer #(
-          .WIDTH(WIDTH),
-          .DATA_BITS(PAIR_BITS),
-          .ROWS(ROWS - 1),
-          .GROUPS(1)
-      ) code_rows (
-          .clk(clk),
-          .ce(ce),
-          .in_x(in_x),
-          .group(1'b0),
-          .cfg_width(cfg.width),
-          .in_data({in_right, in_left}),
-          .rows_above(rows_above)
-      );
+      logic [ROWS*PAIR_BITS-1:0] stacked;  // row in_y - ROWS + 1 + j at slot j
+      stereo_row_stack #(.WIDTH(WIDTH), .DATA_BITS(PAIR_BITS), .ROWS(ROWS)) code_rows (
+          .clk(clk), .ce(ce), .in_x(in_x), .cfg_width(cfg.width), .in_data({in_right, in_left}),
+          .column(stacked));
       for (genvar j = 0; j < ROWS; j++) begin : g_row
-        if (j == ROWS - 1) begin : g_incoming
-          assign new_left[j*24 +: 24] = in_left;
-          assign new_right[j*24 +: 24] = in_right;
-        end else begin : g_above
-          assign new_left[j*24 +: 24] = rows_above[(ROWS-2-j)*PAIR_BITS +: 24];
-          assign new_right[j*24 +: 24] = rows_above[(ROWS-2-j)*PAIR_BITS + 24 +: 24];
-        end
+        assign new_left[j*24 +: 24] = stacked[j*PAIR_BITS +: 24];
+        assign new_right[j*24 +: 24] = stacked[j*PAIR_BITS + 24 +: 24];
       end
     end else begin : g_rgb  // or the census codes
       assign new_left  = in_left;

@@ -49,6 +49,8 @@ module stereo_uart_rx #(
   logic [COUNT_BITS-1:0] count;  // clocks left until the next sample
   logic [2:0] bit_index;
   logic [7:0] shift;
+  logic timing;  // START, DATA and STOP sample the line when their bit timer `count` runs out
+  assign timing = state == START || state == DATA || state == STOP;
 
   always_ff @(posedge clk) begin
     valid <= 1'b0;
@@ -59,6 +61,8 @@ module stereo_uart_rx #(
       bit_index <= '0;
       shift <= '0;
       data <= '0;
+    end else if (timing && count != 0) begin
+      count <= count - 1'b1;  // the bit timer: the states below act when it has run out
     end else begin
       unique case (state)
         IDLE: begin
@@ -68,9 +72,7 @@ module stereo_uart_rx #(
           end
         end
         START: begin
-          if (count != 0) begin
-            count <= count - 1'b1;
-          end else if (rx_sync) begin
+          if (rx_sync) begin
             state <= IDLE;  // a glitch, not a start bit
           end else begin
             state <= DATA;
@@ -79,24 +81,16 @@ module stereo_uart_rx #(
           end
         end
         DATA: begin
-          if (count != 0) begin
-            count <= count - 1'b1;
-          end else begin
-            shift <= {rx_sync, shift[7:1]};
-            count <= FULL_BIT;
-            bit_index <= bit_index + 1'b1;
-            if (bit_index == 3'd7) state <= STOP;
-          end
+          shift <= {rx_sync, shift[7:1]};
+          count <= FULL_BIT;
+          bit_index <= bit_index + 1'b1;
+          if (bit_index == 3'd7) state <= STOP;
         end
         STOP: begin
-          if (count != 0) begin
-            count <= count - 1'b1;
-          end else begin
-            valid <= 1'b1;
-            data <= shift;
-            framing_error <= !rx_sync;
-            state <= rx_sync ? IDLE : WAIT;
-          end
+          valid <= 1'b1;
+          data <= shift;
+          framing_error <= !rx_sync;
+          state <= rx_sync ? IDLE : WAIT;
         end
         WAIT: begin
           if (rx_sync) state <= IDLE;

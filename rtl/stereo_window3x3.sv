@@ -143,14 +143,8 @@ module stereo_window3x3 #(
   // Centre of the window the incoming pixel completes: (x-1, y-1), wrapping to the previous row.
   // Coordinates are 18-bit signed: 16-bit positions, the no-pixel code and the wrap fit.
   logic signed [17:0] cx, cy;
-  always_comb begin
-    cx = 18'(in_x) - 18'sd1;
-    cy = 18'(in_y) - 18'sd1;
-    if (cx < 18'sd0) begin
-      cx = cx + $signed(18'(cfg_width));
-      cy = cy - 18'sd1;
-    end
-  end
+  stereo_window_centre #(.RADIUS(1)) window_centre (
+      .in_x(in_x), .in_y(in_y), .cfg_width(cfg_width), .centre_x(cx), .centre_y(cy));
   // Which rows and columns of that window lie inside the frame (one subtraction each, not two
   // comparisons per position: stereo_border_flags).
   logic [2:0] row_inside, column_inside;

@@ -39,6 +39,16 @@ inline Image shifted_2d(const Image& left, int dx, int dy, int noise, std::mt199
     return right;
 }
 
+// The 2-D search's parameters for pairs displaced by a few pixels across and +-3 down or up (the
+// LCDM and census tests): the thesis' levels and full-level output, 16 labels, vertical range 16.
+inline hierarchical::Params displaced_pair_params(const std::string& cost) {
+    hierarchical::Params params = hierarchical::Params::thesis();
+    params.ndisp = 16;
+    params.vrange = 16;  // -8 .. 7: dy = +-3 lies inside every level's range
+    params.cost = cost;
+    return params;
+}
+
 // Horizontal and vertical disparity and the valid flag of every pixel of a level.
 inline ::testing::AssertionResult same_level(const Winners& expected, const Winners& actual) {
     return same_pixels(

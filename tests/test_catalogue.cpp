@@ -49,18 +49,6 @@ MatcherRegistry every_engine() {
     return registry;
 }
 
-// A small colour pair shifted by 3 pixels; every method and engine of the registry can run it
-// with small_config().
-struct Pair {
-    Image left;
-    Image right;
-};
-Pair small_pair() {
-    std::mt19937 rng(test::test_seed());
-    auto [left, right] = test::shifted_pair(96, 80, 3, 3, 2, rng);
-    return {std::move(left), std::move(right)};
-}
-
 // The default run of (method, engine), made small enough for the pair.
 MatchConfig small_config(const std::string& method, const std::string& engine) {
     MatchConfig config = defaults::match_config(method, engine);
@@ -72,7 +60,15 @@ MatchConfig small_config(const std::string& method, const std::string& engine) {
     return config;
 }
 
-TEST(Catalogue, NamesAreUniqueAndFindTheirRows) {
+// Every test of the catalogue has the registry of every engine and a small colour pair shifted
+// by 3 pixels, which every method and engine of the registry can run with small_config().
+class Catalogue : public ::testing::Test {
+  protected:
+    const io::ImagePair pair = test::seeded_shifted_pair(96, 80, 3, 3, 2);
+    const MatcherRegistry registry = every_engine();
+};
+
+TEST_F(Catalogue, NamesAreUniqueAndFindTheirRows) {
     std::set<std::string> names;
     for (const auto& row : catalogue::kCosts) {
         EXPECT_TRUE(names.insert(std::string(row.name)).second) << row.name;
@@ -90,8 +86,7 @@ TEST(Catalogue, NamesAreUniqueAndFindTheirRows) {
     EXPECT_EQ(cost_names(), catalogue::cost_names());
 }
 
-TEST(Catalogue, EveryCostHasItsFactoryAndNaiveReference) {
-    const Pair pair = small_pair();
+TEST_F(Catalogue, EveryCostHasItsFactoryAndNaiveReference) {
     for (const auto& row : catalogue::kCosts) {
         const auto cost = make_cost(row.name);
         ASSERT_NE(cost, nullptr) << row.name;
@@ -102,7 +97,7 @@ TEST(Catalogue, EveryCostHasItsFactoryAndNaiveReference) {
     }
 }
 
-TEST(Catalogue, HardwareCodesAreTheGeneratedOnes) {
+TEST_F(Catalogue, HardwareCodesAreTheGeneratedOnes) {
     // fx_pkg.sv and stage_table.json are generated from the catalogue; a stale or hand-edited
     // file fails here.
     const std::string json = source_file("scripts/stage_table.json");
@@ -141,9 +136,7 @@ TEST(Catalogue, HardwareCodesAreTheGeneratedOnes) {
     EXPECT_EQ(table::kCostCensus, catalogue::cost(catalogue::Cost::census).hardware_code);
 }
 
-TEST(Catalogue, EachEngineAndMethodTakesExactlyItsCosts) {
-    const Pair pair = small_pair();
-    const MatcherRegistry registry = every_engine();
+TEST_F(Catalogue, EachEngineAndMethodTakesExactlyItsCosts) {
     for (const auto& row : catalogue::kCosts) {
         const std::string name(row.name);
         SCOPED_TRACE(name);
@@ -212,8 +205,7 @@ TEST(Catalogue, EachEngineAndMethodTakesExactlyItsCosts) {
     }
 }
 
-TEST(Catalogue, TheRegistryHasEveryMethodAndEngineOfTheCatalogueAndNoOther) {
-    const MatcherRegistry registry = every_engine();
+TEST_F(Catalogue, TheRegistryHasEveryMethodAndEngineOfTheCatalogueAndNoOther) {
     const auto methods = registry.methods();
     const auto catalogue_methods = catalogue::method_names();
     EXPECT_EQ(std::set<std::string>(methods.begin(), methods.end()),
@@ -231,9 +223,7 @@ TEST(Catalogue, TheRegistryHasEveryMethodAndEngineOfTheCatalogueAndNoOther) {
     EXPECT_THROW(other.add({"sgm", "model", "", {}}), std::logic_error);
 }
 
-TEST(Catalogue, MethodRowsSayWhatTheMethodsProduce) {
-    const Pair pair = small_pair();
-    const MatcherRegistry registry = every_engine();
+TEST_F(Catalogue, MethodRowsSayWhatTheMethodsProduce) {
     for (const auto& row : catalogue::kMethods) {
         const std::string method(row.name);
         SCOPED_TRACE(method);
@@ -254,9 +244,7 @@ TEST(Catalogue, MethodRowsSayWhatTheMethodsProduce) {
     }
 }
 
-TEST(Catalogue, TheDefaultRunRunsOnEveryEngine) {
-    const Pair pair = small_pair();
-    const MatcherRegistry registry = every_engine();
+TEST_F(Catalogue, TheDefaultRunRunsOnEveryEngine) {
     for (const auto& entry : registry.entries()) {
         SCOPED_TRACE(entry.method + "/" + entry.engine);
         const MatchConfig config = small_config(entry.method, entry.engine);
@@ -268,7 +256,7 @@ TEST(Catalogue, TheDefaultRunRunsOnEveryEngine) {
     }
 }
 
-TEST(Catalogue, DefaultsFollowTheCostRows) {
+TEST_F(Catalogue, DefaultsFollowTheCostRows) {
     for (const auto& row : catalogue::kCosts) {
         const auto chosen = defaults::validation_for(row.name);
         EXPECT_EQ(chosen.uniqueness, row.validation.uniqueness) << row.name;

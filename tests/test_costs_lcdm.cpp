@@ -144,10 +144,7 @@ TEST(Lcdm, GreyImageIsAClearError) {
 // down or up, so that the vertical offsets are not 0; and it finds the displacement.
 TEST(Lcdm, HierarchicalSearchEqualsNaive) {
     std::mt19937 rng(test::test_seed() + 3);
-    hierarchical::Params params = hierarchical::Params::thesis();
-    params.ndisp = 16;
-    params.vrange = 16;  // -8 .. 7: dy = +-3 lies inside every level's range
-    params.cost = "lcdm";
+    hierarchical::Params params = test::displaced_pair_params("lcdm");
     for (const int dy : {3, -3}) {
         SCOPED_TRACE("dy " + std::to_string(dy));
         const Image left = test::random_image(72, 56, 3, rng);

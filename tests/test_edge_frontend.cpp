@@ -27,8 +27,8 @@ class EdgeStagesEqualNaive : public ::testing::TestWithParam<Case> {};
 
 TEST_P(EdgeStagesEqualNaive, EveryStageBitExact) {
     const Case c = GetParam();
-    auto rng = test::seeded_rng(c.width * 7 + c.channels);
-    const auto [left, right] = test::shifted_pair(c.width, c.height, c.channels, 3, 6, rng);
+    const auto [left, right] =
+        test::seeded_shifted_pair(c.width, c.height, c.channels, 3, 6, c.width * 7 + c.channels);
     const ef::EdgeParams edges;
     const auto kernel = gaussian_kernel(edges.log_window, edges.log_sigma);
 
@@ -116,8 +116,7 @@ TEST(EdgeFrontend, TruncatedCostHandComputed) {
 }
 
 TEST(EdgeFrontend, FindsAShiftOnTexture) {
-    std::mt19937 rng(test::test_seed());
-    const auto [left, right] = test::shifted_pair(60, 30, 1, 4, 2, rng);
+    const auto [left, right] = test::seeded_shifted_pair(60, 30, 1, 4, 2);
     MatchParams params;
     params.ndisp = 8;
     params.window = 5;

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "stage6_counts.hpp"
 #include "stereo/hls/aggregate.hpp"
 #include "stereo/hls/ca_rule.hpp"
 #include "stereo/hls/census.hpp"
@@ -50,6 +51,8 @@ std::mt19937 seeded(std::uint32_t salt) {
 using test::same_map;
 using test::same_validated;  // stage 6: fixed disparity, reason and certainty of every pixel
 using test::same_volume;
+using test::stage6_counts;
+using test::Stage6Counts;
 
 // ---- streaming one stage ----------------------------------------------------------------
 
@@ -654,22 +657,6 @@ io::ImagePair slanted_scene(int width, int height, int far, int slant, int near,
         }
     }
     return {left, std::move(right)};
-}
-
-// How often each reason occurs and how many valid pixels have a fractional disparity.
-struct Stage6Counts {
-    std::array<int, 8> reason{};
-    int fractional = 0;
-    int negative = 0;
-};
-Stage6Counts stage6_counts(const ValidatedDisparity& map) {
-    Stage6Counts counts;
-    for (std::size_t i = 0; i < map.fixed.size(); ++i) {
-        ++counts.reason[map.reason[i] & 7];
-        counts.fractional += map.valid(i) && map.fixed[i] % fx::kSubpixelScale != 0 ? 1 : 0;
-        counts.negative += map.valid(i) && map.fixed[i] < 0 ? 1 : 0;
-    }
-    return counts;
 }
 
 TEST(HlsMatchValidated, EqualsMatchValidatedOverStage6Parameters) {

@@ -49,8 +49,7 @@ TEST(Census, CostVolumeEqualsNaive) {
 }
 
 TEST(Census, MatchEqualsNaiveAndFindsTheShift) {
-    std::mt19937 rng(test::test_seed());
-    const auto [left, right] = test::shifted_pair(48, 32, 3, 5, 4, rng);
+    const auto [left, right] = test::seeded_shifted_pair(48, 32, 3, 5, 4);
     MatchParams params{12, 5, 1.5, true, "census"};
     const DisparityMap model = match(left, right, params);
     EXPECT_EQ(model, naive::match(left, right, params));
@@ -108,10 +107,7 @@ int vertical_offsets(const Winners& level) {
 // it finds the displacement.
 TEST(Census, HierarchicalSearchEqualsNaive) {
     std::mt19937 rng(test::test_seed() + 7);
-    hierarchical::Params params = hierarchical::Params::thesis();
-    params.ndisp = 16;
-    params.vrange = 16;  // -8 .. 7: dy = +-3 lies inside every level's range
-    params.cost = "census";
+    const hierarchical::Params params = test::displaced_pair_params("census");
     for (const auto& [channels, dy] : {std::pair{3, 3}, std::pair{1, -3}}) {
         SCOPED_TRACE(std::to_string(channels) + " channels, dy " + std::to_string(dy));
         const Image left = test::random_image(72, 56, channels, rng);

@@ -29,8 +29,8 @@ class StagesEqualNaive : public ::testing::TestWithParam<Case> {};
 
 TEST_P(StagesEqualNaive, EveryStageBitExact) {
     const Case c = GetParam();
-    auto rng = test::seeded_rng(c.width * 131 + c.window);
-    const auto [left, right] = test::shifted_pair(c.width, c.height, c.channels, 3, 20, rng);
+    const auto [left, right] =
+        test::seeded_shifted_pair(c.width, c.height, c.channels, 3, 20, c.width * 131 + c.window);
     const auto kernel = gaussian_kernel(c.window, c.sigma);
 
     const Dsi costs = cost(left, right, c.ndisp);
@@ -183,9 +183,8 @@ TEST(InvalidBorderTest, ReachIsRadiusPlusOneWithCa) {
 }
 
 TEST(Match, RecoversAShiftAndFlagsEveryPixelByTheBorderRule) {
-    std::mt19937 rng(test::test_seed());
     const auto [left, right] =
-        test::shifted_pair(80, 40, 3, 5, 0, rng);  // right(x) = left(x + 5): d = 5
+        test::seeded_shifted_pair(80, 40, 3, 5, 0);  // right(x) = left(x + 5): d = 5
     const MatchParams params{12, 5, 1.5, true};
     const DisparityMap map = match(left, right, params);
     const InvalidBorder border = invalid_border(params);

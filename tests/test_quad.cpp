@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "stage6_counts.hpp"
 #include "stereo/catalogue.hpp"
 #include "stereo/quad.hpp"
 #include "stereo_io/data_dir.hpp"
@@ -25,6 +26,8 @@ namespace stereo::quad {
 namespace {
 
 using test::same_validated;
+using test::stage6_counts;
+using test::Stage6Counts;
 
 // docs/quad.md's geometry table, written out here rather than read from quad::step (which the
 // model and the naive reference share): reference (x, y) sees partner (x - d sx, y - d sy).
@@ -107,19 +110,6 @@ Image partner_view(const Image& big, Pair pair, const Scene& scene, std::mt19937
     return partner;
 }
 
-// How often each reason occurs, and the valid pixels with a fractional disparity.
-struct Stage6Counts {
-    std::array<int, 8> reason{};
-    int fractional = 0;
-};
-Stage6Counts stage6_counts(const ValidatedDisparity& map) {
-    Stage6Counts counts;
-    for (std::size_t i = 0; i < map.fixed.size(); ++i) {
-        ++counts.reason[map.reason[i] & 7];
-        counts.fractional += map.valid(i) && map.fixed[i] % fx::kSubpixelScale != 0 ? 1 : 0;
-    }
-    return counts;
-}
 std::string describe(const Stage6Counts& counts, std::size_t pixels) {
     return "valid " + std::to_string(counts.reason[fx::kReasonValid]) + ", border " +
            std::to_string(counts.reason[fx::kReasonBorder]) + ", uniqueness " +

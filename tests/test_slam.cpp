@@ -141,8 +141,7 @@ TEST(Frontend, ConstantImagesHaveNoUniquePixel) {
 }
 
 TEST(Frontend, ShiftedTextureGivesItsShift) {
-    std::mt19937 rng(test::test_seed());
-    const auto [left, right] = test::shifted_pair(96, 40, 1, 5, 0, rng);
+    const auto [left, right] = test::seeded_shifted_pair(96, 40, 1, 5, 0);
     FrontendParams params;
     params.ndisp = 16;
     params.window = 5;

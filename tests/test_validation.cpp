@@ -101,8 +101,8 @@ class ValidationEqualsNaive : public ::testing::TestWithParam<Case> {};
 
 TEST_P(ValidationEqualsNaive, EveryStageCombination) {
     const Case c = GetParam();
-    auto rng = test::seeded_rng(c.width * 7 + c.ndisp);
-    const auto [left, right] = test::shifted_pair(c.width, c.height, c.channels, c.shift, 30, rng);
+    const auto [left, right] = test::seeded_shifted_pair(c.width, c.height, c.channels, c.shift, 30,
+                                                         c.width * 7 + c.ndisp);
     MatchParams params{c.ndisp, c.window, 2.0, c.use_ca, c.cost};
     params.min_disp = c.min_disp;
     for (const bool uniqueness : {false, true}) {
@@ -135,8 +135,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 // With every stage off and min_disp 0, the validated output is the plain pipeline's.
 TEST(Validation, OffIsThePlainPipeline) {
-    auto rng = test::seeded_rng(5);
-    const auto [left, right] = test::shifted_pair(70, 33, 3, 7, 20, rng);
+    const auto [left, right] = test::seeded_shifted_pair(70, 33, 3, 7, 20, 5);
     const MatchParams params{16, 7, 2.0, true};
     const ValidatedDisparity validated = match_validated(left, right, params);
     const DisparityMap plain = match(left, right, params);
@@ -149,8 +148,7 @@ TEST(Validation, OffIsThePlainPipeline) {
 
 // A negative true disparity is found only when the range reaches it.
 TEST(Validation, NegativeDisparitiesNeedAMinimumDisparity) {
-    auto rng = test::seeded_rng(9);
-    const auto [left, right] = test::shifted_pair(80, 30, 3, -6, 0, rng);  // d = -6 everywhere
+    const auto [left, right] = test::seeded_shifted_pair(80, 30, 3, -6, 0, 9);  // d = -6 everywhere
     MatchParams params{12, 5, 1.5, true};
     params.min_disp = -10;
     const ValidatedDisparity out = match_validated(left, right, params);

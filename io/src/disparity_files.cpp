@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "quoted.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/limits.hpp"
 
@@ -16,12 +17,7 @@ namespace {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
-std::string quoted(const std::filesystem::path& path) {
-    std::string text = "'";
-    text += path.string();
-    text += '\'';
-    return text;
-}
+using detail::quoted;
 
 // The next whitespace-delimited token of a PFM header, advancing `at`.
 std::string_view next_token(std::string_view bytes, std::size_t& at) {

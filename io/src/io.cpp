@@ -1,5 +1,6 @@
 #include "stereo_io/io.hpp"
 #include "decode_guard.hpp"
+#include "quoted.hpp"
 #include "stereo_io/limits.hpp"
 #include "stereo_io/output.hpp"
 
@@ -27,13 +28,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Built by appending: `"'" + string` trips a GCC 12 -Wrestrict false positive.
-std::string quoted(const fs::path& path) {
-    std::string text = "'";
-    text += path.string();
-    text += '\'';
-    return text;
-}
+using detail::quoted;
 
 std::string size_text(int width, int height) {
     return std::to_string(width) + "x" + std::to_string(height);

@@ -1,6 +1,7 @@
 #include "stereo_io/limits.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cstdlib>
 #include <limits>
@@ -220,6 +221,25 @@ class TiffReader {
   private:
     static constexpr int kMaxPages = 1024;
 
+    // The integer field types of TIFF 6.0 and BigTIFF: type code, size in bytes, signed.
+    struct IntegerType {
+        std::int64_t type;
+        int size;
+        bool is_signed;
+    };
+    static constexpr std::array<IntegerType, 10> kIntegerTypes = {{
+        {1, 1, false},   // BYTE
+        {6, 1, true},    // SBYTE
+        {3, 2, false},   // SHORT
+        {8, 2, true},    // SSHORT
+        {4, 4, false},   // LONG
+        {13, 4, false},  // IFD
+        {9, 4, true},    // SLONG
+        {16, 8, false},  // LONG8
+        {18, 8, false},  // IFD8
+        {17, 8, true},   // SLONG8
+    }};
+
     std::int64_t number(std::size_t at, int count) const {
         return little_ ? little_endian(bytes_, at, count) : big_endian(bytes_, at, count);
     }
@@ -228,38 +248,13 @@ class TiffReader {
     // count, a negative value or an offset outside the file.
     std::optional<std::int64_t> integer(std::int64_t type, std::uint64_t count,
                                         std::size_t field) const {
-        int size = 0;
-        bool is_signed = false;
-        switch (type) {
-            case 1:  // BYTE
-                size = 1;
-                break;
-            case 6:  // SBYTE
-                size = 1, is_signed = true;
-                break;
-            case 3:  // SHORT
-                size = 2;
-                break;
-            case 8:  // SSHORT
-                size = 2, is_signed = true;
-                break;
-            case 4:   // LONG
-            case 13:  // IFD
-                size = 4;
-                break;
-            case 9:  // SLONG
-                size = 4, is_signed = true;
-                break;
-            case 16:  // LONG8
-            case 18:  // IFD8
-                size = 8;
-                break;
-            case 17:  // SLONG8
-                size = 8, is_signed = true;
-                break;
-            default:
-                return std::nullopt;
+        const auto kind = std::find_if(kIntegerTypes.begin(), kIntegerTypes.end(),
+                                       [&](const IntegerType& t) { return t.type == type; });
+        if (kind == kIntegerTypes.end()) {
+            return std::nullopt;
         }
+        const int size = kind->size;
+        const bool is_signed = kind->is_signed;
         if (count != 1) {
             return std::nullopt;
         }

@@ -27,16 +27,15 @@
 #include <sys/syscall.h>
 #include <unistd.h>
 
+#include "quoted.hpp"
+
 namespace stereo::io {
 namespace fs = std::filesystem;
 namespace {
 
-// Built by appending: `"literal" + string` trips a GCC 12 -Wrestrict false positive.
+// The output layer names paths in double quotes.
 std::string quoted(const fs::path& path) {
-    std::string text = "\"";
-    text += path.string();
-    text += '"';
-    return text;
+    return detail::quoted(path, '"');
 }
 
 [[noreturn]] void fail_write(const fs::path& path, const std::string& reason) {
@@ -204,6 +203,16 @@ void release_slot(int slot) {
     if (slot >= 0) {
         g_slots[slot].state.store(kFree, std::memory_order_release);
     }
+}
+
+// The temporary of a claimed slot could not be created (mkostemp, mkdtemp): releases the slot,
+// sets it to -1 and throws the creation's error (errno kept across the release).
+[[noreturn]] void fail_creating(int& slot, const fs::path& destination) {
+    const int error = errno;
+    release_slot(slot);
+    slot = -1;
+    errno = error;
+    fail_write_errno(destination);
 }
 
 // Removes every entry of an open folder (files only: a private folder holds nothing else).
@@ -382,11 +391,7 @@ class TemporaryFile {
         slot_ = claim_slot(destination, pattern, false);
         descriptor_ = ::mkostemp(slot_path(slot_), O_CLOEXEC);
         if (descriptor_ < 0) {
-            const int error = errno;
-            release_slot(slot_);
-            slot_ = -1;
-            errno = error;
-            fail_write_errno(destination);
+            fail_creating(slot_, destination);
         }
         path_ = slot_path(slot_);
         ::fchmod(descriptor_, 0666 & ~process_umask());
@@ -472,10 +477,14 @@ std::string lower_extension(const fs::path& path) {
 
 class OpenFile {
   public:
-    explicit OpenFile(const fs::path& path)
+    // Throws as a failed write of `name` (the output being checked) when `path` cannot be opened.
+    OpenFile(const fs::path& path, const fs::path& name)
         : descriptor_(::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC)) {
+        if (descriptor_ < 0) {
+            fail_write_errno(name);
+        }
         struct stat status {};
-        if (descriptor_ >= 0 && ::fstat(descriptor_, &status) == 0) {
+        if (::fstat(descriptor_, &status) == 0) {
             size_ = static_cast<std::uint64_t>(status.st_size);
         }
     }
@@ -486,7 +495,6 @@ class OpenFile {
             ::close(descriptor_);
         }
     }
-    bool open() const { return descriptor_ >= 0; }
     std::uint64_t size() const { return size_; }
     // `count` bytes at `offset`, or false when the file ends before them.
     bool read(std::uint64_t offset, unsigned char* out, std::size_t count) const {
@@ -710,11 +718,7 @@ StagedOutput::StagedOutput(const fs::path& destination) : destination_(destinati
     const std::string name = destination.filename().string();
     slot_ = claim_slot(destination, (folder / (temporary_prefix(name) + "XXXXXX")).string(), true);
     if (::mkdtemp(slot_path(slot_)) == nullptr) {
-        const int error = errno;
-        release_slot(slot_);
-        slot_ = -1;
-        errno = error;
-        fail_write_errno(destination);
+        fail_creating(slot_, destination);
     }
     folder_ = slot_path(slot_);
     // Inside the private folder: ".STEM.XXXXXX.EXT", the destination's extension kept last
@@ -789,10 +793,7 @@ void check_fst_complete(const fs::path& file, const fs::path& name) {
     constexpr int kValueChangesAlias2 = 8;
     constexpr int kBeingWritten = 255;  // FST_BL_SKIP
     constexpr std::uint64_t kSectionCountAt = 65;
-    const OpenFile in(file);
-    if (!in.open()) {
-        fail_write_errno(name);
-    }
+    const OpenFile in(file, name);
     const std::string what = "FST";
     std::array<unsigned char, 9> block{};
     std::uint64_t at = 0;
@@ -841,10 +842,7 @@ void check_fst_complete(const fs::path& file, const fs::path& name) {
 void check_avi_complete(const fs::path& file, const fs::path& name) {
     // RIFF: chunks of ["RIFF"][length: 4 bytes, little-endian][form: "AVI " first, then "AVIX"
     // (OpenDML)][length - 4 bytes], padded to even, one after another to the end of the file.
-    const OpenFile in(file);
-    if (!in.open()) {
-        fail_write_errno(name);
-    }
+    const OpenFile in(file, name);
     const std::string what = "AVI";
     std::array<unsigned char, 12> chunk{};
     std::uint64_t at = 0;

@@ -8,15 +8,13 @@
 # created or removed). In ARGS, @F@, @S@, @O@ and @K@ stand for FIXTURES, SLAM_FIXTURES, WORK/out
 # (outputs) and WORK/keep (copies of left.png, right.png, gt.png and a link left_link.png that
 # rows name as outputs). Rows named unreadable_* are skipped as root, who can read any file.
+# shellcheck disable=SC2154  # the arguments: named_args (common.sh) assigns them
 set -u
-stereo=$1
-table=$2
-fixtures=$3
-slam_fixtures=$4
-work=$5
+# shellcheck source=tests/cli/common.sh
+. "$(dirname "$0")/common.sh"
+named_args stereo table fixtures slam_fixtures work -- "$@"
 
-rm -rf "$work"
-mkdir -p "$work/out" "$work/keep"
+fresh_work "$work" out keep
 cp "$fixtures/left.png" "$fixtures/right.png" "$fixtures/gt.png" "$work/keep/"
 ln -s "$work/keep/left.png" "$work/keep/left_link.png"
 stdout=$(mktemp)

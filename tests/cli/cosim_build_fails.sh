@@ -4,13 +4,12 @@
 # A Verilator build that fails (a stand-in `verilator` that reports a version, then fails the
 # build with an %Error line): `stereo cosim --size` exits 1 with the progress line and one error
 # line naming the failure, and leaves the cache empty (nothing half-built a later run would use).
+# shellcheck disable=SC2154  # the arguments: named_args (common.sh) assigns them
 set -u
-stereo=$1
-left=$2
-right=$3
-work=$4
-rm -rf "$work"
-mkdir -p "$work"
+# shellcheck source=tests/cli/common.sh
+. "$(dirname "$0")/common.sh"
+named_args stereo left right work -- "$@"
+fresh_work "$work"
 cat >"$work/verilator" <<'FAKE'
 #!/bin/sh
 if [ "$1" = "--version" ]; then echo "Verilator 5.006 (stand-in)"; exit 0; fi

@@ -5,15 +5,12 @@
 # rounding) co-simulated on demand: `stereo cosim` must exit 3, name STAGE as the first stage
 # whose output differs (its stage probes against the model's stage values at the first
 # mismatching pixels), in the JSON and in its error line, and write the --diff map.
+# shellcheck disable=SC2154  # the arguments: named_args (common.sh) assigns them
 set -u
-stage=$1
-define=$2
-stereo=$3
-left=$4
-right=$5
-work=$6
-rm -rf "$work"
-mkdir -p "$work"
+# shellcheck source=tests/cli/common.sh
+. "$(dirname "$0")/common.sh"
+named_args stage define stereo left right work -- "$@"
+fresh_work "$work"
 fail() {
     echo "FAIL: $*"
     for f in "$work/out.json" "$work/err"; do echo "--- $f:"; cat "$f"; done

@@ -7,15 +7,13 @@
 # BOUND_KB kilobytes of resident memory. Its ARGS set --max-pixels 1048576 (2^20); the bound and
 # why it is a function of the limit: docs/reliability.md, "Bounded inputs". Prints a table of
 # the measured peaks.
+# shellcheck disable=SC2154  # the arguments: named_args (common.sh) assigns them
 set -u
-stereo=$1
-table=$2
-fixtures=$3
-bound=$4
-work=$5
+# shellcheck source=tests/cli/common.sh
+. "$(dirname "$0")/common.sh"
+named_args stereo table fixtures bound work -- "$@"
 
-rm -rf "$work"
-mkdir -p "$work/out"
+fresh_work "$work" out
 stderr="$work/stderr"
 measure="$work/peak"
 

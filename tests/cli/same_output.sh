@@ -6,6 +6,8 @@
 # two settings apart, so an engine that ignored the option would fail an equality test on it
 # (issue 52).
 set -eu
+# shellcheck source=tests/cli/common.sh
+. "$(dirname "$0")/common.sh"
 expect=same
 if [ "${1:-}" = --differ ]; then expect=different; shift; fi
 case $1 in
@@ -14,10 +16,8 @@ case $1 in
 esac
 stereo=$2
 shift 2
-a=""
-while [ "$#" -gt 0 ] && [ "$1" != "--" ]; do a="$a $1"; shift; done
-[ "$#" -gt 0 ] || { echo "usage: same_output.sh [--differ] OUT STEREO ARGS_A -- ARGS_B"; exit 2; }
-shift
+split_args "same_output.sh [--differ] OUT STEREO ARGS_A -- ARGS_B" "$@"
+shift "$a_count"
 rm -f "$base.a.$ext" "$base.b.$ext"
 # shellcheck disable=SC2086
 "$stereo" $a -o "$base.a.$ext"

@@ -7,15 +7,15 @@
 # (e.g. "--min-valid 0.3 --fractional --negative --reason-codes 1,3,4"), so that the test fails
 # when its fixture stops exercising what it claims (issue 52).
 set -eu
+# shellcheck source=tests/cli/common.sh
+. "$(dirname "$0")/common.sh"
 out=$1
 checker=$2
 requirements=$3
 stereo=$4
 shift 4
-a=""
-while [ "$#" -gt 0 ] && [ "$1" != "--" ]; do a="$a $1"; shift; done
-[ "$#" -gt 0 ] || { echo "usage: same_validated.sh OUT CHECKER REQUIREMENTS STEREO ARGS_A -- ARGS_B"; exit 2; }
-shift
+split_args "same_validated.sh OUT CHECKER REQUIREMENTS STEREO ARGS_A -- ARGS_B" "$@"
+shift "$a_count"
 for side in a b; do
   rm -f "$out.$side.pfm" "$out.$side.reasons.png" "$out.$side.certainty.png"
 done

@@ -71,6 +71,13 @@ inline io::ImagePair shifted_pair(int width, int height, int channels, int shift
     return {std::move(left), std::move(right)};
 }
 
+// shifted_pair drawn from its own generator, seeded_rng(salt): for a test that draws nothing else.
+inline io::ImagePair seeded_shifted_pair(int width, int height, int channels, int shift, int noise,
+                                         int salt = 0) {
+    auto rng = seeded_rng(salt);
+    return shifted_pair(width, height, channels, shift, noise, rng);
+}
+
 // Constant images at the extremes of the pixel range: black and white against themselves and
 // each other, so that every cost is 0 or its maximum.
 struct ConstantPair {

@@ -11,9 +11,7 @@
 
 namespace stereo {
 
-struct ValidatedDisparity {
-    int width = 0;
-    int height = 0;
+struct ValidatedDisparity : PixelGrid {
     // Disparity x fx::kSubpixelScale (the integer winner x 16 when sub-pixel refinement is off);
     // 0 where invalid.
     std::vector<std::int16_t> fixed;
@@ -22,13 +20,11 @@ struct ValidatedDisparity {
 
     ValidatedDisparity() = default;
     ValidatedDisparity(int w, int h)
-        : width(w),
-          height(h),
+        : PixelGrid{w, h},
           fixed(static_cast<std::size_t>(w) * h, 0),
           reason(static_cast<std::size_t>(w) * h, fx::kReasonBorder),
           certainty(static_cast<std::size_t>(w) * h, 0) {}
 
-    std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * width + x; }
     bool valid(std::size_t i) const { return reason[i] == fx::kReasonValid; }
     // The disparity in pixels; meaningful where valid.
     double disparity(std::size_t i) const {

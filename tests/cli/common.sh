@@ -1,0 +1,47 @@
+# Helpers shared by the CLI test scripts (POSIX sh), sourced after their `set` line:
+#   . "$(dirname "$0")/common.sh"
+
+# named_args NAME... -- ARG...: sets each NAME to the ARG in the same place, the scripts' usage
+# line in code (stereo=$1, table=$2, ...). A missing ARG stops the script as `NAME=$N` would
+# under `set -u`.
+named_args() {
+    _names=
+    while [ "$1" != -- ]; do
+        _names="$_names $1"
+        shift
+    done
+    shift
+    for _name in $_names; do
+        eval "$_name=\$1"
+        shift
+    done
+}
+
+# fresh_work DIR [SUBDIR...]: DIR emptied of a previous run and made again, with each SUBDIR in
+# it (DIR alone when none is named).
+fresh_work() {
+    _dir=$1
+    rm -rf "$_dir"
+    shift
+    if [ "$#" -eq 0 ]; then
+        mkdir -p "$_dir"
+    else
+        for _sub in "$@"; do mkdir -p "$_dir/$_sub"; done
+    fi
+}
+
+# split_args USAGE ARGS_A... -- ARGS_B...: sets a to ARGS_A joined by spaces (split again into
+# words where it is used) and a_count to how many arguments to shift so that "$@" holds ARGS_B;
+# without the "--", prints "usage: USAGE" and exits 2.
+split_args() {
+    _usage=$1
+    shift
+    a=""
+    a_count=1
+    while [ "$#" -gt 0 ] && [ "$1" != "--" ]; do
+        a="$a $1"
+        a_count=$((a_count + 1))
+        shift
+    done
+    [ "$#" -gt 0 ] || { echo "usage: $_usage"; exit 2; }
+}
