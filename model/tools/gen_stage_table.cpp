@@ -106,11 +106,11 @@ std::string parameter_types_section() {
         "ca_rule_e");
     sv << "  // stereo_top's SHIFT_ADD (RUNTIME_KERNEL = 0): which constant tap products of the\n"
           "  // aggregation are shifts and adds instead of being left to the tools (DSP blocks).\n";
-    write_enum(sv,
-               {{"SHIFT_ADD_NONE", t::kShiftAddNone, "none"},
-                {"SHIFT_ADD_NARROW", t::kShiftAddNarrow, "the census codes' vertical products"},
-                {"SHIFT_ADD_ALL", t::kShiftAddAll, "every product"}},
-               "shift_add_e");
+    std::vector<EnumItem> shift_add;
+    for (const t::ShiftAddMode& mode : t::kShiftAddModes) {
+        shift_add.push_back({std::string(mode.sv_name), mode.code, std::string(mode.summary)});
+    }
+    write_enum(sv, shift_add, "shift_add_e");
     return sv.str();
 }
 
@@ -414,6 +414,13 @@ std::string json_text() {
             << ", \"summary\": \"" << hardware[i]->summary << "\"}"
             << (i + 1 < hardware.size() ? "," : "") << '\n';
     }
+    // stereo_top's SHIFT_ADD values by name (synth.py's --shift-add).
+    out << "  ],\n  \"shift_add\": {";
+    for (std::size_t i = 0; i < t::kShiftAddModes.size(); ++i) {
+        out << (i == 0 ? "" : ", ") << '"' << t::kShiftAddModes[i].name
+            << "\": " << t::kShiftAddModes[i].code;
+    }
+    out << "}";
     const auto stage_json = [](const t::Stage& stage) {
         std::ostringstream text;
         text << "{\"name\": \"" << stage.name << "\", \"module\": \"" << stage.module
@@ -427,7 +434,7 @@ std::string json_text() {
     };
     // The census stage runs in front of the cost stage with the census cost only
     // (stage_table.hpp pipeline_latency).
-    out << "  ],\n  \"census_stage\": " << stage_json(t::kCensusStage) << ",\n  \"stages\": [\n";
+    out << ",\n  \"census_stage\": " << stage_json(t::kCensusStage) << ",\n  \"stages\": [\n";
     for (std::size_t i = 0; i < t::kStages.size(); ++i) {
         out << "    " << stage_json(t::kStages[i]) << (i + 1 < t::kStages.size() ? "," : "")
             << '\n';

@@ -712,8 +712,8 @@ DEFAULT_MAX_MIN_DISP = int(re.search(r"DEFAULT_MAX_MIN_DISP\s*=\s*(\d+)",
                                      (REPO / "rtl" / "fx_pkg.sv").read_text()).group(1))
 
 
-# stereo_top's SHIFT_ADD values by name.
-SHIFT_ADD = {"none": 0, "narrow": 1, "all": 2}
+# stereo_top's SHIFT_ADD values by name (stage_table.hpp kShiftAddModes).
+SHIFT_ADD = STAGE_TABLE["shift_add"]
 # stereo_top's COST values by name, read from the generated package.
 # The hardware costs of the catalogue (model/include/stereo/catalogue.hpp), by name.
 COSTS = {cost["name"]: cost["code"] for cost in STAGE_TABLE["costs"]}

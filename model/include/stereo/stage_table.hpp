@@ -216,6 +216,20 @@ inline constexpr int kShiftAddNone = 0;    // none
 inline constexpr int kShiftAddNarrow = 1;  // the census codes' narrow vertical products
 inline constexpr int kShiftAddAll = 2;     // every product
 
+// The SHIFT_ADD values by name: the SV enum (fx_pkg::shift_add_e) and synth.py's --shift-add
+// choices (stage_table.json "shift_add") are generated from this one list.
+struct ShiftAddMode {
+    std::string_view name;     // synth.py's --shift-add choice
+    std::string_view sv_name;  // the fx_pkg::shift_add_e item
+    int code;
+    std::string_view summary;
+};
+inline constexpr std::array<ShiftAddMode, 3> kShiftAddModes = {{
+    {"none", "SHIFT_ADD_NONE", kShiftAddNone, "none"},
+    {"narrow", "SHIFT_ADD_NARROW", kShiftAddNarrow, "the census codes' vertical products"},
+    {"all", "SHIFT_ADD_ALL", kShiftAddAll, "every product"},
+}};
+
 // The census transform (COST = kCostCensus only), in front of the cost stage: it turns each
 // image's RGB stream into a stream of census codes, which the cost stage's delay lines carry in
 // place of the RGB pixels. An input register, a window reaching r rows and r columns past its
@@ -336,7 +350,7 @@ inline constexpr Params kSmall{64, 48, 16, 5, kUnset};  // the co-simulation poi
 inline constexpr Params kFull{640, 480, 64, 11, kUnset};
 // The co-simulation point with the LCDM cost stage (stereo_top COST = 1).
 inline constexpr Params kSmallLcdm{kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window,
-                                   kUnset,       kUnset,        kUnset,       1};
+                                   kUnset,       kUnset,        kUnset,       kCostLcdm};
 
 // ... and with the census cost (COST = 2: the census stage in front of the cost stage).
 inline constexpr Params kSmallCensus{kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window,
