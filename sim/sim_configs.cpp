@@ -3,6 +3,7 @@
 #include <cctype>
 #include <cstdint>
 #include <filesystem>
+#include <initializer_list>
 #include <stdexcept>
 #include <string_view>
 #include <utility>
@@ -127,9 +128,11 @@ class VerilatedTop final : public TopSim {
 };
 
 // A stereo_top configuration of the stage table (stage_table.hpp).
-TopConfig top_config(const table::VerilatedConfig& config, const char* name) {
+// The stereo_top or stereo_synth_top build of that Verilator prefix, under its cosim name.
+TopConfig top_config(std::string_view prefix) {
+    const table::VerilatedConfig& config = table::verilated(prefix);
     const table::Params& p = config.params;
-    return {name,
+    return {std::string(config.cosim_name),
             p.width,
             p.height,
             p.ndisp,
@@ -139,14 +142,22 @@ TopConfig top_config(const table::VerilatedConfig& config, const char* name) {
             p.cost == table::kUnset ? table::kCostAd : p.cost};
 }
 
+std::vector<TopConfig> top_configs(std::initializer_list<std::string_view> prefixes) {
+    std::vector<TopConfig> configs;
+    for (const std::string_view prefix : prefixes) {
+        configs.push_back(top_config(prefix));
+    }
+    return configs;
+}
+
 }  // namespace
 
 const std::vector<TopConfig>& built_top_configs() {
     static const std::vector<TopConfig> configs = [] {
         std::vector<TopConfig> list = {
-            top_config(table::verilated("Vstereo_top_small"), "small"),
+            top_config("Vstereo_top_small"),
 #ifdef STEREO_COSIM_FULL
-            top_config(table::verilated("Vstereo_top_full"), "full"),
+            top_config("Vstereo_top_full"),
 #endif
 #ifdef STEREO_COSIM_USER
             // -DSTEREO_COSIM_USER (sim/cosim_user.cmake)
@@ -169,60 +180,47 @@ const std::vector<TopConfig>& built_top_configs() {
 }
 
 const TopConfig& lcdm_top_config() {
-    static const TopConfig config = top_config(table::verilated("Vstereo_top_lcdm"), "small-lcdm");
+    static const TopConfig config = top_config("Vstereo_top_lcdm");
     return config;
 }
 
 const TopConfig& lcdm_lanes_top_config() {
-    static const TopConfig config =
-        top_config(table::verilated("Vstereo_top_lcdm_lanes4"), "lcdm-lanes4");
+    static const TopConfig config = top_config("Vstereo_top_lcdm_lanes4");
     return config;
 }
 
 const TopConfig& census_top_config() {
-    static const TopConfig config =
-        top_config(table::verilated("Vstereo_top_census"), "small-census");
+    static const TopConfig config = top_config("Vstereo_top_census");
     return config;
 }
 
 const TopConfig& census_lanes_top_config() {
-    static const TopConfig config =
-        top_config(table::verilated("Vstereo_top_census_lanes4"), "census-lanes4");
+    static const TopConfig config = top_config("Vstereo_top_census_lanes4");
     return config;
 }
 
 const std::vector<TopConfig>& census_recompute_top_configs() {
     static const std::vector<TopConfig> configs = {
-        top_config(table::verilated("Vstereo_top_census_recompute"), "census-recompute"),
-        top_config(table::verilated("Vstereo_top_census_recompute_lanes4"),
-                   "census-recompute-lanes4"),
+        top_config("Vstereo_top_census_recompute"),
+        top_config("Vstereo_top_census_recompute_lanes4"),
 #ifdef STEREO_COSIM_FULL_CENSUS
-        top_config(table::verilated("Vstereo_top_full_census_lean"), "full-census-lean"),
+        top_config("Vstereo_top_full_census_lean"),
 #endif
     };
     return configs;
 }
 
 const std::vector<TopConfig>& lanes_top_configs() {
-    static const std::vector<TopConfig> configs = {
-        top_config(table::verilated("Vstereo_top_lanes4"), "lanes4"),
-        top_config(table::verilated("Vstereo_top_lanes1"), "lanes1"),
-        top_config(table::verilated("Vstereo_top_ndisp8_lanes2"), "ndisp8-lanes2"),
-        top_config(table::verilated("Vstereo_top_ndisp2_lanes1"), "ndisp2-lanes1"),
-        top_config(table::verilated("Vstereo_top_ndisp1"), "ndisp1"),
-        top_config(table::verilated("Vstereo_top_lean_lanes4"), "lean-lanes4"),
-    };
+    static const std::vector<TopConfig> configs =
+        top_configs({"Vstereo_top_lanes4", "Vstereo_top_lanes1", "Vstereo_top_ndisp8_lanes2",
+                     "Vstereo_top_ndisp2_lanes1", "Vstereo_top_ndisp1", "Vstereo_top_lean_lanes4"});
     return configs;
 }
 
 const std::vector<TopConfig>& fpga_top_configs() {
-    static const std::vector<TopConfig> configs = {
-        top_config(table::verilated("Vstereo_synth_top_ice40_ndisp1"), "ice40-ndisp1"),
-        top_config(table::verilated("Vstereo_synth_top_ice40_ndisp4_lanes1"),
-                   "ice40-ndisp4-lanes1"),
-        top_config(table::verilated("Vstereo_synth_top_census_ndisp8_lanes2"),
-                   "fpga-census-ndisp8-lanes2"),
-    };
+    static const std::vector<TopConfig> configs =
+        top_configs({"Vstereo_synth_top_ice40_ndisp1", "Vstereo_synth_top_ice40_ndisp4_lanes1",
+                     "Vstereo_synth_top_census_ndisp8_lanes2"});
     return configs;
 }
 

@@ -226,13 +226,21 @@ TEST(MatchEqualsNaive, RandomPair) {
     }
 }
 
-TEST(MatchEqualsNaive, MiddleburyCrop) {
-    const auto pair = test::middlebury_crop("tsukuba", 150, 100, 104, 84);
-    if (!pair) {
-        GTEST_SKIP() << "Middlebury tsukuba not found under " << io::data_dir();
+// A Tsukuba crop and the thesis' levels at 16 labels; skipped when the data is absent.
+class TsukubaCrop : public ::testing::Test {
+protected:
+    void SetUp() override {
+        pair = test::middlebury_crop("tsukuba", 150, 100, 104, 84);
+        if (!pair) {
+            GTEST_SKIP() << "Middlebury tsukuba not found under " << io::data_dir();
+        }
+        params.ndisp = 16;
     }
+    std::optional<io::ImagePair> pair;
     Params params = Params::thesis();
-    params.ndisp = 16;
+};
+
+TEST_F(TsukubaCrop, MatchEqualsNaive) {
     const Result model = test::match_hierarchical_as_naive(pair->left, pair->right, params);
     // A real scene exercises both axes: most full-size pixels valid, some vertical offsets.
     const auto& full = model.levels[2];
@@ -290,13 +298,7 @@ TEST(VerticalFieldEqualsNaive, EveryFieldModel) {
     }
 }
 
-TEST(VerticalFieldEqualsNaive, MiddleburyCropWithAd) {
-    const auto pair = test::middlebury_crop("tsukuba", 150, 100, 104, 84);
-    if (!pair) {
-        GTEST_SKIP() << "Middlebury tsukuba not found under " << io::data_dir();
-    }
-    Params params = Params::thesis();
-    params.ndisp = 16;
+TEST_F(TsukubaCrop, VerticalFieldWithAdEqualsNaive) {
     params.output = Output::vertical_field;
     params.validation = {true, 6, true, 0, true};
     test::match_hierarchical_as_naive(pair->left, pair->right, params);

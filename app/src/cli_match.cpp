@@ -103,6 +103,25 @@ std::string stage6_methods() {
         catalogue::method_names([](const catalogue::MethodRow& row) { return row.stage6; }));
 }
 
+// --field: the model's field models, then "none" (the thesis' output).
+std::vector<std::string> field_choices() {
+    std::vector<std::string> choices;
+    for (const hierarchical::FieldModelRow& row : hierarchical::kFieldModels) {
+        choices.emplace_back(row.name);
+    }
+    choices.emplace_back("none");
+    return choices;
+}
+
+std::string field_help() {
+    std::string help = "The vertical field:";
+    for (const hierarchical::FieldModelRow& row : hierarchical::kFieldModels) {
+        help += " " + std::string(row.name) + " (" + std::string(row.summary) + "),";
+    }
+    return help + " or none (the thesis: the full level's 3x3 winners, no 1-D pass, no stage 6) [" +
+           std::string(hierarchical::field_model_name(hierarchical::kDefaultFieldModel)) + "]";
+}
+
 // The configuration of the run after every check that needs no image: options that belong to
 // another method, impossible scales, outputs the method cannot write.
 MatchConfig checked_config(const MatchOptions& options, const catalogue::MethodRow& row,
@@ -149,10 +168,7 @@ MatchConfig checked_config(const MatchOptions& options, const catalogue::MethodR
         if (full_level_only) {
             config.hierarchical_output = hierarchical::Output::full_level;
         } else if (!options.field.empty()) {
-            config.field_model = options.field == "mode" ? hierarchical::FieldModel::mode
-                                 : options.field == "plane"
-                                     ? hierarchical::FieldModel::plane
-                                     : hierarchical::FieldModel::mode_with_plane_prior;
+            config.field_model = hierarchical::field_model_named(options.field).value();
         }
     }
     if (!stage6) {
@@ -289,11 +305,8 @@ void summarise_levels(Summary& summary, const MatchResult& result, const MatchCo
     summary.json["windows"] = windows;
     summary.json["cost_evaluations_per_pixel"] = per_pixel;
     const bool field = config.hierarchical_output == hierarchical::Output::vertical_field;
-    const char* const field_name = !field                                                 ? "none"
-                                   : config.field_model == hierarchical::FieldModel::mode ? "mode"
-                                   : config.field_model == hierarchical::FieldModel::plane
-                                       ? "plane"
-                                       : "prior";
+    const std::string field_name{field ? hierarchical::field_model_name(config.field_model)
+                                       : std::string_view("none")};
     summary.json["field"] = field_name;
     summary.json["field_radius"] =
         field ? nlohmann::json(config.field_radius) : nlohmann::json(nullptr);
@@ -304,8 +317,8 @@ void summarise_levels(Summary& summary, const MatchResult& result, const MatchCo
     char settings[200];
     std::snprintf(settings, sizeof settings,
                   "vrange %d windows %d/%d/%d field %s cost %s ca %s method %s engine %s", vrange,
-                  windows[0], windows[1], windows[2], field_name, config.pipeline.cost.c_str(),
-                  ca ? "on" : "off", method.c_str(), engine.c_str());
+                  windows[0], windows[1], windows[2], field_name.c_str(),
+                  config.pipeline.cost.c_str(), ca ? "on" : "off", method.c_str(), engine.c_str());
     summary.settings = settings;
     char extra[80];
     std::snprintf(extra, sizeof extra, ", %.2f cost evaluations per pixel", per_pixel);
@@ -429,12 +442,8 @@ void add_match_command(CLI::App& app) {
                      "Vertical labels V (offsets -V/2..V/2-1), 0 = ndisp [" +
                          std::to_string(hierarchical::kDefaultVerticalRange) + "]")
         ->group(two_d);
-    command
-        ->add_option("--field", options->field,
-                     "The vertical field: prior (the mode, the frame's plane kept unless "
-                     "outvoted), mode, plane, or none (the thesis: the full level's 3x3 winners, "
-                     "no 1-D pass, no stage 6) [prior]")
-        ->check(CLI::IsMember({"prior", "mode", "plane", "none"}))
+    command->add_option("--field", options->field, field_help())
+        ->check(CLI::IsMember(field_choices()))
         ->group(two_d);
     command
         ->add_option("--field-radius", options->field_radius,

@@ -41,10 +41,10 @@ struct Options : cli::ReportOptions {
     std::vector<int> windows{hierarchical::kDefaultLevelWindows.begin(),
                              hierarchical::kDefaultLevelWindows.end()};
     int field_radius = hierarchical::kDefaultFieldRadius;
-    std::string field_model = "prior";  // mode, plane, prior (the mode with the plane as prior)
-    bool thesis_output = false;         // Output::full_level instead of the vertical field
-    std::vector<std::string> scenes;    // empty: all
-    std::vector<std::string> cases;     // empty: all
+    std::string field_model{hierarchical::field_model_name(hierarchical::kDefaultFieldModel)};
+    bool thesis_output = false;       // Output::full_level instead of the vertical field
+    std::vector<std::string> scenes;  // empty: all
+    std::vector<std::string> cases;   // empty: all
 };
 
 struct Case {
@@ -75,6 +75,14 @@ cv::Mat nan_invalid(cv::Mat map) {
     return map;
 }
 
+std::vector<std::string> field_model_names() {
+    std::vector<std::string> names;
+    for (const hierarchical::FieldModelRow& row : hierarchical::kFieldModels) {
+        names.emplace_back(row.name);
+    }
+    return names;
+}
+
 hierarchical::Params params_of(const Options& options, int ndisp) {
     hierarchical::Params params;
     params.ndisp = (ndisp + 3) / 4 * 4;
@@ -86,10 +94,7 @@ hierarchical::Params params_of(const Options& options, int ndisp) {
     params.output = options.thesis_output ? hierarchical::Output::full_level
                                           : hierarchical::Output::vertical_field;
     params.field_radius = options.field_radius;
-    params.field_model = options.field_model == "mode" ? hierarchical::FieldModel::mode
-                         : options.field_model == "plane"
-                             ? hierarchical::FieldModel::plane
-                             : hierarchical::FieldModel::mode_with_plane_prior;
+    params.field_model = hierarchical::field_model_named(options.field_model).value();
     const defaults::Validation chosen = defaults::validation_for(options.cost);
     params.validation = {true, chosen.uniqueness, true, chosen.lr_tolerance, true};
     return params;
@@ -201,7 +206,7 @@ void add_hierarchical_validated_command(CLI::App& app) {
         ->check(CLI::Range(0, hierarchical::kMaxFieldRadius))
         ->capture_default_str();
     command->add_option("--field-model", options->field_model, "How the field is made")
-        ->check(CLI::IsMember({"mode", "plane", "prior"}))
+        ->check(CLI::IsMember(field_model_names()))
         ->capture_default_str();
     command->add_flag("--thesis-output", options->thesis_output,
                       "The full level's 3x3 winners instead of the vertical field");

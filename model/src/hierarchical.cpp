@@ -106,6 +106,27 @@ LevelMap match_level(const Image& left, const Image& right, const CandidateGrid&
     return map;
 }
 
+namespace {
+// A window of the given radius centred at i along a line of the given length, clipped to it:
+// at i = 0 adds every position it covers, at each next i adds the one that enters and removes the
+// one that leaves (add(position, +1 or -1)).
+template <class Add>
+void slide_window(int i, int length, int radius, const Add& add) {
+    if (i == 0) {
+        for (int j = 0; j <= std::min(radius, length - 1); ++j) {
+            add(j, 1);
+        }
+        return;
+    }
+    if (i + radius < length) {
+        add(i + radius, 1);
+    }
+    if (i - radius - 1 >= 0) {
+        add(i - radius - 1, -1);
+    }
+}
+}  // namespace
+
 std::vector<std::int8_t> vertical_field(const LevelMap& level, int radius,
                                         const std::vector<std::int8_t>& prior, int prior_factor) {
     const int width = level.width;
@@ -145,9 +166,6 @@ std::vector<std::int8_t> vertical_field(const LevelMap& level, int radius,
             }
         }
     };
-    for (int y = 0; y <= std::min(radius, height - 1); ++y) {
-        add_row(y, 1);
-    }
     std::vector<int> window(static_cast<std::size_t>(bins));
     const auto add_column = [&](int x, int sign) {
         const int* column = columns.data() + static_cast<std::size_t>(x) * bins;
@@ -156,27 +174,10 @@ std::vector<std::int8_t> vertical_field(const LevelMap& level, int radius,
         }
     };
     for (int y = 0; y < height; ++y) {
-        if (y > 0) {
-            if (y + radius < height) {
-                add_row(y + radius, 1);
-            }
-            if (y - radius - 1 >= 0) {
-                add_row(y - radius - 1, -1);
-            }
-        }
+        slide_window(y, height, radius, add_row);
         std::fill(window.begin(), window.end(), 0);
-        for (int x = 0; x <= std::min(radius, width - 1); ++x) {
-            add_column(x, 1);
-        }
         for (int x = 0; x < width; ++x) {
-            if (x > 0) {
-                if (x + radius < width) {
-                    add_column(x + radius, 1);
-                }
-                if (x - radius - 1 >= 0) {
-                    add_column(x - radius - 1, -1);
-                }
-            }
+            slide_window(x, width, radius, add_column);
             int best = -1;
             int best_count = 0;
             for (const int b : order) {

@@ -12,6 +12,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -78,6 +79,36 @@ struct Plane {
 inline constexpr int kDefaultVerticalRange = 16;
 inline constexpr Output kDefaultOutput = Output::vertical_field;
 inline constexpr FieldModel kDefaultFieldModel = FieldModel::mode_with_plane_prior;
+
+// The field models by the names the CLI, the experiments and the JSON summaries use.
+struct FieldModelRow {
+    FieldModel model;
+    std::string_view name;
+    std::string_view summary;
+};
+inline constexpr std::array<FieldModelRow, 3> kFieldModels = {{
+    {FieldModel::mode_with_plane_prior, "prior",
+     "the mode, the frame's plane kept unless outvoted"},
+    {FieldModel::mode, "mode", "the most frequent offset in a window"},
+    {FieldModel::plane, "plane", "one plane v = a + b x + c y for the frame"},
+}};
+constexpr std::string_view field_model_name(FieldModel model) {
+    for (const FieldModelRow& row : kFieldModels) {
+        if (row.model == model) {
+            return row.name;
+        }
+    }
+    return {};
+}
+// The field model of that name; std::nullopt for any other name.
+constexpr std::optional<FieldModel> field_model_named(std::string_view name) {
+    for (const FieldModelRow& row : kFieldModels) {
+        if (row.name == name) {
+            return row.model;
+        }
+    }
+    return std::nullopt;
+}
 inline constexpr int kDefaultFieldRadius = 48;
 inline constexpr std::array<int, 3> kDefaultLevelWindows = {9, 15, 15};
 inline constexpr std::array<int, 3> kThesisLevelWindows = {9, 15, 23};

@@ -337,6 +337,20 @@ struct Params {
     // stereo_top's RECOMPUTE_COSTS (census): the lean memory architecture, rows of census codes
     // instead of per-label rows (docs/rtl.md "Lean memory")
     int recompute_costs = kUnset;
+
+    // These parameters with those that `over` sets put in their place.
+    [[nodiscard]] constexpr Params with(const Params& over) const {
+        Params merged = *this;
+        for (int Params::*field : {&Params::width, &Params::height, &Params::ndisp, &Params::window,
+                                   &Params::runtime_kernel, &Params::rule, &Params::max_min_disp,
+                                   &Params::cost, &Params::lanes, &Params::clks_per_bit,
+                                   &Params::shift_add, &Params::recompute_costs}) {
+            if (over.*field != kUnset) {
+                merged.*field = over.*field;
+            }
+        }
+        return merged;
+    }
 };
 
 struct VerilatedConfig {
@@ -344,143 +358,132 @@ struct VerilatedConfig {
     std::string_view top;     // top module
     Params params;            // the -G parameters that are set
     std::string_view option;  // CMake option that must be ON to build it; empty: always built
+    // The name `stereo cosim --config` and the testbenches give a stereo_top or stereo_synth_top
+    // build (sim/sim_configs.hpp TopConfig); empty for the other modules.
+    std::string_view cosim_name = "";
 };
 
-inline constexpr Params kSmall{64, 48, 16, 5, kUnset};  // the co-simulation point
-inline constexpr Params kFull{640, 480, 64, 11, kUnset};
+inline constexpr Params kSmall{
+    .width = 64, .height = 48, .ndisp = 16, .window = 5};  // the co-simulation point
+inline constexpr Params kFull{.width = 640, .height = 480, .ndisp = 64, .window = 11};
 // The co-simulation point with the LCDM cost stage (stereo_top COST = 1).
-inline constexpr Params kSmallLcdm{kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window,
-                                   kUnset,       kUnset,        kUnset,       kCostLcdm};
+inline constexpr Params kSmallLcdm = kSmall.with({.cost = kCostLcdm});
 
 // ... and with the census cost (COST = 2: the census stage in front of the cost stage).
-inline constexpr Params kSmallCensus{kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window,
-                                     kUnset,       kUnset,        kUnset,       kCostCensus};
+inline constexpr Params kSmallCensus = kSmall.with({.cost = kCostCensus});
 
 // The iCEBreaker top (rtl/stereo_board_top.sv, docs/board.md) at the co-simulation point, with
 // a UART of 4 clocks per bit so that a frame simulates in a few seconds.
-inline constexpr Params kSmallBoard{
-    kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window, kUnset,
-    kUnset,       kUnset,        kUnset,       kUnset,        4};
+inline constexpr Params kSmallBoard = kSmall.with({.clks_per_bit = 4});
 
 // Time-multiplexed lanes (stereo_top LANES < NDISP): NDISP / LANES clocks per pixel step.
 // tb_stereo_top runs all its checks on each of these as well as on the small configuration.
-inline constexpr Params kSmallLanes4{
-    kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window, kUnset, kUnset, kUnset, kUnset, 4};
-inline constexpr Params kSmallLanes1{
-    kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window, kUnset, kUnset, kUnset, kUnset, 1};
+inline constexpr Params kSmallLanes4 = kSmall.with({.lanes = 4});
+inline constexpr Params kSmallLanes1 = kSmall.with({.lanes = 1});
 // The LCDM cost stage with lanes: its G:1 right-pixel multiplexers and LANES LCDM distance units.
-inline constexpr Params kSmallLcdmLanes4{
-    kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window, kUnset, kUnset, kUnset, 1, 4};
+inline constexpr Params kSmallLcdmLanes4 = kSmall.with({.cost = kCostLcdm, .lanes = 4});
 // The census cost with lanes (the census stage steps once per pixel step, G clocks).
-inline constexpr Params kSmallCensusLanes4{kSmall.width,  kSmall.height, kSmall.ndisp,
-                                           kSmall.window, kUnset,        kUnset,
-                                           kUnset,        kCostCensus,   4};
+inline constexpr Params kSmallCensusLanes4 = kSmall.with({.cost = kCostCensus, .lanes = 4});
 // The lean memory architecture (RECOMPUTE_COSTS = 1): the census core whose cost stage keeps rows
 // of census codes and recomputes every label's vertical window, all labels in parallel and 4 per
 // clock; tb_stereo_top_cost runs every census check on both.
-inline constexpr Params kSmallCensusRecompute{
-    kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window, kUnset, kUnset,
-    kUnset,       kCostCensus,   kUnset,       kUnset,        kUnset, 1};
-inline constexpr Params kSmallCensusRecomputeLanes4{kSmall.width,  kSmall.height, kSmall.ndisp,
-                                                    kSmall.window, kUnset,        kUnset,
-                                                    kUnset,        kCostCensus,   4,
-                                                    kUnset,        kUnset,        1};
+inline constexpr Params kSmallCensusRecompute =
+    kSmall.with({.cost = kCostCensus, .recompute_costs = 1});
+inline constexpr Params kSmallCensusRecomputeLanes4 =
+    kSmall.with({.cost = kCostCensus, .lanes = 4, .recompute_costs = 1});
 // ... and the AD core in the lean memory architecture, 4 labels per clock (tb_stereo_top).
-inline constexpr Params kSmallLeanLanes4{kSmall.width,  kSmall.height, kSmall.ndisp,
-                                         kSmall.window, kUnset,        kUnset,
-                                         kUnset,        kUnset,        4,
-                                         kUnset,        kUnset,        1};
+inline constexpr Params kSmallLeanLanes4 = kSmall.with({.lanes = 4, .recompute_costs = 1});
 // The iCE40 cores: one label (no delay line, C2 a constant, the certainty divider folded away)
 // and two labels one per clock (C2 a constant in the lanes mode too).
-inline constexpr Params kNdisp1{kSmall.width, kSmall.height, 1, kSmall.window, kUnset};
-inline constexpr Params kNdisp2Lanes1{kSmall.width, kSmall.height, 2, kSmall.window, kUnset, kUnset,
-                                      kUnset,       kUnset,        1};
-inline constexpr Params kNdisp8Lanes2{kSmall.width, kSmall.height, 8, kSmall.window, kUnset, kUnset,
-                                      kUnset,       kUnset,        2};
+inline constexpr Params kNdisp1 = kSmall.with({.ndisp = 1});
+inline constexpr Params kNdisp2Lanes1 = kSmall.with({.ndisp = 2, .lanes = 1});
+inline constexpr Params kNdisp8Lanes2 = kSmall.with({.ndisp = 8, .lanes = 2});
 
 // The FPGA builds as synthesised (stereo_synth_top: the constant default kernel, the radius
 // WINDOW/2, MAX_MIN_DISP = 0): the HX8K's one-label 3x3 core and its 4-label 5x5 core at one
 // label per clock (docs/synthesis.md). tb_stereo_synth_top co-simulates both.
-inline constexpr Params kIce40Ndisp1{kSmall.width, kSmall.height, 1, 3, kUnset, kUnset, 0};
-inline constexpr Params kIce40Ndisp4Lanes1{
-    kSmall.width, kSmall.height, 4, 5, kUnset, kUnset, 0, kUnset, 1};
+inline constexpr Params kIce40Ndisp1 = kSmall.with({.ndisp = 1, .window = 3, .max_min_disp = 0});
+inline constexpr Params kIce40Ndisp4Lanes1 =
+    kSmall.with({.ndisp = 4, .window = 5, .max_min_disp = 0, .lanes = 1});
 // The census build as synthesised: the aggregation's line buffer keeps census codes (5 bits, not
 // 10-bit costs), at a 7x7 window (radius 3) and two labels per clock, with every tap product
 // built from shifts and adds (SHIFT_ADD = 2).
-inline constexpr Params kFpgaCensusNdisp8Lanes2{
-    kSmall.width, kSmall.height, 8, 7, kUnset, kUnset, 0, kCostCensus, 2, kUnset, 2};
+inline constexpr Params kFpgaCensusNdisp8Lanes2 = kSmall.with({.ndisp = 8,
+                                                               .window = 7,
+                                                               .max_min_disp = 0,
+                                                               .cost = kCostCensus,
+                                                               .lanes = 2,
+                                                               .shift_add = kShiftAddAll});
 
 // The VGA census core in the lean memory architecture as an FPGA runs it: 64 labels 8 per clock.
-inline constexpr Params kFullCensusLean{kFull.width, kFull.height, kFull.ndisp, kFull.window,
-                                        kUnset,      kUnset,       kUnset,      kCostCensus,
-                                        8,           kUnset,       kUnset,      1};
+inline constexpr Params kFullCensusLean =
+    kFull.with({.cost = kCostCensus, .lanes = 8, .recompute_costs = 1});
 
 inline constexpr std::array<VerilatedConfig, 32> kVerilatedConfigs = {{
-    {"Vstereo_top_small", "stereo_top", kSmall, ""},
-    {"Vstereo_top_lanes4", "stereo_top", kSmallLanes4, ""},
-    {"Vstereo_top_lanes1", "stereo_top", kSmallLanes1, ""},
-    {"Vstereo_top_ndisp8_lanes2", "stereo_top", kNdisp8Lanes2, ""},
-    {"Vstereo_top_ndisp2_lanes1", "stereo_top", kNdisp2Lanes1, ""},
-    {"Vstereo_top_ndisp1", "stereo_top", kNdisp1, ""},
-    {"Vstereo_top_lean_lanes4", "stereo_top", kSmallLeanLanes4, ""},
+    {"Vstereo_top_small", "stereo_top", kSmall, "", "small"},
+    {"Vstereo_top_lanes4", "stereo_top", kSmallLanes4, "", "lanes4"},
+    {"Vstereo_top_lanes1", "stereo_top", kSmallLanes1, "", "lanes1"},
+    {"Vstereo_top_ndisp8_lanes2", "stereo_top", kNdisp8Lanes2, "", "ndisp8-lanes2"},
+    {"Vstereo_top_ndisp2_lanes1", "stereo_top", kNdisp2Lanes1, "", "ndisp2-lanes1"},
+    {"Vstereo_top_ndisp1", "stereo_top", kNdisp1, "", "ndisp1"},
+    {"Vstereo_top_lean_lanes4", "stereo_top", kSmallLeanLanes4, "", "lean-lanes4"},
     // The frame-border test of every window stage, at its default offsets (-2 .. 2).
     {"Vstereo_border_flags", "stereo_border_flags", {}, ""},
-    {"Vstereo_cost", "stereo_cost", {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset}, ""},
-    {"Vstereo_top_lcdm", "stereo_top", kSmallLcdm, ""},
-    {"Vstereo_top_lcdm_lanes4", "stereo_top", kSmallLcdmLanes4, ""},
-    {"Vstereo_cost_lcdm",
-     "stereo_cost",
-     {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset, kUnset, kUnset, 1},
-     ""},
-    {"Vstereo_top_census", "stereo_top", kSmallCensus, ""},
-    {"Vstereo_top_census_lanes4", "stereo_top", kSmallCensusLanes4, ""},
-    {"Vstereo_top_census_recompute", "stereo_top", kSmallCensusRecompute, ""},
-    {"Vstereo_top_census_recompute_lanes4", "stereo_top", kSmallCensusRecomputeLanes4, ""},
+    {"Vstereo_cost", "stereo_cost", {.ndisp = kSmall.ndisp}, ""},
+    {"Vstereo_top_lcdm", "stereo_top", kSmallLcdm, "", "small-lcdm"},
+    {"Vstereo_top_lcdm_lanes4", "stereo_top", kSmallLcdmLanes4, "", "lcdm-lanes4"},
+    {"Vstereo_cost_lcdm", "stereo_cost", {.ndisp = kSmall.ndisp, .cost = kCostLcdm}, ""},
+    {"Vstereo_top_census", "stereo_top", kSmallCensus, "", "small-census"},
+    {"Vstereo_top_census_lanes4", "stereo_top", kSmallCensusLanes4, "", "census-lanes4"},
+    {"Vstereo_top_census_recompute", "stereo_top", kSmallCensusRecompute, "", "census-recompute"},
+    {"Vstereo_top_census_recompute_lanes4", "stereo_top", kSmallCensusRecomputeLanes4, "",
+     "census-recompute-lanes4"},
     {"Vstereo_aggregate",
      "stereo_aggregate",
-     {kSmall.width, kUnset, kSmall.ndisp, kSmall.window, kUnset},
+     {.width = kSmall.width, .ndisp = kSmall.ndisp, .window = kSmall.window},
      ""},
     // The constant-kernel variant that the FPGA top (stereo_synth_top) synthesizes.
     {"Vstereo_aggregate_const",
      "stereo_aggregate",
-     {kSmall.width, kUnset, kSmall.ndisp, kSmall.window, 0},
+     {.width = kSmall.width, .ndisp = kSmall.ndisp, .window = kSmall.window, .runtime_kernel = 0},
      ""},
     // The CA skeleton as rule 1 and as rule 2.
     {"Vstereo_ca_rule1",
      "stereo_ca_plane",
-     {kSmall.width, kUnset, kSmall.ndisp, kUnset, kUnset, 1},
+     {.width = kSmall.width, .ndisp = kSmall.ndisp, .rule = kCaRule1},
      ""},
     {"Vstereo_ca_rule2",
      "stereo_ca_plane",
-     {kSmall.width, kUnset, kSmall.ndisp, kUnset, kUnset, 2},
+     {.width = kSmall.width, .ndisp = kSmall.ndisp, .rule = kCaRule2},
      ""},
-    {"Vstereo_wta", "stereo_wta", {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset}, ""},
-    {"Vstereo_validate", "stereo_validate", {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset}, ""},
-    {"Vstereo_lr_check", "stereo_lr_check", {kUnset, kUnset, kSmall.ndisp, kUnset, kUnset}, ""},
-    {"Vstereo_synth_top_ice40_ndisp1", "stereo_synth_top", kIce40Ndisp1, ""},
-    {"Vstereo_synth_top_ice40_ndisp4_lanes1", "stereo_synth_top", kIce40Ndisp4Lanes1, ""},
-    {"Vstereo_synth_top_census_ndisp8_lanes2", "stereo_synth_top", kFpgaCensusNdisp8Lanes2, ""},
+    {"Vstereo_wta", "stereo_wta", {.ndisp = kSmall.ndisp}, ""},
+    {"Vstereo_validate", "stereo_validate", {.ndisp = kSmall.ndisp}, ""},
+    {"Vstereo_lr_check", "stereo_lr_check", {.ndisp = kSmall.ndisp}, ""},
+    {"Vstereo_synth_top_ice40_ndisp1", "stereo_synth_top", kIce40Ndisp1, "", "ice40-ndisp1"},
+    {"Vstereo_synth_top_ice40_ndisp4_lanes1", "stereo_synth_top", kIce40Ndisp4Lanes1, "",
+     "ice40-ndisp4-lanes1"},
+    {"Vstereo_synth_top_census_ndisp8_lanes2", "stereo_synth_top", kFpgaCensusNdisp8Lanes2, "",
+     "fpga-census-ndisp8-lanes2"},
     // The SoC wrapper (AXI4-Lite registers around stereo_top) at the co-simulation point, and
     // its census build as an FPGA would take it: the constant kernel, 4 labels per clock, the
     // census codes' vertical products as shifts and adds.
     {"Vstereo_axil_top", "stereo_axil_top", kSmall, ""},
-    {"Vstereo_axil_top_census",
-     "stereo_axil_top",
-     {kSmall.width, kSmall.height, kSmall.ndisp, kSmall.window, 0, kUnset, kUnset, kCostCensus, 4,
-      kUnset, 1},
+    {"Vstereo_axil_top_census", "stereo_axil_top",
+     kSmall.with(
+         {.runtime_kernel = 0, .cost = kCostCensus, .lanes = 4, .shift_add = kShiftAddNarrow}),
      ""},
     // The iCEBreaker top: UART protocol, configuration registers and stereo_top.
     {"Vstereo_board_top", "stereo_board_top", kSmallBoard, ""},
     // Its link test (UART echo, no core) with the same UART speed.
     {"Vstereo_uart_echo_top",
      "stereo_uart_echo_top",
-     {kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, kUnset,
-      kSmallBoard.clks_per_bit},
+     {.clks_per_bit = kSmallBoard.clks_per_bit},
      ""},
     // Its C++ takes minutes to compile: only with -DSTEREO_COSIM_FULL=ON.
-    {"Vstereo_top_full", "stereo_top", kFull, "STEREO_COSIM_FULL"},
+    {"Vstereo_top_full", "stereo_top", kFull, "STEREO_COSIM_FULL", "full"},
     // ... and the lean census core at that size: -DSTEREO_COSIM_CONFIGS=full_census_lean.
-    {"Vstereo_top_full_census_lean", "stereo_top", kFullCensusLean, "STEREO_COSIM_FULL_CENSUS"},
+    {"Vstereo_top_full_census_lean", "stereo_top", kFullCensusLean, "STEREO_COSIM_FULL_CENSUS",
+     "full-census-lean"},
 }};
 
 // The configuration built under `prefix` (a compile-time error when there is none).
@@ -504,51 +507,44 @@ struct LintConfig {
 inline constexpr std::array<LintConfig, 24> kExtraLintConfigs = {{
     // The lean memory architecture (RECOMPUTE_COSTS): the VGA build (64 labels, 8 per clock), a
     // 3x3 window with one label, and the FPGA top at the VGA size.
+    {"stereo_top", kFull.with({.cost = kCostCensus, .lanes = 8, .recompute_costs = 1})},
     {"stereo_top",
-     {kFull.width, kFull.height, kFull.ndisp, kFull.window, kUnset, kUnset, kUnset, kCostCensus, 8,
-      kUnset, kUnset, 1}},
-    {"stereo_top",
-     {kUnset, kUnset, 1, 3, kUnset, kUnset, 0, kCostCensus, kUnset, kUnset, kUnset, 1}},
+     {.ndisp = 1, .window = 3, .max_min_disp = 0, .cost = kCostCensus, .recompute_costs = 1}},
     {"stereo_synth_top",
-     {kFull.width, kFull.height, kFull.ndisp, kFull.window, kUnset, kUnset, kUnset, kCostCensus, 8,
-      kUnset, 1, 1}},
+     kFull.with(
+         {.cost = kCostCensus, .lanes = 8, .shift_add = kShiftAddNarrow, .recompute_costs = 1})},
     // Time-multiplexed lanes: one label per clock, an odd group count, the FPGA build at full size.
-    {"stereo_top", {kUnset, kUnset, 3, 3, kUnset, kUnset, kUnset, kUnset, 1}},
-    {"stereo_top", {100, 75, 12, 7, kUnset, kUnset, kUnset, kUnset, 4}},
-    {"stereo_synth_top",
-     {kFull.width, kFull.height, kFull.ndisp, kFull.window, kUnset, kUnset, kUnset, kUnset, 8}},
+    {"stereo_top", {.ndisp = 3, .window = 3, .lanes = 1}},
+    {"stereo_top", {.width = 100, .height = 75, .ndisp = 12, .window = 7, .lanes = 4}},
+    {"stereo_synth_top", kFull.with({.lanes = 8})},
     // Stage 6 with one label (no delay line, no neighbours) and with odd label counts.
-    {"stereo_lr_check", {kUnset, kUnset, 1, kUnset, kUnset}},
-    {"stereo_validate", {kUnset, kUnset, 3, kUnset, kUnset}},
-    {"stereo_top", {kUnset, kUnset, 1, 3, kUnset}},
+    {"stereo_lr_check", {.ndisp = 1}},
+    {"stereo_validate", {.ndisp = 3}},
+    {"stereo_top", {.ndisp = 1, .window = 3}},
     // The LCDM cost stage, alone with one label and in the top.
-    {"stereo_cost", {kUnset, kUnset, 1, kUnset, kUnset, kUnset, kUnset, 1}},
+    {"stereo_cost", {.ndisp = 1, .cost = kCostLcdm}},
     // The LCDM cost stage alone with lanes (LANES < NDISP: the group port, G:1 multiplexers).
-    {"stereo_cost", {kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, 1, 4}},
+    {"stereo_cost", {.cost = kCostLcdm, .lanes = 4}},
     {"stereo_top", kSmallLcdm},
     // The census stage alone, and the census cost: the cost stage alone (one label, and lanes) and
     // the top at the full size.
     {"stereo_census", {}},
-    {"stereo_cost", {kUnset, kUnset, 1, kUnset, kUnset, kUnset, kUnset, kCostCensus}},
-    {"stereo_cost", {kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, kUnset, kCostCensus, 4}},
-    {"stereo_top",
-     {kFull.width, kFull.height, kFull.ndisp, kFull.window, kUnset, kUnset, kUnset, kCostCensus}},
+    {"stereo_cost", {.ndisp = 1, .cost = kCostCensus}},
+    {"stereo_cost", {.cost = kCostCensus, .lanes = 4}},
+    {"stereo_top", kFull.with({.cost = kCostCensus})},
     // The CA skeleton with the other rule.
-    {"stereo_ca_plane", {kUnset, kUnset, kUnset, kUnset, kUnset, 2}},
+    {"stereo_ca_plane", {.rule = kCaRule2}},
     // The top at other shapes: a 3x3 window, odd label counts, and the full-size configuration.
-    {"stereo_top", {kUnset, kUnset, 5, 3, kUnset}},
-    {"stereo_top", {100, 75, 33, 7, kUnset}},
+    {"stereo_top", {.ndisp = 5, .window = 3}},
+    {"stereo_top", {.width = 100, .height = 75, .ndisp = 33, .window = 7}},
     {"stereo_top", kFull},
     // The FPGA build (constant kernel) at the full-size configuration.
     {"stereo_synth_top", kFull},
     // ... with the census cost and its narrow vertical products as shifts and adds (SHIFT_ADD =
     // 1), and with the AD cost and every product as shifts and adds (SHIFT_ADD = 2).
     {"stereo_synth_top",
-     {kFull.width, kFull.height, kFull.ndisp, kFull.window, kUnset, kUnset, kUnset, kCostCensus, 32,
-      kUnset, 1}},
-    {"stereo_synth_top",
-     {kFull.width, kFull.height, kFull.ndisp, kFull.window, kUnset, kUnset, kUnset, kUnset, 8,
-      kUnset, 2}},
+     kFull.with({.cost = kCostCensus, .lanes = 32, .shift_add = kShiftAddNarrow})},
+    {"stereo_synth_top", kFull.with({.lanes = 8, .shift_add = kShiftAddAll})},
     // The board top at its co-simulation point (the defaults are the UP5K build).
     {"stereo_board_top", kSmallBoard},
 }};
