@@ -1,12 +1,14 @@
 #include "stereo/hierarchical.hpp"
 #include "stereo/catalogue.hpp"
+#include "stereo/hierarchical_plane.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "stereo/pipeline.hpp"
 #include "stereo/search.hpp"
@@ -204,81 +206,38 @@ std::vector<std::int8_t> vertical_field(const LevelMap& level, int radius,
 }
 
 Plane vertical_plane(const LevelMap& level, int max_iterations) {
+    // Every int8 offset: the histogram need not know the level's range.
+    constexpr int kLowest = -128;
+    constexpr int kHighest = 127;
     // The most frequent valid offset starts the fit (ties: the smaller |v|, then the smaller v).
-    std::map<int, std::int64_t> counts;
-    for (std::size_t p = 0; p < level.valid.size(); ++p) {
-        if (level.valid[p] != 0) {
-            ++counts[level.vertical[p]];
-        }
-    }
-    int mode = 0;
-    std::int64_t best = 0;
-    for (const auto& [v, n] : counts) {
-        if (n > best || (n == best && std::abs(v) < std::abs(mode))) {
-            mode = v;
-            best = n;
-        }
-    }
+    PlaneSetting setting{Plane{}, kFirstFitTolerance};
+    setting.plane.a =
+        histogram_mode(plane_statistics(level, setting, kLowest, kHighest)) * kPlaneOne;
     // The plane is kept in fixed point after every fit, and the inliers are chosen from it in
     // integers, so that the returned plane names exactly the winners of its own last fit.
-    const auto fixed = [](double value) {
-        return static_cast<std::int64_t>(std::llround(value * static_cast<double>(kPlaneOne)));
-    };
-    Plane plane{static_cast<std::int64_t>(mode) * kPlaneOne, 0, 0};
-    std::int64_t tolerance = 2 * kPlaneOne;
-    std::vector<std::uint8_t> inliers(level.valid.size(), 0);
     std::vector<std::uint8_t> previous;
     for (int iteration = 0; iteration < max_iterations; ++iteration) {
-        // Normal equations of v = a + b x + c y over the inliers, in double precision.
-        double s[3][3] = {};
-        double r[3] = {};
-        std::int64_t used = 0;
+        std::vector<std::uint8_t> inliers(level.valid.size(), 0);
         for (int y = 0; y < level.height; ++y) {
             for (int x = 0; x < level.width; ++x) {
                 const std::size_t p = level.index(x, y);
-                const std::int64_t residual =
-                    level.vertical[p] * kPlaneOne - (plane.a + plane.b * x + plane.c * y);
-                inliers[p] = level.valid[p] != 0 && std::abs(residual) <= tolerance ? 1 : 0;
-                if (inliers[p] == 0) {
-                    continue;
-                }
-                const double row[3] = {1.0, static_cast<double>(x), static_cast<double>(y)};
-                for (int i = 0; i < 3; ++i) {
-                    for (int j = 0; j < 3; ++j) {
-                        s[i][j] += row[i] * row[j];
-                    }
-                    r[i] += row[i] * level.vertical[p];
-                }
-                ++used;
+                inliers[p] =
+                    level.valid[p] != 0 && is_plane_inlier(x, y, level.vertical[p], setting) ? 1
+                                                                                             : 0;
             }
         }
-        tolerance = 3 * kPlaneOne / 2;
         if (inliers == previous) {
             break;  // the same winners as the last fit: the same plane
         }
-        previous = inliers;
-        const double det = s[0][0] * (s[1][1] * s[2][2] - s[1][2] * s[2][1]) -
-                           s[0][1] * (s[1][0] * s[2][2] - s[1][2] * s[2][0]) +
-                           s[0][2] * (s[1][0] * s[2][1] - s[1][1] * s[2][0]);
-        if (used < 3 || std::abs(det) < 1e-9 * std::abs(s[0][0] * s[1][1] * s[2][2]) ||
-            det == 0.0) {
+        previous = std::move(inliers);
+        const std::optional<Plane> solved =
+            solve_plane(plane_statistics(level, setting, kLowest, kHighest));
+        if (!solved) {
             break;  // too few or collinear inliers: keep the last plane
         }
-        const auto solve = [&](int column) {
-            double m[3][3];
-            for (int i = 0; i < 3; ++i) {
-                for (int j = 0; j < 3; ++j) {
-                    m[i][j] = j == column ? r[i] : s[i][j];
-                }
-            }
-            return (m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
-                    m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-                    m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])) /
-                   det;
-        };
-        plane = {fixed(solve(0)), fixed(solve(1)), fixed(solve(2))};
+        setting = {*solved, kFitTolerance};
     }
-    return plane;
+    return setting.plane;
 }
 
 std::vector<std::int8_t> plane_field(const Plane& plane, int width, int height, int v_min,
@@ -444,10 +403,10 @@ Result finish_field(std::array<LevelMap, kLevels> levels, const CostCount& count
     return result;
 }
 
-Result match(const Image& left, const Image& right, const Params& params) {
+std::array<LevelMap, kLevels> match_levels(const Image& left, const Image& right,
+                                           const Params& params, CostCount& count) {
     check_pair(left, right);
     validate(params, left.width, left.height);
-    CostCount count;
     std::array<LevelMap, kLevels> levels;
     for (int level = 0; level < kLevels; ++level) {
         const auto l = static_cast<std::size_t>(level);
@@ -461,6 +420,12 @@ Result match(const Image& left, const Image& right, const Params& params) {
         levels[l] = match_level(level_left, level_right, grid, params.levels[l], params.use_ca,
                                 params.neighbours, count.level[l], params.cost);
     }
+    return levels;
+}
+
+Result match(const Image& left, const Image& right, const Params& params) {
+    CostCount count;
+    std::array<LevelMap, kLevels> levels = match_levels(left, right, params, count);
     if (params.output == Output::full_level) {
         return finish(std::move(levels), count);
     }

@@ -246,6 +246,11 @@ Result finish(std::array<LevelMap, kLevels> levels, const CostCount& count);
 Result finish_field(std::array<LevelMap, kLevels> levels, const CostCount& count,
                     std::vector<std::int8_t> field, ValidatedDisparity validated);
 
+// The three levels of the search (quarter, half, full), each refining the one before; adds their
+// DSI cells to `count`.
+std::array<LevelMap, kLevels> match_levels(const Image& left, const Image& right,
+                                           const Params& params, CostCount& count);
+
 // The hierarchical search.
 Result match(const Image& left, const Image& right, const Params& params);
 
