@@ -29,3 +29,4 @@ stereo_power_on_reset.sv
 stereo_board_link.sv
 stereo_board_top.sv
 stereo_uart_echo_top.sv
+stereo_downscale.sv

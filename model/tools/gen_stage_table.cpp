@@ -351,7 +351,8 @@ std::vector<std::pair<std::string, std::string>> assignments(const stereo::table
                               {"LANES", params.lanes, false},
                               {"CLKS_PER_BIT", params.clks_per_bit, false},
                               {"SHIFT_ADD", params.shift_add, false},
-                              {"RECOMPUTE_COSTS", params.recompute_costs, true}};
+                              {"RECOMPUTE_COSTS", params.recompute_costs, true},
+                              {"FACTOR", params.factor, false}};
     for (const auto& [name, value, bit] : all) {
         if (value != stereo::table::kUnset) {
             out.emplace_back(

@@ -297,7 +297,7 @@ constexpr int hls_pipeline_latency(int width, int window, int ndisp, int min_dis
 // The package first, then every module before its first user. One module per file, named after
 // it; the list of modules to lint is this list without the package.
 inline constexpr std::string_view kPackageFile = "fx_pkg.sv";
-inline constexpr std::array<std::string_view, 29> kRtlModules = {
+inline constexpr std::array<std::string_view, 30> kRtlModules = {
     "stereo_coord_reg",     "stereo_stage_output",   "stereo_shift_reg",    "stereo_border_flags",
     "stereo_window_centre", "stereo_line_buffer",    "stereo_row_stack",    "stereo_group_ring",
     "stereo_window3x3",     "stereo_ca_plane",       "stereo_lcdm_convert", "stereo_lcdm_distance",
@@ -305,7 +305,7 @@ inline constexpr std::array<std::string_view, 29> kRtlModules = {
     "stereo_wta",           "stereo_divider",        "stereo_validate",     "stereo_lr_check",
     "stereo_top",           "stereo_axil_top",       "stereo_synth_top",    "stereo_uart_rx",
     "stereo_uart_tx",       "stereo_power_on_reset", "stereo_board_link",   "stereo_board_top",
-    "stereo_uart_echo_top",
+    "stereo_uart_echo_top", "stereo_downscale",
 };
 // Port-list fragments and the parameter-check macro (`STEREO_ASSERT) the modules `include (found
 // in rtl/: tools need rtl/ on the include path).
@@ -337,6 +337,7 @@ struct Params {
     // stereo_top's RECOMPUTE_COSTS (census): the lean memory architecture, rows of census codes
     // instead of per-label rows (docs/rtl.md "Lean memory")
     int recompute_costs = kUnset;
+    int factor = kUnset;  // stereo_downscale's FACTOR (the hierarchical search's pyramid)
 
     // These parameters with those that `over` sets put in their place.
     [[nodiscard]] constexpr Params with(const Params& over) const {
@@ -344,7 +345,7 @@ struct Params {
         for (int Params::*field : {&Params::width, &Params::height, &Params::ndisp, &Params::window,
                                    &Params::runtime_kernel, &Params::rule, &Params::max_min_disp,
                                    &Params::cost, &Params::lanes, &Params::clks_per_bit,
-                                   &Params::shift_add, &Params::recompute_costs}) {
+                                   &Params::shift_add, &Params::recompute_costs, &Params::factor}) {
             if (over.*field != kUnset) {
                 merged.*field = over.*field;
             }
@@ -419,7 +420,7 @@ inline constexpr Params kFpgaCensusNdisp8Lanes2 = kSmall.with({.ndisp = 8,
 inline constexpr Params kFullCensusLean =
     kFull.with({.cost = kCostCensus, .lanes = 8, .recompute_costs = 1});
 
-inline constexpr std::array<VerilatedConfig, 32> kVerilatedConfigs = {{
+inline constexpr std::array<VerilatedConfig, 34> kVerilatedConfigs = {{
     {"Vstereo_top_small", "stereo_top", kSmall, "", "small"},
     {"Vstereo_top_lanes4", "stereo_top", kSmallLanes4, "", "lanes4"},
     {"Vstereo_top_lanes1", "stereo_top", kSmallLanes1, "", "lanes1"},
@@ -479,6 +480,9 @@ inline constexpr std::array<VerilatedConfig, 32> kVerilatedConfigs = {{
      "stereo_uart_echo_top",
      {.clks_per_bit = kSmallBoard.clks_per_bit},
      ""},
+    // The hierarchical search's pyramid (issue 45): the half and the quarter image.
+    {"Vstereo_downscale2", "stereo_downscale", {.width = kSmall.width, .factor = 2}, ""},
+    {"Vstereo_downscale4", "stereo_downscale", {.width = kSmall.width, .factor = 4}, ""},
     // Its C++ takes minutes to compile: only with -DSTEREO_COSIM_FULL=ON.
     {"Vstereo_top_full", "stereo_top", kFull, "STEREO_COSIM_FULL", "full"},
     // ... and the lean census core at that size: -DSTEREO_COSIM_CONFIGS=full_census_lean.
@@ -504,7 +508,7 @@ struct LintConfig {
     Params params;
 };
 
-inline constexpr std::array<LintConfig, 24> kExtraLintConfigs = {{
+inline constexpr std::array<LintConfig, 25> kExtraLintConfigs = {{
     // The lean memory architecture (RECOMPUTE_COSTS): the VGA build (64 labels, 8 per clock), a
     // 3x3 window with one label, and the FPGA top at the VGA size.
     {"stereo_top", kFull.with({.cost = kCostCensus, .lanes = 8, .recompute_costs = 1})},
@@ -547,6 +551,8 @@ inline constexpr std::array<LintConfig, 24> kExtraLintConfigs = {{
     {"stereo_synth_top", kFull.with({.lanes = 8, .shift_add = kShiftAddAll})},
     // The board top at its co-simulation point (the defaults are the UP5K build).
     {"stereo_board_top", kSmallBoard},
+    // The pyramid at the VGA size: the quarter image.
+    {"stereo_downscale", {.width = kFull.width, .factor = 4}},
 }};
 
 }  // namespace stereo::table
