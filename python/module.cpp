@@ -229,11 +229,19 @@ MatchOptions match_options(const std::string& method, const std::string& engine,
 py::dict evaluate(const py::array_t<float, py::array::c_style | py::array::forcecast>& disparity,
                   const py::array_t<float, py::array::c_style | py::array::forcecast>& ground_truth,
                   double threshold, std::optional<py::array> nonocc, std::optional<py::array> all,
-                  std::optional<py::array> disc, bool zero_is_invalid) {
+                  std::optional<py::array> disc, bool zero_is_invalid, double gt_scale,
+                  bool any_gt_range) {
     using U8 = py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>;
+    if (!std::isfinite(gt_scale) || !(gt_scale > 0.0)) {
+        throw std::invalid_argument("gt_scale must be a positive number, got " +
+                                    std::to_string(gt_scale));
+    }
     stereo::io::EvalInput input;
     input.disparity = {float_view(disparity, "disparity"), "disparity"};
-    input.ground_truth = {float_view(ground_truth, "ground_truth"), "ground_truth"};
+    // ground_truth / gt_scale, as stereo eval --gt-scale reads a PNG that holds d * K.
+    cv::Mat truth;
+    float_view(ground_truth, "ground_truth").convertTo(truth, CV_32F, 1.0 / gt_scale);
+    input.ground_truth = {truth, "ground_truth"};
     // The masks are converted once and kept alive here while evaluate() reads them.
     std::vector<U8> masks;
     const auto add_mask = [&](const std::optional<py::array>& mask, const char* name,
@@ -249,6 +257,12 @@ py::dict evaluate(const py::array_t<float, py::array::c_style | py::array::force
     add_mask(disc, "disc", input.disc);
     input.threshold = threshold;
     input.zero_is_invalid = zero_is_invalid;
+    if (!any_gt_range) {
+        stereo::io::check_ground_truth_range(
+            input,
+            "if it holds d * K, pass gt_scale=K (Middlebury 2003: 4, KITTI: 256); "
+            "any_gt_range=True scores anyway");
+    }
     nlohmann::json json = stereo::io::evaluate(input);
     return json_to_python(json);
 }
@@ -428,11 +442,17 @@ PYBIND11_MODULE(stereo, m) {
         "method asw's options (diameter, response, shape, continuity, right_weights, separable, "
         "threads), defaults as stereo match --aggregation asw.");
 
+    // Static: pybind11 keeps the pointer.
+    static const std::string evaluate_doc =
+        "Middlebury scores of a float disparity against ground truth / gt_scale (0 = unknown), "
+        "the same dict as `stereo eval --json`; masks are uint8 with 255 = scored. A ground "
+        "truth whose largest value is more than " +
+        std::to_string(static_cast<int>(stereo::io::kGroundTruthRangeFactor)) +
+        "x the map's is refused (ValueError: wrong gt_scale?) unless any_gt_range=True.";
     m.def("evaluate", &evaluate, py::arg("disparity"), py::arg("ground_truth"), py::kw_only(),
           py::arg("threshold") = 1.0, py::arg("nonocc") = py::none(), py::arg("all") = py::none(),
           py::arg("disc") = py::none(), py::arg("zero_is_invalid") = true,
-          "Middlebury scores of a float disparity against float ground truth (0 = unknown), "
-          "the same dict as `stereo eval --json`; masks are uint8 with 255 = scored.");
+          py::arg("gt_scale") = 1.0, py::arg("any_gt_range") = false, evaluate_doc.c_str());
 
     m.def("fuzzy_decision", &fuzzy_decision, py::arg("left"), py::arg("centre"), py::arg("right"),
           "The fuzzy obstacle-avoidance decision on three window occupancies in [0, 1] "

@@ -207,11 +207,15 @@ std::vector<std::pair<std::filesystem::path, std::string>> encoded_outputs(
                            io::encode_pfm(io::to_float_disparity(result.validated)));
     } else if (output_encoding == io::DisparityEncoding::offset16) {
         files.emplace_back(options.output,
-                           io::encode_png(io::to_offset16(result.validated), options.output));
+                           io::encode_disparity_png(io::to_offset16(result.validated),
+                                                    {.encoding = io::DisparityEncoding::offset16},
+                                                    options.output));
     } else {
-        files.emplace_back(
-            options.output,
-            io::encode_png(io::disparity_to_mat(map, ndisp, options.scale), options.output));
+        files.emplace_back(options.output,
+                           io::encode_disparity_png(io::disparity_to_mat(map, ndisp, options.scale),
+                                                    {.encoding = io::DisparityEncoding::scaled,
+                                                     .scale = static_cast<double>(options.scale)},
+                                                    options.output));
     }
     if (!options.colour.empty()) {
         files.emplace_back(options.colour,
@@ -236,7 +240,14 @@ std::vector<std::pair<std::filesystem::path, std::string>> encoded_outputs(
     if (!options.dump_levels.empty()) {
         for (const auto& [name, mat] : level_files(result, ndisp, options.scale)) {
             const std::filesystem::path path = std::filesystem::path(options.dump_levels) / name;
-            files.emplace_back(path, io::encode_png(mat, path));
+            // The *_disparity.png maps are disparity PNGs (labels x scale), the others views.
+            files.emplace_back(
+                path, name.ends_with("_disparity.png")
+                          ? io::encode_disparity_png(mat,
+                                                     {.encoding = io::DisparityEncoding::scaled,
+                                                      .scale = static_cast<double>(options.scale)},
+                                                     path)
+                          : io::encode_png(mat, path));
         }
     }
     return files;
@@ -417,9 +428,11 @@ void add_match_command(CLI::App& app) {
         ->required();
     add_matcher_options(*command, options->matcher, MatcherChoice::selectable,
                         {.validation = true, .speckle = true, .validation_on_by_default = true});
-    command->add_flag("--png16", options->png16,
-                      "pipeline: write a 16-bit PNG of 32768 + 16 d (signed, 1/16 pixel), 0 = "
-                      "invalid; a .pfm output holds float disparities with +inf invalid");
+    command->add_flag(
+        "--png16,!--no-png16", options->png16,
+        "pipeline: write a 16-bit PNG of 32768 + 16 d (signed, 1/16 pixel), 0 = "
+        "invalid; a .pfm output holds float disparities with +inf invalid [default: " +
+            std::string(options->png16 ? "--png16" : "--no-png16") + "]");
     // The 2-D search's own options, under its heading (the catalogue's summary).
     const std::string two_d =
         "--method hierarchical: " +
@@ -477,7 +490,10 @@ void add_match_command(CLI::App& app) {
                      "4 speckle)")
         ->check(checks::png_output());
     add_downscale_option(*command, options->downscale);
-    command->add_flag("--json", options->json, "Print the summary as one JSON object");
+    command->add_flag("--json,!--no-json", options->json,
+                      "Print the summary as one JSON object [default: " +
+                          std::string(options->json ? "--json" : "--no-json, one line of text") +
+                          "]");
 }
 
 }  // namespace stereo::cli

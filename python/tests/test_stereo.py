@@ -353,3 +353,31 @@ def test_cosim_on_demand_core_equals_model(tmp_path):
         stereo.cosim(left, right, ndisp=8, window=3, size=(48, 32), lanes=3, cache=str(tmp_path))
     with pytest.raises(ValueError, match="give size"):
         stereo.cosim(left, right, ndisp=8, window=3, lanes=4)
+
+
+# A ground truth stored as d * K (Middlebury 2003: 4) read without gt_scale scored every pixel
+# bad and returned normally (issue 47): it is refused with a short hint, gt_scale reads it, and
+# any_gt_range=True scores it anyway.
+def _scaled_gt_case():
+    rng = np.random.default_rng(SEED)
+    disparity = rng.uniform(2, 40, size=(24, 32)).astype(np.float32)
+    return disparity, np.round(disparity * 4).astype(np.uint8)
+
+
+def test_evaluate_refuses_a_ground_truth_at_the_wrong_scale():
+    disparity, gt = _scaled_gt_case()
+    with pytest.raises(ValueError) as error:
+        stereo.evaluate(disparity, gt)
+    message = str(error.value)
+    assert "gt_scale" in message and len(message) < 300
+
+
+def test_evaluate_gt_scale_reads_a_scaled_ground_truth():
+    disparity, gt = _scaled_gt_case()
+    scores = stereo.evaluate(disparity, gt, gt_scale=4)
+    # |d - round(4 d) / 4| <= 1/8: no pixel is bad.
+    assert scores["bad_all"] == 0.0
+    forced = stereo.evaluate(disparity, gt, any_gt_range=True)
+    assert forced["bad_all"] == 100.0
+    with pytest.raises(ValueError):
+        stereo.evaluate(disparity, gt, gt_scale=0)
