@@ -13,6 +13,7 @@
 
 #include "cli.hpp"
 #include "cli_command.hpp"
+#include "stereo_io/colour_key.hpp"
 #include "stereo_io/disparity_files.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/metrics.hpp"
@@ -37,7 +38,9 @@ struct EvalOptions {
     bool json = false;
     std::string encoding = "scaled";  // of a PNG DISP: scaled or offset16 (.pfm: by extension)
     std::string same_pixels;          // another disparity file: score where both are valid
-    bool any_gt_range = false;        // score even a ground truth far outside the map's range
+    bool any_gt_range = false;
+    bool legend = true;  // the --error-map's legend strip (io::with_error_legend)        // score
+                         // even a ground truth far outside the map's range
     // Given on the command line (a PNG's own tag applies otherwise, and must agree with them).
     bool scale_given = false;
     bool gt_scale_given = false;
@@ -180,7 +183,8 @@ void run_eval(const EvalOptions& options) {
     }
     const io::EvalResult result = io::evaluate(input);  // checks every size first
     if (!options.error_map.empty()) {
-        io::write_png(options.error_map, io::error_map(input));
+        const cv::Mat map = io::error_map(input);
+        io::write_png(options.error_map, options.legend ? io::with_error_legend(map) : map);
     }
     if (options.json) {
         const nlohmann::json json = result;
@@ -219,8 +223,12 @@ void add_eval_command(CLI::App& app) {
         ->check(checks::real_in(0, 1e6));
     command
         ->add_option("--error-map", options->error_map,
-                     "Write an RGB PNG: grey correct, red bad, blue invalid, black unscored")
+                     "Write an RGB PNG: grey correct, red bad, blue invalid, black unscored, "
+                     "with a legend strip below")
         ->check(checks::png_output());
+    command->add_flag("--legend,!--no-legend", options->legend,
+                      "--no-legend: the --error-map alone, the size of the map [default: " +
+                          std::string(options->legend ? "--legend" : "--no-legend") + "]");
     command->add_flag("--json", options->json, "Print the scores as one JSON object");
     command
         ->add_option("--encoding", options->encoding,

@@ -17,6 +17,7 @@
 #include "cli_matcher_options.hpp"
 #include "stereo/catalogue.hpp"
 #include "stereo/hierarchical.hpp"
+#include "stereo_io/colour_key.hpp"
 #include "stereo_io/disparity_files.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/output.hpp"
@@ -30,7 +31,8 @@ struct MatchOptions {
     std::string left;
     std::string right;
     std::string output;
-    std::string colour;  // empty: no colour view
+    std::string colour;      // empty: no colour view
+    bool colour_bar = true;  // the colour view's key below it (io::colour_view)
     MatcherOptions matcher;
     int scale = 1;
     int downscale = 1;
@@ -198,7 +200,7 @@ void check_outputs(const MatchOptions& options, int ndisp) {
 
 // Every output encoded, in memory, before the first file is written.
 std::vector<std::pair<std::filesystem::path, std::string>> encoded_outputs(
-    const MatchOptions& options, const MatchResult& result, int ndisp,
+    const MatchOptions& options, const MatchResult& result, int ndisp, int min_disp,
     io::DisparityEncoding output_encoding) {
     const DisparityMap& map = result.disparity;
     std::vector<std::pair<std::filesystem::path, std::string>> files;
@@ -219,7 +221,8 @@ std::vector<std::pair<std::filesystem::path, std::string>> encoded_outputs(
     }
     if (!options.colour.empty()) {
         files.emplace_back(options.colour,
-                           io::encode_png(io::disparity_to_colour(map, ndisp), options.colour));
+                           io::encode_png(io::colour_view(map, ndisp, min_disp, options.colour_bar),
+                                          options.colour));
     }
     if (!options.vertical.empty() && !result.vertical.empty()) {
         // The offsets of the output's valid pixels: the full level's winners, or the field.
@@ -387,7 +390,8 @@ void run_match(const MatchOptions& options) {
         std::chrono::steady_clock::now() - start;
 
     // Every output together, all or nothing (io::write_files_atomic).
-    const auto files = encoded_outputs(options, result, ndisp, output_encoding);
+    const auto files =
+        encoded_outputs(options, result, ndisp, config.pipeline.min_disp, output_encoding);
     if (!options.dump_levels.empty()) {
         std::filesystem::create_directories(options.dump_levels);
     }
@@ -476,8 +480,15 @@ void add_match_command(CLI::App& app) {
                      "Multiply disparities by K in the PNG (16-bit when (N-1)*K > 255)")
         ->capture_default_str()
         ->check(checks::integer_in(1, 65535));
-    command->add_option("--color", options->colour, "Also write a colour-mapped view")
+    command
+        ->add_option("--color", options->colour,
+                     "Also write a colour-mapped view (TURBO, invalid white) with a colour bar "
+                     "of the disparities in pixels below it")
         ->check(checks::png_output());
+    command->add_flag("--color-bar,!--no-color-bar", options->colour_bar,
+                      "--no-color-bar: the --color view alone, the size of the map [default: " +
+                          std::string(options->colour_bar ? "--color-bar" : "--no-color-bar") +
+                          "]");
     command
         ->add_option("--certainty", options->certainty,
                      "pipeline, asw, vertical, diagonal: also write stage 6's certainty of "

@@ -5,13 +5,14 @@
 # by default, and --no-subpixel and --subpixel=false both turn it off, in the JSON summary and
 # in the map (on the scene fixture, whose slanted plane has fractional disparities); the
 # positive forms of the negative switches (--validation, --ca) give the default map; --help
-# names --no-subpixel with the default.
+# names --no-subpixel with the default; --color and --error-map carry their key unless
+# --no-color-bar / --no-legend.
 set -eu
 stereo=$1
 fixtures=$2
 work=$3
 mkdir -p "$work"
-rm -f "$work"/*.pfm
+rm -f "$work"/*.pfm "$work"/*.png
 set -- "$fixtures/scene_left.png" "$fixtures/scene_right.png" --ndisp 16 --min-disp -4
 
 run() {  # run NAME OPTIONS...: the map NAME.pfm and its JSON summary in NAME.json
@@ -50,3 +51,18 @@ done
 printf '%s\n' "$help" | grep -A3 -e "--subpixel" | grep -q "default: on" \
     || { echo "FAIL: --help does not show sub-pixel's default"; exit 1; }
 echo "ok: --help names every negation and sub-pixel's default"
+
+# --color carries a colour bar below the map unless --no-color-bar (issue 47); the same for
+# eval's --error-map legend and --no-legend. Heights from the PNG header (IHDR).
+png_height() { od -An -tu1 -j20 -N4 "$1" | awk '{ print $1 * 16777216 + $2 * 65536 + $3 * 256 + $4 }'; }
+"$stereo" match "$@" -o "$work/map.pfm" --color "$work/keyed.png" >/dev/null
+"$stereo" match "$@" -o "$work/map2.pfm" --color "$work/bare.png" --no-color-bar >/dev/null
+"$stereo" eval "$work/default.pfm" "$fixtures/scene_gt.pfm" --error-map "$work/errors.png" >/dev/null
+"$stereo" eval "$work/default.pfm" "$fixtures/scene_gt.pfm" --error-map "$work/errors_bare.png" \
+    --no-legend >/dev/null
+height=$(sed -n 2p "$work/map.pfm" | cut -d' ' -f2)  # PFM: "Pf", "W H", scale
+[ "$(png_height "$work/bare.png")" -eq "$height" ] || { echo "FAIL: --no-color-bar changed the size"; exit 1; }
+[ "$(png_height "$work/keyed.png")" -gt "$height" ] || { echo "FAIL: --color has no bar"; exit 1; }
+[ "$(png_height "$work/errors_bare.png")" -eq "$height" ] || { echo "FAIL: --no-legend changed the size"; exit 1; }
+[ "$(png_height "$work/errors.png")" -gt "$height" ] || { echo "FAIL: --error-map has no legend"; exit 1; }
+echo "ok: --color has its bar and --error-map its legend unless --no-color-bar / --no-legend"
