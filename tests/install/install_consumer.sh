@@ -21,6 +21,17 @@ for f in lib/cmake/stereo/stereo-config.cmake lib/cmake/stereo/stereo-config-ver
   [ -e "$prefix/$f" ] || { echo "install.consumer: $f was not installed"; exit 1; }
 done
 
+# No test helper among the installed headers, and every header the installed ones include
+# ("stereo.../x.hpp") is installed too.
+if find "$prefix/include" -name 'test_*.hpp' | grep -q .; then
+  echo "install.consumer: test helpers were installed:"; find "$prefix/include" -name 'test_*.hpp'
+  exit 1
+fi
+for included in $(grep -rhoE '#include "stereo[a-z_]*/[a-z_/]+\.hpp"' "$prefix/include" \
+                  | sed 's/#include "\(.*\)"/\1/' | sort -u); do
+  [ -f "$prefix/include/$included" ] || { echo "install.consumer: $included is included but not installed"; exit 1; }
+done
+
 cmake -S "$source/examples/consumer" -B "$work/consumer" -DCMAKE_PREFIX_PATH="$prefix" \
       -DCMAKE_BUILD_TYPE=Release > "$work/configure.log" 2>&1 \
   || { cat "$work/configure.log"; exit 1; }
