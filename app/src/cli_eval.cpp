@@ -38,9 +38,8 @@ struct EvalOptions {
     bool json = false;
     std::string encoding = "scaled";  // of a PNG DISP: scaled or offset16 (.pfm: by extension)
     std::string same_pixels;          // another disparity file: score where both are valid
-    bool any_gt_range = false;
-    bool legend = true;  // the --error-map's legend strip (io::with_error_legend)        // score
-                         // even a ground truth far outside the map's range
+    bool any_gt_range = false;        // score even a ground truth far outside the map's range
+    bool legend = true;               // the --error-map's legend strip (io::with_error_legend)
     // Given on the command line (a PNG's own tag applies otherwise, and must agree with them).
     bool scale_given = false;
     bool gt_scale_given = false;
