@@ -509,13 +509,18 @@ PYBIND11_MODULE(stereo, m) {
           "(stereo fis).");
 
 #ifdef STEREO_WITH_RTL
-    m.def("cosim_configs", [] {
-        std::vector<std::string> names;
-        for (const stereo::sim::TopConfig* c : stereo::sim::all_top_configs()) {
-            names.push_back(c->name);
-        }
-        return names;
-    });
+    m.def(
+        "cosim_configs",
+        [] {
+            std::vector<std::string> names;
+            for (const stereo::sim::TopConfig* c : stereo::sim::all_top_configs()) {
+                names.push_back(c->name);
+            }
+            return names;
+        },
+        "The names of every Verilated stereo_top configuration of this build, of every cost and "
+        "family (small, small-lcdm, small-census, the lanes, lean and FPGA cores); cosim() runs "
+        "the smallest one of the pair's cost that covers it.");
     m.def(
         "cosim",
         [](const py::object& left, const py::object& right, int ndisp, int window, double sigma,

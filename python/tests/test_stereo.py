@@ -444,3 +444,15 @@ def test_load_image_downscale_equals_the_cli(fixture_pair, tmp_path):
     assert np.array_equal(result["disparity_px"][valid], expected[valid])
     with pytest.raises(ValueError):
         stereo.load_image(left_path, downscale=0)
+
+
+@pytest.mark.skipif(not stereo.has_rtl, reason="built with -DSTEREO_WITH_RTL=OFF")
+def test_cosim_configs_lists_every_configuration_of_the_cli():
+    """Every configuration `stereo cosim --help` lists as built is in cosim_configs()."""
+    help_text = subprocess.run([CLI, "cosim", "--help"], capture_output=True, text=True,
+                               check=True).stdout
+    listed = help_text.split("Verilated configurations in this build", 1)[1]
+    names = [line.split(":")[0].strip() for line in listed.splitlines()[1:]
+             if line.startswith("  ") and ":" in line]
+    assert len(names) >= 3, listed
+    assert set(names) <= set(stereo.cosim_configs())
