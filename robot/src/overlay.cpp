@@ -27,18 +27,18 @@ const cv::Scalar kArrow{0, 255, 0};
 
 const cv::Scalar kGround{255, 0, 0};  // blue: near, but ground the model ignores
 
-// The key of the overlay's colours (issue 47), in a dark box at the top right: one swatch and
+// The key of the overlay's colours (issue 47), in a dark box at the top right, below the
+// occupancy labels: one swatch and
 // name per colour the picture uses. Drawn inside the picture, so that its size (and a video's)
 // stays the map's; left out of images too small to hold it.
 void draw_legend(cv::Mat& out, bool ground, double font, int thick) {
-    std::vector<std::pair<std::string, cv::Scalar>> entries = {
-        {"nearer than the safety distance", kNear}};
+    std::vector<std::pair<std::string, cv::Scalar>> entries = {{"near (closer than safe)", kNear}};
     if (ground) {
-        entries.emplace_back("near, ground (ignored)", kGround);
+        entries.emplace_back("near ground (ignored)", kGround);
     }
-    entries.emplace_back("window: occupancy", kWindow);
+    entries.emplace_back("window, occupancy", kWindow);
     entries.emplace_back("direction", kArrow);
-    const double scale = 0.8 * font;
+    const double scale = 0.5 * font;
     int baseline = 0;
     int width = 0;
     for (const auto& entry : entries) {
@@ -48,9 +48,10 @@ void draw_legend(cv::Mat& out, bool ground, double font, int thick) {
     }
     const int line = static_cast<int>(22 * scale) + 6;
     const int swatch = line - 6;
-    const cv::Rect box(out.cols - (width + swatch + 16) - 4, 4, width + swatch + 16,
-                       line * static_cast<int>(entries.size()) + 6);
-    if (box.x < out.cols / 3 || box.y + box.height > out.rows / 2) {
+    // Below the windows' occupancy labels (drawn 28 * font below their top).
+    const cv::Rect box(out.cols - (width + swatch + 16) - 4, static_cast<int>(50 * font) + 8,
+                       width + swatch + 16, line * static_cast<int>(entries.size()) + 6);
+    if (box.x < out.cols / 2 || box.y + box.height > out.rows / 2) {
         return;
     }
     cv::Mat region = out(box);
