@@ -15,9 +15,12 @@ install(TARGETS stereo_model stereo_io stereo_robot
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS stereo RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# The test helpers beside the public headers (stereo_io/test_support.hpp, test_compare.hpp: the
+# stereo_test_support target's) are not part of the package (issue 47).
 install(DIRECTORY ${CMAKE_SOURCE_DIR}/model/include/ ${CMAKE_SOURCE_DIR}/io/include/
                   ${CMAKE_SOURCE_DIR}/robot/include/
-        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+        PATTERN "test_*.hpp" EXCLUDE)
 install(FILES ${CMAKE_BINARY_DIR}/generated/include/stereo/version.hpp
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/stereo)
 install(EXPORT stereo-targets NAMESPACE stereo:: DESTINATION ${STEREO_INSTALL_CMAKEDIR})

@@ -69,22 +69,69 @@ py::array_t<T> adopt(std::vector<T>&& values, std::vector<py::ssize_t> shape) {
     return py::array_t<T>(std::move(shape), data, free_owner);
 }
 
-// A uint8 (H, W) or (H, W, 3) array as the model's Image (one copy: Image owns its pixels).
-Image to_image(const py::array& array, const char* name) {
-    const auto u8 =
-        py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>::ensure(array);
-    if (!u8 || !(u8.ndim() == 2 || (u8.ndim() == 3 && (u8.shape(2) == 3 || u8.shape(2) == 1)))) {
-        throw std::invalid_argument(std::string(name) +
-                                    " must be a uint8 array of shape (H, W) or (H, W, 3)");
+// The type of a Python object for an error message: "list", "NoneType", "numpy.ndarray".
+std::string type_name(const py::handle& object) {
+    return py::str(py::type::handle_of(object).attr("__name__"));
+}
+
+// "(480, 640, 3)": an array's shape for an error message.
+std::string shape_text(const py::array& array) {
+    std::string text = "(";
+    for (py::ssize_t d = 0; d < array.ndim(); ++d) {
+        text += (d > 0 ? ", " : "") + std::to_string(array.shape(d));
     }
+    return text + (array.ndim() == 1 ? ",)" : ")");
+}
+
+// A uint8 (H, W), (H, W, 1), (H, W, 3) RGB or (H, W, 4) RGBA array as the model's Image (one
+// copy: Image owns its pixels). Alpha is dropped, as the CLI drops it from an RGBA file. Anything
+// else (a list, None, another dtype or shape) is one short ValueError naming the argument.
+Image to_image(const py::object& object, const char* name) {
+    if (!py::isinstance<py::array>(object)) {
+        throw std::invalid_argument(std::string(name) +
+                                    " must be a numpy uint8 array (H, W) or (H, W, 3), got " +
+                                    type_name(object) + " (np.asarray(x, dtype=np.uint8))");
+    }
+    const auto array = py::reinterpret_borrow<py::array>(object);
     if (array.dtype().kind() != 'u' || array.dtype().itemsize() != 1) {
         throw std::invalid_argument(std::string(name) + " must have dtype uint8, got " +
+                                    std::string(py::str(array.dtype())) +
+                                    (array.dtype().kind() == 'f'
+                                         ? " (for 0..1 floats: (x * 255).round().astype(np.uint8))"
+                                         : ""));
+    }
+    const py::ssize_t depth = array.ndim() == 3 ? array.shape(2) : 0;
+    if (!(array.ndim() == 2 || depth == 1 || depth == 3 || depth == 4)) {
+        throw std::invalid_argument(std::string(name) +
+                                    " must have shape (H, W), (H, W, 3) or (H, W, 4), got " +
+                                    shape_text(array));
+    }
+    const auto u8 = py::array_t<std::uint8_t, py::array::c_style>::ensure(array);
+    const int stored = array.ndim() == 2 ? 1 : static_cast<int>(depth);
+    const int channels = stored == 4 ? 3 : stored;
+    Image image(static_cast<int>(u8.shape(1)), static_cast<int>(u8.shape(0)), channels);
+    const std::uint8_t* in = u8.data();
+    for (std::size_t p = 0; p < image.pixels.size() / channels; ++p) {
+        std::copy_n(in + p * stored, channels, image.pixels.begin() + p * channels);
+    }
+    return image;
+}
+
+// A numeric 2-D array (any real dtype, converted to float32) for evaluate(); a short ValueError
+// naming the argument otherwise.
+py::array_t<float, py::array::c_style | py::array::forcecast> float_array(const py::object& object,
+                                                                          const char* name) {
+    if (!py::isinstance<py::array>(object)) {
+        throw std::invalid_argument(std::string(name) + " must be a 2-D numpy array, got " +
+                                    type_name(object));
+    }
+    const auto array = py::reinterpret_borrow<py::array>(object);
+    const char kind = array.dtype().kind();
+    if (kind != 'f' && kind != 'u' && kind != 'i' && kind != 'b') {
+        throw std::invalid_argument(std::string(name) + " must be a numeric array, got dtype " +
                                     std::string(py::str(array.dtype())));
     }
-    const int channels = u8.ndim() == 2 ? 1 : static_cast<int>(u8.shape(2));
-    Image image(static_cast<int>(u8.shape(1)), static_cast<int>(u8.shape(0)), channels);
-    std::copy_n(u8.data(), image.pixels.size(), image.pixels.begin());
-    return image;
+    return py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(array);
 }
 
 // A float32 (H, W) array as CV_32FC1 (a view: the array outlives the call).
@@ -128,7 +175,7 @@ void add_validated(py::dict& out, stereo::ValidatedDisparity&& v) {
     out["certainty"] = adopt(std::move(v.certainty), shape);
 }
 
-py::dict run_match(const py::array& left, const py::array& right, const MatchOptions& options) {
+py::dict run_match(const py::object& left, const py::object& right, const MatchOptions& options) {
     const Image l = to_image(left, "left");
     const Image r = to_image(right, "right");
     const auto matcher = registry().create(options.method, options.engine, options.config);
@@ -226,14 +273,23 @@ MatchOptions match_options(const std::string& method, const std::string& engine,
     return o;
 }
 
-py::dict evaluate(const py::array_t<float, py::array::c_style | py::array::forcecast>& disparity,
-                  const py::array_t<float, py::array::c_style | py::array::forcecast>& ground_truth,
+py::dict evaluate(const py::object& disparity_object, const py::object& ground_truth_object,
                   double threshold, std::optional<py::array> nonocc, std::optional<py::array> all,
-                  std::optional<py::array> disc, bool zero_is_invalid) {
+                  std::optional<py::array> disc, bool zero_is_invalid, double gt_scale,
+                  bool any_gt_range) {
     using U8 = py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>;
+    if (!std::isfinite(gt_scale) || !(gt_scale > 0.0)) {
+        throw std::invalid_argument("gt_scale must be a positive number, got " +
+                                    std::to_string(gt_scale));
+    }
+    const auto disparity = float_array(disparity_object, "disparity");
+    const auto ground_truth = float_array(ground_truth_object, "ground_truth");
     stereo::io::EvalInput input;
     input.disparity = {float_view(disparity, "disparity"), "disparity"};
-    input.ground_truth = {float_view(ground_truth, "ground_truth"), "ground_truth"};
+    // ground_truth / gt_scale, as stereo eval --gt-scale reads a PNG that holds d * K.
+    cv::Mat truth;
+    float_view(ground_truth, "ground_truth").convertTo(truth, CV_32F, 1.0 / gt_scale);
+    input.ground_truth = {truth, "ground_truth"};
     // The masks are converted once and kept alive here while evaluate() reads them.
     std::vector<U8> masks;
     const auto add_mask = [&](const std::optional<py::array>& mask, const char* name,
@@ -249,6 +305,12 @@ py::dict evaluate(const py::array_t<float, py::array::c_style | py::array::force
     add_mask(disc, "disc", input.disc);
     input.threshold = threshold;
     input.zero_is_invalid = zero_is_invalid;
+    if (!any_gt_range) {
+        stereo::io::check_ground_truth_range(
+            input,
+            "if it holds d * K, pass gt_scale=K (Middlebury 2003: 4, KITTI: 256); "
+            "any_gt_range=True scores anyway");
+    }
     nlohmann::json json = stereo::io::evaluate(input);
     return json_to_python(json);
 }
@@ -271,7 +333,7 @@ const stereo::sparse::Params kSparse{};
 // output stalls, compared pixel by pixel with the model (fixed, reason, certainty).
 // With `core` (stereo.cosim(..., size=(W, H))): that core, Verilated on demand into `cache`
 // (sim/on_demand.hpp), instead of a configuration of this build.
-py::dict cosim(const py::array& left, const py::array& right, const MatchOptions& options,
+py::dict cosim(const py::object& left, const py::object& right, const MatchOptions& options,
                double stall, double gap, std::uint32_t seed, const std::string& trace,
                const std::optional<stereo::sim::CoreRequest>& core, const std::string& cache) {
     const Image l = to_image(left, "left");
@@ -373,22 +435,24 @@ PYBIND11_MODULE(stereo, m) {
 
     m.def(
         "load_image",
-        [](const std::string& path) {
-            Image image = stereo::io::load_image(path);
+        [](const std::string& path, int downscale) {
+            Image image = stereo::io::load_image(path, downscale);
             std::vector<py::ssize_t> shape{image.height, image.width};
             if (image.channels == 3) {
                 shape.push_back(3);
             }
             return adopt(std::move(image.pixels), std::move(shape));
         },
-        py::arg("path"), "An image file as uint8 (H, W) or (H, W, 3) RGB, as the CLI reads it.");
+        py::arg("path"), py::kw_only(), py::arg("downscale") = 1,
+        "An image file as uint8 (H, W) or (H, W, 3) RGB, as the CLI reads it (alpha dropped); "
+        "downscale=F area-averages it by F first, as stereo match --downscale F.");
 
     const auto defaults = stereo::MatchParams{};
     const auto edges = stereo::edge_frontend::EdgeParams{};
     const auto sparse = stereo::sparse::Params{};
     m.def(
         "match",
-        [](const py::array& left, const py::array& right, const std::string& method,
+        [](const py::object& left, const py::object& right, const std::string& method,
            const std::string& engine, int ndisp, int window, double sigma, bool ca,
            std::optional<std::string> cost, int min_disp, bool validation,
            std::optional<int> uniqueness, std::optional<int> lr_check, std::optional<bool> subpixel,
@@ -428,27 +492,38 @@ PYBIND11_MODULE(stereo, m) {
         "method asw's options (diameter, response, shape, continuity, right_weights, separable, "
         "threads), defaults as stereo match --aggregation asw.");
 
+    // Static: pybind11 keeps the pointer.
+    static const std::string evaluate_doc =
+        "Middlebury scores of a float disparity against ground truth / gt_scale (0 = unknown), "
+        "the same dict as `stereo eval --json`; masks are uint8 with 255 = scored. A ground "
+        "truth whose largest value is more than " +
+        std::to_string(static_cast<int>(stereo::io::kGroundTruthRangeFactor)) +
+        "x the map's is refused (ValueError: wrong gt_scale?) unless any_gt_range=True.";
     m.def("evaluate", &evaluate, py::arg("disparity"), py::arg("ground_truth"), py::kw_only(),
           py::arg("threshold") = 1.0, py::arg("nonocc") = py::none(), py::arg("all") = py::none(),
           py::arg("disc") = py::none(), py::arg("zero_is_invalid") = true,
-          "Middlebury scores of a float disparity against float ground truth (0 = unknown), "
-          "the same dict as `stereo eval --json`; masks are uint8 with 255 = scored.");
+          py::arg("gt_scale") = 1.0, py::arg("any_gt_range") = false, evaluate_doc.c_str());
 
     m.def("fuzzy_decision", &fuzzy_decision, py::arg("left"), py::arg("centre"), py::arg("right"),
           "The fuzzy obstacle-avoidance decision on three window occupancies in [0, 1] "
           "(stereo fis).");
 
 #ifdef STEREO_WITH_RTL
-    m.def("cosim_configs", [] {
-        std::vector<std::string> names;
-        for (const stereo::sim::TopConfig* c : stereo::sim::all_top_configs()) {
-            names.push_back(c->name);
-        }
-        return names;
-    });
+    m.def(
+        "cosim_configs",
+        [] {
+            std::vector<std::string> names;
+            for (const stereo::sim::TopConfig* c : stereo::sim::all_top_configs()) {
+                names.push_back(c->name);
+            }
+            return names;
+        },
+        "The names of every Verilated stereo_top configuration of this build, of every cost and "
+        "family (small, small-lcdm, small-census, the lanes, lean and FPGA cores); cosim() runs "
+        "the smallest one of the pair's cost that covers it.");
     m.def(
         "cosim",
-        [](const py::array& left, const py::array& right, int ndisp, int window, double sigma,
+        [](const py::object& left, const py::object& right, int ndisp, int window, double sigma,
            bool ca, std::optional<std::string> cost_name, int min_disp, bool validation,
            std::optional<int> uniqueness, std::optional<int> lr_check, std::optional<bool> subpixel,
            double stall, double gap, std::uint32_t seed, const std::string& trace,

@@ -28,6 +28,13 @@ else
   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DSTEREO_WITH_RTL=OFF
   cmake --build build -j"$(nproc)" --target stereo
 fi
+# The Python module too, so that the README's Python first step works right after this script
+# (the target exists when pybind11 was found, python/CMakeLists.txt).
+if cmake --build build --target help | grep -q stereo_python; then
+  cmake --build build -j"$(nproc)" --target stereo_python
+else
+  echo "quickstart: pybind11 or Python 3 not found, the Python module is not built" >&2
+fi
 
 data=/usr/share/doc/opencv-doc/examples/data
 mkdir -p out

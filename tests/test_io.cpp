@@ -9,6 +9,7 @@
 #include <numbers>
 #include <optional>
 #include <random>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -23,6 +24,7 @@
 #include "stereo_io/data_dir.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/limits.hpp"
+#include "stereo_io/output.hpp"
 #include "temp_folder.hpp"
 
 namespace stereo::io {
@@ -897,3 +899,77 @@ TEST(DisparityFiles, Offset16HoldsSignedSubpixelDisparities) {
 
 }  // namespace
 }  // namespace stereo
+
+namespace stereo::io {
+namespace {
+
+// ---- self-describing disparity PNGs (issue 47): a tEXt chunk before IEND --------------------
+
+std::span<const unsigned char> as_bytes(const std::string& text) {
+    return {reinterpret_cast<const unsigned char*>(text.data()), text.size()};
+}
+
+TEST(PngText, Crc32IsTheStandardOne) {
+    // The check value of CRC-32/ISO-HDLC (zlib's crc32) for "123456789", and the CRC of the
+    // IEND chunk every PNG ends with (its type, no data).
+    EXPECT_EQ(png_crc32(as_bytes("123456789")), 0xCBF43926U);
+    EXPECT_EQ(png_crc32(as_bytes("IEND")), 0xAE426082U);
+}
+
+TEST(PngText, ChunkRoundTripsAndKeepsThePixels) {
+    cv::Mat mat(7, 5, CV_16UC1);
+    cv::randu(mat, 0, 65535);
+    const std::string plain = encode_png(mat, "m.png");
+    const std::string tagged = with_png_text(plain, "stereo-disparity", "encoding=offset16");
+    ASSERT_EQ(tagged.size(), plain.size() + 12 + 16 + 1 + 17);
+    // Everything but the inserted chunk is the original file, IEND last.
+    EXPECT_EQ(tagged.substr(0, plain.size() - 12), plain.substr(0, plain.size() - 12));
+    EXPECT_EQ(tagged.substr(tagged.size() - 12), plain.substr(plain.size() - 12));
+    EXPECT_EQ(png_text(as_bytes(tagged), "stereo-disparity"), "encoding=offset16");
+    EXPECT_EQ(png_text(as_bytes(tagged), "stereo"), std::nullopt);
+    EXPECT_EQ(png_text(as_bytes(plain), "stereo-disparity"), std::nullopt);
+    EXPECT_EQ(png_text(as_bytes("not a png"), "stereo-disparity"), std::nullopt);
+    // The chunk's CRC covers its type and data.
+    const std::string chunk = tagged.substr(plain.size() - 12, 12 + 16 + 1 + 17);
+    const std::uint32_t crc = png_crc32(as_bytes(chunk.substr(4, chunk.size() - 8)));
+    const auto* end = reinterpret_cast<const unsigned char*>(chunk.data() + chunk.size() - 4);
+    EXPECT_EQ(crc, (std::uint32_t{end[0]} << 24) | (std::uint32_t{end[1]} << 16) |
+                       (std::uint32_t{end[2]} << 8) | end[3]);
+    const std::vector<unsigned char> buffer(tagged.begin(), tagged.end());
+    const cv::Mat decoded = cv::imdecode(buffer, cv::IMREAD_UNCHANGED);
+    ASSERT_EQ(decoded.type(), CV_16UC1);
+    EXPECT_EQ(cv::norm(decoded, mat, cv::NORM_INF), 0.0);
+    EXPECT_THROW((void)with_png_text("not a png", "k", "t"), std::invalid_argument);
+    EXPECT_THROW((void)with_png_text(plain, "", "t"), std::invalid_argument);
+}
+
+TEST(PngText, DisparityTagsRoundTripAndBadOnesAreNamed) {
+    for (const DisparityTag tag : {DisparityTag{DisparityEncoding::offset16, 1.0},
+                                   DisparityTag{DisparityEncoding::scaled, 4.0},
+                                   DisparityTag{DisparityEncoding::scaled, 0.25}}) {
+        EXPECT_EQ(parse_disparity_tag(disparity_tag_text(tag), "f"), tag);
+    }
+    EXPECT_EQ(disparity_tag_text({DisparityEncoding::scaled, 4.0}), "encoding=scaled scale=4");
+    for (const char* bad : {"", "encoding=pfm", "encoding=scaled scale=", "encoding=scaled scale=0",
+                            "encoding=scaled scale=4x", "encoding=scaled scale=-1"}) {
+        try {
+            (void)parse_disparity_tag(bad, "'f.png'");
+            ADD_FAILURE() << "accepted '" << bad << "'";
+        } catch (const std::runtime_error& error) {
+            EXPECT_NE(std::string(error.what()).find("'f.png'"), std::string::npos);
+        }
+    }
+}
+
+TEST(PngText, DisparityFilesCarryTheirTag) {
+    const TempFolder folder;
+    cv::Mat mat(4, 6, CV_8UC1, cv::Scalar(12));
+    const auto path = folder.path() / "d.png";
+    write_file_atomic(path, encode_disparity_png(mat, {DisparityEncoding::scaled, 4.0}, path));
+    EXPECT_EQ(read_disparity_tag(path), (DisparityTag{DisparityEncoding::scaled, 4.0}));
+    write_png(path, mat);  // another tool's PNG
+    EXPECT_EQ(read_disparity_tag(path), std::nullopt);
+}
+
+}  // namespace
+}  // namespace stereo::io

@@ -15,9 +15,12 @@
 #include <string>
 #include <vector>
 
+#include <opencv2/core.hpp>
+
 #include "stereo_io/test_support.hpp"
 #include "stereo_robot/calibration.hpp"
 #include "stereo_robot/decision.hpp"
+#include "stereo_robot/overlay.hpp"
 #include "stereo_robot/windows.hpp"
 #include "temp_folder.hpp"
 
@@ -495,6 +498,28 @@ TEST_F(TempDir, SequencesFromFoldersAndLists) {
     EXPECT_EQ(listed[1].first, fs::path("/x/c.png"));
     EXPECT_THROW(pairs_from_list(write("one.txt", "a.png\n")), std::invalid_argument);
     EXPECT_THROW(pairs_from_list(write("none.txt", "# nothing\n")), std::runtime_error);
+}
+
+// The overlay names its colours (issue 47): a legend whose red swatch is the only pure red of a
+// picture with no near pixel (near pixels are tinted half-way, never pure red).
+TEST(Overlay, CarriesALegendOfItsColours) {
+    const DisparityMap far(640, 480);  // every pixel invalid: nothing near
+    const cv::Mat left(480, 640, CV_8UC3, cv::Scalar::all(90));
+    const OverlayInfo info{{0.0, 0.0, 0.0}, Direction::forward, 0.0, "test"};
+    const cv::Mat picture = draw_overlay(left, far, 10.0, 0, info);
+    ASSERT_EQ(picture.size(), left.size());
+    int red = 0;
+    int red_in_corner = 0;
+    for (int y = 0; y < picture.rows; ++y) {
+        for (int x = 0; x < picture.cols; ++x) {
+            if (picture.at<cv::Vec3b>(y, x) == cv::Vec3b(0, 0, 255)) {
+                ++red;
+                red_in_corner += (x > picture.cols / 2 && y < picture.rows / 4) ? 1 : 0;
+            }
+        }
+    }
+    EXPECT_GT(red, 0);
+    EXPECT_EQ(red, red_in_corner);
 }
 
 }  // namespace

@@ -78,9 +78,11 @@ void write_output(const BoardOptions& options, io::DisparityEncoding output_enco
     if (output_encoding == io::DisparityEncoding::pfm) {
         bytes = io::encode_pfm(io::to_float_disparity(validated));
     } else if (output_encoding == io::DisparityEncoding::offset16) {
-        bytes = io::encode_png(io::to_offset16(validated), options.output);
+        bytes =
+            io::encode_disparity_png(io::to_offset16(validated),
+                                     {.encoding = io::DisparityEncoding::offset16}, options.output);
     } else {
-        bytes = io::encode_png(io::disparity_to_mat(map, ndisp, 1), options.output);
+        bytes = io::encode_disparity_png(io::disparity_to_mat(map, ndisp, 1), {}, options.output);
     }
     io::write_file_atomic(options.output, bytes);
 }

@@ -13,6 +13,7 @@
 
 #include "cli.hpp"
 #include "cli_command.hpp"
+#include "stereo_io/colour_key.hpp"
 #include "stereo_io/disparity_files.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/metrics.hpp"
@@ -37,7 +38,44 @@ struct EvalOptions {
     bool json = false;
     std::string encoding = "scaled";  // of a PNG DISP: scaled or offset16 (.pfm: by extension)
     std::string same_pixels;          // another disparity file: score where both are valid
+    bool any_gt_range = false;        // score even a ground truth far outside the map's range
+    bool legend = true;               // the --error-map's legend strip (io::with_error_legend)
+    // Given on the command line (a PNG's own tag applies otherwise, and must agree with them).
+    bool scale_given = false;
+    bool gt_scale_given = false;
+    bool encoding_given = false;
 };
+
+// How to read a disparity file: its extension (.pfm), else its tag (a PNG the tools wrote,
+// io::read_disparity_tag), else the options. An option given on the command line that
+// contradicts the tag is an error, not a silent choice.
+struct FileReading {
+    io::DisparityEncoding encoding;
+    double scale;
+};
+
+FileReading file_reading(const std::string& path, const char* scale_option, double scale,
+                         bool scale_given, io::DisparityEncoding png_encoding,
+                         bool encoding_given) {
+    const io::DisparityEncoding encoding = io::encoding_of(path, png_encoding);
+    if (encoding == io::DisparityEncoding::pfm) {
+        return {encoding, scale};
+    }
+    const std::optional<io::DisparityTag> tag = io::read_disparity_tag(path);
+    if (!tag) {
+        return {encoding, scale};
+    }
+    const std::string recorded =
+        "'" + path + "' records " + io::disparity_tag_text(*tag) + " (written by stereo)";
+    if (encoding_given && tag->encoding != png_encoding) {
+        throw std::invalid_argument(recorded + " but --encoding says otherwise: drop --encoding");
+    }
+    if (scale_given && tag->encoding == io::DisparityEncoding::scaled && tag->scale != scale) {
+        throw std::invalid_argument(recorded + " but " + scale_option + " says otherwise: drop " +
+                                    scale_option);
+    }
+    return {tag->encoding, tag->encoding == io::DisparityEncoding::scaled ? tag->scale : 1.0};
+}
 
 std::string quoted(const std::string& path) {
     return "'" + path + "'";
@@ -96,17 +134,21 @@ void run_eval(const EvalOptions& options) {
                                                    ? io::DisparityEncoding::offset16
                                                    : io::DisparityEncoding::scaled;
     const auto load_ours = [&](const std::string& path) {
-        return io::load_disparity_file(path, io::encoding_of(path, png_encoding), options.scale);
+        const FileReading reading =
+            file_reading(path, "--scale", options.scale, options.scale_given, png_encoding,
+                         options.encoding_given);
+        return io::load_disparity_file(path, reading.encoding, reading.scale);
     };
+    const FileReading gt_reading =
+        file_reading(options.ground_truth, "--gt-scale", options.gt_scale, options.gt_scale_given,
+                     io::DisparityEncoding::scaled, false);
     // Every map is float with NaN where invalid or unknown: valid zero and negative
     // disparities count like any other.
     io::EvalInput input{
         .disparity = {load_ours(options.disparity), "disparity " + quoted(options.disparity)},
         .ground_truth = {io::downscale_ground_truth(
-                             io::load_disparity_file(options.ground_truth,
-                                                     io::encoding_of(options.ground_truth,
-                                                                     io::DisparityEncoding::scaled),
-                                                     options.gt_scale),
+                             io::load_disparity_file(options.ground_truth, gt_reading.encoding,
+                                                     gt_reading.scale),
                              options.gt_downscale),
                          "ground truth " + quoted(options.ground_truth)},
         .nonocc = load_optional_mask(options.nonocc, "nonocc", options.gt_downscale),
@@ -132,9 +174,16 @@ void run_eval(const EvalOptions& options) {
         }
         input.scored = io::NamedMat{both, "pixels valid in both maps"};
     }
+    if (!options.any_gt_range) {
+        io::check_ground_truth_range(
+            input,
+            "if GT holds d * K, give --gt-scale K (Middlebury 2003: 4, KITTI: 256); a PNG map from "
+            "another tool may need --scale or --encoding offset16; --any-gt-range scores anyway");
+    }
     const io::EvalResult result = io::evaluate(input);  // checks every size first
     if (!options.error_map.empty()) {
-        io::write_png(options.error_map, io::error_map(input));
+        const cv::Mat map = io::error_map(input);
+        io::write_png(options.error_map, options.legend ? io::with_error_legend(map) : map);
     }
     if (options.json) {
         const nlohmann::json json = result;
@@ -159,6 +208,11 @@ void add_eval_command(CLI::App& app) {
                    {"--gt-downscale", &options->gt_downscale,
                     "GT and masks are F times larger than DISP (match --downscale F)",
                     checks::integer_at_least(1)}});
+    command->get_option("--scale")->each(
+        [options = options.get()](const std::string&) { options->scale_given = true; });
+    command->get_option("--gt-scale")->each([options = options.get()](const std::string&) {
+        options->gt_scale_given = true;
+    });
     command->add_option("--nonocc", options->nonocc, "Mask of non-occluded pixels (255 = scored)");
     command->add_option("--all", options->all,
                         "Mask of scored pixels (255); default: every known GT pixel");
@@ -168,16 +222,28 @@ void add_eval_command(CLI::App& app) {
         ->check(checks::real_in(0, 1e6));
     command
         ->add_option("--error-map", options->error_map,
-                     "Write an RGB PNG: grey correct, red bad, blue invalid, black unscored")
+                     "Write an RGB PNG: grey correct, red bad, blue invalid, black unscored, "
+                     "with a legend strip below")
         ->check(checks::png_output());
+    command->add_flag("--legend,!--no-legend", options->legend,
+                      "--no-legend: the --error-map alone, the size of the map [default: " +
+                          std::string(options->legend ? "--legend" : "--no-legend") + "]");
     command->add_flag("--json", options->json, "Print the scores as one JSON object");
     command
         ->add_option("--encoding", options->encoding,
                      "How a PNG DISP stores disparities: scaled (d * K, 0 = invalid) or offset16 "
                      "(32768 + 16 d, 0 = invalid; stereo match --png16). A .pfm file (DISP or GT) "
-                     "is read as float with inf = invalid")
+                     "is read as float with inf = invalid. A PNG written by stereo records its "
+                     "encoding and scale (a text chunk): they apply unless given here")
         ->check(CLI::IsMember({"scaled", "offset16"}))
-        ->capture_default_str();
+        ->capture_default_str()
+        ->each([options = options.get()](const std::string&) { options->encoding_given = true; });
+    char factor[16];
+    std::snprintf(factor, sizeof factor, "%g", io::kGroundTruthRangeFactor);
+    command->add_flag("--any-gt-range", options->any_gt_range,
+                      std::string("Score even when GT's largest value is more than ") + factor +
+                          "x the map's (by default an error: a GT read at the wrong --gt-scale "
+                          "scores every pixel bad)");
     command->add_option("--same-pixels", options->same_pixels,
                         "Score only pixels valid in DISP and in this other disparity file (same "
                         "encoding), to compare two maps on one pixel set");

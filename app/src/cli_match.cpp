@@ -17,6 +17,7 @@
 #include "cli_matcher_options.hpp"
 #include "stereo/catalogue.hpp"
 #include "stereo/hierarchical.hpp"
+#include "stereo_io/colour_key.hpp"
 #include "stereo_io/disparity_files.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_io/output.hpp"
@@ -30,7 +31,8 @@ struct MatchOptions {
     std::string left;
     std::string right;
     std::string output;
-    std::string colour;  // empty: no colour view
+    std::string colour;      // empty: no colour view
+    bool colour_bar = true;  // the colour view's key below it (io::colour_view)
     MatcherOptions matcher;
     int scale = 1;
     int downscale = 1;
@@ -214,7 +216,7 @@ void check_outputs(const MatchOptions& options, int ndisp) {
 
 // Every output encoded, in memory, before the first file is written.
 std::vector<std::pair<std::filesystem::path, std::string>> encoded_outputs(
-    const MatchOptions& options, const MatchResult& result, int ndisp,
+    const MatchOptions& options, const MatchResult& result, int ndisp, int min_disp,
     io::DisparityEncoding output_encoding) {
     const DisparityMap& map = result.disparity;
     std::vector<std::pair<std::filesystem::path, std::string>> files;
@@ -223,15 +225,20 @@ std::vector<std::pair<std::filesystem::path, std::string>> encoded_outputs(
                            io::encode_pfm(io::to_float_disparity(result.validated)));
     } else if (output_encoding == io::DisparityEncoding::offset16) {
         files.emplace_back(options.output,
-                           io::encode_png(io::to_offset16(result.validated), options.output));
+                           io::encode_disparity_png(io::to_offset16(result.validated),
+                                                    {.encoding = io::DisparityEncoding::offset16},
+                                                    options.output));
     } else {
-        files.emplace_back(
-            options.output,
-            io::encode_png(io::disparity_to_mat(map, ndisp, options.scale), options.output));
+        files.emplace_back(options.output,
+                           io::encode_disparity_png(io::disparity_to_mat(map, ndisp, options.scale),
+                                                    {.encoding = io::DisparityEncoding::scaled,
+                                                     .scale = static_cast<double>(options.scale)},
+                                                    options.output));
     }
     if (!options.colour.empty()) {
         files.emplace_back(options.colour,
-                           io::encode_png(io::disparity_to_colour(map, ndisp), options.colour));
+                           io::encode_png(io::colour_view(map, ndisp, min_disp, options.colour_bar),
+                                          options.colour));
     }
     if (!options.vertical.empty() && !result.vertical.empty()) {
         // The offsets of the output's valid pixels: the full level's winners, or the field.
@@ -252,7 +259,14 @@ std::vector<std::pair<std::filesystem::path, std::string>> encoded_outputs(
     if (!options.dump_levels.empty()) {
         for (const auto& [name, mat] : level_files(result, ndisp, options.scale)) {
             const std::filesystem::path path = std::filesystem::path(options.dump_levels) / name;
-            files.emplace_back(path, io::encode_png(mat, path));
+            // The *_disparity.png maps are disparity PNGs (labels x scale), the others views.
+            files.emplace_back(
+                path, name.ends_with("_disparity.png")
+                          ? io::encode_disparity_png(mat,
+                                                     {.encoding = io::DisparityEncoding::scaled,
+                                                      .scale = static_cast<double>(options.scale)},
+                                                     path)
+                          : io::encode_png(mat, path));
         }
     }
     return files;
@@ -389,7 +403,8 @@ void run_match(const MatchOptions& options) {
         std::chrono::steady_clock::now() - start;
 
     // Every output together, all or nothing (io::write_files_atomic).
-    const auto files = encoded_outputs(options, result, ndisp, output_encoding);
+    const auto files =
+        encoded_outputs(options, result, ndisp, config.pipeline.min_disp, output_encoding);
     if (!options.dump_levels.empty()) {
         std::filesystem::create_directories(options.dump_levels);
     }
@@ -430,9 +445,11 @@ void add_match_command(CLI::App& app) {
         ->required();
     add_matcher_options(*command, options->matcher, MatcherChoice::selectable,
                         {.validation = true, .speckle = true, .validation_on_by_default = true});
-    command->add_flag("--png16", options->png16,
-                      "pipeline: write a 16-bit PNG of 32768 + 16 d (signed, 1/16 pixel), 0 = "
-                      "invalid; a .pfm output holds float disparities with +inf invalid");
+    command->add_flag(
+        "--png16,!--no-png16", options->png16,
+        "pipeline: write a 16-bit PNG of 32768 + 16 d (signed, 1/16 pixel), 0 = "
+        "invalid; a .pfm output holds float disparities with +inf invalid [default: " +
+            std::string(options->png16 ? "--png16" : "--no-png16") + "]");
     // The 2-D search's own options, under its heading (the catalogue's summary).
     const std::string two_d =
         "--method hierarchical: " +
@@ -472,8 +489,15 @@ void add_match_command(CLI::App& app) {
                      "Multiply disparities by K in the PNG (16-bit when (N-1)*K > 255)")
         ->capture_default_str()
         ->check(checks::integer_in(1, 65535));
-    command->add_option("--color", options->colour, "Also write a colour-mapped view")
+    command
+        ->add_option("--color", options->colour,
+                     "Also write a colour-mapped view (TURBO, invalid white) with a colour bar "
+                     "of the disparities in pixels below it")
         ->check(checks::png_output());
+    command->add_flag("--color-bar,!--no-color-bar", options->colour_bar,
+                      "--no-color-bar: the --color view alone, the size of the map [default: " +
+                          std::string(options->colour_bar ? "--color-bar" : "--no-color-bar") +
+                          "]");
     command
         ->add_option("--certainty", options->certainty,
                      "pipeline, asw, vertical, diagonal: also write stage 6's certainty of "
@@ -486,7 +510,10 @@ void add_match_command(CLI::App& app) {
                      "4 speckle)")
         ->check(checks::png_output());
     add_downscale_option(*command, options->downscale);
-    command->add_flag("--json", options->json, "Print the summary as one JSON object");
+    command->add_flag("--json,!--no-json", options->json,
+                      "Print the summary as one JSON object [default: " +
+                          std::string(options->json ? "--json" : "--no-json, one line of text") +
+                          "]");
 }
 
 }  // namespace stereo::cli

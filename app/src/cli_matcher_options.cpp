@@ -36,6 +36,13 @@ const MatcherRegistry& matchers() {
     return registry;
 }
 
+std::optional<bool> MatcherOptions::subpixel_given() const {
+    if (subpixel_option == nullptr || subpixel_option->count() == 0) {
+        return std::nullopt;
+    }
+    return subpixel;
+}
+
 std::string MatcherOptions::resolved_method() const {
     if (aggregation == "asw") {
         const catalogue::Method chosen = catalogue::method(method).id;
@@ -88,9 +95,7 @@ MatchConfig MatcherOptions::resolved() const {
         overrides.cost.reset();
     }
     overrides.validation = !no_validation;
-    if (subpixel) {
-        overrides.subpixel = true;
-    }
+    overrides.subpixel = subpixel_given();
     defaults::apply(overrides, resolved_config);
     asw::Params& weights = resolved_config.asw;
     if (window_set) {
@@ -105,6 +110,22 @@ MatchConfig MatcherOptions::resolved() const {
 
 namespace {
 
+// "on" / "off": a switch's default for --help.
+std::string on_off(bool on) {
+    return on ? "on" : "off";
+}
+
+// " [by cost: census 0, ad 6, ...]": a stage-6 value's default for each cost of the catalogue.
+template <class Field>
+std::string by_cost(Field field) {
+    std::string text = " [by cost:";
+    for (const catalogue::CostRow& row : catalogue::kCosts) {
+        text += " " + std::string(row.name) + " " + std::to_string(field(row.validation)) + ",";
+    }
+    text.back() = ']';
+    return text;
+}
+
 // Puts every option of `command` from the `first`-th on under the --help heading `group`.
 void group_options_since(CLI::App& command, std::size_t first, const std::string& group) {
     const std::vector<CLI::Option*> all = command.get_options();
@@ -115,8 +136,8 @@ void group_options_since(CLI::App& command, std::size_t first, const std::string
 
 // An option whose default follows another one (the cost brings its own ratio and tolerance,
 // resolved()): it holds a value only when given; --help shows the subcommand's default.
-void add_given(CLI::App& command, const char* name, std::optional<int>& value, const char* help,
-               int shown_default) {
+void add_given(CLI::App& command, const char* name, std::optional<int>& value,
+               const std::string& help, int shown_default) {
     command.add_option(name, value, help)->default_str(std::to_string(shown_default));
 }
 
@@ -144,27 +165,41 @@ void add_validation_options(CLI::App& command, MatcherOptions& options, MatcherC
                 v.uniqueness_ratio = chosen.uniqueness;
                 v.lr_tolerance = chosen.lr_tolerance;
             }
-            command.add_flag("--no-validation", options.no_validation,
-                             "Output the plain winners: no uniqueness, left-right, sub-pixel or "
-                             "speckle step (an explicit --uniqueness, --lr-check, --subpixel or "
-                             "--speckle-size turns that step back on)");
+            command.add_flag(
+                "--no-validation,!--validation", options.no_validation,
+                "Output the plain winners: no uniqueness, left-right, sub-pixel or "
+                "speckle step (an explicit --uniqueness, --lr-check, --subpixel or "
+                "--speckle-size turns that step back on); --validation: every "
+                "step [default: " +
+                    std::string(options.no_validation ? "--no-validation" : "--validation") + "]");
         }
         command
             .add_option("--min-disp", params.min_disp,
                         "Smallest disparity searched (may be negative): labels cover "
                         "min-disp .. min-disp + ndisp - 1")
             ->capture_default_str();
-        add_given(command, "--uniqueness", options.given.uniqueness,
-                  "Invalidate a pixel whose best cost is not U percent below every cost outside "
-                  "its neighbours (0..255)",
+        // Where the cost brings its own values, --help lists them for every cost.
+        const std::string uniqueness_help =
+            "Invalidate a pixel whose best cost is not U percent below every cost outside its "
+            "neighbours (0..255)" +
+            (options.defaults_per_cost
+                 ? by_cost([](const catalogue::Validation& d) { return d.uniqueness; })
+                 : std::string());
+        const std::string lr_help =
+            "Invalidate a pixel whose right-image winner differs by more than T labels "
+            "(0..255)" +
+            (options.defaults_per_cost
+                 ? by_cost([](const catalogue::Validation& d) { return d.lr_tolerance; })
+                 : std::string());
+        add_given(command, "--uniqueness", options.given.uniqueness, uniqueness_help.c_str(),
                   v.uniqueness_ratio);
-        add_given(command, "--lr-check", options.given.lr_tolerance,
-                  "Invalidate a pixel whose right-image winner differs by more than T labels "
-                  "(0..255)",
+        add_given(command, "--lr-check", options.given.lr_tolerance, lr_help.c_str(),
                   v.lr_tolerance);
-        command.add_flag("--subpixel", options.subpixel,
-                         "Refine each disparity by the parabola through its neighbours' costs "
-                         "(1/16 pixel)");
+        options.subpixel_option = command.add_flag(
+            "--subpixel,!--no-subpixel", options.subpixel,
+            "Refine each disparity by the parabola through its neighbours' costs (1/16 pixel); "
+            "--no-subpixel (or --subpixel=false): whole labels [default: " +
+                on_off(v.subpixel) + "]");
     }
     if (exposed.speckle) {
         speckle::Params& speckles = options.config.speckle;
@@ -214,18 +249,26 @@ void add_selection_options(CLI::App& command, MatcherOptions& options) {
                {"gaussian", "asw"});
     asw::Params& weights = options.config.asw;
     const std::size_t asw_first = command.get_options().size();
-    command.add_flag("--no-continuity", options.asw_no_continuity,
-                     "ASW: one pass, without the continuity (preliminary disparity) weight");
+    command.add_flag("--no-continuity,!--continuity", options.asw_no_continuity,
+                     "ASW: one pass, without the continuity (preliminary disparity) weight "
+                     "[default: " +
+                         std::string(weights.continuity ? "--continuity" : "--no-continuity") +
+                         "]");
     add_choice("--response", options.asw_response,
                "ASW: log (Weber-Fechner, the thesis) or exp (Yoon-Kweon's exponentials)",
                {"log", "exp"});
     add_choice("--shape", options.asw_shape,
                "ASW: circle of diameter --window, or square of the same pixel count",
                {"circle", "square"});
-    command.add_flag("--separable", weights.separable,
-                     "ASW: the hardware-friendly variant (a vertical then a horizontal 1-D pass)");
-    command.add_flag("--left-weights-only", options.asw_left_weights_only,
-                     "ASW: colour similarity in the left image only (not in the right too)");
+    command.add_flag("--separable,!--no-separable", weights.separable,
+                     "ASW: the hardware-friendly variant (a vertical then a horizontal 1-D pass) "
+                     "[default: " +
+                         on_off(weights.separable) + "]");
+    command.add_flag(
+        "--left-weights-only,!--both-weights", options.asw_left_weights_only,
+        "ASW: colour similarity in the left image only; --both-weights: in the "
+        "right too [default: " +
+            std::string(weights.right_weights ? "--both-weights" : "--left-weights-only") + "]");
     command
         .add_option("--truncation", weights.truncation,
                     "ASW: the cost is min(C, T) before the aggregation; -1: by the cost "
@@ -257,7 +300,9 @@ void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoi
         ->capture_default_str()
         ->each([&options](const std::string&) { options.sigma_set = true; });
     if (exposed.no_ca) {
-        command.add_flag("--no-ca", options.no_ca, "Skip the cellular-automata rules");
+        command.add_flag("--no-ca,!--ca", options.no_ca,
+                         "Skip the cellular-automata rules; --ca: apply them [default: " +
+                             std::string(options.no_ca ? "--no-ca" : "--ca") + "]");
     }
     add_validation_options(command, options, choice, exposed);
     if (choice == MatcherChoice::selectable) {

@@ -3,6 +3,7 @@
 // one help text each, registered by one helper and resolved into a stereo::MatchConfig once.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include <nlohmann/json_fwd.hpp>
@@ -12,6 +13,7 @@
 
 namespace CLI {
 class App;
+class Option;
 }  // namespace CLI
 
 namespace stereo::cli {
@@ -42,16 +44,23 @@ struct MatcherOptions {
     // (stereo/defaults.hpp), each unless given on the command line.
     bool defaults_per_cost = false;
     bool no_validation = false;
+    // --subpixel / --no-subpixel (or --subpixel=false): the value, and the option, to tell a
+    // given value from the default.
     bool subpixel = false;
+    const CLI::Option* subpixel_option = nullptr;
+
+    // The sub-pixel switch given on the command line, if any.
+    std::optional<bool> subpixel_given() const;
 
     // The method after --frontend and --aggregation; throws std::invalid_argument when they
     // contradict.
     std::string resolved_method() const;
     // --window or --sigma was given on the command line.
     bool window_given() const { return window_set || sigma_set; }
-    // --uniqueness, --lr-check, --subpixel or --speckle-size was given on the command line.
+    // --uniqueness, --lr-check, --subpixel / --no-subpixel or --speckle-size was given on the
+    // command line.
     bool explicit_validation() const {
-        return given.uniqueness || given.lr_tolerance || subpixel || given.speckle_size;
+        return given.uniqueness || given.lr_tolerance || subpixel_given() || given.speckle_size;
     }
     // The configuration with --no-ca, the stage 6 switches, the per-cost defaults and the ASW
     // options applied (with --aggregation asw, --window is the support region's diameter, 55

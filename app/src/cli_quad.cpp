@@ -65,7 +65,9 @@ void write_outputs(const QuadOptions& options, const std::string& extension,
     files.emplace_back(options.output,
                        extension == ".pfm"
                            ? io::encode_pfm(io::to_float_disparity(fused))
-                           : io::encode_png(io::to_offset16(fused), options.output));
+                           : io::encode_disparity_png(io::to_offset16(fused),
+                                                      {.encoding = io::DisparityEncoding::offset16},
+                                                      options.output));
     if (!options.certainty.empty()) {
         files.emplace_back(
             options.certainty,

@@ -1,8 +1,11 @@
 // `disparity LEFT RIGHT OUT.pfm|OUT.png [NDISP [DOWNSCALE]]`: two images in (through OpenCV,
-// area-averaged by DOWNSCALE), the model's stage-6 disparity out (PFM in pixels, or an 8-bit PNG
-// of the labels x 4), written atomically. The smallest program built on the installed package
-// (examples/consumer/CMakeLists.txt). NDISP must cover the pair's largest disparity at that
-// scale: Aloe (1282x1110, up to about 211 px) needs 128 labels at DOWNSCALE 2.
+// area-averaged by DOWNSCALE), `stereo match`'s default map out (PFM in pixels, or an 8-bit PNG
+// of the labels x 255 / NDISP), written atomically. The default run is the library's one
+// definition of it, stereo::defaults::match_config(): the default cost (census), stage 6 with
+// that cost's uniqueness ratio and left-right tolerance, sub-pixel output and the speckle filter.
+// The smallest program built on the installed package (examples/consumer/CMakeLists.txt). NDISP
+// must cover the pair's largest disparity at that scale: Aloe (1282x1110, up to about 211 px)
+// needs 128 labels at DOWNSCALE 2.
 #include <algorithm>
 #include <cstdio>
 #include <exception>
@@ -10,6 +13,7 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include "stereo/defaults.hpp"
 #include "stereo/matcher.hpp"
 #include "stereo_io/disparity_files.hpp"
 #include "stereo_io/io.hpp"
@@ -23,8 +27,11 @@ int main(int argc, char** argv) {
     try {
         const int downscale = argc > 5 ? std::stoi(argv[5]) : 1;
         const stereo::io::ImagePair pair = stereo::io::load_pair(argv[1], argv[2], downscale);
-        stereo::MatchConfig config;
-        config.pipeline.ndisp = argc > 4 ? std::stoi(argv[4]) : 16;
+        // What `stereo match LEFT RIGHT --ndisp NDISP` runs: the default method on the model.
+        stereo::MatchConfig config = stereo::defaults::match_config();
+        if (argc > 4) {
+            config.pipeline.ndisp = std::stoi(argv[4]);
+        }
         stereo::MatcherRegistry registry;
         stereo::register_model_matchers(registry);
         const auto matcher = registry.create("pipeline", "model", config);

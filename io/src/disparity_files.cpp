@@ -1,12 +1,16 @@
 #include "stereo_io/disparity_files.hpp"
 
+#include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 #include "quoted.hpp"
 #include "stereo_io/io.hpp"
@@ -183,11 +187,181 @@ std::string encode_disparity(const ValidatedDisparity& validated, DisparityEncod
         case DisparityEncoding::pfm:
             return encode_pfm(to_float_disparity(validated));
         case DisparityEncoding::offset16:
-            return encode_png(to_offset16(validated), path);
+            return encode_disparity_png(to_offset16(validated),
+                                        {.encoding = DisparityEncoding::offset16}, path);
         case DisparityEncoding::scaled:
             break;
     }
-    return encode_png(disparity_to_mat(to_label_map(validated), ndisp, scale), path);
+    return encode_disparity_png(disparity_to_mat(to_label_map(validated), ndisp, scale),
+                                {.encoding = DisparityEncoding::scaled, .scale = double(scale)},
+                                path);
+}
+
+namespace {
+
+constexpr std::array<unsigned char, 8> kPngSignature = {0x89, 'P',  'N',  'G',
+                                                        '\r', '\n', 0x1A, '\n'};
+
+std::uint32_t read_be32(const unsigned char* at) {
+    return (std::uint32_t{at[0]} << 24) | (std::uint32_t{at[1]} << 16) |
+           (std::uint32_t{at[2]} << 8) | std::uint32_t{at[3]};
+}
+
+void append_be32(std::string& out, std::uint32_t value) {
+    for (const int shift : {24, 16, 8, 0}) {
+        out.push_back(static_cast<char>((value >> shift) & 0xFFU));
+    }
+}
+
+bool is_png(std::span<const unsigned char> bytes) {
+    return bytes.size() >= kPngSignature.size() &&
+           std::equal(kPngSignature.begin(), kPngSignature.end(), bytes.begin());
+}
+
+// Calls visit(type, data) for each chunk of a PNG until it returns false or the bytes end.
+template <class Visit>
+void for_each_chunk(std::span<const unsigned char> bytes, Visit visit) {
+    std::size_t at = kPngSignature.size();
+    while (at + 12 <= bytes.size()) {
+        const std::uint32_t length = read_be32(bytes.data() + at);
+        if (length > bytes.size() - at - 12) {
+            return;
+        }
+        const std::string_view type(reinterpret_cast<const char*>(bytes.data() + at + 4), 4);
+        if (!visit(type, bytes.subspan(at + 8, length), at)) {
+            return;
+        }
+        at += 12 + std::size_t{length};
+    }
+}
+
+}  // namespace
+
+std::uint32_t png_crc32(std::span<const unsigned char> bytes) {
+    static const std::array<std::uint32_t, 256> table = [] {
+        std::array<std::uint32_t, 256> t{};
+        for (std::uint32_t n = 0; n < 256; ++n) {
+            std::uint32_t c = n;
+            for (int k = 0; k < 8; ++k) {
+                c = (c & 1U) != 0 ? 0xEDB88320U ^ (c >> 1) : c >> 1;
+            }
+            t[n] = c;
+        }
+        return t;
+    }();
+    std::uint32_t crc = 0xFFFFFFFFU;
+    for (const unsigned char byte : bytes) {
+        crc = table[(crc ^ byte) & 0xFFU] ^ (crc >> 8);
+    }
+    return crc ^ 0xFFFFFFFFU;
+}
+
+std::string with_png_text(std::string png, std::string_view keyword, std::string_view text) {
+    if (keyword.empty() || keyword.size() > 79 ||
+        std::any_of(keyword.begin(), keyword.end(), [](char c) {
+            const auto u = static_cast<unsigned char>(c);
+            return u < 32 || (u > 126 && u < 161);
+        })) {
+        throw std::invalid_argument("a PNG text keyword must be 1 to 79 printable characters");
+    }
+    const std::span<const unsigned char> bytes(reinterpret_cast<const unsigned char*>(png.data()),
+                                               png.size());
+    std::optional<std::size_t> iend;
+    if (is_png(bytes)) {
+        for_each_chunk(bytes, [&](std::string_view type, auto, std::size_t at) {
+            if (type == "IEND") {
+                iend = at;
+                return false;
+            }
+            return true;
+        });
+    }
+    if (!iend) {
+        throw std::invalid_argument("cannot add a PNG text chunk: not a PNG ending in IEND");
+    }
+    std::string chunk;
+    append_be32(chunk, static_cast<std::uint32_t>(keyword.size() + 1 + text.size()));
+    chunk += "tEXt";
+    chunk += keyword;
+    chunk.push_back('\0');
+    chunk += text;
+    append_be32(chunk, png_crc32({reinterpret_cast<const unsigned char*>(chunk.data()) + 4,
+                                  chunk.size() - 4}));
+    png.insert(*iend, chunk);
+    return png;
+}
+
+std::optional<std::string> png_text(std::span<const unsigned char> bytes,
+                                    std::string_view keyword) {
+    std::optional<std::string> found;
+    if (!is_png(bytes)) {
+        return found;
+    }
+    for_each_chunk(
+        bytes, [&](std::string_view type, std::span<const unsigned char> data, std::size_t) {
+            if (type == "IEND") {
+                return false;
+            }
+            const std::string_view text(reinterpret_cast<const char*>(data.data()), data.size());
+            if (type == "tEXt" && text.size() > keyword.size() && text.starts_with(keyword) &&
+                text[keyword.size()] == '\0') {
+                found = std::string(text.substr(keyword.size() + 1));
+                return false;
+            }
+            return true;
+        });
+    return found;
+}
+
+std::string disparity_tag_text(const DisparityTag& tag) {
+    if (tag.encoding == DisparityEncoding::offset16) {
+        return "encoding=offset16";
+    }
+    char scale[32];
+    std::snprintf(scale, sizeof scale, "%.10g", tag.scale);
+    return std::string("encoding=scaled scale=") + scale;
+}
+
+DisparityTag parse_disparity_tag(std::string_view text, const std::string& name) {
+    const auto bad = [&] {
+        return std::runtime_error("cannot read " + name + ": its " +
+                                  std::string(kDisparityTagKeyword) + " text '" +
+                                  std::string(text.substr(0, 80)) +
+                                  "' is neither 'encoding=offset16' nor 'encoding=scaled scale=K'");
+    };
+    if (text == "encoding=offset16") {
+        return {.encoding = DisparityEncoding::offset16, .scale = 1.0};
+    }
+    constexpr std::string_view prefix = "encoding=scaled scale=";
+    if (!text.starts_with(prefix)) {
+        throw bad();
+    }
+    const std::string number(text.substr(prefix.size()));
+    std::size_t used = 0;
+    double scale = 0.0;
+    try {
+        scale = std::stod(number, &used);
+    } catch (const std::exception&) {
+        throw bad();
+    }
+    if (used != number.size() || !std::isfinite(scale) || !(scale > 0.0)) {
+        throw bad();
+    }
+    return {.encoding = DisparityEncoding::scaled, .scale = scale};
+}
+
+std::optional<DisparityTag> read_disparity_tag(const std::filesystem::path& path) {
+    const std::vector<unsigned char> bytes = read_input_file(path);
+    const std::optional<std::string> text = png_text(bytes, kDisparityTagKeyword);
+    if (!text) {
+        return std::nullopt;
+    }
+    return parse_disparity_tag(*text, quoted(path));
+}
+
+std::string encode_disparity_png(const cv::Mat& mat, const DisparityTag& tag,
+                                 const std::filesystem::path& path) {
+    return with_png_text(encode_png(mat, path), kDisparityTagKeyword, disparity_tag_text(tag));
 }
 
 cv::Mat load_disparity_file(const std::filesystem::path& path, DisparityEncoding encoding,

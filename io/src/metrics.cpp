@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
@@ -76,6 +77,37 @@ std::optional<double> RegionScore::percent() const {
         return std::nullopt;
     }
     return 100.0 * static_cast<double>(bad) / static_cast<double>(evaluated);
+}
+
+ValueRange value_range(const EvalInput& input) {
+    check_input(input);
+    ValueRange range;
+    for (int y = 0; y < input.disparity.mat.rows; ++y) {
+        for (int x = 0; x < input.disparity.mat.cols; ++x) {
+            const float gt = input.ground_truth.mat.at<float>(y, x);
+            if (input.gt_zero_is_unknown ? gt > 0.0F : std::isfinite(gt)) {
+                range.gt_max = std::max(range.gt_max, std::abs(static_cast<double>(gt)));
+            }
+            const float d = input.disparity.mat.at<float>(y, x);
+            if (input.zero_is_invalid ? d > 0.0F : std::isfinite(d)) {
+                range.map_max = std::max(range.map_max, std::abs(static_cast<double>(d)));
+                ++range.map_valid;
+            }
+        }
+    }
+    return range;
+}
+
+void check_ground_truth_range(const EvalInput& input, const std::string& hint) {
+    const ValueRange range = value_range(input);
+    if (range.map_valid == 0 ||
+        range.gt_max <= kGroundTruthRangeFactor * std::max(range.map_max, 1.0)) {
+        return;
+    }
+    char numbers[160];
+    std::snprintf(numbers, sizeof numbers, " reaches %.4g px but %s only %.4g px (more than %gx)",
+                  range.gt_max, "the map", range.map_max, kGroundTruthRangeFactor);
+    throw std::invalid_argument(input.ground_truth.name + numbers + ": " + hint);
 }
 
 EvalResult evaluate(const EvalInput& input) {

@@ -353,3 +353,106 @@ def test_cosim_on_demand_core_equals_model(tmp_path):
         stereo.cosim(left, right, ndisp=8, window=3, size=(48, 32), lanes=3, cache=str(tmp_path))
     with pytest.raises(ValueError, match="give size"):
         stereo.cosim(left, right, ndisp=8, window=3, lanes=4)
+
+
+# A ground truth stored as d * K (Middlebury 2003: 4) read without gt_scale scored every pixel
+# bad and returned normally (issue 47): it is refused with a short hint, gt_scale reads it, and
+# any_gt_range=True scores it anyway.
+def _scaled_gt_case():
+    rng = np.random.default_rng(SEED)
+    disparity = rng.uniform(2, 40, size=(24, 32)).astype(np.float32)
+    return disparity, np.round(disparity * 4).astype(np.uint8)
+
+
+def test_evaluate_refuses_a_ground_truth_at_the_wrong_scale():
+    disparity, gt = _scaled_gt_case()
+    with pytest.raises(ValueError) as error:
+        stereo.evaluate(disparity, gt)
+    message = str(error.value)
+    assert "gt_scale" in message and len(message) < 300
+
+
+def test_evaluate_gt_scale_reads_a_scaled_ground_truth():
+    disparity, gt = _scaled_gt_case()
+    scores = stereo.evaluate(disparity, gt, gt_scale=4)
+    # |d - round(4 d) / 4| <= 1/8: no pixel is bad.
+    assert scores["bad_all"] == 0.0
+    forced = stereo.evaluate(disparity, gt, any_gt_range=True)
+    assert forced["bad_all"] == 100.0
+    with pytest.raises(ValueError):
+        stereo.evaluate(disparity, gt, gt_scale=0)
+
+
+# Bad input (issue 47): one short message each (under 300 characters) that names the argument,
+# not pybind11's list of signatures with the repr of every argument (megabytes for a list).
+@pytest.mark.parametrize("case", ["list", "none", "float", "float01", "int16", "shape", "tiny",
+                                  "sizes"])
+def test_bad_images_give_one_short_message(case):
+    left, right = shifted_pair()
+    wrong = {
+        "list": (left.tolist(), right),
+        "none": (None, right),
+        "float": (left.astype(np.float32), right),
+        "float01": (left / 255.0, right / 255.0),
+        "int16": (left.astype(np.int16), right),
+        "shape": (left[:, :, :2].copy(), right),
+        "tiny": (left[:2, :2].copy(), right[:2, :2].copy()),
+        "sizes": (left, right[:, :32].copy()),
+    }[case]
+    with pytest.raises((ValueError, TypeError)) as error:
+        stereo.match(*wrong)
+    message = str(error.value)
+    print(message)
+    assert 0 < len(message) < 300 and "\n" not in message
+    if case in ("list", "none", "float", "float01", "int16", "shape"):
+        assert "left" in message
+
+
+def test_evaluate_bad_arguments_give_one_short_message():
+    gt = np.ones((8, 8), np.float32)
+    for disparity in (None, "map", np.array([["a"] * 8] * 8)):
+        with pytest.raises((ValueError, TypeError)) as error:
+            stereo.evaluate(disparity, gt)
+        assert len(str(error.value)) < 300 and "disparity" in str(error.value)
+
+
+def test_rgba_is_read_as_its_rgb():
+    """The CLI drops alpha from an RGBA file; the module drops it from an (H, W, 4) array."""
+    left, right = shifted_pair()
+    alpha = np.full(left.shape[:2] + (1,), 77, np.uint8)
+    rgb = stereo.match(left, right, ndisp=16)
+    rgba = stereo.match(np.concatenate([left, alpha], axis=2),
+                        np.concatenate([right, 255 - alpha], axis=2), ndisp=16)
+    assert np.array_equal(rgb["fixed"], rgba["fixed"])
+    assert np.array_equal(rgb["reason"], rgba["reason"])
+
+
+def test_load_image_downscale_equals_the_cli(fixture_pair, tmp_path):
+    """load_image(path, downscale=2) then match() writes what `stereo match --downscale 2` does
+    (the README's CLI example, reproduced in Python)."""
+    left_path, right_path = fixture_pair
+    full = stereo.load_image(left_path)
+    half = stereo.load_image(left_path, downscale=2)
+    assert half.shape[:2] == (full.shape[0] // 2, full.shape[1] // 2)
+    out = tmp_path / "half.pfm"
+    subprocess.run([CLI, "match", left_path, right_path, "--downscale", "2", "--ndisp", "8",
+                    "-o", str(out)], check=True, capture_output=True)
+    result = stereo.match(half, stereo.load_image(right_path, downscale=2), ndisp=8)
+    expected = read_pfm(out)
+    assert np.array_equal(np.isnan(result["disparity_px"]), ~np.isfinite(expected))
+    valid = np.isfinite(expected)
+    assert np.array_equal(result["disparity_px"][valid], expected[valid])
+    with pytest.raises(ValueError):
+        stereo.load_image(left_path, downscale=0)
+
+
+@pytest.mark.skipif(not stereo.has_rtl, reason="built with -DSTEREO_WITH_RTL=OFF")
+def test_cosim_configs_lists_every_configuration_of_the_cli():
+    """Every configuration `stereo cosim --help` lists as built is in cosim_configs()."""
+    help_text = subprocess.run([CLI, "cosim", "--help"], capture_output=True, text=True,
+                               check=True).stdout
+    listed = help_text.split("Verilated configurations in this build", 1)[1]
+    names = [line.split(":")[0].strip() for line in listed.splitlines()[1:]
+             if line.startswith("  ") and ":" in line]
+    assert len(names) >= 3, listed
+    assert set(names) <= set(stereo.cosim_configs())

@@ -25,6 +25,46 @@ const cv::Scalar kNear{0, 0, 255};        // red: nearer than the safety distanc
 const cv::Scalar kWindow{255, 255, 255};  // window frames
 const cv::Scalar kArrow{0, 255, 0};
 
+const cv::Scalar kGround{255, 0, 0};  // blue: near, but ground the model ignores
+
+// The key of the overlay's colours (issue 47), in a dark box at the top right, below the
+// occupancy labels: one swatch and
+// name per colour the picture uses. Drawn inside the picture, so that its size (and a video's)
+// stays the map's; left out of images too small to hold it.
+void draw_legend(cv::Mat& out, bool ground, double font, int thick) {
+    std::vector<std::pair<std::string, cv::Scalar>> entries = {{"near (closer than safe)", kNear}};
+    if (ground) {
+        entries.emplace_back("near ground (ignored)", kGround);
+    }
+    entries.emplace_back("window, occupancy", kWindow);
+    entries.emplace_back("direction", kArrow);
+    const double scale = 0.5 * font;
+    int baseline = 0;
+    int width = 0;
+    for (const auto& entry : entries) {
+        width = std::max(
+            width,
+            cv::getTextSize(entry.first, cv::FONT_HERSHEY_SIMPLEX, scale, thick, &baseline).width);
+    }
+    const int line = static_cast<int>(22 * scale) + 6;
+    const int swatch = line - 6;
+    // Below the windows' occupancy labels (drawn 28 * font below their top).
+    const cv::Rect box(out.cols - (width + swatch + 16) - 4, static_cast<int>(50 * font) + 8,
+                       width + swatch + 16, line * static_cast<int>(entries.size()) + 6);
+    if (box.x < out.cols / 2 || box.y + box.height > out.rows / 2) {
+        return;
+    }
+    cv::Mat region = out(box);
+    region *= 0.35;  // darkened, the picture still visible through it
+    int y = box.y + 4;
+    for (const auto& [name, colour] : entries) {
+        cv::rectangle(out, cv::Rect(box.x + 4, y, swatch, swatch), colour, cv::FILLED);
+        cv::putText(out, name, cv::Point(box.x + swatch + 10, y + swatch - 1),
+                    cv::FONT_HERSHEY_SIMPLEX, scale, cv::Scalar::all(255), thick, cv::LINE_AA);
+        y += line;
+    }
+}
+
 constexpr int kSheetColumns = 4;
 constexpr int kThumbWidth = 320;
 
@@ -85,6 +125,7 @@ cv::Mat draw_overlay(const cv::Mat& left, const DisparityMap& map, double thresh
         to_string(info.direction) + (info.caption.empty() ? std::string() : "  " + info.caption);
     cv::putText(out, label, cv::Point(border + 6, map.height - border - 8),
                 cv::FONT_HERSHEY_SIMPLEX, font, kArrow, thick + 1);
+    draw_legend(out, ground != nullptr, font, thick);
     return out;
 }
 

@@ -8,7 +8,11 @@ percentage.
                         [--gt-downscale F] [--threshold T] [--title TEXT]
 
 DISP: a PFM (what `stereo match -o disp.pfm` writes: pixels, +inf invalid) or a PNG holding
-disparity x --scale (0 invalid). GT: a PFM or a PNG holding disparity x --gt-scale (0 unknown).
+disparity x --scale (0 invalid); a PNG `stereo` wrote records its encoding and scale (its
+"stereo-disparity" text chunk), which then applies. GT: a PFM or a PNG holding disparity x
+--gt-scale (0 unknown). --gt-downscale F samples the GT as `stereo eval` does (the centre of each
+F x F block, divided by F), so the bad-pixel percentage, printed as "bad_all P" after the figure's
+path, is `stereo eval`'s bad_all (python/tests/test_figures.py).
 Needs Debian's python3-matplotlib.
 """
 import argparse
@@ -41,10 +45,16 @@ def read_disparity(path, scale):
         return read_pfm(path)
     from PIL import Image  # python3-pil, a dependency of python3-matplotlib
 
-    values = np.array(Image.open(path)).astype(np.float32)
+    image = Image.open(path)
+    tag = getattr(image, "text", {}).get("stereo-disparity", "")
+    values = np.array(image).astype(np.float32)
     if values.ndim != 2:
         raise ValueError(f"{path}: a disparity PNG must be single-channel")
     values[values == 0] = np.nan
+    if tag == "encoding=offset16":  # stereo match --png16: 32768 + 16 d
+        return (values - 32768.0) / 16.0
+    if tag.startswith("encoding=scaled scale="):
+        scale = float(tag.split("=")[-1])
     return values / scale
 
 
@@ -70,8 +80,11 @@ def main(argv=None):
     disp = read_disparity(args.disparity, args.scale)
     gt = read_disparity(args.gt, args.gt_scale) if args.gt else None
     if gt is not None and args.gt_downscale > 1:
+        # As stereo eval (io::downscale_ground_truth): floor(W/F) x floor(H/F) samples, each the
+        # centre (F x + F/2, F y + F/2) of its block, divided by F.
         f = args.gt_downscale
-        gt = gt[: gt.shape[0] // f * f : f, : gt.shape[1] // f * f : f] / f
+        rows, cols = gt.shape[0] // f, gt.shape[1] // f
+        gt = gt[f // 2 :: f, f // 2 :: f][:rows, :cols] / f
     if gt is not None and gt.shape != disp.shape:
         raise ValueError(f"ground truth is {gt.shape[1]}x{gt.shape[0]}, the disparity "
                          f"{disp.shape[1]}x{disp.shape[0]}")
@@ -118,6 +131,8 @@ def main(argv=None):
         fig.suptitle(args.title)
     fig.savefig(args.out, dpi=110)
     print(args.out)
+    if gt is not None:
+        print(f"bad_all {percent!r}")
     return 0
 
 

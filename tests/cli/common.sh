@@ -45,3 +45,13 @@ split_args() {
     done
     [ "$#" -gt 0 ] || { echo "usage: $_usage"; exit 2; }
 }
+
+# untag IN OUT: a copy of the disparity PNG IN without the "stereo-disparity" tEXt chunk that
+# `stereo` writes just before IEND (stereo_io/disparity_files.hpp), i.e. the PNG as another
+# tool would have written it. IN must carry the chunk.
+untag() {
+    _at=$(grep -obUa 'tEXtstereo-disparity' "$1" | head -n 1 | cut -d: -f1)
+    [ -n "$_at" ] || { echo "FAIL: $1 has no stereo-disparity chunk"; exit 1; }
+    head -c $((_at - 4)) "$1" >"$2"
+    tail -c 12 "$1" >>"$2"
+}

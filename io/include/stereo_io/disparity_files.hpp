@@ -6,7 +6,10 @@
 //   scaled   8- or 16-bit PNG: value = d * scale, 0 = invalid (the classic format).
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -44,6 +47,41 @@ DisparityEncoding output_encoding(const std::filesystem::path& path, DisparityEn
 // the scaled 8-bit PNG of its label map (labels x scale, `ndisp` labels).
 std::string encode_disparity(const ValidatedDisparity& validated, DisparityEncoding encoding,
                              int ndisp, int scale, const std::filesystem::path& path);
+
+// Self-describing disparity PNGs (issue 47): every disparity PNG the tools write carries a tEXt
+// chunk with the keyword kDisparityTagKeyword and the text "encoding=scaled scale=K" or
+// "encoding=offset16", so that `stereo eval` reads it right without --scale or --encoding. The
+// chunk sits just before IEND; the pixels and every other byte are what cv::imencode wrote.
+inline constexpr std::string_view kDisparityTagKeyword = "stereo-disparity";
+
+struct DisparityTag {
+    DisparityEncoding encoding = DisparityEncoding::scaled;  // scaled or offset16
+    double scale = 1.0;                                      // scaled: the file holds d * scale
+    bool operator==(const DisparityTag&) const = default;
+};
+
+// The CRC-32 of PNG chunks (ISO 3309, the one zlib's crc32 computes).
+std::uint32_t png_crc32(std::span<const unsigned char> bytes);
+
+// `png` with a tEXt chunk "keyword\0text" inserted before its IEND chunk. Throws
+// std::invalid_argument when `png` is not a PNG ending in IEND, or the keyword is not 1..79
+// printable Latin-1 characters.
+std::string with_png_text(std::string png, std::string_view keyword, std::string_view text);
+// The text of the first tEXt chunk named `keyword`, if any; std::nullopt for other files.
+std::optional<std::string> png_text(std::span<const unsigned char> bytes, std::string_view keyword);
+
+// The tag's text ("encoding=scaled scale=4") and back; parse_disparity_tag throws
+// std::runtime_error naming `name` for a text it cannot read.
+std::string disparity_tag_text(const DisparityTag& tag);
+DisparityTag parse_disparity_tag(std::string_view text, const std::string& name);
+// The tag of a disparity PNG, std::nullopt when it has none (written by another tool, or not a
+// PNG at all).
+std::optional<DisparityTag> read_disparity_tag(const std::filesystem::path& path);
+
+// `mat` (a scaled or offset16 disparity image) as PNG bytes with its tag; the scale is written
+// for the scaled encoding only. std::runtime_error naming `path` when it cannot be encoded.
+std::string encode_disparity_png(const cv::Mat& mat, const DisparityTag& tag,
+                                 const std::filesystem::path& path);
 
 // Reads a disparity file in `encoding` into CV_32FC1 with NaN where invalid / unknown; `scale`
 // applies to the scaled encoding only.

@@ -77,6 +77,20 @@ struct EvalResult {
 // threshold is negative or not finite.
 EvalResult evaluate(const EvalInput& input);
 
+// A ground truth at the wrong scale scores every pixel bad and still exits 0 (Middlebury 2003's
+// gt.png holds 4 d, KITTI's 256 d). check_ground_truth_range throws std::invalid_argument, with
+// `hint` appended, when the ground truth's largest known |value| is more than
+// kGroundTruthRangeFactor times the map's largest valid |disparity| (at least 1 pixel), i.e. far
+// outside anything the map searched. Nothing is checked when the map has no valid pixel.
+inline constexpr double kGroundTruthRangeFactor = 2.0;
+struct ValueRange {
+    double map_max = 0.0;  // largest valid |d|, 0 when none
+    double gt_max = 0.0;   // largest known |gt|, 0 when none
+    std::int64_t map_valid = 0;
+};
+ValueRange value_range(const EvalInput& input);
+void check_ground_truth_range(const EvalInput& input, const std::string& hint);
+
 // Keys bad_nonocc, bad_all, bad_disc (percent), nmse, coverage (fraction), threshold, with null
 // for what was not computed, plus a "counts" object.
 void to_json(nlohmann::json& json, const EvalResult& result);
