@@ -1,5 +1,7 @@
 #include "stereo_io/disparity_files.hpp"
 
+#include <zlib.h>
+
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -238,22 +240,15 @@ void for_each_chunk(std::span<const unsigned char> bytes, Visit visit) {
 }  // namespace
 
 std::uint32_t png_crc32(std::span<const unsigned char> bytes) {
-    static const std::array<std::uint32_t, 256> table = [] {
-        std::array<std::uint32_t, 256> t{};
-        for (std::uint32_t n = 0; n < 256; ++n) {
-            std::uint32_t c = n;
-            for (int k = 0; k < 8; ++k) {
-                c = (c & 1U) != 0 ? 0xEDB88320U ^ (c >> 1) : c >> 1;
-            }
-            t[n] = c;
-        }
-        return t;
-    }();
-    std::uint32_t crc = 0xFFFFFFFFU;
-    for (const unsigned char byte : bytes) {
-        crc = table[(crc ^ byte) & 0xFFU] ^ (crc >> 8);
+    // zlib's CRC-32 is the one PNG specifies (ISO 3309, polynomial 0xEDB88320).
+    uLong crc = crc32(0L, Z_NULL, 0);
+    std::size_t done = 0;
+    while (done < bytes.size()) {  // crc32 takes a uInt length: a chunk of at most 1 GiB at a time
+        const auto length = static_cast<uInt>(std::min<std::size_t>(bytes.size() - done, 1U << 30));
+        crc = crc32(crc, bytes.data() + done, length);
+        done += length;
     }
-    return crc ^ 0xFFFFFFFFU;
+    return static_cast<std::uint32_t>(crc);
 }
 
 std::string with_png_text(std::string png, std::string_view keyword, std::string_view text) {

@@ -3,7 +3,7 @@
 // negative disparities, several distinct disparities, and stage 6's reason codes. Prints what it
 // measured; exits 1 naming the first requirement the map misses, 2 on a usage error.
 //
-//   map_exercises OUT.pfm --min-valid 0.3 --fractional --negative --distinct 4 \
+//   map_exercises OUT.pfm --min-valid 0.3 --fractional --negative --distinct 4
 //       --reasons OUT.reasons.png --reason-codes 1,3,4 [--print]
 #include <cmath>
 #include <cstdlib>
