@@ -22,6 +22,7 @@
 #include "stereo/stage_table.hpp"
 #include "stereo_io/test_support.hpp"
 #include "tb_real_pairs.hpp"
+#include "tb_reset.hpp"
 #include "verilated_harness.hpp"
 
 namespace stereo::tb {
@@ -62,13 +63,7 @@ std::int16_t signed_coord(std::uint32_t bits) {
 template <typename Model>
 class Downscaler {
   public:
-    explicit Downscaler(const char* name) : harness_(name) {
-        Model& m = harness_.model();
-        m.rst = 1;
-        m.ce = 0;
-        harness_.tick();
-        m.rst = 0;
-    }
+    explicit Downscaler(const char* name) : harness_(name) { reset_stage(harness_); }
 
     // Streams `rows` rows of `image` (all of them by default) with a gap of idle clocks before a
     // pixel with probability `gap`; the blocks that came out.
@@ -97,13 +92,7 @@ class Downscaler {
         return out;
     }
 
-    void reset() {
-        Model& m = harness_.model();
-        m.rst = 1;
-        m.ce = 0;
-        harness_.tick();
-        m.rst = 0;
-    }
+    void reset() { reset_stage(harness_); }
 
   private:
     void tick(std::vector<Block>& out) {
@@ -154,11 +143,11 @@ TEST(StereoDownscale, ExtremeValuesRoundHalfUp) {
                 // rounds up to 1); block 3 random.
                 const int block = x / 4;
                 const int in_block = (y % 4) * 4 + x % 4;
-                image.at(x, y, c) = static_cast<std::uint8_t>(
-                    block == 0   ? 255
-                    : block == 1 ? (in_block == 0 ? 1 : 0)
-                    : block == 2 ? (in_block < 8 ? 1 : 0)
-                                 : static_cast<int>(rng() & 255U));
+                image.at(x, y, c) =
+                    static_cast<std::uint8_t>(block == 0   ? 255
+                                              : block == 1 ? (in_block == 0 ? 1 : 0)
+                                              : block == 2 ? (in_block < 8 ? 1 : 0)
+                                                           : static_cast<int>(rng() & 255U));
             }
         }
     }

@@ -109,4 +109,12 @@ inline CLI::Validator thread_count() {
     return checks::integer_in(0, 256);
 }
 
+// A switch and its negation: `name` sets `value`, `negation` clears it (`name=false` too); the
+// help ends with the one that holds now, "[default: --name]" or "[default: --negation]".
+inline CLI::Option* add_switch(CLI::App& command, const std::string& name,
+                               const std::string& negation, bool& value, const std::string& help) {
+    return command.add_flag(name + ",!" + negation, value,
+                            help + " [default: " + (value ? name : negation) + "]");
+}
+
 }  // namespace stereo::cli

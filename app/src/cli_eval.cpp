@@ -225,9 +225,8 @@ void add_eval_command(CLI::App& app) {
                      "Write an RGB PNG: grey correct, red bad, blue invalid, black unscored, "
                      "with a legend strip below")
         ->check(checks::png_output());
-    command->add_flag("--legend,!--no-legend", options->legend,
-                      "--no-legend: the --error-map alone, the size of the map [default: " +
-                          std::string(options->legend ? "--legend" : "--no-legend") + "]");
+    add_switch(*command, "--legend", "--no-legend", options->legend,
+               "--no-legend: the --error-map alone, the size of the map");
     command->add_flag("--json", options->json, "Print the scores as one JSON object");
     command
         ->add_option("--encoding", options->encoding,

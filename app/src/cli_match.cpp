@@ -494,10 +494,8 @@ void add_match_command(CLI::App& app) {
                      "Also write a colour-mapped view (TURBO, invalid white) with a colour bar "
                      "of the disparities in pixels below it")
         ->check(checks::png_output());
-    command->add_flag("--color-bar,!--no-color-bar", options->colour_bar,
-                      "--no-color-bar: the --color view alone, the size of the map [default: " +
-                          std::string(options->colour_bar ? "--color-bar" : "--no-color-bar") +
-                          "]");
+    add_switch(*command, "--color-bar", "--no-color-bar", options->colour_bar,
+               "--no-color-bar: the --color view alone, the size of the map");
     command
         ->add_option("--certainty", options->certainty,
                      "pipeline, asw, vertical, diagonal: also write stage 6's certainty of "
@@ -510,10 +508,8 @@ void add_match_command(CLI::App& app) {
                      "4 speckle)")
         ->check(checks::png_output());
     add_downscale_option(*command, options->downscale);
-    command->add_flag("--json,!--no-json", options->json,
-                      "Print the summary as one JSON object [default: " +
-                          std::string(options->json ? "--json" : "--no-json, one line of text") +
-                          "]");
+    add_switch(*command, "--json", "--no-json", options->json,
+               "Print the summary as one JSON object; --no-json: one line of text");
 }
 
 }  // namespace stereo::cli

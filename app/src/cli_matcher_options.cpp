@@ -110,11 +110,6 @@ MatchConfig MatcherOptions::resolved() const {
 
 namespace {
 
-// "on" / "off": a switch's default for --help.
-std::string on_off(bool on) {
-    return on ? "on" : "off";
-}
-
 // " [by cost: census 0, ad 6, ...]": a stage-6 value's default for each cost of the catalogue.
 template <class Field>
 std::string by_cost(Field field) {
@@ -165,13 +160,10 @@ void add_validation_options(CLI::App& command, MatcherOptions& options, MatcherC
                 v.uniqueness_ratio = chosen.uniqueness;
                 v.lr_tolerance = chosen.lr_tolerance;
             }
-            command.add_flag(
-                "--no-validation,!--validation", options.no_validation,
-                "Output the plain winners: no uniqueness, left-right, sub-pixel or "
-                "speckle step (an explicit --uniqueness, --lr-check, --subpixel or "
-                "--speckle-size turns that step back on); --validation: every "
-                "step [default: " +
-                    std::string(options.no_validation ? "--no-validation" : "--validation") + "]");
+            add_switch(command, "--no-validation", "--validation", options.no_validation,
+                       "Output the plain winners: no uniqueness, left-right, sub-pixel or "
+                       "speckle step (an explicit --uniqueness, --lr-check, --subpixel or "
+                       "--speckle-size turns that step back on); --validation: every step");
         }
         command
             .add_option("--min-disp", params.min_disp,
@@ -195,11 +187,11 @@ void add_validation_options(CLI::App& command, MatcherOptions& options, MatcherC
                   v.uniqueness_ratio);
         add_given(command, "--lr-check", options.given.lr_tolerance, lr_help.c_str(),
                   v.lr_tolerance);
-        options.subpixel_option = command.add_flag(
-            "--subpixel,!--no-subpixel", options.subpixel,
+        options.subpixel = v.subpixel;  // the cost's default, shown in --help (given: see below)
+        options.subpixel_option = add_switch(
+            command, "--subpixel", "--no-subpixel", options.subpixel,
             "Refine each disparity by the parabola through its neighbours' costs (1/16 pixel); "
-            "--no-subpixel (or --subpixel=false): whole labels [default: " +
-                on_off(v.subpixel) + "]");
+            "--no-subpixel (or --subpixel=false): whole labels");
     }
     if (exposed.speckle) {
         speckle::Params& speckles = options.config.speckle;
@@ -249,26 +241,18 @@ void add_selection_options(CLI::App& command, MatcherOptions& options) {
                {"gaussian", "asw"});
     asw::Params& weights = options.config.asw;
     const std::size_t asw_first = command.get_options().size();
-    command.add_flag("--no-continuity,!--continuity", options.asw_no_continuity,
-                     "ASW: one pass, without the continuity (preliminary disparity) weight "
-                     "[default: " +
-                         std::string(weights.continuity ? "--continuity" : "--no-continuity") +
-                         "]");
+    add_switch(command, "--no-continuity", "--continuity", options.asw_no_continuity,
+               "ASW: one pass, without the continuity (preliminary disparity) weight");
     add_choice("--response", options.asw_response,
                "ASW: log (Weber-Fechner, the thesis) or exp (Yoon-Kweon's exponentials)",
                {"log", "exp"});
     add_choice("--shape", options.asw_shape,
                "ASW: circle of diameter --window, or square of the same pixel count",
                {"circle", "square"});
-    command.add_flag("--separable,!--no-separable", weights.separable,
-                     "ASW: the hardware-friendly variant (a vertical then a horizontal 1-D pass) "
-                     "[default: " +
-                         on_off(weights.separable) + "]");
-    command.add_flag(
-        "--left-weights-only,!--both-weights", options.asw_left_weights_only,
-        "ASW: colour similarity in the left image only; --both-weights: in the "
-        "right too [default: " +
-            std::string(weights.right_weights ? "--both-weights" : "--left-weights-only") + "]");
+    add_switch(command, "--separable", "--no-separable", weights.separable,
+               "ASW: the hardware-friendly variant (a vertical then a horizontal 1-D pass)");
+    add_switch(command, "--left-weights-only", "--both-weights", options.asw_left_weights_only,
+               "ASW: colour similarity in the left image only; --both-weights: in the right too");
     command
         .add_option("--truncation", weights.truncation,
                     "ASW: the cost is min(C, T) before the aggregation; -1: by the cost "
@@ -300,9 +284,8 @@ void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoi
         ->capture_default_str()
         ->each([&options](const std::string&) { options.sigma_set = true; });
     if (exposed.no_ca) {
-        command.add_flag("--no-ca,!--ca", options.no_ca,
-                         "Skip the cellular-automata rules; --ca: apply them [default: " +
-                             std::string(options.no_ca ? "--no-ca" : "--ca") + "]");
+        add_switch(command, "--no-ca", "--ca", options.no_ca,
+                   "Skip the cellular-automata rules; --ca: apply them");
     }
     add_validation_options(command, options, choice, exposed);
     if (choice == MatcherChoice::selectable) {

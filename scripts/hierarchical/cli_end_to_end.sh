@@ -7,13 +7,12 @@
 # the naive run short; the vertical field and its validated 1-D pass included), distorts the
 # pair by 10 % and matches and scores the distorted copy. Exit 77 (skipped) without the data.
 set -eu
+# shellcheck source=tests/cli/common.sh
+. "$(dirname "$0")/../../tests/cli/common.sh"
 stereo=$1
 scene=$2/middlebury2003/tsukuba
 work=$3
-if [ ! -f "$scene/left.png" ] || [ ! -f "$scene/right.png" ] || [ ! -f "$scene/gt.png" ]; then
-    echo "SKIP: Middlebury Tsukuba not found in $scene"
-    exit 77
-fi
+files_or_skip "Middlebury Tsukuba" "$scene" left.png right.png gt.png
 rm -rf "$work"
 mkdir -p "$work"
 

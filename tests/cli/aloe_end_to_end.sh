@@ -8,13 +8,12 @@
 # 26.96 %, coverage 0.899 with every pixel output), so a regression on real input is caught. Exit 77 (skipped) when the package's data is
 # not installed.
 set -eu
+# shellcheck source=tests/cli/common.sh
+. "$(dirname "$0")/common.sh"
 stereo=$1
 aloe=$2
 work=$3
-if [ ! -f "$aloe/aloeL.jpg" ] || [ ! -f "$aloe/aloeR.jpg" ] || [ ! -f "$aloe/aloeGT.png" ]; then
-    echo "SKIP: Aloe not found in $aloe (Debian package opencv-doc)"
-    exit 77
-fi
+files_or_skip "Aloe (Debian package opencv-doc)" "$aloe" aloeL.jpg aloeR.jpg aloeGT.png
 mkdir -p "$work"
 rm -f "$work/aloe.png" "$work/aloe_colour.png"
 "$stereo" match "$aloe/aloeL.jpg" "$aloe/aloeR.jpg" --downscale 4 --ndisp 64 --scale 4 \

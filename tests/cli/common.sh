@@ -55,3 +55,17 @@ untag() {
     head -c $((_at - 4)) "$1" >"$2"
     tail -c 12 "$1" >>"$2"
 }
+
+# files_or_skip WHAT DIR FILE...: exits 77 (ctest's "skipped") with "SKIP: WHAT not found in DIR"
+# unless every FILE is in DIR.
+files_or_skip() {
+    _what=$1
+    _dir=$2
+    shift 2
+    for _file in "$@"; do
+        if [ ! -f "$_dir/$_file" ]; then
+            echo "SKIP: $_what not found in $_dir"
+            exit 77
+        fi
+    done
+}

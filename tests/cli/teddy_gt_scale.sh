@@ -6,13 +6,12 @@
 # It must now exit 2 with one line naming --gt-scale, and with --gt-scale 4 score normally.
 # Half size to keep it short. Exit 77 (skipped) when the data is absent.
 set -eu
+# shellcheck source=tests/cli/common.sh
+. "$(dirname "$0")/common.sh"
 stereo=$1
 teddy=$2/middlebury2003/teddy
 work=$3
-if [ ! -f "$teddy/left.png" ] || [ ! -f "$teddy/right.png" ] || [ ! -f "$teddy/gt.png" ]; then
-    echo "SKIP: teddy not found in $teddy"
-    exit 77
-fi
+files_or_skip teddy "$teddy" left.png right.png gt.png
 mkdir -p "$work"
 rm -f "$work/teddy.pfm"
 "$stereo" match "$teddy/left.png" "$teddy/right.png" --downscale 2 --ndisp 32 \

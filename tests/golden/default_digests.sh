@@ -24,19 +24,8 @@ here=$(cd "$(dirname "$0")" && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-# The bytes of a PNG without the "stereo-disparity" tEXt chunk that stereo writes before IEND
-# (issue 47; stereo_io/disparity_files.hpp): the digests were recorded before the chunk existed
-# and cover the image, which the chunk does not change. Other files pass unchanged.
-untagged() {
-  local at
-  at=$(grep -obUa 'tEXtstereo-disparity' "$1" | head -n 1 | cut -d: -f1)
-  if [ -z "$at" ]; then
-    cat "$1"
-  else
-    head -c $((at - 4)) "$1"
-    tail -c 12 "$1"
-  fi
-}
+# shellcheck source=tests/golden/untagged.sh
+source "$(dirname "$0")/untagged.sh"
 digest() { untagged "$1" | sha256sum | cut -c1-16; }
 
 # One run: prints the line; in record mode compares with the naive engine when asked.
