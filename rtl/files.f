@@ -30,3 +30,4 @@ stereo_board_link.sv
 stereo_board_top.sv
 stereo_uart_echo_top.sv
 stereo_downscale.sv
+stereo_plane_stats.sv
