@@ -48,7 +48,7 @@ for word in "--no-subpixel" "--validation" "--ca" "--no-png16" "--both-weights" 
             "--continuity"; do
     printf '%s\n' "$help" | grep -q -e "$word" || { echo "FAIL: --help does not name $word"; exit 1; }
 done
-printf '%s\n' "$help" | grep -A3 -e "--subpixel" | grep -q "default: on" \
+printf '%s\n' "$help" | grep -A3 -e "--subpixel" | grep -q "default: --subpixel\]" \
     || { echo "FAIL: --help does not show sub-pixel's default"; exit 1; }
 echo "ok: --help names every negation and sub-pixel's default"
 
