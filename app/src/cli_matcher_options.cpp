@@ -171,18 +171,17 @@ void add_validation_options(CLI::App& command, MatcherOptions& options, MatcherC
                         "min-disp .. min-disp + ndisp - 1")
             ->capture_default_str();
         // Where the cost brings its own values, --help lists them for every cost.
-        const std::string uniqueness_help =
-            "Invalidate a pixel whose best cost is not U percent below every cost outside its "
-            "neighbours (0..255)" +
-            (options.defaults_per_cost
-                 ? by_cost([](const catalogue::Validation& d) { return d.uniqueness; })
-                 : std::string());
-        const std::string lr_help =
-            "Invalidate a pixel whose right-image winner differs by more than T labels "
-            "(0..255)" +
-            (options.defaults_per_cost
-                 ? by_cost([](const catalogue::Validation& d) { return d.lr_tolerance; })
-                 : std::string());
+        const auto with_costs = [&](std::string help, auto field) {
+            return options.defaults_per_cost ? help + by_cost(field) : help;
+        };
+        const std::string uniqueness_help = with_costs(
+            "Invalidate a pixel whose best cost is not U percent below every cost "
+            "outside its neighbours (0..255)",
+            [](const catalogue::Validation& d) { return d.uniqueness; });
+        const std::string lr_help = with_costs(
+            "Invalidate a pixel whose right-image winner differs by more than T "
+            "labels (0..255)",
+            [](const catalogue::Validation& d) { return d.lr_tolerance; });
         add_given(command, "--uniqueness", options.given.uniqueness, uniqueness_help.c_str(),
                   v.uniqueness_ratio);
         add_given(command, "--lr-check", options.given.lr_tolerance, lr_help.c_str(),
