@@ -228,7 +228,7 @@ TEST(MatchEqualsNaive, RandomPair) {
 
 // A Tsukuba crop and the thesis' levels at 16 labels; skipped when the data is absent.
 class TsukubaCrop : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override {
         pair = test::middlebury_crop("tsukuba", 150, 100, 104, 84);
         if (!pair) {
