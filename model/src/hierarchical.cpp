@@ -256,47 +256,59 @@ std::vector<std::int8_t> plane_field(const Plane& plane, int width, int height, 
     return field;
 }
 
-ValidatedDisparity match_along_field(const Image& left, const Image& right,
-                                     const std::vector<std::int8_t>& field, const Params& params,
-                                     std::int64_t& count) {
-    check_pair(left, right);
-    const int width = left.width;
-    const int height = left.height;
-    const std::size_t size = static_cast<std::size_t>(width) * height;
-    if (field.size() != size) {
+Image warp_rows(const Image& right, const std::vector<std::int8_t>& field) {
+    if (field.size() != static_cast<std::size_t>(right.width) * right.height) {
         throw std::invalid_argument("the vertical field does not fit the image");
     }
-    CandidateGrid grid{width,
-                       height,
-                       params.ndisp,
-                       1,
-                       std::vector<std::int16_t>(size, 0),
-                       std::vector<std::int16_t>(field.begin(), field.end()),
-                       std::vector<std::int16_t>(size, 0),
-                       std::vector<std::int16_t>(field.begin(), field.end())};
-    const auto cost = make_cost(params.cost);
-    const LevelParams& level = params.field_level;
-    const auto aggregator =
-        make_gaussian_aggregator(gaussian_kernel(level.window, level.sigma), width, height);
-    const auto rule1 = make_ca_rule1(width, height);
-    const auto rule2 = make_ca_rule2(width, height);
-    const std::array<Refiner*, 2> ca = {rule1.get(), rule2.get()};
-    const InvalidBorder border{level.window / 2 + (params.use_ca ? 1 : 0)};
-    ValidatingSelector selector(width, height, params.ndisp, 0, params.validation, border);
-    count += search(cost->prepare(left), cost->prepare(right), grid,
-                    {*cost, *aggregator, std::span(ca.data(), params.use_ca ? ca.size() : 0),
-                     selector, CaNeighbours::horizontal});
-    ValidatedDisparity out = selector.result();
-    for (int y = 0; y < height; ++y) {
-        for (int x = 0; x < width; ++x) {
+    Image warped(right.width, right.height, right.channels);
+    for (int y = 0; y < right.height; ++y) {
+        for (int x = 0; x < right.width; ++x) {
+            const int row = std::clamp(y + field[static_cast<std::size_t>(y) * right.width + x], 0,
+                                       right.height - 1);
+            for (int c = 0; c < right.channels; ++c) {
+                warped.at(x, y, c) = right.at(x, row, c);
+            }
+        }
+    }
+    return warped;
+}
+
+namespace {
+
+// The 1-D pipeline's parameters of the pass.
+MatchParams pass_params(const Params& params) {
+    return {.ndisp = params.ndisp,
+            .window = params.field_level.window,
+            .sigma = params.field_level.sigma,
+            .use_ca = params.use_ca,
+            .cost = params.cost,
+            .min_disp = 0,
+            .validation = params.validation};
+}
+
+void mark_field_border(ValidatedDisparity& out, const std::vector<std::int8_t>& field, int reach) {
+    for (int y = 0; y < out.height; ++y) {
+        for (int x = 0; x < out.width; ++x) {
             const std::size_t p = out.index(x, y);
             const int row = y + field[p];
-            if (out.valid(p) && (row < border.reach || row >= height - border.reach)) {
+            if (out.valid(p) && (row < reach || row >= out.height - reach)) {
                 out.reason[p] = fx::kReasonBorder;
                 out.fixed[p] = 0;
             }
         }
     }
+}
+
+}  // namespace
+
+ValidatedDisparity match_along_field(const Image& left, const Image& right,
+                                     const std::vector<std::int8_t>& field, const Params& params,
+                                     std::int64_t& count) {
+    check_pair(left, right);
+    const MatchParams pass = pass_params(params);
+    ValidatedDisparity out = match_validated(left, warp_rows(right, field), pass);
+    count += static_cast<std::int64_t>(left.width) * left.height * params.ndisp;
+    mark_field_border(out, field, invalid_border(pass).reach);
     return out;
 }
 

@@ -230,10 +230,17 @@ Plane vertical_plane(const LevelMap& level, int max_iterations = 16);
 std::vector<std::int8_t> plane_field(const Plane& plane, int width, int height, int v_min,
                                      int v_max);
 
-// The 1-D pass of Output::vertical_field: candidates d = 0..D-1 of pixel (x, y) against the right
-// pixel (x - d, y + field(x, y)), cost, `field_level` aggregation, CA as params.use_ca, stage 6
-// with params.validation. A pixel whose right row y + v lies within the reach of the top or bottom
-// edge is invalid (border), like one whose window leaves the image. Adds W H D to `count`.
+// The right image as the 1-D pass sees it: pixel (x, y) is the right pixel (x, y + field(x, y)),
+// its row clamped into the image. A streaming core reads it from a buffer of V + 1 right rows
+// (docs/hierarchical.md, "The pass on a row-warped right image").
+Image warp_rows(const Image& right, const std::vector<std::int8_t>& field);
+
+// The 1-D pass of Output::vertical_field: the 1-D pipeline (match_validated: cost, `field_level`
+// aggregation, CA as params.use_ca, stage 6 with params.validation) on the left image and
+// warp_rows(right, field). Candidate d of pixel (x, y) thus meets the right pixel
+// (x - d, y + field(x - d, y)): the field is read at the right pixel's column. A pixel whose own
+// right row y + field(x, y) lies within the reach of the top or bottom edge is invalid (border),
+// like one whose window leaves the image. Adds W H D to `count`.
 ValidatedDisparity match_along_field(const Image& left, const Image& right,
                                      const std::vector<std::int8_t>& field, const Params& params,
                                      std::int64_t& count);

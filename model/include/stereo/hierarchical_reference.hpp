@@ -16,7 +16,8 @@ std::vector<std::int8_t> vertical_field(const LevelMap& level, int radius,
                                         const std::vector<std::int8_t>& prior, int prior_factor);
 std::vector<std::int8_t> plane_field(const Plane& plane, int width, int height, int v_min,
                                      int v_max);
-// The 1-D pass along a field: the naive volume of the D x 1 grid, stage 6 by its definition.
+// The 1-D pass along a field: the right image warped row by row, then the naive 1-D pipeline
+// (stereo::naive::match_validated) and the border rule of the right row.
 ValidatedDisparity match_along_field(const Image& left, const Image& right,
                                      const std::vector<std::int8_t>& field, const Params& params);
 // Output::vertical_field included (the plane's coefficients from hierarchical::vertical_plane,

@@ -320,25 +320,31 @@ ValidatedDisparity match_along_field(const Image& left, const Image& right,
                                      const std::vector<std::int8_t>& field, const Params& params) {
     const int width = left.width;
     const int height = left.height;
-    const std::size_t size = static_cast<std::size_t>(width) * height;
-    CandidateGrid grid{width, height, params.ndisp, 1, {}, {}, {}, {}};
-    grid.base_d.assign(size, 0);
-    grid.prefer_d.assign(size, 0);
-    grid.base_v.assign(field.begin(), field.end());
-    grid.prefer_v.assign(field.begin(), field.end());
-    const Volume volume = naive::final_volume(left, right, grid, params.field_level, params.use_ca,
-                                              CaNeighbours::horizontal, params.cost);
-    Dsi dsi(width, height, params.ndisp);
-    for (int d = 0; d < params.ndisp; ++d) {
-        for (int y = 0; y < height; ++y) {
-            for (int x = 0; x < width; ++x) {
-                dsi.at(x, y, d) = static_cast<CostValue>(volume.at(x, y, d));
+    // The warped right image, pixel by pixel: row y + v, or the nearest row of the image.
+    Image warped(width, height, right.channels);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            int row = y + field[static_cast<std::size_t>(y) * width + x];
+            if (row < 0) {
+                row = 0;
+            }
+            if (row > height - 1) {
+                row = height - 1;
+            }
+            for (int c = 0; c < right.channels; ++c) {
+                warped.at(x, y, c) = right.at(x, row, c);
             }
         }
     }
+    MatchParams pass;
+    pass.ndisp = params.ndisp;
+    pass.window = params.field_level.window;
+    pass.sigma = params.field_level.sigma;
+    pass.use_ca = params.use_ca;
+    pass.cost = params.cost;
+    pass.validation = params.validation;
+    ValidatedDisparity out = stereo::naive::match_validated(left, warped, pass);
     const int reach = params.field_level.window / 2 + (params.use_ca ? 1 : 0);
-    ValidatedDisparity out =
-        stereo::naive::validate(dsi, 0, params.validation, InvalidBorder{reach});
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
             const std::size_t p = static_cast<std::size_t>(y) * width + x;
