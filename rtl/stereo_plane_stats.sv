@@ -1,10 +1,12 @@
 // stereo_plane_stats: the statistics of the hierarchical core's vertical plane over one frame
 // (issue 45; docs/hierarchical.md "Hardware form of the field"), bit-exact with
 // stereo::hierarchical::plane_statistics. It sees the full level's winners in raster order, one
-// per step (ce): the pixel (in_x, in_y), whether it is valid, and its vertical offset in_v. Over the
-// frame it counts the valid offsets per value (the histogram of V_MIN .. V_MIN + VRANGE - 1), and
-// sums the normal equations of v = a + b x + c y over the inliers of the plane it was given,
-//   |v 2^16 - (a + b x + c y)| <= tolerance,
+// per step (ce): the pixel (in_x, in_y), whether it is valid, and its displacement (in_d, in_v).
+// A valid winner votes at the right image's column xr = in_x - in_d (none when xr is outside
+// 0 .. cfg_width - 1: the field lives in the right image's columns). Over the frame it counts the
+// votes per offset (the histogram of V_MIN .. V_MIN + VRANGE - 1), and sums the normal equations
+// of v = a + b xr + c y over the votes that are inliers of the plane it was given,
+//   |v 2^16 - (a + b xr + c y)| <= tolerance,
 // all in exact integers (the plane's coefficients and the tolerance in 1/2^16 pixel, as
 // stereo::hierarchical::Plane). The pixel (0, 0) starts a frame and clears the sums; the pixel
 // (cfg_width - 1, cfg_height - 1) ends it: the frame's totals are copied to the out_* registers
@@ -25,6 +27,7 @@ module stereo_plane_stats #(
     input  wire fx_pkg::coord_t            in_x,
     input  wire fx_pkg::coord_t            in_y,
     input  wire logic                      in_valid,    // the winner is valid
+    input  wire fx_pkg::coord_t            in_d,        // its horizontal displacement
     input  wire logic signed [7:0]         in_v,        // its vertical offset
     input  wire fx_pkg::cfg_size_t         cfg_width,
     input  wire fx_pkg::cfg_size_t         cfg_height,
@@ -51,22 +54,23 @@ module stereo_plane_stats #(
 
   localparam int SUMS = 9;  // count, x, y, xx, xy, yy, v, xv, yv
 
-  // The residual v 2^16 - (a + b x + c y) in 64 bits: |b x| and |c y| < 2^31 * 2^14.
+  // The residual v 2^16 - (a + b xr + c y) in 64 bits: |b xr| and |c y| < 2^31 * 2^16.
   logic signed [63:0] x, y, v, residual, magnitude;
-  logic inlier, in_range, first, last;
+  logic vote, inlier, in_range, first, last;
   logic [7:0] bin;
-  assign x = 64'(in_x);
+  assign x = 64'(in_x) - 64'(in_d);  // xr
+  assign vote = in_valid && x >= 0 && x < 64'(cfg_width);
   assign y = 64'(in_y);
   assign v = 64'(in_v);
   assign residual = (v <<< 16) - (64'(plane_a) + 64'(plane_b) * x + 64'(plane_c) * y);
   assign magnitude = residual < 0 ? -residual : residual;
-  assign inlier = in_valid && magnitude <= 64'(tolerance);
+  assign inlier = vote && magnitude <= 64'(tolerance);
   assign in_range = 32'(in_v) >= V_MIN && 32'(in_v) < V_MIN + VRANGE;
   assign bin = 8'(32'(in_v) - V_MIN);
   assign first = in_x == '0 && in_y == '0;
   assign last = 32'(in_x) + 1 == 32'(cfg_width) && 32'(in_y) + 1 == 32'(cfg_height);
 
-  // This pixel's terms, and the frame's running sums (cleared by the frame's first pixel).
+  // This vote's terms (x is xr), and the frame's running sums (cleared by the frame's first pixel).
   logic signed [63:0] terms[SUMS];
   logic signed [63:0] sums_q[SUMS];
   logic signed [63:0] sums[SUMS];  // with this pixel
@@ -90,7 +94,7 @@ module stereo_plane_stats #(
   logic [31:0] hist_next[VRANGE];
   always_comb begin
     for (int b = 0; b < VRANGE; b++) begin
-      hist_next[b] = (first ? 32'd0 : hist_q[b]) + 32'(in_valid && in_range && bin == 8'(b));
+      hist_next[b] = (first ? 32'd0 : hist_q[b]) + 32'(vote && in_range && bin == 8'(b));
     end
   end
 

@@ -64,6 +64,7 @@ class PlaneStats {
             m.in_x = static_cast<std::uint16_t>(x);
             m.in_y = static_cast<std::uint16_t>(y);
             m.in_valid = level.valid[p];
+            m.in_d = static_cast<std::uint16_t>(level.disparity[p]);
             m.in_v = static_cast<std::uint8_t>(static_cast<std::int8_t>(level.vertical[p]));
             done = tick() || done;
         }
@@ -108,8 +109,11 @@ h::LevelMap random_level(int width, int height, std::mt19937& rng) {
                       std::vector<std::int16_t>(width * height),
                       std::vector<std::uint8_t>(width * height)};
     std::uniform_int_distribution<int> offset(kVMin, kVMax);
+    // Displacements up to beyond the width: some votes fall left of the image.
+    std::uniform_int_distribution<int> displacement(0, width + 2);
     std::bernoulli_distribution valid(0.8);
     for (std::size_t p = 0; p < level.valid.size(); ++p) {
+        level.disparity[p] = static_cast<std::int16_t>(displacement(rng));
         level.vertical[p] = static_cast<std::int16_t>(offset(rng));
         level.valid[p] = valid(rng) ? 1 : 0;
     }

@@ -336,6 +336,16 @@ TEST(WarpRows, HandComputed) {
     EXPECT_THROW(warp_rows(right, std::vector<std::int8_t>(11, 0)), std::invalid_argument);
 }
 
+// The votes sit at the right columns: a 6x1 map, radius 0, so the field at a column is the vote
+// cast there. (3, 0) with d = 3, v = 2 votes at 0; (4, 0) with d = 1, v = -1 at 3; (1, 0) with
+// d = 2 points outside the image and casts none; (5, 0) is invalid.
+TEST(VerticalField, VotesSitAtTheRightColumn) {
+    const LevelMap level{6, 1, {0, 2, 0, 3, 1, 0}, {0, 5, 0, 2, -1, 4}, {0, 1, 0, 1, 1, 0}};
+    EXPECT_EQ(vertical_field(level, 0), (std::vector<std::int8_t>{2, 0, 0, -1, 0, 0}));
+    EXPECT_EQ(naive::vertical_field(level, 0, {}, 2),
+              (std::vector<std::int8_t>{2, 0, 0, -1, 0, 0}));
+}
+
 // The mode by hand: a 5x3 map, radius 1, ties to the smaller |v| then the smaller v, invalid
 // winners not counted, a prior kept unless outvoted more than twice.
 TEST(VerticalField, HandComputed) {

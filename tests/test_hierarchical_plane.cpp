@@ -70,6 +70,25 @@ TEST(PlaneStatistics, ToleranceIsInclusiveAndFollowsThePlane) {
     EXPECT_EQ(plane_statistics(level, setting, -8, 7).count, 3);
 }
 
+TEST(PlaneStatistics, VotesSitAtTheRightColumn) {
+    // One row of 5 winners, displacements d = 0, 3, 1, 1, 2 and offsets 2, 1, 1, 1, 4: the votes
+    // sit at xr = x - d = 0, -2 (outside: no vote, not in the histogram), 1, 2, 2. The plane
+    // v = xr / 2 with tolerance 1/2: xr 0 v 2 (plane 0: out), xr 1 v 1 (0.5: in), xr 2 v 1
+    // (1: in), xr 2 v 4 (1: out).
+    LevelMap level{5, 1, {0, 3, 1, 1, 2}, {2, 1, 1, 1, 4}, {1, 1, 1, 1, 1}};
+    const PlaneSetting setting{Plane{0, kPlaneOne / 2, 0}, kPlaneOne / 2};
+    const PlaneStatistics s = plane_statistics(level, setting, 0, 4);
+    EXPECT_EQ(s.count, 2);
+    EXPECT_EQ(s.sum_x, 1 + 2);
+    EXPECT_EQ(s.sum_xx, 1 + 4);
+    EXPECT_EQ(s.sum_xv, 1 * 1 + 2 * 1);
+    EXPECT_EQ(s.sum_v, 2);
+    EXPECT_EQ(s.histogram, (std::vector<std::int64_t>{0, 2, 1, 0, 1}));
+    // At the left columns (every d = 0) the inliers would be x = 1, 2, 3 (planes 0.5, 1, 1.5).
+    level.disparity = {0, 0, 0, 0, 0};
+    EXPECT_EQ(plane_statistics(level, setting, 0, 4).sum_x, 1 + 2 + 3);
+}
+
 TEST(HistogramMode, TiesToTheSmallerMagnitudeThenTheSmallerOffset) {
     PlaneStatistics s;
     s.v_min = -3;

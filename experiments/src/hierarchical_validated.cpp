@@ -100,18 +100,23 @@ hierarchical::Params params_of(const Options& options, int ndisp) {
     return params;
 }
 
-// Percent of the pixels with a known vertical disparity whose field value is its nearest integer.
-double field_agreement(const std::vector<std::int8_t>& field, const cv::Mat& exact_vertical) {
+// Percent of the pixels with a known vertical and horizontal disparity whose field value at their
+// match's column (the field lives in the right image's columns) is the nearest integer to the
+// vertical disparity.
+double field_agreement(const std::vector<std::int8_t>& field, const cv::Mat& exact_vertical,
+                       const cv::Mat& exact_horizontal) {
     std::int64_t known = 0;
     std::int64_t equal = 0;
     for (int y = 0; y < exact_vertical.rows; ++y) {
         for (int x = 0; x < exact_vertical.cols; ++x) {
             const float v = exact_vertical.at<float>(y, x);
-            if (std::isnan(v)) {
+            const float d = exact_horizontal.at<float>(y, x);
+            const int column = x - static_cast<int>(std::lround(d));
+            if (std::isnan(v) || !(d > 0) || column < 0) {
                 continue;
             }
             ++known;
-            const std::size_t p = static_cast<std::size_t>(y) * exact_vertical.cols + x;
+            const std::size_t p = static_cast<std::size_t>(y) * exact_vertical.cols + column;
             equal += field[p] == static_cast<int>(std::lround(v)) ? 1 : 0;
         }
     }
@@ -119,10 +124,12 @@ double field_agreement(const std::vector<std::int8_t>& field, const cv::Mat& exa
 }
 
 cv::Mat run_hierarchical(const Options& options, const io::SceneData& data,
-                         const cv::Mat& exact_vertical, double& agreement) {
+                         const io::WarpedScene& warped, double& agreement) {
     hierarchical::Result result =
         hierarchical::match(data.pair.left, data.pair.right, params_of(options, data.scene.ndisp));
-    agreement = result.field.empty() ? 0.0 : field_agreement(result.field, exact_vertical);
+    agreement = result.field.empty() ? 0.0
+                                     : field_agreement(result.field, warped.exact_vertical,
+                                                       warped.exact_ground_truth.mat);
     if (options.thesis_output) {
         return nan_invalid(io::to_float_disparity(result.disparity));
     }
@@ -167,8 +174,7 @@ void run(const Options& options) {
             io::SceneData exact = warped.data;
             exact.ground_truth = warped.exact_ground_truth;
             double agreement = 0;
-            const Score h = score(
-                exact, run_hierarchical(options, warped.data, warped.exact_vertical, agreement));
+            const Score h = score(exact, run_hierarchical(options, warped.data, warped, agreement));
             const Score p = score(exact, run_pipeline(warped.data));
             const Score s = score(exact, nan_invalid(io::run_stereo_sgbm(warped.data)));
             report["rows"].push_back(json{{"scene", scene.scene.name},

@@ -159,11 +159,13 @@ std::vector<std::int8_t> vertical_field(const LevelMap& level, int radius,
     });
     // Column histograms over the rows of the window, slid down; the window's histogram slid right.
     std::vector<int> columns(static_cast<std::size_t>(width) * bins, 0);
+    // A row's votes go to their right columns.
     const auto add_row = [&](int y, int sign) {
         for (int x = 0; x < width; ++x) {
             const std::size_t p = level.index(x, y);
-            if (level.valid[p] != 0) {
-                columns[static_cast<std::size_t>(x) * bins +
+            const int column = right_column(level, x, y);
+            if (level.valid[p] != 0 && column >= 0 && column < width) {
+                columns[static_cast<std::size_t>(column) * bins +
                         static_cast<std::size_t>(level.vertical[p] - v_min)] += sign;
             }
         }
@@ -221,9 +223,11 @@ Plane vertical_plane(const LevelMap& level, int max_iterations) {
         for (int y = 0; y < level.height; ++y) {
             for (int x = 0; x < level.width; ++x) {
                 const std::size_t p = level.index(x, y);
-                inliers[p] =
-                    level.valid[p] != 0 && is_plane_inlier(x, y, level.vertical[p], setting) ? 1
-                                                                                             : 0;
+                const int column = right_column(level, x, y);
+                inliers[p] = level.valid[p] != 0 && column >= 0 && column < level.width &&
+                                     is_plane_inlier(column, y, level.vertical[p], setting)
+                                 ? 1
+                                 : 0;
             }
         }
         if (inliers == previous) {
@@ -256,6 +260,17 @@ std::vector<std::int8_t> plane_field(const Plane& plane, int width, int height, 
     return field;
 }
 
+int field_at_match(const std::vector<std::int8_t>& field, int width, int x, int y,
+                   std::int16_t fixed) {
+    // round(fixed / 16), halves up, by floor division (fixed may be negative).
+    const int shifted = fixed + fx::kSubpixelScale / 2;
+    const int disparity = shifted >= 0
+                              ? shifted / fx::kSubpixelScale
+                              : -((-shifted + fx::kSubpixelScale - 1) / fx::kSubpixelScale);
+    const int column = std::clamp(x - disparity, 0, width - 1);
+    return field[static_cast<std::size_t>(y) * width + column];
+}
+
 Image warp_rows(const Image& right, const std::vector<std::int8_t>& field) {
     if (field.size() != static_cast<std::size_t>(right.width) * right.height) {
         throw std::invalid_argument("the vertical field does not fit the image");
@@ -286,12 +301,17 @@ MatchParams pass_params(const Params& params) {
             .validation = params.validation};
 }
 
+// The border rule of the pass: a valid pixel whose match's row is within `reach` of the top or
+// bottom edge is invalid.
 void mark_field_border(ValidatedDisparity& out, const std::vector<std::int8_t>& field, int reach) {
     for (int y = 0; y < out.height; ++y) {
         for (int x = 0; x < out.width; ++x) {
             const std::size_t p = out.index(x, y);
-            const int row = y + field[p];
-            if (out.valid(p) && (row < reach || row >= out.height - reach)) {
+            if (!out.valid(p)) {
+                continue;
+            }
+            const int row = y + field_at_match(field, out.width, x, y, out.fixed[p]);
+            if (row < reach || row >= out.height - reach) {
                 out.reason[p] = fx::kReasonBorder;
                 out.fixed[p] = 0;
             }
@@ -407,9 +427,14 @@ Result finish_field(std::array<LevelMap, kLevels> levels, const CostCount& count
     Result result{to_label_map(validated), std::vector<std::int8_t>(field.size(), 0),
                   std::move(levels),       count,
                   std::move(field),        std::move(validated)};
-    for (std::size_t p = 0; p < result.field.size(); ++p) {
-        if (result.validated.valid(p)) {
-            result.vertical[p] = result.field[p];
+    const int width = result.validated.width;
+    for (int y = 0; y < result.validated.height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const std::size_t p = result.validated.index(x, y);
+            if (result.validated.valid(p)) {
+                result.vertical[p] = static_cast<std::int8_t>(
+                    field_at_match(result.field, width, x, y, result.validated.fixed[p]));
+            }
         }
     }
     return result;

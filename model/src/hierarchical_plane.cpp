@@ -27,8 +27,9 @@ PlaneStatistics plane_statistics(const LevelMap& level, const PlaneSetting& sett
     for (int y = 0; y < level.height; ++y) {
         for (int x = 0; x < level.width; ++x) {
             const std::size_t p = level.index(x, y);
-            if (level.valid[p] == 0) {
-                continue;
+            const int column = right_column(level, x, y);
+            if (level.valid[p] == 0 || column < 0 || column >= level.width) {
+                continue;  // no vote
             }
             const int v = level.vertical[p];
             if (v < v_min || v > v_max) {
@@ -37,17 +38,18 @@ PlaneStatistics plane_statistics(const LevelMap& level, const PlaneSetting& sett
                                             std::to_string(v_max) + "]");
             }
             ++s.histogram[static_cast<std::size_t>(v - v_min)];
-            if (!is_plane_inlier(x, y, v, setting)) {
+            const int xr = column;
+            if (!is_plane_inlier(xr, y, v, setting)) {
                 continue;
             }
             ++s.count;
-            s.sum_x += x;
+            s.sum_x += xr;
             s.sum_y += y;
-            s.sum_xx += std::int64_t{x} * x;
-            s.sum_xy += std::int64_t{x} * y;
+            s.sum_xx += std::int64_t{xr} * xr;
+            s.sum_xy += std::int64_t{xr} * y;
             s.sum_yy += std::int64_t{y} * y;
             s.sum_v += v;
-            s.sum_xv += std::int64_t{x} * v;
+            s.sum_xv += std::int64_t{xr} * v;
             s.sum_yv += std::int64_t{y} * v;
         }
     }

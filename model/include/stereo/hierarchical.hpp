@@ -211,24 +211,39 @@ struct Result {
     ValidatedDisparity validated;
 };
 
-// The vertical field of a full-level map: for every pixel the offset v held by the most valid
-// winners of `level` in the (2 radius + 1)^2 window around it (clipped at the image), ties to the
-// smaller |v|, then the smaller v; 0 where the window holds no valid winner.
+// The field lives in the right image's columns: the pass reads it at the right pixel
+// (warp_rows), and a roll of the right camera makes the offset a plane in the right image's
+// coordinates (v = theta (xr - cx)), not in the left's. So every field model counts a valid
+// full-level winner at (x, y) with displacement (d, v) as a vote for v at the right pixel
+// (x - d, y); a winner whose right column lies outside the image casts no vote.
+inline int right_column(const LevelMap& level, int x, int y) {
+    return x - level.disparity[level.index(x, y)];
+}
+
+// The vertical field of a full-level map: for every pixel the offset v held by the most votes
+// (right_column) of `level`'s valid winners in the (2 radius + 1)^2 window around it (clipped at
+// the image), ties to the smaller |v|, then the smaller v; 0 where the window holds no vote.
 // With `prior` (one offset per pixel, e.g. plane_field), the prior's offset keeps the pixel unless
 // another offset has more than `prior_factor` times its count in the window.
 std::vector<std::int8_t> vertical_field(const LevelMap& level, int radius,
                                         const std::vector<std::int8_t>& prior = {},
                                         int prior_factor = 2);
 
-// The robust plane through the valid offsets of `level`: starting from the offsets within 2 of the
-// most frequent one, least-squares fits, each over the valid winners within 1.5 pixels of the
-// previous plane, until the set of those winners no longer changes (at most `max_iterations`
-// fits); the coefficients rounded to 1/kPlaneOne.
+// The robust plane v = a + b xr + c y through the votes (right_column) of `level`'s valid winners:
+// starting from the offsets within 2 of the most frequent one, least-squares fits, each over the
+// valid winners within 1.5 pixels of the previous plane, until the set of those winners no longer
+// changes (at most `max_iterations` fits); the coefficients rounded to 1/kPlaneOne.
 Plane vertical_plane(const LevelMap& level, int max_iterations = 16);
 
 // The field of a plane: round(v(x, y)), halves up, clamped into [v_min, v_max].
 std::vector<std::int8_t> plane_field(const Plane& plane, int width, int height, int v_min,
                                      int v_max);
+
+// The field's offset at the match of a valid pass pixel (x, y) with disparity fixed / 16: the field
+// at column x - round(fixed / 16) (halves up), clamped into the image. It is the pixel's vertical
+// offset in Result::vertical, and its right row decides the border rule of the pass.
+int field_at_match(const std::vector<std::int8_t>& field, int width, int x, int y,
+                   std::int16_t fixed);
 
 // The right image as the 1-D pass sees it: pixel (x, y) is the right pixel (x, y + field(x, y)),
 // its row clamped into the image. A streaming core reads it from a buffer of V + 1 right rows
@@ -238,9 +253,9 @@ Image warp_rows(const Image& right, const std::vector<std::int8_t>& field);
 // The 1-D pass of Output::vertical_field: the 1-D pipeline (match_validated: cost, `field_level`
 // aggregation, CA as params.use_ca, stage 6 with params.validation) on the left image and
 // warp_rows(right, field). Candidate d of pixel (x, y) thus meets the right pixel
-// (x - d, y + field(x - d, y)): the field is read at the right pixel's column. A pixel whose own
-// right row y + field(x, y) lies within the reach of the top or bottom edge is invalid (border),
-// like one whose window leaves the image. Adds W H D to `count`.
+// (x - d, y + field(x - d, y)): the field is read at the right pixel's column. A valid pixel whose
+// match's row y + field_row(...) lies within the reach of the top or bottom edge is invalid
+// (border), like one whose window leaves the image. Adds W H D to `count`.
 ValidatedDisparity match_along_field(const Image& left, const Image& right,
                                      const std::vector<std::int8_t>& field, const Params& params,
                                      std::int64_t& count);

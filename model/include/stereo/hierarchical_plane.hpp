@@ -32,12 +32,15 @@ struct PlaneSetting {
     bool operator==(const PlaneSetting&) const = default;
 };
 
-// Whether a winner at (x, y) with offset v is an inlier of the setting's plane.
+// Whether a vote at (x, y) (the right image's column, right_column) with offset v is an inlier of
+// the setting's plane.
 bool is_plane_inlier(int x, int y, int v, const PlaneSetting& setting);
 
-// One frame's statistics over the valid winners of the full level. Inliers: valid winners whose
-// offset v satisfies |v kPlaneOne - (a + b x + c y)| <= tolerance. The sums are exact integers
-// (the normal equations of v = a + b x + c y over the inliers).
+// One frame's statistics over the votes of the full level's valid winners (right_column: a winner
+// at (x, y) with displacement (d, v) votes at the right pixel (xr, y), xr = x - d; none when xr is
+// outside the image). Inliers: votes with |v kPlaneOne - (a + b xr + c y)| <= tolerance. The sums
+// are exact integers (the normal equations of v = a + b xr + c y over the inliers); sum_x, sum_xx,
+// sum_xy and sum_xv are over xr.
 struct PlaneStatistics {
     std::int64_t count = 0;  // inliers
     std::int64_t sum_x = 0;

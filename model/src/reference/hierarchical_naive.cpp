@@ -1,6 +1,7 @@
 // The naive hierarchical search: written again from docs/hierarchical.md, loop by loop, so
 // that tests/test_hierarchical.cpp can hold the streaming model against it bit for bit.
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <map>
 #include <stdexcept>
@@ -260,14 +261,15 @@ std::vector<std::int8_t> vertical_field(const LevelMap& level, int radius,
     std::vector<std::int8_t> field(level.valid.size(), 0);
     for (int y = 0; y < level.height; ++y) {
         for (int x = 0; x < level.width; ++x) {
-            // Count every valid offset of the window, directly.
+            // Count every vote of the window, directly: each valid winner of the window's rows
+            // whose right pixel (i - d, j) lies in the window.
             std::map<int, int> counts;
             for (int j = std::max(0, y - radius); j <= std::min(level.height - 1, y + radius);
                  ++j) {
-                for (int i = std::max(0, x - radius); i <= std::min(level.width - 1, x + radius);
-                     ++i) {
+                for (int i = 0; i < level.width; ++i) {
                     const std::size_t q = static_cast<std::size_t>(j) * level.width + i;
-                    if (level.valid[q] != 0) {
+                    const int xr = i - level.disparity[q];
+                    if (level.valid[q] != 0 && xr >= 0 && xr >= x - radius && xr <= x + radius) {
                         ++counts[level.vertical[q]];
                     }
                 }
@@ -348,8 +350,14 @@ ValidatedDisparity match_along_field(const Image& left, const Image& right,
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
             const std::size_t p = static_cast<std::size_t>(y) * width + x;
-            const int row = y + field[p];
-            if (out.reason[p] == fx::kReasonValid && (row < reach || row >= height - reach)) {
+            if (out.reason[p] != fx::kReasonValid) {
+                continue;
+            }
+            // The match's column: the nearest integer to the sub-pixel disparity, halves up.
+            const int d = static_cast<int>(std::floor(out.fixed[p] / 16.0 + 0.5));
+            const int xr = std::min(std::max(x - d, 0), width - 1);
+            const int row = y + field[static_cast<std::size_t>(y) * width + xr];
+            if (row < reach || row >= height - reach) {
                 out.reason[p] = fx::kReasonBorder;
                 out.fixed[p] = 0;
             }
