@@ -35,5 +35,6 @@ stereo_verilated_config(Vstereo_uart_echo_top stereo_uart_echo_top "" CLKS_PER_B
 stereo_verilated_config(Vstereo_downscale2 stereo_downscale "" WIDTH=64 FACTOR=2)
 stereo_verilated_config(Vstereo_downscale4 stereo_downscale "" WIDTH=64 FACTOR=4)
 stereo_verilated_config(Vstereo_plane_stats stereo_plane_stats "")
+stereo_verilated_config(Vstereo_hier_pass stereo_hier_pass "")
 stereo_verilated_config(Vstereo_top_full stereo_top "STEREO_COSIM_FULL" WIDTH=640 HEIGHT=480 NDISP=64 WINDOW=11)
 stereo_verilated_config(Vstereo_top_full_census_lean stereo_top "STEREO_COSIM_FULL_CENSUS" WIDTH=640 HEIGHT=480 NDISP=64 WINDOW=11 COST=2 LANES=8 RECOMPUTE_COSTS=1'b1)

@@ -185,17 +185,21 @@ void add_scene(Report& report, const Options& options, const io::MiddleburyScene
     }
 }
 
-void run_report(const Options& options) {
-    const fs::path data_dir = options.data_dir;
-    // The report files are checked before minutes of matching, not after; none of them, nor a
-    // figure, may replace a file of the scenes or lie among them.
+// The report files are checked before minutes of matching, not after; none of them, nor a
+// figure, may be another or replace a file of the scenes or lie among them (an argument error:
+// checked before the data folder is read).
+void check_report_outputs(const Options& options) {
     std::vector<fs::path> outputs = {options.markdown, options.json_path};
     if (!options.figures.empty()) {
         for (const auto& scene : io::middlebury2003_scenes()) {
             outputs.push_back(fs::path(options.figures) / (scene.name + ".png"));
         }
     }
-    io::check_outputs(outputs, {.folders = {data_dir / "middlebury2003"}});
+    io::check_outputs(outputs, {.folders = {fs::path(options.data_dir) / "middlebury2003"}});
+}
+
+void run_report(const Options& options) {
+    const fs::path data_dir = options.data_dir;
     for (const std::string& report_file : {options.markdown, options.json_path}) {
         if (!report_file.empty()) {
             io::check_writable_location(report_file);
@@ -252,6 +256,7 @@ void run_report(const Options& options) {
 void run_middlebury(const Options& options) {
     // Parameters first (exit 2), then files (exit 1), whatever is wrong with both.
     (void)pipeline(options, "model", fx::kDefaultDisparities, true);
+    check_report_outputs(options);
     const fs::path folder = fs::path(options.data_dir) / "middlebury2003";
     if (!fs::is_directory(folder)) {
         throw std::runtime_error("cannot read '" + folder.string() + "': no such folder");

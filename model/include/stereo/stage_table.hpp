@@ -297,7 +297,7 @@ constexpr int hls_pipeline_latency(int width, int window, int ndisp, int min_dis
 // The package first, then every module before its first user. One module per file, named after
 // it; the list of modules to lint is this list without the package.
 inline constexpr std::string_view kPackageFile = "fx_pkg.sv";
-inline constexpr std::array<std::string_view, 31> kRtlModules = {
+inline constexpr std::array<std::string_view, 34> kRtlModules = {
     "stereo_coord_reg",     "stereo_stage_output",   "stereo_shift_reg",    "stereo_border_flags",
     "stereo_window_centre", "stereo_line_buffer",    "stereo_row_stack",    "stereo_group_ring",
     "stereo_window3x3",     "stereo_ca_plane",       "stereo_lcdm_convert", "stereo_lcdm_distance",
@@ -305,7 +305,8 @@ inline constexpr std::array<std::string_view, 31> kRtlModules = {
     "stereo_wta",           "stereo_divider",        "stereo_validate",     "stereo_lr_check",
     "stereo_top",           "stereo_axil_top",       "stereo_synth_top",    "stereo_uart_rx",
     "stereo_uart_tx",       "stereo_power_on_reset", "stereo_board_link",   "stereo_board_top",
-    "stereo_uart_echo_top", "stereo_downscale",      "stereo_plane_stats",
+    "stereo_uart_echo_top", "stereo_downscale",      "stereo_plane_stats",  "stereo_row_warp",
+    "stereo_field_border",  "stereo_hier_pass",
 };
 // Port-list fragments and the parameter-check macro (`STEREO_ASSERT) the modules `include (found
 // in rtl/: tools need rtl/ on the include path).
@@ -420,7 +421,7 @@ inline constexpr Params kFpgaCensusNdisp8Lanes2 = kSmall.with({.ndisp = 8,
 inline constexpr Params kFullCensusLean =
     kFull.with({.cost = kCostCensus, .lanes = 8, .recompute_costs = 1});
 
-inline constexpr std::array<VerilatedConfig, 35> kVerilatedConfigs = {{
+inline constexpr std::array<VerilatedConfig, 36> kVerilatedConfigs = {{
     {"Vstereo_top_small", "stereo_top", kSmall, "", "small"},
     {"Vstereo_top_lanes4", "stereo_top", kSmallLanes4, "", "lanes4"},
     {"Vstereo_top_lanes1", "stereo_top", kSmallLanes1, "", "lanes1"},
@@ -485,6 +486,8 @@ inline constexpr std::array<VerilatedConfig, 35> kVerilatedConfigs = {{
     {"Vstereo_downscale4", "stereo_downscale", {.width = kSmall.width, .factor = 4}, ""},
     // ... and the statistics of its vertical plane (default VRANGE 16, offsets -8 .. 7).
     {"Vstereo_plane_stats", "stereo_plane_stats", {}, ""},
+    // ... and its 1-D pass along the plane (64x48, 16 labels, 5x5, census, offsets -8 .. 7).
+    {"Vstereo_hier_pass", "stereo_hier_pass", {}, ""},
     // Its C++ takes minutes to compile: only with -DSTEREO_COSIM_FULL=ON.
     {"Vstereo_top_full", "stereo_top", kFull, "STEREO_COSIM_FULL", "full"},
     // ... and the lean census core at that size: -DSTEREO_COSIM_CONFIGS=full_census_lean.
