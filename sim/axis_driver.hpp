@@ -34,7 +34,7 @@ StreamResult stream_axis(VerilatedHarness<Model>& harness, const std::vector<Inp
     std::size_t next = 0;
     bool offering = false;     // s_axis_tvalid is up and must stay up until taken
     bool held_output = false;  // m_axis_tvalid was up without tready last cycle
-    std::uint32_t held_data = 0;
+    std::uint64_t held_data = 0;
     bool held_last = false;
     bool held_user = false;
     std::uint64_t cycle = 0;

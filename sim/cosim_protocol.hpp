@@ -204,7 +204,7 @@ inline StreamResult get_result(Channel& channel, std::uint64_t limit) {
     }
     result.outputs.resize(count);
     for (OutputBeat& beat : result.outputs) {
-        beat.data = channel.get<std::uint32_t>();
+        beat.data = channel.get<std::uint64_t>();
         const auto flags = channel.get<std::uint8_t>();
         beat.last = (flags & 1) != 0;
         beat.user = (flags & 2) != 0;

@@ -88,7 +88,9 @@ struct InputBeat {
 };
 
 struct OutputBeat {
-    std::uint32_t data;  // fx_pkg::out_beat_t: {certainty, 0, reason, fixed} (stage_table.hpp)
+    // fx_pkg::out_beat_t: {certainty, 0, reason, fixed} (stage_table.hpp); stereo_hier_pass puts
+    // the vertical offset above it (bits 39:32).
+    std::uint64_t data;
     bool last;
     bool user;
 };

@@ -1,0 +1,356 @@
+// stereo_hier_pass (the hierarchical core's 1-D pass along a plane, issue 45) against the model,
+// bit for bit: stereo::hierarchical::match_along_field over plane_field(plane) for the beat
+// (disparity x 16, reason, certainty) and field_at_match for the vertical offset beside it.
+// Pairs whose right image is moved by a plane's offsets (shift, roll) and random pairs, planes
+// reaching both ends of the offset range, input gaps and output stalls, frames back to back
+// with different planes and sizes, and a reset in the middle of a frame.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <iostream>
+#include <random>
+#include <string>
+#include <vector>
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-parameter"
+#include <verilated.h>
+#include <verilated_fst_c.h>
+#pragma GCC diagnostic pop
+
+#include "Vstereo_hier_pass.h"
+#include "axis_driver.hpp"
+#include "port_bits.hpp"
+#include "stereo/hierarchical.hpp"
+#include "stereo/pipeline.hpp"
+#include "stereo/stage_table.hpp"
+#include "stereo_io/test_support.hpp"
+#include "tb_real_pairs.hpp"
+#include "verilated_harness.hpp"
+
+namespace stereo::tb {
+namespace {
+
+namespace h = stereo::hierarchical;
+
+// The Verilated configuration's parameters (stage_table.hpp: stereo_hier_pass's defaults).
+constexpr int kMaxWidth = 64;
+constexpr int kMaxHeight = 48;
+constexpr int kLabels = 16;
+constexpr int kWindow = 5;
+constexpr int kVMin = -8;
+constexpr int kVMax = 7;
+
+struct Frame {
+    Image left;
+    Image right;
+    h::Plane plane;
+};
+
+// What the model says of a frame: the pass's output and the vertical offset of each pixel.
+struct Expected {
+    ValidatedDisparity validated;
+    std::vector<std::int8_t> vertical;
+};
+
+h::Params pass_params(const ValidationParams& validation, bool use_ca) {
+    h::Params params;
+    params.ndisp = kLabels;
+    params.cost = "census";
+    params.use_ca = use_ca;
+    params.field_level = {kWindow, fx::kDefaultSigma};
+    params.validation = validation;
+    return params;
+}
+
+Expected expected(const Frame& frame, const h::Params& params) {
+    const int width = frame.left.width;
+    const auto field = h::plane_field(frame.plane, width, frame.left.height, kVMin, kVMax);
+    std::int64_t count = 0;
+    Expected out{h::match_along_field(frame.left, frame.right, field, params, count), {}};
+    out.vertical.assign(field.size(), 0);
+    for (int y = 0; y < frame.left.height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const std::size_t p = out.validated.index(x, y);
+            if (out.validated.valid(p)) {
+                out.vertical[p] = static_cast<std::int8_t>(
+                    h::field_at_match(field, width, x, y, out.validated.fixed[p]));
+            }
+        }
+    }
+    return out;
+}
+
+class HierPass {
+  public:
+    HierPass() : harness_("hier_pass") { reset(); }
+
+    void reset() {
+        Vstereo_hier_pass& m = harness_.model();
+        m.s_axis_tvalid = 0;
+        m.m_axis_tready = 0;
+        m.rst = 1;
+        harness_.tick();
+        harness_.tick();
+        m.rst = 0;
+    }
+
+    void configure(const Frame& frame, const h::Params& params) {
+        Vstereo_hier_pass& m = harness_.model();
+        m.cfg_width = static_cast<std::uint16_t>(frame.left.width);
+        m.cfg_height = static_cast<std::uint16_t>(frame.left.height);
+        m.cfg_ndisp = kLabels;
+        m.cfg_radius = kWindow / 2;
+        const auto taps = gaussian_kernel(kWindow, params.field_level.sigma);
+        for (std::size_t i = 0; i < taps.size(); ++i) {
+            sim::put_bits(m.cfg_kernel, static_cast<int>(i) * table::kTapBits, table::kTapBits,
+                          static_cast<std::uint64_t>(taps[i]));
+        }
+        m.cfg_use_ca = params.use_ca ? 1 : 0;
+        m.cfg_uniqueness_en = params.validation.uniqueness ? 1 : 0;
+        m.cfg_uniqueness = static_cast<std::uint8_t>(params.validation.uniqueness_ratio);
+        m.cfg_lr_en = params.validation.left_right ? 1 : 0;
+        m.cfg_lr_tolerance = static_cast<std::uint8_t>(params.validation.lr_tolerance);
+        m.cfg_subpixel_en = params.validation.subpixel ? 1 : 0;
+        m.plane_a = static_cast<std::uint32_t>(static_cast<std::int32_t>(frame.plane.a));
+        m.plane_b = static_cast<std::uint32_t>(static_cast<std::int32_t>(frame.plane.b));
+        m.plane_c = static_cast<std::uint32_t>(static_cast<std::int32_t>(frame.plane.c));
+    }
+
+    // Streams the frames back to back. The first frame's configuration is set before its first
+    // beat; the next frame's is written as a host would, once the current frame's first result
+    // has come out (the core sampled it when the frame started, and keeps it until the frame
+    // leaves), usually while the current frame is still streaming in.
+    sim::StreamResult stream(const std::vector<Frame>& frames, const h::Params& params,
+                             const sim::Traffic& traffic) {
+        std::vector<sim::InputBeat> beats;
+        std::size_t total = 0;
+        for (const Frame& frame : frames) {
+            const auto more = sim::frame_beats(frame.left, frame.right);
+            beats.insert(beats.end(), more.begin(), more.end());
+            total += more.size();
+        }
+        configure(frames[0], params);
+        std::size_t configured = 0;  // the frame whose setting the ports hold
+        std::size_t results_started = 0;
+        bool first_beat_seen = false;
+        auto after_edge = [&](Vstereo_hier_pass& m) {
+            const bool first_beat = m.m_axis_tvalid != 0 && m.m_axis_tuser != 0;
+            if (first_beat && !first_beat_seen) {
+                ++results_started;
+                if (configured + 1 < frames.size() && configured + 1 == results_started) {
+                    configure(frames[++configured], params);
+                }
+            }
+            first_beat_seen = first_beat;
+        };
+        return sim::stream_axis(harness_, beats, total, traffic, 40 * total + 100000, after_edge);
+    }
+
+    Vstereo_hier_pass& model() { return harness_.model(); }
+    sim::VerilatedHarness<Vstereo_hier_pass>& harness() { return harness_; }
+
+  private:
+    sim::VerilatedHarness<Vstereo_hier_pass> harness_;
+};
+
+// Compares the frame's beats (starting at `first`) with the model, pixel by pixel; returns the
+// number of mismatching pixels and reports the first few.
+int mismatches(const std::vector<sim::OutputBeat>& beats, std::size_t first, const Frame& frame,
+               const Expected& want) {
+    const int width = frame.left.width;
+    const int height = frame.left.height;
+    int wrong = 0;
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const std::size_t n = first + static_cast<std::size_t>(y) * width + x;
+            const std::size_t p = want.validated.index(x, y);
+            if (n >= beats.size()) {
+                ADD_FAILURE() << "output ended at (" << x << ", " << y << ")";
+                return wrong + 1;
+            }
+            const std::uint64_t data = beats[n].data;
+            const auto fixed = static_cast<std::int16_t>(data & 0xffffU);
+            const auto reason = static_cast<int>((data >> table::kOutReasonLsb) & 7U);
+            const auto certainty = static_cast<int>((data >> 24) & 0xffU);
+            const auto vertical = static_cast<std::int8_t>((data >> 32) & 0xffU);
+            const bool framing =
+                beats[n].user == (x == 0 && y == 0) && beats[n].last == (x == width - 1);
+            if (!framing || fixed != want.validated.fixed[p] ||
+                reason != want.validated.reason[p] || certainty != want.validated.certainty[p] ||
+                vertical != want.vertical[p]) {
+                if (++wrong <= 5) {
+                    ADD_FAILURE() << "pixel (" << x << ", " << y << "): rtl fixed " << fixed
+                                  << " reason " << reason << " certainty " << certainty << " v "
+                                  << static_cast<int>(vertical) << " framing " << framing
+                                  << "; model " << want.validated.fixed[p] << " "
+                                  << static_cast<int>(want.validated.reason[p]) << " "
+                                  << static_cast<int>(want.validated.certainty[p]) << " "
+                                  << static_cast<int>(want.vertical[p]);
+                }
+            }
+        }
+    }
+    return wrong;
+}
+
+// The right image of `left` seen through a plane: right(x - shift, y + v(x - shift, y)) =
+// left(x, y), v the plane's field, plus noise; so matching along the plane has a true answer.
+Image moved_by_plane(const Image& left, const h::Plane& plane, int shift, std::mt19937& rng) {
+    const auto field = h::plane_field(plane, left.width, left.height, kVMin, kVMax);
+    Image right = test::random_image(left.width, left.height, left.channels, rng);
+    std::uniform_int_distribution<int> noise(-6, 6);
+    for (int y = 0; y < left.height; ++y) {
+        for (int xr = 0; xr < left.width; ++xr) {
+            const int row = y + field[static_cast<std::size_t>(y) * left.width + xr];
+            const int x = xr + shift;
+            if (row < 0 || row >= left.height || x >= left.width) {
+                continue;
+            }
+            for (int c = 0; c < left.channels; ++c) {
+                right.at(xr, row, c) =
+                    static_cast<std::uint8_t>(std::clamp(left.at(x, y, c) + noise(rng), 0, 255));
+            }
+        }
+    }
+    return right;
+}
+
+h::Plane plane_of(double a, double b, double c) {
+    return {std::llround(a * h::kPlaneOne), std::llround(b * h::kPlaneOne),
+            std::llround(c * h::kPlaneOne)};
+}
+
+TEST(StereoHierPass, PlanesShiftsAndRollsEqualModel) {
+    auto rng = test::seeded_rng(450);
+    const h::Params params = pass_params({true, 10, true, 1, true}, true);
+    const std::vector<h::Plane> planes = {
+        plane_of(0, 0, 0),             // the 1-D pipeline
+        plane_of(3, 0, 0),             // a shift of 3 rows
+        plane_of(-2.5, 0.03, 0.0),     // a roll about a point left of the frame
+        plane_of(20, -0.4, 0.1),       // clamped to V_MAX on the left, down to V_MIN
+        plane_of(-20, 0, 0),           // clamped to V_MIN everywhere
+        plane_of(1.5, -0.02, 0.015)};  // halves: rounding up
+    for (std::size_t i = 0; i < planes.size(); ++i) {
+        Frame frame;
+        frame.left = test::random_image(kMaxWidth, kMaxHeight, 3, rng);
+        frame.plane = planes[i];
+        frame.right = moved_by_plane(frame.left, frame.plane, 5, rng);
+        HierPass rtl;
+        const auto result = rtl.stream(
+            {frame}, params,
+            {i % 2 == 0 ? 0.0 : 0.2, i % 2 == 0 ? 0.0 : 0.2, static_cast<std::uint32_t>(i + 1)});
+        SCOPED_TRACE("plane " + std::to_string(i));
+        ASSERT_TRUE(result.completed) << result.outputs.size() << " beats";
+        EXPECT_EQ(result.protocol_error, "");
+        const Expected want = expected(frame, params);
+        EXPECT_EQ(mismatches(result.outputs, 0, frame, want), 0);
+        if (i == 1) {
+            // The shift is found: most pixels valid, at disparity 5 and offset 3.
+            int right_answers = 0;
+            for (std::size_t p = 0; p < want.vertical.size(); ++p) {
+                right_answers += want.validated.valid(p) && want.validated.fixed[p] == 5 * 16 &&
+                                         want.vertical[p] == 3
+                                     ? 1
+                                     : 0;
+            }
+            EXPECT_GT(right_answers, static_cast<int>(want.vertical.size()) / 2);
+        }
+    }
+}
+
+// Frames back to back, each with its own plane and size (the queue of settings), validation and
+// CA off on one run: every frame equals the model.
+TEST(StereoHierPass, FramesBackToBackWithTheirOwnPlanes) {
+    auto rng = test::seeded_rng(451);
+    for (const bool stage6 : {true, false}) {
+        const h::Params params = pass_params(
+            stage6 ? ValidationParams{true, 15, true, 0, true} : ValidationParams{}, stage6);
+        std::vector<Frame> frames;
+        const std::vector<std::pair<int, int>> sizes = {{64, 48}, {40, 30}, {64, 20}, {23, 17}};
+        std::uniform_real_distribution<double> offset(-9.0, 9.0);
+        std::uniform_real_distribution<double> slope(-0.08, 0.08);
+        for (const auto& [width, height] : sizes) {
+            Frame frame;
+            frame.left = test::random_image(width, height, 3, rng);
+            frame.plane = plane_of(offset(rng), slope(rng), slope(rng));
+            frame.right = moved_by_plane(frame.left, frame.plane, 3, rng);
+            frames.push_back(std::move(frame));
+        }
+        HierPass rtl;
+        const auto result = rtl.stream(frames, params, {0.1, 0.15, stage6 ? 7U : 8U});
+        ASSERT_TRUE(result.completed) << result.outputs.size() << " beats";
+        EXPECT_EQ(result.protocol_error, "");
+        std::size_t first = 0;
+        for (std::size_t i = 0; i < frames.size(); ++i) {
+            SCOPED_TRACE("frame " + std::to_string(i) + (stage6 ? ", stage 6" : ", plain"));
+            EXPECT_EQ(mismatches(result.outputs, first, frames[i], expected(frames[i], params)), 0);
+            first += static_cast<std::size_t>(frames[i].left.width) * frames[i].left.height;
+        }
+    }
+}
+
+// A reset in the middle of a frame abandons it; the next frame is the model's.
+TEST(StereoHierPass, ResetInTheMiddleOfAFrame) {
+    auto rng = test::seeded_rng(452);
+    const h::Params params = pass_params({true, 10, true, 1, true}, true);
+    Frame abandoned{test::random_image(64, 48, 3, rng), test::random_image(64, 48, 3, rng),
+                    plane_of(4, 0.05, 0)};
+    HierPass rtl;
+    rtl.configure(abandoned, params);
+    auto beats = sim::frame_beats(abandoned.left, abandoned.right);
+    beats.resize(1500);  // half the frame: the row select and stereo_top both hold some of it
+    (void)sim::stream_axis(rtl.harness(), beats, 1, {0.0, 0.3, 3U}, 5000);
+    rtl.reset();
+    Frame frame;
+    frame.left = test::random_image(50, 40, 3, rng);
+    frame.plane = plane_of(-3.5, 0.02, -0.04);
+    frame.right = moved_by_plane(frame.left, frame.plane, 6, rng);
+    const auto result = rtl.stream({frame}, params, {0.2, 0.2, 4U});
+    ASSERT_TRUE(result.completed);
+    EXPECT_EQ(mismatches(result.outputs, 0, frame, expected(frame, params)), 0);
+}
+
+// A real crop (Tsukuba, 64x48) whose right image is rolled and shifted by a plane: the pass along
+// that plane equals the model, and finds more valid pixels than the pass along the plane 0.
+TEST(StereoHierPass, RealCropAlongItsPlane) {
+    const auto crop = tsukuba_crop();
+    if (!crop) {
+        GTEST_SKIP() << "Middlebury tsukuba not found";
+    }
+    const h::Params params = pass_params({true, 10, true, 1, true}, true);
+    const h::Plane plane = plane_of(1.2, 0.03, 0.0);
+    const auto field = h::plane_field(plane, crop->right.width, crop->right.height, kVMin, kVMax);
+    // The right image moved down by the field (its pixel (x, y + v) shows (x, y)).
+    Image right = crop->right;
+    for (int y = 0; y < right.height; ++y) {
+        for (int x = 0; x < right.width; ++x) {
+            const int row = y + field[static_cast<std::size_t>(y) * right.width + x];
+            if (row >= 0 && row < right.height) {
+                for (int c = 0; c < right.channels; ++c) {
+                    right.at(x, row, c) = crop->right.at(x, y, c);
+                }
+            }
+        }
+    }
+    const Frame along{crop->left, right, plane};
+    const Frame flat{crop->left, right, h::Plane{}};
+    HierPass rtl;
+    const auto result = rtl.stream({along, flat}, params, {0.1, 0.1, 5U});
+    ASSERT_TRUE(result.completed);
+    const Expected want_along = expected(along, params);
+    const Expected want_flat = expected(flat, params);
+    EXPECT_EQ(mismatches(result.outputs, 0, along, want_along), 0);
+    EXPECT_EQ(mismatches(result.outputs, 64 * 48, flat, want_flat), 0);
+    const auto valid = [](const Expected& e) {
+        return std::count(e.validated.reason.begin(), e.validated.reason.end(), fx::kReasonValid);
+    };
+    std::cout << "[real crop] valid along the plane " << valid(want_along) << ", along 0 "
+              << valid(want_flat) << " of " << 64 * 48 << '\n';
+    EXPECT_GT(valid(want_along), valid(want_flat));
+}
+
+}  // namespace
+}  // namespace stereo::tb
