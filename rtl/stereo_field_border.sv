@@ -122,10 +122,10 @@ module stereo_field_border #(
         reach_q <= reach;
         if (x + 1 == 64'(width)) begin
           x_q <= '0;
-          y_q <= fx_pkg::coord_t'(y + 1);
+          y_q <= 16'(y + 1);
         end else begin
-          x_q <= fx_pkg::coord_t'(x + 1);
-          y_q <= fx_pkg::coord_t'(y);
+          x_q <= 16'(x + 1);
+          y_q <= 16'(y);
         end
       end
     end

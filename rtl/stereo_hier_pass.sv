@@ -64,17 +64,18 @@ module stereo_hier_pass #(
     output      logic                               m_axis_tlast,
     output      logic                               m_axis_tuser
 );
+  // (Member widths spelled out: Yosys does not resolve a package's types inside a struct.)
   typedef struct packed {
-    fx_pkg::cfg_size_t width;
-    fx_pkg::cfg_size_t height;
-    fx_pkg::cfg_ndisp_t ndisp;
-    fx_pkg::cfg_radius_t radius;
+    logic [fx_pkg::CFG_SIZE_BITS-1:0] width;
+    logic [fx_pkg::CFG_SIZE_BITS-1:0] height;
+    logic [fx_pkg::CFG_NDISP_BITS-1:0] ndisp;
+    logic [fx_pkg::CFG_RADIUS_BITS-1:0] radius;
     logic [WINDOW*fx_pkg::TAP_BITS-1:0] kernel;
     logic use_ca;
     logic uniqueness_en;
-    fx_pkg::cfg_uniqueness_t uniqueness;
+    logic [fx_pkg::CFG_UNIQUENESS_BITS-1:0] uniqueness;
     logic lr_en;
-    fx_pkg::cfg_lr_tolerance_t lr_tolerance;
+    logic [fx_pkg::CFG_LR_TOLERANCE_BITS-1:0] lr_tolerance;
     logic subpixel_en;
     logic signed [31:0] a;
     logic signed [31:0] b;
