@@ -31,6 +31,7 @@ stereo_board_top.sv
 stereo_uart_echo_top.sv
 stereo_downscale.sv
 stereo_plane_stats.sv
+stereo_plane_offset.sv
 stereo_row_warp.sv
 stereo_field_border.sv
 stereo_hier_pass.sv

@@ -50,8 +50,6 @@ module stereo_field_border #(
                  "V_MIN .. V_MAX must fit a signed byte")
 
   localparam int R = WINDOW / 2;
-  localparam logic signed [63:0] LOWEST = 64'(V_MIN);
-  localparam logic signed [63:0] HIGHEST = 64'(V_MAX);
 
   logic take;
   assign s_axis_tready = !m_axis_tvalid || m_axis_tready;
@@ -67,7 +65,8 @@ module stereo_field_border #(
   fx_pkg::cfg_size_t width, height;
   logic signed [31:0] a, b, c;
   logic [5:0] reach;
-  logic signed [63:0] x, y, disparity, column, value, offset, row;
+  logic signed [63:0] x, y, disparity, column, row;
+  logic signed [7:0] offset;
   logic border;
   fx_pkg::out_beat_t beat;
   always_comb begin
@@ -87,11 +86,22 @@ module stereo_field_border #(
     column = x - disparity;
     if (column < 0) column = 0;
     if (column > 64'(width) - 1) column = 64'(width) - 1;
-    value = 64'(a) + 64'(b) * column + 64'(c) * y + 64'sd32768;
-    offset = value >>> 16;
-    if (offset < LOWEST) offset = LOWEST;
-    if (offset > HIGHEST) offset = HIGHEST;
-    row = y + offset;
+  end
+
+  stereo_plane_offset #(
+      .V_MIN(V_MIN),
+      .V_MAX(V_MAX)
+  ) field (
+      .plane_a(a),
+      .plane_b(b),
+      .plane_c(c),
+      .x(17'(column)),
+      .y(17'(y)),
+      .offset(offset)
+  );
+
+  always_comb begin
+    row = y + 64'(offset);
     border = s_axis_tdata.reason == fx_pkg::REASON_BITS'(fx_pkg::REASON_VALID) &&
              (row < 64'(reach) || row >= 64'(height) - 64'(reach));
     beat = s_axis_tdata;

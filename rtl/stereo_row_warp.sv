@@ -61,7 +61,6 @@ module stereo_row_warp #(
   localparam int RGB = fx_pkg::RGB_BITS;
   localparam int RIGHT_ROWS = V_MAX - V_MIN;  // rows y_in - 1 .. y_in - RIGHT_ROWS
   localparam int LEFT_ROWS = V_MAX;  // the left pixel is V_MAX rows old
-  localparam logic signed [63:0] LOWEST = 64'(V_MIN);
   localparam logic signed [63:0] HIGHEST = 64'(V_MAX);
 
   typedef enum logic [1:0] {
@@ -125,15 +124,23 @@ module stereo_row_warp #(
 
   // The output row y = y_in - V_MAX, its offset at column x, and the right row it reads, clamped
   // into the frame; distance = y_in - row is 0 .. RIGHT_ROWS (0: the pixel coming in now).
-  logic signed [63:0] y_out, value, offset, row, distance;
+  logic signed [63:0] y_out, row, distance;
+  logic signed [7:0] offset;
   logic [RGB-1:0] right_pixel;
+  stereo_plane_offset #(
+      .V_MIN(V_MIN),
+      .V_MAX(V_MAX)
+  ) field (
+      .plane_a(a_q),
+      .plane_b(b_q),
+      .plane_c(c_q),
+      .x(17'(x)),
+      .y(17'(y_out)),
+      .offset(offset)
+  );
+  assign y_out = 64'(y_in) - HIGHEST;
   always_comb begin
-    y_out = 64'(y_in) - HIGHEST;
-    value = 64'(a_q) + 64'(b_q) * 64'(x) + 64'(c_q) * y_out + 64'sd32768;
-    offset = value >>> 16;  // floor: halves up
-    if (offset < LOWEST) offset = LOWEST;
-    if (offset > HIGHEST) offset = HIGHEST;
-    row = y_out + offset;
+    row = y_out + 64'(offset);
     if (row < 0) row = 0;
     if (row > 64'(height_q) - 1) row = 64'(height_q) - 1;
     distance = 64'(y_in) - row;

@@ -297,7 +297,7 @@ constexpr int hls_pipeline_latency(int width, int window, int ndisp, int min_dis
 // The package first, then every module before its first user. One module per file, named after
 // it; the list of modules to lint is this list without the package.
 inline constexpr std::string_view kPackageFile = "fx_pkg.sv";
-inline constexpr std::array<std::string_view, 34> kRtlModules = {
+inline constexpr std::array<std::string_view, 35> kRtlModules = {
     "stereo_coord_reg",     "stereo_stage_output",   "stereo_shift_reg",    "stereo_border_flags",
     "stereo_window_centre", "stereo_line_buffer",    "stereo_row_stack",    "stereo_group_ring",
     "stereo_window3x3",     "stereo_ca_plane",       "stereo_lcdm_convert", "stereo_lcdm_distance",
@@ -305,8 +305,8 @@ inline constexpr std::array<std::string_view, 34> kRtlModules = {
     "stereo_wta",           "stereo_divider",        "stereo_validate",     "stereo_lr_check",
     "stereo_top",           "stereo_axil_top",       "stereo_synth_top",    "stereo_uart_rx",
     "stereo_uart_tx",       "stereo_power_on_reset", "stereo_board_link",   "stereo_board_top",
-    "stereo_uart_echo_top", "stereo_downscale",      "stereo_plane_stats",  "stereo_row_warp",
-    "stereo_field_border",  "stereo_hier_pass",
+    "stereo_uart_echo_top", "stereo_downscale",      "stereo_plane_stats",  "stereo_plane_offset",
+    "stereo_row_warp",      "stereo_field_border",   "stereo_hier_pass",
 };
 // Port-list fragments and the parameter-check macro (`STEREO_ASSERT) the modules `include (found
 // in rtl/: tools need rtl/ on the include path).
