@@ -14,34 +14,21 @@
 #include <string>
 #include <vector>
 
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#include <verilated.h>
-#include <verilated_fst_c.h>
-#pragma GCC diagnostic pop
-
-#include "Vstereo_hier_pass.h"
-#include "axis_driver.hpp"
-#include "port_bits.hpp"
+#include "hier_pass_sim.hpp"
 #include "stereo/hierarchical.hpp"
 #include "stereo/pipeline.hpp"
-#include "stereo/stage_table.hpp"
 #include "stereo_io/test_support.hpp"
 #include "tb_real_pairs.hpp"
-#include "verilated_harness.hpp"
 
 namespace stereo::tb {
 namespace {
 
 namespace h = stereo::hierarchical;
 
-// The Verilated configuration's parameters (stage_table.hpp: stereo_hier_pass's defaults).
-constexpr int kMaxWidth = 64;
-constexpr int kMaxHeight = 48;
-constexpr int kLabels = 16;
-constexpr int kWindow = 5;
-constexpr int kVMin = -8;
-constexpr int kVMax = 7;
+constexpr int kMaxWidth = sim::kHierPassLimits.width;
+constexpr int kMaxHeight = sim::kHierPassLimits.height;
+constexpr int kVMin = sim::kHierPassLimits.v_min;
+constexpr int kVMax = sim::kHierPassLimits.v_max;
 
 struct Frame {
     Image left;
@@ -49,147 +36,65 @@ struct Frame {
     h::Plane plane;
 };
 
-// What the model says of a frame: the pass's output and the vertical offset of each pixel.
-struct Expected {
-    ValidatedDisparity validated;
-    std::vector<std::int8_t> vertical;
-};
+using Expected = sim::HierPassOutput;
 
 h::Params pass_params(const ValidationParams& validation, bool use_ca) {
     h::Params params;
-    params.ndisp = kLabels;
+    params.ndisp = sim::kHierPassLimits.ndisp;
     params.cost = "census";
     params.use_ca = use_ca;
-    params.field_level = {kWindow, fx::kDefaultSigma};
+    params.field_level = {sim::kHierPassLimits.window, fx::kDefaultSigma};
     params.validation = validation;
     return params;
 }
 
 Expected expected(const Frame& frame, const h::Params& params) {
-    const int width = frame.left.width;
-    const auto field = h::plane_field(frame.plane, width, frame.left.height, kVMin, kVMax);
-    std::int64_t count = 0;
-    Expected out{h::match_along_field(frame.left, frame.right, field, params, count), {}};
-    out.vertical.assign(field.size(), 0);
-    for (int y = 0; y < frame.left.height; ++y) {
-        for (int x = 0; x < width; ++x) {
-            const std::size_t p = out.validated.index(x, y);
-            if (out.validated.valid(p)) {
-                out.vertical[p] = static_cast<std::int8_t>(
-                    h::field_at_match(field, width, x, y, out.validated.fixed[p]));
-            }
-        }
-    }
-    return out;
+    return sim::hier_pass_expected(frame.left, frame.right, frame.plane, params);
 }
 
-class HierPass {
-  public:
-    HierPass() : harness_("hier_pass") { reset(); }
-
-    void reset() {
-        Vstereo_hier_pass& m = harness_.model();
-        m.s_axis_tvalid = 0;
-        m.m_axis_tready = 0;
-        m.rst = 1;
-        harness_.tick();
-        harness_.tick();
-        m.rst = 0;
+// Streams the frames back to back. The first frame's setting is written before its first beat;
+// the next frame's as a host would, once the current frame's first result has come out (the
+// core sampled the setting when the frame started and keeps it until the frame leaves), usually
+// while the current frame is still streaming in.
+sim::StreamResult stream(sim::HierPassSim& rtl, const std::vector<Frame>& frames,
+                         const h::Params& params, const sim::Traffic& traffic) {
+    std::vector<sim::InputBeat> beats;
+    for (const Frame& frame : frames) {
+        const auto more = sim::frame_beats(frame.left, frame.right);
+        beats.insert(beats.end(), more.begin(), more.end());
     }
-
-    void configure(const Frame& frame, const h::Params& params) {
-        Vstereo_hier_pass& m = harness_.model();
-        m.cfg_width = static_cast<std::uint16_t>(frame.left.width);
-        m.cfg_height = static_cast<std::uint16_t>(frame.left.height);
-        m.cfg_ndisp = kLabels;
-        m.cfg_radius = kWindow / 2;
-        const auto taps = gaussian_kernel(kWindow, params.field_level.sigma);
-        for (std::size_t i = 0; i < taps.size(); ++i) {
-            sim::put_bits(m.cfg_kernel, static_cast<int>(i) * table::kTapBits, table::kTapBits,
-                          static_cast<std::uint64_t>(taps[i]));
-        }
-        m.cfg_use_ca = params.use_ca ? 1 : 0;
-        m.cfg_uniqueness_en = params.validation.uniqueness ? 1 : 0;
-        m.cfg_uniqueness = static_cast<std::uint8_t>(params.validation.uniqueness_ratio);
-        m.cfg_lr_en = params.validation.left_right ? 1 : 0;
-        m.cfg_lr_tolerance = static_cast<std::uint8_t>(params.validation.lr_tolerance);
-        m.cfg_subpixel_en = params.validation.subpixel ? 1 : 0;
-        m.plane_a = static_cast<std::uint32_t>(static_cast<std::int32_t>(frame.plane.a));
-        m.plane_b = static_cast<std::uint32_t>(static_cast<std::int32_t>(frame.plane.b));
-        m.plane_c = static_cast<std::uint32_t>(static_cast<std::int32_t>(frame.plane.c));
-    }
-
-    // Streams the frames back to back. The first frame's configuration is set before its first
-    // beat; the next frame's is written as a host would, once the current frame's first result
-    // has come out (the core sampled it when the frame started, and keeps it until the frame
-    // leaves), usually while the current frame is still streaming in.
-    sim::StreamResult stream(const std::vector<Frame>& frames, const h::Params& params,
-                             const sim::Traffic& traffic) {
-        std::vector<sim::InputBeat> beats;
-        std::size_t total = 0;
-        for (const Frame& frame : frames) {
-            const auto more = sim::frame_beats(frame.left, frame.right);
-            beats.insert(beats.end(), more.begin(), more.end());
-            total += more.size();
-        }
-        configure(frames[0], params);
-        std::size_t configured = 0;  // the frame whose setting the ports hold
-        std::size_t results_started = 0;
-        bool first_beat_seen = false;
-        auto after_edge = [&](Vstereo_hier_pass& m) {
-            const bool first_beat = m.m_axis_tvalid != 0 && m.m_axis_tuser != 0;
-            if (first_beat && !first_beat_seen) {
-                ++results_started;
-                if (configured + 1 < frames.size() && configured + 1 == results_started) {
-                    configure(frames[++configured], params);
-                }
-            }
-            first_beat_seen = first_beat;
-        };
-        return sim::stream_axis(harness_, beats, total, traffic, 40 * total + 100000, after_edge);
-    }
-
-    Vstereo_hier_pass& model() { return harness_.model(); }
-    sim::VerilatedHarness<Vstereo_hier_pass>& harness() { return harness_; }
-
-  private:
-    sim::VerilatedHarness<Vstereo_hier_pass> harness_;
-};
+    const auto configure = [&](std::size_t i) {
+        rtl.configure(frames[i].left.width, frames[i].left.height, frames[i].plane, params);
+    };
+    configure(0);
+    return rtl.stream(beats, beats.size(), traffic, 40 * beats.size() + 100000,
+                      [&](std::size_t started) {
+                          if (started < frames.size()) {
+                              configure(started);
+                          }
+                      });
+}
 
 // Compares the frame's beats (starting at `first`) with the model, pixel by pixel; returns the
 // number of mismatching pixels and reports the first few.
 int mismatches(const std::vector<sim::OutputBeat>& beats, std::size_t first, const Frame& frame,
                const Expected& want) {
-    const int width = frame.left.width;
-    const int height = frame.left.height;
+    const Expected got = sim::hier_pass_assemble(beats, first, frame.left.width, frame.left.height);
     int wrong = 0;
-    for (int y = 0; y < height; ++y) {
-        for (int x = 0; x < width; ++x) {
-            const std::size_t n = first + static_cast<std::size_t>(y) * width + x;
-            const std::size_t p = want.validated.index(x, y);
-            if (n >= beats.size()) {
-                ADD_FAILURE() << "output ended at (" << x << ", " << y << ")";
-                return wrong + 1;
-            }
-            const std::uint64_t data = beats[n].data;
-            const auto fixed = static_cast<std::int16_t>(data & 0xffffU);
-            const auto reason = static_cast<int>((data >> table::kOutReasonLsb) & 7U);
-            const auto certainty = static_cast<int>((data >> 24) & 0xffU);
-            const auto vertical = static_cast<std::int8_t>((data >> 32) & 0xffU);
-            const bool framing =
-                beats[n].user == (x == 0 && y == 0) && beats[n].last == (x == width - 1);
-            if (!framing || fixed != want.validated.fixed[p] ||
-                reason != want.validated.reason[p] || certainty != want.validated.certainty[p] ||
-                vertical != want.vertical[p]) {
-                if (++wrong <= 5) {
-                    ADD_FAILURE() << "pixel (" << x << ", " << y << "): rtl fixed " << fixed
-                                  << " reason " << reason << " certainty " << certainty << " v "
-                                  << static_cast<int>(vertical) << " framing " << framing
-                                  << "; model " << want.validated.fixed[p] << " "
-                                  << static_cast<int>(want.validated.reason[p]) << " "
-                                  << static_cast<int>(want.validated.certainty[p]) << " "
-                                  << static_cast<int>(want.vertical[p]);
-                }
+    for (std::size_t p = 0; p < got.vertical.size(); ++p) {
+        const auto& g = got.validated;
+        const auto& w = want.validated;
+        if (g.fixed[p] != w.fixed[p] || g.reason[p] != w.reason[p] ||
+            g.certainty[p] != w.certainty[p] || got.vertical[p] != want.vertical[p]) {
+            if (++wrong <= 5) {
+                ADD_FAILURE() << "pixel (" << p % frame.left.width << ", " << p / frame.left.width
+                              << "): rtl fixed " << g.fixed[p] << " reason "
+                              << static_cast<int>(g.reason[p]) << " certainty "
+                              << static_cast<int>(g.certainty[p]) << " v "
+                              << static_cast<int>(got.vertical[p]) << "; model " << w.fixed[p]
+                              << " " << static_cast<int>(w.reason[p]) << " "
+                              << static_cast<int>(w.certainty[p]) << " "
+                              << static_cast<int>(want.vertical[p]);
             }
         }
     }
@@ -238,9 +143,9 @@ TEST(StereoHierPass, PlanesShiftsAndRollsEqualModel) {
         frame.left = test::random_image(kMaxWidth, kMaxHeight, 3, rng);
         frame.plane = planes[i];
         frame.right = moved_by_plane(frame.left, frame.plane, 5, rng);
-        HierPass rtl;
-        const auto result = rtl.stream(
-            {frame}, params,
+        sim::HierPassSim rtl;
+        const auto result = stream(
+            rtl, {frame}, params,
             {i % 2 == 0 ? 0.0 : 0.2, i % 2 == 0 ? 0.0 : 0.2, static_cast<std::uint32_t>(i + 1)});
         SCOPED_TRACE("plane " + std::to_string(i));
         ASSERT_TRUE(result.completed) << result.outputs.size() << " beats";
@@ -279,8 +184,8 @@ TEST(StereoHierPass, FramesBackToBackWithTheirOwnPlanes) {
             frame.right = moved_by_plane(frame.left, frame.plane, 3, rng);
             frames.push_back(std::move(frame));
         }
-        HierPass rtl;
-        const auto result = rtl.stream(frames, params, {0.1, 0.15, stage6 ? 7U : 8U});
+        sim::HierPassSim rtl;
+        const auto result = stream(rtl, frames, params, {0.1, 0.15, stage6 ? 7U : 8U});
         ASSERT_TRUE(result.completed) << result.outputs.size() << " beats";
         EXPECT_EQ(result.protocol_error, "");
         std::size_t first = 0;
@@ -298,17 +203,17 @@ TEST(StereoHierPass, ResetInTheMiddleOfAFrame) {
     const h::Params params = pass_params({true, 10, true, 1, true}, true);
     Frame abandoned{test::random_image(64, 48, 3, rng), test::random_image(64, 48, 3, rng),
                     plane_of(4, 0.05, 0)};
-    HierPass rtl;
-    rtl.configure(abandoned, params);
+    sim::HierPassSim rtl;
+    rtl.configure(64, 48, abandoned.plane, params);
     auto beats = sim::frame_beats(abandoned.left, abandoned.right);
     beats.resize(1500);  // half the frame: the row select and stereo_top both hold some of it
-    (void)sim::stream_axis(rtl.harness(), beats, 1, {0.0, 0.3, 3U}, 5000);
+    (void)rtl.stream(beats, 1, {0.0, 0.3, 3U}, 5000);
     rtl.reset();
     Frame frame;
     frame.left = test::random_image(50, 40, 3, rng);
     frame.plane = plane_of(-3.5, 0.02, -0.04);
     frame.right = moved_by_plane(frame.left, frame.plane, 6, rng);
-    const auto result = rtl.stream({frame}, params, {0.2, 0.2, 4U});
+    const auto result = stream(rtl, {frame}, params, {0.2, 0.2, 4U});
     ASSERT_TRUE(result.completed);
     EXPECT_EQ(mismatches(result.outputs, 0, frame, expected(frame, params)), 0);
 }
@@ -337,8 +242,8 @@ TEST(StereoHierPass, RealCropAlongItsPlane) {
     }
     const Frame along{crop->left, right, plane};
     const Frame flat{crop->left, right, h::Plane{}};
-    HierPass rtl;
-    const auto result = rtl.stream({along, flat}, params, {0.1, 0.1, 5U});
+    sim::HierPassSim rtl;
+    const auto result = stream(rtl, {along, flat}, params, {0.1, 0.1, 5U});
     ASSERT_TRUE(result.completed);
     const Expected want_along = expected(along, params);
     const Expected want_flat = expected(flat, params);
