@@ -23,7 +23,9 @@
 #include "cli_cosim_options.hpp"
 #include "cli_matcher_options.hpp"
 #include "cli_progress.hpp"
+#include "hier_pass_sim.hpp"
 #include "on_demand.hpp"
+#include "stereo/hierarchical.hpp"
 #include "stereo/pipeline.hpp"
 #include "stereo/stage_table.hpp"
 #include "stereo_io/disparity_files.hpp"
@@ -420,7 +422,175 @@ nlohmann::json localisation_of(const Core& core, const sim::CoreParams& frame_pa
                     comparison.watched);
 }
 
+// `stereo cosim --method hierarchical`: the hierarchical core's 1-D pass (stereo_hier_pass) along
+// the plane that the host's PlaneTracker settles on for this pair on a steady rig
+// (vertical_plane of the model's full level; docs/hierarchical.md "Hardware form of the field"),
+// every pixel's beat and vertical offset against the model (sim::hier_pass_expected).
+void run_cosim_hierarchical(const CosimOptions& options) {
+    const MatchConfig match_config = options.matcher.resolved();
+    const MatchParams& params = match_config.pipeline;
+    if (params.cost != "census") {
+        throw std::invalid_argument("--method hierarchical: the core's cost is census, not " +
+                                    params.cost);
+    }
+    if (params.min_disp != 0) {
+        throw std::invalid_argument(
+            "--method hierarchical: the pass searches disparities 0 .. ndisp - 1 (--min-disp 0)");
+    }
+    if (!options.size.empty() || !options.trace.empty() || !options.diff.empty()) {
+        throw std::invalid_argument(
+            "--method hierarchical runs the built stereo_hier_pass: --size, --trace and --diff "
+            "are for --method pipeline");
+    }
+    constexpr sim::HierPassLimits limits = sim::kHierPassLimits;
+    if (params.ndisp > limits.ndisp || params.window > limits.window) {
+        throw std::invalid_argument("--method hierarchical: stereo_hier_pass holds " +
+                                    std::to_string(limits.ndisp) + " labels and window " +
+                                    std::to_string(limits.window));
+    }
+    check_options(options);
+    const io::ImagePair pair =
+        apply_crop(io::load_pair(options.left, options.right, options.downscale), options.crop);
+    const int width = pair.left.width;
+    const int height = pair.left.height;
+    if (width > limits.width || height > limits.height) {
+        throw std::invalid_argument(
+            "--method hierarchical: stereo_hier_pass holds " + std::to_string(limits.width) + "x" +
+            std::to_string(limits.height) + ", the pair is " + std::to_string(width) + "x" +
+            std::to_string(height) + " (use --downscale or --crop)");
+    }
+    if (options.reset_at >= width * height) {
+        throw std::invalid_argument("--reset-at must be below the frame's " +
+                                    std::to_string(width * height) + " beats");
+    }
+    hierarchical::Params search;
+    search.ndisp = params.ndisp;
+    search.vrange = limits.v_max - limits.v_min + 1;
+    search.cost = params.cost;
+    search.use_ca = params.use_ca;
+    search.field_level = {params.window, params.sigma};
+    search.validation = params.validation;
+    hierarchical::validate(search, width, height);
+    hierarchical::CostCount count;
+    const auto levels = hierarchical::match_levels(pair.left, pair.right, search, count);
+    const hierarchical::Plane plane = hierarchical::vertical_plane(levels[2]);
+    const sim::HierPassOutput expected =
+        sim::hier_pass_expected(pair.left, pair.right, plane, search);
+
+    sim::HierPassSim core;
+    const auto beats = sim::frame_beats(pair.left, pair.right);
+    std::size_t mismatches = 0;
+    nlohmann::json first = nlohmann::json::array();
+    sim::StreamResult result;
+    std::uint64_t total_cycles = 0;
+    std::optional<sim::HierPassOutput> rtl;
+    for (int frame = 0; frame < options.frames; ++frame) {
+        const sim::Traffic traffic{options.gap, options.stall,
+                                   options.seed + static_cast<std::uint32_t>(frame)};
+        core.configure(width, height, plane, search);
+        if (options.reset_at >= 0) {
+            const std::vector<sim::InputBeat> part(beats.begin(), beats.begin() + options.reset_at);
+            if (!part.empty()) {
+                total_cycles += core.stream(part, std::max<std::size_t>(1, part.size() / 4),
+                                            traffic, 10 * part.size() + 10000)
+                                    .cycles;
+            }
+            core.reset();
+        }
+        result = core.stream(beats, beats.size(), traffic, 100 * beats.size() + 100000);
+        total_cycles += result.cycles;
+        if (!result.completed) {
+            throw std::runtime_error("the core stalled in frame " + std::to_string(frame) + ": " +
+                                     std::to_string(result.outputs.size()) + " of " +
+                                     std::to_string(beats.size()) + " outputs arrived");
+        }
+        if (!result.protocol_error.empty()) {
+            throw std::runtime_error("AXI4-Stream protocol error: " + result.protocol_error);
+        }
+        rtl = sim::hier_pass_assemble(result.outputs, 0, width, height);
+        for (std::size_t p = 0; p < expected.vertical.size(); ++p) {
+            const auto& got = rtl->validated;
+            const auto& want = expected.validated;
+            if (got.fixed[p] == want.fixed[p] && got.reason[p] == want.reason[p] &&
+                got.certainty[p] == want.certainty[p] && rtl->vertical[p] == expected.vertical[p]) {
+                continue;
+            }
+            if (mismatches++ < 10) {
+                const auto fields = [p](const sim::HierPassOutput& o) {
+                    return nlohmann::json{{"fixed", o.validated.fixed[p]},
+                                          {"reason", o.validated.reason[p]},
+                                          {"certainty", o.validated.certainty[p]},
+                                          {"vertical", o.vertical[p]}};
+                };
+                first.push_back({{"frame", frame},
+                                 {"x", p % static_cast<std::size_t>(width)},
+                                 {"y", p / static_cast<std::size_t>(width)},
+                                 {"model", fields(expected)},
+                                 {"rtl", fields(*rtl)}});
+            }
+        }
+    }
+    if (!options.output.empty()) {
+        const auto encoding = io::output_encoding(options.output, io::DisparityEncoding::scaled);
+        io::write_file_atomic(
+            options.output,
+            io::encode_disparity(rtl->validated, encoding, params.ndisp, 1, options.output));
+    }
+    const auto valid =
+        std::count(rtl->validated.reason.begin(), rtl->validated.reason.end(), fx::kReasonValid);
+    const double per_pixel = static_cast<double>(result.cycles) / static_cast<double>(beats.size());
+    const auto in_pixels = [](std::int64_t value) {
+        return static_cast<double>(value) / hierarchical::kPlaneOne;
+    };
+    if (options.json) {
+        nlohmann::json summary = pipeline_json(width, height, params);
+        summary.update(
+            {{"method", "hierarchical"},
+             {"config", "Vstereo_hier_pass"},
+             {"plane", {{"a", plane.a}, {"b", plane.b}, {"c", plane.c}}},
+             {"mismatches", mismatches},
+             {"frames", options.frames},
+             {"reset_at", options.reset_at},
+             {"pixels", beats.size()},
+             {"pixels_compared", beats.size() * static_cast<std::size_t>(options.frames)},
+             {"valid_pixels", valid},
+             {"cycles", result.cycles},
+             {"total_cycles", total_cycles},
+             {"cycles_per_pixel", per_pixel},
+             {"first_mismatches", first},
+             {"seed", options.seed},
+             {"stall", options.stall},
+             {"gap", options.gap},
+             {"status", result.status}});
+        std::cout << io::versioned(summary).dump() << '\n';
+    } else {
+        std::printf(
+            "%dx%d ndisp %d window %d: the hierarchical pass (stereo_hier_pass) along the plane "
+            "v = %.4f + %.5f x + %.5f y, seed %u, stall %.2f, gap %.2f\n%zu mismatching pixels of "
+            "%zu (fixed, reason, certainty and vertical offset compared, %d frame%s); %zu valid; "
+            "%llu cycles, %.3f cycles/pixel\n",
+            width, height, params.ndisp, params.window, in_pixels(plane.a), in_pixels(plane.b),
+            in_pixels(plane.c), options.seed, options.stall, options.gap, mismatches,
+            beats.size() * static_cast<std::size_t>(options.frames), options.frames,
+            options.frames == 1 ? "" : "s", static_cast<std::size_t>(valid),
+            static_cast<unsigned long long>(result.cycles), per_pixel);
+        for (const auto& m : first) {
+            std::printf("  mismatch in frame %d at (%d, %d): model %s, rtl %s\n",
+                        m["frame"].get<int>(), m["x"].get<int>(), m["y"].get<int>(),
+                        m["model"].dump().c_str(), m["rtl"].dump().c_str());
+        }
+    }
+    if (mismatches != 0) {
+        throw MismatchError(std::to_string(mismatches) +
+                            " pixels differ from the golden model's hierarchical pass");
+    }
+}
+
 void run_cosim(const CosimOptions& options) {
+    if (options.method == "hierarchical") {
+        run_cosim_hierarchical(options);
+        return;
+    }
     const MatchConfig match_config = options.matcher.resolved();
     const MatchParams& params = match_config.pipeline;
     // The expected map: the golden model, made (and its parameters checked) before any file.

@@ -41,6 +41,13 @@ void add_cosim_options(CLI::App& command, CosimOptions& options) {
     command.add_option("--gap", options.gap, "Probability of s_axis_tvalid withheld per cycle")
         ->capture_default_str()
         ->check(probability);
+    command
+        .add_option("--method", options.method,
+                    "pipeline: stereo_top; hierarchical: the hierarchical core's 1-D pass "
+                    "(stereo_hier_pass: census, up to 64x48, 16 labels, window 5) along the "
+                    "plane the model fits to the pair's full level (docs/hierarchical.md)")
+        ->check(CLI::IsMember({"pipeline", "hierarchical"}))
+        ->capture_default_str();
     command.add_option("-o,--output", options.output, "Write the RTL's disparity PNG");
     command
         .add_option("--frames", options.frames,

@@ -15,6 +15,8 @@ namespace stereo::cli {
 struct CosimOptions {
     std::string left;
     std::string right;
+    // pipeline: stereo_top; hierarchical: the hierarchical core's 1-D pass (stereo_hier_pass)
+    std::string method = "pipeline";
     MatcherOptions matcher;
     int downscale = 1;
     std::string crop;  // WxH+X+Y
