@@ -40,11 +40,7 @@ module stereo_field_border #(
     output      logic                              s_axis_tready,
     input  wire logic                              s_axis_tlast,
     input  wire logic                              s_axis_tuser,
-    output      logic [fx_pkg::OUT_BEAT_BITS+7:0]  m_axis_tdata,
-    output      logic                              m_axis_tvalid,
-    input  wire logic                              m_axis_tready,
-    output      logic                              m_axis_tlast,
-    output      logic                              m_axis_tuser
+`include "stereo_hier_out_ports.svh"
 );
   `STEREO_ASSERT(offset_range, V_MIN >= -128 && V_MAX <= 127 && V_MIN <= V_MAX,
                  "V_MIN .. V_MAX must fit a signed byte")

@@ -58,11 +58,7 @@ module stereo_hier_pass #(
     output      logic                               s_axis_tready,
     input  wire logic                               s_axis_tlast,
     input  wire logic                               s_axis_tuser,
-    output      logic [fx_pkg::OUT_BEAT_BITS+7:0]   m_axis_tdata,
-    output      logic                               m_axis_tvalid,
-    input  wire logic                               m_axis_tready,
-    output      logic                               m_axis_tlast,
-    output      logic                               m_axis_tuser
+`include "stereo_hier_out_ports.svh"
 );
   // (Member widths spelled out: Yosys does not resolve a package's types inside a struct.)
   typedef struct packed {

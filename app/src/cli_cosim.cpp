@@ -25,6 +25,7 @@
 #include "cli_progress.hpp"
 #include "hier_pass_sim.hpp"
 #include "on_demand.hpp"
+#include "stereo/catalogue.hpp"
 #include "stereo/hierarchical.hpp"
 #include "stereo/pipeline.hpp"
 #include "stereo/stage_table.hpp"
@@ -429,7 +430,8 @@ nlohmann::json localisation_of(const Core& core, const sim::CoreParams& frame_pa
 void run_cosim_hierarchical(const CosimOptions& options) {
     const MatchConfig match_config = options.matcher.resolved();
     const MatchParams& params = match_config.pipeline;
-    if (params.cost != "census") {
+    const std::string_view census = catalogue::cost(catalogue::Cost::census).name;
+    if (params.cost != census) {
         throw std::invalid_argument("--method hierarchical: the core's cost is census, not " +
                                     params.cost);
     }
@@ -587,7 +589,7 @@ void run_cosim_hierarchical(const CosimOptions& options) {
 }
 
 void run_cosim(const CosimOptions& options) {
-    if (options.method == "hierarchical") {
+    if (options.method == catalogue::method(catalogue::Method::hierarchical).name) {
         run_cosim_hierarchical(options);
         return;
     }

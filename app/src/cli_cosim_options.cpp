@@ -46,7 +46,9 @@ void add_cosim_options(CLI::App& command, CosimOptions& options) {
                     "pipeline: stereo_top; hierarchical: the hierarchical core's 1-D pass "
                     "(stereo_hier_pass: census, up to 64x48, 16 labels, window 5) along the "
                     "plane the model fits to the pair's full level (docs/hierarchical.md)")
-        ->check(CLI::IsMember({"pipeline", "hierarchical"}))
+        ->check(
+            CLI::IsMember({std::string(catalogue::method(catalogue::Method::pipeline).name),
+                           std::string(catalogue::method(catalogue::Method::hierarchical).name)}))
         ->capture_default_str();
     command.add_option("-o,--output", options.output, "Write the RTL's disparity PNG");
     command

@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli_matcher_options.hpp"
+#include "stereo/catalogue.hpp"
 
 namespace stereo::cli {
 
@@ -16,7 +17,7 @@ struct CosimOptions {
     std::string left;
     std::string right;
     // pipeline: stereo_top; hierarchical: the hierarchical core's 1-D pass (stereo_hier_pass)
-    std::string method = "pipeline";
+    std::string method{catalogue::method(catalogue::Method::pipeline).name};
     MatcherOptions matcher;
     int downscale = 1;
     std::string crop;  // WxH+X+Y
