@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # ASan + UBSan build (CMake preset "sanitize", folder build-sanitize/) of the model, io, robot and
 # CLI with their tests, then those tests: any memory error or undefined behaviour fails the run.
+# The fuzz harnesses are built here too with a replay main (fuzz/replay_main.cpp) and run once on
+# every checked-in seed (label fuzz-replay): the seeds under the sanitizers without the clang
+# build of scripts/fuzz.sh.
 # The RTL testbenches, the synthesis checks and the long golden digests are left to the normal
 # build (./scripts/test.sh), which covers the same code paths without the sanitizers' cost. The
 # preset builds without the RTL (STEREO_WITH_RTL=OFF): compiling the 24 Verilated configurations
@@ -20,10 +23,10 @@ cd "$(dirname "$0")/.."
 targets=(stereo stereo_experiments test_model test_matcher test_io test_output test_cli_run test_metrics test_middlebury
          test_edge_frontend test_hierarchical test_robot test_slam test_constants test_validation
          test_costs_lcdm test_speckle test_quad test_point_cloud test_obstacles test_bands test_asw test_board
-         test_catalogue make_cli_fixtures map_exercises make_slam_fixtures)
+         test_catalogue make_cli_fixtures map_exercises make_slam_fixtures fuzz_replay_all)
 cmake --preset sanitize
 cmake --build build-sanitize -j"$(nproc)" --target "${targets[@]}"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-ctest --test-dir build-sanitize --output-on-failure -j"$(nproc)" -L "model|app|robot|cli" \
+ctest --test-dir build-sanitize --output-on-failure -j"$(nproc)" -L "model|app|robot|cli|fuzz-replay" \
   -E "golden|NOT_BUILT|hls|hierarchical_end_to_end|cosim_trace|gtkw_layout|asw_eval_quick|subpixel_calibration_matches_constants|VerticalFieldEqualsNaive"
