@@ -35,3 +35,5 @@ stereo_plane_offset.sv
 stereo_row_warp.sv
 stereo_field_border.sv
 stereo_hier_pass.sv
+stereo_level_cost.sv
+stereo_hier_level.sv

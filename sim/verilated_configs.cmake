@@ -36,5 +36,7 @@ stereo_verilated_config(Vstereo_downscale2 stereo_downscale "" WIDTH=64 FACTOR=2
 stereo_verilated_config(Vstereo_downscale4 stereo_downscale "" WIDTH=64 FACTOR=4)
 stereo_verilated_config(Vstereo_plane_stats stereo_plane_stats "")
 stereo_verilated_config(Vstereo_hier_pass stereo_hier_pass "")
+stereo_verilated_config(Vstereo_hier_level_quarter stereo_hier_level "" WIDTH=32 WINDOW=9 COLS=4 ROWS=4 V_MIN=-2 V_MAX=1 REFINE=1'b0)
+stereo_verilated_config(Vstereo_hier_level_refine stereo_hier_level "" WIDTH=64 WINDOW=15 COLS=3 ROWS=3 V_MIN=-4 V_MAX=3 REFINE=1'b1)
 stereo_verilated_config(Vstereo_top_full stereo_top "STEREO_COSIM_FULL" WIDTH=640 HEIGHT=480 NDISP=64 WINDOW=11)
 stereo_verilated_config(Vstereo_top_full_census_lean stereo_top "STEREO_COSIM_FULL_CENSUS" WIDTH=640 HEIGHT=480 NDISP=64 WINDOW=11 COST=2 LANES=8 RECOMPUTE_COSTS=1'b1)

@@ -352,7 +352,12 @@ std::vector<std::pair<std::string, std::string>> assignments(const stereo::table
                               {"CLKS_PER_BIT", params.clks_per_bit, false},
                               {"SHIFT_ADD", params.shift_add, false},
                               {"RECOMPUTE_COSTS", params.recompute_costs, true},
-                              {"FACTOR", params.factor, false}};
+                              {"FACTOR", params.factor, false},
+                              {"COLS", params.cols, false},
+                              {"ROWS", params.rows, false},
+                              {"V_MIN", params.v_min, false},
+                              {"V_MAX", params.v_max, false},
+                              {"REFINE", params.refine, true}};
     for (const auto& [name, value, bit] : all) {
         if (value != stereo::table::kUnset) {
             out.emplace_back(

@@ -297,7 +297,7 @@ constexpr int hls_pipeline_latency(int width, int window, int ndisp, int min_dis
 // The package first, then every module before its first user. One module per file, named after
 // it; the list of modules to lint is this list without the package.
 inline constexpr std::string_view kPackageFile = "fx_pkg.sv";
-inline constexpr std::array<std::string_view, 35> kRtlModules = {
+inline constexpr std::array<std::string_view, 37> kRtlModules = {
     "stereo_coord_reg",     "stereo_stage_output",   "stereo_shift_reg",    "stereo_border_flags",
     "stereo_window_centre", "stereo_line_buffer",    "stereo_row_stack",    "stereo_group_ring",
     "stereo_window3x3",     "stereo_ca_plane",       "stereo_lcdm_convert", "stereo_lcdm_distance",
@@ -306,7 +306,8 @@ inline constexpr std::array<std::string_view, 35> kRtlModules = {
     "stereo_top",           "stereo_axil_top",       "stereo_synth_top",    "stereo_uart_rx",
     "stereo_uart_tx",       "stereo_power_on_reset", "stereo_board_link",   "stereo_board_top",
     "stereo_uart_echo_top", "stereo_downscale",      "stereo_plane_stats",  "stereo_plane_offset",
-    "stereo_row_warp",      "stereo_field_border",   "stereo_hier_pass",
+    "stereo_row_warp",      "stereo_field_border",   "stereo_hier_pass",    "stereo_level_cost",
+    "stereo_hier_level",
 };
 // Port-list fragments and the parameter-check macro (`STEREO_ASSERT) the modules `include (found
 // in rtl/: tools need rtl/ on the include path).
@@ -321,7 +322,8 @@ inline constexpr std::uint32_t kRegmapVersion = 0x0001'0001;
 inline constexpr std::string_view kRegmapVersionText = "1.1.0";
 
 // ---- Verilated configurations (sim/verilated_configs.cmake) --------------------------------
-inline constexpr int kUnset = -1;
+// Below every parameter value (V_MIN may be negative).
+inline constexpr int kUnset = -(1 << 30);
 
 struct Params {
     int width = kUnset;
@@ -339,14 +341,22 @@ struct Params {
     // instead of per-label rows (docs/rtl.md "Lean memory")
     int recompute_costs = kUnset;
     int factor = kUnset;  // stereo_downscale's FACTOR (the hierarchical search's pyramid)
+    // stereo_hier_level's candidate grid (COLS x ROWS), vertical offsets V_MIN .. V_MAX, REFINE
+    int cols = kUnset;
+    int rows = kUnset;
+    int v_min = kUnset;
+    int v_max = kUnset;
+    int refine = kUnset;
 
     // These parameters with those that `over` sets put in their place.
     [[nodiscard]] constexpr Params with(const Params& over) const {
         Params merged = *this;
-        for (int Params::*field : {&Params::width, &Params::height, &Params::ndisp, &Params::window,
-                                   &Params::runtime_kernel, &Params::rule, &Params::max_min_disp,
-                                   &Params::cost, &Params::lanes, &Params::clks_per_bit,
-                                   &Params::shift_add, &Params::recompute_costs, &Params::factor}) {
+        for (int Params::*field :
+             {&Params::width, &Params::height, &Params::ndisp, &Params::window,
+              &Params::runtime_kernel, &Params::rule, &Params::max_min_disp, &Params::cost,
+              &Params::lanes, &Params::clks_per_bit, &Params::shift_add, &Params::recompute_costs,
+              &Params::factor, &Params::cols, &Params::rows, &Params::v_min, &Params::v_max,
+              &Params::refine}) {
             if (over.*field != kUnset) {
                 merged.*field = over.*field;
             }
@@ -421,7 +431,7 @@ inline constexpr Params kFpgaCensusNdisp8Lanes2 = kSmall.with({.ndisp = 8,
 inline constexpr Params kFullCensusLean =
     kFull.with({.cost = kCostCensus, .lanes = 8, .recompute_costs = 1});
 
-inline constexpr std::array<VerilatedConfig, 36> kVerilatedConfigs = {{
+inline constexpr std::array<VerilatedConfig, 38> kVerilatedConfigs = {{
     {"Vstereo_top_small", "stereo_top", kSmall, "", "small"},
     {"Vstereo_top_lanes4", "stereo_top", kSmallLanes4, "", "lanes4"},
     {"Vstereo_top_lanes1", "stereo_top", kSmallLanes1, "", "lanes1"},
@@ -488,6 +498,16 @@ inline constexpr std::array<VerilatedConfig, 36> kVerilatedConfigs = {{
     {"Vstereo_plane_stats", "stereo_plane_stats", {}, ""},
     // ... and its 1-D pass along the plane (64x48, 16 labels, 5x5, census, offsets -8 .. 7).
     {"Vstereo_hier_pass", "stereo_hier_pass", {}, ""},
+    // ... and its levels for a 128x96 frame, D = V = 16: the quarter level (32 wide, the whole
+    // 4 x 4 range, offsets -2 .. 1, 9x9) and the half level (64 wide, 3x3, offsets -4 .. 3, 15x15).
+    {"Vstereo_hier_level_quarter",
+     "stereo_hier_level",
+     {.width = 32, .window = 9, .cols = 4, .rows = 4, .v_min = -2, .v_max = 1, .refine = 0},
+     ""},
+    {"Vstereo_hier_level_refine",
+     "stereo_hier_level",
+     {.width = 64, .window = 15, .cols = 3, .rows = 3, .v_min = -4, .v_max = 3, .refine = 1},
+     ""},
     // Its C++ takes minutes to compile: only with -DSTEREO_COSIM_FULL=ON.
     {"Vstereo_top_full", "stereo_top", kFull, "STEREO_COSIM_FULL", "full"},
     // ... and the lean census core at that size: -DSTEREO_COSIM_CONFIGS=full_census_lean.

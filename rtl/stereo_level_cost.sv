@@ -1,0 +1,198 @@
+// stereo_level_cost: stage 1 of a hierarchical level (model: stereo::cost_plane over a
+// CandidateGrid with the census cost; docs/hierarchical.md "Candidates and the DSI of a level",
+// "The streaming core"). For the pixel (x, y) and its base (bd, bv) it computes the cost of every
+// candidate (i, j), label k = j * COLS + i:
+//   popcount(L(x, y) ^ R(x - bd - i, y + bv + j)) * CENSUS_WEIGHT,
+// or COST_OUTSIDE where that right pixel lies outside the frame, on any side (a 2-D candidate
+// can leave the frame above and below, not only on the left as in stereo_cost).
+//
+// Memory: the census codes of the last SLOTS = V_MAX - V_MIN + 2 rows of both images, row r in
+// slot r mod SLOTS. The right rows are split into COLS banks by column mod COLS, so the COLS
+// consecutive columns x - bd - COLS + 1 .. x - bd come out of COLS one-port memories in one
+// read, and every slot has its own banks, so the ROWS candidate rows (distinct rows) read in the
+// same step. The left codes wait for their last right row in one memory of SLOTS rows.
+//
+// Timing: the codes of pixel (in_x, in_y) (stereo_census's output: raster order, flush rows
+// beyond the frame) are written at their step. The pixel matched at a step is the one whose last
+// right pixel, (x, y + V_MAX), arrived at the step before: (req_x, req_y) = (the previous step's
+// in_x, its in_y - V_MAX), whose base the caller puts on in_base_d / in_base_v during that
+// step. The step reads every bank at that pixel's columns and registers which slot and bank
+// each candidate reads and whether it lies outside; the next step computes the costs into
+// out_data. Latency: 2 pixel steps from the codes' arrival at (x, y + V_MAX); one pixel per ce.
+// SLOTS exceeds the rows a step reads by one, so a write never meets a read of the same row.
+// Reset clears the coordinates only; stale codes are never read by a real pixel (a row is
+// written before any pixel reads it).
+`default_nettype none
+`include "stereo_assert.svh"
+
+module stereo_level_cost #(
+    parameter int WIDTH = 32,  // longest row of the level
+    parameter int COLS  = 3,   // candidate columns (horizontal displacements per row)
+    parameter int ROWS  = 3,   // candidate rows (vertical displacements)
+    parameter int V_MIN = -2,  // the level's smallest vertical offset
+    parameter int V_MAX = 1    // the level's largest vertical offset
+) (
+    input  wire logic                                        clk,
+    input  wire logic                                        rst,  // clears coordinates only
+    input  wire logic                                        ce,   // the pixel step
+    input  wire fx_pkg::coord_t                              in_x,
+    input  wire fx_pkg::coord_t                              in_y,
+    input  wire logic [23:0]                                 in_left,   // census code
+    input  wire logic [23:0]                                 in_right,  // census code
+    /* verilator lint_off UNUSEDSIGNAL */  // reads width and height only
+    input  wire fx_pkg::config_t                             cfg,
+    /* verilator lint_on UNUSEDSIGNAL */
+    // The pixel matched at the next step, and its base (given by the caller during this step).
+    output      fx_pkg::coord_t                              req_x,
+    output      fx_pkg::coord_t                              req_y,
+    input  wire logic [fx_pkg::DISP_BITS-1:0]                in_base_d,  // >= 0
+    input  wire logic signed [fx_pkg::DISP_BITS-1:0]         in_base_v,
+    output      fx_pkg::coord_t                              out_x,
+    output      fx_pkg::coord_t                              out_y,
+    output      fx_pkg::coord_t                              out_next_y,  // stereo_aggregate in_next_y
+    output      logic [COLS*ROWS*fx_pkg::COST_BITS-1:0]      out_data
+);
+  localparam int SLOTS = V_MAX - V_MIN + 2;
+  localparam int SLOT_BITS = $clog2(SLOTS);
+  localparam int BANK_DEPTH = (WIDTH + COLS - 1) / COLS;
+  localparam int BANK_BITS = (BANK_DEPTH > 1) ? $clog2(BANK_DEPTH) : 1;
+  localparam int LEFT_BITS = $clog2(SLOTS * WIDTH);
+  localparam int COST_BITS = fx_pkg::COST_BITS;
+  // Rows and columns are biased by a multiple of SLOTS (COLS) before the modulo, so that the
+  // operands are non-negative and narrow: rows >= -ROW_BIAS, columns >= -COLUMN_BIAS.
+  localparam int ROW_BIAS = SLOTS * 1024;
+  localparam int COLUMN_BIAS = COLS * 512;
+
+  `STEREO_ASSERT(grid_size, COLS >= 1 && ROWS >= 1 && ROWS <= V_MAX - V_MIN + 1,
+                 "COLS >= 1 and ROWS in 1 .. V_MAX - V_MIN + 1")
+  `STEREO_ASSERT(offset_range, V_MIN <= -1 && V_MAX >= 0 && V_MAX - V_MIN <= 126,
+                 "the vertical offsets V_MIN .. V_MAX must contain -1 and 0 and fit a byte")
+
+  function automatic logic [SLOT_BITS-1:0] slot_of(input logic signed [17:0] row);
+    slot_of = SLOT_BITS'((32'(row) + ROW_BIAS) % SLOTS);
+  endfunction
+
+  // ---- the previous step's pixel and the pixel it completes --------------------------------
+  fx_pkg::coord_t prev_x, prev_y;
+  always_ff @(posedge clk) begin
+    if (rst) begin
+      prev_x <= '0;
+      prev_y <= fx_pkg::NO_PIXEL;
+    end else if (ce) begin
+      prev_x <= in_x;
+      prev_y <= in_y;
+    end
+  end
+  assign req_x = prev_x;
+  assign req_y = (prev_y == fx_pkg::NO_PIXEL) ? fx_pkg::NO_PIXEL
+                                               : 16'(prev_y - 16'(V_MAX));
+
+  // ---- writes -------------------------------------------------------------------------------
+  logic write;
+  logic [SLOT_BITS-1:0] write_slot;
+  assign write = ce && in_y != fx_pkg::NO_PIXEL && in_x >= 0 && in_y >= 0 &&
+                 32'(in_x) < 32'(cfg.width) && 32'(in_y) < 32'(cfg.height);
+  assign write_slot = slot_of(18'(in_y));
+
+  logic [23:0] left_mem[SLOTS * WIDTH];
+  logic [23:0] left_code;  // L(req) after the step
+  always_ff @(posedge clk) begin
+    if (write) left_mem[LEFT_BITS'(32'(write_slot) * WIDTH + 32'(in_x))] <= in_left;
+    if (ce) left_code <= left_mem[LEFT_BITS'(32'(slot_of(18'(req_y))) * WIDTH +
+                                              ((req_x >= 0 && 32'(req_x) < WIDTH) ? 32'(req_x) : 0))];
+  end
+
+  // ---- the candidates' columns and rows -------------------------------------------------------
+  // Candidate i reads column c_i = x - bd - i; each bank holds exactly one of the COLS
+  // consecutive columns.
+  logic signed [17:0] column[COLS];
+  logic [BANK_BITS-1:0] bank_address[COLS];  // per bank
+  logic [$clog2(COLS + 1)-1:0] column_bank[COLS];  // per candidate column
+  logic column_outside[COLS];
+  always_comb begin
+    for (int b = 0; b < COLS; b++) bank_address[b] = '0;
+    for (int i = 0; i < COLS; i++) begin
+      column[i] = 18'(req_x) - 18'(in_base_d) - 18'(i);
+      column_bank[i] = ($clog2(COLS + 1))'((32'(column[i]) + COLUMN_BIAS) % COLS);
+      column_outside[i] = column[i] < 0 || 32'(column[i]) >= 32'(cfg.width);
+      if (!column_outside[i])
+        bank_address[column_bank[i]] = BANK_BITS'(32'(column[i]) / COLS);
+    end
+  end
+  logic signed [17:0] row[ROWS];
+  logic [SLOT_BITS-1:0] row_slot[ROWS];
+  logic row_outside[ROWS];
+  always_comb begin
+    for (int j = 0; j < ROWS; j++) begin
+      row[j] = 18'(req_y) + 18'(in_base_v) + 18'(j);
+      row_slot[j] = slot_of(row[j]);
+      row_outside[j] = req_y == fx_pkg::NO_PIXEL || row[j] < 0 || 32'(row[j]) >= 32'(cfg.height);
+    end
+  end
+
+  // ---- the right banks: one memory per slot and bank, read at every step -----------------------
+  logic [23:0] bank_code[SLOTS][COLS];  // after the step
+  for (genvar s = 0; s < SLOTS; s++) begin : g_slot
+    for (genvar b = 0; b < COLS; b++) begin : g_bank
+      logic [23:0] mem[BANK_DEPTH];
+      always_ff @(posedge clk) begin
+        if (write && write_slot == SLOT_BITS'(s) && 32'(in_x) % COLS == b)
+          mem[BANK_BITS'(32'(in_x) / COLS)] <= in_right;
+        if (ce) bank_code[s][b] <= mem[bank_address[b]];
+      end
+    end
+  end
+
+  // ---- the selection, registered beside the read ---------------------------------------------
+  fx_pkg::coord_t read_x, read_y;
+  logic [SLOT_BITS-1:0] read_slot[ROWS];
+  logic [$clog2(COLS + 1)-1:0] read_bank[COLS];
+  logic read_outside[ROWS][COLS];
+  always_ff @(posedge clk) begin
+    if (rst) begin
+      read_x <= '0;
+      read_y <= fx_pkg::NO_PIXEL;
+    end else if (ce) begin
+      read_x <= req_x;
+      read_y <= req_y;
+    end
+  end
+  always_ff @(posedge clk) begin
+    if (ce) begin
+      for (int j = 0; j < ROWS; j++) read_slot[j] <= row_slot[j];
+      for (int i = 0; i < COLS; i++) read_bank[i] <= column_bank[i];
+      for (int j = 0; j < ROWS; j++)
+        for (int i = 0; i < COLS; i++) read_outside[j][i] <= row_outside[j] || column_outside[i];
+    end
+  end
+
+  // ---- the costs --------------------------------------------------------------------------------
+  always_ff @(posedge clk) begin
+    if (rst) begin
+      out_x <= '0;
+      out_y <= fx_pkg::NO_PIXEL;
+    end else if (ce) begin
+      out_x <= read_x;
+      out_y <= read_y;
+    end
+  end
+  assign out_next_y = read_y;
+  logic [23:0] right_code[ROWS][COLS];  // R(x - bd - i, y + bv + j)
+  logic [COLS*ROWS*COST_BITS-1:0] costs;
+  always_comb begin
+    for (int j = 0; j < ROWS; j++) begin
+      for (int i = 0; i < COLS; i++) begin
+        right_code[j][i] = bank_code[read_slot[j]][read_bank[i]];
+        costs[(j * COLS + i) * COST_BITS +: COST_BITS] =
+            read_outside[j][i] ? COST_BITS'(fx_pkg::COST_OUTSIDE)
+                               : COST_BITS'($countones(left_code ^ right_code[j][i]) *
+                                            fx_pkg::CENSUS_WEIGHT);
+      end
+    end
+  end
+  always_ff @(posedge clk) begin
+    if (ce) out_data <= costs;
+  end
+endmodule
+
+`default_nettype wire
