@@ -37,3 +37,7 @@ stereo_field_border.sv
 stereo_hier_pass.sv
 stereo_level_cost.sv
 stereo_hier_level.sv
+stereo_fifo.sv
+stereo_level_stepper.sv
+stereo_prediction_ring.sv
+stereo_hier_levels.sv

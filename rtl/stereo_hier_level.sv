@@ -93,16 +93,17 @@ module stereo_hier_level #(
     else if (va != vb) key_less = va < vb;
     else key_less = da < db;
   endfunction
-  // The label of rank r: the one with exactly r smaller keys.
-  function automatic int label_of_rank(input int r);
+  // TIE_ORDER: the label of rank r at [r*9 +: 9] (the rank of k: how many keys are smaller).
+  function automatic logic [LABELS*9-1:0] tie_order();
     int smaller;
-    label_of_rank = 0;
+    tie_order = '0;
     for (int k = 0; k < LABELS; k++) begin
       smaller = 0;
       for (int m = 0; m < LABELS; m++) if (key_less(m, k)) smaller++;
-      if (smaller == r) label_of_rank = k;
+      tie_order[smaller*9 +: 9] = 9'(k);
     end
   endfunction
+  localparam logic [LABELS*9-1:0] TIE_ORDER = tie_order();
 
   // ---- configuration of the reused stages -------------------------------------------------------
   fx_pkg::config_t row_cfg, all_cfg;  // CA rule 1 sees one candidate row, the others every label
@@ -236,7 +237,7 @@ module stereo_hier_level #(
   // ---- WTA in tie order -------------------------------------------------------------------------
   logic [LABELS*AGG_BITS-1:0] ranked;
   for (genvar r = 0; r < LABELS; r++) begin : g_rank
-    localparam int K = label_of_rank(r);
+    localparam int K = 32'(TIE_ORDER[r*9 +: 9]);
     assign ranked[r*AGG_BITS +: AGG_BITS] = rule2_data[K*AGG_BITS +: AGG_BITS];
   end
   logic [fx_pkg::DISP_BITS-1:0] rank;
@@ -273,7 +274,7 @@ module stereo_hier_level #(
   always_comb begin
     winner = '0;
     for (int r = 0; r < LABELS; r++)
-      if (rank == fx_pkg::DISP_BITS'(r)) winner = 9'(label_of_rank(r));
+      if (rank == fx_pkg::DISP_BITS'(r)) winner = TIE_ORDER[r*9 +: 9];
   end
   logic signed [17:0] winner_d, winner_v, reach, x, y;
   always_comb begin

@@ -58,6 +58,7 @@ module stereo_level_cost #(
   localparam int BANK_BITS = (BANK_DEPTH > 1) ? $clog2(BANK_DEPTH) : 1;
   localparam int LEFT_BITS = $clog2(SLOTS * WIDTH);
   localparam int COST_BITS = fx_pkg::COST_BITS;
+  localparam int BANK_SELECT_BITS = (COLS > 1) ? $clog2(COLS) : 1;
   // Rows and columns are biased by a multiple of SLOTS (COLS) before the modulo, so that the
   // operands are non-negative and narrow: rows >= -ROW_BIAS, columns >= -COLUMN_BIAS.
   localparam int ROW_BIAS = SLOTS * 1024;
@@ -107,13 +108,13 @@ module stereo_level_cost #(
   // consecutive columns.
   logic signed [17:0] column[COLS];
   logic [BANK_BITS-1:0] bank_address[COLS];  // per bank
-  logic [$clog2(COLS + 1)-1:0] column_bank[COLS];  // per candidate column
+  logic [BANK_SELECT_BITS-1:0] column_bank[COLS];  // per candidate column
   logic column_outside[COLS];
   always_comb begin
     for (int b = 0; b < COLS; b++) bank_address[b] = '0;
     for (int i = 0; i < COLS; i++) begin
       column[i] = 18'(req_x) - 18'(in_base_d) - 18'(i);
-      column_bank[i] = ($clog2(COLS + 1))'((32'(column[i]) + COLUMN_BIAS) % COLS);
+      column_bank[i] = BANK_SELECT_BITS'((32'(column[i]) + COLUMN_BIAS) % COLS);
       column_outside[i] = column[i] < 0 || 32'(column[i]) >= 32'(cfg.width);
       if (!column_outside[i])
         bank_address[column_bank[i]] = BANK_BITS'(32'(column[i]) / COLS);
@@ -146,7 +147,7 @@ module stereo_level_cost #(
   // ---- the selection, registered beside the read ---------------------------------------------
   fx_pkg::coord_t read_x, read_y;
   logic [SLOT_BITS-1:0] read_slot[ROWS];
-  logic [$clog2(COLS + 1)-1:0] read_bank[COLS];
+  logic [BANK_SELECT_BITS-1:0] read_bank[COLS];
   logic read_outside[ROWS][COLS];
   always_ff @(posedge clk) begin
     if (rst) begin

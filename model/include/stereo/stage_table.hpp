@@ -297,17 +297,28 @@ constexpr int hls_pipeline_latency(int width, int window, int ndisp, int min_dis
 // The package first, then every module before its first user. One module per file, named after
 // it; the list of modules to lint is this list without the package.
 inline constexpr std::string_view kPackageFile = "fx_pkg.sv";
-inline constexpr std::array<std::string_view, 37> kRtlModules = {
-    "stereo_coord_reg",     "stereo_stage_output",   "stereo_shift_reg",    "stereo_border_flags",
-    "stereo_window_centre", "stereo_line_buffer",    "stereo_row_stack",    "stereo_group_ring",
-    "stereo_window3x3",     "stereo_ca_plane",       "stereo_lcdm_convert", "stereo_lcdm_distance",
-    "stereo_census",        "stereo_cost",           "stereo_weighted_sum", "stereo_aggregate",
-    "stereo_wta",           "stereo_divider",        "stereo_validate",     "stereo_lr_check",
-    "stereo_top",           "stereo_axil_top",       "stereo_synth_top",    "stereo_uart_rx",
-    "stereo_uart_tx",       "stereo_power_on_reset", "stereo_board_link",   "stereo_board_top",
-    "stereo_uart_echo_top", "stereo_downscale",      "stereo_plane_stats",  "stereo_plane_offset",
-    "stereo_row_warp",      "stereo_field_border",   "stereo_hier_pass",    "stereo_level_cost",
-    "stereo_hier_level",
+inline constexpr std::array<std::string_view, 41> kRtlModules = {
+    "stereo_coord_reg",     "stereo_stage_output",
+    "stereo_shift_reg",     "stereo_border_flags",
+    "stereo_window_centre", "stereo_line_buffer",
+    "stereo_row_stack",     "stereo_group_ring",
+    "stereo_window3x3",     "stereo_ca_plane",
+    "stereo_lcdm_convert",  "stereo_lcdm_distance",
+    "stereo_census",        "stereo_cost",
+    "stereo_weighted_sum",  "stereo_aggregate",
+    "stereo_wta",           "stereo_divider",
+    "stereo_validate",      "stereo_lr_check",
+    "stereo_top",           "stereo_axil_top",
+    "stereo_synth_top",     "stereo_uart_rx",
+    "stereo_uart_tx",       "stereo_power_on_reset",
+    "stereo_board_link",    "stereo_board_top",
+    "stereo_uart_echo_top", "stereo_downscale",
+    "stereo_plane_stats",   "stereo_plane_offset",
+    "stereo_row_warp",      "stereo_field_border",
+    "stereo_hier_pass",     "stereo_level_cost",
+    "stereo_hier_level",    "stereo_fifo",
+    "stereo_level_stepper", "stereo_prediction_ring",
+    "stereo_hier_levels",
 };
 // Port-list fragments and the parameter-check macro (`STEREO_ASSERT) the modules `include (found
 // in rtl/: tools need rtl/ on the include path).
@@ -431,7 +442,7 @@ inline constexpr Params kFpgaCensusNdisp8Lanes2 = kSmall.with({.ndisp = 8,
 inline constexpr Params kFullCensusLean =
     kFull.with({.cost = kCostCensus, .lanes = 8, .recompute_costs = 1});
 
-inline constexpr std::array<VerilatedConfig, 38> kVerilatedConfigs = {{
+inline constexpr std::array<VerilatedConfig, 39> kVerilatedConfigs = {{
     {"Vstereo_top_small", "stereo_top", kSmall, "", "small"},
     {"Vstereo_top_lanes4", "stereo_top", kSmallLanes4, "", "lanes4"},
     {"Vstereo_top_lanes1", "stereo_top", kSmallLanes1, "", "lanes1"},
@@ -508,6 +519,9 @@ inline constexpr std::array<VerilatedConfig, 38> kVerilatedConfigs = {{
      "stereo_hier_level",
      {.width = 64, .window = 15, .cols = 3, .rows = 3, .v_min = -4, .v_max = 3, .refine = 1},
      ""},
+    // ... and the three levels chained with their predictions (the module's defaults: 128 wide,
+    // D = V = 16, windows 9 / 15 / 15).
+    {"Vstereo_hier_levels", "stereo_hier_levels", {}, ""},
     // Its C++ takes minutes to compile: only with -DSTEREO_COSIM_FULL=ON.
     {"Vstereo_top_full", "stereo_top", kFull, "STEREO_COSIM_FULL", "full"},
     // ... and the lean census core at that size: -DSTEREO_COSIM_CONFIGS=full_census_lean.
