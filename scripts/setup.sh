@@ -19,6 +19,7 @@ packages=(
   python3-numpy python3-pytest     # its arrays and tests (ctest label python)
   python3-matplotlib               # figures with colour bars (scripts/figures/)
   gtkwave                          # waveform viewer, fst2vcd (docs/gtkwave.md, cli.gtkw_layout_signals)
+  doxygen                          # the API reference, target api_docs (docs/install.md, docs.api_reference)
 )
 
 missing=()
