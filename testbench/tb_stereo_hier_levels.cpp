@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <filesystem>
+#include <iostream>
 #include <random>
 #include <string>
 #include <vector>
@@ -131,6 +132,7 @@ class LevelsSim {
                 map.vertical[p] = static_cast<std::int8_t>(m.out_v);
                 map.valid[p] = m.out_ok;
                 if (++recorded[out_frame] == map.width * map.height) {
+                    last_frame_clocks_ = clock;
                     ++out_frame;
                 }
             }
@@ -152,7 +154,11 @@ class LevelsSim {
         return out;
     }
 
+    // Clocks from the first clock of the last run() to its last frame's last winner.
+    long last_frame_clocks() const { return last_frame_clocks_; }
+
   private:
+    long last_frame_clocks_ = 0;
     template <class Port>
     static void put_kernel(Port& port, int window) {
         const auto taps = gaussian_kernel(window, h::default_level(window).sigma);
@@ -250,10 +256,16 @@ TEST(StereoHierLevels, RealCropEqualsModel) {
     const Frame frame{pair.left, moved(pair.right, 0, 4)};
     std::mt19937 rng(4513);
     LevelsSim rtl;
-    const auto out = rtl.run({frame}, true, 0.1, rng);
+    const auto out = rtl.run({frame}, true, 0.0, rng);
     ASSERT_EQ(out.size(), 1U);
     const h::LevelMap model = model_full_level(frame, true);
     expect_equal(out[0], model, "tsukuba");
+    // Without input gaps: the clocks from the first pixel to the last winner, against W x H.
+    const double ratio = static_cast<double>(rtl.last_frame_clocks()) / (kMaxWidth * 96);
+    std::cout << "hier_levels: " << rtl.last_frame_clocks() << " clocks for a 128x96 frame ("
+              << ratio << " x W x H)\n";
+    RecordProperty("clocks_per_frame", static_cast<int>(rtl.last_frame_clocks()));
+    EXPECT_LT(ratio, 2.0) << "the levels should keep up with one pixel per clock";
     int valid = 0;
     int at_four = 0;
     for (std::size_t p = 0; p < model.valid.size(); ++p) {
