@@ -41,3 +41,4 @@ stereo_fifo.sv
 stereo_level_stepper.sv
 stereo_prediction_ring.sv
 stereo_hier_levels.sv
+stereo_hier_top.sv

@@ -297,7 +297,7 @@ constexpr int hls_pipeline_latency(int width, int window, int ndisp, int min_dis
 // The package first, then every module before its first user. One module per file, named after
 // it; the list of modules to lint is this list without the package.
 inline constexpr std::string_view kPackageFile = "fx_pkg.sv";
-inline constexpr std::array<std::string_view, 41> kRtlModules = {
+inline constexpr std::array<std::string_view, 42> kRtlModules = {
     "stereo_coord_reg",     "stereo_stage_output",
     "stereo_shift_reg",     "stereo_border_flags",
     "stereo_window_centre", "stereo_line_buffer",
@@ -318,7 +318,7 @@ inline constexpr std::array<std::string_view, 41> kRtlModules = {
     "stereo_hier_pass",     "stereo_level_cost",
     "stereo_hier_level",    "stereo_fifo",
     "stereo_level_stepper", "stereo_prediction_ring",
-    "stereo_hier_levels",
+    "stereo_hier_levels",   "stereo_hier_top",
 };
 // Port-list fragments and the parameter-check macro (`STEREO_ASSERT) the modules `include (found
 // in rtl/: tools need rtl/ on the include path).
@@ -442,7 +442,7 @@ inline constexpr Params kFpgaCensusNdisp8Lanes2 = kSmall.with({.ndisp = 8,
 inline constexpr Params kFullCensusLean =
     kFull.with({.cost = kCostCensus, .lanes = 8, .recompute_costs = 1});
 
-inline constexpr std::array<VerilatedConfig, 39> kVerilatedConfigs = {{
+inline constexpr std::array<VerilatedConfig, 40> kVerilatedConfigs = {{
     {"Vstereo_top_small", "stereo_top", kSmall, "", "small"},
     {"Vstereo_top_lanes4", "stereo_top", kSmallLanes4, "", "lanes4"},
     {"Vstereo_top_lanes1", "stereo_top", kSmallLanes1, "", "lanes1"},
@@ -522,6 +522,8 @@ inline constexpr std::array<VerilatedConfig, 39> kVerilatedConfigs = {{
     // ... and the three levels chained with their predictions (the module's defaults: 128 wide,
     // D = V = 16, windows 9 / 15 / 15).
     {"Vstereo_hier_levels", "stereo_hier_levels", {}, ""},
+    // ... and the whole core: the pass (64x48, 16 labels, 5x5), the levels and the statistics.
+    {"Vstereo_hier_top", "stereo_hier_top", {}, ""},
     // Its C++ takes minutes to compile: only with -DSTEREO_COSIM_FULL=ON.
     {"Vstereo_top_full", "stereo_top", kFull, "STEREO_COSIM_FULL", "full"},
     // ... and the lean census core at that size: -DSTEREO_COSIM_CONFIGS=full_census_lean.
