@@ -4,4 +4,4 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/build.sh
-ctest --test-dir build --output-on-failure -j"$(nproc)" -LE "bench|soak|hostile|docs"
+ctest --test-dir build --output-on-failure -j"$(nproc)" -LE "bench|soak|hostile|docs|golden-full"
