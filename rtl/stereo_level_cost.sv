@@ -75,15 +75,8 @@ module stereo_level_cost #(
 
   // ---- the previous step's pixel and the pixel it completes --------------------------------
   fx_pkg::coord_t prev_x, prev_y;
-  always_ff @(posedge clk) begin
-    if (rst) begin
-      prev_x <= '0;
-      prev_y <= fx_pkg::NO_PIXEL;
-    end else if (ce) begin
-      prev_x <= in_x;
-      prev_y <= in_y;
-    end
-  end
+  stereo_coord_reg previous (
+      .clk(clk), .rst(rst), .ce(ce), .in_x(in_x), .in_y(in_y), .out_x(prev_x), .out_y(prev_y));
   assign req_x = prev_x;
   assign req_y = (prev_y == fx_pkg::NO_PIXEL) ? fx_pkg::NO_PIXEL
                                                : 16'(prev_y - 16'(V_MAX));
@@ -149,15 +142,8 @@ module stereo_level_cost #(
   logic [SLOT_BITS-1:0] read_slot[ROWS];
   logic [BANK_SELECT_BITS-1:0] read_bank[COLS];
   logic read_outside[ROWS][COLS];
-  always_ff @(posedge clk) begin
-    if (rst) begin
-      read_x <= '0;
-      read_y <= fx_pkg::NO_PIXEL;
-    end else if (ce) begin
-      read_x <= req_x;
-      read_y <= req_y;
-    end
-  end
+  stereo_coord_reg read_coordinates (
+      .clk(clk), .rst(rst), .ce(ce), .in_x(req_x), .in_y(req_y), .out_x(read_x), .out_y(read_y));
   always_ff @(posedge clk) begin
     if (ce) begin
       for (int j = 0; j < ROWS; j++) read_slot[j] <= row_slot[j];
@@ -168,15 +154,8 @@ module stereo_level_cost #(
   end
 
   // ---- the costs --------------------------------------------------------------------------------
-  always_ff @(posedge clk) begin
-    if (rst) begin
-      out_x <= '0;
-      out_y <= fx_pkg::NO_PIXEL;
-    end else if (ce) begin
-      out_x <= read_x;
-      out_y <= read_y;
-    end
-  end
+  stereo_coord_reg out_coordinates (
+      .clk(clk), .rst(rst), .ce(ce), .in_x(read_x), .in_y(read_y), .out_x(out_x), .out_y(out_y));
   assign out_next_y = read_y;
   logic [23:0] right_code[ROWS][COLS];  // R(x - bd - i, y + bv + j)
   logic [COLS*ROWS*COST_BITS-1:0] costs;

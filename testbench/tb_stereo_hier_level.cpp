@@ -24,6 +24,7 @@
 #include "stereo/hierarchical.hpp"
 #include "stereo/pipeline.hpp"
 #include "stereo_io/test_support.hpp"
+#include "tb_hier_pairs.hpp"
 #include "tb_real_pairs.hpp"
 #include "tb_reset.hpp"
 
@@ -172,39 +173,6 @@ h::LevelMap model_level(const Image& left, const Image& right, const CandidateGr
                           CaNeighbours::horizontal, count, search_params(use_ca).cost);
 }
 
-void expect_equal(const h::LevelMap& rtl, const h::LevelMap& model, const std::string& what) {
-    int mismatches = 0;
-    for (int y = 0; y < model.height; ++y) {
-        for (int x = 0; x < model.width; ++x) {
-            const std::size_t p = model.index(x, y);
-            if (rtl.disparity[p] != model.disparity[p] || rtl.vertical[p] != model.vertical[p] ||
-                rtl.valid[p] != model.valid[p]) {
-                if (++mismatches <= 5) {
-                    ADD_FAILURE() << what << ": pixel (" << x << ", " << y << ") RTL (d "
-                                  << rtl.disparity[p] << ", v " << rtl.vertical[p] << ", valid "
-                                  << int{rtl.valid[p]} << ") model (d " << model.disparity[p]
-                                  << ", v " << model.vertical[p] << ", valid "
-                                  << int{model.valid[p]} << ")";
-                }
-            }
-        }
-    }
-    EXPECT_EQ(mismatches, 0) << what;
-}
-
-// The right image moved down by `dy` rows (the rows above repeat the first): the winners' v.
-Image moved_down(const Image& image, int dy) {
-    Image out(image.width, image.height, image.channels);
-    for (int y = 0; y < image.height; ++y) {
-        for (int x = 0; x < image.width; ++x) {
-            for (int c = 0; c < image.channels; ++c) {
-                out.at(x, y, c) = image.at(x, std::clamp(y - dy, 0, image.height - 1), c);
-            }
-        }
-    }
-    return out;
-}
-
 // A coarse level of random winners for the refinement level of `width` x `height`.
 h::LevelMap random_coarse(int width, int height, const h::SearchRange& coarse_range,
                           std::mt19937& rng) {
@@ -256,16 +224,17 @@ TEST(StereoHierLevel, QuarterLevelRandomPairsEqualModel) {
          {Case{32, 24, 0, true, 0.0}, Case{32, 24, -2, true, 0.3}, Case{32, 24, 1, false, 0.0},
           Case{23, 17, 1, true, 0.2}, Case{13, 24, -1, false, 0.1}}) {
         const Image left = random_image(c.width, c.height, 3, rng);
-        const Image right = moved_down(random_image(c.width, c.height, 3, rng), 0);
+        const Image right = random_image(c.width, c.height, 3, rng);
         // Half the pairs are the left image moved by dy rows (winners away from v = 0).
-        const Image moved = moved_down(left, c.dy);
-        for (const Image* r : {&right, &moved}) {
+        const Image shifted = moved(left, 0, c.dy);
+        for (const Image* r : {&right, &shifted}) {
             const CandidateGrid grid = h::full_grid(c.width, c.height, kQuarterRange);
             const auto out = rtl.run(left, *r, grid, c.use_ca, c.gap, rng);
             ASSERT_TRUE(out.has_value());
-            expect_equal(*out, model_level<Vstereo_hier_level_quarter>(left, *r, grid, c.use_ca),
-                         std::to_string(c.width) + "x" + std::to_string(c.height) + " dy " +
-                             std::to_string(c.dy) + (r == &moved ? " moved" : " random"));
+            expect_levels_equal(*out,
+                                model_level<Vstereo_hier_level_quarter>(left, *r, grid, c.use_ca),
+                                std::to_string(c.width) + "x" + std::to_string(c.height) + " dy " +
+                                    std::to_string(c.dy) + (r == &shifted ? " moved" : " random"));
         }
     }
 }
@@ -281,13 +250,14 @@ TEST(StereoHierLevel, HalfLevelRandomPredictionsEqualModel) {
     for (const Case& c : {Case{64, 48, 0, true, 0.0}, Case{64, 48, 3, true, 0.25},
                           Case{64, 48, -4, false, 0.0}, Case{41, 35, 2, true, 0.1}}) {
         const Image left = random_image(c.width, c.height, 3, rng);
-        const Image right = moved_down(left, c.dy);
+        const Image right = moved(left, 0, c.dy);
         const auto coarse = random_coarse(c.width, c.height, kQuarterRange, rng);
         const CandidateGrid grid = h::refine_grid(coarse, c.width, c.height, kHalfRange);
         const auto out = rtl.run(left, right, grid, c.use_ca, c.gap, rng);
         ASSERT_TRUE(out.has_value());
-        expect_equal(*out, model_level<Vstereo_hier_level_refine>(left, right, grid, c.use_ca),
-                     std::to_string(c.width) + "x" + std::to_string(c.height));
+        expect_levels_equal(*out,
+                            model_level<Vstereo_hier_level_refine>(left, right, grid, c.use_ca),
+                            std::to_string(c.width) + "x" + std::to_string(c.height));
     }
 }
 
@@ -295,20 +265,20 @@ TEST(StereoHierLevel, FramesOneAfterAnotherAndAResetMidFrame) {
     std::mt19937 rng(4503);
     Refine rtl;
     const Image big_left = random_image(64, 48, 3, rng);
-    const Image big_right = moved_down(big_left, 2);
+    const Image big_right = moved(big_left, 0, 2);
     const auto coarse = random_coarse(64, 48, kQuarterRange, rng);
     const CandidateGrid grid = h::refine_grid(coarse, 64, 48, kHalfRange);
     // A frame abandoned half-way by a reset, then frames of other sizes.
     EXPECT_FALSE(rtl.run(big_left, big_right, grid, true, 0.1, rng, 64 * 30).has_value());
     for (const auto& [width, height] : {std::pair{64, 48}, std::pair{30, 20}, std::pair{64, 48}}) {
         const Image left = random_image(width, height, 3, rng);
-        const Image right = moved_down(left, -3);
+        const Image right = moved(left, 0, -3);
         const auto small = random_coarse(width, height, kQuarterRange, rng);
         const CandidateGrid g = h::refine_grid(small, width, height, kHalfRange);
         const auto out = rtl.run(left, right, g, true, 0.05, rng);
         ASSERT_TRUE(out.has_value());
-        expect_equal(*out, model_level<Vstereo_hier_level_refine>(left, right, g, true),
-                     std::to_string(width) + "x" + std::to_string(height));
+        expect_levels_equal(*out, model_level<Vstereo_hier_level_refine>(left, right, g, true),
+                            std::to_string(width) + "x" + std::to_string(height));
     }
 }
 
@@ -323,7 +293,7 @@ TEST(StereoHierLevel, RealCropQuarterPredictsHalf) {
     const auto pair =
         io::crop(io::load_pair(left_file, right_file, 1), 120, 100, kFrameWidth, kFrameHeight);
     const Image left = pair.left;
-    const Image right = moved_down(pair.right, 4);
+    const Image right = moved(pair.right, 0, 4);
     std::mt19937 rng(4504);
     const Image quarter_left = h::downscale_area(left, 4);
     const Image quarter_right = h::downscale_area(right, 4);
@@ -334,7 +304,7 @@ TEST(StereoHierLevel, RealCropQuarterPredictsHalf) {
     ASSERT_TRUE(quarter_out.has_value());
     const auto quarter_model =
         model_level<Vstereo_hier_level_quarter>(quarter_left, quarter_right, quarter_grid, true);
-    expect_equal(*quarter_out, quarter_model, "quarter");
+    expect_levels_equal(*quarter_out, quarter_model, "quarter");
 
     const Image half_left = h::downscale_area(left, 2);
     const Image half_right = h::downscale_area(right, 2);
@@ -345,7 +315,7 @@ TEST(StereoHierLevel, RealCropQuarterPredictsHalf) {
     ASSERT_TRUE(half_out.has_value());
     const auto half_model =
         model_level<Vstereo_hier_level_refine>(half_left, half_right, half_grid, true);
-    expect_equal(*half_out, half_model, "half");
+    expect_levels_equal(*half_out, half_model, "half");
     // The moved pair is found: most valid half-level winners have v = 2 (4 rows at full size).
     int valid = 0;
     int at_two = 0;

@@ -22,6 +22,7 @@
 #include "stereo/hierarchical.hpp"
 #include "stereo/pipeline.hpp"
 #include "stereo_io/test_support.hpp"
+#include "tb_hier_pairs.hpp"
 #include "tb_real_pairs.hpp"
 
 namespace stereo::tb {
@@ -180,40 +181,6 @@ h::LevelMap model_full_level(const Frame& frame, bool use_ca) {
     return h::match_levels(frame.left, frame.right, search_params(use_ca), count)[2];
 }
 
-void expect_equal(const h::LevelMap& rtl, const h::LevelMap& model, const std::string& what) {
-    int mismatches = 0;
-    for (int y = 0; y < model.height; ++y) {
-        for (int x = 0; x < model.width; ++x) {
-            const std::size_t p = model.index(x, y);
-            if (rtl.disparity[p] != model.disparity[p] || rtl.vertical[p] != model.vertical[p] ||
-                rtl.valid[p] != model.valid[p]) {
-                if (++mismatches <= 5) {
-                    ADD_FAILURE() << what << ": pixel (" << x << ", " << y << ") RTL (d "
-                                  << rtl.disparity[p] << ", v " << rtl.vertical[p] << ", valid "
-                                  << int{rtl.valid[p]} << ") model (d " << model.disparity[p]
-                                  << ", v " << model.vertical[p] << ", valid "
-                                  << int{model.valid[p]} << ")";
-                }
-            }
-        }
-    }
-    EXPECT_EQ(mismatches, 0) << what;
-}
-
-// The image moved right by dx and down by dy (edges repeated).
-Image moved(const Image& image, int dx, int dy) {
-    Image out(image.width, image.height, image.channels);
-    for (int y = 0; y < image.height; ++y) {
-        for (int x = 0; x < image.width; ++x) {
-            for (int c = 0; c < image.channels; ++c) {
-                out.at(x, y, c) = image.at(std::clamp(x - dx, 0, image.width - 1),
-                                           std::clamp(y - dy, 0, image.height - 1), c);
-            }
-        }
-    }
-    return out;
-}
-
 Frame random_moved_pair(int width, int height, int dx, int dy, std::mt19937& rng) {
     const Image left = random_image(width, height, 3, rng);
     return {left, moved(left, -dx, dy)};
@@ -229,8 +196,8 @@ TEST(StereoHierLevels, RandomPairsEqualModelFrameAfterFrame) {
         const auto out = rtl.run(frames, use_ca, use_ca ? 0.2 : 0.0, rng);
         ASSERT_EQ(out.size(), frames.size());
         for (std::size_t i = 0; i < frames.size(); ++i) {
-            expect_equal(out[i], model_full_level(frames[i], use_ca),
-                         "frame " + std::to_string(i) + (use_ca ? " CA" : " no CA"));
+            expect_levels_equal(out[i], model_full_level(frames[i], use_ca),
+                                "frame " + std::to_string(i) + (use_ca ? " CA" : " no CA"));
         }
     }
 }
@@ -242,7 +209,7 @@ TEST(StereoHierLevels, ResetInTheMiddleOfAFrame) {
     EXPECT_TRUE(rtl.run({frame}, true, 0.1, rng, 128 * 60).empty());
     const auto out = rtl.run({frame}, true, 0.1, rng);
     ASSERT_EQ(out.size(), 1U);
-    expect_equal(out[0], model_full_level(frame, true), "after the reset");
+    expect_levels_equal(out[0], model_full_level(frame, true), "after the reset");
 }
 
 // A Tsukuba crop (128x96) whose right image is moved down 4 rows: the chained levels find it.
@@ -259,7 +226,7 @@ TEST(StereoHierLevels, RealCropEqualsModel) {
     const auto out = rtl.run({frame}, true, 0.0, rng);
     ASSERT_EQ(out.size(), 1U);
     const h::LevelMap model = model_full_level(frame, true);
-    expect_equal(out[0], model, "tsukuba");
+    expect_levels_equal(out[0], model, "tsukuba");
     // Without input gaps: the clocks from the first pixel to the last winner, against W x H.
     const double ratio = static_cast<double>(rtl.last_frame_clocks()) / (kMaxWidth * 96);
     std::cout << "hier_levels: " << rtl.last_frame_clocks() << " clocks for a 128x96 frame ("

@@ -18,6 +18,7 @@
 #include "stereo/hierarchical.hpp"
 #include "stereo/pipeline.hpp"
 #include "stereo_io/test_support.hpp"
+#include "tb_hier_pairs.hpp"
 #include "tb_real_pairs.hpp"
 
 namespace stereo::tb {
@@ -101,28 +102,6 @@ int mismatches(const std::vector<sim::OutputBeat>& beats, std::size_t first, con
     return wrong;
 }
 
-// The right image of `left` seen through a plane: right(x - shift, y + v(x - shift, y)) =
-// left(x, y), v the plane's field, plus noise; so matching along the plane has a true answer.
-Image moved_by_plane(const Image& left, const h::Plane& plane, int shift, std::mt19937& rng) {
-    const auto field = h::plane_field(plane, left.width, left.height, kVMin, kVMax);
-    Image right = test::random_image(left.width, left.height, left.channels, rng);
-    std::uniform_int_distribution<int> noise(-6, 6);
-    for (int y = 0; y < left.height; ++y) {
-        for (int xr = 0; xr < left.width; ++xr) {
-            const int row = y + field[static_cast<std::size_t>(y) * left.width + xr];
-            const int x = xr + shift;
-            if (row < 0 || row >= left.height || x >= left.width) {
-                continue;
-            }
-            for (int c = 0; c < left.channels; ++c) {
-                right.at(xr, row, c) =
-                    static_cast<std::uint8_t>(std::clamp(left.at(x, y, c) + noise(rng), 0, 255));
-            }
-        }
-    }
-    return right;
-}
-
 h::Plane plane_of(double a, double b, double c) {
     return {std::llround(a * h::kPlaneOne), std::llround(b * h::kPlaneOne),
             std::llround(c * h::kPlaneOne)};
@@ -142,7 +121,7 @@ TEST(StereoHierPass, PlanesShiftsAndRollsEqualModel) {
         Frame frame;
         frame.left = test::random_image(kMaxWidth, kMaxHeight, 3, rng);
         frame.plane = planes[i];
-        frame.right = moved_by_plane(frame.left, frame.plane, 5, rng);
+        frame.right = moved_by_plane(frame.left, frame.plane, 5, rng, kVMin, kVMax);
         sim::HierPassSim rtl;
         const auto result = stream(
             rtl, {frame}, params,
@@ -181,7 +160,7 @@ TEST(StereoHierPass, FramesBackToBackWithTheirOwnPlanes) {
             Frame frame;
             frame.left = test::random_image(width, height, 3, rng);
             frame.plane = plane_of(offset(rng), slope(rng), slope(rng));
-            frame.right = moved_by_plane(frame.left, frame.plane, 3, rng);
+            frame.right = moved_by_plane(frame.left, frame.plane, 3, rng, kVMin, kVMax);
             frames.push_back(std::move(frame));
         }
         sim::HierPassSim rtl;
@@ -212,7 +191,7 @@ TEST(StereoHierPass, ResetInTheMiddleOfAFrame) {
     Frame frame;
     frame.left = test::random_image(50, 40, 3, rng);
     frame.plane = plane_of(-3.5, 0.02, -0.04);
-    frame.right = moved_by_plane(frame.left, frame.plane, 6, rng);
+    frame.right = moved_by_plane(frame.left, frame.plane, 6, rng, kVMin, kVMax);
     const auto result = stream(rtl, {frame}, params, {0.2, 0.2, 4U});
     ASSERT_TRUE(result.completed);
     EXPECT_EQ(mismatches(result.outputs, 0, frame, expected(frame, params)), 0);

@@ -25,6 +25,7 @@
 #include "stereo/hierarchical_plane.hpp"
 #include "stereo/pipeline.hpp"
 #include "stereo_io/test_support.hpp"
+#include "tb_hier_pairs.hpp"
 #include "tb_real_pairs.hpp"
 
 namespace stereo::tb {
@@ -156,27 +157,6 @@ class HierTopSim {
     sim::VerilatedHarness<Vstereo_hier_top> harness_;
 };
 
-// The right image of `left` through a plane: right(x - shift, y + v(x - shift, y)) = left(x, y).
-Image moved_by_plane(const Image& left, const h::Plane& plane, int shift, std::mt19937& rng) {
-    const auto field = h::plane_field(plane, left.width, left.height, kVMin, kVMax);
-    Image right = test::random_image(left.width, left.height, left.channels, rng);
-    std::uniform_int_distribution<int> noise(-4, 4);
-    for (int y = 0; y < left.height; ++y) {
-        for (int xr = 0; xr < left.width; ++xr) {
-            const int row = y + field[static_cast<std::size_t>(y) * left.width + xr];
-            const int x = xr + shift;
-            if (row < 0 || row >= left.height || x >= left.width) {
-                continue;
-            }
-            for (int c = 0; c < left.channels; ++c) {
-                right.at(xr, row, c) =
-                    static_cast<std::uint8_t>(std::clamp(left.at(x, y, c) + noise(rng), 0, 255));
-            }
-        }
-    }
-    return right;
-}
-
 // Runs `frames` frames of the pair through the core with the host in the loop and checks every
 // frame against the model's hardware form; returns the settings the host wrote.
 std::vector<h::PlaneSetting> check_frames(const Image& left, const Image& right, int frames,
@@ -217,7 +197,7 @@ TEST(StereoHierTop, RandomRollFrameAfterFrameEqualsModel) {
     std::mt19937 rng(4521);
     const Image left = test::random_image(kWidth, kHeight, 3, rng);
     const h::Plane roll{std::llround(1.5 * h::kPlaneOne), std::llround(0.04 * h::kPlaneOne), 0};
-    const Image right = moved_by_plane(left, roll, 3, rng);
+    const Image right = moved_by_plane(left, roll, 3, rng, kVMin, kVMax);
     const auto settings = check_frames(left, right, 4, {.input_gap = 0.2, .output_stall = 0.2});
     ASSERT_EQ(settings.size(), 4U);
     // The host's loop moves the plane off 0 after the start frame (the mode), then fits it.
@@ -232,7 +212,7 @@ TEST(StereoHierTop, RolledTsukubaCropEqualsModel) {
     }
     std::mt19937 rng(4522);
     const h::Plane roll{std::llround(-2.0 * h::kPlaneOne), std::llround(0.03 * h::kPlaneOne), 0};
-    const Image right = moved_by_plane(crop->left, roll, 5, rng);
+    const Image right = moved_by_plane(crop->left, roll, 5, rng, kVMin, kVMax);
     check_frames(crop->left, right, 3, {});
 }
 
