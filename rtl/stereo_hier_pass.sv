@@ -36,19 +36,7 @@ module stereo_hier_pass #(
 ) (
     input  wire logic                               clk,
     input  wire logic                               rst,
-    input  wire fx_pkg::cfg_radius_t                cfg_radius,
-    /* verilator lint_off UNUSEDSIGNAL */  // ignored with RUNTIME_KERNEL = 0
-    input  wire logic [WINDOW*fx_pkg::TAP_BITS-1:0] cfg_kernel,
-    /* verilator lint_on UNUSEDSIGNAL */
-    input  wire fx_pkg::cfg_size_t                  cfg_width,
-    input  wire fx_pkg::cfg_size_t                  cfg_height,
-    input  wire fx_pkg::cfg_ndisp_t                 cfg_ndisp,
-    input  wire logic                               cfg_use_ca,
-    input  wire logic                               cfg_uniqueness_en,
-    input  wire fx_pkg::cfg_uniqueness_t            cfg_uniqueness,
-    input  wire logic                               cfg_lr_en,
-    input  wire fx_pkg::cfg_lr_tolerance_t          cfg_lr_tolerance,
-    input  wire logic                               cfg_subpixel_en,
+`include "stereo_pass_cfg_ports.svh"
     input  wire logic signed [31:0]                 plane_a,
     input  wire logic signed [31:0]                 plane_b,
     input  wire logic signed [31:0]                 plane_c,

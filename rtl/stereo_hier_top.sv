@@ -36,17 +36,7 @@ module stereo_hier_top #(
     input  wire logic                                 clk,
     input  wire logic                                 rst,
     // The pass (stereo_top's configuration ports) and the levels' kernels and CA.
-    input  wire fx_pkg::cfg_radius_t                  cfg_radius,
-    input  wire logic [WINDOW*fx_pkg::TAP_BITS-1:0]   cfg_kernel,
-    input  wire fx_pkg::cfg_size_t                    cfg_width,
-    input  wire fx_pkg::cfg_size_t                    cfg_height,
-    input  wire fx_pkg::cfg_ndisp_t                   cfg_ndisp,
-    input  wire logic                                 cfg_use_ca,
-    input  wire logic                                 cfg_uniqueness_en,
-    input  wire fx_pkg::cfg_uniqueness_t              cfg_uniqueness,
-    input  wire logic                                 cfg_lr_en,
-    input  wire fx_pkg::cfg_lr_tolerance_t            cfg_lr_tolerance,
-    input  wire logic                                 cfg_subpixel_en,
+`include "stereo_pass_cfg_ports.svh"
     input  wire logic [WINDOW_Q*fx_pkg::TAP_BITS-1:0] cfg_kernel_q,
     input  wire logic [WINDOW_H*fx_pkg::TAP_BITS-1:0] cfg_kernel_h,
     input  wire logic [WINDOW_F*fx_pkg::TAP_BITS-1:0] cfg_kernel_f,
@@ -57,19 +47,6 @@ module stereo_hier_top #(
     input  wire logic signed [31:0]                   plane_c,
     input  wire logic [31:0]                          tolerance,
     input  wire logic                                 plane_commit,
-    // The last frame's statistics (stereo_plane_stats).
-    input  wire logic [((VRANGE > 1) ? $clog2(VRANGE) : 1)-1:0] hist_index,
-    output      logic [31:0]                          hist_count,
-    output      logic                                 out_done,
-    output      logic signed [63:0]                   out_count,
-    output      logic signed [63:0]                   out_sum_x,
-    output      logic signed [63:0]                   out_sum_y,
-    output      logic signed [63:0]                   out_sum_xx,
-    output      logic signed [63:0]                   out_sum_xy,
-    output      logic signed [63:0]                   out_sum_yy,
-    output      logic signed [63:0]                   out_sum_v,
-    output      logic signed [63:0]                   out_sum_xv,
-    output      logic signed [63:0]                   out_sum_yv,
     output      logic [fx_pkg::STATUS_BITS-1:0]       status,  // the pass's sticky bits
     input  wire logic [fx_pkg::IN_BEAT_BITS-1:0]      s_axis_tdata,
     input  wire logic                                 s_axis_tvalid,
@@ -77,6 +54,8 @@ module stereo_hier_top #(
     input  wire logic                                 s_axis_tlast,
     input  wire logic                                 s_axis_tuser,
 `include "stereo_hier_out_ports.svh"
+    ,  // the last frame's statistics (stereo_plane_stats)
+`include "stereo_plane_stats_ports.svh"
 );
   localparam int V_MIN = -(VRANGE / 2);
   localparam int V_MAX = VRANGE / 2 - 1;

@@ -35,18 +35,7 @@ module stereo_plane_stats #(
     input  wire logic signed [31:0]        plane_b,     // 1/2^16 pixel per column
     input  wire logic signed [31:0]        plane_c,     // 1/2^16 pixel per row
     input  wire logic        [31:0]        tolerance,   // 1/2^16 pixel
-    input  wire logic [((VRANGE > 1) ? $clog2(VRANGE) : 1)-1:0] hist_index,
-    output      logic [31:0]               hist_count,  // the last frame's bin hist_index
-    output      logic                      out_done,    // one clock: a frame's totals are out
-    output      logic signed [63:0]        out_count,
-    output      logic signed [63:0]        out_sum_x,
-    output      logic signed [63:0]        out_sum_y,
-    output      logic signed [63:0]        out_sum_xx,
-    output      logic signed [63:0]        out_sum_xy,
-    output      logic signed [63:0]        out_sum_yy,
-    output      logic signed [63:0]        out_sum_v,
-    output      logic signed [63:0]        out_sum_xv,
-    output      logic signed [63:0]        out_sum_yv
+`include "stereo_plane_stats_ports.svh"
 );
   `STEREO_ASSERT(vrange_positive, VRANGE >= 1 && VRANGE <= 256, "VRANGE must be 1 .. 256")
   `STEREO_ASSERT(offsets_fit_a_byte, V_MIN >= -128 && V_MIN + VRANGE - 1 <= 127,

@@ -322,9 +322,10 @@ inline constexpr std::array<std::string_view, 42> kRtlModules = {
 };
 // Port-list fragments and the parameter-check macro (`STEREO_ASSERT) the modules `include (found
 // in rtl/: tools need rtl/ on the include path).
-inline constexpr std::array<std::string_view, 5> kRtlIncludes = {
-    "stereo_stage_ports.svh", "stereo_core_ports.svh", "stereo_stream_ports.svh",
-    "stereo_assert.svh", "stereo_hier_out_ports.svh"};
+inline constexpr std::array<std::string_view, 7> kRtlIncludes = {
+    "stereo_stage_ports.svh",      "stereo_core_ports.svh",     "stereo_stream_ports.svh",
+    "stereo_assert.svh",           "stereo_hier_out_ports.svh", "stereo_pass_cfg_ports.svh",
+    "stereo_plane_stats_ports.svh"};
 
 // ---- SoC wrapper (rtl/stereo_axil_top.sv, docs/integration.md) -------------------------------
 // The register map's version (VERSION register, 0xMMMMmmmm) and the FuseSoC core's version.
