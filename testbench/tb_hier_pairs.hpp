@@ -9,11 +9,23 @@
 #include <random>
 #include <string>
 
+#include "stereo/catalogue.hpp"
 #include "stereo/hierarchical.hpp"
 #include "stereo/image.hpp"
 #include "stereo_io/test_support.hpp"
 
 namespace stereo::tb {
+
+// The hierarchical search with the census cost (the hardware's), D labels, V offsets, CA as
+// given; the rest the API's defaults (windows 9 / 15 / 15, the pass without stage 6).
+inline hierarchical::Params census_search(int ndisp, int vrange, bool use_ca = true) {
+    hierarchical::Params params;
+    params.ndisp = ndisp;
+    params.vrange = vrange;
+    params.use_ca = use_ca;
+    params.cost = std::string(catalogue::cost(catalogue::Cost::census).name);
+    return params;
+}
 
 // The image moved right by dx and down by dy columns and rows (the edges repeated).
 inline Image moved(const Image& image, int dx, int dy) {

@@ -38,12 +38,7 @@ using test::random_image;
 constexpr int kFrameWidth = 128;
 constexpr int kFrameHeight = 96;
 h::Params search_params(bool use_ca) {
-    h::Params params;
-    params.ndisp = 16;
-    params.vrange = 16;
-    params.use_ca = use_ca;
-    params.cost = std::string(catalogue::cost(catalogue::Cost::census).name);
-    return params;
+    return census_search(16, 16, use_ca);
 }
 
 // One level as its Verilated configuration was built: the level's factor (4 or 2) and window.

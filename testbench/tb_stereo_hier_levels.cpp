@@ -37,12 +37,7 @@ constexpr int kNdisp = 16;
 constexpr int kVrange = 16;
 
 h::Params search_params(bool use_ca) {
-    h::Params params;
-    params.ndisp = kNdisp;
-    params.vrange = kVrange;
-    params.use_ca = use_ca;
-    params.cost = std::string(catalogue::cost(catalogue::Cost::census).name);
-    return params;
+    return census_search(kNdisp, kVrange, use_ca);
 }
 
 struct Frame {
