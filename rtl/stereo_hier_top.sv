@@ -76,29 +76,32 @@ module stereo_hier_top #(
   end
 
   // ---- the fork --------------------------------------------------------------------------------
-  logic pass_ready, levels_ready, levels_valid, take, in_frame;
-  fx_pkg::coord_t x, y;
+  logic pass_ready, levels_ready, levels_valid, take, in_frame, start;
+  fx_pkg::coord_t x, y, level_x, level_y;
   assign s_axis_tready = pass_ready && levels_ready && !waiting && !plane_commit && !commit_q;
   assign take = s_axis_tvalid && s_axis_tready;
-  // A beat is a level pixel from a start of frame on.
+  // A start of frame inside a frame is a pixel of that frame, as in stereo_top (which flags it in
+  // status): the pass and the levels keep the same raster.
+  assign start = s_axis_tuser && !in_frame;
+  assign level_x = start ? 16'sd0 : x;
+  assign level_y = start ? 16'sd0 : y;
+  // A beat is a level pixel from a start of frame to the frame's last pixel.
   assign levels_valid = s_axis_tvalid && pass_ready && !waiting && !plane_commit && !commit_q &&
-                        (in_frame || s_axis_tuser);
+                        (in_frame || start);
   always_ff @(posedge clk) begin
     if (rst) begin
       in_frame <= 1'b0;
       x <= '0;
       y <= '0;
-    end else if (take) begin
-      if (s_axis_tuser || in_frame) begin
-        if (next_x(s_axis_tuser ? 16'sd0 : x) == 16'($signed(32'(cfg_width)))) begin
-          x <= '0;
-          y <= (s_axis_tuser ? 16'sd0 : y) + 16'sd1;
-          in_frame <= (s_axis_tuser ? 16'sd0 : y) + 16'sd1 < 16'($signed(32'(cfg_height)));
-        end else begin
-          x <= next_x(s_axis_tuser ? 16'sd0 : x);
-          y <= s_axis_tuser ? 16'sd0 : y;
-          in_frame <= 1'b1;
-        end
+    end else if (take && (in_frame || start)) begin
+      if (next_x(level_x) == 16'($signed(32'(cfg_width)))) begin
+        x <= '0;
+        y <= level_y + 16'sd1;
+        in_frame <= level_y + 16'sd1 < 16'($signed(32'(cfg_height)));
+      end else begin
+        x <= next_x(level_x);
+        y <= level_y;
+        in_frame <= 1'b1;
       end
     end
   end
@@ -133,7 +136,7 @@ module stereo_hier_top #(
       .WINDOW_F(WINDOW_F)
   ) levels (
       .clk(clk), .rst(rst), .in_valid(levels_valid), .in_ready(levels_ready),
-      .in_x(s_axis_tuser ? 16'sd0 : x), .in_y(s_axis_tuser ? 16'sd0 : y),
+      .in_x(level_x), .in_y(level_y),
       .in_left(s_axis_tdata[fx_pkg::IN_LEFT_LSB +: fx_pkg::RGB_BITS]),
       .in_right(s_axis_tdata[fx_pkg::IN_RIGHT_LSB +: fx_pkg::RGB_BITS]), .cfg_width(cfg_width),
       .cfg_height(cfg_height), .cfg_use_ca(cfg_use_ca), .cfg_kernel_q(cfg_kernel_q),

@@ -101,13 +101,18 @@ class HierTopSim {
     // Streams `frames` copies of the pair; after each frame's statistics the host (tracker)
     // writes the next setting and commits it. Returns the output beats and each frame's
     // statistics as the registers held them.
+    // With `stray_start` >= 0, that beat of the first frame carries tuser too (a start of frame
+    // inside a frame, which the core treats as a pixel).
     sim::StreamResult run(const Image& left, const Image& right, int frames,
                           h::PlaneTracker& tracker, std::vector<h::PlaneStatistics>& statistics,
-                          const sim::Traffic& traffic) {
+                          const sim::Traffic& traffic, int stray_start = -1) {
         std::vector<sim::InputBeat> beats;
         for (int f = 0; f < frames; ++f) {
             const auto more = sim::frame_beats(left, right);
             beats.insert(beats.end(), more.begin(), more.end());
+        }
+        if (stray_start >= 0) {
+            beats[static_cast<std::size_t>(stray_start)].user = true;
         }
         auto& m = harness_.model();
         const auto host = [&](Vstereo_hier_top& core) {
@@ -160,13 +165,13 @@ class HierTopSim {
 // Runs `frames` frames of the pair through the core with the host in the loop and checks every
 // frame against the model's hardware form; returns the settings the host wrote.
 std::vector<h::PlaneSetting> check_frames(const Image& left, const Image& right, int frames,
-                                          const sim::Traffic& traffic) {
+                                          const sim::Traffic& traffic, int stray_start = -1) {
     const h::Params params = core_params();
     HierTopSim core;
     h::PlaneTracker host;
     core.configure(params, host.setting());
     std::vector<h::PlaneStatistics> statistics;
-    const auto result = core.run(left, right, frames, host, statistics, traffic);
+    const auto result = core.run(left, right, frames, host, statistics, traffic, stray_start);
     EXPECT_EQ(result.outputs.size(), static_cast<std::size_t>(frames) * kWidth * kHeight);
     EXPECT_EQ(statistics.size(), static_cast<std::size_t>(frames));
     h::PlaneTracker model_host;
@@ -203,6 +208,16 @@ TEST(StereoHierTop, RandomRollFrameAfterFrameEqualsModel) {
     // The host's loop moves the plane off 0 after the start frame (the mode), then fits it.
     EXPECT_NE(settings[1].plane, h::Plane{});
     EXPECT_NE(settings[2].plane.b, 0);
+}
+
+// A start of frame in the middle of a frame is a pixel for the pass and the levels alike: both
+// frames still equal the model.
+TEST(StereoHierTop, StrayStartOfFrameKeepsOneRaster) {
+    std::mt19937 rng(4523);
+    const Image left = test::random_image(kWidth, kHeight, 3, rng);
+    const h::Plane shift{2 * h::kPlaneOne, 0, 0};
+    const Image right = moved_by_plane(left, shift, 4, rng, kVMin, kVMax);
+    check_frames(left, right, 2, {}, kWidth * kHeight / 2 + 7);
 }
 
 TEST(StereoHierTop, RolledTsukubaCropEqualsModel) {
