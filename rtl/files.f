@@ -36,6 +36,7 @@ stereo_row_warp.sv
 stereo_field_border.sv
 stereo_hier_pass.sv
 stereo_level_cost.sv
+stereo_level_wta.sv
 stereo_hier_level.sv
 stereo_fifo.sv
 stereo_level_stepper.sv

@@ -105,9 +105,10 @@ package fx_pkg;
              twice_neighbour < centre_wide + {1'b0, centre, 1'b0};
   endfunction
 
-  // Tap i (0 .. window-1) of the default kernel (sigma = 3) of every odd window
-  // 1 .. 31: window 2k + 1 starts at entry k * k; the last line holds entry 0.
+  // Tap i (0 .. window-1) of a constant kernel of every odd window 1 .. 31:
+  // window 2k + 1 starts at entry k * k; the last line holds entry 0.
   localparam int DEFAULT_TAP_ENTRIES = 256;
+  // DEFAULT_TAPS: sigma = 3 (the 1-D default)
   localparam logic [DEFAULT_TAP_ENTRIES*TAP_BITS-1:0] DEFAULT_TAPS = {
       9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd1, 9'd2, 9'd5, 9'd9, 9'd14, 9'd21, 9'd27, 9'd32, 9'd34, 9'd32, 9'd27, 9'd21, 9'd14, 9'd9, 9'd5, 9'd2, 9'd1, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0,  // window 31
       9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd1, 9'd2, 9'd5, 9'd9, 9'd14, 9'd21, 9'd27, 9'd32, 9'd34, 9'd32, 9'd27, 9'd21, 9'd14, 9'd9, 9'd5, 9'd2, 9'd1, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0,  // window 29
@@ -129,6 +130,29 @@ package fx_pkg;
   function automatic int default_tap(input int window, input int i);
     if (window < 1 || window > 31 || window % 2 == 0 || i < 0 || i >= window) default_tap = 0;
     else default_tap = 32'(DEFAULT_TAPS[((window / 2) * (window / 2) + i) * TAP_BITS +: TAP_BITS]);
+  endfunction
+  // LEVEL_TAPS: sigma = 3 * window / 11 (hierarchical::default_level)
+  localparam logic [DEFAULT_TAP_ENTRIES*TAP_BITS-1:0] LEVEL_TAPS = {
+      9'd3, 9'd3, 9'd4, 9'd5, 9'd6, 9'd6, 9'd7, 9'd8, 9'd9, 9'd10, 9'd11, 9'd12, 9'd12, 9'd13, 9'd13, 9'd12, 9'd13, 9'd13, 9'd12, 9'd12, 9'd11, 9'd10, 9'd9, 9'd8, 9'd7, 9'd6, 9'd6, 9'd5, 9'd4, 9'd3, 9'd3,  // window 31
+      9'd3, 9'd4, 9'd4, 9'd5, 9'd6, 9'd7, 9'd8, 9'd9, 9'd11, 9'd11, 9'd12, 9'd13, 9'd14, 9'd14, 9'd14, 9'd14, 9'd14, 9'd13, 9'd12, 9'd11, 9'd11, 9'd9, 9'd8, 9'd7, 9'd6, 9'd5, 9'd4, 9'd4, 9'd3,  // window 29
+      9'd3, 9'd4, 9'd5, 9'd6, 9'd7, 9'd8, 9'd9, 9'd11, 9'd12, 9'd13, 9'd14, 9'd14, 9'd15, 9'd14, 9'd15, 9'd14, 9'd14, 9'd13, 9'd12, 9'd11, 9'd9, 9'd8, 9'd7, 9'd6, 9'd5, 9'd4, 9'd3,  // window 27
+      9'd3, 9'd4, 9'd5, 9'd7, 9'd8, 9'd10, 9'd11, 9'd12, 9'd14, 9'd15, 9'd15, 9'd16, 9'd16, 9'd16, 9'd15, 9'd15, 9'd14, 9'd12, 9'd11, 9'd10, 9'd8, 9'd7, 9'd5, 9'd4, 9'd3,  // window 25
+      9'd4, 9'd5, 9'd6, 9'd8, 9'd9, 9'd11, 9'd13, 9'd14, 9'd16, 9'd17, 9'd17, 9'd16, 9'd17, 9'd17, 9'd16, 9'd14, 9'd13, 9'd11, 9'd9, 9'd8, 9'd6, 9'd5, 9'd4,  // window 23
+      9'd4, 9'd6, 9'd7, 9'd9, 9'd11, 9'd13, 9'd15, 9'd17, 9'd18, 9'd19, 9'd18, 9'd19, 9'd18, 9'd17, 9'd15, 9'd13, 9'd11, 9'd9, 9'd7, 9'd6, 9'd4,  // window 21
+      9'd5, 9'd6, 9'd8, 9'd11, 9'd13, 9'd16, 9'd18, 9'd20, 9'd21, 9'd20, 9'd21, 9'd20, 9'd18, 9'd16, 9'd13, 9'd11, 9'd8, 9'd6, 9'd5,  // window 19
+      9'd5, 9'd8, 9'd10, 9'd13, 9'd16, 9'd19, 9'd22, 9'd23, 9'd24, 9'd23, 9'd22, 9'd19, 9'd16, 9'd13, 9'd10, 9'd8, 9'd5,  // window 17
+      9'd6, 9'd9, 9'd13, 9'd17, 9'd20, 9'd24, 9'd26, 9'd26, 9'd26, 9'd24, 9'd20, 9'd17, 9'd13, 9'd9, 9'd6,  // window 15
+      9'd7, 9'd11, 9'd16, 9'd22, 9'd27, 9'd30, 9'd30, 9'd30, 9'd27, 9'd22, 9'd16, 9'd11, 9'd7,  // window 13
+      9'd9, 9'd15, 9'd22, 9'd29, 9'd35, 9'd36, 9'd35, 9'd29, 9'd22, 9'd15, 9'd9,  // window 11
+      9'd12, 9'd21, 9'd32, 9'd41, 9'd44, 9'd41, 9'd32, 9'd21, 9'd12,  // window 9
+      9'd17, 9'd33, 9'd50, 9'd56, 9'd50, 9'd33, 9'd17,  // window 7
+      9'd27, 9'd61, 9'd80, 9'd61, 9'd27,  // window 5
+      9'd62, 9'd132, 9'd62,  // window 3
+      9'd256  // window 1
+  };
+  function automatic int level_tap(input int window, input int i);
+    if (window < 1 || window > 31 || window % 2 == 0 || i < 0 || i >= window) level_tap = 0;
+    else level_tap = 32'(LEVEL_TAPS[((window / 2) * (window / 2) + i) * TAP_BITS +: TAP_BITS]);
   endfunction
   // Sub-pixel correction (constants.hpp kSubpixelCorrection): |offset| 0 .. 8 of the parabola -> the refined |offset|.
   function automatic logic [SUBPIXEL_BITS-1:0] subpixel_correction(

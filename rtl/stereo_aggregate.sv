@@ -44,6 +44,9 @@ module stereo_aggregate #(
     // model's default kernel for WINDOW (fx_pkg::default_tap), constants that synthesis turns
     // into shifts and adds; cfg_kernel is then ignored.
     parameter bit RUNTIME_KERNEL = 1'b1,
+    // RUNTIME_KERNEL = 0: 1 takes the hierarchical levels' kernel for WINDOW (fx_pkg::level_tap,
+    // sigma 3 WINDOW / 11) instead of the default one.
+    parameter bit LEVEL_KERNEL = 1'b0,
     parameter int LANES = NDISP,  // labels computed per clock (divides NDISP)
     parameter bit RING_BLOCK_RAM = 1'b0,  // stereo_group_ring BLOCK_RAM (stereo_top)
     parameter int RING_BLOCK_MIN_FILL = 50,  // stereo_group_ring BLOCK_MIN_FILL
@@ -116,18 +119,20 @@ module stereo_aggregate #(
           in_data[(d*IN_ROWS + IN_ROWS - 1)*COST_BITS +: LINE_BITS];
   end
 
+  // Tap i of the constant kernel (RUNTIME_KERNEL = 0).
+  function automatic int constant_tap(input int i);
+    constant_tap = LEVEL_KERNEL ? fx_pkg::level_tap(WINDOW, i) : fx_pkg::default_tap(WINDOW, i);
+  endfunction
   logic [WINDOW*TAP_BITS-1:0] kernel;
   generate
     if (RUNTIME_KERNEL) begin : g_runtime_kernel
       assign kernel = cfg_kernel;
     end else begin : g_constant_kernel
       for (genvar i = 0; i < WINDOW; i++) begin : g_tap
-        assign kernel[i*TAP_BITS+:TAP_BITS] = TAP_BITS'(fx_pkg::default_tap(WINDOW, i));
+        assign kernel[i*TAP_BITS+:TAP_BITS] = TAP_BITS'(constant_tap(i));
         // stereo_weighted_sum pairs mirrored taps: stop elaboration if the kernel is not symmetric.
-        `STEREO_ASSERT(default_kernel_symmetric,
-                       fx_pkg::default_tap(WINDOW, i) ==
-                           fx_pkg::default_tap(WINDOW, WINDOW - 1 - i),
-                       "the default kernel must be symmetric (RUNTIME_KERNEL = 0)")
+        `STEREO_ASSERT(default_kernel_symmetric, constant_tap(i) == constant_tap(WINDOW - 1 - i),
+                       "the constant kernel must be symmetric (RUNTIME_KERNEL = 0)")
       end
     end
   endgenerate
@@ -221,7 +226,7 @@ module stereo_aggregate #(
       logic [(CODES ? CODE_SUM_BITS : VSUM_BITS)-1:0] column_sum;
       stereo_weighted_sum #(
           .WINDOW(WINDOW), .IN_BITS(LINE_BITS), .SUM_BITS(CODES ? CODE_SUM_BITS : VSUM_BITS),
-          .RUNTIME_KERNEL(RUNTIME_KERNEL),
+          .RUNTIME_KERNEL(RUNTIME_KERNEL), .LEVEL_KERNEL(LEVEL_KERNEL),
           .SHIFT_ADD(SHIFT_ADD >= (CODES ? fx_pkg::SHIFT_ADD_NARROW : fx_pkg::SHIFT_ADD_ALL))
       ) vertical_sum (
           .taps(tap_cost), .kernel(kernel), .sum(column_sum));
@@ -325,7 +330,8 @@ module stereo_aggregate #(
       logic [WSUM_BITS-1:0] sum;
       stereo_weighted_sum #(
           .WINDOW(WINDOW), .IN_BITS(VSUM_BITS), .SUM_BITS(WSUM_BITS),
-          .RUNTIME_KERNEL(RUNTIME_KERNEL), .SHIFT_ADD(SHIFT_ADD >= fx_pkg::SHIFT_ADD_ALL)
+          .RUNTIME_KERNEL(RUNTIME_KERNEL), .LEVEL_KERNEL(LEVEL_KERNEL),
+          .SHIFT_ADD(SHIFT_ADD >= fx_pkg::SHIFT_ADD_ALL)
       ) horizontal_sum (
           .taps(tap_sum), .kernel(kernel), .sum(sum));
       // Rounded to the nearest (half up) by the kernel's scale.

@@ -30,6 +30,10 @@ module stereo_ca_plane #(
     parameter int NDISP = 16,  // disparities in parallel
     parameter fx_pkg::ca_rule_e RULE = fx_pkg::CA_RULE1,  // CA_RULE1 or CA_RULE2
     parameter int LANES = NDISP,  // labels computed per clock (divides NDISP)
+    // Rule 1: the labels form independent runs of SEGMENT consecutive labels, whose d-1 and d+1
+    // neighbours are inside the run only (the hierarchical levels' candidate rows,
+    // CaNeighbours::horizontal). A multiple of LANES, or a divisor of it.
+    parameter int SEGMENT = NDISP,
     parameter bit RING_BLOCK_RAM = 1'b0,  // stereo_group_ring BLOCK_RAM (stereo_top)
     parameter int RING_BLOCK_MIN_FILL = 50  // stereo_group_ring BLOCK_MIN_FILL
 ) (
@@ -54,6 +58,11 @@ module stereo_ca_plane #(
                  "RULE must be CA_RULE1 or CA_RULE2")
   `STEREO_ASSERT(lanes_divide_ndisp, LANES >= 1 && NDISP % LANES == 0,
                  "LANES must be at least 1 and divide NDISP")
+  `STEREO_ASSERT(segment_shape, SEGMENT >= 1 && NDISP % SEGMENT == 0 &&
+                 (SEGMENT % LANES == 0 || LANES % SEGMENT == 0),
+                 "SEGMENT must divide NDISP and be a multiple or a divisor of LANES")
+  // Groups per run (SEGMENT a multiple of LANES); 0: a group holds whole runs.
+  localparam int RUN_GROUPS = (SEGMENT % LANES == 0) ? SEGMENT / LANES : 0;
 
   fx_pkg::coord_t centre_x, centre_y;
   // The group of this clock; G = 1: 0 whatever the port carries (stage testbenches leave it open).
@@ -143,18 +152,21 @@ module stereo_ca_plane #(
       assign centre = window[CENTRE*COLUMN + d*BITS +: BITS];
       if (RULE == fx_pkg::CA_RULE1) begin : g_rule1
         logic below_agrees, above_agrees;
-        if (d > 0) begin : g_below
+        // Inside the group a run starts at lanes that are multiples of SEGMENT (when a group
+        // holds whole runs); across groups at groups that are multiples of RUN_GROUPS.
+        if (d > 0 && (RUN_GROUPS != 0 || d % SEGMENT != 0)) begin : g_below
           assign below_agrees = fx_pkg::agrees(window[CENTRE*COLUMN + (d-1)*BITS +: BITS], centre);
-        end else if (GROUPS > 1) begin : g_below_previous_group
-          assign below_agrees = group_now != '0 && fx_pkg::agrees(previous_centre, centre);
+        end else if (d == 0 && GROUPS > 1 && RUN_GROUPS > 1) begin : g_below_previous_group
+          assign below_agrees = 32'(group_now) % RUN_GROUPS != 0 &&
+                                fx_pkg::agrees(previous_centre, centre);
         end else begin : g_no_below
           assign below_agrees = 1'b0;
         end
-        if (d + 1 < LANES) begin : g_above
+        if (d + 1 < LANES && (RUN_GROUPS != 0 || (d + 1) % SEGMENT != 0)) begin : g_above
           assign above_agrees = 32'(group_now) * LANES + d + 1 < $signed(32'(cfg.ndisp)) &&
                                 fx_pkg::agrees(window[CENTRE*COLUMN + (d+1)*BITS +: BITS], centre);
-        end else if (GROUPS > 1) begin : g_above_next_group
-          assign above_agrees = 32'(group_now) + 1 < GROUPS &&
+        end else if (d + 1 == LANES && GROUPS > 1 && RUN_GROUPS > 1) begin : g_above_next_group
+          assign above_agrees = (32'(group_now) + 1) % RUN_GROUPS != 0 &&
                                 32'(group_now) * LANES + d + 1 < $signed(32'(cfg.ndisp)) &&
                                 fx_pkg::agrees(next_centre, centre);
         end else begin : g_no_above

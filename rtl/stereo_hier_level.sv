@@ -3,9 +3,14 @@
 // docs/hierarchical.md "Candidates and the DSI of a level", "The streaming core"). The 1-D
 // pipeline's stages on the level's COLS x ROWS candidates per pixel, label k = j * COLS + i:
 //   stereo_census -> stereo_level_cost (2-D candidates, any side outside) -> stereo_aggregate
-//   (one plane per candidate, the cost as it is) -> CA rule 1 per candidate row (stereo_ca_plane
-//   with COLS labels: the "d +- 1" neighbours of (i, j) are (i -+ 1, j), none past the row's
-//   ends) -> CA rule 2 (in-plane, every label) -> stereo_wta -> the displacement and validity.
+//   (one plane per candidate, the cost as it is) -> CA rule 1 (stereo_ca_plane with runs of COLS
+//   labels: the "d +- 1" neighbours of (i, j) are (i -+ 1, j), none past the row's ends) -> CA
+//   rule 2 (in-plane, every label) -> stereo_level_wta (the 2-D tie key) -> the displacement and
+//   validity.
+//
+// Time-multiplexed lanes (LANES < COLS * ROWS, docs/rtl.md): a pixel step takes
+// G = COLS * ROWS / LANES clocks, `group` 0 .. G-1 from the caller and the step (ce) at group
+// G-1, as in stereo_top; every stage then computes LANES labels a clock.
 //
 // Candidates. REFINE = 0 (the quarter level): every displacement of the level's range for every
 // pixel, base (0, V_MIN), COLS x ROWS = (D/f) x (V/f); the base ports are ignored. REFINE = 1
@@ -16,8 +21,8 @@
 //
 // The WTA's ties go to the smallest key (|v - pv|, |d - pd|, v, d) (stereo::tie_key), pv, pd the
 // preferred displacement: (0, 0) at the quarter level, the 3x3 centre at the others. Relative to
-// the base that order is the same for every pixel, so the labels enter stereo_wta in tie order
-// (TIE_ORDER, at elaboration) and its "ties to the smallest label" is the model's rule.
+// the base that order is the same for every pixel: a rank per label (TIE_RANK, at elaboration),
+// which stereo_level_wta compares after the cost.
 //
 // Validity (stereo::hierarchical::level_valid): reach = WINDOW/2 (+1 with CA) and
 //   reach <= x < W - reach, reach <= y < H - reach, x - d >= reach, reach <= y + v < H - reach.
@@ -34,12 +39,19 @@ module stereo_hier_level #(
     parameter int ROWS   = 3,   // candidate rows
     parameter int V_MIN  = -2,  // the level's vertical offsets V_MIN .. V_MAX
     parameter int V_MAX  = 1,
-    parameter int WINDOW = 5,   // the level's aggregation window (the kernel: cfg_kernel)
-    parameter bit REFINE = 1'b1  // 1: 3x3 around a prediction; 0: the whole range (COLS x ROWS)
+    parameter int WINDOW = 5,   // the level's aggregation window
+    parameter bit REFINE = 1'b1,  // 1: 3x3 around a prediction; 0: the whole range (COLS x ROWS)
+    parameter int LANES = COLS * ROWS,  // labels per clock (divides COLS * ROWS)
+    // 1: the kernel from cfg_kernel; 0: the levels' constant kernel for WINDOW (fx_pkg::level_tap,
+    // hierarchical::default_level), built from shifts and adds, cfg_kernel ignored.
+    parameter bit RUNTIME_KERNEL = 1'b1
 ) (
     input  wire logic                                clk,
     input  wire logic                                rst,  // clears coordinates only
-    input  wire logic                                ce,   // the pixel step
+    input  wire logic                                ce,   // the pixel step (at group G-1)
+    /* verilator lint_off UNUSEDSIGNAL */  // G = 1: always 0
+    input  wire logic [(((COLS * ROWS) / LANES > 1) ? $clog2((COLS * ROWS) / LANES) : 1)-1:0] group,
+    /* verilator lint_on UNUSEDSIGNAL */
     input  wire fx_pkg::coord_t                      in_x,
     input  wire fx_pkg::coord_t                      in_y,
     input  wire logic [fx_pkg::RGB_BITS-1:0]         in_left,
@@ -47,7 +59,9 @@ module stereo_hier_level #(
     input  wire fx_pkg::cfg_size_t                   cfg_width,
     input  wire fx_pkg::cfg_size_t                   cfg_height,
     input  wire logic                                cfg_use_ca,
+    /* verilator lint_off UNUSEDSIGNAL */  // RUNTIME_KERNEL = 0
     input  wire logic [WINDOW*fx_pkg::TAP_BITS-1:0]  cfg_kernel,
+    /* verilator lint_on UNUSEDSIGNAL */
     // REFINE = 1: the base of the pixel whose costs the next step computes.
     output      fx_pkg::coord_t                      req_x,
     output      fx_pkg::coord_t                      req_y,
@@ -93,20 +107,20 @@ module stereo_hier_level #(
     else if (va != vb) key_less = va < vb;
     else key_less = da < db;
   endfunction
-  // TIE_ORDER: the label of rank r at [r*9 +: 9] (the rank of k: how many keys are smaller).
-  function automatic logic [LABELS*9-1:0] tie_order();
+  // TIE_RANK: the rank of label k at [k*9 +: 9] (how many keys are smaller).
+  function automatic logic [LABELS*9-1:0] tie_rank();
     int smaller;
-    tie_order = '0;
+    tie_rank = '0;
     for (int k = 0; k < LABELS; k++) begin
       smaller = 0;
       for (int m = 0; m < LABELS; m++) if (key_less(m, k)) smaller++;
-      tie_order[smaller*9 +: 9] = 9'(k);
+      tie_rank[k*9 +: 9] = 9'(smaller);
     end
   endfunction
-  localparam logic [LABELS*9-1:0] TIE_ORDER = tie_order();
+  localparam logic [LABELS*9-1:0] TIE_RANK = tie_rank();
 
   // ---- configuration of the reused stages -------------------------------------------------------
-  fx_pkg::config_t row_cfg, all_cfg;  // CA rule 1 sees one candidate row, the others every label
+  fx_pkg::config_t all_cfg;
   always_comb begin
     all_cfg = '0;
     all_cfg.width = cfg_width;
@@ -114,8 +128,6 @@ module stereo_hier_level #(
     all_cfg.ndisp = fx_pkg::CFG_NDISP_BITS'(LABELS);
     all_cfg.radius = fx_pkg::CFG_RADIUS_BITS'(R);
     all_cfg.use_ca = cfg_use_ca;
-    row_cfg = all_cfg;
-    row_cfg.ndisp = fx_pkg::CFG_NDISP_BITS'(COLS);
   end
 
   // ---- census and cost ------------------------------------------------------------------------
@@ -142,17 +154,19 @@ module stereo_hier_level #(
   logic signed [fx_pkg::DISP_BITS-1:0] cost_base_v;
   assign cost_base_d = REFINE ? in_base_d : '0;
   assign cost_base_v = REFINE ? in_base_v : fx_pkg::DISP_BITS'(V_MIN);
-  logic [LABELS*COST_BITS-1:0] cost_data;
+  logic [LANES*COST_BITS-1:0] cost_data;
   stereo_level_cost #(
       .WIDTH(WIDTH),
       .COLS(COLS),
       .ROWS(ROWS),
       .V_MIN(V_MIN),
-      .V_MAX(V_MAX)
+      .V_MAX(V_MAX),
+      .LANES(LANES)
   ) cost (
       .clk(clk),
       .rst(rst),
       .ce(ce),
+      .group(group),
       .in_x(census_x),
       .in_y(census_y),
       .in_left(census_left),
@@ -170,18 +184,20 @@ module stereo_hier_level #(
 
   // ---- aggregation and the CA rules -------------------------------------------------------------
   fx_pkg::coord_t agg_x, agg_y, rule1_x, rule1_y, wta_in_x, wta_in_y;
-  logic [LABELS*AGG_BITS-1:0] agg_data, rule1_data, rule2_data;
+  logic [LANES*AGG_BITS-1:0] agg_data, rule1_data, rule2_data;
   stereo_aggregate #(
       .WIDTH(WIDTH),
       .NDISP(LABELS),
       .WINDOW(WINDOW),
-      .RUNTIME_KERNEL(1'b1),
+      .RUNTIME_KERNEL(RUNTIME_KERNEL),
+      .LEVEL_KERNEL(1'b1),
+      .LANES(LANES),
       .COST(fx_pkg::COST_AD)  // the costs as they are: a 2-D candidate's outside varies by row
   ) aggregate (
       .clk(clk),
       .rst(rst),
       .ce(ce),
-      .group(1'b0),
+      .group(group),
       .in_x(cost_x),
       .in_y(cost_y),
       .in_next_y(cost_next_y),
@@ -193,38 +209,36 @@ module stereo_hier_level #(
       .out_data(agg_data)
   );
 
-  fx_pkg::coord_t row_x[ROWS], row_y[ROWS];
-  for (genvar j = 0; j < ROWS; j++) begin : g_rule1
-    stereo_ca_plane #(
-        .WIDTH(WIDTH),
-        .NDISP(COLS),
-        .RULE(fx_pkg::CA_RULE1)
-    ) rule1 (
-        .clk(clk),
-        .rst(rst),
-        .ce(ce),
-        .group(1'b0),
-        .in_x(agg_x),
-        .in_y(agg_y),
-        .in_data(agg_data[j*COLS*AGG_BITS +: COLS*AGG_BITS]),
-        .cfg(row_cfg),
-        .out_x(row_x[j]),
-        .out_y(row_y[j]),
-        .out_data(rule1_data[j*COLS*AGG_BITS +: COLS*AGG_BITS])
-    );
-  end
-  assign rule1_x = row_x[0];
-  assign rule1_y = row_y[0];
+  stereo_ca_plane #(
+      .WIDTH(WIDTH),
+      .NDISP(LABELS),
+      .RULE(fx_pkg::CA_RULE1),
+      .LANES(LANES),
+      .SEGMENT(COLS)  // one run per candidate row
+  ) rule1 (
+      .clk(clk),
+      .rst(rst),
+      .ce(ce),
+      .group(group),
+      .in_x(agg_x),
+      .in_y(agg_y),
+      .in_data(agg_data),
+      .cfg(all_cfg),
+      .out_x(rule1_x),
+      .out_y(rule1_y),
+      .out_data(rule1_data)
+  );
 
   stereo_ca_plane #(
       .WIDTH(WIDTH),
       .NDISP(LABELS),
-      .RULE(fx_pkg::CA_RULE2)
+      .RULE(fx_pkg::CA_RULE2),
+      .LANES(LANES)
   ) rule2 (
       .clk(clk),
       .rst(rst),
       .ce(ce),
-      .group(1'b0),
+      .group(group),
       .in_x(rule1_x),
       .in_y(rule1_y),
       .in_data(rule1_data),
@@ -234,52 +248,34 @@ module stereo_hier_level #(
       .out_data(rule2_data)
   );
 
-  // ---- WTA in tie order -------------------------------------------------------------------------
-  logic [LABELS*AGG_BITS-1:0] ranked;
-  for (genvar r = 0; r < LABELS; r++) begin : g_rank
-    localparam int K = 32'(TIE_ORDER[r*9 +: 9]);
-    assign ranked[r*AGG_BITS +: AGG_BITS] = rule2_data[K*AGG_BITS +: AGG_BITS];
-  end
-  logic [fx_pkg::DISP_BITS-1:0] rank;
-  /* verilator lint_off UNUSEDSIGNAL */  // the level uses the winner only
-  logic wta_border;
-  logic [AGG_BITS-1:0] wta_cost, wta_before, wta_after, wta_second;
-  logic [LABELS*AGG_BITS-1:0] wta_data, wta_group;
-  /* verilator lint_on UNUSEDSIGNAL */
-  stereo_wta #(
-      .NDISP(LABELS)
+  // ---- WTA with the tie key -----------------------------------------------------------------------
+  logic [8:0] winner;  // label k of the winner
+  stereo_level_wta #(
+      .NDISP(LABELS),
+      .LANES(LANES),
+      .RANK (TIE_RANK)
   ) wta (
       .clk(clk),
       .rst(rst),
       .ce(ce),
-      .group(1'b0),
+      .group(group),
       .in_x(wta_in_x),
       .in_y(wta_in_y),
-      .in_data(ranked),
-      .cfg(all_cfg),
+      .in_data(rule2_data),
       .out_x(out_x),
       .out_y(out_y),
-      .out_label(rank),
-      .out_border(wta_border),
-      .out_cost(wta_cost),
-      .out_before(wta_before),
-      .out_after(wta_after),
-      .out_data(wta_data),
-      .out_second(wta_second),
-      .out_group(wta_group)
+      .out_label(winner)
   );
 
   // ---- the winner's displacement and validity ---------------------------------------------------
-  logic [8:0] winner;  // label k of the winning rank
-  always_comb begin
-    winner = '0;
-    for (int r = 0; r < LABELS; r++)
-      if (rank == fx_pkg::DISP_BITS'(r)) winner = TIE_ORDER[r*9 +: 9];
-  end
   logic signed [17:0] winner_d, winner_v, reach, x, y;
+  logic [8:0] winner_i, winner_j;  // the candidate's column and row in the grid
   always_comb begin
-    winner_d = 18'(REFINE ? 18'(out_base_d) : 18'(0)) + 18'(32'(winner) % COLS);
-    winner_v = 18'(REFINE ? 18'(out_base_v) : 18'(V_MIN)) + 18'(32'(winner) / COLS);
+    // 9-bit operands: a small constant division where COLS is not a power of two.
+    winner_i = winner % 9'(COLS);
+    winner_j = winner / 9'(COLS);
+    winner_d = 18'(REFINE ? 18'(out_base_d) : 18'(0)) + 18'(winner_i);
+    winner_v = 18'(REFINE ? 18'(out_base_v) : 18'(V_MIN)) + 18'(winner_j);
     reach = 18'(R) + 18'(cfg_use_ca);
     x = 18'(out_x);
     y = 18'(out_y);

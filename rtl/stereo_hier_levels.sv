@@ -28,7 +28,15 @@ module stereo_hier_levels #(
     parameter int RING     = 8,    // coarse rows each prediction ring holds
     parameter int FIFO_ROWS_Q = 4,   // level rows each input FIFO holds
     parameter int FIFO_ROWS_H = 24,
-    parameter int FIFO_ROWS_F = 80
+    parameter int FIFO_ROWS_F = 80,
+    // Labels per clock of each level (divide its labels: (NDISP/4) x (VRANGE/4), 3x3, 3x3); a
+    // level's pixel then takes its labels / LANES clocks (docs/hierarchical.md "Resources").
+    // By default one candidate row a clock.
+    parameter int LANES_Q = NDISP / 4,
+    parameter int LANES_H = 3,
+    parameter int LANES_F = 3,
+    // 1: the levels' kernels from cfg_kernel_*; 0: their constant kernels (fx_pkg::level_tap).
+    parameter bit RUNTIME_KERNEL = 1'b0
 ) (
     input  wire logic                                  clk,
     input  wire logic                                  rst,
@@ -43,9 +51,11 @@ module stereo_hier_levels #(
     input  wire fx_pkg::cfg_size_t                     cfg_width,  // the full-size frame
     input  wire fx_pkg::cfg_size_t                     cfg_height,
     input  wire logic                                  cfg_use_ca,
+    /* verilator lint_off UNUSEDSIGNAL */  // RUNTIME_KERNEL = 0
     input  wire logic [WINDOW_Q*fx_pkg::TAP_BITS-1:0]  cfg_kernel_q,
     input  wire logic [WINDOW_H*fx_pkg::TAP_BITS-1:0]  cfg_kernel_h,
     input  wire logic [WINDOW_F*fx_pkg::TAP_BITS-1:0]  cfg_kernel_f,
+    /* verilator lint_on UNUSEDSIGNAL */
     output      logic                                  out_valid,  // one clock per winner
     output      fx_pkg::coord_t                        out_x,
     output      fx_pkg::coord_t                        out_y,
@@ -61,6 +71,13 @@ module stereo_hier_levels #(
   localparam int V_MIN_Q = -(VQ / 2);
   localparam int V_MIN_H = -(VH / 2);
   localparam int V_MIN_F = -(VRANGE / 2);
+  localparam int LABELS_Q = (NDISP / 4) * VQ;
+  localparam int GROUPS_Q = LABELS_Q / LANES_Q;
+  localparam int GROUPS_H = 9 / LANES_H;
+  localparam int GROUPS_F = 9 / LANES_F;
+  `STEREO_ASSERT(lanes, LANES_Q >= 1 && LABELS_Q % LANES_Q == 0 && LANES_H >= 1 && 9 % LANES_H == 0 &&
+                 LANES_F >= 1 && 9 % LANES_F == 0,
+                 "LANES_Q must divide (NDISP/4) x (VRANGE/4), LANES_H and LANES_F must divide 9")
   `STEREO_ASSERT(ranges, NDISP % 4 == 0 && VRANGE % 4 == 0 && NDISP >= 8 && VRANGE >= 12 &&
                  NDISP <= 256 && VRANGE <= 252,
                  "NDISP 8 .. 256 and VRANGE 12 .. 252, multiples of 4")
@@ -76,9 +93,11 @@ module stereo_hier_levels #(
   frame_e frame_state;
   fx_pkg::cfg_size_t width, height, width_q, height_q, width_h, height_h;
   logic use_ca;
+  /* verilator lint_off UNUSEDSIGNAL */  // RUNTIME_KERNEL = 0
   logic [WINDOW_Q*fx_pkg::TAP_BITS-1:0] kernel_q;
   logic [WINDOW_H*fx_pkg::TAP_BITS-1:0] kernel_h;
   logic [WINDOW_F*fx_pkg::TAP_BITS-1:0] kernel_f;
+  /* verilator lint_on UNUSEDSIGNAL */
   assign width_q = width >> 2;
   assign height_q = height >> 2;
   assign width_h = width >> 1;
@@ -178,6 +197,9 @@ module stereo_hier_levels #(
 
   // ---- the levels ----------------------------------------------------------------------------
   // Per level: the stepper's signals, the level's base request and its winner.
+  logic [((GROUPS_Q > 1) ? $clog2(GROUPS_Q) : 1)-1:0] group_q;
+  logic [((GROUPS_H > 1) ? $clog2(GROUPS_H) : 1)-1:0] group_h;
+  logic [((GROUPS_F > 1) ? $clog2(GROUPS_F) : 1)-1:0] group_f;
   logic ce_q, ce_h, ce_f, flush_q, flush_h, flush_f, stepped_q, stepped_h, stepped_f;
   logic clear_q, clear_h, clear_f, allow_q, allow_h, allow_f;
   fx_pkg::coord_t x_q, y_q, x_h, y_h, x_f, y_f;
@@ -194,18 +216,18 @@ module stereo_hier_levels #(
   logic win_ok_f, ready_h, ready_f;
   fx_pkg::coord_t oldest_q, oldest_h;  // the coarse rows the finer level still needs
 
-  stereo_level_stepper step_quarter (
+  stereo_level_stepper #(.GROUPS(GROUPS_Q)) step_quarter (
       .clk(clk), .rst(rst), .cfg_width(width_q), .cfg_height(height_q), .in_valid(fifo_valid_q),
       .in_take(take_q), .allow(allow_q), .level_out_x(win_x_q), .level_out_y(win_y_q), .ce(ce_q),
-      .x(x_q), .y(y_q), .flushing(flush_q), .stepped(stepped_q), .clear(clear_q), .done(done_q));
-  stereo_level_stepper step_half (
+      .group(group_q), .x(x_q), .y(y_q), .flushing(flush_q), .stepped(stepped_q), .clear(clear_q), .done(done_q));
+  stereo_level_stepper #(.GROUPS(GROUPS_H)) step_half (
       .clk(clk), .rst(rst), .cfg_width(width_h), .cfg_height(height_h), .in_valid(fifo_valid_h),
       .in_take(take_h), .allow(allow_h), .level_out_x(win_x_h), .level_out_y(win_y_h), .ce(ce_h),
-      .x(x_h), .y(y_h), .flushing(flush_h), .stepped(stepped_h), .clear(clear_h), .done(done_h));
-  stereo_level_stepper step_full (
+      .group(group_h), .x(x_h), .y(y_h), .flushing(flush_h), .stepped(stepped_h), .clear(clear_h), .done(done_h));
+  stereo_level_stepper #(.GROUPS(GROUPS_F)) step_full (
       .clk(clk), .rst(rst), .cfg_width(width), .cfg_height(height), .in_valid(fifo_valid_f),
       .in_take(take_f), .allow(allow_f), .level_out_x(win_x_f), .level_out_y(win_y_f), .ce(ce_f),
-      .x(x_f), .y(y_f), .flushing(flush_f), .stepped(stepped_f), .clear(clear_f), .done(done_f));
+      .group(group_f), .x(x_f), .y(y_f), .flushing(flush_f), .stepped(stepped_f), .clear(clear_f), .done(done_f));
 
   // A coarse level steps while the row of its next winner has a free slot in its ring.
   function automatic logic room(input fx_pkg::coord_t winner_y, input fx_pkg::cfg_size_t rows,
@@ -219,24 +241,27 @@ module stereo_hier_levels #(
   assign allow_f = ready_f;
 
   stereo_hier_level #(.WIDTH(WIDTH / 4), .COLS(NDISP / 4), .ROWS(VQ), .V_MIN(V_MIN_Q),
-                      .V_MAX(V_MIN_Q + VQ - 1), .WINDOW(WINDOW_Q), .REFINE(1'b0)) quarter (
-      .clk(clk), .rst(rst || clear_q), .ce(ce_q), .in_x(x_q), .in_y(y_q),
+                      .V_MAX(V_MIN_Q + VQ - 1), .WINDOW(WINDOW_Q), .LANES(LANES_Q),
+                      .RUNTIME_KERNEL(RUNTIME_KERNEL), .REFINE(1'b0)) quarter (
+      .clk(clk), .rst(rst || clear_q), .ce(ce_q), .group(group_q), .in_x(x_q), .in_y(y_q),
       .in_left(flush_q ? '0 : grey(fifo_q[7:0])), .in_right(flush_q ? '0 : grey(fifo_q[15:8])),
       .cfg_width(width_q), .cfg_height(height_q), .cfg_use_ca(use_ca),
       .cfg_kernel(kernel_q), .req_x(req_x_q), .req_y(req_y_q), .in_base_d('0),
       .in_base_v('0), .out_base_d('0), .out_base_v('0), .out_x(win_x_q), .out_y(win_y_q),
       .out_d(win_d_q), .out_v(win_v_q), .out_valid(win_ok_q));
   stereo_hier_level #(.WIDTH(WIDTH / 2), .COLS(3), .ROWS(3), .V_MIN(V_MIN_H),
-                      .V_MAX(V_MIN_H + VH - 1), .WINDOW(WINDOW_H), .REFINE(1'b1)) half (
-      .clk(clk), .rst(rst || clear_h), .ce(ce_h), .in_x(x_h), .in_y(y_h),
+                      .V_MAX(V_MIN_H + VH - 1), .WINDOW(WINDOW_H), .LANES(LANES_H),
+                      .RUNTIME_KERNEL(RUNTIME_KERNEL), .REFINE(1'b1)) half (
+      .clk(clk), .rst(rst || clear_h), .ce(ce_h), .group(group_h), .in_x(x_h), .in_y(y_h),
       .in_left(flush_h ? '0 : grey(fifo_h[7:0])), .in_right(flush_h ? '0 : grey(fifo_h[15:8])),
       .cfg_width(width_h), .cfg_height(height_h), .cfg_use_ca(use_ca),
       .cfg_kernel(kernel_h), .req_x(req_x_h), .req_y(req_y_h), .in_base_d(base_d_h),
       .in_base_v(base_v_h), .out_base_d(out_base_d_h), .out_base_v(out_base_v_h),
       .out_x(win_x_h), .out_y(win_y_h), .out_d(win_d_h), .out_v(win_v_h), .out_valid(win_ok_h));
   stereo_hier_level #(.WIDTH(WIDTH), .COLS(3), .ROWS(3), .V_MIN(V_MIN_F),
-                      .V_MAX(V_MIN_F + VRANGE - 1), .WINDOW(WINDOW_F), .REFINE(1'b1)) full (
-      .clk(clk), .rst(rst || clear_f), .ce(ce_f), .in_x(x_f), .in_y(y_f),
+                      .V_MAX(V_MIN_F + VRANGE - 1), .WINDOW(WINDOW_F), .LANES(LANES_F),
+                      .RUNTIME_KERNEL(RUNTIME_KERNEL), .REFINE(1'b1)) full (
+      .clk(clk), .rst(rst || clear_f), .ce(ce_f), .group(group_f), .in_x(x_f), .in_y(y_f),
       .in_left(flush_f ? '0 : grey(fifo_f[7:0])), .in_right(flush_f ? '0 : grey(fifo_f[15:8])),
       .cfg_width(width), .cfg_height(height), .cfg_use_ca(use_ca),
       .cfg_kernel(kernel_f), .req_x(req_x_f), .req_y(req_y_f), .in_base_d(base_d_f),

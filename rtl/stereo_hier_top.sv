@@ -31,7 +31,12 @@ module stereo_hier_top #(
     parameter int VRANGE = 16,  // V: the levels' vertical range, the field's -V/2 .. V/2 - 1
     parameter int WINDOW_Q = 9,  // the levels' windows
     parameter int WINDOW_H = 15,
-    parameter int WINDOW_F = 15
+    parameter int WINDOW_F = 15,
+    // The levels' labels per clock and kernels (stereo_hier_levels)
+    parameter int LANES_Q = NDISP / 4,
+    parameter int LANES_H = 3,
+    parameter int LANES_F = 3,
+    parameter bit LEVEL_RUNTIME_KERNEL = 1'b0
 ) (
     input  wire logic                                 clk,
     input  wire logic                                 rst,
@@ -133,7 +138,8 @@ module stereo_hier_top #(
   /* verilator lint_on UNUSEDSIGNAL */
   stereo_hier_levels #(
       .WIDTH(WIDTH), .NDISP(NDISP), .VRANGE(VRANGE), .WINDOW_Q(WINDOW_Q), .WINDOW_H(WINDOW_H),
-      .WINDOW_F(WINDOW_F)
+      .WINDOW_F(WINDOW_F), .LANES_Q(LANES_Q), .LANES_H(LANES_H), .LANES_F(LANES_F),
+      .RUNTIME_KERNEL(LEVEL_RUNTIME_KERNEL)
   ) levels (
       .clk(clk), .rst(rst), .in_valid(levels_valid), .in_ready(levels_ready),
       .in_x(level_x), .in_y(level_y),

@@ -10,7 +10,10 @@
 // slot r mod SLOTS. The right rows are split into COLS banks by column mod COLS, so the COLS
 // consecutive columns x - bd - COLS + 1 .. x - bd come out of COLS one-port memories in one
 // read, and every slot has its own banks, so the ROWS candidate rows (distinct rows) read in the
-// same step. The left codes wait for their last right row in one memory of SLOTS rows.
+// same step. The left codes wait for their last right row in one memory of SLOTS rows. The bank
+// count is COLS rounded up to a power of two (BANKS), so that a column's bank and address are its
+// low and high bits, not a division by COLS; the slot of a candidate row is the slot of the
+// pixel's row plus its offset, brought back into 0 .. SLOTS-1 by one addition or subtraction.
 //
 // Timing: the codes of pixel (in_x, in_y) (stereo_census's output: raster order, flush rows
 // beyond the frame) are written at their step. The pixel matched at a step is the one whose last
@@ -20,6 +23,9 @@
 // each candidate reads and whether it lies outside; the next step computes the costs into
 // out_data. Latency: 2 pixel steps from the codes' arrival at (x, y + V_MAX); one pixel per ce.
 // SLOTS exceeds the rows a step reads by one, so a write never meets a read of the same row.
+// Time-multiplexed lanes (LANES < COLS * ROWS, the stage contract of docs/rtl.md): the costs are
+// computed and registered at the step as with G = 1; out_data is the registered pixel's group
+// `group` (labels [group*LANES +: LANES]).
 // Reset clears the coordinates only; stale codes are never read by a real pixel (a row is
 // written before any pixel reads it).
 `default_nettype none
@@ -30,11 +36,15 @@ module stereo_level_cost #(
     parameter int COLS  = 3,   // candidate columns (horizontal displacements per row)
     parameter int ROWS  = 3,   // candidate rows (vertical displacements)
     parameter int V_MIN = -2,  // the level's smallest vertical offset
-    parameter int V_MAX = 1    // the level's largest vertical offset
+    parameter int V_MAX = 1,   // the level's largest vertical offset
+    parameter int LANES = COLS * ROWS  // labels handed on per clock (divides COLS * ROWS)
 ) (
     input  wire logic                                        clk,
     input  wire logic                                        rst,  // clears coordinates only
     input  wire logic                                        ce,   // the pixel step
+    /* verilator lint_off UNUSEDSIGNAL */  // G = 1: always 0
+    input  wire logic [(((COLS * ROWS) / LANES > 1) ? $clog2((COLS * ROWS) / LANES) : 1)-1:0] group,
+    /* verilator lint_on UNUSEDSIGNAL */
     input  wire fx_pkg::coord_t                              in_x,
     input  wire fx_pkg::coord_t                              in_y,
     input  wire logic [23:0]                                 in_left,   // census code
@@ -50,27 +60,43 @@ module stereo_level_cost #(
     output      fx_pkg::coord_t                              out_x,
     output      fx_pkg::coord_t                              out_y,
     output      fx_pkg::coord_t                              out_next_y,  // stereo_aggregate in_next_y
-    output      logic [COLS*ROWS*fx_pkg::COST_BITS-1:0]      out_data
+    output      logic [LANES*fx_pkg::COST_BITS-1:0]          out_data
 );
   localparam int SLOTS = V_MAX - V_MIN + 2;
   localparam int SLOT_BITS = $clog2(SLOTS);
-  localparam int BANK_DEPTH = (WIDTH + COLS - 1) / COLS;
+  localparam int BANK_SHIFT = (COLS > 1) ? $clog2(COLS) : 0;
+  localparam int BANKS = 1 << BANK_SHIFT;
+  localparam int BANK_DEPTH = (WIDTH + BANKS - 1) / BANKS;
   localparam int BANK_BITS = (BANK_DEPTH > 1) ? $clog2(BANK_DEPTH) : 1;
   localparam int LEFT_BITS = $clog2(SLOTS * WIDTH);
   localparam int COST_BITS = fx_pkg::COST_BITS;
-  localparam int BANK_SELECT_BITS = (COLS > 1) ? $clog2(COLS) : 1;
-  // Rows and columns are biased by a multiple of SLOTS (COLS) before the modulo, so that the
-  // operands are non-negative and narrow: rows >= -ROW_BIAS, columns >= -COLUMN_BIAS.
-  localparam int ROW_BIAS = SLOTS * 1024;
-  localparam int COLUMN_BIAS = COLS * 512;
+  localparam int BANK_SELECT_BITS = (BANKS > 1) ? BANK_SHIFT : 1;
+  localparam int LABELS = COLS * ROWS;
+  localparam int GROUPS = LABELS / LANES;
+  // Rows are biased by a multiple of SLOTS before the modulo, so that the operand is
+  // non-negative and narrow (ROW_MOD_BITS): rows from -ROW_BIAS on (the level's rows and its
+  // flush rows lie far inside).
+  localparam int ROW_BIAS = SLOTS * ((256 + SLOTS - 1) / SLOTS);
+  localparam int ROW_MOD_BITS = 13;
 
   `STEREO_ASSERT(grid_size, COLS >= 1 && ROWS >= 1 && ROWS <= V_MAX - V_MIN + 1,
                  "COLS >= 1 and ROWS in 1 .. V_MAX - V_MIN + 1")
   `STEREO_ASSERT(offset_range, V_MIN <= -1 && V_MAX >= 0 && V_MAX - V_MIN <= 126,
                  "the vertical offsets V_MIN .. V_MAX must contain -1 and 0 and fit a byte")
+  `STEREO_ASSERT(lanes_divide_labels, LANES >= 1 && LABELS % LANES == 0,
+                 "LANES must divide COLS * ROWS")
 
   function automatic logic [SLOT_BITS-1:0] slot_of(input logic signed [17:0] row);
-    slot_of = SLOT_BITS'((32'(row) + ROW_BIAS) % SLOTS);
+    slot_of = SLOT_BITS'($unsigned(ROW_MOD_BITS'(row + 18'(ROW_BIAS))) % ROW_MOD_BITS'(SLOTS));
+  endfunction
+  // The slot of a row `offset` rows from a row in slot `slot`, |offset| < SLOTS.
+  function automatic logic [SLOT_BITS-1:0] slot_plus(input logic [SLOT_BITS-1:0] slot,
+                                                     input logic signed [8:0] offset);
+    logic signed [9:0] sum;
+    sum = 10'(slot) + 10'(offset);
+    if (sum < 0) sum = sum + 10'(SLOTS);
+    else if (sum >= 10'(SLOTS)) sum = sum - 10'(SLOTS);
+    slot_plus = SLOT_BITS'(sum);
   endfunction
 
   // ---- the previous step's pixel and the pixel it completes --------------------------------
@@ -88,11 +114,13 @@ module stereo_level_cost #(
                  32'(in_x) < 32'(cfg.width) && 32'(in_y) < 32'(cfg.height);
   assign write_slot = slot_of(18'(in_y));
 
+  logic [SLOT_BITS-1:0] req_slot;  // the slot of row req_y
+  assign req_slot = slot_of(18'(req_y));
   logic [23:0] left_mem[SLOTS * WIDTH];
   logic [23:0] left_code;  // L(req) after the step
   always_ff @(posedge clk) begin
     if (write) left_mem[LEFT_BITS'(32'(write_slot) * WIDTH + 32'(in_x))] <= in_left;
-    if (ce) left_code <= left_mem[LEFT_BITS'(32'(slot_of(18'(req_y))) * WIDTH +
+    if (ce) left_code <= left_mem[LEFT_BITS'(32'(req_slot) * WIDTH +
                                               ((req_x >= 0 && 32'(req_x) < WIDTH) ? 32'(req_x) : 0))];
   end
 
@@ -100,17 +128,17 @@ module stereo_level_cost #(
   // Candidate i reads column c_i = x - bd - i; each bank holds exactly one of the COLS
   // consecutive columns.
   logic signed [17:0] column[COLS];
-  logic [BANK_BITS-1:0] bank_address[COLS];  // per bank
+  logic [BANK_BITS-1:0] bank_address[BANKS];  // per bank
   logic [BANK_SELECT_BITS-1:0] column_bank[COLS];  // per candidate column
   logic column_outside[COLS];
   always_comb begin
-    for (int b = 0; b < COLS; b++) bank_address[b] = '0;
+    for (int b = 0; b < BANKS; b++) bank_address[b] = '0;
     for (int i = 0; i < COLS; i++) begin
       column[i] = 18'(req_x) - 18'(in_base_d) - 18'(i);
-      column_bank[i] = BANK_SELECT_BITS'((32'(column[i]) + COLUMN_BIAS) % COLS);
+      column_bank[i] = (BANKS > 1) ? BANK_SELECT_BITS'(column[i]) : '0;
       column_outside[i] = column[i] < 0 || 32'(column[i]) >= 32'(cfg.width);
       if (!column_outside[i])
-        bank_address[column_bank[i]] = BANK_BITS'(32'(column[i]) / COLS);
+        bank_address[column_bank[i]] = BANK_BITS'(column[i] >>> BANK_SHIFT);
     end
   end
   logic signed [17:0] row[ROWS];
@@ -119,19 +147,24 @@ module stereo_level_cost #(
   always_comb begin
     for (int j = 0; j < ROWS; j++) begin
       row[j] = 18'(req_y) + 18'(in_base_v) + 18'(j);
-      row_slot[j] = slot_of(row[j]);
+      row_slot[j] = slot_plus(req_slot, 9'(in_base_v) + 9'(j));
       row_outside[j] = req_y == fx_pkg::NO_PIXEL || row[j] < 0 || 32'(row[j]) >= 32'(cfg.height);
     end
   end
 
   // ---- the right banks: one memory per slot and bank, read at every step -----------------------
-  logic [23:0] bank_code[SLOTS][COLS];  // after the step
+  // The bank and address of the written column (unsigned: the column is not negative there).
+  logic [BANK_SELECT_BITS-1:0] write_bank;
+  logic [BANK_BITS-1:0] write_address;
+  assign write_bank = (BANKS > 1) ? BANK_SELECT_BITS'($unsigned(in_x)) : '0;
+  assign write_address = BANK_BITS'($unsigned(in_x) >> BANK_SHIFT);
+  logic [23:0] bank_code[SLOTS][BANKS];  // after the step
   for (genvar s = 0; s < SLOTS; s++) begin : g_slot
-    for (genvar b = 0; b < COLS; b++) begin : g_bank
+    for (genvar b = 0; b < BANKS; b++) begin : g_bank
       logic [23:0] mem[BANK_DEPTH];
       always_ff @(posedge clk) begin
-        if (write && write_slot == SLOT_BITS'(s) && 32'(in_x) % COLS == b)
-          mem[BANK_BITS'(32'(in_x) / COLS)] <= in_right;
+        if (write && write_slot == SLOT_BITS'(s) && write_bank == BANK_SELECT_BITS'(b))
+          mem[write_address] <= in_right;
         if (ce) bank_code[s][b] <= mem[bank_address[b]];
       end
     end
@@ -158,7 +191,7 @@ module stereo_level_cost #(
       .clk(clk), .rst(rst), .ce(ce), .in_x(read_x), .in_y(read_y), .out_x(out_x), .out_y(out_y));
   assign out_next_y = read_y;
   logic [23:0] right_code[ROWS][COLS];  // R(x - bd - i, y + bv + j)
-  logic [COLS*ROWS*COST_BITS-1:0] costs;
+  logic [LABELS*COST_BITS-1:0] costs, registered_costs;
   always_comb begin
     for (int j = 0; j < ROWS; j++) begin
       for (int i = 0; i < COLS; i++) begin
@@ -171,8 +204,15 @@ module stereo_level_cost #(
     end
   end
   always_ff @(posedge clk) begin
-    if (ce) out_data <= costs;
+    if (ce) registered_costs <= costs;
   end
+  generate
+    if (GROUPS > 1) begin : g_group
+      assign out_data = registered_costs[32'(group) * LANES * COST_BITS +: LANES * COST_BITS];
+    end else begin : g_all
+      assign out_data = registered_costs;
+    end
+  endgenerate
 endmodule
 
 `default_nettype wire

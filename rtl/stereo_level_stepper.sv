@@ -6,10 +6,15 @@
 // pixels of the next frame; some stages clear at a step only) and `done` until the next frame's
 // first pixel. `stepped` is high in
 // the clock after a step: the level's outputs then show a new winner.
+// GROUPS > 1 (a time-multiplexed level, LANES < its labels): after a step `group` counts
+// 0 .. GROUPS-1, one per clock, and stays at GROUPS-1 until the next step, which can only come
+// there (stereo_top's group counter); reset leaves it at GROUPS-1.
 `default_nettype none
 `include "stereo_assert.svh"
 
-module stereo_level_stepper (
+module stereo_level_stepper #(
+    parameter int GROUPS = 1  // clocks per pixel step
+) (
     input  wire logic              clk,
     input  wire logic              rst,
     input  wire fx_pkg::cfg_size_t cfg_width,   // the level's frame
@@ -20,6 +25,7 @@ module stereo_level_stepper (
     input  wire fx_pkg::coord_t    level_out_x,  // the level's winner
     input  wire fx_pkg::coord_t    level_out_y,
     output      logic              ce,           // the level's pixel step
+    output      logic [((GROUPS > 1) ? $clog2(GROUPS) : 1)-1:0] group,  // the level's group
     output      fx_pkg::coord_t    x,            // the step's coordinates
     output      fx_pkg::coord_t    y,
     output      logic              flushing,     // the step carries no pixel
@@ -42,11 +48,26 @@ module stereo_level_stepper (
   assign flushing = state == FLUSH;
   assign clear = state == CLEAR;
   assign done = state == DONE;
+  localparam int GROUP_BITS = (GROUPS > 1) ? $clog2(GROUPS) : 1;
+  logic round_done;  // the last group: a step may come
+  generate
+    if (GROUPS > 1) begin : g_group_counter
+      assign round_done = 32'(group) == GROUPS - 1;
+      always_ff @(posedge clk) begin
+        if (rst) group <= GROUP_BITS'(GROUPS - 1);
+        else if (ce) group <= '0;
+        else if (!round_done) group <= group + 1'b1;
+      end
+    end else begin : g_one_group
+      assign round_done = 1'b1;
+      assign group = '0;
+    end
+  endgenerate
   always_comb begin
     unique case (state)
-      RUN: ce = in_valid && allow;
-      FLUSH: ce = allow && !last_winner;
-      CLEAR: ce = 1'b1;  // the clear is a step, as stereo_top clears its stages at a step
+      RUN: ce = round_done && in_valid && allow;
+      FLUSH: ce = round_done && allow && !last_winner;
+      CLEAR: ce = round_done;  // the clear is a step, as stereo_top clears its stages at a step
       default: ce = 1'b0;
     endcase
     in_take = state == RUN && ce;

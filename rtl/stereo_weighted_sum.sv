@@ -2,7 +2,8 @@
 // pass of the separable aggregation, used for its vertical and its horizontal pass). Exact in
 // SUM_BITS; combinational.
 // RUNTIME_KERNEL = 1: generic multipliers by the weights of `kernel`. RUNTIME_KERNEL = 0: the
-// model's default kernel for WINDOW (fx_pkg::default_tap), which is symmetric (k[i] = k[2R-i],
+// model's default kernel for WINDOW (fx_pkg::default_tap; LEVEL_KERNEL = 1: the hierarchical
+// levels' kernel, fx_pkg::level_tap), which is symmetric (k[i] = k[2R-i],
 // checked in stereo_aggregate): mirrored taps are added before the one constant product they
 // share, R + 1 products instead of 2R + 1. SHIFT_ADD = 1 (constant kernel only) builds each
 // constant product from shifts, additions and subtractions, one per nonzero digit of the tap's
@@ -16,6 +17,7 @@ module stereo_weighted_sum #(
     parameter int IN_BITS        = 10,
     parameter int SUM_BITS       = 20,
     parameter bit RUNTIME_KERNEL = 1'b1,
+    parameter bit LEVEL_KERNEL   = 1'b0,
     parameter bit SHIFT_ADD      = 1'b0
 ) (
     input  wire logic [WINDOW*IN_BITS-1:0]          taps,
@@ -44,6 +46,10 @@ module stereo_weighted_sum #(
     csd_digit = digit;
   endfunction
 
+  function automatic int constant_tap(input int i);
+    constant_tap = LEVEL_KERNEL ? fx_pkg::level_tap(WINDOW, i) : fx_pkg::default_tap(WINDOW, i);
+  endfunction
+
   // x times the constant `tap`, modulo 2^SUM_BITS (exact where the true sum fits SUM_BITS).
   function automatic logic [SUM_BITS-1:0] times_tap(input logic [SUM_BITS-1:0] x, input int tap);
     times_tap = '0;
@@ -64,11 +70,11 @@ module stereo_weighted_sum #(
                     SUM_BITS'(kernel[i*TAP_BITS +: TAP_BITS]);
       end
     end else begin
-      sum = times_tap(SUM_BITS'(taps[R*IN_BITS +: IN_BITS]), fx_pkg::default_tap(WINDOW, R));
+      sum = times_tap(SUM_BITS'(taps[R*IN_BITS +: IN_BITS]), constant_tap(R));
       for (int i = 0; i < R; i++) begin
         sum = sum + times_tap(SUM_BITS'(taps[i*IN_BITS +: IN_BITS]) +
                               SUM_BITS'(taps[(2*R-i)*IN_BITS +: IN_BITS]),
-                              fx_pkg::default_tap(WINDOW, i));
+                              constant_tap(i));
       end
     end
   end

@@ -61,6 +61,8 @@ class LevelSim {
     using Build = LevelBuild<Model>;
     static constexpr int kWindow = Build::kConfig.window;
     static constexpr int kMaxWidth = Build::kConfig.width;
+    // Clocks per pixel step: the labels / LANES (the step at the last group, as stereo_top).
+    static constexpr int kGroups = Build::kConfig.cols * Build::kConfig.rows / Build::kConfig.lanes;
 
     LevelSim() : harness_("hier_level") { reset_stage(harness_); }
 
@@ -98,7 +100,7 @@ class LevelSim {
         long step = 0;
         bool stepped = false;
         for (long clock = 0; recorded < width * height; ++clock) {
-            if (clock > 20 * limit) {
+            if (clock > 20L * kGroups * limit) {
                 ADD_FAILURE() << "only " << recorded << " of " << width * height
                               << " winners came out";
                 return out;
@@ -112,6 +114,15 @@ class LevelSim {
             const auto [out_d, out_v] = base_of(out_x, out_y);
             m.out_base_d = static_cast<std::uint8_t>(out_d);
             m.out_base_v = static_cast<std::uint8_t>(out_v);
+            // Groups 0 .. G-2 of a step: every stage works on one group of labels, no step.
+            if (group_ < kGroups - 1) {
+                m.ce = 0;
+                m.group = static_cast<std::uint8_t>(group_);
+                harness_.tick();
+                ++group_;
+                continue;  // `stepped` holds: the winner stays until the next step
+            }
+            m.group = static_cast<std::uint8_t>(kGroups - 1);
             m.eval();
             if (stepped && out_x >= 0 && out_x < width && out_y >= 0 && out_y < height) {
                 const std::size_t p = static_cast<std::size_t>(out_y) * width + out_x;
@@ -131,6 +142,7 @@ class LevelSim {
             }
             m.ce = stepped ? 1 : 0;
             if (stepped) {
+                group_ = 0;
                 const long x = step % width;
                 const long y = step / width;
                 const bool pixel = y < height;
@@ -158,6 +170,7 @@ class LevelSim {
     }
 
     sim::VerilatedHarness<Model> harness_;
+    int group_ = kGroups - 1;  // the group of the next clock (after a reset: the last)
 };
 
 template <class Model>

@@ -227,7 +227,11 @@ TEST(StereoHierLevels, RealCropEqualsModel) {
     std::cout << "hier_levels: " << rtl.last_frame_clocks() << " clocks for a 128x96 frame ("
               << ratio << " x W x H)\n";
     RecordProperty("clocks_per_frame", static_cast<int>(rtl.last_frame_clocks()));
-    EXPECT_LT(ratio, 2.0) << "the levels should keep up with one pixel per clock";
+    // The full level takes 9 / LANES_F clocks a pixel (the module's default LANES_F = 3, one
+    // candidate row a clock); its wait and flush (about 73 rows) add less than one more.
+    constexpr int kFullLevelGroups = 9 / 3;
+    EXPECT_LT(ratio, kFullLevelGroups + 1.0)
+        << "the levels should take about 9 / LANES_F clocks a pixel";
     int valid = 0;
     int at_four = 0;
     for (std::size_t p = 0; p < model.valid.size(); ++p) {

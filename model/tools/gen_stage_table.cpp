@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "stereo/constants.hpp"
+#include "stereo/hierarchical.hpp"
 #include "stereo/pipeline.hpp"
 #include "stereo/stage_table.hpp"
 #include "stereo/stages/lcdm.hpp"
@@ -253,37 +254,51 @@ std::string package_text() {
           "             twice_neighbour < centre_wide + {1'b0, centre, 1'b0};\n"
           "  endfunction\n";
 
-    // The default kernel (sigma = kDefaultSigma) of every odd window, for synthesis tops that
-    // tie the kernel configuration to constants: one table, window w = 2k + 1 from entry k * k
-    // (the windows before it hold 1 + 3 + ... + (2k - 1) = k * k taps), entry 0 in the low bits.
+    // Constant kernels of every odd window, for synthesis tops that tie the kernel configuration
+    // to constants: the 1-D default (sigma = kDefaultSigma) and the hierarchical levels'
+    // (hierarchical::default_level: sigma keeps the default's ratio to the window). One table
+    // each, window w = 2k + 1 from entry k * k (the windows before it hold 1 + 3 + ... + (2k - 1)
+    // = k * k taps), entry 0 in the low bits, and a function that reads it.
     static_assert(fx::kMinWindow == 1 && fx::kMaxWindow % 2 == 1, "the table starts at window 1");
     constexpr int kTapEntries = (fx::kMaxWindow / 2 + 1) * (fx::kMaxWindow / 2 + 1);
-    sv << "\n  // Tap i (0 .. window-1) of the default kernel (sigma = " << fx::kDefaultSigma
-       << ") of every odd window\n"
-          "  // 1 .. "
+    sv << "\n  // Tap i (0 .. window-1) of a constant kernel of every odd window 1 .. "
        << fx::kMaxWindow
-       << ": window 2k + 1 starts at entry k * k; the last line holds entry 0.\n"
+       << ":\n"
+          "  // window 2k + 1 starts at entry k * k; the last line holds entry 0.\n"
           "  localparam int DEFAULT_TAP_ENTRIES = "
-       << kTapEntries
-       << ";\n"
-          "  localparam logic [DEFAULT_TAP_ENTRIES*TAP_BITS-1:0] DEFAULT_TAPS = {";
-    for (int window = fx::kMaxWindow; window >= fx::kMinWindow; window -= 2) {
-        const auto taps = stereo::gaussian_kernel(window, fx::kDefaultSigma);
-        sv << "\n      ";
-        for (int i = window - 1; i >= 0; --i) {
-            sv << fx::kKernelBits + 1 << "'d" << taps[static_cast<std::size_t>(i)]
-               << (i > 0 ? ", " : "");
+       << kTapEntries << ";\n";
+    const auto tap_table = [&sv](const std::string& table, const std::string& function,
+                                 const std::string& sigma_text,
+                                 const std::function<double(int)>& sigma_of) {
+        sv << "  // " << table << ": sigma = " << sigma_text << "\n"
+           << "  localparam logic [DEFAULT_TAP_ENTRIES*TAP_BITS-1:0] " << table << " = {";
+        for (int window = fx::kMaxWindow; window >= fx::kMinWindow; window -= 2) {
+            const auto taps = stereo::gaussian_kernel(window, sigma_of(window));
+            sv << "\n      ";
+            for (int i = window - 1; i >= 0; --i) {
+                sv << fx::kKernelBits + 1 << "'d" << taps[static_cast<std::size_t>(i)]
+                   << (i > 0 ? ", " : "");
+            }
+            sv << (window > fx::kMinWindow ? "," : "") << "  // window " << window;
         }
-        sv << (window > fx::kMinWindow ? "," : "") << "  // window " << window;
+        sv << "\n  };\n"
+           << "  function automatic int " << function << "(input int window, input int i);\n"
+           << "    if (window < 1 || window > " << fx::kMaxWindow << " || window % 2 == 0 || i < 0 "
+           << "|| i >= window) " << function << " = 0;\n"
+           << "    else " << function << " = 32'(" << table
+           << "[((window / 2) * (window / 2) + i) * TAP_BITS +: TAP_BITS]);\n"
+           << "  endfunction\n";
+    };
+    {
+        std::ostringstream sigma;
+        sigma << fx::kDefaultSigma;
+        tap_table("DEFAULT_TAPS", "default_tap", sigma.str() + " (the 1-D default)",
+                  [](int) { return fx::kDefaultSigma; });
+        tap_table("LEVEL_TAPS", "level_tap",
+                  sigma.str() + " * window / " + std::to_string(fx::kDefaultWindow) +
+                      " (hierarchical::default_level)",
+                  [](int window) { return stereo::hierarchical::default_level(window).sigma; });
     }
-    sv << "\n  };\n"
-          "  function automatic int default_tap(input int window, input int i);\n"
-          "    if (window < 1 || window > "
-       << fx::kMaxWindow
-       << " || window % 2 == 0 || i < 0 || i >= window) default_tap = 0;\n"
-          "    else default_tap = 32'(DEFAULT_TAPS[((window / 2) * (window / 2) + i) * TAP_BITS +: "
-          "TAP_BITS]);\n"
-          "  endfunction\n";
     sv << "  // Sub-pixel correction (constants.hpp kSubpixelCorrection): |offset| 0 .. "
        << fx::kSubpixelScale / 2
        << " of the parabola -> the refined |offset|.\n"
