@@ -71,9 +71,11 @@ void check_hier_top(const h::Params& params) {
         throw std::invalid_argument(core + "has the " + std::string(census) + " cost only, not " +
                                     params.cost);
     }
-    if (params.ndisp > limits.ndisp) {
-        throw std::invalid_argument(core + "holds " + std::to_string(limits.ndisp) +
-                                    " labels, not " + std::to_string(params.ndisp));
+    // The pass takes fewer labels at run time, but the levels' horizontal range is the build's.
+    if (params.ndisp != limits.ndisp) {
+        throw std::invalid_argument(core + "searches D = " + std::to_string(limits.ndisp) +
+                                    " labels (its levels' range is built in), not " +
+                                    std::to_string(params.ndisp));
     }
     const int vrange = limits.v_max - limits.v_min + 1;
     if (params.vertical_range() != vrange) {
@@ -108,7 +110,7 @@ void check_hier_top(const h::Params& params, int width, int height) {
     if (width > limits.width || height > limits.height) {
         throw std::invalid_argument(core + "holds " + pixels(limits.width, limits.height) +
                                     ", the pair is " + pixels(width, height) +
-                                    " (use --downscale or --crop)");
+                                    " (shrink it: --downscale, or cosim's --crop)");
     }
     h::validate(params, width, height);
 }

@@ -29,7 +29,7 @@ struct HierTopLimits : HierPassLimits {
 inline constexpr HierTopLimits kHierTopLimits{};
 
 // Throws std::invalid_argument (one line naming the limit) unless the built core can run the
-// search `params`: census, D <= 16, V = 16, the levels' windows 9 / 15 / 15, a pass window up
+// search `params`: census, D = V = 16, the levels' windows 9 / 15 / 15, a pass window up
 // to 5, CA rule 1 along d only; with a size also the pair up to 64x48 and hierarchical::validate.
 void check_hier_top(const hierarchical::Params& params);
 void check_hier_top(const hierarchical::Params& params, int width, int height);
