@@ -411,6 +411,11 @@ void run_match(const MatchOptions& options) {
     const std::chrono::duration<double, std::milli> elapsed =
         std::chrono::steady_clock::now() - start;
 
+    // The Verilated core (engine rtl) outputs no level maps: nothing to dump, and no file written.
+    if (!options.dump_levels.empty() && result.levels.empty()) {
+        throw std::invalid_argument("--dump-levels: engine " + options.matcher.engine +
+                                    " outputs no level maps");
+    }
     // Every output together, all or nothing (io::write_files_atomic).
     const auto files =
         encoded_outputs(options, result, ndisp, config.pipeline.min_disp, output_encoding);
