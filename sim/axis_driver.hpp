@@ -97,4 +97,16 @@ StreamResult stream_axis(VerilatedHarness<Model>& harness, const std::vector<Inp
     return result;
 }
 
+// Two clocks of reset with the streams idle (no input offered, no output taken).
+template <typename Model>
+void reset_axis_core(VerilatedHarness<Model>& harness) {
+    Model& model = harness.model();
+    model.s_axis_tvalid = 0;
+    model.m_axis_tready = 0;
+    model.rst = 1;
+    harness.tick();
+    harness.tick();
+    model.rst = 0;
+}
+
 }  // namespace stereo::sim

@@ -9,6 +9,7 @@
 
 #include "Vstereo_hier_pass.h"
 #include "axis_driver.hpp"
+#include "hier_pass_ports.hpp"
 #include "port_bits.hpp"
 #include "stereo/pipeline.hpp"
 #include "stereo/stage_table.hpp"
@@ -58,13 +59,7 @@ HierPassSim::HierPassSim() : model_(std::make_unique<Model>()) {
 HierPassSim::~HierPassSim() = default;
 
 void HierPassSim::reset() {
-    Vstereo_hier_pass& m = model_->harness.model();
-    m.s_axis_tvalid = 0;
-    m.m_axis_tready = 0;
-    m.rst = 1;
-    model_->harness.tick();
-    model_->harness.tick();
-    m.rst = 0;
+    reset_axis_core(model_->harness);
 }
 
 void HierPassSim::configure(int width, int height, const hierarchical::Plane& plane,
@@ -79,28 +74,8 @@ void HierPassSim::configure(int width, int height, const hierarchical::Plane& pl
             std::to_string(kHierPassLimits.height) + ", " + std::to_string(kHierPassLimits.ndisp) +
             " labels, window " + std::to_string(kHierPassLimits.window));
     }
-    m.cfg_width = static_cast<std::uint16_t>(width);
-    m.cfg_height = static_cast<std::uint16_t>(height);
-    m.cfg_ndisp = static_cast<std::uint16_t>(params.ndisp);
-    m.cfg_radius = static_cast<std::uint8_t>(window / 2);
-    // The window's kernel centred in the core's WINDOW taps, zero beside it.
-    MatchParams match;
-    match.window = window;
-    match.sigma = params.field_level.sigma;
-    const auto kernel = centred_kernel(match, kHierPassLimits.window);
-    for (std::size_t i = 0; i < kernel.size(); ++i) {
-        put_bits(m.cfg_kernel, static_cast<int>(i) * table::kTapBits, table::kTapBits,
-                 static_cast<std::uint64_t>(kernel[i]));
-    }
-    m.cfg_use_ca = params.use_ca ? 1 : 0;
-    m.cfg_uniqueness_en = params.validation.uniqueness ? 1 : 0;
-    m.cfg_uniqueness = static_cast<std::uint8_t>(params.validation.uniqueness_ratio);
-    m.cfg_lr_en = params.validation.left_right ? 1 : 0;
-    m.cfg_lr_tolerance = static_cast<std::uint8_t>(params.validation.lr_tolerance);
-    m.cfg_subpixel_en = params.validation.subpixel ? 1 : 0;
-    m.plane_a = static_cast<std::uint32_t>(static_cast<std::int32_t>(plane.a));
-    m.plane_b = static_cast<std::uint32_t>(static_cast<std::int32_t>(plane.b));
-    m.plane_c = static_cast<std::uint32_t>(static_cast<std::int32_t>(plane.c));
+    put_pass_config(m, width, height, params, kHierPassLimits.window);
+    put_plane(m, plane);
 }
 
 StreamResult HierPassSim::stream(const std::vector<InputBeat>& beats, std::size_t expected_outputs,

@@ -1,8 +1,8 @@
 // The Verilated stereo_hier_pass (the hierarchical core's 1-D pass along a plane, issue 45;
 // docs/hierarchical.md "The streaming core") behind a small interface, and what the model says it
 // computes: stereo::hierarchical::match_along_field over plane_field(plane) and the vertical
-// offset of each valid pixel (field_at_match). Used by `stereo cosim --method hierarchical` and
-// tb_stereo_hier_pass.
+// offset of each valid pixel (field_at_match). Used by tb_stereo_hier_pass, and the model's side
+// and the beats' form by the whole core's driver (hier_top_sim.hpp).
 #pragma once
 
 #include <cstdint>

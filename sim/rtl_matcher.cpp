@@ -1,10 +1,16 @@
 // The Verilated RTL as an engine of the matcher registry: `stereo match --engine rtl` streams the
 // pair through the smallest built stereo_top configuration that covers it (no stalls) and
-// returns what the core wrote. `stereo cosim` adds traffic shaping, traces and the comparison.
+// returns what the core wrote; `--method hierarchical --engine rtl` streams it through the built
+// stereo_hier_top as a steady rig until the host's plane settles. `stereo cosim` adds traffic
+// shaping, traces and the comparison.
+#include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
+#include "hier_top_sim.hpp"
 #include "stereo/catalogue.hpp"
+#include "stereo/hierarchical_plane.hpp"
 #include "stereo/stages/lcdm.hpp"
 #include "stereo_top_sim.hpp"
 
@@ -46,11 +52,64 @@ ValidatedDisparity run_rtl(const Image& left, const Image& right, const MatchPar
     return assemble_validated(result.outputs, 0, left.width, left.height);
 }
 
+// The frames of a steady rig until the plane settles, at most: the start frame, the mode's and
+// vertical_plane's 16 fits (its max_iterations), the last of which runs along the 16th fit.
+constexpr int kHierarchicalMaxFrames = 2 + 16;
+
+MatchResult run_hier_rtl(const Image& left, const Image& right,
+                         const hierarchical::Params& params) {
+    check_pair(left, right);
+    check_hier_top(params, left.width, left.height);
+    // After frame t >= 1 (a fit frame) frame t ran along vertical_plane's plane when the host's
+    // fit repeats the frame's setting (its inliers no longer change) or fails (vertical_plane
+    // keeps the last plane; the tracker would start again from the mode).
+    int frame = 0;
+    const auto settled = [&frame](const HierTopFrame& done) {
+        const bool fit_frame = frame++ >= 1;
+        return fit_frame && (done.next == done.setting ||
+                             done.next.tolerance == hierarchical::kFirstFitTolerance);
+    };
+    HierTopRunOptions options;
+    options.frames = kHierarchicalMaxFrames;
+    options.stop_after = settled;
+    HierTopRun run = run_hier_top(left, right, params, options);
+    HierPassOutput last = std::move(run.frames.back().output);
+    MatchResult result;
+    result.disparity = to_label_map(last.validated);
+    result.vertical = std::move(last.vertical);
+    result.validated = std::move(last.validated);
+    result.counts.emplace_back("rtl_frames", static_cast<std::int64_t>(run.frames.size()));
+    result.counts.emplace_back("rtl_clocks", static_cast<std::int64_t>(run.total_clocks));
+    return result;
+}
+
+// The hierarchical search's whole core: its plane field only (the hardware form of
+// FieldModel::plane), within the built configuration.
+std::unique_ptr<Matcher> make_hier_rtl(const MatchConfig& config) {
+    const hierarchical::Params params = hierarchical_params(config);
+    if (params.output != hierarchical::Output::vertical_field ||
+        params.field_model != hierarchical::FieldModel::plane) {
+        throw std::invalid_argument(
+            "the hierarchical core (engine rtl) computes the plane field only: use --field " +
+            std::string(hierarchical::field_model_name(hierarchical::FieldModel::plane)));
+    }
+    check_hier_top(params);
+    return std::make_unique<FunctionMatcher>(
+        [params](int width, int height) { check_hier_top(params, width, height); },
+        [params](const Image& left, const Image& right) {
+            return run_hier_rtl(left, right, params);
+        });
+}
+
 }  // namespace
 
 void register_matchers(MatcherRegistry& registry) {
     registry.add({"pipeline", "rtl", "Sec. 3.1 pipeline, the Verilated RTL (built configurations)",
                   pipeline_factory(&run_rtl)});
+    registry.add({"hierarchical", "rtl",
+                  "Sec. 3.3 search with the plane field, the Verilated stereo_hier_top (64x48, "
+                  "16 labels, pass window 5) as a steady rig until the host's plane settles",
+                  &make_hier_rtl});
 }
 
 }  // namespace stereo::sim

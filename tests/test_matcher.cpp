@@ -217,7 +217,7 @@ ValidatedDisparity model_validated(const std::string& method, const MatchConfig&
 }
 
 // The registry's mapping, written out independently of hierarchical_factory.
-hierarchical::Params hierarchical_params(const MatchConfig& config) {
+hierarchical::Params independent_hierarchical_params(const MatchConfig& config) {
     hierarchical::Params params;
     params.ndisp = config.pipeline.ndisp;
     params.vrange = config.vrange;
@@ -230,6 +230,7 @@ hierarchical::Params hierarchical_params(const MatchConfig& config) {
     for (std::size_t l = 0; l < 3; ++l) {
         params.levels[l] = {config.level_windows[l], 3.0 * config.level_windows[l] / 11.0};
     }
+    params.field_level = {config.pipeline.window, config.pipeline.sigma};  // the 1-D pass's
     params.validation = config.pipeline.validation;
     return params;
 }
@@ -311,7 +312,8 @@ TEST(Registry, EveryEngineOfAMethodAgreesWithTheModel) {
         SCOPED_TRACE(name);
         const MatchResult result = matcher->compute(left, right);
         if (entry.method == "hierarchical") {
-            const auto model = hierarchical::match(left, right, hierarchical_params(checked));
+            const auto model =
+                hierarchical::match(left, right, independent_hierarchical_params(checked));
             ASSERT_EQ(result.levels.size(), model.levels.size());
             for (std::size_t l = 0; l < model.levels.size(); ++l) {
                 EXPECT_TRUE(same_level(model.levels[l], result.levels[l]))

@@ -23,7 +23,7 @@
 #include "cli_cosim_options.hpp"
 #include "cli_matcher_options.hpp"
 #include "cli_progress.hpp"
-#include "hier_pass_sim.hpp"
+#include "hier_top_sim.hpp"
 #include "on_demand.hpp"
 #include "stereo/catalogue.hpp"
 #include "stereo/hierarchical.hpp"
@@ -423,48 +423,26 @@ nlohmann::json localisation_of(const Core& core, const sim::CoreParams& frame_pa
                     comparison.watched);
 }
 
-// `stereo cosim --method hierarchical`: the hierarchical core's 1-D pass (stereo_hier_pass) along
-// the plane that the host's PlaneTracker settles on for this pair on a steady rig
-// (vertical_plane of the model's full level; docs/hierarchical.md "Hardware form of the field"),
-// every pixel's beat and vertical offset against the model (sim::hier_pass_expected).
-void run_cosim_hierarchical(const CosimOptions& options) {
+// `stereo cosim --method hierarchical`: the hierarchical search's whole core (stereo_hier_top)
+// on the pair streamed as a steady rig, the host's PlaneTracker in the loop writing each next
+// plane (docs/hierarchical.md "The whole core"). Every frame's beats and vertical offsets against
+// the pass along that frame's setting (sim::hier_pass_expected), its statistics registers and
+// setting against match_frame's with the model's own tracker.
+void run_cosim_hierarchical(const CosimOptions& given) {
+    CosimOptions options = given;
+    options.frames = given.frames > 0 ? given.frames : kHierarchicalFrames;
     const MatchConfig match_config = options.matcher.resolved();
     const MatchParams& params = match_config.pipeline;
-    const std::string_view census = catalogue::cost(catalogue::Cost::census).name;
-    if (params.cost != census) {
-        throw std::invalid_argument("--method hierarchical: the core's cost is census, not " +
-                                    params.cost);
-    }
     if (params.min_disp != 0) {
         throw std::invalid_argument(
             "--method hierarchical: the pass searches disparities 0 .. ndisp - 1 (--min-disp 0)");
     }
     if (!options.size.empty() || !options.trace.empty() || !options.diff.empty()) {
         throw std::invalid_argument(
-            "--method hierarchical runs the built stereo_hier_pass: --size, --trace and --diff "
+            "--method hierarchical runs the built stereo_hier_top: --size, --trace and --diff "
             "are for --method pipeline");
     }
-    constexpr sim::HierPassLimits limits = sim::kHierPassLimits;
-    if (params.ndisp > limits.ndisp || params.window > limits.window) {
-        throw std::invalid_argument("--method hierarchical: stereo_hier_pass holds " +
-                                    std::to_string(limits.ndisp) + " labels and window " +
-                                    std::to_string(limits.window));
-    }
-    check_options(options);
-    const io::ImagePair pair =
-        apply_crop(io::load_pair(options.left, options.right, options.downscale), options.crop);
-    const int width = pair.left.width;
-    const int height = pair.left.height;
-    if (width > limits.width || height > limits.height) {
-        throw std::invalid_argument(
-            "--method hierarchical: stereo_hier_pass holds " + std::to_string(limits.width) + "x" +
-            std::to_string(limits.height) + ", the pair is " + std::to_string(width) + "x" +
-            std::to_string(height) + " (use --downscale or --crop)");
-    }
-    if (options.reset_at >= width * height) {
-        throw std::invalid_argument("--reset-at must be below the frame's " +
-                                    std::to_string(width * height) + " beats");
-    }
+    constexpr sim::HierTopLimits limits = sim::kHierTopLimits;
     hierarchical::Params search;
     search.ndisp = params.ndisp;
     search.vrange = limits.v_max - limits.v_min + 1;
@@ -472,127 +450,154 @@ void run_cosim_hierarchical(const CosimOptions& options) {
     search.use_ca = params.use_ca;
     search.field_level = {params.window, params.sigma};
     search.validation = params.validation;
-    hierarchical::validate(search, width, height);
-    hierarchical::CostCount count;
-    const auto levels = hierarchical::match_levels(pair.left, pair.right, search, count);
-    const hierarchical::Plane plane = hierarchical::vertical_plane(levels[2]);
-    const sim::HierPassOutput expected =
-        sim::hier_pass_expected(pair.left, pair.right, plane, search);
-
-    sim::HierPassSim core;
-    const auto beats = sim::frame_beats(pair.left, pair.right);
-    std::size_t mismatches = 0;
-    nlohmann::json first = nlohmann::json::array();
-    sim::StreamResult result;
-    std::uint64_t total_cycles = 0;
-    std::optional<sim::HierPassOutput> rtl;
-    for (int frame = 0; frame < options.frames; ++frame) {
-        const sim::Traffic traffic{options.gap, options.stall,
-                                   options.seed + static_cast<std::uint32_t>(frame)};
-        core.configure(width, height, plane, search);
-        if (options.reset_at >= 0) {
-            const std::vector<sim::InputBeat> part(beats.begin(), beats.begin() + options.reset_at);
-            if (!part.empty()) {
-                total_cycles += core.stream(part, std::max<std::size_t>(1, part.size() / 4),
-                                            traffic, 10 * part.size() + 10000)
-                                    .cycles;
-            }
-            core.reset();
-        }
-        result = core.stream(beats, beats.size(), traffic, 100 * beats.size() + 100000);
-        total_cycles += result.cycles;
-        if (!result.completed) {
-            throw std::runtime_error("the core stalled in frame " + std::to_string(frame) + ": " +
-                                     std::to_string(result.outputs.size()) + " of " +
-                                     std::to_string(beats.size()) + " outputs arrived");
-        }
-        if (!result.protocol_error.empty()) {
-            throw std::runtime_error("AXI4-Stream protocol error: " + result.protocol_error);
-        }
-        rtl = sim::hier_pass_assemble(result.outputs, 0, width, height);
-        for (std::size_t p = 0; p < expected.vertical.size(); ++p) {
-            const auto& got = rtl->validated;
-            const auto& want = expected.validated;
-            if (got.fixed[p] == want.fixed[p] && got.reason[p] == want.reason[p] &&
-                got.certainty[p] == want.certainty[p] && rtl->vertical[p] == expected.vertical[p]) {
-                continue;
-            }
-            if (mismatches++ < 10) {
-                const auto fields = [p](const sim::HierPassOutput& o) {
-                    return nlohmann::json{{"fixed", o.validated.fixed[p]},
-                                          {"reason", o.validated.reason[p]},
-                                          {"certainty", o.validated.certainty[p]},
-                                          {"vertical", o.vertical[p]}};
-                };
-                first.push_back({{"frame", frame},
-                                 {"x", p % static_cast<std::size_t>(width)},
-                                 {"y", p / static_cast<std::size_t>(width)},
-                                 {"model", fields(expected)},
-                                 {"rtl", fields(*rtl)}});
-            }
-        }
+    sim::check_hier_top(search);  // before any file: the size comes with the pair
+    check_options(options);
+    const io::ImagePair pair =
+        apply_crop(io::load_pair(options.left, options.right, options.downscale), options.crop);
+    const int width = pair.left.width;
+    const int height = pair.left.height;
+    sim::check_hier_top(search, width, height);
+    if (options.reset_at >= width * height) {
+        throw std::invalid_argument("--reset-at must be below the frame's " +
+                                    std::to_string(width * height) + " beats");
     }
+    const auto start = std::chrono::steady_clock::now();
+    sim::HierTopRunOptions run_options;
+    run_options.frames = options.frames;
+    run_options.traffic = {options.gap, options.stall, options.seed};
+    run_options.reset_at = options.reset_at;
+    const sim::HierTopRun run = sim::run_hier_top(pair.left, pair.right, search, run_options);
+    const double sim_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const auto expected = sim::hier_top_expected(pair.left, pair.right, search, options.frames);
+
+    const std::size_t pixels = static_cast<std::size_t>(width) * height;
+    const auto in_pixels = [](std::int64_t value) {
+        return static_cast<double>(value) / hierarchical::kPlaneOne;
+    };
+    const auto plane_json = [](const hierarchical::PlaneSetting& setting) {
+        return nlohmann::json{{"a", setting.plane.a},
+                              {"b", setting.plane.b},
+                              {"c", setting.plane.c},
+                              {"tolerance", setting.tolerance}};
+    };
+    std::size_t mismatches = 0;
+    std::size_t statistics_mismatches = 0;  // frames whose statistics or setting differ
+    nlohmann::json first = nlohmann::json::array();
+    nlohmann::json per_frame = nlohmann::json::array();
+    std::vector<std::string> lines;
+    for (std::size_t f = 0; f < run.frames.size(); ++f) {
+        const sim::HierTopFrame& rtl = run.frames[f];
+        const sim::HierTopExpected& model = expected[f];
+        const auto differing = sim::differing_pixels(rtl.output, model.output);
+        mismatches += differing.size();
+        const bool statistics_equal =
+            rtl.statistics == model.statistics && rtl.setting == model.setting;
+        statistics_mismatches += statistics_equal ? 0 : 1;
+        for (const std::size_t p : differing) {
+            if (first.size() >= 10) {
+                break;
+            }
+            const auto fields = [p](const sim::HierPassOutput& o) {
+                return nlohmann::json{{"fixed", o.validated.fixed[p]},
+                                      {"reason", o.validated.reason[p]},
+                                      {"certainty", o.validated.certainty[p]},
+                                      {"vertical", o.vertical[p]}};
+            };
+            first.push_back({{"frame", f},
+                             {"x", p % static_cast<std::size_t>(width)},
+                             {"y", p / static_cast<std::size_t>(width)},
+                             {"model", fields(model.output)},
+                             {"rtl", fields(rtl.output)}});
+        }
+        const auto valid = std::count(rtl.output.validated.reason.begin(),
+                                      rtl.output.validated.reason.end(), fx::kReasonValid);
+        per_frame.push_back({{"frame", f},
+                             {"plane", plane_json(rtl.setting)},
+                             {"mismatching_pixels", differing.size()},
+                             {"statistics_equal", statistics_equal},
+                             {"inliers", rtl.statistics.count},
+                             {"valid_pixels", valid},
+                             {"cycles", rtl.cycles}});
+        char line[256];
+        std::snprintf(line, sizeof line,
+                      "  frame %zu: plane v = %.4f + %.5f x + %.5f y (tolerance %.1f): %zu "
+                      "mismatching pixels, statistics %s (%lld inliers), %lld valid, %llu cycles",
+                      f, in_pixels(rtl.setting.plane.a), in_pixels(rtl.setting.plane.b),
+                      in_pixels(rtl.setting.plane.c), in_pixels(rtl.setting.tolerance),
+                      differing.size(), statistics_equal ? "equal" : "DIFFER",
+                      static_cast<long long>(rtl.statistics.count), static_cast<long long>(valid),
+                      static_cast<unsigned long long>(rtl.cycles));
+        lines.emplace_back(line);
+    }
+    const sim::HierTopFrame& last = run.frames.back();
     if (!options.output.empty()) {
         const auto encoding = io::output_encoding(options.output, io::DisparityEncoding::scaled);
         io::write_file_atomic(
             options.output,
-            io::encode_disparity(rtl->validated, encoding, params.ndisp, 1, options.output));
+            io::encode_disparity(last.output.validated, encoding, params.ndisp, 1, options.output));
     }
-    const auto valid =
-        std::count(rtl->validated.reason.begin(), rtl->validated.reason.end(), fx::kReasonValid);
-    const double per_pixel = static_cast<double>(result.cycles) / static_cast<double>(beats.size());
-    const auto in_pixels = [](std::int64_t value) {
-        return static_cast<double>(value) / hierarchical::kPlaneOne;
-    };
+    const double per_pixel = static_cast<double>(last.cycles) / static_cast<double>(pixels);
     if (options.json) {
         nlohmann::json summary = pipeline_json(width, height, params);
-        summary.update(
-            {{"method", "hierarchical"},
-             {"config", "Vstereo_hier_pass"},
-             {"plane", {{"a", plane.a}, {"b", plane.b}, {"c", plane.c}}},
-             {"mismatches", mismatches},
-             {"frames", options.frames},
-             {"reset_at", options.reset_at},
-             {"pixels", beats.size()},
-             {"pixels_compared", beats.size() * static_cast<std::size_t>(options.frames)},
-             {"valid_pixels", valid},
-             {"cycles", result.cycles},
-             {"total_cycles", total_cycles},
-             {"cycles_per_pixel", per_pixel},
-             {"first_mismatches", first},
-             {"seed", options.seed},
-             {"stall", options.stall},
-             {"gap", options.gap},
-             {"status", result.status}});
+        summary.update({{"method", catalogue::method(catalogue::Method::hierarchical).name},
+                        {"config", "Vstereo_hier_top"},
+                        {"plane", plane_json(last.setting)},
+                        {"mismatches", mismatches},
+                        {"statistics_mismatches", statistics_mismatches},
+                        {"frames", options.frames},
+                        {"per_frame", per_frame},
+                        {"reset_at", options.reset_at},
+                        {"pixels", pixels},
+                        {"pixels_compared", pixels * run.frames.size()},
+                        {"cycles", last.cycles},
+                        {"total_cycles", run.total_clocks},
+                        {"cycles_per_pixel", per_pixel},
+                        {"first_mismatches", first},
+                        {"seed", options.seed},
+                        {"stall", options.stall},
+                        {"gap", options.gap},
+                        {"status", run.status},
+                        {"sim_seconds", sim_seconds}});
         std::cout << io::versioned(summary).dump() << '\n';
     } else {
         std::printf(
-            "%dx%d ndisp %d window %d: the hierarchical pass (stereo_hier_pass) along the plane "
-            "v = %.4f + %.5f x + %.5f y, seed %u, stall %.2f, gap %.2f\n%zu mismatching pixels of "
-            "%zu (fixed, reason, certainty and vertical offset compared, %d frame%s); %zu valid; "
-            "%llu cycles, %.3f cycles/pixel\n",
-            width, height, params.ndisp, params.window, in_pixels(plane.a), in_pixels(plane.b),
-            in_pixels(plane.c), options.seed, options.stall, options.gap, mismatches,
-            beats.size() * static_cast<std::size_t>(options.frames), options.frames,
-            options.frames == 1 ? "" : "s", static_cast<std::size_t>(valid),
-            static_cast<unsigned long long>(result.cycles), per_pixel);
+            "%dx%d ndisp %d window %d: the hierarchical core (stereo_hier_top) on a steady rig, "
+            "the host's PlaneTracker writing each next plane, seed %u, stall %.2f, gap %.2f, "
+            "reset after %d beats of each frame (-1 = none)\n",
+            width, height, params.ndisp, params.window, options.seed, options.stall, options.gap,
+            options.reset_at);
+        for (const std::string& line : lines) {
+            std::printf("%s\n", line.c_str());
+        }
+        std::printf(
+            "%zu mismatching pixels of %zu (fixed, reason, certainty and vertical offset "
+            "compared, %d frame%s), %zu frame%s whose statistics or plane differ; last frame "
+            "%llu cycles, %.3f cycles/pixel; %llu clocks in all\n",
+            mismatches, pixels * run.frames.size(), options.frames, options.frames == 1 ? "" : "s",
+            statistics_mismatches, statistics_mismatches == 1 ? "" : "s",
+            static_cast<unsigned long long>(last.cycles), per_pixel,
+            static_cast<unsigned long long>(run.total_clocks));
         for (const auto& m : first) {
             std::printf("  mismatch in frame %d at (%d, %d): model %s, rtl %s\n",
                         m["frame"].get<int>(), m["x"].get<int>(), m["y"].get<int>(),
                         m["model"].dump().c_str(), m["rtl"].dump().c_str());
         }
     }
-    if (mismatches != 0) {
-        throw MismatchError(std::to_string(mismatches) +
-                            " pixels differ from the golden model's hierarchical pass");
+    if (mismatches != 0 || statistics_mismatches != 0) {
+        throw MismatchError(std::to_string(mismatches) + " pixels and " +
+                            std::to_string(statistics_mismatches) +
+                            " frames' statistics differ from the golden model's hierarchical core");
     }
 }
 
-void run_cosim(const CosimOptions& options) {
-    if (options.method == catalogue::method(catalogue::Method::hierarchical).name) {
-        run_cosim_hierarchical(options);
+void run_cosim(const CosimOptions& given) {
+    if (given.method == catalogue::method(catalogue::Method::hierarchical).name) {
+        run_cosim_hierarchical(given);
         return;
     }
+    CosimOptions options = given;
+    options.frames = given.frames > 0 ? given.frames : kPipelineFrames;
     const MatchConfig match_config = options.matcher.resolved();
     const MatchParams& params = match_config.pipeline;
     // The expected map: the golden model, made (and its parameters checked) before any file.

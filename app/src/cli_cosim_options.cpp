@@ -43,9 +43,10 @@ void add_cosim_options(CLI::App& command, CosimOptions& options) {
         ->check(probability);
     command
         .add_option("--method", options.method,
-                    "pipeline: stereo_top; hierarchical: the hierarchical core's 1-D pass "
-                    "(stereo_hier_pass: census, up to 64x48, 16 labels, window 5) along the "
-                    "plane the model fits to the pair's full level (docs/hierarchical.md)")
+                    "pipeline: stereo_top; hierarchical: the hierarchical search's whole core "
+                    "(stereo_hier_top: census, up to 64x48, 16 labels, pass window 5, levels "
+                    "9 / 15 / 15, V = 16) with the host's plane tracker in the loop "
+                    "(docs/hierarchical.md)")
         ->check(
             CLI::IsMember({std::string(catalogue::method(catalogue::Method::pipeline).name),
                            std::string(catalogue::method(catalogue::Method::hierarchical).name)}))
@@ -53,12 +54,15 @@ void add_cosim_options(CLI::App& command, CosimOptions& options) {
     command.add_option("-o,--output", options.output, "Write the RTL's disparity PNG");
     command
         .add_option("--frames", options.frames,
-                    "Stream the pair this many times (traffic seed + frame), all compared")
-        ->capture_default_str()
+                    "Stream the pair this many times (traffic seed + frame), all compared; "
+                    "hierarchical: a steady rig, the host writing each next plane [" +
+                        std::to_string(kPipelineFrames) + "; hierarchical " +
+                        std::to_string(kHierarchicalFrames) + "]")
         ->check(checks::integer_in(1, 1'000'000));
     command
         .add_option("--reset-at", options.reset_at,
-                    "Before each frame, stream this many of its beats and reset mid-frame")
+                    "Before each frame, stream this many of its beats and reset mid-frame (the "
+                    "part-frame is not counted; hierarchical: the host keeps its plane)")
         ->check(checks::integer_at_least(-1));  // -1: no reset
     command.add_option("--trace", options.trace,
                        "Write an FST waveform of the run (TRACE.fst; other "

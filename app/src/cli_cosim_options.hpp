@@ -16,7 +16,7 @@ namespace stereo::cli {
 struct CosimOptions {
     std::string left;
     std::string right;
-    // pipeline: stereo_top; hierarchical: the hierarchical core's 1-D pass (stereo_hier_pass)
+    // pipeline: stereo_top; hierarchical: the hierarchical search's whole core (stereo_hier_top)
     std::string method{catalogue::method(catalogue::Method::pipeline).name};
     MatcherOptions matcher;
     int downscale = 1;
@@ -27,7 +27,7 @@ struct CosimOptions {
     std::string output;  // the RTL's disparity PNG
     std::string trace;   // FST waveform
     bool json = false;
-    int frames = 1;     // frames streamed, traffic seed + f for frame f
+    int frames = 0;     // frames streamed, traffic seed + f for frame f; 0: the method's default
     int reset_at = -1;  // before every frame: this many beats of it, then a mid-frame reset
     // A core built on demand (sim/on_demand.hpp) instead of a configuration of this build:
     std::string size;       // WxH: the core's WIDTH x HEIGHT; given = on demand
@@ -38,6 +38,11 @@ struct CosimOptions {
     int sim_threads = 1;    // Verilator --threads of an on-demand core
     std::string diff;       // PNG: where RTL and model differ in the first mismatching frame
 };
+
+// --frames by default: one for stereo_top; for the hierarchical core enough for the host's
+// tracker to settle on a steady rig (the start frame, the mode's, the fits).
+inline constexpr int kPipelineFrames = 1;
+inline constexpr int kHierarchicalFrames = 5;
 
 // LEFT, RIGHT, the matcher options with stage 6 (ndisp 16 and window 5 by default: the smallest
 // Verilated configuration covers them) and the co-simulation's own options.

@@ -135,13 +135,13 @@ MatchConfig checked_config(const MatchOptions& options, const catalogue::MethodR
             "--vrange, --field, --field-radius, --level-windows, --vertical and --dump-levels "
             "need --method hierarchical");
     }
-    if (row.two_d && options.matcher.window_given()) {
-        throw std::invalid_argument(
-            "--window and --sigma apply to the 1-D methods; the hierarchical levels use 9, 15 "
-            "and 15 and its 1-D pass 11x11, sigma 3 (docs/hierarchical.md)");
-    }
     // --field none: the thesis' output, the full level's 3x3 winners without stage 6.
     const bool full_level_only = options.field == "none";
+    if (row.two_d && full_level_only && options.matcher.window_given()) {
+        throw std::invalid_argument(
+            "--window and --sigma set the hierarchical search's 1-D pass (11x11, sigma 3 by "
+            "default), which --field none does not run; the levels use --level-windows");
+    }
     if (full_level_only && options.field_radius >= 0) {
         throw std::invalid_argument(
             "--field-radius needs a vertical field (--field none has none)");
@@ -334,8 +334,17 @@ void summarise_levels(Summary& summary, const MatchResult& result, const MatchCo
                   windows[0], windows[1], windows[2], field_name.c_str(),
                   config.pipeline.cost.c_str(), ca ? "on" : "off", method.c_str(), engine.c_str());
     summary.settings = settings;
-    char extra[80];
+    char extra[120];
     std::snprintf(extra, sizeof extra, ", %.2f cost evaluations per pixel", per_pixel);
+    // The core (engine rtl) counts no cost evaluations; it reports its frames and clocks.
+    if (const std::int64_t frames = result.count("rtl_frames"); frames > 0) {
+        const std::int64_t clocks = result.count("rtl_clocks");
+        summary.json["rtl_frames"] = frames;
+        summary.json["rtl_clocks"] = clocks;
+        std::snprintf(extra, sizeof extra,
+                      ", %lld frames of the core until its plane settled, %lld clocks",
+                      static_cast<long long>(frames), static_cast<long long>(clocks));
+    }
     summary.extra = extra;
 }
 
@@ -402,6 +411,11 @@ void run_match(const MatchOptions& options) {
     const std::chrono::duration<double, std::milli> elapsed =
         std::chrono::steady_clock::now() - start;
 
+    // The Verilated core (engine rtl) outputs no level maps: nothing to dump, and no file written.
+    if (!options.dump_levels.empty() && result.levels.empty()) {
+        throw std::invalid_argument("--dump-levels: engine " + options.matcher.engine +
+                                    " outputs no level maps");
+    }
     // Every output together, all or nothing (io::write_files_atomic).
     const auto files =
         encoded_outputs(options, result, ndisp, config.pipeline.min_disp, output_encoding);

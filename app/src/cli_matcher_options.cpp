@@ -24,12 +24,16 @@ const MatcherRegistry& matchers() {
         sim::register_matchers(r);
 #else
         // Listed, so that --engine rtl explains itself instead of failing as an unknown name.
-        r.add({"pipeline", "rtl", "the Verilated RTL (not built)",
-               [](const MatchConfig&) -> std::unique_ptr<Matcher> {
-                   throw std::invalid_argument(
-                       "engine rtl: this stereo was built without the RTL "
-                       "(-DSTEREO_WITH_RTL=OFF); rebuild with Verilator to co-simulate");
-               }});
+        for (const catalogue::Method method :
+             {catalogue::Method::pipeline, catalogue::Method::hierarchical}) {
+            r.add({std::string(catalogue::method(method).name), "rtl",
+                   "the Verilated RTL (not built)",
+                   [](const MatchConfig&) -> std::unique_ptr<Matcher> {
+                       throw std::invalid_argument(
+                           "engine rtl: this stereo was built without the RTL "
+                           "(-DSTEREO_WITH_RTL=OFF); rebuild with Verilator to co-simulate");
+                   }});
+        }
 #endif
         return r;
     }();
@@ -276,7 +280,9 @@ void add_matcher_options(CLI::App& command, MatcherOptions& options, MatcherChoi
     }
     // Recorded when given: the board keeps its own window otherwise, and ASW's diameter has
     // its own default.
-    command.add_option("--window", params.window, "Odd aggregation window side")
+    command
+        .add_option("--window", params.window,
+                    "Odd aggregation window side (hierarchical: of its 1-D pass)")
         ->capture_default_str()
         ->each([&options](const std::string&) { options.window_set = true; });
     command.add_option("--sigma", params.sigma, "Gaussian sigma in pixels")

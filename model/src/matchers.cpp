@@ -121,19 +121,7 @@ MatchResult to_match_result(hierarchical::Result result) {
 
 MatcherFactory hierarchical_factory(HierarchicalFunction run) {
     return [run](const MatchConfig& config) -> std::unique_ptr<Matcher> {
-        hierarchical::Params params;
-        params.cost = config.pipeline.cost;
-        params.ndisp = config.pipeline.ndisp;
-        params.vrange = config.vrange;
-        params.use_ca = config.pipeline.use_ca;
-        params.neighbours = config.neighbours;
-        params.output = config.hierarchical_output;
-        params.field_model = config.field_model;
-        params.field_radius = config.field_radius;
-        for (std::size_t l = 0; l < hierarchical::kLevels; ++l) {
-            params.levels[l] = hierarchical::default_level(config.level_windows[l]);
-        }
-        params.validation = config.pipeline.validation;
+        const hierarchical::Params params = hierarchical_params(config);
         return std::make_unique<FunctionMatcher>(
             [params](int width, int height) { hierarchical::validate(params, width, height); },
             [params, run](const Image& left, const Image& right) {
@@ -184,6 +172,24 @@ void validate_plain_params(const MatchParams& params, const std::string& engine)
 }
 
 }  // namespace
+
+hierarchical::Params hierarchical_params(const MatchConfig& config) {
+    hierarchical::Params params;
+    params.cost = config.pipeline.cost;
+    params.ndisp = config.pipeline.ndisp;
+    params.vrange = config.vrange;
+    params.use_ca = config.pipeline.use_ca;
+    params.neighbours = config.neighbours;
+    params.output = config.hierarchical_output;
+    params.field_model = config.field_model;
+    params.field_radius = config.field_radius;
+    for (std::size_t l = 0; l < hierarchical::kLevels; ++l) {
+        params.levels[l] = hierarchical::default_level(config.level_windows[l]);
+    }
+    params.field_level = {config.pipeline.window, config.pipeline.sigma};
+    params.validation = config.pipeline.validation;
+    return params;
+}
 
 MatcherFactory pipeline_factory(PipelineFunction run) {
     return [run](const MatchConfig& config) -> std::unique_ptr<Matcher> {

@@ -146,6 +146,17 @@ void write_scene(const fs::path& dir, std::mt19937& rng) {
     io::write_png(dir / "scene_vertical.png", scene_partner(reference, 0, 1));
     io::write_png(dir / "scene_diagonal.png", scene_partner(reference, 1, 1));
     std::ofstream(dir / "scene_gt.pfm", std::ios::binary) << io::encode_pfm(scene_ground_truth());
+    // The right image of a rolled rig: column u lower by 1 + 3 u / W rows (1 at the left edge to
+    // 3 at the right), a vertical plane that the hierarchical search's tracker fits in frames.
+    const cv::Mat right = scene_partner(reference, 1, 0);
+    cv::Mat rolled(right.size(), right.type());
+    for (int v = 0; v < right.rows; ++v) {
+        for (int u = 0; u < right.cols; ++u) {
+            const int row = std::clamp(v - (1 + 3 * u / right.cols), 0, right.rows - 1);
+            rolled.at<cv::Vec3b>(v, u) = right.at<cv::Vec3b>(row, u);
+        }
+    }
+    io::write_png(dir / "scene_rolled.png", rolled);
 }
 
 // Files that declare or hide a size above the limit (issue 51; tests/hostile_images.hpp), for
@@ -274,6 +285,12 @@ void write_fixtures(const fs::path& dir) {
     io::write_png(dir / "mask_short.png", cv::Mat(kHeight - 2, kWidth, CV_8UC1, cv::Scalar(255)));
 
     write_scene(dir, rng);
+    // A pair larger than the built hierarchical core (64x48), for its size error; its own
+    // generator, so that the fixtures above keep their pixels.
+    std::mt19937 large_rng(4564U);
+    const cv::Mat large = random_texture(96, 72, large_rng);
+    io::write_png(dir / "large_left.png", large);
+    io::write_png(dir / "large_right.png", shifted(large, kShift));
 }
 
 }  // namespace

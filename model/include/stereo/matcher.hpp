@@ -129,6 +129,11 @@ using ValidatedPipelineFunction = ValidatedDisparity (*)(const Image&, const Ima
                                                          const MatchParams&);
 MatcherFactory pipeline_factory(ValidatedPipelineFunction run);
 
+// The hierarchical search's parameters of a configuration (every engine of the method): the
+// pipeline's cost, ndisp, CA and stage 6, the 2-D options, and the 1-D pass's window and sigma
+// from the pipeline's (11x11, sigma 3 by default).
+hierarchical::Params hierarchical_params(const MatchConfig& config);
+
 // The model's matchers: pipeline (model, naive, float), edges (model, naive), hierarchical
 // (model, naive, full-search), sparse (model), asw (model, naive, float).
 void register_model_matchers(MatcherRegistry& registry);
