@@ -10,6 +10,9 @@
 #include <verilated_fst_c.h>
 
 #include "Vstereo_hier_top.h"
+#ifdef STEREO_COSIM_FULL_HIER
+#include "Vstereo_hier_top_full.h"
+#endif
 #include "axis_driver.hpp"
 #include "hier_pass_ports.hpp"
 #include "port_bits.hpp"
@@ -32,12 +35,14 @@ void put_kernel(Port& port, const h::LevelParams& level) {
     }
 }
 
-void put_setting(Vstereo_hier_top& m, const h::PlaneSetting& setting) {
+template <class Core>
+void put_setting(Core& m, const h::PlaneSetting& setting) {
     put_plane(m, setting.plane);
     m.tolerance = static_cast<std::uint32_t>(setting.tolerance);
 }
 
-h::PlaneStatistics read_statistics(Vstereo_hier_top& core) {
+template <class Core>
+h::PlaneStatistics read_statistics(Core& core, const HierTopLimits& limits) {
     h::PlaneStatistics s;
     s.count = static_cast<std::int64_t>(core.out_count);
     s.sum_x = static_cast<std::int64_t>(core.out_sum_x);
@@ -48,8 +53,8 @@ h::PlaneStatistics read_statistics(Vstereo_hier_top& core) {
     s.sum_v = static_cast<std::int64_t>(core.out_sum_v);
     s.sum_xv = static_cast<std::int64_t>(core.out_sum_xv);
     s.sum_yv = static_cast<std::int64_t>(core.out_sum_yv);
-    s.v_min = kHierTopLimits.v_min;
-    for (int bin = 0; bin <= kHierTopLimits.v_max - kHierTopLimits.v_min; ++bin) {
+    s.v_min = limits.v_min;
+    for (int bin = 0; bin <= limits.v_max - limits.v_min; ++bin) {
         core.hist_index = static_cast<std::uint8_t>(bin);
         core.eval();
         s.histogram.push_back(static_cast<std::int64_t>(core.hist_count));
@@ -61,11 +66,9 @@ std::string pixels(int width, int height) {
     return std::to_string(width) + "x" + std::to_string(height);
 }
 
-}  // namespace
-
-void check_hier_top(const h::Params& params) {
-    constexpr HierTopLimits limits = kHierTopLimits;
-    const std::string core = "the built stereo_hier_top (Vstereo_hier_top) ";
+// The search checks of one configuration (no size).
+void check_config(const h::Params& params, const HierTopLimits& limits) {
+    const std::string core = "the built stereo_hier_top (" + std::string(limits.config) + ") ";
     const std::string_view census = catalogue::cost(catalogue::Cost::census).name;
     if (params.cost != census) {
         throw std::invalid_argument(core + "has the " + std::string(census) + " cost only, not " +
@@ -103,42 +106,148 @@ void check_hier_top(const h::Params& params) {
     }
 }
 
-void check_hier_top(const h::Params& params, int width, int height) {
-    check_hier_top(params);
-    constexpr HierTopLimits limits = kHierTopLimits;
-    const std::string core = "the built stereo_hier_top (Vstereo_hier_top) ";
+// The size checks of one configuration.
+void check_size(const h::Params& params, int width, int height, const HierTopLimits& limits) {
+    check_config(params, limits);
+    const std::string core = "the built stereo_hier_top (" + std::string(limits.config) + ") ";
     if (width > limits.width || height > limits.height) {
         throw std::invalid_argument(core + "holds " + pixels(limits.width, limits.height) +
                                     ", the pair is " + pixels(width, height) +
                                     " (shrink it: --downscale, or cosim's --crop)");
     }
-    h::validate(params, width, height);
 }
 
+// The first configuration `accepts` takes; none: the error of the last one tried.
+template <class Check>
+HierTopLimits first_accepting(const Check& accepts) {
+    const std::vector<HierTopLimits> configs = hier_top_configs();
+    std::string error;
+    for (const HierTopLimits& limits : configs) {
+        try {
+            accepts(limits);
+            return limits;
+        } catch (const std::invalid_argument& refused) {
+            // The largest configuration's reason is the one worth reading.
+            error = refused.what();
+        }
+    }
+    throw std::invalid_argument(error);
+}
+
+}  // namespace
+
+std::vector<HierTopLimits> hier_top_configs() {
+    std::vector<HierTopLimits> configs{kHierTopLimits};
+#ifdef STEREO_COSIM_FULL_HIER
+    configs.push_back(kHierTopFullLimits);
+#endif
+    return configs;
+}
+
+void check_hier_top(const h::Params& params) {
+    first_accepting([&params](const HierTopLimits& limits) { check_config(params, limits); });
+}
+
+HierTopLimits check_hier_top(const h::Params& params, int width, int height) {
+    const HierTopLimits limits = first_accepting(
+        [&](const HierTopLimits& candidate) { check_size(params, width, height, candidate); });
+    h::validate(params, width, height);
+    return limits;
+}
+
+// One Verilated configuration behind HierTopSim: the ports it touches, for any of them.
 struct HierTopSim::Model {
-    VerilatedHarness<Vstereo_hier_top> harness{"hier_top"};
+    virtual ~Model() = default;
+    virtual void reset() = 0;
+    virtual void configure(int width, int height, const h::Params& params,
+                           const h::PlaneSetting& setting) = 0;
+    // After every edge: the host's commit lasts one clock; at out_done `host` reads the
+    // statistics and its setting is written and committed. Returns whether it was called.
+    virtual bool serve(const Host& host) = 0;
+    virtual StreamResult stream(const std::vector<InputBeat>& beats, std::size_t expected_outputs,
+                                const Traffic& traffic, std::uint64_t max_cycles,
+                                const std::function<void()>& after_edge) = 0;
+    virtual void idle_tick() = 0;  // no input, the output taken
 };
 
-HierTopSim::HierTopSim() : model_(std::make_unique<Model>()) {
+namespace {
+
+template <class Core>
+class CoreModel final : public HierTopSim::Model {
+  public:
+    explicit CoreModel(const HierTopLimits& limits) : limits_(limits) {}
+
+    void reset() override {
+        harness_.model().plane_commit = 0;
+        reset_axis_core(harness_);
+    }
+    void configure(int width, int height, const h::Params& params,
+                   const h::PlaneSetting& setting) override {
+        Core& m = harness_.model();
+        put_pass_config(m, width, height, params, limits_.window);
+        put_kernel(m.cfg_kernel_q, params.levels[0]);
+        put_kernel(m.cfg_kernel_h, params.levels[1]);
+        put_kernel(m.cfg_kernel_f, params.levels[2]);
+        m.cfg_wait_plane = 1;
+        put_setting(m, setting);
+    }
+    bool serve(const HierTopSim::Host& host) override {
+        Core& core = harness_.model();
+        core.plane_commit = 0;
+        if (core.out_done == 0 || !host) {
+            return false;
+        }
+        put_setting(core, host(read_statistics(core, limits_)));
+        core.plane_commit = 1;
+        return true;
+    }
+    StreamResult stream(const std::vector<InputBeat>& beats, std::size_t expected_outputs,
+                        const Traffic& traffic, std::uint64_t max_cycles,
+                        const std::function<void()>& after_edge) override {
+        return stream_axis(harness_, beats, expected_outputs, traffic, max_cycles,
+                           [&after_edge](const Core&) { after_edge(); });
+    }
+    void idle_tick() override {
+        Core& m = harness_.model();
+        m.s_axis_tvalid = 0;
+        m.m_axis_tready = 1;
+        harness_.tick();
+    }
+
+  private:
+    HierTopLimits limits_;
+    VerilatedHarness<Core> harness_{"hier_top"};
+};
+
+std::unique_ptr<HierTopSim::Model> make_model(const HierTopLimits& limits) {
+    if (limits.config == kHierTopLimits.config) {
+        return std::make_unique<CoreModel<Vstereo_hier_top>>(limits);
+    }
+#ifdef STEREO_COSIM_FULL_HIER
+    if (limits.config == kHierTopFullLimits.config) {
+        return std::make_unique<CoreModel<Vstereo_hier_top_full>>(limits);
+    }
+#endif
+    throw std::invalid_argument("no stereo_hier_top configuration named " +
+                                std::string(limits.config) + " was built");
+}
+
+}  // namespace
+
+HierTopSim::HierTopSim(const HierTopLimits& limits) : limits_(limits), model_(make_model(limits)) {
     reset();
 }
 HierTopSim::~HierTopSim() = default;
 
 void HierTopSim::reset() {
-    model_->harness.model().plane_commit = 0;
-    reset_axis_core(model_->harness);
+    model_->reset();
 }
 
 void HierTopSim::configure(int width, int height, const h::Params& params,
                            const h::PlaneSetting& setting) {
-    check_hier_top(params, width, height);
-    Vstereo_hier_top& m = model_->harness.model();
-    put_pass_config(m, width, height, params, kHierTopLimits.window);
-    put_kernel(m.cfg_kernel_q, params.levels[0]);
-    put_kernel(m.cfg_kernel_h, params.levels[1]);
-    put_kernel(m.cfg_kernel_f, params.levels[2]);
-    m.cfg_wait_plane = 1;
-    put_setting(m, setting);
+    check_size(params, width, height, limits_);
+    h::validate(params, width, height);
+    model_->configure(width, height, params, setting);
 }
 
 void HierTopSim::set_host(Host host) {
@@ -146,32 +255,20 @@ void HierTopSim::set_host(Host host) {
 }
 
 void HierTopSim::serve_host() {
-    // After every edge: the host's commit lasts one clock; at out_done it reads the registers
-    // and writes the next setting.
-    Vstereo_hier_top& core = model_->harness.model();
-    core.plane_commit = 0;
-    if (core.out_done == 0 || !host_) {
-        return;
+    if (model_->serve(host_)) {
+        ++statistics_read_;
     }
-    const h::PlaneSetting next = host_(read_statistics(core));
-    ++statistics_read_;
-    put_setting(core, next);
-    core.plane_commit = 1;
 }
 
 StreamResult HierTopSim::stream(const std::vector<InputBeat>& beats, std::size_t expected_outputs,
                                 const Traffic& traffic, std::uint64_t max_cycles) {
-    return stream_axis(model_->harness, beats, expected_outputs, traffic, max_cycles,
-                       [this](const Vstereo_hier_top&) { serve_host(); });
+    return model_->stream(beats, expected_outputs, traffic, max_cycles, [this] { serve_host(); });
 }
 
 std::uint64_t HierTopSim::wait_for_statistics(std::size_t count, std::uint64_t max_clocks) {
-    Vstereo_hier_top& m = model_->harness.model();
-    m.s_axis_tvalid = 0;
-    m.m_axis_tready = 1;
     std::uint64_t clocks = 0;
     for (; clocks < max_clocks && statistics_read_ < count; ++clocks) {
-        model_->harness.tick();
+        model_->idle_tick();
         serve_host();
     }
     return clocks;
@@ -188,7 +285,7 @@ HierTopRun run_hier_top(const Image& left, const Image& right, const h::Params& 
         throw std::invalid_argument("--reset-at must be below the frame's " +
                                     std::to_string(beats.size()) + " beats");
     }
-    HierTopSim core;
+    HierTopSim core(check_hier_top(params, width, height));
     h::PlaneTracker tracker;
     core.configure(width, height, params, tracker.setting());
     // Frame t runs with settings[t]: the core waits for the host's commit after each frame.
@@ -204,7 +301,8 @@ HierTopRun run_hier_top(const Image& left, const Image& right, const h::Params& 
     std::vector<StreamResult> streams;
     // The pass's last beat can leave before the levels' last winner: a frame's statistics come
     // during the next frame's stream (whose beats wait for the commit) or in a wait.
-    constexpr std::uint64_t kStatisticsClocks = 100000;
+    // (The full level's wait and flush: about 73 rows of its groups after the last input.)
+    const std::uint64_t kStatisticsClocks = std::max<std::uint64_t>(100000, 4 * pixels_per_frame);
     const auto wait_for = [&](std::size_t frames) {
         run.total_clocks += core.wait_for_statistics(frames, kStatisticsClocks);
         if (core.statistics_read() < frames) {

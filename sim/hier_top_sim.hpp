@@ -12,6 +12,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "hier_pass_sim.hpp"
@@ -21,18 +22,27 @@
 
 namespace stereo::sim {
 
-// The Verilated configuration's parameters (stage_table.hpp: stereo_hier_top's defaults): its
-// pass is stereo_hier_pass at kHierPassLimits, its levels have D = V = 16 and fixed windows.
+// A Verilated configuration's parameters (stage_table.hpp): its pass is stereo_hier_pass at
+// these limits, its levels have D = ndisp, V = v_max - v_min + 1 and fixed windows.
 struct HierTopLimits : HierPassLimits {
     std::array<int, hierarchical::kLevels> level_windows = {9, 15, 15};
+    std::string_view config = "Vstereo_hier_top";
 };
+// Vstereo_hier_top, always built: stereo_hier_top's defaults (64x48, D = V = 16, pass 5x5).
 inline constexpr HierTopLimits kHierTopLimits{};
+// Vstereo_hier_top_full (-DSTEREO_COSIM_CONFIGS=hier_top_full): 640x480, D = 64, V = 16, the lean
+// census pass 11x11.
+inline constexpr HierTopLimits kHierTopFullLimits{
+    {640, 480, 64, 11, -8, 7}, {9, 15, 15}, "Vstereo_hier_top_full"};
+// The configurations this library was built with, smallest first.
+std::vector<HierTopLimits> hier_top_configs();
 
-// Throws std::invalid_argument (one line naming the limit) unless the built core can run the
-// search `params`: census, D = V = 16, the levels' windows 9 / 15 / 15, a pass window up
-// to 5, CA rule 1 along d only; with a size also the pair up to 64x48 and hierarchical::validate.
+// Throws std::invalid_argument (one line naming the limit) unless a built core can run the
+// search `params`: census, its D and V = 16, the levels' windows 9 / 15 / 15, a pass window up
+// to its own, CA rule 1 along d only; with a size also the pair within the configuration and
+// hierarchical::validate. The sized form returns the smallest configuration that holds the pair.
 void check_hier_top(const hierarchical::Params& params);
-void check_hier_top(const hierarchical::Params& params, int width, int height);
+HierTopLimits check_hier_top(const hierarchical::Params& params, int width, int height);
 
 class HierTopSim {
   public:
@@ -40,7 +50,7 @@ class HierTopSim {
     // and commits for the next frame.
     using Host = std::function<hierarchical::PlaneSetting(const hierarchical::PlaneStatistics&)>;
 
-    HierTopSim();
+    explicit HierTopSim(const HierTopLimits& limits = kHierTopLimits);
     ~HierTopSim();
     HierTopSim(const HierTopSim&) = delete;
     HierTopSim& operator=(const HierTopSim&) = delete;
@@ -63,10 +73,12 @@ class HierTopSim {
     std::uint64_t wait_for_statistics(std::size_t count, std::uint64_t max_clocks);
     std::size_t statistics_read() const { return statistics_read_; }
 
+    struct Model;  // one Verilated configuration behind the interface (hier_top_sim.cpp)
+
   private:
     void serve_host();
 
-    struct Model;
+    HierTopLimits limits_;
     std::unique_ptr<Model> model_;
     Host host_;
     std::size_t statistics_read_ = 0;
@@ -98,11 +110,12 @@ struct HierTopRun {
 };
 
 // Streams the pair `options.frames` times (a steady rig) through a fresh core configured for
-// `params`, with the host's PlaneTracker in the loop: after each frame's statistics it writes the
-// next setting. A mid-frame reset (reset_at) abandons that part-frame: it has no statistics and
-// counts as no frame; the host keeps its tracker, and the whole frame after the reset runs with
-// the setting the part-frame had. Throws std::runtime_error when the core stalls, breaks the
-// AXI4-Stream rules or gives no statistics for a frame.
+// `params` (the smallest built configuration that holds the pair), with the host's PlaneTracker in
+// the loop: after each frame's statistics it writes the next setting. A mid-frame reset (reset_at)
+// abandons that part-frame: it has no statistics and counts as no frame; the host keeps its
+// tracker, and the whole frame after the reset runs with the setting the part-frame had. Throws
+// std::runtime_error when the core stalls, breaks the AXI4-Stream rules or gives no statistics for
+// a frame.
 HierTopRun run_hier_top(const Image& left, const Image& right, const hierarchical::Params& params,
                         const HierTopRunOptions& options);
 

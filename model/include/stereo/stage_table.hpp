@@ -465,7 +465,12 @@ inline constexpr Params kFpgaCensusNdisp8Lanes2 = kSmall.with({.ndisp = 8,
 inline constexpr Params kFullCensusLean =
     kFull.with({.cost = kCostCensus, .lanes = 8, .recompute_costs = 1});
 
-inline constexpr std::array<VerilatedConfig, 40> kVerilatedConfigs = {{
+// The whole hierarchical core at that size: the lean census pass (64 labels, 8 a clock, 11x11)
+// and the levels (V = 16, windows 9 / 15 / 15, one candidate row a clock).
+inline constexpr Params kFullHier = {
+    .width = 640, .height = 480, .ndisp = 64, .window = 11, .lanes = 8, .recompute_costs = 1};
+
+inline constexpr std::array<VerilatedConfig, 41> kVerilatedConfigs = {{
     {"Vstereo_top_small", "stereo_top", kSmall, "", "small"},
     {"Vstereo_top_lanes4", "stereo_top", kSmallLanes4, "", "lanes4"},
     {"Vstereo_top_lanes1", "stereo_top", kSmallLanes1, "", "lanes1"},
@@ -567,6 +572,9 @@ inline constexpr std::array<VerilatedConfig, 40> kVerilatedConfigs = {{
     // ... and the lean census core at that size: -DSTEREO_COSIM_CONFIGS=full_census_lean.
     {"Vstereo_top_full_census_lean", "stereo_top", kFullCensusLean, "STEREO_COSIM_FULL_CENSUS",
      "full-census-lean"},
+    // ... and the whole hierarchical core at that size: -DSTEREO_COSIM_CONFIGS=hier_top_full.
+    {"Vstereo_hier_top_full", "stereo_hier_top", kFullHier, "STEREO_COSIM_FULL_HIER",
+     "hier-top-full"},
 }};
 
 // The configuration built under `prefix` (a compile-time error when there is none).
