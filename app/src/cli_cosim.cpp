@@ -456,7 +456,7 @@ void run_cosim_hierarchical(const CosimOptions& given) {
         apply_crop(io::load_pair(options.left, options.right, options.downscale), options.crop);
     const int width = pair.left.width;
     const int height = pair.left.height;
-    sim::check_hier_top(search, width, height);
+    const sim::HierTopLimits core = sim::check_hier_top(search, width, height);
     if (options.reset_at >= width * height) {
         throw std::invalid_argument("--reset-at must be below the frame's " +
                                     std::to_string(width * height) + " beats");
@@ -541,7 +541,7 @@ void run_cosim_hierarchical(const CosimOptions& given) {
     if (options.json) {
         nlohmann::json summary = pipeline_json(width, height, params);
         summary.update({{"method", catalogue::method(catalogue::Method::hierarchical).name},
-                        {"config", "Vstereo_hier_top"},
+                        {"config", std::string(core.config)},
                         {"plane", plane_json(last.setting)},
                         {"mismatches", mismatches},
                         {"statistics_mismatches", statistics_mismatches},
@@ -562,11 +562,11 @@ void run_cosim_hierarchical(const CosimOptions& given) {
         std::cout << io::versioned(summary).dump() << '\n';
     } else {
         std::printf(
-            "%dx%d ndisp %d window %d: the hierarchical core (stereo_hier_top) on a steady rig, "
-            "the host's PlaneTracker writing each next plane, seed %u, stall %.2f, gap %.2f, "
+            "%dx%d ndisp %d window %d: the hierarchical core (stereo_hier_top, %s) on a steady "
+            "rig, the host's PlaneTracker writing each next plane, seed %u, stall %.2f, gap %.2f, "
             "reset after %d beats of each frame (-1 = none)\n",
-            width, height, params.ndisp, params.window, options.seed, options.stall, options.gap,
-            options.reset_at);
+            width, height, params.ndisp, params.window, std::string(core.config).c_str(),
+            options.seed, options.stall, options.gap, options.reset_at);
         for (const std::string& line : lines) {
             std::printf("%s\n", line.c_str());
         }
