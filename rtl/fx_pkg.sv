@@ -105,54 +105,52 @@ package fx_pkg;
              twice_neighbour < centre_wide + {1'b0, centre, 1'b0};
   endfunction
 
-  // Tap i (0 .. window-1) of a constant kernel of every odd window 1 .. 31:
-  // window 2k + 1 starts at entry k * k; the last line holds entry 0.
+  // Tap i (0 .. window-1) of a constant kernel of every odd window 1 .. 31: the default kernels (sigma = 3) from entry 0, the
+  // hierarchical levels' (hierarchical::default_level: sigma = 3 * window / 11) from entry DEFAULT_TAP_ENTRIES;
+  // window 2k + 1 starts at entry k * k of its kernel; the last line holds entry 0.
   localparam int DEFAULT_TAP_ENTRIES = 256;
-  // DEFAULT_TAPS: sigma = 3 (the 1-D default)
-  localparam logic [DEFAULT_TAP_ENTRIES*TAP_BITS-1:0] DEFAULT_TAPS = {
-      9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd1, 9'd2, 9'd5, 9'd9, 9'd14, 9'd21, 9'd27, 9'd32, 9'd34, 9'd32, 9'd27, 9'd21, 9'd14, 9'd9, 9'd5, 9'd2, 9'd1, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0,  // window 31
-      9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd1, 9'd2, 9'd5, 9'd9, 9'd14, 9'd21, 9'd27, 9'd32, 9'd34, 9'd32, 9'd27, 9'd21, 9'd14, 9'd9, 9'd5, 9'd2, 9'd1, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0,  // window 29
-      9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd1, 9'd2, 9'd5, 9'd9, 9'd14, 9'd21, 9'd27, 9'd32, 9'd34, 9'd32, 9'd27, 9'd21, 9'd14, 9'd9, 9'd5, 9'd2, 9'd1, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0,  // window 27
-      9'd0, 9'd0, 9'd0, 9'd0, 9'd1, 9'd2, 9'd5, 9'd9, 9'd14, 9'd21, 9'd27, 9'd32, 9'd34, 9'd32, 9'd27, 9'd21, 9'd14, 9'd9, 9'd5, 9'd2, 9'd1, 9'd0, 9'd0, 9'd0, 9'd0,  // window 25
-      9'd0, 9'd0, 9'd0, 9'd1, 9'd2, 9'd5, 9'd9, 9'd14, 9'd21, 9'd27, 9'd32, 9'd34, 9'd32, 9'd27, 9'd21, 9'd14, 9'd9, 9'd5, 9'd2, 9'd1, 9'd0, 9'd0, 9'd0,  // window 23
-      9'd0, 9'd0, 9'd1, 9'd2, 9'd5, 9'd9, 9'd14, 9'd21, 9'd27, 9'd32, 9'd34, 9'd32, 9'd27, 9'd21, 9'd14, 9'd9, 9'd5, 9'd2, 9'd1, 9'd0, 9'd0,  // window 21
-      9'd0, 9'd1, 9'd2, 9'd5, 9'd9, 9'd14, 9'd21, 9'd27, 9'd32, 9'd34, 9'd32, 9'd27, 9'd21, 9'd14, 9'd9, 9'd5, 9'd2, 9'd1, 9'd0,  // window 19
-      9'd1, 9'd2, 9'd5, 9'd9, 9'd14, 9'd21, 9'd27, 9'd32, 9'd34, 9'd32, 9'd27, 9'd21, 9'd14, 9'd9, 9'd5, 9'd2, 9'd1,  // window 17
-      9'd2, 9'd5, 9'd9, 9'd14, 9'd21, 9'd28, 9'd32, 9'd34, 9'd32, 9'd28, 9'd21, 9'd14, 9'd9, 9'd5, 9'd2,  // window 15
-      9'd5, 9'd9, 9'd15, 9'd21, 9'd28, 9'd33, 9'd34, 9'd33, 9'd28, 9'd21, 9'd15, 9'd9, 9'd5,  // window 13
-      9'd9, 9'd15, 9'd22, 9'd29, 9'd35, 9'd36, 9'd35, 9'd29, 9'd22, 9'd15, 9'd9,  // window 11
-      9'd16, 9'd24, 9'd32, 9'd37, 9'd38, 9'd37, 9'd32, 9'd24, 9'd16,  // window 9
-      9'd27, 9'd36, 9'd43, 9'd44, 9'd43, 9'd36, 9'd27,  // window 7
-      9'd46, 9'd54, 9'd56, 9'd54, 9'd46,  // window 5
-      9'd84, 9'd88, 9'd84,  // window 3
-      9'd256  // window 1
+  localparam logic [2*DEFAULT_TAP_ENTRIES*TAP_BITS-1:0] CONSTANT_TAPS = {
+      9'd3, 9'd3, 9'd4, 9'd5, 9'd6, 9'd6, 9'd7, 9'd8, 9'd9, 9'd10, 9'd11, 9'd12, 9'd12, 9'd13, 9'd13, 9'd12, 9'd13, 9'd13, 9'd12, 9'd12, 9'd11, 9'd10, 9'd9, 9'd8, 9'd7, 9'd6, 9'd6, 9'd5, 9'd4, 9'd3, 9'd3,  // level window 31
+      9'd3, 9'd4, 9'd4, 9'd5, 9'd6, 9'd7, 9'd8, 9'd9, 9'd11, 9'd11, 9'd12, 9'd13, 9'd14, 9'd14, 9'd14, 9'd14, 9'd14, 9'd13, 9'd12, 9'd11, 9'd11, 9'd9, 9'd8, 9'd7, 9'd6, 9'd5, 9'd4, 9'd4, 9'd3,  // level window 29
+      9'd3, 9'd4, 9'd5, 9'd6, 9'd7, 9'd8, 9'd9, 9'd11, 9'd12, 9'd13, 9'd14, 9'd14, 9'd15, 9'd14, 9'd15, 9'd14, 9'd14, 9'd13, 9'd12, 9'd11, 9'd9, 9'd8, 9'd7, 9'd6, 9'd5, 9'd4, 9'd3,  // level window 27
+      9'd3, 9'd4, 9'd5, 9'd7, 9'd8, 9'd10, 9'd11, 9'd12, 9'd14, 9'd15, 9'd15, 9'd16, 9'd16, 9'd16, 9'd15, 9'd15, 9'd14, 9'd12, 9'd11, 9'd10, 9'd8, 9'd7, 9'd5, 9'd4, 9'd3,  // level window 25
+      9'd4, 9'd5, 9'd6, 9'd8, 9'd9, 9'd11, 9'd13, 9'd14, 9'd16, 9'd17, 9'd17, 9'd16, 9'd17, 9'd17, 9'd16, 9'd14, 9'd13, 9'd11, 9'd9, 9'd8, 9'd6, 9'd5, 9'd4,  // level window 23
+      9'd4, 9'd6, 9'd7, 9'd9, 9'd11, 9'd13, 9'd15, 9'd17, 9'd18, 9'd19, 9'd18, 9'd19, 9'd18, 9'd17, 9'd15, 9'd13, 9'd11, 9'd9, 9'd7, 9'd6, 9'd4,  // level window 21
+      9'd5, 9'd6, 9'd8, 9'd11, 9'd13, 9'd16, 9'd18, 9'd20, 9'd21, 9'd20, 9'd21, 9'd20, 9'd18, 9'd16, 9'd13, 9'd11, 9'd8, 9'd6, 9'd5,  // level window 19
+      9'd5, 9'd8, 9'd10, 9'd13, 9'd16, 9'd19, 9'd22, 9'd23, 9'd24, 9'd23, 9'd22, 9'd19, 9'd16, 9'd13, 9'd10, 9'd8, 9'd5,  // level window 17
+      9'd6, 9'd9, 9'd13, 9'd17, 9'd20, 9'd24, 9'd26, 9'd26, 9'd26, 9'd24, 9'd20, 9'd17, 9'd13, 9'd9, 9'd6,  // level window 15
+      9'd7, 9'd11, 9'd16, 9'd22, 9'd27, 9'd30, 9'd30, 9'd30, 9'd27, 9'd22, 9'd16, 9'd11, 9'd7,  // level window 13
+      9'd9, 9'd15, 9'd22, 9'd29, 9'd35, 9'd36, 9'd35, 9'd29, 9'd22, 9'd15, 9'd9,  // level window 11
+      9'd12, 9'd21, 9'd32, 9'd41, 9'd44, 9'd41, 9'd32, 9'd21, 9'd12,  // level window 9
+      9'd17, 9'd33, 9'd50, 9'd56, 9'd50, 9'd33, 9'd17,  // level window 7
+      9'd27, 9'd61, 9'd80, 9'd61, 9'd27,  // level window 5
+      9'd62, 9'd132, 9'd62,  // level window 3
+      9'd256,  // level window 1
+      9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd1, 9'd2, 9'd5, 9'd9, 9'd14, 9'd21, 9'd27, 9'd32, 9'd34, 9'd32, 9'd27, 9'd21, 9'd14, 9'd9, 9'd5, 9'd2, 9'd1, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0,  // default window 31
+      9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd1, 9'd2, 9'd5, 9'd9, 9'd14, 9'd21, 9'd27, 9'd32, 9'd34, 9'd32, 9'd27, 9'd21, 9'd14, 9'd9, 9'd5, 9'd2, 9'd1, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0,  // default window 29
+      9'd0, 9'd0, 9'd0, 9'd0, 9'd0, 9'd1, 9'd2, 9'd5, 9'd9, 9'd14, 9'd21, 9'd27, 9'd32, 9'd34, 9'd32, 9'd27, 9'd21, 9'd14, 9'd9, 9'd5, 9'd2, 9'd1, 9'd0, 9'd0, 9'd0, 9'd0, 9'd0,  // default window 27
+      9'd0, 9'd0, 9'd0, 9'd0, 9'd1, 9'd2, 9'd5, 9'd9, 9'd14, 9'd21, 9'd27, 9'd32, 9'd34, 9'd32, 9'd27, 9'd21, 9'd14, 9'd9, 9'd5, 9'd2, 9'd1, 9'd0, 9'd0, 9'd0, 9'd0,  // default window 25
+      9'd0, 9'd0, 9'd0, 9'd1, 9'd2, 9'd5, 9'd9, 9'd14, 9'd21, 9'd27, 9'd32, 9'd34, 9'd32, 9'd27, 9'd21, 9'd14, 9'd9, 9'd5, 9'd2, 9'd1, 9'd0, 9'd0, 9'd0,  // default window 23
+      9'd0, 9'd0, 9'd1, 9'd2, 9'd5, 9'd9, 9'd14, 9'd21, 9'd27, 9'd32, 9'd34, 9'd32, 9'd27, 9'd21, 9'd14, 9'd9, 9'd5, 9'd2, 9'd1, 9'd0, 9'd0,  // default window 21
+      9'd0, 9'd1, 9'd2, 9'd5, 9'd9, 9'd14, 9'd21, 9'd27, 9'd32, 9'd34, 9'd32, 9'd27, 9'd21, 9'd14, 9'd9, 9'd5, 9'd2, 9'd1, 9'd0,  // default window 19
+      9'd1, 9'd2, 9'd5, 9'd9, 9'd14, 9'd21, 9'd27, 9'd32, 9'd34, 9'd32, 9'd27, 9'd21, 9'd14, 9'd9, 9'd5, 9'd2, 9'd1,  // default window 17
+      9'd2, 9'd5, 9'd9, 9'd14, 9'd21, 9'd28, 9'd32, 9'd34, 9'd32, 9'd28, 9'd21, 9'd14, 9'd9, 9'd5, 9'd2,  // default window 15
+      9'd5, 9'd9, 9'd15, 9'd21, 9'd28, 9'd33, 9'd34, 9'd33, 9'd28, 9'd21, 9'd15, 9'd9, 9'd5,  // default window 13
+      9'd9, 9'd15, 9'd22, 9'd29, 9'd35, 9'd36, 9'd35, 9'd29, 9'd22, 9'd15, 9'd9,  // default window 11
+      9'd16, 9'd24, 9'd32, 9'd37, 9'd38, 9'd37, 9'd32, 9'd24, 9'd16,  // default window 9
+      9'd27, 9'd36, 9'd43, 9'd44, 9'd43, 9'd36, 9'd27,  // default window 7
+      9'd46, 9'd54, 9'd56, 9'd54, 9'd46,  // default window 5
+      9'd84, 9'd88, 9'd84,  // default window 3
+      9'd256  // default window 1
   };
-  function automatic int default_tap(input int window, input int i);
-    if (window < 1 || window > 31 || window % 2 == 0 || i < 0 || i >= window) default_tap = 0;
-    else default_tap = 32'(DEFAULT_TAPS[((window / 2) * (window / 2) + i) * TAP_BITS +: TAP_BITS]);
+  // LEVEL = 1: the levels' kernel; 0: the default.
+  function automatic int constant_tap(input bit level, input int window, input int i);
+    if (window < 1 || window > 31 || window % 2 == 0 || i < 0 || i >= window) constant_tap = 0;
+    else constant_tap = 32'(CONSTANT_TAPS[((level ? DEFAULT_TAP_ENTRIES : 0) +
+                                          (window / 2) * (window / 2) + i) * TAP_BITS +: TAP_BITS]);
   endfunction
-  // LEVEL_TAPS: sigma = 3 * window / 11 (hierarchical::default_level)
-  localparam logic [DEFAULT_TAP_ENTRIES*TAP_BITS-1:0] LEVEL_TAPS = {
-      9'd3, 9'd3, 9'd4, 9'd5, 9'd6, 9'd6, 9'd7, 9'd8, 9'd9, 9'd10, 9'd11, 9'd12, 9'd12, 9'd13, 9'd13, 9'd12, 9'd13, 9'd13, 9'd12, 9'd12, 9'd11, 9'd10, 9'd9, 9'd8, 9'd7, 9'd6, 9'd6, 9'd5, 9'd4, 9'd3, 9'd3,  // window 31
-      9'd3, 9'd4, 9'd4, 9'd5, 9'd6, 9'd7, 9'd8, 9'd9, 9'd11, 9'd11, 9'd12, 9'd13, 9'd14, 9'd14, 9'd14, 9'd14, 9'd14, 9'd13, 9'd12, 9'd11, 9'd11, 9'd9, 9'd8, 9'd7, 9'd6, 9'd5, 9'd4, 9'd4, 9'd3,  // window 29
-      9'd3, 9'd4, 9'd5, 9'd6, 9'd7, 9'd8, 9'd9, 9'd11, 9'd12, 9'd13, 9'd14, 9'd14, 9'd15, 9'd14, 9'd15, 9'd14, 9'd14, 9'd13, 9'd12, 9'd11, 9'd9, 9'd8, 9'd7, 9'd6, 9'd5, 9'd4, 9'd3,  // window 27
-      9'd3, 9'd4, 9'd5, 9'd7, 9'd8, 9'd10, 9'd11, 9'd12, 9'd14, 9'd15, 9'd15, 9'd16, 9'd16, 9'd16, 9'd15, 9'd15, 9'd14, 9'd12, 9'd11, 9'd10, 9'd8, 9'd7, 9'd5, 9'd4, 9'd3,  // window 25
-      9'd4, 9'd5, 9'd6, 9'd8, 9'd9, 9'd11, 9'd13, 9'd14, 9'd16, 9'd17, 9'd17, 9'd16, 9'd17, 9'd17, 9'd16, 9'd14, 9'd13, 9'd11, 9'd9, 9'd8, 9'd6, 9'd5, 9'd4,  // window 23
-      9'd4, 9'd6, 9'd7, 9'd9, 9'd11, 9'd13, 9'd15, 9'd17, 9'd18, 9'd19, 9'd18, 9'd19, 9'd18, 9'd17, 9'd15, 9'd13, 9'd11, 9'd9, 9'd7, 9'd6, 9'd4,  // window 21
-      9'd5, 9'd6, 9'd8, 9'd11, 9'd13, 9'd16, 9'd18, 9'd20, 9'd21, 9'd20, 9'd21, 9'd20, 9'd18, 9'd16, 9'd13, 9'd11, 9'd8, 9'd6, 9'd5,  // window 19
-      9'd5, 9'd8, 9'd10, 9'd13, 9'd16, 9'd19, 9'd22, 9'd23, 9'd24, 9'd23, 9'd22, 9'd19, 9'd16, 9'd13, 9'd10, 9'd8, 9'd5,  // window 17
-      9'd6, 9'd9, 9'd13, 9'd17, 9'd20, 9'd24, 9'd26, 9'd26, 9'd26, 9'd24, 9'd20, 9'd17, 9'd13, 9'd9, 9'd6,  // window 15
-      9'd7, 9'd11, 9'd16, 9'd22, 9'd27, 9'd30, 9'd30, 9'd30, 9'd27, 9'd22, 9'd16, 9'd11, 9'd7,  // window 13
-      9'd9, 9'd15, 9'd22, 9'd29, 9'd35, 9'd36, 9'd35, 9'd29, 9'd22, 9'd15, 9'd9,  // window 11
-      9'd12, 9'd21, 9'd32, 9'd41, 9'd44, 9'd41, 9'd32, 9'd21, 9'd12,  // window 9
-      9'd17, 9'd33, 9'd50, 9'd56, 9'd50, 9'd33, 9'd17,  // window 7
-      9'd27, 9'd61, 9'd80, 9'd61, 9'd27,  // window 5
-      9'd62, 9'd132, 9'd62,  // window 3
-      9'd256  // window 1
-  };
-  function automatic int level_tap(input int window, input int i);
-    if (window < 1 || window > 31 || window % 2 == 0 || i < 0 || i >= window) level_tap = 0;
-    else level_tap = 32'(LEVEL_TAPS[((window / 2) * (window / 2) + i) * TAP_BITS +: TAP_BITS]);
+  function automatic int default_tap(input int window, input int i);
+    default_tap = constant_tap(1'b0, window, i);
   endfunction
   // Sub-pixel correction (constants.hpp kSubpixelCorrection): |offset| 0 .. 8 of the parabola -> the refined |offset|.
   function automatic logic [SUBPIXEL_BITS-1:0] subpixel_correction(

@@ -44,7 +44,7 @@ module stereo_aggregate #(
     // model's default kernel for WINDOW (fx_pkg::default_tap), constants that synthesis turns
     // into shifts and adds; cfg_kernel is then ignored.
     parameter bit RUNTIME_KERNEL = 1'b1,
-    // RUNTIME_KERNEL = 0: 1 takes the hierarchical levels' kernel for WINDOW (fx_pkg::level_tap,
+    // RUNTIME_KERNEL = 0: 1 takes the hierarchical levels' kernel for WINDOW (fx_pkg::constant_tap,
     // sigma 3 WINDOW / 11) instead of the default one.
     parameter bit LEVEL_KERNEL = 1'b0,
     parameter int LANES = NDISP,  // labels computed per clock (divides NDISP)
@@ -121,7 +121,7 @@ module stereo_aggregate #(
 
   // Tap i of the constant kernel (RUNTIME_KERNEL = 0).
   function automatic int constant_tap(input int i);
-    constant_tap = LEVEL_KERNEL ? fx_pkg::level_tap(WINDOW, i) : fx_pkg::default_tap(WINDOW, i);
+    constant_tap = fx_pkg::constant_tap(LEVEL_KERNEL, WINDOW, i);
   endfunction
   logic [WINDOW*TAP_BITS-1:0] kernel;
   generate

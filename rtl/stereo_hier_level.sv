@@ -42,7 +42,7 @@ module stereo_hier_level #(
     parameter int WINDOW = 5,   // the level's aggregation window
     parameter bit REFINE = 1'b1,  // 1: 3x3 around a prediction; 0: the whole range (COLS x ROWS)
     parameter int LANES = COLS * ROWS,  // labels per clock (divides COLS * ROWS)
-    // 1: the kernel from cfg_kernel; 0: the levels' constant kernel for WINDOW (fx_pkg::level_tap,
+    // 1: the kernel from cfg_kernel; 0: the levels' constant kernel for WINDOW (fx_pkg::constant_tap,
     // hierarchical::default_level), built from shifts and adds, cfg_kernel ignored.
     parameter bit RUNTIME_KERNEL = 1'b1
 ) (

@@ -35,7 +35,7 @@ module stereo_hier_levels #(
     parameter int LANES_Q = NDISP / 4,
     parameter int LANES_H = 3,
     parameter int LANES_F = 3,
-    // 1: the levels' kernels from cfg_kernel_*; 0: their constant kernels (fx_pkg::level_tap).
+    // 1: the levels' kernels from cfg_kernel_*; 0: their constant kernels (fx_pkg::constant_tap).
     parameter bit RUNTIME_KERNEL = 1'b0
 ) (
     input  wire logic                                  clk,

@@ -3,7 +3,7 @@
 // SUM_BITS; combinational.
 // RUNTIME_KERNEL = 1: generic multipliers by the weights of `kernel`. RUNTIME_KERNEL = 0: the
 // model's default kernel for WINDOW (fx_pkg::default_tap; LEVEL_KERNEL = 1: the hierarchical
-// levels' kernel, fx_pkg::level_tap), which is symmetric (k[i] = k[2R-i],
+// levels' kernel, fx_pkg::constant_tap), which is symmetric (k[i] = k[2R-i],
 // checked in stereo_aggregate): mirrored taps are added before the one constant product they
 // share, R + 1 products instead of 2R + 1. SHIFT_ADD = 1 (constant kernel only) builds each
 // constant product from shifts, additions and subtractions, one per nonzero digit of the tap's
@@ -47,7 +47,7 @@ module stereo_weighted_sum #(
   endfunction
 
   function automatic int constant_tap(input int i);
-    constant_tap = LEVEL_KERNEL ? fx_pkg::level_tap(WINDOW, i) : fx_pkg::default_tap(WINDOW, i);
+    constant_tap = fx_pkg::constant_tap(LEVEL_KERNEL, WINDOW, i);
   endfunction
 
   // x times the constant `tap`, modulo 2^SUM_BITS (exact where the true sum fits SUM_BITS).

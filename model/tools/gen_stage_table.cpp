@@ -12,6 +12,7 @@
 // `cmake --build build --target update_generated` rewrites the checked-in copies; the ctest
 // rtl.generated_files_current regenerates into a temporary folder and names any stale file.
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <filesystem>
 #include <fstream>
@@ -256,49 +257,55 @@ std::string package_text() {
 
     // Constant kernels of every odd window, for synthesis tops that tie the kernel configuration
     // to constants: the 1-D default (sigma = kDefaultSigma) and the hierarchical levels'
-    // (hierarchical::default_level: sigma keeps the default's ratio to the window). One table
-    // each, window w = 2k + 1 from entry k * k (the windows before it hold 1 + 3 + ... + (2k - 1)
-    // = k * k taps), entry 0 in the low bits, and a function that reads it.
+    // (hierarchical::default_level: sigma keeps the default's ratio to the window). One table,
+    // the default kernels from entry 0, the levels' from entry DEFAULT_TAP_ENTRIES; in each,
+    // window w = 2k + 1 from entry k * k (the windows before it hold 1 + 3 + ... + (2k - 1) =
+    // k * k taps), entry 0 in the low bits.
     static_assert(fx::kMinWindow == 1 && fx::kMaxWindow % 2 == 1, "the table starts at window 1");
     constexpr int kTapEntries = (fx::kMaxWindow / 2 + 1) * (fx::kMaxWindow / 2 + 1);
+    std::ostringstream sigma;
+    sigma << fx::kDefaultSigma;
     sv << "\n  // Tap i (0 .. window-1) of a constant kernel of every odd window 1 .. "
-       << fx::kMaxWindow
-       << ":\n"
-          "  // window 2k + 1 starts at entry k * k; the last line holds entry 0.\n"
+       << fx::kMaxWindow << ": the default kernels (sigma = " << sigma.str()
+       << ") from entry 0, the\n"
+          "  // hierarchical levels' (hierarchical::default_level: sigma = "
+       << sigma.str() << " * window / " << fx::kDefaultWindow
+       << ") from entry DEFAULT_TAP_ENTRIES;\n"
+          "  // window 2k + 1 starts at entry k * k of its kernel; the last line holds entry 0.\n"
           "  localparam int DEFAULT_TAP_ENTRIES = "
-       << kTapEntries << ";\n";
-    const auto tap_table = [&sv](const std::string& table, const std::string& function,
-                                 const std::string& sigma_text,
-                                 const std::function<double(int)>& sigma_of) {
-        sv << "  // " << table << ": sigma = " << sigma_text << "\n"
-           << "  localparam logic [DEFAULT_TAP_ENTRIES*TAP_BITS-1:0] " << table << " = {";
+       << kTapEntries
+       << ";\n"
+          "  localparam logic [2*DEFAULT_TAP_ENTRIES*TAP_BITS-1:0] CONSTANT_TAPS = {";
+    const std::array<std::function<double(int)>, 2> sigma_of = {
+        [](int window) { return stereo::hierarchical::default_level(window).sigma; },
+        [](int) { return fx::kDefaultSigma; }};
+    for (std::size_t kernel = 0; kernel < sigma_of.size(); ++kernel) {
         for (int window = fx::kMaxWindow; window >= fx::kMinWindow; window -= 2) {
-            const auto taps = stereo::gaussian_kernel(window, sigma_of(window));
+            const auto taps = stereo::gaussian_kernel(window, sigma_of[kernel](window));
             sv << "\n      ";
             for (int i = window - 1; i >= 0; --i) {
                 sv << fx::kKernelBits + 1 << "'d" << taps[static_cast<std::size_t>(i)]
                    << (i > 0 ? ", " : "");
             }
-            sv << (window > fx::kMinWindow ? "," : "") << "  // window " << window;
+            const bool last = kernel + 1 == sigma_of.size() && window == fx::kMinWindow;
+            sv << (last ? "" : ",") << "  // " << (kernel == 0 ? "level" : "default") << " window "
+               << window;
         }
-        sv << "\n  };\n"
-           << "  function automatic int " << function << "(input int window, input int i);\n"
-           << "    if (window < 1 || window > " << fx::kMaxWindow << " || window % 2 == 0 || i < 0 "
-           << "|| i >= window) " << function << " = 0;\n"
-           << "    else " << function << " = 32'(" << table
-           << "[((window / 2) * (window / 2) + i) * TAP_BITS +: TAP_BITS]);\n"
-           << "  endfunction\n";
-    };
-    {
-        std::ostringstream sigma;
-        sigma << fx::kDefaultSigma;
-        tap_table("DEFAULT_TAPS", "default_tap", sigma.str() + " (the 1-D default)",
-                  [](int) { return fx::kDefaultSigma; });
-        tap_table("LEVEL_TAPS", "level_tap",
-                  sigma.str() + " * window / " + std::to_string(fx::kDefaultWindow) +
-                      " (hierarchical::default_level)",
-                  [](int window) { return stereo::hierarchical::default_level(window).sigma; });
     }
+    sv << "\n  };\n"
+          "  // LEVEL = 1: the levels' kernel; 0: the default.\n"
+          "  function automatic int constant_tap(input bit level, input int window, input int i);\n"
+          "    if (window < 1 || window > "
+       << fx::kMaxWindow
+       << " || window % 2 == 0 || i < 0 || i >= window) constant_tap = 0;\n"
+          "    else constant_tap = 32'(CONSTANT_TAPS[((level ? DEFAULT_TAP_ENTRIES : 0) +\n"
+          "                                          (window / 2) * (window / 2) + i) * TAP_BITS "
+          "+: "
+          "TAP_BITS]);\n"
+          "  endfunction\n"
+          "  function automatic int default_tap(input int window, input int i);\n"
+          "    default_tap = constant_tap(1'b0, window, i);\n"
+          "  endfunction\n";
     sv << "  // Sub-pixel correction (constants.hpp kSubpixelCorrection): |offset| 0 .. "
        << fx::kSubpixelScale / 2
        << " of the parabola -> the refined |offset|.\n"
