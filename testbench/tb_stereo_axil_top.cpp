@@ -61,12 +61,7 @@ class AxilTopOf {
         m.s_axil_bready = 0;
         m.s_axil_arvalid = 0;
         m.s_axil_rready = 0;
-        m.s_axis_tvalid = 0;
-        m.m_axis_tready = 0;
-        m.rst = 1;
-        harness_.tick();
-        harness_.tick();
-        m.rst = 0;
+        reset_axis_core(harness_);  // the streams idle as well
     }
 
     void write(std::uint32_t addr, std::uint32_t data, std::uint8_t strobe = 0xF,
