@@ -8,6 +8,7 @@
 
 #include "stereo/catalogue.hpp"
 #include "stereo/hls/hier_level.hpp"
+#include "stereo/hls/host.hpp"
 #include "stereo/hls/match.hpp"
 
 namespace stereo::hls::hierarchical {
@@ -42,12 +43,6 @@ constexpr LevelShape shape_of() {
 template <class... Levels>
 std::vector<LevelShape> shapes(level_list<Levels...>) {
     return {shape_of<Levels>()...};
-}
-
-Rgb pixel(const Image& image, int x, int y) {
-    const int c1 = image.channels == 3 ? 1 : 0;
-    const int c2 = image.channels == 3 ? 2 : 0;
-    return {image.at(x, y, 0), image.at(x, y, c1), image.at(x, y, c2)};
 }
 
 // The cfg ports of a level: the model's kernel of the level's window centred in WINDOW taps.
@@ -106,8 +101,8 @@ LevelMap run_level(const Image& left, const Image& right, const CandidateGrid& g
                                    std::to_string(size));
         }
         const bool pixel_step = y < height;
-        const Rgb left_pixel = pixel_step ? pixel(left, x, y) : Rgb{};
-        const Rgb right_pixel = pixel_step ? pixel(right, x, y) : Rgb{};
+        const Rgb left_pixel = pixel_step ? rgb(left, x, y) : Rgb{};
+        const Rgb right_pixel = pixel_step ? rgb(right, x, y) : Rgb{};
         const auto [in_base_d, in_base_v] = base(state->req_x(), state->req_y());
         state->step(to_coord(x), to_coord(y), left_pixel, right_pixel, cfg, in_base_d, in_base_v);
         const int out_x = state->out_x();
