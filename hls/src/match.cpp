@@ -5,6 +5,7 @@
 #include <string>
 
 #include "stereo/catalogue.hpp"
+#include "stereo/hls/hierarchical.hpp"
 #include "stereo/hls/host.hpp"
 #include "stereo/hls/stream.hpp"
 #include "stereo/hls/top.hpp"
@@ -111,6 +112,7 @@ void register_matchers(MatcherRegistry& registry) {
     registry.add({"pipeline", "hls",
                   "Sec. 3.1 pipeline with stage 6, the HLS kernels in C simulation",
                   pipeline_factory(&match_validated)});
+    hierarchical::register_matchers(registry);
 }
 
 }  // namespace stereo::hls

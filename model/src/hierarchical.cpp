@@ -323,10 +323,10 @@ void mark_field_border(ValidatedDisparity& out, const std::vector<std::int8_t>& 
 
 ValidatedDisparity match_along_field(const Image& left, const Image& right,
                                      const std::vector<std::int8_t>& field, const Params& params,
-                                     std::int64_t& count) {
+                                     std::int64_t& count, PassFunction run_pass) {
     check_pair(left, right);
     const MatchParams pass = pass_params(params);
-    ValidatedDisparity out = match_validated(left, warp_rows(right, field), pass);
+    ValidatedDisparity out = run_pass(left, warp_rows(right, field), pass);
     count += static_cast<std::int64_t>(left.width) * left.height * params.ndisp;
     mark_field_border(out, field, invalid_border(pass).reach);
     return out;
@@ -461,8 +461,12 @@ std::array<LevelMap, kLevels> match_levels(const Image& left, const Image& right
 }
 
 Result match(const Image& left, const Image& right, const Params& params) {
+    return match(left, right, params, Parts{});
+}
+
+Result match(const Image& left, const Image& right, const Params& params, const Parts& parts) {
     CostCount count;
-    std::array<LevelMap, kLevels> levels = match_levels(left, right, params, count);
+    std::array<LevelMap, kLevels> levels = parts.levels(left, right, params, count);
     if (params.output == Output::full_level) {
         return finish(std::move(levels), count);
     }
@@ -478,7 +482,8 @@ Result match(const Image& left, const Image& right, const Params& params) {
             field = vertical_field(full, params.field_radius, field, params.prior_factor);
         }
     }
-    ValidatedDisparity validated = match_along_field(left, right, field, params, count.field_pass);
+    ValidatedDisparity validated =
+        match_along_field(left, right, field, params, count.field_pass, parts.pass);
     return finish_field(std::move(levels), count, std::move(field), std::move(validated));
 }
 

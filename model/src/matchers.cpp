@@ -102,9 +102,6 @@ MatcherFactory edges_factory(EdgeFunction run) {
 
 // ---- hierarchical: the 2-D search for uncalibrated pairs (Sec. 3.3) ---------------------
 
-using HierarchicalFunction = hierarchical::Result (*)(const Image&, const Image&,
-                                                      const hierarchical::Params&);
-
 MatchResult to_match_result(hierarchical::Result result) {
     MatchResult out{std::move(result.disparity), {}, std::move(result.vertical), {}, {},
                     std::move(result.validated)};
@@ -117,17 +114,6 @@ MatchResult to_match_result(hierarchical::Result result) {
     }
     out.counts.emplace_back("cost_evaluations.field_pass", result.cost_evaluations.field_pass);
     return out;
-}
-
-MatcherFactory hierarchical_factory(HierarchicalFunction run) {
-    return [run](const MatchConfig& config) -> std::unique_ptr<Matcher> {
-        const hierarchical::Params params = hierarchical_params(config);
-        return std::make_unique<FunctionMatcher>(
-            [params](int width, int height) { hierarchical::validate(params, width, height); },
-            [params, run](const Image& left, const Image& right) {
-                return to_match_result(run(left, right, params));
-            });
-    };
 }
 
 // ---- sparse: validated sub-pixel disparities (the SLAM front end, Sec. 4.2.1) ---------------
@@ -214,6 +200,25 @@ MatcherFactory pipeline_factory(ValidatedPipelineFunction run) {
                 result.validated = run(left, right, params);
                 result.disparity = to_label_map(result.validated);
                 return result;
+            });
+    };
+}
+
+MatcherFactory hierarchical_factory(HierarchicalFunction run, HierarchicalCheck check) {
+    return [run, check](const MatchConfig& config) -> std::unique_ptr<Matcher> {
+        const hierarchical::Params params = hierarchical_params(config);
+        const auto validate_size = [params, check](int width, int height) {
+            hierarchical::validate(params, width, height);
+            if (check != nullptr) {
+                check(params, width, height);
+            }
+        };
+        return std::make_unique<FunctionMatcher>(
+            validate_size, [params, run, check](const Image& left, const Image& right) {
+                if (check != nullptr) {  // `run` validates the rest itself
+                    check(params, left.width, left.height);
+                }
+                return to_match_result(run(left, right, params));
             });
     };
 }

@@ -19,6 +19,7 @@
 
 #include "stereo/constants.hpp"
 #include "stereo/image.hpp"
+#include "stereo/pipeline.hpp"
 #include "stereo/search.hpp"
 #include "stereo/validated.hpp"
 #include "stereo/validation_params.hpp"
@@ -256,9 +257,12 @@ Image warp_rows(const Image& right, const std::vector<std::int8_t>& field);
 // (x - d, y + field(x - d, y)): the field is read at the right pixel's column. A valid pixel whose
 // match's row y + field_row(...) lies within the reach of the top or bottom edge is invalid
 // (border), like one whose window leaves the image. Adds W H D to `count`.
+// The 1-D engine of the pass: stereo::match_validated, or one bit-exact with it (the HLS kernels).
+using PassFunction = ValidatedDisparity (*)(const Image&, const Image&, const MatchParams&);
 ValidatedDisparity match_along_field(const Image& left, const Image& right,
                                      const std::vector<std::int8_t>& field, const Params& params,
-                                     std::int64_t& count);
+                                     std::int64_t& count,
+                                     PassFunction pass = &stereo::match_validated);
 
 // The result of finished levels: the full level's valid winners as the disparity map and the
 // vertical offsets.
@@ -275,6 +279,17 @@ std::array<LevelMap, kLevels> match_levels(const Image& left, const Image& right
 
 // The hierarchical search.
 Result match(const Image& left, const Image& right, const Params& params);
+
+// The parts of the search an engine may compute itself, each bit-exact with the model's: the
+// three levels and the 1-D pass. The field between them is the model's (the host's, as in the
+// hardware core). The HLS engine passes its levels and its 1-D kernels (hls/README.md).
+using LevelsFunction = std::array<LevelMap, kLevels> (*)(const Image&, const Image&, const Params&,
+                                                         CostCount&);
+struct Parts {
+    LevelsFunction levels = &match_levels;
+    PassFunction pass = &stereo::match_validated;
+};
+Result match(const Image& left, const Image& right, const Params& params, const Parts& parts);
 
 // Reference for the evaluation: the same cost, aggregation (full-level window), CA and WTA over
 // every displacement of the full-size range (D x V candidates per pixel).

@@ -134,6 +134,14 @@ MatcherFactory pipeline_factory(ValidatedPipelineFunction run);
 // from the pipeline's (11x11, sigma 3 by default).
 hierarchical::Params hierarchical_params(const MatchConfig& config);
 
+// A factory for a hierarchical engine: validates with hierarchical::validate and `check` (an
+// engine's own limits, may be null), then runs `run`; the result carries every level's winners
+// and the cost evaluations.
+using HierarchicalFunction = hierarchical::Result (*)(const Image&, const Image&,
+                                                      const hierarchical::Params&);
+using HierarchicalCheck = void (*)(const hierarchical::Params&, int width, int height);
+MatcherFactory hierarchical_factory(HierarchicalFunction run, HierarchicalCheck check = nullptr);
+
 // The model's matchers: pipeline (model, naive, float), edges (model, naive), hierarchical
 // (model, naive, full-search), sparse (model), asw (model, naive, float).
 void register_model_matchers(MatcherRegistry& registry);

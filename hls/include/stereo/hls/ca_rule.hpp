@@ -1,11 +1,13 @@
-// ca_rule<WIDTH, NDISP, RULE>: the shared skeleton of CA rules 1 and 2 (RTL:
+// ca_rule<WIDTH, NDISP, RULE, SEGMENT>: the shared skeleton of CA rules 1 and 2 (RTL:
 // rtl/stereo_ca_plane.sv): the 3x3 in-plane window of every plane (window3x3), the per-cell
 // update of RULE, the result and coordinate registers; one pixel per step. Output pixel = input
 // pixel moved back one row and one column. Latency: W + 2 pixel steps.
 //
 //   RULE 1 (model stereo::ca_rule1, docs/fixed-point.md stage 3): a cell whose d-1 or d+1
 //          neighbour (d+1 < ndisp) agrees with it becomes the rounded mean of its 3x3 in-plane
-//          neighbourhood (zero padding outside the frame), fx::mean9.
+//          neighbourhood (zero padding outside the frame), fx::mean9. The labels form runs of
+//          SEGMENT (all NDISP by default) and d-1, d+1 stay inside the run of d: a hierarchical
+//          level's candidate rows, CaNeighbours::horizontal (RTL: stereo_ca_plane's SEGMENT).
 //   RULE 2 (model stereo::ca_rule2, stage 4): a cell with at least fx::kRule2MinCount of its 8
 //          in-plane neighbours inside the frame agreeing with it becomes round(c / 1.3),
 //          fx::div13.
@@ -21,10 +23,11 @@ namespace stereo::hls {
 
 using fx::agrees;
 
-template <int WIDTH, int NDISP, int RULE>
+template <int WIDTH, int NDISP, int RULE, int SEGMENT = NDISP>
 class ca_rule : public lane_output<agg_t, NDISP> {
     static_assert(NDISP >= 1 && NDISP <= fx::kMaxDisparities);
     static_assert(RULE == 1 || RULE == 2);
+    static_assert(SEGMENT >= 1 && NDISP % SEGMENT == 0);
     using lane_output<agg_t, NDISP>::out_data_;
     using lane_output<agg_t, NDISP>::out_x_;
     using lane_output<agg_t, NDISP>::out_y_;
@@ -60,9 +63,10 @@ class ca_rule : public lane_output<agg_t, NDISP> {
                         int ndisp) {
         const agg_t centre = window[kCentre][d];
         if constexpr (RULE == 1) {
-            const bool below = d > 0 && agrees(window[kCentre][d - 1], centre);
-            const bool above =
-                d + 1 < NDISP && d + 1 < ndisp && agrees(window[kCentre][d + 1], centre);
+            // d % SEGMENT: the label's place in its run (d itself for the 1-D pipeline).
+            const bool below = d % SEGMENT > 0 && agrees(window[kCentre][d - 1], centre);
+            const bool above = (d + 1) % SEGMENT != 0 && d + 1 < NDISP && d + 1 < ndisp &&
+                               agrees(window[kCentre][d + 1], centre);
             ca_sum_t sum = 0;
             for (int slot = 0; slot < 9; ++slot) {
                 if (in_frame[slot]) {
@@ -90,9 +94,10 @@ class ca_rule : public lane_output<agg_t, NDISP> {
     window3x3<WIDTH, agg_t, NDISP> window_;
 };
 
-// The two stages of the pipeline (stereo_hls_top).
-template <int WIDTH, int NDISP>
-using ca_rule1 = ca_rule<WIDTH, NDISP, 1>;
+// The two stages of the pipeline (stereo_hls_top); a hierarchical level's rule 1 has runs of
+// SEGMENT = COLS labels (hier_level.hpp).
+template <int WIDTH, int NDISP, int SEGMENT = NDISP>
+using ca_rule1 = ca_rule<WIDTH, NDISP, 1, SEGMENT>;
 template <int WIDTH, int NDISP>
 using ca_rule2 = ca_rule<WIDTH, NDISP, 2>;
 

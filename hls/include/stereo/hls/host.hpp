@@ -45,15 +45,17 @@ FrameConfig<WINDOW> frame_config(const MatchParams& params, int width, int heigh
     return cfg;
 }
 
-// Writes the pair as width*height beats in raster order; a grey pixel g becomes (g, g, g),
-// which is how the model matches grey input.
+// The pixel (x, y) as the kernels take it: a grey pixel g becomes (g, g, g), which is how the
+// model matches grey input.
+inline Rgb rgb(const Image& image, int x, int y) {
+    const int c1 = image.channels == 3 ? 1 : 0;
+    const int c2 = image.channels == 3 ? 2 : 0;
+    return Rgb{image.at(x, y, 0), image.at(x, y, c1), image.at(x, y, c2)};
+}
+
+// Writes the pair as width*height beats in raster order (rgb()).
 inline void push_frame(const Image& left, const Image& right, stream<InputBeat>& in) {
     check_pair(left, right);
-    const auto rgb = [](const Image& image, int x, int y) {
-        const int c1 = image.channels == 3 ? 1 : 0;
-        const int c2 = image.channels == 3 ? 2 : 0;
-        return Rgb{image.at(x, y, 0), image.at(x, y, c1), image.at(x, y, c2)};
-    };
     for (int y = 0; y < left.height; ++y) {
         for (int x = 0; x < left.width; ++x) {
             InputBeat beat;

@@ -36,7 +36,7 @@ ValidatedDisparity match_validated(const Image& left, const Image& right,
 // Its 8-bit view, stereo::to_label_map(match_validated(...)).
 DisparityMap match(const Image& left, const Image& right, const MatchParams& params);
 
-// Registers method "pipeline", engine "hls".
+// Registers method "pipeline", engine "hls", and the hierarchical levels' (hierarchical.hpp).
 void register_matchers(MatcherRegistry& registry);
 
 }  // namespace stereo::hls
