@@ -103,10 +103,7 @@ void reset_axis_core(VerilatedHarness<Model>& harness) {
     Model& model = harness.model();
     model.s_axis_tvalid = 0;
     model.m_axis_tready = 0;
-    model.rst = 1;
-    harness.tick();
-    harness.tick();
-    model.rst = 0;
+    harness.pulse_reset();
 }
 
 }  // namespace stereo::sim

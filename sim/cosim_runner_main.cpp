@@ -123,10 +123,7 @@ bool serve(protocol::Channel& channel, VerilatedHarness<Vstereo_top>& harness,
             break;
         case protocol::kReset:
             idle_inputs(model);
-            model.rst = 1;
-            harness.tick();
-            harness.tick();
-            model.rst = 0;
+            harness.pulse_reset();
             channel.put(protocol::kOk);
             break;
         case protocol::kStream: {

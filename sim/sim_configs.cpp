@@ -60,10 +60,7 @@ class VerilatedTop final : public TopSim {
 
     void reset() override {
         idle_inputs();
-        model_->rst = 1;
-        harness_.tick();
-        harness_.tick();
-        model_->rst = 0;
+        harness_.pulse_reset();
     }
 
     void set_params(const CoreParams& params) override {

@@ -67,6 +67,15 @@ class VerilatedHarness {
 #endif
     }
 
+    // rst high for two clocks with the other inputs as they are set, then low (the cores'
+    // synchronous reset).
+    void pulse_reset() {
+        model_->rst = 1;
+        tick();
+        tick();
+        model_->rst = 0;
+    }
+
     // Inputs are already set: the falling edge settles them, the rising edge steps.
     void tick() {
         model_->clk = 0;

@@ -7,11 +7,8 @@ namespace stereo::tb {
 template <class Harness>
 void reset_stage(Harness& harness) {
     auto& model = harness.model();
-    model.rst = 1;
     model.ce = 1;
-    harness.tick();
-    harness.tick();
-    model.rst = 0;
+    harness.pulse_reset();
     model.ce = 0;
 }
 

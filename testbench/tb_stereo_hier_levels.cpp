@@ -50,12 +50,8 @@ class LevelsSim {
     LevelsSim() : harness_("hier_levels") { reset(); }
 
     void reset() {
-        auto& m = harness_.model();
-        m.rst = 1;
-        m.in_valid = 0;
-        harness_.tick();
-        harness_.tick();
-        m.rst = 0;
+        harness_.model().in_valid = 0;
+        harness_.pulse_reset();
     }
 
     // Streams the frames back to back (CA as `use_ca`), an idle clock before an input pixel with
