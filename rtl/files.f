@@ -20,6 +20,8 @@ stereo_wta.sv
 stereo_divider.sv
 stereo_validate.sv
 stereo_lr_check.sv
+stereo_asw_column.sv
+stereo_asw_aggregate.sv
 stereo_top.sv
 stereo_axil_top.sv
 stereo_synth_top.sv

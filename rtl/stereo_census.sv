@@ -23,7 +23,10 @@
 `include "stereo_assert.svh"
 
 module stereo_census #(
-    parameter int WIDTH = 64  // longest row
+    parameter int WIDTH = 64,  // longest row
+    // 1: out_left_rgb / out_right_rgb carry the RGB pixels of the centre beside its codes (the
+    // adaptive-support-weight core weighs by colour): r rows of both RGB pixels more memory.
+    parameter bit RGB_THROUGH = 1'b0
 ) (
     input  wire logic            clk,
     input  wire logic            rst,  // clears coordinates only
@@ -38,7 +41,9 @@ module stereo_census #(
     output fx_pkg::coord_t       out_x,
     output fx_pkg::coord_t       out_y,
     output logic [23:0]          out_left,   // census code of the left image at (out_x, out_y)
-    output logic [23:0]          out_right   // ... of the right image
+    output logic [23:0]          out_right,  // ... of the right image
+    output logic [23:0]          out_left_rgb,   // RGB_THROUGH: the left pixel (out_x, out_y)
+    output logic [23:0]          out_right_rgb   // ... the right one (else 0)
 );
   localparam int RADIUS = fx_pkg::CENSUS_RADIUS;
   localparam int SIDE = 2 * RADIUS + 1;
@@ -160,6 +165,38 @@ module stereo_census #(
       end
     end
   end
+
+  // ---- the centre's RGB pixels (RGB_THROUGH) --------------------------------------------------
+  // Row slot 0 of an r + 1-row stack of the registered pixels is row y - r of column x; r column
+  // registers more make it the centre (x - r, y - r).
+  generate
+    if (RGB_THROUGH) begin : g_rgb_through
+      localparam int RGB_PAIR_BITS = 2 * fx_pkg::RGB_BITS;  // {left, right}
+      logic [RGB_PAIR_BITS-1:0] rgb_q;
+      /* verilator lint_off UNUSEDSIGNAL */  // rows y - r + 1 .. y: only row y - r is read
+      logic [(RADIUS+1)*RGB_PAIR_BITS-1:0] rgb_column;
+      /* verilator lint_on UNUSEDSIGNAL */
+      logic [RGB_PAIR_BITS-1:0] rgb_history[RADIUS];  // row y - r of columns x - 1 .. x - r
+      always_ff @(posedge clk) begin
+        if (ce) rgb_q <= {in_left, in_right};
+      end
+      stereo_row_stack #(.WIDTH(WIDTH), .DATA_BITS(RGB_PAIR_BITS), .ROWS(RADIUS + 1)) rgb_rows (
+          .clk(clk), .ce(ce), .in_x(x_q), .cfg_width(cfg.width), .in_data(rgb_q),
+          .column(rgb_column));
+      always_ff @(posedge clk) begin
+        if (ce) begin
+          rgb_history[0] <= rgb_column[0+:RGB_PAIR_BITS];
+          for (int c = 1; c < RADIUS; c++) rgb_history[c] <= rgb_history[c-1];
+        end
+      end
+      always_ff @(posedge clk) begin
+        if (ce) {out_left_rgb, out_right_rgb} <= rgb_history[RADIUS-1];
+      end
+    end else begin : g_no_rgb
+      assign out_left_rgb = '0;
+      assign out_right_rgb = '0;
+    end
+  endgenerate
 
   // ---- the output register -------------------------------------------------------------------
   always_ff @(posedge clk) begin

@@ -41,6 +41,12 @@
 // ROWS codes (costs), row j (in_y - ROWS + 1 + j) at [j*COST_BITS +: COST_BITS], so the
 // aggregation's vertical pass needs no per-label line buffer: memory grows with the width, not
 // with the label count.
+// RAW_BITS > 0 (the adaptive-support-weight core, stereo_top ASW = 1): the delay lines carry
+// in_left_raw / in_right_raw (RAW_BITS each: a column of codes and its responses) instead of the
+// pixels, no distance is computed (out_data is 0) and the stage hands on the raw words as it
+// would the pixels it compares: out_left_raw, the left word of (out_x, out_y), and
+// out_right_raw, lane l's right word (label group*LANES + l's right column x - m - k; G = 1: all
+// labels), registered (G = 1) or of this clock's group (G > 1) like out_data.
 // Latency: 1 + K pixel steps. Throughput: one pixel per ce.
 `default_nettype none
 `include "stereo_assert.svh"
@@ -58,11 +64,15 @@ module stereo_cost #(
     parameter int WIDTH = 64,  // longest row (ROWS > 1 only)
     // LANES < NDISP: the right history's ring (stereo_group_ring BLOCK_RAM, BLOCK_MIN_FILL)
     parameter bit RING_BLOCK_RAM = 1'b0,
-    parameter int RING_BLOCK_MIN_FILL = 50
+    parameter int RING_BLOCK_MIN_FILL = 50,
+    // > 0: the delay lines carry the raw words of that many bits (above); ROWS must be 1.
+    parameter int RAW_BITS = 0
 ) (
 `include "stereo_stage_ports.svh"
+    /* verilator lint_off UNUSEDSIGNAL */  // RAW_BITS > 0: the raw words instead
     input  wire logic [23:0]                        in_left,       // {R, G, B} or census code
     input  wire logic [23:0]                        in_right,      // {R, G, B} or census code
+    /* verilator lint_on UNUSEDSIGNAL */
     /* verilator lint_off UNUSEDSIGNAL */  // reads width and min_disp only
     input  wire fx_pkg::config_t                    cfg,
     /* verilator lint_on UNUSEDSIGNAL */
@@ -73,11 +83,19 @@ module stereo_cost #(
     output      fx_pkg::coord_t                     out_next_y,
     // LANES = NDISP: all labels, registered; else labels [group*LANES +: LANES], combinational.
     // Label l's field is ROWS * COST_BITS wide (ROWS > 1: one code per row, above).
-    output      logic [LANES*ROWS*fx_pkg::COST_BITS-1:0] out_data
+    output      logic [LANES*ROWS*fx_pkg::COST_BITS-1:0] out_data,
+    // RAW_BITS > 0 only (else unused, and 0): the words the delay lines carry.
+    /* verilator lint_off UNUSEDSIGNAL */
+    input  wire logic [((RAW_BITS > 0) ? RAW_BITS : 1)-1:0]          in_left_raw,
+    input  wire logic [((RAW_BITS > 0) ? RAW_BITS : 1)-1:0]          in_right_raw,
+    /* verilator lint_on UNUSEDSIGNAL */
+    output      logic [((RAW_BITS > 0) ? RAW_BITS : 1)-1:0]          out_left_raw,
+    output      logic [LANES*((RAW_BITS > 0) ? RAW_BITS : 1)-1:0]    out_right_raw
 );
   localparam int COST_BITS = fx_pkg::COST_BITS;
-  localparam int PIXEL_BITS = (COST == fx_pkg::COST_LCDM) ? 2 * fx_pkg::LCDM_COORD_BITS
-                                                         : ROWS * fx_pkg::RGB_BITS;
+  localparam int PIXEL_BITS = (RAW_BITS > 0) ? RAW_BITS
+                             : (COST == fx_pkg::COST_LCDM) ? 2 * fx_pkg::LCDM_COORD_BITS
+                             : ROWS * fx_pkg::RGB_BITS;
   localparam int LANE_BITS = ROWS * COST_BITS;  // one label's output field
   localparam int GROUPS = NDISP / LANES;  // clocks per pixel step
   localparam int CENSUS_SHIFT = $clog2(fx_pkg::CENSUS_WEIGHT + 1);
@@ -106,11 +124,16 @@ module stereo_cost #(
   // in front of the delay lines.
   `STEREO_ASSERT(rows_cost, ROWS >= 1 && (ROWS == 1 || CENSUS_CODES || COST == fx_pkg::COST_AD),
                  "ROWS must be at least 1, and 1 unless the stage carries census codes or AD")
+  `STEREO_ASSERT(raw_rows, RAW_BITS >= 0 && (RAW_BITS == 0 || ROWS == 1),
+                 "RAW_BITS must be at least 0, and ROWS 1 when it is above 0")
 
   // The pixels the delay lines carry.
   logic [PIXEL_BITS-1:0] new_left, new_right;
   generate
-    if (COST == fx_pkg::COST_LCDM) begin : g_lcdm_points
+    if (RAW_BITS > 0) begin : g_raw_words
+      assign new_left  = in_left_raw;
+      assign new_right = in_right_raw;
+    end else if (COST == fx_pkg::COST_LCDM) begin : g_lcdm_points
       logic signed [fx_pkg::LCDM_COORD_BITS-1:0] left_a, left_b, right_a, right_b;
       stereo_lcdm_convert convert_left (
           .in_rgb(in_left),
@@ -286,13 +309,17 @@ module stereo_cost #(
     end
   endgenerate
 
+  /* verilator lint_off UNUSEDSIGNAL */  // RAW_BITS > 0: not handed on
   logic [LANES*LANE_BITS-1:0] cost_d;
+  /* verilator lint_on UNUSEDSIGNAL */
   generate
     for (genvar l = 0; l < LANES; l++) begin : g_label
       logic signed [17:0] right_x;  // xr
       logic [LANE_BITS-1:0] distance;
       assign right_x = lane_base_x - 18'(l);
-      if (ROWS > 1 && CENSUS_CODES) begin : g_census_rows  // one code per row
+      if (RAW_BITS > 0) begin : g_raw  // the words are handed on, not compared
+        assign distance = '0;
+      end else if (ROWS > 1 && CENSUS_CODES) begin : g_census_rows  // one code per row
         for (genvar j = 0; j < ROWS; j++) begin : g_row
           assign distance[j*COST_BITS +: COST_BITS] =
               census_count(lane_left[j*24 +: 24], lane_right[l*PIXEL_BITS + j*24 +: 24]);
@@ -359,8 +386,21 @@ module stereo_cost #(
 
   assign out_next_y = left_y;
   // G > 1: this clock's group of the registered pixel; G = 1: the output register.
-  stereo_stage_output #(.BITS(LANES * LANE_BITS), .REGISTERED(GROUPS == 1)) outputs (
-      .in_x(left_x), .in_y(left_y), .in_data(cost_d), .*);
+  generate
+    if (RAW_BITS > 0) begin : g_raw_outputs
+      logic [(LANES+1)*PIXEL_BITS-1:0] raw_out;
+      stereo_stage_output #(.BITS((LANES + 1) * PIXEL_BITS), .REGISTERED(GROUPS == 1)) outputs (
+          .in_x(left_x), .in_y(left_y), .in_data({lane_left, lane_right}), .out_data(raw_out),
+          .*);
+      assign {out_left_raw, out_right_raw} = raw_out;
+      assign out_data = '0;
+    end else begin : g_cost_outputs
+      stereo_stage_output #(.BITS(LANES * LANE_BITS), .REGISTERED(GROUPS == 1)) outputs (
+          .in_x(left_x), .in_y(left_y), .in_data(cost_d), .*);
+      assign out_left_raw = '0;
+      assign out_right_raw = '0;
+    end
+  endgenerate
 
 endmodule
 

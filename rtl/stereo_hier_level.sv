@@ -133,6 +133,9 @@ module stereo_hier_level #(
   // ---- census and cost ------------------------------------------------------------------------
   fx_pkg::coord_t census_x, census_y, cost_x, cost_y, cost_next_y;
   logic [23:0] census_left, census_right;
+  /* verilator lint_off UNUSEDSIGNAL */  // RGB_THROUGH = 0: zeros
+  logic [23:0] census_left_rgb, census_right_rgb;
+  /* verilator lint_on UNUSEDSIGNAL */
   stereo_census #(
       .WIDTH(WIDTH)
   ) census (
@@ -147,7 +150,9 @@ module stereo_hier_level #(
       .out_x(census_x),
       .out_y(census_y),
       .out_left(census_left),
-      .out_right(census_right)
+      .out_right(census_right),
+      .out_left_rgb(census_left_rgb),
+      .out_right_rgb(census_right_rgb)
   );
 
   logic [fx_pkg::DISP_BITS-1:0] cost_base_d;

@@ -71,7 +71,13 @@ module stereo_top #(
     // line buffer (memory grows with WIDTH * WINDOW, not with NDISP). 0: the aggregation keeps
     // each label's code (5 bits; AD: cost, 10 bits) for WINDOW - 1 rows, cheaper below about 10
     // labels (5 with AD).
-    parameter bit RECOMPUTE_COSTS = 1'b0
+    parameter bit RECOMPUTE_COSTS = 1'b0,
+    // 1: adaptive support weights (thesis Sec. 3.4; docs/asw.md) instead of the Gaussian
+    // aggregation and the CA rules: the separable two-pass ASW of diameter WINDOW
+    // (stereo_asw_column, stereo_asw_aggregate; COST_CENSUS or COST_AD, RECOMPUTE_COSTS = 0),
+    // its outside matches no candidates, the border rule at reach 0 (cfg_radius and cfg_use_ca
+    // are not read). Bit-exact with stereo::asw::match (Params::separable, the default responses).
+    parameter bit ASW = 1'b0
 ) (
     input  wire logic                               clk,
     input  wire logic                               rst,
@@ -105,6 +111,11 @@ module stereo_top #(
   `STEREO_ASSERT(recompute_costs_cost,
                  !RECOMPUTE_COSTS || COST == fx_pkg::COST_CENSUS || COST == fx_pkg::COST_AD,
                  "COST must be COST_CENSUS or COST_AD when RECOMPUTE_COSTS = 1")
+  `STEREO_ASSERT(asw_configuration,
+                 !ASW || ((COST == fx_pkg::COST_CENSUS || COST == fx_pkg::COST_AD) &&
+                          !RECOMPUTE_COSTS && WINDOW >= fx_pkg::ASW_MIN_DIAMETER &&
+                          WINDOW <= fx_pkg::ASW_MAX_DIAMETER),
+                 "ASW = 1 needs COST_CENSUS or COST_AD, RECOMPUTE_COSTS = 0 and WINDOW (the diameter) in ASW_MIN_DIAMETER .. ASW_MAX_DIAMETER")
   // Rows of codes per label between the cost stage and the aggregation.
   localparam int COST_ROWS = RECOMPUTE_COSTS ? WINDOW : 1;
 
@@ -120,7 +131,9 @@ module stereo_top #(
   // parameters support (port_cfg), latched when the frame starts (frame_cfg).
   // The kernel beside it (its width depends on WINDOW): cfg_kernel and frame_kernel.
   fx_pkg::config_t port_cfg, frame_cfg;
+  /* verilator lint_off UNUSEDSIGNAL */  // ASW = 1: no kernel
   logic [WINDOW*fx_pkg::TAP_BITS-1:0] frame_kernel, use_kernel;
+  /* verilator lint_on UNUSEDSIGNAL */
   logic port_cfg_error;
   always_comb begin
     port_cfg.width = cfg_width;
@@ -348,10 +361,15 @@ module stereo_top #(
   // The cost stage's input: the pixels, or (COST_CENSUS) their census codes.
   fx_pkg::coord_t match_x, match_y;
   logic [fx_pkg::RGB_BITS-1:0] match_left, match_right;
+  // ASW: the RGB pixels of (match_x, match_y) beside the census codes (COST_AD: the same).
+  /* verilator lint_off UNUSEDSIGNAL */  // ASW = 0
+  logic [fx_pkg::RGB_BITS-1:0] match_left_rgb, match_right_rgb;
+  /* verilator lint_on UNUSEDSIGNAL */
   generate
     if (COST == fx_pkg::COST_CENSUS) begin : g_census
       stereo_census #(
-          .WIDTH(WIDTH)
+          .WIDTH(WIDTH),
+          .RGB_THROUGH(ASW)
       ) census (
           .clk(clk),
           .rst(clear_coordinates),
@@ -364,121 +382,229 @@ module stereo_top #(
           .out_x(match_x),
           .out_y(match_y),
           .out_left(match_left),
-          .out_right(match_right)
+          .out_right(match_right),
+          .out_left_rgb(match_left_rgb),
+          .out_right_rgb(match_right_rgb)
       );
     end else begin : g_pixels
       assign match_x = x_in;
       assign match_y = y_in;
       assign match_left = left_pixel;
       assign match_right = right_pixel;
+      assign match_left_rgb = left_pixel;
+      assign match_right_rgb = right_pixel;
     end
   endgenerate
 
-  fx_pkg::coord_t cost_x, cost_y, agg_x, agg_y, rule1_x, rule1_y, wta_in_x, wta_in_y;
-  fx_pkg::coord_t cost_next_y;  // the row cost_y takes at this step
-  // LANES < NDISP: this clock's group of labels; COST_ROWS fields per label.
-  logic [LANES*COST_ROWS*COST_BITS-1:0] cost_data;
-  // G = 1: all labels of a pixel, registered; G > 1: the group each stage computes in this clock.
-  logic [LANES*AGG_BITS-1:0] agg_data, rule1_data, rule2_data;
+  fx_pkg::coord_t wta_in_x, wta_in_y;  // the WTA's input pixel
+  logic [LANES*AGG_BITS-1:0] rule2_data;  // ... and its costs (this clock's group when G > 1)
+  generate
+    if (ASW) begin : g_asw
+      // ---- adaptive support weights: column words, their delay lines, the three passes ----------
+      localparam int WORD_BITS = 48 * WINDOW;
+      fx_pkg::coord_t column_x, column_y, cost_x, cost_y;
+      logic [WORD_BITS-1:0] column_left, column_right, cost_left;
+      logic [LANES*WORD_BITS-1:0] cost_right;
+      /* verilator lint_off UNUSEDSIGNAL */  // the cost stage's outputs not used with RAW_BITS
+      fx_pkg::coord_t cost_next_y;
+      logic [LANES*COST_BITS-1:0] cost_data;
+      /* verilator lint_on UNUSEDSIGNAL */
+      stereo_asw_column #(
+          .WIDTH(WIDTH),
+          .DIAMETER(WINDOW),
+          .CODES(COST == fx_pkg::COST_CENSUS)
+      ) asw_column (
+          .clk(clk),
+          .ce(step),
+          .in_x(match_x),
+          .in_y(match_y),
+          .in_left_code(match_left),
+          .in_right_code(match_right),
+          .in_left_rgb(match_left_rgb),
+          .in_right_rgb(match_right_rgb),
+          .cfg_width(use_cfg.width),
+          .out_x(column_x),
+          .out_y(column_y),
+          .out_left(column_left),
+          .out_right(column_right)
+      );
+      stereo_cost #(
+          .NDISP(NDISP),
+          .MAX_MIN_DISP(MAX_MIN_DISP),
+          .COST(COST),
+          .LANES(LANES),
+          .RING_BLOCK_RAM(RING_BLOCK_RAM),
+          .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL),
+          .RAW_BITS(WORD_BITS)
+      ) cost (
+          .clk(clk),
+          .rst(clear_coordinates),
+          .ce(step),
+          .group(group),
+          .in_x(column_x),
+          .in_y(column_y),
+          .in_left(24'(0)),
+          .in_right(24'(0)),
+          .cfg(use_cfg),
+          .out_x(cost_x),
+          .out_y(cost_y),
+          .out_next_y(cost_next_y),
+          .out_data(cost_data),
+          .in_left_raw(column_left),
+          .in_right_raw(column_right),
+          .out_left_raw(cost_left),
+          .out_right_raw(cost_right)
+      );
+      stereo_asw_aggregate #(
+          .NDISP(NDISP),
+          .LANES(LANES),
+          .DIAMETER(WINDOW),
+          .CODES(COST == fx_pkg::COST_CENSUS),
+          .TRUNCATION((COST == fx_pkg::COST_CENSUS) ? fx_pkg::ASW_TRUNCATION_CENSUS
+                                                   : fx_pkg::ASW_TRUNCATION_AD),
+          .RING_BLOCK_RAM(RING_BLOCK_RAM),
+          .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
+      ) asw (
+          .clk(clk),
+          .rst(clear_coordinates),
+          .ce(step),
+          .group(group),
+          .in_x(cost_x),
+          .in_y(cost_y),
+          .in_left(cost_left),
+          .in_right(cost_right),
+          .cfg(use_cfg),
+          .out_x(wta_in_x),
+          .out_y(wta_in_y),
+          .out_data(rule2_data)
+      );
+    end else begin : g_gaussian_ca
+      fx_pkg::coord_t cost_x, cost_y, agg_x, agg_y, rule1_x, rule1_y;
+      fx_pkg::coord_t cost_next_y;  // the row cost_y takes at this step
+      // LANES < NDISP: this clock's group of labels; COST_ROWS fields per label.
+      logic [LANES*COST_ROWS*COST_BITS-1:0] cost_data;
+      // G = 1: all labels of a pixel, registered; G > 1: the group each stage computes in this clock.
+      logic [LANES*AGG_BITS-1:0] agg_data, rule1_data;
+      /* verilator lint_off UNUSEDSIGNAL */  // RAW_BITS = 0: zeros
+      logic unused_left_raw;
+      logic [LANES-1:0] unused_right_raw;
+      /* verilator lint_on UNUSEDSIGNAL */
 
-  stereo_cost #(
-      .NDISP(NDISP),
-      .MAX_MIN_DISP(MAX_MIN_DISP),
-      .COST(COST),
-      .LANES(LANES),
-      .CENSUS_CODES(COST == fx_pkg::COST_CENSUS),  // the aggregation keeps census codes
-      .ROWS(COST_ROWS),
-      .WIDTH(WIDTH),
-      .RING_BLOCK_RAM(RING_BLOCK_RAM),
-      .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
-  ) cost (
-      .clk(clk),
-      .rst(clear_coordinates),
-      .ce(step),
-      .group(group),
-      .in_x(match_x),
-      .in_y(match_y),
-      .in_left(match_left),
-      .in_right(match_right),
-      .cfg(use_cfg),
-      .out_x(cost_x),
-      .out_y(cost_y),
-      .out_next_y(cost_next_y),
-      .out_data(cost_data)
-  );
+      stereo_cost #(
+          .NDISP(NDISP),
+          .MAX_MIN_DISP(MAX_MIN_DISP),
+          .COST(COST),
+          .LANES(LANES),
+          .CENSUS_CODES(COST == fx_pkg::COST_CENSUS),  // the aggregation keeps census codes
+          .ROWS(COST_ROWS),
+          .WIDTH(WIDTH),
+          .RING_BLOCK_RAM(RING_BLOCK_RAM),
+          .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
+      ) cost (
+          .clk(clk),
+          .rst(clear_coordinates),
+          .ce(step),
+          .group(group),
+          .in_x(match_x),
+          .in_y(match_y),
+          .in_left(match_left),
+          .in_right(match_right),
+          .cfg(use_cfg),
+          .out_x(cost_x),
+          .out_y(cost_y),
+          .out_next_y(cost_next_y),
+          .out_data(cost_data),
+          .in_left_raw(1'b0),
+          .in_right_raw(1'b0),
+          .out_left_raw(unused_left_raw),
+          .out_right_raw(unused_right_raw)
+      );
 
-  stereo_aggregate #(
-      .WIDTH(WIDTH),
-      .NDISP(NDISP),
-      .WINDOW(WINDOW),
-      .RUNTIME_KERNEL(RUNTIME_KERNEL),
-      .LANES(LANES),
-      .RING_BLOCK_RAM(RING_BLOCK_RAM),
-      .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL),
-      .COST(COST),
-      .SHIFT_ADD(SHIFT_ADD),
-      .RECOMPUTE(RECOMPUTE_COSTS)
-  ) aggregate (
-      .clk(clk),
-      .rst(clear_coordinates),
-      .ce(step),
-      .group(group),
-      .in_x(cost_x),
-      .in_y(cost_y),
-      .in_next_y(cost_next_y),
-      .in_data(cost_data),
-      .cfg(use_cfg),
-      .cfg_kernel(use_kernel),
-      .out_x(agg_x),
-      .out_y(agg_y),
-      .out_data(agg_data)
-  );
+      stereo_aggregate #(
+          .WIDTH(WIDTH),
+          .NDISP(NDISP),
+          .WINDOW(WINDOW),
+          .RUNTIME_KERNEL(RUNTIME_KERNEL),
+          .LANES(LANES),
+          .RING_BLOCK_RAM(RING_BLOCK_RAM),
+          .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL),
+          .COST(COST),
+          .SHIFT_ADD(SHIFT_ADD),
+          .RECOMPUTE(RECOMPUTE_COSTS)
+      ) aggregate (
+          .clk(clk),
+          .rst(clear_coordinates),
+          .ce(step),
+          .group(group),
+          .in_x(cost_x),
+          .in_y(cost_y),
+          .in_next_y(cost_next_y),
+          .in_data(cost_data),
+          .cfg(use_cfg),
+          .cfg_kernel(use_kernel),
+          .out_x(agg_x),
+          .out_y(agg_y),
+          .out_data(agg_data)
+      );
 
-  // The two CA rules: the skeleton stereo_ca_plane with RULE CA_RULE1 and CA_RULE2 (rule 2 ignores
-  // cfg.ndisp).
-  stereo_ca_plane #(
-      .WIDTH(WIDTH),
-      .NDISP(NDISP),
-      .RULE(fx_pkg::CA_RULE1),
-      .LANES(LANES),
-      .RING_BLOCK_RAM(RING_BLOCK_RAM),
-      .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
-  ) ca_rule1 (
-      .clk(clk),
-      .rst(clear_coordinates),
-      .ce(step),
-      .group(group),
-      .in_x(agg_x),
-      .in_y(agg_y),
-      .in_data(agg_data),
-      .cfg(use_cfg),
-      .out_x(rule1_x),
-      .out_y(rule1_y),
-      .out_data(rule1_data)
-  );
+      // The two CA rules: the skeleton stereo_ca_plane with RULE CA_RULE1 and CA_RULE2 (rule 2 ignores
+      // cfg.ndisp).
+      stereo_ca_plane #(
+          .WIDTH(WIDTH),
+          .NDISP(NDISP),
+          .RULE(fx_pkg::CA_RULE1),
+          .LANES(LANES),
+          .RING_BLOCK_RAM(RING_BLOCK_RAM),
+          .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
+      ) ca_rule1 (
+          .clk(clk),
+          .rst(clear_coordinates),
+          .ce(step),
+          .group(group),
+          .in_x(agg_x),
+          .in_y(agg_y),
+          .in_data(agg_data),
+          .cfg(use_cfg),
+          .out_x(rule1_x),
+          .out_y(rule1_y),
+          .out_data(rule1_data)
+      );
 
-  stereo_ca_plane #(
-      .WIDTH(WIDTH),
-      .NDISP(NDISP),
-      .RULE(fx_pkg::CA_RULE2),
-      .LANES(LANES),
-      .RING_BLOCK_RAM(RING_BLOCK_RAM),
-      .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
-  ) ca_rule2 (
-      .clk(clk),
-      .rst(clear_coordinates),
-      .ce(step),
-      .group(group),
-      .in_x(rule1_x),
-      .in_y(rule1_y),
-      .in_data(rule1_data),
-      .cfg(use_cfg),
-      .out_x(wta_in_x),
-      .out_y(wta_in_y),
-      .out_data(rule2_data)
-  );
+      stereo_ca_plane #(
+          .WIDTH(WIDTH),
+          .NDISP(NDISP),
+          .RULE(fx_pkg::CA_RULE2),
+          .LANES(LANES),
+          .RING_BLOCK_RAM(RING_BLOCK_RAM),
+          .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
+      ) ca_rule2 (
+          .clk(clk),
+          .rst(clear_coordinates),
+          .ce(step),
+          .group(group),
+          .in_x(rule1_x),
+          .in_y(rule1_y),
+          .in_data(rule1_data),
+          .cfg(use_cfg),
+          .out_x(wta_in_x),
+          .out_y(wta_in_y),
+          .out_data(rule2_data)
+      );
+    end
+  endgenerate
 
   // ---- winner, stage 6 and the output register ------------------------------------------------
+  // ASW: the border rule at reach 0 (the support region is clipped at the frame's edges, and the
+  // outside matches are no candidates: a pixel is invalid only where its winner's match lies
+  // outside, i.e. none lies inside).
+  fx_pkg::config_t wta_cfg;
+  always_comb begin
+    wta_cfg = use_cfg;
+    if (ASW) begin
+      wta_cfg.radius = '0;
+      wta_cfg.use_ca = 1'b0;
+    end
+  end
   fx_pkg::coord_t wta_x, wta_y, validate_x, validate_y, out_x, out_y;
   logic [DISP_BITS-1:0] wta_label, validate_label;
   logic wta_border, validate_border;
@@ -500,7 +626,7 @@ module stereo_top #(
       .in_x(wta_in_x),
       .in_y(wta_in_y),
       .in_data(rule2_data),
-      .cfg(use_cfg),
+      .cfg(wta_cfg),
       .out_x(wta_x),
       .out_y(wta_y),
       .out_label(wta_label),

@@ -14,6 +14,7 @@
 //        den = a + b - 2 C1 > 0, when cfg.subpixel_en and 0 < k1 < cfg.ndisp - 1; else 0. Since
 //        p <= 8 (den >= |a - b|), a 4-bit restoring division of 16 |a - b| + den by 2 den (four
 //        subtractors) gives it; CORRECTION is the 9-entry table fx_pkg::subpixel_correction.
+//        No offset where a or b is ASW_NO_CANDIDATE (the ASW core's excluded labels).
 // Latency: 1 pixel step.
 `default_nettype none
 `include "stereo_assert.svh"
@@ -127,8 +128,12 @@ module stereo_validate #(
     // NDISP <= 2: no label has both neighbours (0 < k1 < cfg.ndisp - 1 <= 1 is empty), so the
     // offset is never applied and the division above folds away (it was the one- and two-label
     // cores' critical path).
+    // A neighbour that is no candidate (ASW_NO_CANDIDATE: the adaptive-support-weight core's
+    // outside matches) is no parabola point; no other stage's cost reaches that value.
     refine = NDISP > 2 && cfg.subpixel_en && in_label != '0 &&
-             32'(in_label) + 1 < 32'(cfg.ndisp) && denominator != '0;
+             32'(in_label) + 1 < 32'(cfg.ndisp) && denominator != '0 &&
+             in_before != BITS'(fx_pkg::ASW_NO_CANDIDATE) &&
+             in_after != BITS'(fx_pkg::ASW_NO_CANDIDATE);
     fixed = (fx_pkg::FIXED_BITS'(cfg.min_disp) + fx_pkg::FIXED_BITS'(in_label))
             <<< fx_pkg::SUBPIXEL_BITS;
     // The calibrated correction of the vertex (fx_pkg::subpixel_correction, a 9-entry table).

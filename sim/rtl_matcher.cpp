@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "hier_top_sim.hpp"
+#include "stereo/asw.hpp"
 #include "stereo/catalogue.hpp"
 #include "stereo/hierarchical_plane.hpp"
 #include "stereo/stages/lcdm.hpp"
@@ -16,6 +17,18 @@
 
 namespace stereo::sim {
 namespace {
+
+// One frame through a reset and configured core, without stalls.
+ValidatedDisparity stream_frame(TopSim& top, const Image& left, const Image& right) {
+    const auto beats = frame_beats(left, right);
+    const StreamResult result = top.stream(beats, beats.size(), {}, 100 * beats.size() + 100000);
+    if (!result.completed || !result.protocol_error.empty()) {
+        throw std::runtime_error(
+            "the RTL did not complete the frame: " +
+            (result.protocol_error.empty() ? std::string("it stalled") : result.protocol_error));
+    }
+    return assemble_validated(result.outputs, 0, left.width, left.height);
+}
 
 ValidatedDisparity run_rtl(const Image& left, const Image& right, const MatchParams& params) {
     check_pair(left, right);
@@ -42,14 +55,19 @@ ValidatedDisparity run_rtl(const Image& left, const Image& right, const MatchPar
     const auto top = make_top_sim(*config);
     top->reset();
     top->set_params({left.width, left.height, params});
-    const auto beats = frame_beats(left, right);
-    const StreamResult result = top->stream(beats, beats.size(), {}, 100 * beats.size() + 100000);
-    if (!result.completed || !result.protocol_error.empty()) {
-        throw std::runtime_error(
-            "the RTL did not complete the frame: " +
-            (result.protocol_error.empty() ? std::string("it stalled") : result.protocol_error));
-    }
-    return assemble_validated(result.outputs, 0, left.width, left.height);
+    return stream_frame(*top, left, right);
+}
+
+ValidatedDisparity run_asw_rtl(const Image& left, const Image& right, const MatchParams& params,
+                               const asw::Params& weights) {
+    check_pair(left, right);
+    const TopConfig& config = asw_top_config(left.width, left.height, params, weights);
+    const auto top = make_top_sim(config);
+    top->reset();
+    MatchParams ports = params;
+    ports.window = config.window;  // cfg_radius: the core's (the diameter is its WINDOW)
+    top->set_params({left.width, left.height, ports});
+    return stream_frame(*top, left, right);
 }
 
 // The frames of a steady rig until the plane settles, at most: the start frame, the mode's and
@@ -106,6 +124,10 @@ std::unique_ptr<Matcher> make_hier_rtl(const MatchConfig& config) {
 void register_matchers(MatcherRegistry& registry) {
     registry.add({"pipeline", "rtl", "Sec. 3.1 pipeline, the Verilated RTL (built configurations)",
                   pipeline_factory(&run_rtl)});
+    registry.add({"asw", "rtl",
+                  "Sec. 3.4 separable adaptive support weights, the Verilated stereo_top ASW = 1 "
+                  "(64x48, 16 labels; census at diameter 5, AD at 7)",
+                  asw_factory(&run_asw_rtl)});
     registry.add({"hierarchical", "rtl",
                   "Sec. 3.3 search with the plane field, the Verilated stereo_hier_top (64x48, "
                   "16 labels, pass window 5) as a steady rig until the host's plane settles",

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <initializer_list>
 #include <stdexcept>
@@ -14,6 +15,9 @@
 #include "Vstereo_synth_top_census_ndisp8_lanes2.h"
 #include "Vstereo_synth_top_ice40_ndisp1.h"
 #include "Vstereo_synth_top_ice40_ndisp4_lanes1.h"
+#include "Vstereo_top_asw_ad_lanes4.h"
+#include "Vstereo_top_asw_census.h"
+#include "Vstereo_top_asw_census_lanes4.h"
 #include "Vstereo_top_census.h"
 #include "Vstereo_top_census_lanes4.h"
 #include "Vstereo_top_census_recompute.h"
@@ -136,7 +140,8 @@ TopConfig top_config(std::string_view prefix) {
             p.window,
             p.max_min_disp == table::kUnset ? table::kDefaultMaxMinDisp : p.max_min_disp,
             p.lanes == table::kUnset ? p.ndisp : p.lanes,
-            p.cost == table::kUnset ? table::kCostAd : p.cost};
+            p.cost == table::kUnset ? table::kCostAd : p.cost,
+            p.asw != table::kUnset && p.asw != 0};
 }
 
 std::vector<TopConfig> top_configs(std::initializer_list<std::string_view> prefixes) {
@@ -207,6 +212,64 @@ const std::vector<TopConfig>& census_recompute_top_configs() {
     return configs;
 }
 
+const std::vector<TopConfig>& asw_top_configs() {
+    static const std::vector<TopConfig> configs = top_configs(
+        {"Vstereo_top_asw_census", "Vstereo_top_asw_census_lanes4", "Vstereo_top_asw_ad_lanes4"});
+    return configs;
+}
+
+namespace {
+
+std::string model_cost_name_of(int hardware_code) {
+    for (const catalogue::CostRow& row : catalogue::kCosts) {
+        if (row.hardware_code == hardware_code) {
+            return std::string(row.name);
+        }
+    }
+    return "?";
+}
+
+}  // namespace
+
+const TopConfig& asw_top_config(int width, int height, const MatchParams& params,
+                                const asw::Params& weights) {
+    asw::Params hardware;
+    hardware.diameter = weights.diameter;
+    hardware.separable = true;
+    hardware.threads = weights.threads;
+    if (weights != hardware) {
+        throw std::invalid_argument(
+            "the ASW core (engine rtl) computes the separable variant with the default "
+            "responses only: --separable, no --response, --shape, --no-continuity, "
+            "--left-weights-only or --truncation");
+    }
+    const TopConfig* best = nullptr;
+    for (const TopConfig& config : asw_top_configs()) {
+        const bool fits = config.cost == catalogue::cost(params.cost).hardware_code &&
+                          config.window == weights.diameter && width <= config.width &&
+                          height <= config.height && params.ndisp <= config.ndisp &&
+                          std::abs(params.min_disp) <= config.max_min_disp;
+        if (fits && (best == nullptr || config.lanes > best->lanes)) {
+            best = &config;
+        }
+    }
+    if (best == nullptr) {
+        std::string built;
+        for (const TopConfig& config : asw_top_configs()) {
+            built += (built.empty() ? "" : ", ") + config.name + " (" +
+                     model_cost_name_of(config.cost) + ", diameter " +
+                     std::to_string(config.window) + ", " + std::to_string(config.width) + "x" +
+                     std::to_string(config.height) + ", ndisp " + std::to_string(config.ndisp) +
+                     ")";
+        }
+        throw std::invalid_argument("no Verilated ASW core runs cost " + params.cost +
+                                    ", diameter " + std::to_string(weights.diameter) + " at " +
+                                    std::to_string(width) + "x" + std::to_string(height) +
+                                    " ndisp " + std::to_string(params.ndisp) + "; built: " + built);
+    }
+    return *best;
+}
+
 const std::vector<TopConfig>& lanes_top_configs() {
     static const std::vector<TopConfig> configs =
         top_configs({"Vstereo_top_lanes4", "Vstereo_top_lanes1", "Vstereo_top_ndisp8_lanes2",
@@ -224,7 +287,7 @@ const std::vector<TopConfig>& fpga_top_configs() {
 std::vector<const TopConfig*> all_top_configs() {
     std::vector<const TopConfig*> all;
     for (const auto* list : {&built_top_configs(), &lanes_top_configs(), &fpga_top_configs(),
-                             &census_recompute_top_configs()}) {
+                             &census_recompute_top_configs(), &asw_top_configs()}) {
         for (const TopConfig& config : *list) {
             all.push_back(&config);
         }
@@ -339,6 +402,9 @@ const std::pair<std::string_view, TopFactory> kFactories[] = {
     {"ndisp2-lanes1", &make_verilated<Vstereo_top_ndisp2_lanes1>},
     {"ndisp1", &make_verilated<Vstereo_top_ndisp1>},
     {"lean-lanes4", &make_verilated<Vstereo_top_lean_lanes4>},
+    {"asw-census", &make_verilated<Vstereo_top_asw_census>},
+    {"asw-census-lanes4", &make_verilated<Vstereo_top_asw_census_lanes4>},
+    {"asw-ad-lanes4", &make_verilated<Vstereo_top_asw_ad_lanes4>},
     {"ice40-ndisp1", &make_verilated<Vstereo_synth_top_ice40_ndisp1>},
     {"ice40-ndisp4-lanes1", &make_verilated<Vstereo_synth_top_ice40_ndisp4_lanes1>},
     {"fpga-census-ndisp8-lanes2", &make_verilated<Vstereo_synth_top_census_ndisp8_lanes2>},

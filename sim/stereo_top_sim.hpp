@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "stereo/asw.hpp"
 #include "stereo/image.hpp"
 #include "stereo/matcher.hpp"
 #include "stereo/pipeline.hpp"
@@ -26,6 +27,9 @@ struct TopConfig {
     int max_min_disp;  // largest |cfg_min_disp| (MAX_MIN_DISP)
     int lanes;         // labels computed per clock (LANES): NDISP / lanes clocks per pixel step
     int cost = table::kCostAd;  // COST: table::kCostAd, kCostLcdm or kCostCensus
+    // ASW = 1: adaptive support weights of diameter `window` (stereo::asw::match, separable)
+    // instead of the Gaussian aggregation and the CA rules.
+    bool asw = false;
 };
 
 // The configurations built into this binary, smallest first.
@@ -56,6 +60,17 @@ const std::vector<TopConfig>& lanes_top_configs();
 // The FPGA builds (stereo_synth_top: constant default kernel, MAX_MIN_DISP = 0) that
 // tb_stereo_synth_top co-simulates: "ice40-ndisp1", "ice40-ndisp4-lanes1".
 const std::vector<TopConfig>& fpga_top_configs();
+
+// The adaptive-support-weight cores (ASW = 1, docs/asw.md): "asw-census" (diameter 5, all labels
+// per clock), "asw-census-lanes4" (4 per clock) and "asw-ad-lanes4" (the AD cost, diameter 7).
+// Not among the other lists.
+const std::vector<TopConfig>& asw_top_configs();
+// The built ASW core that runs `weights` (the separable variant with the default responses) on a
+// width x height pair with `params` (cost, ndisp, min_disp): one of the pair's cost whose
+// diameter is weights.diameter and which covers the rest, the most labels per clock first.
+// Throws std::invalid_argument naming what the hardware cannot do, or the built cores.
+const TopConfig& asw_top_config(int width, int height, const MatchParams& params,
+                                const asw::Params& weights);
 
 // Any built stereo_top configuration by name (small, small-lcdm, lcdm-lanes4, small-census,
 // census-lanes4, full, the lanes and

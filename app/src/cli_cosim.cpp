@@ -225,6 +225,18 @@ Core choose_core(const CosimOptions& options, const MatchParams& params, int wid
     return core;
 }
 
+// The ASW core of this build that runs the pair (no cores on demand).
+Core asw_core(const CosimOptions& options, const MatchConfig& match_config, int width, int height) {
+    if (!options.size.empty() || options.lanes != 0 || options.max_min_disp != -1 || options.lean) {
+        throw std::invalid_argument(
+            "--method asw runs the built ASW cores: --size, --lanes, --max-min-disp and --lean "
+            "are for --method pipeline");
+    }
+    Core core;
+    core.config = &sim::asw_top_config(width, height, match_config.pipeline, match_config.asw);
+    return core;
+}
+
 // The frames' pixels against the model's: the count, the first ten, and for the first frame
 // with a mismatch its map (--diff) and the pixels the localisation watches.
 struct Comparison {
@@ -598,17 +610,25 @@ void run_cosim(const CosimOptions& given) {
     }
     CosimOptions options = given;
     options.frames = given.frames > 0 ? given.frames : kPipelineFrames;
-    const MatchConfig match_config = options.matcher.resolved();
+    // --method asw: the core with adaptive support weights (stereo_top ASW = 1), the separable
+    // variant whose diameter is --window, against the model's.
+    const bool asw = given.method == catalogue::method(catalogue::Method::asw).name;
+    MatchConfig match_config = options.matcher.resolved();
+    if (asw) {
+        match_config.asw.diameter = match_config.pipeline.window;
+        match_config.asw.separable = true;
+    }
     const MatchParams& params = match_config.pipeline;
     // The expected map: the golden model, made (and its parameters checked) before any file.
-    const auto model = matchers().create("pipeline", "model", match_config);
+    const auto model = matchers().create(given.method, "model", match_config);
     check_options(options);
     const io::ImagePair pair =
         apply_crop(io::load_pair(options.left, options.right, options.downscale), options.crop);
     const int width = pair.left.width;
     const int height = pair.left.height;
     model->validate(width, height);
-    const Core core = choose_core(options, params, width, height);
+    const Core core = asw ? asw_core(options, match_config, width, height)
+                          : choose_core(options, params, width, height);
 
     // Stage 6's full output: fixed disparity, reason and certainty of every pixel.
     const auto model_start = std::chrono::steady_clock::now();

@@ -43,12 +43,15 @@ void add_cosim_options(CLI::App& command, CosimOptions& options) {
         ->check(probability);
     command
         .add_option("--method", options.method,
-                    "pipeline: stereo_top; hierarchical: the hierarchical search's whole core "
-                    "(stereo_hier_top: census, up to 64x48, 16 labels, pass window 5, levels "
-                    "9 / 15 / 15, V = 16) with the host's plane tracker in the loop "
-                    "(docs/hierarchical.md)")
+                    "pipeline: stereo_top; asw: stereo_top with adaptive support weights (ASW = "
+                    "1: the separable variant, --window its diameter; census at 5 or AD at 7, "
+                    "up to 64x48, 16 labels; docs/asw.md); hierarchical: the hierarchical "
+                    "search's whole core (stereo_hier_top: census, up to 64x48, 16 labels, pass "
+                    "window 5, levels 9 / 15 / 15, V = 16) with the host's plane tracker in the "
+                    "loop (docs/hierarchical.md)")
         ->check(
             CLI::IsMember({std::string(catalogue::method(catalogue::Method::pipeline).name),
+                           std::string(catalogue::method(catalogue::Method::asw).name),
                            std::string(catalogue::method(catalogue::Method::hierarchical).name)}))
         ->capture_default_str();
     command.add_option("-o,--output", options.output, "Write the RTL's disparity PNG");

@@ -157,6 +157,14 @@ void validate_plain_params(const MatchParams& params, const std::string& engine)
     }
 }
 
+// ASW's matching parameters: the pipeline's cost, min_disp and stage 6 with the ASW aggregator
+// instead of the Gaussian window and the CA rules (pipeline.window, sigma and use_ca not read).
+MatchParams asw_checked(MatchParams params) {
+    params.window = 1;
+    params.use_ca = false;
+    return params;
+}
+
 }  // namespace
 
 hierarchical::Params hierarchical_params(const MatchConfig& config) {
@@ -198,6 +206,25 @@ MatcherFactory pipeline_factory(ValidatedPipelineFunction run) {
             [params, run](const Image& left, const Image& right) {
                 MatchResult result;
                 result.validated = run(left, right, params);
+                result.disparity = to_label_map(result.validated);
+                return result;
+            });
+    };
+}
+
+MatcherFactory asw_factory(AswFunction run) {
+    return [run](const MatchConfig& config) -> std::unique_ptr<Matcher> {
+        const MatchParams params = asw_checked(config.pipeline);
+        const asw::Params weights = config.asw;
+        validate_params(params);
+        return std::make_unique<FunctionMatcher>(
+            [params, weights](int width, int height) {
+                validate(params, width, height);
+                asw::validate(weights, width, height);
+            },
+            [params, weights, run](const Image& left, const Image& right) {
+                MatchResult result;
+                result.validated = run(left, right, params, weights);
                 result.disparity = to_label_map(result.validated);
                 return result;
             });
@@ -248,32 +275,7 @@ MatcherFactory quad_pair_factory(quad::Pair pair, PairFunction run) {
 
 // ---- asw: adaptive support weights (Sec. 3.4) --------------------------------------------
 // The pipeline's cost, min_disp and stage 6 with the ASW aggregator instead of the Gaussian
-// window and the CA rules (pipeline.window, sigma and use_ca are not read).
-using AswFunction = ValidatedDisparity (*)(const Image&, const Image&, const MatchParams&,
-                                           const asw::Params&);
-MatchParams asw_checked(MatchParams params) {
-    params.window = 1;
-    params.use_ca = false;
-    return params;
-}
-MatcherFactory asw_factory(AswFunction run) {
-    return [run](const MatchConfig& config) -> std::unique_ptr<Matcher> {
-        const MatchParams params = asw_checked(config.pipeline);
-        const asw::Params weights = config.asw;
-        validate_params(params);
-        return std::make_unique<FunctionMatcher>(
-            [params, weights](int width, int height) {
-                validate(params, width, height);
-                asw::validate(weights, width, height);
-            },
-            [params, weights, run](const Image& left, const Image& right) {
-                MatchResult result;
-                result.validated = run(left, right, params, weights);
-                result.disparity = to_label_map(result.validated);
-                return result;
-            });
-    };
-}
+// window and the CA rules (asw_checked).
 MatcherFactory asw_floating_factory() {
     return [](const MatchConfig& config) -> std::unique_ptr<Matcher> {
         const MatchParams params = asw_checked(config.pipeline);

@@ -25,6 +25,7 @@
 #include <utility>
 #include <vector>
 
+#include "stereo/asw.hpp"
 #include "stereo/constants.hpp"
 #include "stereo/hierarchical.hpp"
 #include "stereo/pipeline.hpp"
@@ -115,6 +116,8 @@ std::string parameter_types_section() {
     write_enum(sv, shift_add, "shift_add_e");
     return sv.str();
 }
+
+std::string asw_section();  // below, beside the other generated tables
 
 std::string package_text() {
     namespace fx = stereo::fx;
@@ -321,6 +324,7 @@ std::string package_text() {
           "    endcase\n  endfunction\n";
     sv << parameter_types_section();
     sv << lcdm_section();
+    sv << asw_section();
     sv << "\n  // ---- Census cost (constants.hpp, stages/census.hpp; COST = COST_CENSUS) ----\n";
     params({
         {"LUMA_R", fx::kLumaR, "luma = (R*LUMA_R + G*LUMA_G + B*LUMA_B"},
@@ -379,7 +383,8 @@ std::vector<std::pair<std::string, std::string>> assignments(const stereo::table
                               {"ROWS", params.rows, false},
                               {"V_MIN", params.v_min, false},
                               {"V_MAX", params.v_max, false},
-                              {"REFINE", params.refine, true}};
+                              {"REFINE", params.refine, true},
+                              {"ASW", params.asw, true}};
     for (const auto& [name, value, bit] : all) {
         if (value != stereo::table::kUnset) {
             out.emplace_back(
@@ -484,6 +489,93 @@ std::string json_text() {
     }
     out << "  ]\n}\n";
     return out.str();
+}
+
+// The adaptive-support-weight core's response tables (stereo_top ASW = 1, docs/asw.md): the
+// model's stereo::asw::response_tables at the default responses for every diameter the hardware
+// builds, each kind one packed constant (table t, diameter ASW_MIN_DIAMETER + 2 t, at
+// [t * entries * 8 +: entries * 8], entry i at [i * 8 +: 8]), read by three functions.
+std::string asw_section() {
+    namespace asw = stereo::asw;
+    namespace table = stereo::table;
+    std::ostringstream sv;
+    sv << "\n  // ---- Adaptive support weights (model/include/stereo/asw.hpp; stereo_top ASW = 1) "
+          "----\n";
+    const std::pair<const char*, int> constants[] = {
+        {"ASW_MIN_DIAMETER", table::kAswMinDiameter},
+        {"ASW_MAX_DIAMETER", table::kAswMaxDiameter},
+        {"ASW_RESPONSE_BITS", asw::kResponseBits},
+        {"ASW_COLOUR_ENTRIES", asw::kMaxColourDifference + 1},
+        {"ASW_CONTINUITY_ENTRIES", 256},
+        {"ASW_PROXIMITY_ENTRIES", table::kAswMaxDiameter / 2 + 1},
+        {"ASW_TRUNCATION_AD", asw::truncation_for(asw::kTruncationByCost, "ad")},
+        {"ASW_TRUNCATION_CENSUS", asw::truncation_for(asw::kTruncationByCost, "census")},
+        // An excluded label (stereo::kNoCandidate): all ones, above every aggregated cost.
+        {"ASW_NO_CANDIDATE", (1 << stereo::fx::kAggBits) - 1}};
+    for (const auto& [name, value] : constants) {
+        sv << "  localparam int " << name << " = " << value << ";\n";
+    }
+    const int tables = (table::kAswMaxDiameter - table::kAswMinDiameter) / 2 + 1;
+    // One kind: entries(w) gives diameter w's table; written highest diameter first.
+    auto packed = [&](const char* name, int entries, auto entries_of) {
+        sv << "  localparam logic [" << tables << " * " << entries << " * 8 - 1:0] " << name
+           << " = {";
+        for (int w = table::kAswMaxDiameter; w >= table::kAswMinDiameter; w -= 2) {
+            const std::vector<std::uint8_t> values = entries_of(w);
+            sv << "\n      " << entries * 8 << "'h";
+            for (int i = entries - 1; i >= 0; --i) {
+                static constexpr char kHex[] = "0123456789abcdef";
+                const int v = values[static_cast<std::size_t>(i)];
+                sv << kHex[v >> 4] << kHex[v & 15];
+            }
+            sv << (w > table::kAswMinDiameter ? "," : "") << "  // w = " << w;
+        }
+        sv << "\n  };\n";
+    };
+    auto tables_of = [](int w) {
+        asw::Params params;
+        params.diameter = w;
+        return asw::response_tables(params);
+    };
+    packed("ASW_COLOUR", asw::kMaxColourDifference + 1, [&](int w) { return tables_of(w).colour; });
+    packed("ASW_CONTINUITY", 256, [&](int w) { return tables_of(w).continuity; });
+    // Proximity along an axis: the response at distance |o| = 0 .. r (squared index o^2).
+    packed("ASW_PROXIMITY", table::kAswMaxDiameter / 2 + 1, [&](int w) {
+        const auto proximity = tables_of(w).proximity;
+        std::vector<std::uint8_t> axis(table::kAswMaxDiameter / 2 + 1, 0);
+        for (int o = 0; o <= w / 2; ++o) {
+            axis[static_cast<std::size_t>(o)] = proximity[static_cast<std::size_t>(o * o)];
+        }
+        return axis;
+    });
+    sv << "  // The responses of a diameter ASW_MIN_DIAMETER .. ASW_MAX_DIAMETER (odd): colour by\n"
+          "  // |dR| + |dG| + |dB|, continuity by the label difference, proximity by the "
+          "distance.\n"
+          "  function automatic logic [7:0] asw_colour(input int diameter, input int difference);\n"
+          "    asw_colour = ASW_COLOUR[(((diameter - ASW_MIN_DIAMETER) / 2) * ASW_COLOUR_ENTRIES "
+          "+\n"
+          "                             difference) * 8 +: 8];\n"
+          "  endfunction\n"
+          "  function automatic logic [7:0] asw_continuity(input int diameter, input int "
+          "difference);\n"
+          "    asw_continuity = ASW_CONTINUITY[(((diameter - ASW_MIN_DIAMETER) / 2) *\n"
+          "                                     ASW_CONTINUITY_ENTRIES + difference) * 8 +: 8];\n"
+          "  endfunction\n"
+          "  function automatic logic [7:0] asw_proximity(input int diameter, input int "
+          "distance);\n"
+          "    asw_proximity = ASW_PROXIMITY[(((diameter - ASW_MIN_DIAMETER) / 2) *\n"
+          "                                   ASW_PROXIMITY_ENTRIES + distance) * 8 +: 8];\n"
+          "  endfunction\n"
+          "  // (a * b + 128) >> 8: two responses combined (stereo::asw::combine).\n"
+          "  function automatic logic [7:0] asw_combine(input logic [7:0] a, input logic [7:0] "
+          "b);\n"
+          "    /* verilator lint_off UNUSEDSIGNAL */  // the rounded-off byte\n"
+          "    logic [15:0] product;\n"
+          "    /* verilator lint_on UNUSEDSIGNAL */\n"
+          "    product = 16'(a) * 16'(b) + 16'd128;\n"
+          "    asw_combine = product[15:8];\n"
+          "  endfunction\n";
+    return sv.str();
 }
 
 // The LCDM quarter-wave cosine for the HLS kernels (hls/include/stereo/hls/cost_lcdm.hpp): a

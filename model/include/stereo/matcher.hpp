@@ -128,6 +128,12 @@ MatcherFactory pipeline_factory(PipelineFunction run);
 using ValidatedPipelineFunction = ValidatedDisparity (*)(const Image&, const Image&,
                                                          const MatchParams&);
 MatcherFactory pipeline_factory(ValidatedPipelineFunction run);
+// A factory for an engine of method asw: the pipeline's cost, min_disp and stage 6 (its window,
+// sigma and CA are not read) with the aggregator's parameters (MatchConfig::asw), both validated
+// before `run`.
+using AswFunction = ValidatedDisparity (*)(const Image&, const Image&, const MatchParams&,
+                                           const asw::Params&);
+MatcherFactory asw_factory(AswFunction run);
 
 // The hierarchical search's parameters of a configuration (every engine of the method): the
 // pipeline's cost, ndisp, CA and stage 6, the 2-D options, and the 1-D pass's window and sigma

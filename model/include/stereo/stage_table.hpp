@@ -279,6 +279,33 @@ constexpr long long frame_cycles(int width, int height, int window, int ndisp, i
     return g * steps - 2 * (g - 1) + 1;
 }
 
+// The adaptive-support-weight core (stereo_top ASW = 1, WINDOW = the diameter w, r = w / 2):
+// the census stage (COST = census), r rows of the column stack (stereo_asw_column: a pixel's
+// vertical pass waits for row y + r), the cost stage (1 + K), the passes' 2r + 2 columns and
+// the output register (stereo_asw_aggregate), the WTA and stage 6 (1 + 1 + N) steps.
+constexpr int asw_pipeline_latency(int width, int diameter, int ndisp, int min_disp = 0,
+                                   int cost = kCostCensus) {
+    const int r = diameter / 2;
+    int steps = r * width + 2 * r + 3;
+    for (const std::size_t stage :
+         {std::size_t{0}, std::size_t{4}, std::size_t{5}, std::size_t{6}}) {
+        steps += kStages.at(stage).rtl.at(width, diameter, ndisp, min_disp);
+    }
+    if (cost == kCostCensus) {
+        steps += kCensusStage.rtl.at(width, diameter, ndisp, min_disp);
+    }
+    return steps;
+}
+
+// frame_cycles of the adaptive-support-weight core.
+constexpr long long asw_frame_cycles(int width, int height, int diameter, int ndisp, int lanes,
+                                     int min_disp = 0, int cost = kCostCensus) {
+    const long long g = clocks_per_step(ndisp, lanes);
+    const long long steps = static_cast<long long>(width) * height +
+                            asw_pipeline_latency(width, diameter, ndisp, min_disp, cost);
+    return g * steps - 2 * (g - 1) + 1;
+}
+
 // The same for the HLS pipeline (stereo_hls_top): (R + 2) * W + R + 9 + N + K, and 2 * W + 3
 // more with the census cost.
 constexpr int hls_pipeline_latency(int width, int window, int ndisp, int min_disp = 0,
@@ -293,54 +320,33 @@ constexpr int hls_pipeline_latency(int width, int window, int ndisp, int min_dis
     return steps;
 }
 
+// ---- Adaptive support weights in hardware (stereo_top ASW = 1, docs/asw.md) ---------------
+// The separable ASW replaces the aggregation and both CA rules: WINDOW is the support diameter
+// w, whose response tables fx_pkg holds for every odd w in this range (generated from
+// stereo::asw::response_tables).
+inline constexpr int kAswMinDiameter = 3;
+inline constexpr int kAswMaxDiameter = 31;
+
 // ---- RTL sources in compile order (rtl/files.f) --------------------------------------------
 // The package first, then every module before its first user. One module per file, named after
 // it; the list of modules to lint is this list without the package.
 inline constexpr std::string_view kPackageFile = "fx_pkg.sv";
-inline constexpr std::array<std::string_view, 43> kRtlModules = {
-    "stereo_coord_reg",
-    "stereo_stage_output",
-    "stereo_shift_reg",
-    "stereo_border_flags",
-    "stereo_window_centre",
-    "stereo_line_buffer",
-    "stereo_row_stack",
-    "stereo_group_ring",
-    "stereo_window3x3",
-    "stereo_ca_plane",
-    "stereo_lcdm_convert",
-    "stereo_lcdm_distance",
-    "stereo_census",
-    "stereo_cost",
-    "stereo_weighted_sum",
-    "stereo_aggregate",
-    "stereo_wta",
-    "stereo_divider",
-    "stereo_validate",
-    "stereo_lr_check",
-    "stereo_top",
-    "stereo_axil_top",
-    "stereo_synth_top",
-    "stereo_uart_rx",
-    "stereo_uart_tx",
-    "stereo_power_on_reset",
-    "stereo_board_link",
-    "stereo_board_top",
-    "stereo_uart_echo_top",
-    "stereo_downscale",
-    "stereo_plane_stats",
-    "stereo_plane_offset",
-    "stereo_row_warp",
-    "stereo_field_border",
-    "stereo_hier_pass",
-    "stereo_level_cost",
-    "stereo_level_wta",
-    "stereo_hier_level",
-    "stereo_fifo",
-    "stereo_level_stepper",
-    "stereo_prediction_ring",
-    "stereo_hier_levels",
-    "stereo_hier_top",
+inline constexpr std::array<std::string_view, 45> kRtlModules = {
+    "stereo_coord_reg",       "stereo_stage_output",  "stereo_shift_reg",
+    "stereo_border_flags",    "stereo_window_centre", "stereo_line_buffer",
+    "stereo_row_stack",       "stereo_group_ring",    "stereo_window3x3",
+    "stereo_ca_plane",        "stereo_lcdm_convert",  "stereo_lcdm_distance",
+    "stereo_census",          "stereo_cost",          "stereo_weighted_sum",
+    "stereo_aggregate",       "stereo_wta",           "stereo_divider",
+    "stereo_validate",        "stereo_lr_check",      "stereo_asw_column",
+    "stereo_asw_aggregate",   "stereo_top",           "stereo_axil_top",
+    "stereo_synth_top",       "stereo_uart_rx",       "stereo_uart_tx",
+    "stereo_power_on_reset",  "stereo_board_link",    "stereo_board_top",
+    "stereo_uart_echo_top",   "stereo_downscale",     "stereo_plane_stats",
+    "stereo_plane_offset",    "stereo_row_warp",      "stereo_field_border",
+    "stereo_hier_pass",       "stereo_level_cost",    "stereo_level_wta",
+    "stereo_hier_level",      "stereo_fifo",          "stereo_level_stepper",
+    "stereo_prediction_ring", "stereo_hier_levels",   "stereo_hier_top",
 };
 // Port-list fragments and the parameter-check macro (`STEREO_ASSERT) the modules `include (found
 // in rtl/: tools need rtl/ on the include path).
@@ -381,6 +387,7 @@ struct Params {
     int v_min = kUnset;
     int v_max = kUnset;
     int refine = kUnset;
+    int asw = kUnset;  // stereo_top's ASW: adaptive support weights of diameter WINDOW
 
     // These parameters with those that `over` sets put in their place.
     [[nodiscard]] constexpr Params with(const Params& over) const {
@@ -390,7 +397,7 @@ struct Params {
               &Params::runtime_kernel, &Params::rule, &Params::max_min_disp, &Params::cost,
               &Params::lanes, &Params::clks_per_bit, &Params::shift_add, &Params::recompute_costs,
               &Params::factor, &Params::cols, &Params::rows, &Params::v_min, &Params::v_max,
-              &Params::refine}) {
+              &Params::refine, &Params::asw}) {
             if (over.*field != kUnset) {
                 merged.*field = over.*field;
             }
@@ -461,6 +468,14 @@ inline constexpr Params kFpgaCensusNdisp8Lanes2 = kSmall.with({.ndisp = 8,
                                                                .lanes = 2,
                                                                .shift_add = kShiftAddAll});
 
+// The adaptive-support-weight core (ASW = 1; the window is the support diameter): the census
+// cost at diameter 5, all labels per clock and 4 per clock, and the AD cost (truncated) at
+// diameter 7, 4 per clock (tb_stereo_asw_top).
+inline constexpr Params kSmallAswCensus = kSmall.with({.cost = kCostCensus, .asw = 1});
+inline constexpr Params kSmallAswCensusLanes4 =
+    kSmall.with({.cost = kCostCensus, .lanes = 4, .asw = 1});
+inline constexpr Params kSmallAswAdLanes4 = kSmall.with({.window = 7, .lanes = 4, .asw = 1});
+
 // The VGA census core in the lean memory architecture as an FPGA runs it: 64 labels 8 per clock.
 inline constexpr Params kFullCensusLean =
     kFull.with({.cost = kCostCensus, .lanes = 8, .recompute_costs = 1});
@@ -470,7 +485,7 @@ inline constexpr Params kFullCensusLean =
 inline constexpr Params kFullHier = {
     .width = 640, .height = 480, .ndisp = 64, .window = 11, .lanes = 8, .recompute_costs = 1};
 
-inline constexpr std::array<VerilatedConfig, 41> kVerilatedConfigs = {{
+inline constexpr std::array<VerilatedConfig, 44> kVerilatedConfigs = {{
     {"Vstereo_top_small", "stereo_top", kSmall, "", "small"},
     {"Vstereo_top_lanes4", "stereo_top", kSmallLanes4, "", "lanes4"},
     {"Vstereo_top_lanes1", "stereo_top", kSmallLanes1, "", "lanes1"},
@@ -478,6 +493,9 @@ inline constexpr std::array<VerilatedConfig, 41> kVerilatedConfigs = {{
     {"Vstereo_top_ndisp2_lanes1", "stereo_top", kNdisp2Lanes1, "", "ndisp2-lanes1"},
     {"Vstereo_top_ndisp1", "stereo_top", kNdisp1, "", "ndisp1"},
     {"Vstereo_top_lean_lanes4", "stereo_top", kSmallLeanLanes4, "", "lean-lanes4"},
+    {"Vstereo_top_asw_census", "stereo_top", kSmallAswCensus, "", "asw-census"},
+    {"Vstereo_top_asw_census_lanes4", "stereo_top", kSmallAswCensusLanes4, "", "asw-census-lanes4"},
+    {"Vstereo_top_asw_ad_lanes4", "stereo_top", kSmallAswAdLanes4, "", "asw-ad-lanes4"},
     // The frame-border test of every window stage, at its default offsets (-2 .. 2).
     {"Vstereo_border_flags", "stereo_border_flags", {}, ""},
     {"Vstereo_cost", "stereo_cost", {.ndisp = kSmall.ndisp}, ""},

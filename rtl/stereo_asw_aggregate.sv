@@ -1,0 +1,291 @@
+// stereo_asw_aggregate: the separable adaptive-support-weight aggregation of two passes
+// (stereo_top ASW = 1; model: stereo::asw::match with Params::separable, docs/asw.md), the
+// stage between stereo_cost (RAW_BITS: the words of stereo_asw_column) and stereo_wta. Label k
+// stands for d = m + k, m = cfg.min_disp; r = DIAMETER / 2; x - d is the label's right column.
+//
+//   vertical  Av(x, d) = round(16 sum_j Wv_j C_j / sum_j Wv_j) over the rows j of the
+//             column stack inside the frame, Wv_j = vert_L[j] (x) (right column inside ?
+//             vert_R[j] : 255), C_j = min(cost, TRUNCATION) (no minimum for TRUNCATION = 0),
+//             the cost 31 x Hamming distance of the census codes (CODES = 1) or |dR| + |dG| +
+//             |dB| (CODES = 0), COST_OUTSIDE where the right column lies outside the right image;
+//   pass 1    A1(x1, d) = round(sum_dx W_dx Av(x1 + dx, d) / sum_dx W_dx) over the offsets whose
+//             column lies in the frame, W_dx = near_L[dx] (x) (x1 - d and x1 - d + dx inside ?
+//             near_R[dx] : 255), then ASW_NO_CANDIDATE where x1 - d lies outside; its winner
+//             (smallest cost, ties to the smaller k, labels below cfg.ndisp) is x1's label;
+//   pass 2    the same at x2 with W_dx = (far_L[dx] (x) continuity(|label(x2) - label(x2 +
+//             dx)|)) (x) (... far_R[dx] : 255): the output, ASW_NO_CANDIDATE where x2 - d
+//             lies outside.
+// round(n / s) is floor((n + floor(s / 2)) / s), a restoring division of 14 quotient bits; (x)
+// is fx_pkg::asw_combine. The words hand their right factors over with the right column
+// (stereo_asw_column), so every product is one combine per label and offset.
+//
+// Stream positions: the input (x, yc) is the vertical pass' pixel; x1 is the pixel r + 1 steps
+// before it, x2 the one 2r + 2 steps before (both follow the stream across row ends: their
+// coordinates come from a shift register). Pass 1 reads Av of the columns x1 - r .. x1 + r and
+// pass 2 those of x2 - r .. x2 + r, all computed at earlier steps: each label group keeps the last
+// 3r + 2 columns' Av in a ring (stereo_group_ring), so the passes never wait on this step's
+// vertical sums, and pass 2 reads the labels pass 1 gave x2 - r .. x2 + r at earlier steps.
+// Output: (x2, yc) and its labels' costs through the stage's output register (G = 1), or the
+// registered coordinates and this clock's group (G > 1, the stage contract of docs/rtl.md:
+// stereo_wta's input ring holds the group until the next step): latency 2r + 3 steps.
+// Time-multiplexed lanes (LANES < NDISP): the clock of group g computes labels [g*LANES +:
+// LANES] of all three passes; pass 1's winner runs over the groups (a register that group 0
+// restarts) and enters the label history at the step.
+`default_nettype none
+`include "stereo_assert.svh"
+
+module stereo_asw_aggregate #(
+    parameter int NDISP    = 16,  // labels
+    parameter int LANES    = NDISP,  // labels computed per clock (divides NDISP)
+    parameter int DIAMETER = 5,   // the support diameter w (odd)
+    parameter bit CODES    = 1'b1,  // 1: census codes (cost 31 x Hamming); 0: AD over RGB
+    parameter int TRUNCATION = 0,  // the cost's cap before the aggregation, 0: none
+    parameter bit RING_BLOCK_RAM = 1'b0,  // stereo_group_ring BLOCK_RAM
+    parameter int RING_BLOCK_MIN_FILL = 50  // stereo_group_ring BLOCK_MIN_FILL
+) (
+`include "stereo_stage_ports.svh"
+    input  wire logic [48*DIAMETER-1:0]          in_left,   // stereo_asw_column's words
+    input  wire logic [LANES*48*DIAMETER-1:0]    in_right,  // lane l: label group*LANES + l
+    /* verilator lint_off UNUSEDSIGNAL */  // reads width, height, ndisp and min_disp only
+    input  wire fx_pkg::config_t                 cfg,
+    /* verilator lint_on UNUSEDSIGNAL */
+    output      fx_pkg::coord_t                  out_x,
+    output      fx_pkg::coord_t                  out_y,
+    output      logic [LANES*fx_pkg::AGG_BITS-1:0] out_data
+);
+  localparam int R = DIAMETER / 2;
+  localparam int WORD = 48 * DIAMETER;
+  localparam int BITS = fx_pkg::AGG_BITS;
+  localparam int GROUPS = NDISP / LANES;
+  localparam int NEAR = R + 1;  // x1 = x - NEAR
+  localparam int FAR = 2 * R + 2;  // x2 = x - FAR
+  localparam int HISTORY = 3 * R + 2;  // Av of columns x - 1 .. x - HISTORY
+  localparam int DISP_BITS = fx_pkg::DISP_BITS;
+  localparam logic [BITS-1:0] NO_CANDIDATE = BITS'(fx_pkg::ASW_NO_CANDIDATE);
+
+  `STEREO_ASSERT(lanes_divide_ndisp, LANES >= 1 && NDISP % LANES == 0,
+                 "LANES must be at least 1 and divide NDISP")
+  `STEREO_ASSERT(diameter_range,
+                 DIAMETER % 2 == 1 && DIAMETER >= fx_pkg::ASW_MIN_DIAMETER &&
+                     DIAMETER <= fx_pkg::ASW_MAX_DIAMETER,
+                 "DIAMETER must be odd, ASW_MIN_DIAMETER .. ASW_MAX_DIAMETER")
+
+  // ---- the words' fields (stereo_asw_column) ---------------------------------------------------
+  function automatic logic [23:0] code_of(input logic [WORD-1:0] word, input int j);
+    code_of = word[j*24+:24];
+  endfunction
+  function automatic logic [7:0] vert_of(input logic [WORD-1:0] word, input int j);
+    vert_of = word[24*DIAMETER+j*8+:8];
+  endfunction
+  function automatic logic [7:0] near_of(input logic [WORD-1:0] word, input int i);
+    near_of = word[32*DIAMETER+i*8+:8];
+  endfunction
+  function automatic logic [7:0] far_of(input logic [WORD-1:0] word, input int i);
+    far_of = word[40*DIAMETER+i*8+:8];
+  endfunction
+
+  // ---- arithmetic -------------------------------------------------------------------------------
+  function automatic logic [9:0] matching_cost(input logic [23:0] a, input logic [23:0] b);
+    logic [9:0] sum;
+    logic [7:0] channel;
+    sum = '0;
+    if (CODES) begin
+      for (int i = 0; i < fx_pkg::CENSUS_BITS; i++) sum = sum + {9'd0, a[i] ^ b[i]};
+      sum = 10'(sum * 10'(fx_pkg::CENSUS_WEIGHT));
+    end else begin
+      for (int c = 0; c < 3; c++) begin
+        channel = (a[c*8+:8] >= b[c*8+:8]) ? a[c*8+:8] - b[c*8+:8] : b[c*8+:8] - a[c*8+:8];
+        sum = sum + {2'd0, channel};
+      end
+    end
+    matching_cost = sum;
+  endfunction
+  // floor(((num << shift) + floor(den / 2)) / den), the quotient below 2^BITS (a weighted mean
+  // of values below 2^BITS / 16 << 4, or below 2^BITS): BITS rows of long division, the
+  // partial remainder below 2 den.
+  function automatic logic [BITS-1:0] mean(input logic [31:0] num, input logic [15:0] den,
+                                           input int shift);
+    logic [35:0] dividend;
+    logic [16:0] partial;
+    logic [BITS-1:0] quotient;
+    dividend = (36'(num) << shift) + 36'(den[15:1]);
+    partial = 17'(dividend >> BITS);
+    quotient = '0;
+    for (int i = BITS - 1; i >= 0; i--) begin
+      partial = {partial[15:0], dividend[i]};
+      if (partial >= {1'b0, den}) begin
+        partial = partial - {1'b0, den};
+        quotient[i] = 1'b1;
+      end
+    end
+    mean = quotient;
+  endfunction
+  function automatic logic in_range(input logic signed [17:0] x, input fx_pkg::cfg_size_t width);
+    in_range = x >= 18'sd0 && x < $signed(18'(width));
+  endfunction
+
+  // ---- positions --------------------------------------------------------------------------------
+  // xs[p], ys[p]: the input pixel p steps ago (p = 1 .. FAR); x1 = xs[NEAR], x2 = xs[FAR].
+  fx_pkg::coord_t xs[FAR+1], ys[FAR+1];
+  always_comb begin
+    xs[0] = in_x;
+    ys[0] = in_y;
+  end
+  always_ff @(posedge clk) begin
+    if (rst) begin
+      for (int p = 1; p <= FAR; p++) begin
+        xs[p] <= '0;
+        ys[p] <= fx_pkg::NO_PIXEL;
+      end
+    end else if (ce) begin
+      for (int p = 1; p <= FAR; p++) begin
+        xs[p] <= xs[p-1];
+        ys[p] <= ys[p-1];
+      end
+    end
+  end
+
+  // The labels of this clock: k = group * LANES + l.
+  logic signed [17:0] base_k;
+  assign base_k = 18'(32'(group) * LANES);
+
+  // ---- the Av history of this clock's group ----------------------------------------------------
+  // head[(l*HISTORY + p - 1)*BITS +: BITS]: lane l's Av of column x - p.
+  localparam int RING_BITS = LANES * HISTORY * BITS;
+  logic [RING_BITS-1:0] head, next_state;
+  logic advance;
+  assign advance = ce || 32'(group) != GROUPS - 1;
+  stereo_group_ring #(
+      .BITS(RING_BITS),
+      .GROUPS(GROUPS),
+      .BLOCK_RAM(RING_BLOCK_RAM),
+      .BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
+  ) history (
+      .clk(clk),
+      .advance(advance),
+      .next_state(next_state),
+      .head(head)
+  );
+  function automatic logic [BITS-1:0] av_at(input int l, input int p);
+    av_at = head[(l*HISTORY+p-1)*BITS+:BITS];
+  endfunction
+
+  // ---- the vertical pass --------------------------------------------------------------------
+  always_comb begin
+    for (int l = 0; l < LANES; l++) begin
+      logic signed [17:0] right_x;
+      logic outside;
+      logic [31:0] num;
+      logic [15:0] den;
+      logic [9:0] cost;
+      logic [7:0] right_factor, weight;
+      right_x = 18'(in_x) - 18'(cfg.min_disp) - base_k - 18'(l);
+      outside = !in_range(right_x, cfg.width);
+      num = '0;
+      den = '0;
+      for (int j = 0; j < DIAMETER; j++) begin
+        cost = outside ? 10'(fx_pkg::COST_OUTSIDE)
+                       : matching_cost(code_of(in_left, j), code_of(in_right[l*WORD+:WORD], j));
+        if (TRUNCATION > 0 && cost > 10'(TRUNCATION)) cost = 10'(TRUNCATION);
+        right_factor = outside ? 8'd255 : vert_of(in_right[l*WORD+:WORD], j);
+        weight = fx_pkg::asw_combine(vert_of(in_left, j), right_factor);
+        if (!in_range(18'(in_y) - 18'(R) + 18'(j), cfg.height)) weight = '0;
+        num = num + 32'(weight) * 32'(cost);
+        den = den + 16'(weight);
+      end
+      // The new Av enters position 1; the older ones move one column back.
+      next_state[(l*HISTORY)*BITS+:BITS] = mean(num, den, fx_pkg::AGG_FRAC_BITS);
+      for (int p = 2; p <= HISTORY; p++) begin
+        next_state[(l*HISTORY+p-1)*BITS+:BITS] = av_at(l, p - 1);
+      end
+    end
+  end
+
+  // ---- the horizontal passes ------------------------------------------------------------------
+  // One pass over lane l at pixel `centre` (p steps back: column centre + dx is p - dx back),
+  // with the left factors `left_weight` (dx = i - R at [i*8 +: 8]) and the right ones from
+  // `right_word` (far or near).
+  logic [DISP_BITS-1:0] labels[1:2*R+1];  // labels[p]: pass 1's label of pixel x1 - p
+  logic [LANES*BITS-1:0] pass1, pass2;
+  always_comb begin
+    pass1 = '0;
+    pass2 = '0;
+    for (int pass = 1; pass <= 2; pass++) begin
+      for (int l = 0; l < LANES; l++) begin
+        logic signed [17:0] centre, right_x;
+        logic outside, right_inside;
+        logic [31:0] num;
+        logic [15:0] den;
+        logic [7:0] left_factor, right_factor, weight;
+        logic [DISP_BITS-1:0] label_step;
+        int back, dx;
+        back = (pass == 1) ? NEAR : FAR;
+        centre = (pass == 1) ? 18'(xs[NEAR]) : 18'(xs[FAR]);
+        right_x = centre - 18'(cfg.min_disp) - base_k - 18'(l);
+        outside = !in_range(right_x, cfg.width);
+        num = '0;
+        den = '0;
+        for (int i = 0; i < DIAMETER; i++) begin
+          dx = i - R;
+          label_step = '0;
+          right_inside = !outside && in_range(right_x + 18'(dx), cfg.width);
+          if (pass == 1) begin
+            left_factor = near_of(in_left, i);
+            right_factor = right_inside ? near_of(in_right[l*WORD+:WORD], i) : 8'd255;
+          end else begin
+            label_step = (labels[NEAR] >= labels[NEAR-dx]) ? labels[NEAR] - labels[NEAR-dx]
+                                                           : labels[NEAR-dx] - labels[NEAR];
+            left_factor = fx_pkg::asw_combine(far_of(in_left, i),
+                                              fx_pkg::asw_continuity(DIAMETER, 32'(label_step)));
+            right_factor = right_inside ? far_of(in_right[l*WORD+:WORD], i) : 8'd255;
+          end
+          weight = fx_pkg::asw_combine(left_factor, right_factor);
+          if (!in_range(centre + 18'(dx), cfg.width)) weight = '0;
+          num = num + 32'(weight) * 32'(av_at(l, back - dx));
+          den = den + 16'(weight);
+        end
+        if (pass == 1) pass1[l*BITS+:BITS] = outside ? NO_CANDIDATE : mean(num, den, 0);
+        else pass2[l*BITS+:BITS] = outside ? NO_CANDIDATE : mean(num, den, 0);
+      end
+    end
+  end
+
+  // ---- pass 1's winner over the groups, the label history -------------------------------------
+  // Costs with one bit more: labels >= cfg.ndisp count as 2^BITS, above every cell.
+  logic [BITS:0] group_cost, merged_cost, running_cost;
+  logic [DISP_BITS-1:0] group_label, merged_label, running_label;
+  always_comb begin
+    group_cost = {1'b1, BITS'(0)};
+    group_label = DISP_BITS'(base_k);
+    for (int l = 0; l < LANES; l++) begin
+      if (32'(base_k) + l < 32'(cfg.ndisp) && {1'b0, pass1[l*BITS+:BITS]} < group_cost) begin
+        group_cost = {1'b0, pass1[l*BITS+:BITS]};
+        group_label = DISP_BITS'(32'(base_k) + l);
+      end
+    end
+    if (32'(group) == 0 || group_cost < running_cost) begin
+      merged_cost = group_cost;
+      merged_label = group_label;
+    end else begin
+      merged_cost = running_cost;
+      merged_label = running_label;
+    end
+  end
+  always_ff @(posedge clk) begin
+    if (advance) begin
+      running_cost <= merged_cost;
+      running_label <= merged_label;
+    end
+    if (ce) begin
+      labels[1] <= merged_label;
+      for (int p = 2; p <= 2 * R + 1; p++) labels[p] <= labels[p-1];
+    end
+  end
+
+  // The output register (G = 1), or the coordinates only (G > 1: stereo_wta's input ring holds
+  // this clock's group until the next step, where the all-parallel stage has this register).
+  stereo_stage_output #(.BITS(LANES * BITS), .REGISTERED(GROUPS == 1)) outputs (
+      .in_x(xs[FAR]), .in_y(ys[FAR]), .in_data(pass2), .*);
+endmodule
+
+`default_nettype wire
