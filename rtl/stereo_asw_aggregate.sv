@@ -171,81 +171,108 @@ module stereo_asw_aggregate #(
   endfunction
 
   // ---- the vertical pass --------------------------------------------------------------------
-  always_comb begin
-    for (int l = 0; l < LANES; l++) begin
-      logic signed [17:0] right_x;
-      logic outside;
+  // Per lane (generate loops: every index below is a constant of the elaboration).
+  logic [LANES*BITS-1:0] vertical;  // lane l's Av of this step's column
+  for (genvar l = 0; l < LANES; l++) begin : g_vertical
+    logic [WORD-1:0] right_word;
+    logic signed [17:0] right_x;
+    logic outside;
+    assign right_word = in_right[l*WORD+:WORD];
+    assign right_x = 18'(in_x) - 18'(cfg.min_disp) - base_k - 18'(l);
+    assign outside = !in_range(right_x, cfg.width);
+    always_comb begin
       logic [31:0] num;
       logic [15:0] den;
       logic [9:0] cost;
       logic [7:0] right_factor, weight;
-      right_x = 18'(in_x) - 18'(cfg.min_disp) - base_k - 18'(l);
-      outside = !in_range(right_x, cfg.width);
+      logic [17:0] product;  // 8 x 10 bits
       num = '0;
       den = '0;
       for (int j = 0; j < DIAMETER; j++) begin
         cost = outside ? 10'(fx_pkg::COST_OUTSIDE)
-                       : matching_cost(code_of(in_left, j), code_of(in_right[l*WORD+:WORD], j));
+                       : matching_cost(code_of(in_left, j), code_of(right_word, j));
         if (TRUNCATION > 0 && cost > 10'(TRUNCATION)) cost = 10'(TRUNCATION);
-        right_factor = outside ? 8'd255 : vert_of(in_right[l*WORD+:WORD], j);
-        weight = fx_pkg::asw_combine(vert_of(in_left, j), right_factor);
-        if (!in_range(18'(in_y) - 18'(R) + 18'(j), cfg.height)) weight = '0;
-        num = num + 32'(weight) * 32'(cost);
+        right_factor = outside ? 8'd255 : vert_of(right_word, j);
+        weight = row_inside[j] ? fx_pkg::asw_combine(vert_of(in_left, j), right_factor) : '0;
+        product = 18'(weight) * 18'(cost);
+        num = num + 32'(product);
         den = den + 16'(weight);
       end
-      // The new Av enters position 1; the older ones move one column back.
-      next_state[(l*HISTORY)*BITS+:BITS] = mean(num, den, fx_pkg::AGG_FRAC_BITS);
-      for (int p = 2; p <= HISTORY; p++) begin
-        next_state[(l*HISTORY+p-1)*BITS+:BITS] = av_at(l, p - 1);
-      end
+      vertical[l*BITS+:BITS] = mean(num, den, fx_pkg::AGG_FRAC_BITS);
+    end
+    // The new Av enters position 1; the older ones move one column back.
+    assign next_state[(l*HISTORY)*BITS+:BITS] = vertical[l*BITS+:BITS];
+    if (HISTORY > 1) begin : g_shift
+      assign next_state[(l*HISTORY+1)*BITS+:(HISTORY-1)*BITS] =
+          head[(l*HISTORY)*BITS+:(HISTORY-1)*BITS];
+    end
+  end
+  // Rows of the column stack inside the frame (the same for every lane).
+  logic [DIAMETER-1:0] row_inside;
+  always_comb begin
+    for (int j = 0; j < DIAMETER; j++) begin
+      row_inside[j] = in_range(18'(in_y) - 18'(R) + 18'(j), cfg.height);
     end
   end
 
   // ---- the horizontal passes ------------------------------------------------------------------
-  // One pass over lane l at pixel `centre` (p steps back: column centre + dx is p - dx back),
-  // with the left factors `left_weight` (dx = i - R at [i*8 +: 8]) and the right ones from
-  // `right_word` (far or near).
+  // Pass p (1, 2) at pixel `centre`, BACK steps back: column centre + dx is BACK - dx back. The
+  // left factors do not depend on the label: computed once per pixel (pass 2's with the
+  // continuity of the labels pass 1 gave), the right ones come with each lane's word.
   logic [DISP_BITS-1:0] labels[1:2*R+1];  // labels[p]: pass 1's label of pixel x1 - p
   logic [LANES*BITS-1:0] pass1, pass2;
-  always_comb begin
-    pass1 = '0;
-    pass2 = '0;
-    for (int pass = 1; pass <= 2; pass++) begin
-      for (int l = 0; l < LANES; l++) begin
-        logic signed [17:0] centre, right_x;
-        logic outside, right_inside;
+  for (genvar pass = 1; pass <= 2; pass++) begin : g_pass
+    localparam int BACK = (pass == 1) ? NEAR : FAR;
+    logic signed [17:0] centre;
+    logic [8*DIAMETER-1:0] left_factor;
+    logic [DIAMETER-1:0] column_inside;
+    assign centre = 18'(xs[BACK]);
+    always_comb begin
+      logic [DISP_BITS-1:0] label_step;
+      for (int i = 0; i < DIAMETER; i++) begin
+        column_inside[i] = in_range(centre + 18'(i - R), cfg.width);
+        if (pass == 1) begin
+          left_factor[i*8+:8] = near_of(in_left, i);
+        end else begin
+          label_step = (labels[NEAR] >= labels[NEAR-(i-R)])
+                           ? labels[NEAR] - labels[NEAR-(i-R)]
+                           : labels[NEAR-(i-R)] - labels[NEAR];
+          left_factor[i*8+:8] = fx_pkg::asw_combine(
+              far_of(in_left, i), fx_pkg::asw_continuity(DIAMETER, 32'(label_step)));
+        end
+      end
+    end
+    for (genvar l = 0; l < LANES; l++) begin : g_lane
+      logic [WORD-1:0] right_word;
+      logic signed [17:0] right_x;
+      logic outside;
+      logic [BITS-1:0] result;
+      assign right_word = in_right[l*WORD+:WORD];
+      assign right_x = centre - 18'(cfg.min_disp) - base_k - 18'(l);
+      assign outside = !in_range(right_x, cfg.width);
+      always_comb begin
         logic [31:0] num;
         logic [15:0] den;
-        logic [7:0] left_factor, right_factor, weight;
-        logic [DISP_BITS-1:0] label_step;
-        int back, dx;
-        back = (pass == 1) ? NEAR : FAR;
-        centre = (pass == 1) ? 18'(xs[NEAR]) : 18'(xs[FAR]);
-        right_x = centre - 18'(cfg.min_disp) - base_k - 18'(l);
-        outside = !in_range(right_x, cfg.width);
+        logic [7:0] right_factor, weight;
+        logic [21:0] product;  // 8 x 14 bits
         num = '0;
         den = '0;
         for (int i = 0; i < DIAMETER; i++) begin
-          dx = i - R;
-          label_step = '0;
-          right_inside = !outside && in_range(right_x + 18'(dx), cfg.width);
-          if (pass == 1) begin
-            left_factor = near_of(in_left, i);
-            right_factor = right_inside ? near_of(in_right[l*WORD+:WORD], i) : 8'd255;
-          end else begin
-            label_step = (labels[NEAR] >= labels[NEAR-dx]) ? labels[NEAR] - labels[NEAR-dx]
-                                                           : labels[NEAR-dx] - labels[NEAR];
-            left_factor = fx_pkg::asw_combine(far_of(in_left, i),
-                                              fx_pkg::asw_continuity(DIAMETER, 32'(label_step)));
-            right_factor = right_inside ? far_of(in_right[l*WORD+:WORD], i) : 8'd255;
-          end
-          weight = fx_pkg::asw_combine(left_factor, right_factor);
-          if (!in_range(centre + 18'(dx), cfg.width)) weight = '0;
-          num = num + 32'(weight) * 32'(av_at(l, back - dx));
+          if (outside || !in_range(right_x + 18'(i - R), cfg.width)) right_factor = 8'd255;
+          else if (pass == 1) right_factor = near_of(right_word, i);
+          else right_factor = far_of(right_word, i);
+          weight = column_inside[i] ? fx_pkg::asw_combine(left_factor[i*8+:8], right_factor)
+                                    : '0;
+          product = 22'(weight) * 22'(av_at(l, BACK - (i - R)));
+          num = num + 32'(product);
           den = den + 16'(weight);
         end
-        if (pass == 1) pass1[l*BITS+:BITS] = outside ? NO_CANDIDATE : mean(num, den, 0);
-        else pass2[l*BITS+:BITS] = outside ? NO_CANDIDATE : mean(num, den, 0);
+        result = outside ? NO_CANDIDATE : mean(num, den, 0);
+      end
+      if (pass == 1) begin : g_first
+        assign pass1[l*BITS+:BITS] = result;
+      end else begin : g_second
+        assign pass2[l*BITS+:BITS] = result;
       end
     end
   end

@@ -24,7 +24,9 @@ module stereo_synth_top #(
     // Tap products from shifts and adds (stereo_top SHIFT_ADD): none, census vertical, all
     parameter fx_pkg::shift_add_e SHIFT_ADD = fx_pkg::SHIFT_ADD_NONE,
     // The lean memory architecture (stereo_top RECOMPUTE_COSTS; census or AD)
-    parameter bit RECOMPUTE_COSTS = 1'b0
+    parameter bit RECOMPUTE_COSTS = 1'b0,
+    // Adaptive support weights of diameter WINDOW (stereo_top ASW; census or AD)
+    parameter bit ASW = 1'b0
 ) (
     input  wire logic                            clk,
     input  wire logic                            rst,
@@ -34,7 +36,7 @@ module stereo_synth_top #(
       .WIDTH(WIDTH), .HEIGHT(HEIGHT), .NDISP(NDISP), .WINDOW(WINDOW), .RUNTIME_KERNEL(1'b0),
       .MAX_MIN_DISP(MAX_MIN_DISP), .LANES(LANES), .RING_BLOCK_RAM(RING_BLOCK_RAM),
       .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL), .COST(COST),
-      .SHIFT_ADD(SHIFT_ADD), .RECOMPUTE_COSTS(RECOMPUTE_COSTS)
+      .SHIFT_ADD(SHIFT_ADD), .RECOMPUTE_COSTS(RECOMPUTE_COSTS), .ASW(ASW)
   ) core (
       .cfg_radius(fx_pkg::CFG_RADIUS_BITS'(WINDOW / 2)),
       .cfg_kernel('0),  // unused: the kernel is constant

@@ -43,6 +43,9 @@
 #ifdef STEREO_COSIM_FULL_CENSUS
 #include "Vstereo_top_full_census_lean.h"
 #endif
+#ifdef STEREO_COSIM_FULL_ASW
+#include "Vstereo_top_full_asw.h"
+#endif
 #ifdef STEREO_COSIM_USER
 #include "Vstereo_top_user.h"
 #endif
@@ -213,8 +216,14 @@ const std::vector<TopConfig>& census_recompute_top_configs() {
 }
 
 const std::vector<TopConfig>& asw_top_configs() {
-    static const std::vector<TopConfig> configs = top_configs(
-        {"Vstereo_top_asw_census", "Vstereo_top_asw_census_lanes4", "Vstereo_top_asw_ad_lanes4"});
+    static const std::vector<TopConfig> configs = top_configs({
+        "Vstereo_top_asw_census",
+        "Vstereo_top_asw_census_lanes4",
+        "Vstereo_top_asw_ad_lanes4",
+#ifdef STEREO_COSIM_FULL_ASW
+        "Vstereo_top_full_asw",
+#endif
+    });
     return configs;
 }
 
@@ -413,6 +422,9 @@ const std::pair<std::string_view, TopFactory> kFactories[] = {
 #endif
 #ifdef STEREO_COSIM_FULL_CENSUS
     {"full-census-lean", &make_verilated<Vstereo_top_full_census_lean>},
+#endif
+#ifdef STEREO_COSIM_FULL_ASW
+    {"full-asw", &make_verilated<Vstereo_top_full_asw>},
 #endif
 #ifdef STEREO_COSIM_USER
     {"user", &make_verilated<Vstereo_top_user>},

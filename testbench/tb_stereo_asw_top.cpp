@@ -55,6 +55,10 @@ ValidatedDisparity model(const Image& left, const Image& right, const MatchParam
     return asw::match(left, right, params, asw_params());
 }
 
+// The VGA build (-DSTEREO_COSIM_CONFIGS=full_asw, synthesis) is the model's hardware configuration.
+static_assert(table::kFullAsw.window == asw::kHardwareDiameter &&
+              table::kFullAsw.cost == table::kCostCensus);
+
 TEST(AswConfiguration, IsAnAswBuild) {
     ASSERT_TRUE(config().asw);
     EXPECT_GE(config().window, table::kAswMinDiameter);

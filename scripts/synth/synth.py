@@ -108,6 +108,12 @@ def config_from_args(args):
             raise ReportError("--recompute (the lean memory architecture) is for the costs "
                               + ", ".join(lean))
         config["recompute_costs"] = 1
+    # stereo_top's ASW (adaptive support weights of diameter --window, docs/asw.md), likewise.
+    if getattr(args, "asw", False):
+        if config.get("cost", "ad") not in ("ad", "census") or config.get("recompute_costs"):
+            raise ReportError("--asw (adaptive support weights) is for the costs ad and census, "
+                              "without --recompute")
+        config["asw"] = 1
     # stereo_top's MAX_MIN_DISP, likewise recorded only when given.
     if getattr(args, "max_min_disp", None) is not None and getattr(args, "command", None) != "board":
         config["max_min_disp"] = args.max_min_disp
@@ -141,6 +147,8 @@ def chparam(config, ice40=False):
         extra += f"-set SHIFT_ADD {SHIFT_ADD[config['shift_add']]} "
     if config.get("recompute_costs"):
         extra += "-set RECOMPUTE_COSTS 1 "
+    if config.get("asw"):
+        extra += "-set ASW 1 "
     return (f"chparam -set WIDTH {config['width']} -set HEIGHT {config['height']} "
             f"-set NDISP {config['ndisp']} -set WINDOW {config['window']} "
             f"-set LANES {lanes} {extra}{'-set RING_BLOCK_RAM 1 ' if ice40 else ''}{TOP}")
@@ -1385,6 +1393,10 @@ def add_config_arguments(parser, width=64, height=48, ndisp=4, window=5):
                         help="stereo_top SHIFT_ADD: which constant tap products of the aggregation "
                              "are shifts and adds instead of multipliers (DSP blocks): none, "
                              "narrow (the census codes' vertical pass) or all (default: none)")
+    parser.add_argument("--asw", action="store_true",
+                        help="stereo_top ASW (census or AD): adaptive support weights, the "
+                             "separable two-pass core of diameter --window instead of the "
+                             "Gaussian window and the CA rules (docs/asw.md)")
     parser.add_argument("--recompute", action="store_true",
                         help="stereo_top RECOMPUTE_COSTS (census or AD): the lean memory "
                              "architecture, rows of census codes (RGB) instead of per-label rows "

@@ -476,6 +476,10 @@ inline constexpr Params kSmallAswCensusLanes4 =
     kSmall.with({.cost = kCostCensus, .lanes = 4, .asw = 1});
 inline constexpr Params kSmallAswAdLanes4 = kSmall.with({.window = 7, .lanes = 4, .asw = 1});
 
+// The VGA ASW core as an FPGA runs it (docs/results-asw.md "Hardware configuration"): census,
+// diameter 11, 64 labels 8 per clock.
+inline constexpr Params kFullAsw = kFull.with({.cost = kCostCensus, .lanes = 8, .asw = 1});
+
 // The VGA census core in the lean memory architecture as an FPGA runs it: 64 labels 8 per clock.
 inline constexpr Params kFullCensusLean =
     kFull.with({.cost = kCostCensus, .lanes = 8, .recompute_costs = 1});
@@ -485,7 +489,7 @@ inline constexpr Params kFullCensusLean =
 inline constexpr Params kFullHier = {
     .width = 640, .height = 480, .ndisp = 64, .window = 11, .lanes = 8, .recompute_costs = 1};
 
-inline constexpr std::array<VerilatedConfig, 44> kVerilatedConfigs = {{
+inline constexpr std::array<VerilatedConfig, 45> kVerilatedConfigs = {{
     {"Vstereo_top_small", "stereo_top", kSmall, "", "small"},
     {"Vstereo_top_lanes4", "stereo_top", kSmallLanes4, "", "lanes4"},
     {"Vstereo_top_lanes1", "stereo_top", kSmallLanes1, "", "lanes1"},
@@ -590,6 +594,8 @@ inline constexpr std::array<VerilatedConfig, 44> kVerilatedConfigs = {{
     // ... and the lean census core at that size: -DSTEREO_COSIM_CONFIGS=full_census_lean.
     {"Vstereo_top_full_census_lean", "stereo_top", kFullCensusLean, "STEREO_COSIM_FULL_CENSUS",
      "full-census-lean"},
+    // ... the ASW core at that size: -DSTEREO_COSIM_CONFIGS=full_asw.
+    {"Vstereo_top_full_asw", "stereo_top", kFullAsw, "STEREO_COSIM_FULL_ASW", "full-asw"},
     // ... and the whole hierarchical core at that size: -DSTEREO_COSIM_CONFIGS=hier_top_full.
     {"Vstereo_hier_top_full", "stereo_hier_top", kFullHier, "STEREO_COSIM_FULL_HIER",
      "hier-top-full"},
