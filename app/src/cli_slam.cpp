@@ -81,11 +81,15 @@ struct Totals {
     double lifted = 0.0;
     double matches = 0.0;
     double valid_fraction = 0.0;
+    double bundle_points = 0.0;
+    double bundle_initial = 0.0;
+    double bundle_final = 0.0;
 };
 
 void add_times(slam::StageTimes& sum, const slam::StageTimes& t) {
     sum.frontend_ms += t.frontend_ms;
     sum.motion_ms += t.motion_ms;
+    sum.bundle_ms += t.bundle_ms;
     sum.local_map_ms += t.local_map_ms;
     sum.global_map_ms += t.global_map_ms;
 }
@@ -119,6 +123,11 @@ Input checked_input(const SlamOptions& o) {
                                     " is larger than the images");
     }
     slam::validate(o.params, width, height);
+    if (o.params.bundle_enabled && o.params.bundle.window > frames) {
+        throw std::invalid_argument("--ba-window " + std::to_string(o.params.bundle.window) +
+                                    " is larger than the " + std::to_string(frames) +
+                                    " frames of the run");
+    }
     if (o.vdisparity_frame < 0 || o.vdisparity_frame >= frames) {
         throw std::invalid_argument("--vdisparity-frame must be in 0.." +
                                     std::to_string(frames - 1));
@@ -157,6 +166,9 @@ Totals run_frames(const SlamOptions& o, const Input& in, slam::Slam& slam,
             totals.inliers += report.motion.inliers;
             totals.lifted += report.motion.lifted;
             totals.matches += report.motion.matches;
+            totals.bundle_points += report.bundle.points;
+            totals.bundle_initial += report.bundle.initial_cost;
+            totals.bundle_final += report.bundle.final_cost;
         }
         if (i == o.vdisparity_frame && !o.vdisparity.empty()) {
             vdisparity_picture = slam::draw_v_disparity(slam.last_v_disparity(), report.ground,
@@ -187,6 +199,7 @@ nlohmann::json run_summary(const SlamOptions& o, const Input& in, const Totals& 
                       {"load", fps(frames, totals.load_ms)},
                       {"frontend", fps(frames, totals.stages.frontend_ms)},
                       {"motion", fps(frames, totals.stages.motion_ms)},
+                      {"bundle", fps(frames, totals.stages.bundle_ms)},
                       {"local_map", fps(frames, totals.stages.local_map_ms)},
                       {"global_map", fps(frames, totals.stages.global_map_ms)}};
     summary["valid_fraction"] = totals.valid_fraction / frames;
@@ -194,17 +207,25 @@ nlohmann::json run_summary(const SlamOptions& o, const Input& in, const Totals& 
                          {"mean_matches", totals.matches / per_pair},
                          {"mean_lifted", totals.lifted / per_pair},
                          {"mean_inliers", totals.inliers / per_pair}};
+    summary["bundle"] = {{"enabled", o.params.bundle_enabled},
+                         {"window", o.params.bundle.window},
+                         {"mean_points", totals.bundle_points / per_pair},
+                         {"mean_initial_cost", totals.bundle_initial / per_pair},
+                         {"mean_final_cost", totals.bundle_final / per_pair}};
     summary["ground_line_frames"] = totals.ground_found;
     summary["merges_applied"] = totals.merges_applied;
     const slam::Trajectory& estimate = slam.trajectory();
     const slam::Trajectory& odometry = slam.odometry();
+    const slam::Trajectory& adjusted = slam.adjusted();
     summary["drift"] = {{"odometry", drift_json(slam::drift(odometry))},
+                        {"adjusted", drift_json(slam::drift(adjusted))},
                         {"merged", drift_json(slam::drift(estimate))}};
     if (truth && frames >= 3) {
         summary["poses"] = "present";
         summary["path_length_m"] = slam::trajectory_errors(odometry, *truth, kRpeGap).path_length_m;
         summary["errors"] = {
             {"odometry", errors_json(slam::trajectory_errors(odometry, *truth, kRpeGap))},
+            {"adjusted", errors_json(slam::trajectory_errors(adjusted, *truth, kRpeGap))},
             {"merged", errors_json(slam::trajectory_errors(estimate, *truth, kRpeGap))}};
     } else {
         summary["poses"] = truth ? "too few frames" : "absent";
@@ -276,7 +297,7 @@ void print_summary(const nlohmann::json& summary, const Input& in, const Totals&
                     d["final_translation_m"].get<double>(), d["final_rotation_deg"].get<double>());
         return;
     }
-    for (const char* name : {"odometry", "merged"}) {
+    for (const char* name : {"odometry", "adjusted", "merged"}) {
         const auto& e = summary["errors"][name];
         std::printf("%-8s ATE %.3f m (%.2f %% of %.1f m), RPE/%d frames %.2f %% %.3f deg\n", name,
                     e["ate_rmse_m"].get<double>(), e["ate_percent"].get<double>(),
@@ -384,6 +405,15 @@ void add_slam_command(CLI::App& app) {
          {"--ground-tolerance", &p.local.tolerance,
           "Ground band either side of the v-disparity line, pixels"},
          {"--stride", &p.local.stride, "Map every stride-th pixel"}});
+    command->add_flag("!--no-ba", p.bundle_enabled,
+                      "No windowed bundle adjustment: the frame-to-frame motion chain alone");
+    add_number_options(*command,
+                       {{"--ba-window", &p.bundle.window,
+                         "Key frames per bundle adjustment (the oldest held fixed), 2..frames"},
+                        {"--ba-huber", &p.bundle.huber_px,
+                         "Huber threshold of the (u, v, d) reprojection error, pixels"},
+                        {"--ba-iterations", &p.bundle.iterations,
+                         "Levenberg-Marquardt iterations per adjustment"}});
     command->add_flag("!--no-merge", p.merge_enabled, "Place local maps with the odometry alone");
     add_number_options(
         *command,

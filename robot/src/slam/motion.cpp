@@ -229,9 +229,7 @@ double rotation_deg(const Eigen::Isometry3d& transform) {
     return std::abs(angle_axis.angle()) * 180.0 / std::numbers::pi;
 }
 
-namespace {
-
-Eigen::Isometry3d increment(const Eigen::Matrix<double, 6, 1>& delta) {
+Eigen::Isometry3d se3_increment(const Eigen::Matrix<double, 6, 1>& delta) {
     Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
     const Eigen::Vector3d omega = delta.head<3>();
     if (omega.norm() > 0.0) {
@@ -240,8 +238,6 @@ Eigen::Isometry3d increment(const Eigen::Matrix<double, 6, 1>& delta) {
     step.translation() = delta.tail<3>();
     return step;
 }
-
-}  // namespace
 
 Eigen::Isometry3d refine_reprojection(const Eigen::Isometry3d& start,
                                       const std::vector<Eigen::Vector3d>& src,
@@ -267,7 +263,7 @@ Eigen::Isometry3d refine_reprojection(const Eigen::Isometry3d& start,
         for (int j = 0; j < 6; ++j) {
             Eigen::Matrix<double, 6, 1> delta = Eigen::Matrix<double, 6, 1>::Zero();
             delta(j) = kStep;
-            residuals(increment(delta) * t, shifted);
+            residuals(se3_increment(delta) * t, shifted);
             jacobian.col(j) = (shifted - r) / kStep;
         }
         const Eigen::Matrix<double, 6, 1> delta =
@@ -275,7 +271,7 @@ Eigen::Isometry3d refine_reprojection(const Eigen::Isometry3d& start,
         if (!delta.allFinite()) {
             break;
         }
-        t = increment(delta) * t;
+        t = se3_increment(delta) * t;
         if (delta.norm() < 1e-10) {
             break;
         }
@@ -320,6 +316,7 @@ MotionEstimate estimate_motion(const Features& previous, const SparseDisparity& 
     std::vector<Eigen::Vector3d> dst;
     std::vector<Eigen::Vector3d> observed;  // (u, v, d) in the current frame
     std::vector<double> weights;
+    std::vector<KeypointPair> pairs;  // keypoint indices of each lifted match
     for (const cv::DMatch& match : matches) {
         if (match.distance > params.max_hamming) {
             continue;
@@ -334,6 +331,8 @@ MotionEstimate estimate_motion(const Features& previous, const SparseDisparity& 
         src.push_back(camera.lift(a.x, a.y, da));
         dst.push_back(camera.lift(b.x, b.y, db));
         observed.emplace_back(b.x, b.y, db);
+        pairs.push_back({match.queryIdx, match.trainIdx, Eigen::Vector3d(a.x, a.y, da),
+                         Eigen::Vector3d(b.x, b.y, db)});
         // Depth variance grows with Z^4; 1/Z^2 still lets far points fix the rotation.
         weights.push_back(1.0 / (src.back().z() * dst.back().z()));
     }
@@ -352,8 +351,8 @@ MotionEstimate estimate_motion(const Features& previous, const SparseDisparity& 
                       std::to_string(estimate.lifted) + ")");
     }
     Eigen::Isometry3d motion = ransac.motion;
+    std::vector<int> inliers = ransac.inliers;
     if (params.refine_iterations > 0) {
-        std::vector<int> inliers = ransac.inliers;
         for (int round = 0; round < 2; ++round) {
             motion = refine_reprojection(motion, src, observed, inliers, camera,
                                          params.refine_iterations);
@@ -375,6 +374,9 @@ MotionEstimate estimate_motion(const Features& previous, const SparseDisparity& 
         return refuse("implausible step");
     }
     estimate.motion = motion;
+    for (const int i : inliers) {
+        estimate.inlier_pairs.push_back(pairs[static_cast<std::size_t>(i)]);
+    }
     return estimate;
 }
 

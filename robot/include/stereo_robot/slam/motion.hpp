@@ -91,6 +91,14 @@ Features detect_features(const cv::Mat& grey, const MotionParams& params);
 // calls, which took a quarter of a SLAM step.
 std::vector<cv::DMatch> match_mutual_nearest(const cv::Mat& query, const cv::Mat& train);
 
+// A lifted match: keypoint indices in the previous and the current frame, and their (u, v, d).
+struct KeypointPair {
+    int previous = 0;
+    int current = 0;
+    Eigen::Vector3d previous_uvd = Eigen::Vector3d::Zero();
+    Eigen::Vector3d current_uvd = Eigen::Vector3d::Zero();
+};
+
 struct MotionEstimate {
     Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();  // previous camera -> current
     bool fallback = false;  // the estimate was refused and `motion` is the fallback
@@ -98,6 +106,7 @@ struct MotionEstimate {
     int matches = 0;        // cross-checked descriptor matches
     int lifted = 0;         // matches with a validated disparity in both frames
     int inliers = 0;
+    std::vector<KeypointPair> inlier_pairs;  // the final inliers (empty when refused)
 };
 
 // Matches the two frames' ORB features (brute force, Hamming, cross-check), lifts each matched
@@ -120,6 +129,10 @@ Eigen::Isometry3d refine_reprojection(const Eigen::Isometry3d& start,
                                       const std::vector<Eigen::Vector3d>& observed,
                                       const std::vector<int>& subset, const Camera& camera,
                                       int iterations);
+
+// A small rigid motion: rotation exp(omega) (axis-angle, the first three entries), then the
+// translation tau (the last three). Left-multiplied increments of the refinements.
+Eigen::Isometry3d se3_increment(const Eigen::Matrix<double, 6, 1>& delta);
 
 // Rotation angle of T in degrees.
 double rotation_deg(const Eigen::Isometry3d& transform);

@@ -1,0 +1,259 @@
+// Avoidance safety as a property (issue 50): over generated obstacle layouts pasted on real KITTI
+// frames, neither the threshold nor the fuzzy method may go forward into an occupied centre or
+// turn towards the side window with the smaller free distance. Skipped without ../shared/data.
+//
+// The generator: 1-4 fronto-parallel textured boxes standing on the road (camera 1.65 m above it,
+// KITTI's mounting), each with its own distance (4.5-30 m), width (0.3-4 m), height (0.4-2.5 m),
+// lateral position, texture seed and block size (1-6 px), painted far to near so that nearer
+// boxes occlude farther ones (as a camera would see them).
+//
+// The reference, computed here and not by the decision code: the clean frame's disparity map
+// (before pasting; pixels its ground model ignores count as free) with every pasted pixel
+// replaced by its box's exact disparity. A window's free disparity is then read from the sorted
+// list of its pixels' disparities. A decision is unsafe when it is "forward" while the reference
+// centre has at least rate + 5 % of its pixels nearer than Z_safe, or a turn towards a side whose
+// reference free distance is clearly smaller (its free disparity above 1.25 times the other
+// side's plus 1 px: the margins absorb the matcher's fattening at box edges).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <limits>
+#include <optional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "stereo/edge_frontend.hpp"
+#include "stereo_io/data_dir.hpp"
+#include "stereo_io/io.hpp"
+#include "stereo_io/test_support.hpp"
+#include "stereo_robot/calibration.hpp"
+#include "stereo_robot/decision.hpp"
+#include "stereo_robot/ground.hpp"
+#include "stereo_robot/obstacles.hpp"
+
+namespace stereo::robot {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kDownscale = 2;
+constexpr int kNdisp = 48;
+constexpr double kSafeDistance = 10.0;  // metres (the obstacle benchmark's Z_safe)
+constexpr double kRate = 0.20;
+constexpr double kCameraHeight = 1.65;  // KITTI's cameras above the road
+constexpr int kLayoutsPerFrame = 42;    // x 12 frames = 504 layouts
+
+struct Box {
+    PastedObstacle obstacle;
+    double distance = 0.0;
+};
+
+// One layout on a (downscaled) frame of `width` x `height` with camera `camera`.
+std::vector<Box> generate_layout(std::mt19937& rng, const slam::Camera& camera, int width,
+                                 int height) {
+    std::uniform_int_distribution<int> how_many(1, 4);
+    std::uniform_real_distribution<double> distance(4.5, 30.0);
+    std::uniform_real_distribution<double> box_width(0.3, 4.0);
+    std::uniform_real_distribution<double> box_height(0.4, 2.5);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::uniform_int_distribution<int> block(1, 6);
+    std::uniform_int_distribution<std::uint32_t> seed(1, 1000000);
+    std::vector<Box> boxes;
+    const int count = how_many(rng);
+    for (int attempt = 0; static_cast<int>(boxes.size()) < count && attempt < 50; ++attempt) {
+        const double z = distance(rng);
+        const double w = box_width(rng);
+        const double h = box_height(rng);
+        // Lateral centre anywhere in the field of view (pixel column uniform).
+        const double centre_u = unit(rng) * width;
+        const double x = (centre_u - camera.cx) * z / camera.focal;
+        const auto column = [&](double metres) {
+            return static_cast<int>(std::lround(camera.cx + camera.focal * metres / z));
+        };
+        const auto row = [&](double metres_below_camera) {
+            return static_cast<int>(std::lround(camera.cy + camera.focal * metres_below_camera / z));
+        };
+        Rect r{std::max(0, column(x - w / 2)), std::max(0, row(kCameraHeight - h)),
+               std::min(width, column(x + w / 2)), std::min(height, row(kCameraHeight))};
+        const int d = static_cast<int>(std::lround(camera.focal * camera.baseline / z));
+        if (r.x1 - r.x0 < 2 || r.y1 - r.y0 < 2 || d >= kNdisp || r.x1 - d <= 0) {
+            continue;
+        }
+        boxes.push_back({{r, d, seed(rng), block(rng)}, z});
+    }
+    // Far to near: nearer boxes are painted last and occlude.
+    std::sort(boxes.begin(), boxes.end(),
+              [](const Box& a, const Box& b) { return a.distance > b.distance; });
+    return boxes;
+}
+
+// The reference disparity of every pixel: -1 invalid, 0 free (ignored by the clean frame's ground
+// model), else the disparity.
+std::vector<int> reference_map(const DisparityMap& clean, const GroundModel* ground,
+                               const std::vector<Box>& boxes) {
+    std::vector<int> reference(static_cast<std::size_t>(clean.width) * clean.height, -1);
+    for (int y = 0; y < clean.height; ++y) {
+        for (int x = 0; x < clean.width; ++x) {
+            const std::size_t i = clean.index(x, y);
+            if (clean.valid[i] == 0) {
+                continue;
+            }
+            const int d = clean.disparity[i];
+            reference[i] = ground != nullptr && !ground->obstacle(y, d) ? 0 : d;
+        }
+    }
+    for (const Box& box : boxes) {  // far to near
+        const Rect& r = box.obstacle.box;
+        for (int y = r.y0; y < r.y1; ++y) {
+            for (int x = r.x0; x < r.x1; ++x) {
+                reference[clean.index(x, y)] = box.obstacle.disparity;
+            }
+        }
+    }
+    return reference;
+}
+
+// The window's disparities, nearest first (invalid pixels left out).
+std::vector<int> nearest_first(const std::vector<int>& reference, int width, const Rect& window) {
+    std::vector<int> values;
+    for (int y = window.y0; y < window.y1; ++y) {
+        for (int x = window.x0; x < window.x1; ++x) {
+            const int d = reference[static_cast<std::size_t>(y) * width + x];
+            if (d >= 0) {
+                values.push_back(d);
+            }
+        }
+    }
+    std::sort(values.begin(), values.end(), std::greater<>());
+    return values;
+}
+
+// Free disparity by counting: the share of pixels strictly nearer than D must stay below the
+// rate, so D is the disparity of the pixel at rank ceil(rate * n) - 1 of the nearest-first list
+// (fewer than rate * n pixels can lie above it); an empty window is blocked (infinity).
+double reference_free_disparity(const std::vector<int>& nearest) {
+    if (nearest.empty()) {
+        return std::numeric_limits<double>::infinity();
+    }
+    const auto rank = static_cast<std::size_t>(std::ceil(kRate * nearest.size())) - 1;
+    return nearest[std::min(rank, nearest.size() - 1)];
+}
+
+struct Tally {
+    int layouts = 0;
+    int unsafe_forward = 0;
+    int unsafe_turn = 0;
+    int turns_checked = 0;  // turns where the reference clearly prefers one side
+    int thesis_rule_unsafe = 0;  // the threshold method's mean-disparity rule alone
+};
+
+bool clearly_nearer(double a, double b) {  // free disparities: a's free distance clearly smaller
+    return a > 1.25 * b + 1.0;
+}
+
+void check_decision(Direction decision, double centre_near_share, double left_free,
+                    double right_free, Tally& tally, const std::string& where) {
+    if (decision == Direction::forward && centre_near_share >= kRate + 0.05) {
+        ++tally.unsafe_forward;
+        ADD_FAILURE() << where << ": forward with " << centre_near_share
+                      << " of the centre nearer than Z_safe";
+    }
+    if (decision == Direction::left && clearly_nearer(left_free, right_free)) {
+        ++tally.unsafe_turn;
+        ADD_FAILURE() << where << ": left, free disparity " << left_free << " vs " << right_free;
+    }
+    if (decision == Direction::right && clearly_nearer(right_free, left_free)) {
+        ++tally.unsafe_turn;
+        ADD_FAILURE() << where << ": right, free disparity " << right_free << " vs " << left_free;
+    }
+}
+
+TEST(AvoidanceSafety, NoUnsafeDecisionOverFiveHundredLayoutsOnKittiFrames) {
+    std::mt19937 rng(test::test_seed());
+    Tally tally;
+    for (const std::string clip : {"kitti_sequence_1", "kitti_sequence_2"}) {
+        const fs::path dir = io::data_dir() / "sequence" / clip;
+        if (!fs::is_directory(dir)) {
+            continue;
+        }
+        const StereoGeometry geometry = load_calibration(dir / "calib.txt");
+        for (const char* name :
+             {"000000.png", "000010.png", "000020.png", "000030.png", "000040.png", "000050.png"}) {
+            const io::ImagePair clean =
+                io::load_pair(dir / "image_l" / name, dir / "image_r" / name, kDownscale);
+            const int width = clean.left.width;
+            const int height = clean.left.height;
+            const slam::Camera camera = avoidance_camera(geometry, kDownscale, width, height);
+            MatchParams params;
+            params.ndisp = kNdisp;
+            const DisparityMap clean_map = edge_frontend::match(clean.left, clean.right, params);
+            const auto clean_ground = fit_ground(clean_map, kNdisp, camera, {});
+            const double threshold = disparity_threshold(geometry, kSafeDistance, kDownscale);
+            const auto windows = split_windows(width, height, kDefaultBorder);
+            for (int n = 0; n < kLayoutsPerFrame; ++n) {
+                const std::vector<Box> boxes = generate_layout(rng, camera, width, height);
+                io::ImagePair pair = clean;
+                for (const Box& box : boxes) {
+                    paste_obstacle(pair.left, pair.right, box.obstacle);
+                }
+                const std::vector<int> reference =
+                    reference_map(clean_map, clean_ground ? &*clean_ground : nullptr, boxes);
+                const std::vector<int> centre = nearest_first(reference, width, windows[1]);
+                const double near = static_cast<double>(std::count_if(
+                    centre.begin(), centre.end(), [&](int d) { return d > threshold; }));
+                const double centre_share = centre.empty() ? 1.0 : near / centre.size();
+                const double left_free =
+                    reference_free_disparity(nearest_first(reference, width, windows[0]));
+                const double right_free =
+                    reference_free_disparity(nearest_first(reference, width, windows[2]));
+
+                const DisparityMap map = edge_frontend::match(pair.left, pair.right, params);
+                const auto ground = fit_ground(map, kNdisp, camera, {});
+                const GroundModel* g = ground ? &*ground : nullptr;
+                const ThresholdDecision threshold_decision =
+                    decide_threshold(map, threshold, kNdisp, {kRate, kDefaultBorder}, g);
+                FisParams fis;
+                fis.rate = kRate;
+                const FuzzyDecision fuzzy = decide_fuzzy(map, threshold, fis, kDefaultBorder, g);
+                const std::string where = clip + " " + name + " layout " + std::to_string(n);
+                check_decision(threshold_decision.direction, centre_share, left_free, right_free,
+                               tally, where + " (threshold)");
+                check_decision(fuzzy.fis.decision, centre_share, left_free, right_free, tally,
+                               where + " (fuzzy)");
+                if (clearly_nearer(left_free, right_free) || clearly_nearer(right_free, left_free)) {
+                    tally.turns_checked += threshold_decision.direction != Direction::forward;
+                    // What the thesis' rule alone (the smaller mean disparity) would have done.
+                    if (threshold_decision.direction != Direction::forward) {
+                        const bool mean_left =
+                            threshold_decision.mean[0] <= threshold_decision.mean[2];
+                        const bool unsafe_left =
+                            mean_left && clearly_nearer(left_free, right_free);
+                        const bool unsafe_right =
+                            !mean_left && clearly_nearer(right_free, left_free);
+                        tally.thesis_rule_unsafe += unsafe_left || unsafe_right;
+                    }
+                }
+                ++tally.layouts;
+            }
+        }
+    }
+    if (tally.layouts == 0) {
+        GTEST_SKIP() << "no KITTI data under " << io::data_dir();
+    }
+    EXPECT_GE(tally.layouts, 500);
+    EXPECT_EQ(tally.unsafe_forward, 0);
+    EXPECT_EQ(tally.unsafe_turn, 0);
+    // The layouts exercise the property: many turns with a clearly freer side.
+    EXPECT_GE(tally.turns_checked, 50);
+    std::printf("%d layouts, %d threshold turns with a clearly freer side, unsafe: %d forward, %d "
+                "turns; the mean-disparity rule alone: %d unsafe turns\n",
+                tally.layouts, tally.turns_checked, tally.unsafe_forward, tally.unsafe_turn,
+                tally.thesis_rule_unsafe);
+}
+
+}  // namespace
+}  // namespace stereo::robot
