@@ -16,15 +16,18 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <Eigen/Eigenvalues>
 #include <nlohmann/json.hpp>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
+#include <opencv2/features2d.hpp>
 
 #include "cli_command.hpp"
 #include "experiments.hpp"
 #include "stereo_io/io.hpp"
 #include "stereo_robot/slam/dataset.hpp"
 #include "stereo_robot/slam/frontend.hpp"
+#include "stereo_robot/slam/maps.hpp"
 #include "stereo_robot/slam/motion.hpp"
 
 namespace stereo::experiments {
@@ -93,7 +96,15 @@ struct ScaleSamples {
     std::array<std::vector<double>, 3> ours;  // s - 1 per depth band
     std::array<std::vector<double>, 3> sgbm;
     std::vector<double> offset;  // our disparity - SGBM's at the same keypoint, px
+    std::vector<double> road;    // s - 1 of the front end's matches in the road region
+    std::vector<double> rest;    // and of the others
 };
+
+// The road region of road_step_over_height: the central half of the columns, from 40 px below
+// the principal point down.
+bool in_road_region(const cv::Point2f& p, const slam::Camera& camera, int width) {
+    return p.x >= width / 4.0 && p.x < 3.0 * width / 4.0 && p.y >= camera.cy + 40.0;
+}
 
 // (s - 1) of one match under the true motion, or NaN when unusable.
 double scale_excess(const slam::Camera& camera, const Eigen::Isometry3d& truth,
@@ -136,6 +147,8 @@ void add_samples(const slam::Camera& camera, const Eigen::Isometry3d& truth, con
             const int band = band_of(da);
             if (std::isfinite(excess) && band >= 0) {
                 samples.ours[static_cast<std::size_t>(band)].push_back(excess);
+                (in_road_region(a, camera, previous.left.cols) ? samples.road : samples.rest)
+                    .push_back(excess);
             }
         }
         if (ga > 0.0 && gb > 0.0) {
@@ -151,12 +164,100 @@ void add_samples(const slam::Camera& camera, const Eigen::Isometry3d& truth, con
     }
 }
 
+// Camera height above the road of one frame, two ways: B / slope of the v-disparity ground line
+// (independent of the focal length and of a constant disparity offset), and the distance from
+// the camera of the least-squares plane through the lifted pixels of the ground band (every
+// depth error enters). NaN when no line is found.
+std::pair<double, double> camera_height(const slam::SparseDisparity& map,
+                                        const slam::Camera& camera, int ndisp) {
+    const slam::GroundParams params;
+    const auto line = slam::fit_ground_line(slam::v_disparity(map, ndisp), camera, params);
+    if (!line) {
+        return {std::nan(""), std::nan("")};
+    }
+    std::vector<Eigen::Vector3d> points;
+    for (int y = 0; y < map.height; ++y) {
+        for (int x = map.width / 4; x < 3 * map.width / 4; ++x) {
+            const double d = map.at(x, y);
+            if (d > 0.0 && std::abs(d - line->disparity(y)) <= params.tolerance) {
+                points.push_back(camera.lift(x, y, d));
+            }
+        }
+    }
+    if (points.size() < 100) {
+        return {camera.baseline / line->slope, std::nan("")};
+    }
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const auto& p : points) {
+        mean += p;
+    }
+    mean /= static_cast<double>(points.size());
+    Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+    for (const auto& p : points) {
+        scatter += (p - mean) * (p - mean).transpose();
+    }
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(scatter);
+    const Eigen::Vector3d normal = solver.eigenvectors().col(0);  // smallest eigenvalue
+    return {camera.baseline / line->slope, std::abs(normal.dot(mean))};
+}
+
+// The step length from the road alone, without any disparity: the homography of the road
+// pixels between two left images is K (R + t n^T / h) K^-1 for a plane at distance h, so its
+// decomposition gives |t| / h, and |t| follows with h = KITTI's camera height, 1.65 m. ORB
+// matches of the road region (central half of the columns, rows from 40 px below the principal
+// point down); NaN when fewer than 30 matches or no near-vertical plane normal.
+double road_step_over_height(const cv::Mat& previous, const cv::Mat& current,
+                             const slam::Camera& camera) {
+    cv::Mat mask = cv::Mat::zeros(previous.size(), CV_8U);
+    const int top = static_cast<int>(camera.cy) + 40;
+    mask(cv::Rect(previous.cols / 4, top, previous.cols / 2, previous.rows - top)).setTo(255);
+    slam::MotionParams params;
+    params.features = 1000;
+    const auto orb = cv::ORB::create(params.features);
+    slam::Features a;
+    slam::Features b;
+    orb->detectAndCompute(previous, mask, a.keypoints, a.descriptors);
+    orb->detectAndCompute(current, mask, b.keypoints, b.descriptors);
+    std::vector<cv::Point2f> from;
+    std::vector<cv::Point2f> to;
+    for (const cv::DMatch& m : slam::match_mutual_nearest(a.descriptors, b.descriptors)) {
+        if (m.distance <= 64) {
+            from.push_back(a.keypoints[m.queryIdx].pt);
+            to.push_back(b.keypoints[m.trainIdx].pt);
+        }
+    }
+    if (from.size() < 30) {
+        return std::nan("");
+    }
+    const cv::Mat homography = cv::findHomography(from, to, cv::RANSAC, 2.0);
+    if (homography.empty()) {
+        return std::nan("");
+    }
+    const cv::Matx33d k(camera.focal, 0, camera.cx, 0, camera.focal, camera.cy, 0, 0, 1);
+    std::vector<cv::Mat> rotations;
+    std::vector<cv::Mat> translations;
+    std::vector<cv::Mat> normals;
+    cv::decomposeHomographyMat(homography, k, rotations, translations, normals);
+    double best = 0.0;
+    double step = std::nan("");
+    for (std::size_t i = 0; i < normals.size(); ++i) {
+        const double vertical = std::abs(normals[i].at<double>(1));
+        if (vertical > best) {
+            best = vertical;
+            step = cv::norm(translations[i]);
+        }
+    }
+    return best > 0.95 ? step : std::nan("");
+}
+
 void run(const Options& options) {
     std::ostringstream md;
     json report;
     md << "| clip | step length est. / true (median, min-max) | rotation est. / true (median) | "
           "depth scale s, front end: < 10 / 10-20 / 20-40 m | s, StereoSGBM: < 10 / 10-20 / 20-40 "
-          "m | front end - SGBM disparity (median px) |\n|---|---|---|---|---|---|\n";
+          "m | front end - SGBM disparity (median px) | camera height, median m: B / slope / "
+          "plane (frames) | road homography step (h = 1.65 m) / true, median (pairs) "
+          "| s, front end: road region (matches) / elsewhere |\n|---|---|---|---|---|---|---|---|---|\n";
     std::stringstream list(options.clips);
     std::string clip;
     while (std::getline(list, clip, ',')) {
@@ -170,6 +271,9 @@ void run(const Options& options) {
         const slam::MotionParams motion;
         std::vector<double> length_ratio;
         std::vector<double> rotation_ratio;
+        std::vector<double> height_slope;
+        std::vector<double> height_plane;
+        std::vector<double> road_ratio;  // (|t| / h) * 1.65 m over the true step
         ScaleSamples samples;
         Frame previous;
         const int count = static_cast<int>(sequence.frames.size());
@@ -181,6 +285,13 @@ void run(const Options& options) {
                                                   io::to_image(pair.right, "right"), frontend);
             frame.sgbm = sgbm_disparity(pair.left, pair.right, 96);
             frame.features = slam::detect_features(pair.left, motion);
+            const auto [slope_h, plane_h] = camera_height(frame.sparse, camera, frontend.ndisp);
+            if (std::isfinite(slope_h)) {
+                height_slope.push_back(slope_h);
+            }
+            if (std::isfinite(plane_h)) {
+                height_plane.push_back(plane_h);
+            }
             if (i > 0) {
                 // previous camera -> current camera
                 const Eigen::Isometry3d truth =
@@ -195,6 +306,11 @@ void run(const Options& options) {
                 rotation_ratio.push_back(slam::rotation_deg(estimate.motion) /
                                          slam::rotation_deg(truth));
                 add_samples(camera, truth, previous, frame, samples);
+                constexpr double kKittiCameraHeight = 1.65;  // metres (KITTI's setup)
+                const double road = road_step_over_height(previous.left, frame.left, camera);
+                if (std::isfinite(road)) {
+                    road_ratio.push_back(road * kKittiCameraHeight / truth.translation().norm());
+                }
             }
             previous = std::move(frame);
         }
@@ -204,7 +320,15 @@ void run(const Options& options) {
                     {"step_length_ratio_min", *lo},
                     {"step_length_ratio_max", *hi},
                     {"rotation_ratio_median", median(rotation_ratio)},
-                    {"disparity_offset_median_px", median(samples.offset)}};
+                    {"disparity_offset_median_px", median(samples.offset)},
+                    {"camera_height_slope_median_m", median(height_slope)},
+                    {"camera_height_plane_median_m", median(height_plane)},
+                    {"camera_height_frames", height_plane.size()},
+                    {"road_homography_step_ratio_median", median(road_ratio)},
+                    {"road_homography_pairs", road_ratio.size()},
+                    {"scale_frontend_road_region", 1.0 + median(samples.road)},
+                    {"scale_frontend_elsewhere", 1.0 + median(samples.rest)},
+                    {"matches_road_region", samples.road.size()}};
         md << "| " << clip << " | " << fmt(median(length_ratio), 3) << " (" << fmt(*lo, 2) << "-"
            << fmt(*hi, 2) << ") | " << fmt(median(rotation_ratio), 3) << " | ";
         for (const auto* source : {&samples.ours, &samples.sgbm}) {
@@ -218,7 +342,11 @@ void run(const Options& options) {
                      {"matches", (*source)[band].size()}});
             }
         }
-        md << fmt(median(samples.offset), 3) << " |\n";
+        md << fmt(median(samples.offset), 3) << " | " << fmt(median(height_slope), 3) << " / "
+           << fmt(median(height_plane), 3) << " (" << height_plane.size() << ") | "
+           << fmt(median(road_ratio), 3) << " (" << road_ratio.size() << ") | "
+           << fmt(1.0 + median(samples.road), 3) << " (" << samples.road.size() << ") / "
+           << fmt(1.0 + median(samples.rest), 3) << " |\n";
         report["clips"].push_back(row);
     }
     print_and_write_report({}, options.markdown, md.str(), options.json_path, report);
