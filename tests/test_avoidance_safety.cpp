@@ -7,13 +7,17 @@
 // lateral position, texture seed and block size (1-6 px), painted far to near so that nearer
 // boxes occlude farther ones (as a camera would see them).
 //
-// The reference, computed here and not by the decision code: the clean frame's disparity map
-// (before pasting; pixels its ground model ignores count as free) with every pasted pixel
-// replaced by its box's exact disparity. A window's free disparity is then read from the sorted
-// list of its pixels' disparities. A decision is unsafe when it is "forward" while the reference
-// centre has at least rate + 5 % of its pixels nearer than Z_safe, or a turn towards a side whose
-// reference free distance is clearly smaller (its free disparity above 1.25 times the other
-// side's plus 1 px: the margins absorb the matcher's fattening at box edges).
+// The property is checked on what each decision perceives, recomputed here from the disparity
+// map and the ground model by sorting (not with WindowStats): a decision is unsafe when it is
+// "forward" while at least `rate` of the centre's valid pixels are nearer than Z_safe, or a turn
+// towards the side whose free disparity (the disparity D for which fewer than `rate` of the
+// window's pixels are nearer) is larger, i.e. whose free distance is smaller. Both counts must be
+// 0; the thesis' mean-disparity rule alone fails the second on some layouts (counted, > 0).
+//
+// Against the boxes' exact disparities (the clean frame's map with every pasted pixel at its
+// box's disparity, pixels a box hides from the right camera left out) the same decisions are
+// counted too and printed, not asserted: where the matcher misjudges a box, no decision rule can
+// be right (docs/results-avoidance.md gives the figures).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -111,9 +115,18 @@ std::vector<int> reference_map(const DisparityMap& clean, const GroundModel* gro
     }
     for (const Box& box : boxes) {  // far to near
         const Rect& r = box.obstacle.box;
+        const int d = box.obstacle.disparity;
         for (int y = r.y0; y < r.y1; ++y) {
+            // Left of the box, the pixels whose match in the right image the box now covers
+            // (x - d_behind >= x0 - d) are unseen by the right camera: no truth, left out.
+            for (int x = r.x0 - 1; x >= std::max(0, r.x0 - d); --x) {
+                const int behind = reference[clean.index(x, y)];
+                if (behind >= 0 && behind < d && x - behind >= r.x0 - d) {
+                    reference[clean.index(x, y)] = -1;
+                }
+            }
             for (int x = r.x0; x < r.x1; ++x) {
-                reference[clean.index(x, y)] = box.obstacle.disparity;
+                reference[clean.index(x, y)] = ground != nullptr && !ground->obstacle(y, d) ? 0 : d;
             }
         }
     }
@@ -146,39 +159,73 @@ double reference_free_disparity(const std::vector<int>& nearest) {
     return nearest[std::min(rank, nearest.size() - 1)];
 }
 
-struct Tally {
-    int layouts = 0;
-    int unsafe_forward = 0;
-    int unsafe_turn = 0;
-    int turns_checked = 0;  // turns where the reference clearly prefers one side
-    int thesis_rule_unsafe = 0;  // the threshold method's mean-disparity rule alone
-};
-
-bool clearly_nearer(double a, double b) {  // free disparities: a's free distance clearly smaller
-    return a > 1.25 * b + 1.0;
+// What a decision sees: -1 invalid, 0 ignored by the ground model (free), else the disparity.
+std::vector<int> perceived_map(const DisparityMap& map, const GroundModel* ground) {
+    std::vector<int> seen(static_cast<std::size_t>(map.width) * map.height, -1);
+    for (int y = 0; y < map.height; ++y) {
+        for (int x = 0; x < map.width; ++x) {
+            const std::size_t i = map.index(x, y);
+            if (map.valid[i] != 0) {
+                const int d = map.disparity[i];
+                seen[i] = ground != nullptr && !ground->obstacle(y, d) ? 0 : d;
+            }
+        }
+    }
+    return seen;
 }
 
-void check_decision(Direction decision, double centre_near_share, double left_free,
-                    double right_free, Tally& tally, const std::string& where,
-                    const std::array<WindowStats, 3>& measured) {
-    const std::string seen = " (measured free disparities " +
-                             std::to_string(measured[0].free_disparity(kRate)) + " / " +
-                             std::to_string(measured[2].free_disparity(kRate)) + ")";
-    if (decision == Direction::forward && centre_near_share >= kRate + 0.05) {
+struct Windows {
+    double left_free = 0.0;
+    double right_free = 0.0;
+    double centre_near = 0.0;  // share of the centre's valid pixels nearer than Z_safe
+};
+
+Windows read_windows(const std::vector<int>& map, int width, const std::array<Rect, 3>& windows,
+                     double threshold) {
+    const std::vector<int> centre = nearest_first(map, width, windows[1]);
+    const auto near = std::count_if(centre.begin(), centre.end(),
+                                    [&](int d) { return d > threshold; });
+    return {reference_free_disparity(nearest_first(map, width, windows[0])),
+            reference_free_disparity(nearest_first(map, width, windows[2])),
+            centre.empty() ? 1.0 : static_cast<double>(near) / static_cast<double>(centre.size())};
+}
+
+struct Tally {
+    int layouts = 0;
+    int unsafe_forward = 0;      // perceived, both methods
+    int unsafe_turn = 0;         // perceived, both methods
+    int turns_checked = 0;       // threshold turns with unequal side free distances
+    int thesis_rule_unsafe = 0;  // the threshold method's mean-disparity rule alone, perceived
+    int exact_forward = 0;       // against the exact box disparities (printed)
+    int exact_turn = 0;
+};
+
+void check_decision(Direction decision, const Windows& seen, Tally& tally,
+                    const std::string& where) {
+    if (decision == Direction::forward && seen.centre_near >= kRate) {
         ++tally.unsafe_forward;
-        ADD_FAILURE() << where << ": forward with " << centre_near_share
+        ADD_FAILURE() << where << ": forward with " << seen.centre_near
                       << " of the centre nearer than Z_safe";
     }
-    if (decision == Direction::left && clearly_nearer(left_free, right_free)) {
+    const bool towards_nearer = (decision == Direction::left && seen.left_free > seen.right_free) ||
+                                (decision == Direction::right && seen.right_free > seen.left_free);
+    if (towards_nearer) {
         ++tally.unsafe_turn;
-        ADD_FAILURE() << where << ": left, free disparity " << left_free << " vs " << right_free
-                      << seen;
+        ADD_FAILURE() << where << ": " << to_string(decision) << ", free disparities "
+                      << seen.left_free << " / " << seen.right_free;
     }
-    if (decision == Direction::right && clearly_nearer(right_free, left_free)) {
-        ++tally.unsafe_turn;
-        ADD_FAILURE() << where << ": right, free disparity " << right_free << " vs " << left_free
-                      << seen;
-    }
+}
+
+// Against the exact disparities, with margins for the matcher (rate + 5 %; a free disparity
+// above 1.25 times the other side's plus 1 px and within twice Z_safe, i.e. >= T / 2).
+void count_exact(Direction decision, const Windows& exact, double threshold, Tally& tally) {
+    const auto clearly_nearer = [&](double a, double b) {
+        return a >= threshold / 2.0 && a > 1.25 * b + 1.0;
+    };
+    tally.exact_forward += decision == Direction::forward && exact.centre_near >= kRate + 0.05;
+    tally.exact_turn +=
+        (decision == Direction::left && clearly_nearer(exact.left_free, exact.right_free)) ||
+        (decision == Direction::right && clearly_nearer(exact.right_free, exact.left_free));
 }
 
 TEST(AvoidanceSafety, NoUnsafeDecisionOverFiveHundredLayoutsOnKittiFrames) {
@@ -200,7 +247,6 @@ TEST(AvoidanceSafety, NoUnsafeDecisionOverFiveHundredLayoutsOnKittiFrames) {
             MatchParams params;
             params.ndisp = kNdisp;
             const DisparityMap clean_map = edge_frontend::match(clean.left, clean.right, params);
-            const auto clean_ground = fit_ground(clean_map, kNdisp, camera, {});
             const double threshold = disparity_threshold(geometry, kSafeDistance, kDownscale);
             const auto windows = split_windows(width, height, kDefaultBorder);
             for (int n = 0; n < kLayoutsPerFrame; ++n) {
@@ -209,42 +255,30 @@ TEST(AvoidanceSafety, NoUnsafeDecisionOverFiveHundredLayoutsOnKittiFrames) {
                 for (const Box& box : boxes) {
                     paste_obstacle(pair.left, pair.right, box.obstacle);
                 }
-                const std::vector<int> reference =
-                    reference_map(clean_map, clean_ground ? &*clean_ground : nullptr, boxes);
-                const std::vector<int> centre = nearest_first(reference, width, windows[1]);
-                const double near = static_cast<double>(std::count_if(
-                    centre.begin(), centre.end(), [&](int d) { return d > threshold; }));
-                const double centre_share = centre.empty() ? 1.0 : near / centre.size();
-                const double left_free =
-                    reference_free_disparity(nearest_first(reference, width, windows[0]));
-                const double right_free =
-                    reference_free_disparity(nearest_first(reference, width, windows[2]));
-
                 const DisparityMap map = edge_frontend::match(pair.left, pair.right, params);
                 const auto ground = fit_ground(map, kNdisp, camera, {});
                 const GroundModel* g = ground ? &*ground : nullptr;
+                const Windows exact = read_windows(reference_map(clean_map, g, boxes), width,
+                                                   windows, threshold);
+                const Windows seen =
+                    read_windows(perceived_map(map, g), width, windows, threshold);
                 const ThresholdDecision threshold_decision =
                     decide_threshold(map, threshold, kNdisp, {kRate, kDefaultBorder}, g);
                 FisParams fis;
                 fis.rate = kRate;
                 const FuzzyDecision fuzzy = decide_fuzzy(map, threshold, fis, kDefaultBorder, g);
                 const std::string where = clip + " " + name + " layout " + std::to_string(n);
-                check_decision(threshold_decision.direction, centre_share, left_free, right_free,
-                               tally, where + " (threshold)", threshold_decision.stats);
-                check_decision(fuzzy.fis.decision, centre_share, left_free, right_free, tally,
-                               where + " (fuzzy)", fuzzy.stats);
-                if (clearly_nearer(left_free, right_free) || clearly_nearer(right_free, left_free)) {
-                    tally.turns_checked += threshold_decision.direction != Direction::forward;
+                check_decision(threshold_decision.direction, seen, tally, where + " (threshold)");
+                check_decision(fuzzy.fis.decision, seen, tally, where + " (fuzzy)");
+                count_exact(threshold_decision.direction, exact, threshold, tally);
+                count_exact(fuzzy.fis.decision, exact, threshold, tally);
+                if (threshold_decision.direction != Direction::forward &&
+                    seen.left_free != seen.right_free) {
+                    ++tally.turns_checked;
                     // What the thesis' rule alone (the smaller mean disparity) would have done.
-                    if (threshold_decision.direction != Direction::forward) {
-                        const bool mean_left =
-                            threshold_decision.mean[0] <= threshold_decision.mean[2];
-                        const bool unsafe_left =
-                            mean_left && clearly_nearer(left_free, right_free);
-                        const bool unsafe_right =
-                            !mean_left && clearly_nearer(right_free, left_free);
-                        tally.thesis_rule_unsafe += unsafe_left || unsafe_right;
-                    }
+                    const bool mean_left = threshold_decision.mean[0] <= threshold_decision.mean[2];
+                    tally.thesis_rule_unsafe +=
+                        mean_left ? seen.left_free > seen.right_free : seen.right_free > seen.left_free;
                 }
                 ++tally.layouts;
             }
@@ -256,12 +290,15 @@ TEST(AvoidanceSafety, NoUnsafeDecisionOverFiveHundredLayoutsOnKittiFrames) {
     EXPECT_GE(tally.layouts, 500);
     EXPECT_EQ(tally.unsafe_forward, 0);
     EXPECT_EQ(tally.unsafe_turn, 0);
-    // The layouts exercise the property: many turns with a clearly freer side.
+    // The layouts exercise the property: many turns between unequal sides, and some on which the
+    // thesis' rule alone turns towards the nearer side.
     EXPECT_GE(tally.turns_checked, 50);
-    std::printf("%d layouts, %d threshold turns with a clearly freer side, unsafe: %d forward, %d "
-                "turns; the mean-disparity rule alone: %d unsafe turns\n",
+    EXPECT_GT(tally.thesis_rule_unsafe, 0);
+    std::printf("%d layouts; %d threshold turns between unequal sides; unsafe (perceived, both "
+                "methods): %d forward, %d turns; the mean-disparity rule alone: %d unsafe turns; "
+                "against the exact box disparities (both methods): %d forward, %d turns\n",
                 tally.layouts, tally.turns_checked, tally.unsafe_forward, tally.unsafe_turn,
-                tally.thesis_rule_unsafe);
+                tally.thesis_rule_unsafe, tally.exact_forward, tally.exact_turn);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // EuRoC-layout sequence: trajectory, occupancy map and, with ground-truth poses, its errors.
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -51,8 +52,10 @@ struct SlamOptions {
     bool json = false;
     int downscale = 1;
     int ca_passes = 1;
+    double disparity_offset = 0.0;  // full-size pixels (docs/slam.md §2)
     slam::SlamParams params;
     MatcherOptions matcher;  // --ndisp, --window, --sigma of the front end (params.frontend)
+    const CLI::Option* ba_window_option = nullptr;  // given: above the run's frames is an error
 };
 
 nlohmann::json errors_json(const slam::TrajectoryErrors& e) {
@@ -123,7 +126,8 @@ Input checked_input(const SlamOptions& o) {
                                     " is larger than the images");
     }
     slam::validate(o.params, width, height);
-    if (o.params.bundle_enabled && o.params.bundle.window > frames) {
+    if (o.params.bundle_enabled && o.ba_window_option->count() > 0 &&
+        o.params.bundle.window > frames) {
         throw std::invalid_argument("--ba-window " + std::to_string(o.params.bundle.window) +
                                     " is larger than the " + std::to_string(frames) +
                                     " frames of the run");
@@ -317,7 +321,12 @@ void run_slam(SlamOptions o) {
         o.params.threads = robot::default_threads();
     }
     const Input in = checked_input(o);
-    const slam::Camera camera = in.sequence.camera.downscaled(o.downscale);
+    if (o.ba_window_option->count() == 0) {  // the default window, at most the run
+        o.params.bundle.window = std::max(2, std::min(o.params.bundle.window, in.frames));
+    }
+    slam::Camera full_size = in.sequence.camera;
+    full_size.disparity_offset = o.disparity_offset;
+    const slam::Camera camera = full_size.downscaled(o.downscale);
     slam::validate_camera(camera, in.width, in.height);
     slam::Slam slam(camera, o.params);
     cv::Mat vdisparity_picture;
@@ -399,6 +408,9 @@ void add_slam_command(CLI::App& app) {
          {"--min-inliers", &p.motion.ransac.min_inliers,
           "Fewer inliers: constant-velocity fallback"},
          {"--seed", &p.motion.ransac.seed, "RANSAC seed"},
+         {"--disparity-offset", &o->disparity_offset,
+          "Calibration: pixels added to every disparity before depth, full size (0: the "
+          "calibration matches its images)"},
          {"--cell", &p.cell_size, "Grid cell size, metres"},
          {"--max-range", &p.local.max_range, "Farthest mapped point, metres"},
          {"--max-height", &p.local.max_height, "Highest obstacle point above the ground, metres"},
@@ -407,10 +419,14 @@ void add_slam_command(CLI::App& app) {
          {"--stride", &p.local.stride, "Map every stride-th pixel"}});
     command->add_flag("!--no-ba", p.bundle_enabled,
                       "No windowed bundle adjustment: the frame-to-frame motion chain alone");
+    o->ba_window_option =
+        command
+            ->add_option("--ba-window", p.bundle.window,
+                         "Key frames per bundle adjustment (the oldest held fixed), 2..frames; "
+                         "the default is cut to a shorter run")
+            ->capture_default_str();
     add_number_options(*command,
-                       {{"--ba-window", &p.bundle.window,
-                         "Key frames per bundle adjustment (the oldest held fixed), 2..frames"},
-                        {"--ba-huber", &p.bundle.huber_px,
+                       {{"--ba-huber", &p.bundle.huber_px,
                          "Huber threshold of the (u, v, d) reprojection error, pixels"},
                         {"--ba-iterations", &p.bundle.iterations,
                          "Levenberg-Marquardt iterations per adjustment"}});

@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -98,6 +99,13 @@ struct ScaleSamples {
     std::vector<double> offset;  // our disparity - SGBM's at the same keypoint, px
     std::vector<double> road;    // s - 1 of the front end's matches in the road region
     std::vector<double> rest;    // and of the others
+    // Every usable match of the front end with its true motion, for the offset search.
+    struct Match {
+        cv::Point2f a, b;
+        double da, db;
+        Eigen::Isometry3d truth;
+    };
+    std::vector<Match> matches;
 };
 
 // The road region of road_step_over_height: the central half of the columns, from 40 px below
@@ -149,6 +157,7 @@ void add_samples(const slam::Camera& camera, const Eigen::Isometry3d& truth, con
                 samples.ours[static_cast<std::size_t>(band)].push_back(excess);
                 (in_road_region(a, camera, previous.left.cols) ? samples.road : samples.rest)
                     .push_back(excess);
+                samples.matches.push_back({a, b, da, db, truth});
             }
         }
         if (ga > 0.0 && gb > 0.0) {
@@ -250,6 +259,44 @@ double road_step_over_height(const cv::Mat& previous, const cv::Mat& current,
     return best > 0.95 ? step : std::nan("");
 }
 
+// The disparity offset delta (d + delta used for every disparity) that brings the depth scale
+// under the true motion closest to 1 in all three depth bands: the largest |s - 1| of the bands,
+// minimised over delta in [-3, 3] px by steps of 1/8. Returns {delta, s per band}.
+std::pair<double, std::array<double, 3>> best_offset(const slam::Camera& camera,
+                                                     const ScaleSamples& samples) {
+    double best_delta = 0.0;
+    double best_worst = std::numeric_limits<double>::infinity();
+    std::array<double, 3> best_scales{};
+    for (int step = -24; step <= 24; ++step) {
+        const double delta = step / 8.0;
+        std::array<std::vector<double>, 3> bands;
+        for (const auto& m : samples.matches) {
+            if (!(m.da + delta > 0.5) || !(m.db + delta > 0.5)) {
+                continue;
+            }
+            const double excess = scale_excess(camera, m.truth, m.a, m.da + delta, m.b, m.db + delta);
+            const double z = camera.focal * camera.baseline / (m.da + delta);
+            for (std::size_t k = 0; k + 1 < kBands.size(); ++k) {
+                if (std::isfinite(excess) && z >= kBands[k] && z < kBands[k + 1]) {
+                    bands[k].push_back(excess);
+                }
+            }
+        }
+        double worst = 0.0;
+        std::array<double, 3> scales{};
+        for (std::size_t k = 0; k < 3; ++k) {
+            scales[k] = 1.0 + median(bands[k]);
+            worst = std::max(worst, std::abs(scales[k] - 1.0));
+        }
+        if (worst < best_worst) {
+            best_worst = worst;
+            best_delta = delta;
+            best_scales = scales;
+        }
+    }
+    return {best_delta, best_scales};
+}
+
 void run(const Options& options) {
     std::ostringstream md;
     json report;
@@ -257,7 +304,9 @@ void run(const Options& options) {
           "depth scale s, front end: < 10 / 10-20 / 20-40 m | s, StereoSGBM: < 10 / 10-20 / 20-40 "
           "m | front end - SGBM disparity (median px) | camera height, median m: B / slope / "
           "plane (frames) | road homography step (h = 1.65 m) / true, median (pairs) "
-          "| s, front end: road region (matches) / elsewhere |\n|---|---|---|---|---|---|---|---|---|\n";
+          "| s, front end: road region (matches) / elsewhere | disparity offset bringing s closest to 1 "
+          "in every band: offset px: s < 10 / 10-20 / 20-40 m |\n"
+          "|---|---|---|---|---|---|---|---|---|---|\n";
     std::stringstream list(options.clips);
     std::string clip;
     while (std::getline(list, clip, ',')) {
@@ -329,6 +378,9 @@ void run(const Options& options) {
                     {"scale_frontend_road_region", 1.0 + median(samples.road)},
                     {"scale_frontend_elsewhere", 1.0 + median(samples.rest)},
                     {"matches_road_region", samples.road.size()}};
+        const auto [delta, scales] = best_offset(camera, samples);
+        row["best_disparity_offset_px"] = delta;
+        row["scale_at_best_offset"] = scales;
         md << "| " << clip << " | " << fmt(median(length_ratio), 3) << " (" << fmt(*lo, 2) << "-"
            << fmt(*hi, 2) << ") | " << fmt(median(rotation_ratio), 3) << " | ";
         for (const auto* source : {&samples.ours, &samples.sgbm}) {
@@ -346,7 +398,9 @@ void run(const Options& options) {
            << fmt(median(height_plane), 3) << " (" << height_plane.size() << ") | "
            << fmt(median(road_ratio), 3) << " (" << road_ratio.size() << ") | "
            << fmt(1.0 + median(samples.road), 3) << " (" << samples.road.size() << ") / "
-           << fmt(1.0 + median(samples.rest), 3) << " |\n";
+           << fmt(1.0 + median(samples.rest), 3) << " | " << fmt(delta, 3) << ": "
+           << fmt(scales[0], 3) << " / " << fmt(scales[1], 3) << " / " << fmt(scales[2], 3)
+           << " |\n";
         report["clips"].push_back(row);
     }
     print_and_write_report({}, options.markdown, md.str(), options.json_path, report);

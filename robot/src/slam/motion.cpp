@@ -18,16 +18,17 @@ namespace stereo::robot::slam {
 Camera Camera::downscaled(int factor) const {
     const double f = factor;
     const double shift = (f - 1.0) / 2.0;
-    return {focal / f, (cx - shift) / f, (cy - shift) / f, baseline};
+    return {focal / f, (cx - shift) / f, (cy - shift) / f, baseline, disparity_offset / f};
 }
 
 Eigen::Vector3d Camera::lift(double u, double v, double d) const {
-    const double z = focal * baseline / d;
+    const double z = focal * baseline / (d + disparity_offset);
     return {(u - cx) * z / focal, (v - cy) * z / focal, z};
 }
 
 Eigen::Vector3d Camera::project(const Eigen::Vector3d& p) const {
-    return {focal * p.x() / p.z() + cx, focal * p.y() / p.z() + cy, focal * baseline / p.z()};
+    return {focal * p.x() / p.z() + cx, focal * p.y() / p.z() + cy,
+            focal * baseline / p.z() - disparity_offset};
 }
 
 Eigen::Isometry3d fit_rigid(const std::vector<Eigen::Vector3d>& src,
@@ -311,7 +312,8 @@ MotionEstimate estimate_motion(const Features& previous, const SparseDisparity& 
         match_mutual_nearest(previous.descriptors, current.descriptors);
     estimate.matches = static_cast<int>(matches.size());
 
-    const double min_disparity = camera.focal * camera.baseline / params.max_depth;
+    const double min_disparity =
+        camera.focal * camera.baseline / params.max_depth - camera.disparity_offset;
     std::vector<Eigen::Vector3d> src;
     std::vector<Eigen::Vector3d> dst;
     std::vector<Eigen::Vector3d> observed;  // (u, v, d) in the current frame

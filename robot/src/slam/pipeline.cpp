@@ -100,6 +100,8 @@ void validate_camera(const Camera& camera, int width, int height) {
     require(within(camera.cy, -height, 2.0 * height),
             "calibration: cy must lie within one image height of the image");
     require(within(camera.baseline, 1e-3, 1e3), "calibration: baseline must be in [1 mm, 1 km]");
+    require(within(camera.disparity_offset, -width, width),
+            "--disparity-offset must lie within one image width");
 }
 
 Slam::Slam(const Camera& camera, const SlamParams& params)

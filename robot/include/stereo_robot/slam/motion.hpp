@@ -22,11 +22,15 @@ struct Camera {
     double cx = 0.0;     // principal point, pixels
     double cy = 0.0;
     double baseline = 0.0;  // metres
+    // Added to every measured disparity before depth (Z = f B / (d + offset)): the principal
+    // points' horizontal difference of a rig whose rectified images are not aligned with its
+    // projection matrices (Middlebury's "doffs"). 0 for a calibration that matches its images.
+    double disparity_offset = 0.0;
 
     // The camera of images shrunk by an integer factor with area averaging: pixel u' covers
     // u in [F u', F u' + F), so u = F u' + (F - 1) / 2 at its centre.
     Camera downscaled(int factor) const;
-    // (u, v, d) -> (X, Y, Z) with Z = f B / d.
+    // (u, v, d) -> (X, Y, Z) with Z = f B / (d + disparity_offset).
     Eigen::Vector3d lift(double u, double v, double d) const;
     // (X, Y, Z) -> (u, v, d), the inverse of lift.
     Eigen::Vector3d project(const Eigen::Vector3d& point) const;
