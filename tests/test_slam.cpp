@@ -337,6 +337,16 @@ TEST(MutualNearest, EmptyAndMismatchedInputs) {
                  std::invalid_argument);
 }
 
+TEST(Camera, DisparityOffsetByHand) {
+    Camera camera{700.0, 600.5, 180.0, 0.5};
+    camera.disparity_offset = 1.5;
+    // d = 33.5 px measured -> 35 px true -> Z = 700 * 0.5 / 35 = 10 m; back to 33.5 px.
+    const Eigen::Vector3d p = camera.lift(670.5, 180.0, 33.5);
+    EXPECT_NEAR((p - Eigen::Vector3d(1.0, 0.0, 10.0)).norm(), 0.0, 1e-12);
+    EXPECT_NEAR((camera.project(p) - Eigen::Vector3d(670.5, 180.0, 33.5)).norm(), 0.0, 1e-9);
+    EXPECT_DOUBLE_EQ(camera.downscaled(2).disparity_offset, 0.75);  // in half-size pixels
+}
+
 TEST(Camera, DownscaleAndLiftByHand) {
     const Camera full{700.0, 600.5, 180.0, 0.5};
     const Camera half = full.downscaled(2);
@@ -785,6 +795,38 @@ TEST(RealData, KittiOdometryOnAShortClip) {
 namespace stereo::robot::slam {
 namespace {
 
+TEST(RealData, BundleAdjustmentOnAShortClipLowersTheCostAndKeepsTheTrack) {
+    const fs::path dir = io::data_dir() / "sequence" / "kitti_sequence_1";
+    if (!fs::is_directory(dir)) {
+        GTEST_SKIP() << "no KITTI data at " << dir;
+    }
+    const Sequence sequence = open_sequence(dir, Layout::kitti, std::nullopt);
+    SlamParams params;
+    params.frontend.ndisp = 48;
+    params.bundle_enabled = true;
+    params.bundle.window = 4;
+    Slam slam(sequence.camera.downscaled(2), params);
+    constexpr int kFrames = 6;
+    for (int i = 0; i < kFrames; ++i) {
+        const StereoFrame frame = load_frame(sequence, i, 2);
+        const FrameReport report = slam.process(frame.left, frame.right);
+        if (i > 0) {
+            EXPECT_GT(report.bundle.points, 50) << i;  // tracks of two or more frames
+            EXPECT_LT(report.bundle.final_cost, report.bundle.initial_cost) << i;
+        }
+    }
+    ASSERT_EQ(slam.adjusted().size(), static_cast<std::size_t>(kFrames));
+    // The first pose is the gauge; the others moved, and the track stays on the true one.
+    EXPECT_TRUE(slam.adjusted().front().matrix() == Eigen::Isometry3d::Identity().matrix());
+    EXPECT_GT((slam.adjusted().back().translation() - slam.odometry().back().translation()).norm(),
+              1e-6);
+    const Trajectory truth =
+        relative_to_first(Trajectory(sequence.truth->begin(), sequence.truth->begin() + kFrames));
+    const double travelled = truth.back().translation().norm();
+    EXPECT_LT((slam.trajectory().back().translation() - truth.back().translation()).norm(),
+              0.05 * travelled);
+}
+
 TEST(Calibration, CameraOutsideAnyRealRigIsRefused) {
     const Camera good{700.0, 320.0, 240.0, 0.5};
     EXPECT_NO_THROW(validate_camera(good, 640, 480));
@@ -800,6 +842,11 @@ TEST(Calibration, CameraOutsideAnyRealRigIsRefused) {
     bad = good;
     bad.cy = -500.0;  // more than one image height above the image
     EXPECT_THROW(validate_camera(bad, 640, 480), std::invalid_argument);
+    bad = good;
+    bad.disparity_offset = 700.0;  // more than one image width
+    EXPECT_THROW(validate_camera(bad, 640, 480), std::invalid_argument);
+    bad.disparity_offset = -2.5;  // a calibration value: either sign
+    EXPECT_NO_THROW(validate_camera(bad, 640, 480));
 }
 
 }  // namespace

@@ -126,8 +126,7 @@ Input checked_input(const SlamOptions& o) {
                                     " is larger than the images");
     }
     slam::validate(o.params, width, height);
-    if (o.params.bundle_enabled && o.ba_window_option->count() > 0 &&
-        o.params.bundle.window > frames) {
+    if (o.ba_window_option->count() > 0 && o.params.bundle.window > frames) {
         throw std::invalid_argument("--ba-window " + std::to_string(o.params.bundle.window) +
                                     " is larger than the " + std::to_string(frames) +
                                     " frames of the run");
@@ -417,8 +416,9 @@ void add_slam_command(CLI::App& app) {
          {"--ground-tolerance", &p.local.tolerance,
           "Ground band either side of the v-disparity line, pixels"},
          {"--stride", &p.local.stride, "Map every stride-th pixel"}});
-    command->add_flag("!--no-ba", p.bundle_enabled,
-                      "No windowed bundle adjustment: the frame-to-frame motion chain alone");
+    command->add_flag("--ba", p.bundle_enabled,
+                      "Windowed bundle adjustment of the last --ba-window key frames (off: the "
+                      "frame-to-frame motion chain, docs/results-slam.md)");
     o->ba_window_option =
         command
             ->add_option("--ba-window", p.bundle.window,
