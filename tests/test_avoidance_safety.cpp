@@ -82,7 +82,8 @@ std::vector<Box> generate_layout(std::mt19937& rng, const slam::Camera& camera, 
             return static_cast<int>(std::lround(camera.cx + camera.focal * metres / z));
         };
         const auto row = [&](double metres_below_camera) {
-            return static_cast<int>(std::lround(camera.cy + camera.focal * metres_below_camera / z));
+            return static_cast<int>(
+                std::lround(camera.cy + camera.focal * metres_below_camera / z));
         };
         Rect r{std::max(0, column(x - w / 2)), std::max(0, row(kCameraHeight - h)),
                std::min(width, column(x + w / 2)), std::min(height, row(kCameraHeight))};
@@ -183,8 +184,8 @@ struct Windows {
 Windows read_windows(const std::vector<int>& map, int width, const std::array<Rect, 3>& windows,
                      double threshold) {
     const std::vector<int> centre = nearest_first(map, width, windows[1]);
-    const auto near = std::count_if(centre.begin(), centre.end(),
-                                    [&](int d) { return d > threshold; });
+    const auto near =
+        std::count_if(centre.begin(), centre.end(), [&](int d) { return d > threshold; });
     return {reference_free_disparity(nearest_first(map, width, windows[0])),
             reference_free_disparity(nearest_first(map, width, windows[2])),
             centre.empty() ? 1.0 : static_cast<double>(near) / static_cast<double>(centre.size())};
@@ -258,10 +259,9 @@ TEST(AvoidanceSafety, NoUnsafeDecisionOverFiveHundredLayoutsOnKittiFrames) {
                 const DisparityMap map = edge_frontend::match(pair.left, pair.right, params);
                 const auto ground = fit_ground(map, kNdisp, camera, {});
                 const GroundModel* g = ground ? &*ground : nullptr;
-                const Windows exact = read_windows(reference_map(clean_map, g, boxes), width,
-                                                   windows, threshold);
-                const Windows seen =
-                    read_windows(perceived_map(map, g), width, windows, threshold);
+                const Windows exact =
+                    read_windows(reference_map(clean_map, g, boxes), width, windows, threshold);
+                const Windows seen = read_windows(perceived_map(map, g), width, windows, threshold);
                 const ThresholdDecision threshold_decision =
                     decide_threshold(map, threshold, kNdisp, {kRate, kDefaultBorder}, g);
                 FisParams fis;
@@ -277,8 +277,8 @@ TEST(AvoidanceSafety, NoUnsafeDecisionOverFiveHundredLayoutsOnKittiFrames) {
                     ++tally.turns_checked;
                     // What the thesis' rule alone (the smaller mean disparity) would have done.
                     const bool mean_left = threshold_decision.mean[0] <= threshold_decision.mean[2];
-                    tally.thesis_rule_unsafe +=
-                        mean_left ? seen.left_free > seen.right_free : seen.right_free > seen.left_free;
+                    tally.thesis_rule_unsafe += mean_left ? seen.left_free > seen.right_free
+                                                          : seen.right_free > seen.left_free;
                 }
                 ++tally.layouts;
             }
@@ -294,11 +294,12 @@ TEST(AvoidanceSafety, NoUnsafeDecisionOverFiveHundredLayoutsOnKittiFrames) {
     // thesis' rule alone turns towards the nearer side.
     EXPECT_GE(tally.turns_checked, 50);
     EXPECT_GT(tally.thesis_rule_unsafe, 0);
-    std::printf("%d layouts; %d threshold turns between unequal sides; unsafe (perceived, both "
-                "methods): %d forward, %d turns; the mean-disparity rule alone: %d unsafe turns; "
-                "against the exact box disparities (both methods): %d forward, %d turns\n",
-                tally.layouts, tally.turns_checked, tally.unsafe_forward, tally.unsafe_turn,
-                tally.thesis_rule_unsafe, tally.exact_forward, tally.exact_turn);
+    std::printf(
+        "%d layouts; %d threshold turns between unequal sides; unsafe (perceived, both "
+        "methods): %d forward, %d turns; the mean-disparity rule alone: %d unsafe turns; "
+        "against the exact box disparities (both methods): %d forward, %d turns\n",
+        tally.layouts, tally.turns_checked, tally.unsafe_forward, tally.unsafe_turn,
+        tally.thesis_rule_unsafe, tally.exact_forward, tally.exact_turn);
 }
 
 }  // namespace

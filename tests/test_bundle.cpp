@@ -22,8 +22,7 @@ const Camera kCamera{kFocal, kCx, kCy, kBaseline};
 
 // (u, v, d) of a camera-frame point, written out independently of Camera::project.
 Eigen::Vector3d pixel(const Eigen::Vector3d& p) {
-    return {kFocal * p.x() / p.z() + kCx, kFocal * p.y() / p.z() + kCy,
-            kFocal * kBaseline / p.z()};
+    return {kFocal * p.x() / p.z() + kCx, kFocal * p.y() / p.z() + kCy, kFocal * kBaseline / p.z()};
 }
 
 // A car driving forward 1 m per frame while turning 2 degrees per frame (world = frame 0).
@@ -61,7 +60,8 @@ Scene make_scene(int poses, int count, std::uint32_t seed) {
         const Eigen::Vector3d point(lateral(rng), height(rng), depth(rng) + poses);
         std::vector<StereoObservation> seen;
         for (int k = 0; k < poses; ++k) {
-            const Eigen::Vector3d p = scene.truth.world_to_camera[static_cast<std::size_t>(k)] * point;
+            const Eigen::Vector3d p =
+                scene.truth.world_to_camera[static_cast<std::size_t>(k)] * point;
             const Eigen::Vector3d uvd = pixel(p);
             if (p.z() > 1.0 && uvd.x() >= 0 && uvd.x() < 640 && uvd.y() >= 0 && uvd.y() < 240) {
                 seen.push_back({k, static_cast<int>(scene.truth.points.size()), uvd});

@@ -420,7 +420,7 @@ TEST(Threshold, CentreObstacleTurnsToTheFreerSide) {
 TEST(Safety, FreeDisparityByHand) {
     WindowStats stats;
     stats.valid = 10;
-    stats.ignored = 2;  // count as free
+    stats.ignored = 2;                                 // count as free
     stats.histogram = {1, 0, 0, 0, 0, 3, 0, 0, 0, 4};  // d = 0 once, 5 three times, 9 four times
     // Nearer than D (rate 0.2: fewer than 2 of 10): D = 8 leaves the four 9s (40 %), D = 9 none.
     EXPECT_DOUBLE_EQ(stats.free_disparity(0.2), 9.0);

@@ -130,12 +130,13 @@ FrameResult decide(const AvoidOptions& o, const DisparityMap& map, double thresh
         const double arrow = d.direction == robot::Direction::left    ? -kThresholdArrowDeg
                              : d.direction == robot::Direction::right ? kThresholdArrowDeg
                                                                       : 0.0;
-        out.json["threshold"] = {{"decision", robot::to_string(d.direction)},
-                                 {"certainty", d.certainty},
-                                 {"safety_override", d.safety_override},
-                                 {"free_disparity", free_disparity_json(d.stats, o.threshold_params.rate)},
-                                 {"occupancy", occupancy_json(d.stats)},
-                                 {"mean_disparity", {d.mean[0], d.mean[1], d.mean[2]}}};
+        out.json["threshold"] = {
+            {"decision", robot::to_string(d.direction)},
+            {"certainty", d.certainty},
+            {"safety_override", d.safety_override},
+            {"free_disparity", free_disparity_json(d.stats, o.threshold_params.rate)},
+            {"occupancy", occupancy_json(d.stats)},
+            {"mean_disparity", {d.mean[0], d.mean[1], d.mean[2]}}};
         out.overlay = {{d.stats[0].occupancy(), d.stats[1].occupancy(), d.stats[2].occupancy()},
                        d.direction,
                        arrow,

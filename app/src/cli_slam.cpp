@@ -425,11 +425,10 @@ void add_slam_command(CLI::App& app) {
                          "Key frames per bundle adjustment (the oldest held fixed), 2..frames; "
                          "the default is cut to a shorter run")
             ->capture_default_str();
-    add_number_options(*command,
-                       {{"--ba-huber", &p.bundle.huber_px,
-                         "Huber threshold of the (u, v, d) reprojection error, pixels"},
-                        {"--ba-iterations", &p.bundle.iterations,
-                         "Levenberg-Marquardt iterations per adjustment"}});
+    add_number_options(*command, {{"--ba-huber", &p.bundle.huber_px,
+                                   "Huber threshold of the (u, v, d) reprojection error, pixels"},
+                                  {"--ba-iterations", &p.bundle.iterations,
+                                   "Levenberg-Marquardt iterations per adjustment"}});
     command->add_flag("!--no-merge", p.merge_enabled, "Place local maps with the odometry alone");
     add_number_options(
         *command,

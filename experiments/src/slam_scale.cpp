@@ -274,7 +274,8 @@ std::pair<double, std::array<double, 3>> best_offset(const slam::Camera& camera,
             if (!(m.da + delta > 0.5) || !(m.db + delta > 0.5)) {
                 continue;
             }
-            const double excess = scale_excess(camera, m.truth, m.a, m.da + delta, m.b, m.db + delta);
+            const double excess =
+                scale_excess(camera, m.truth, m.a, m.da + delta, m.b, m.db + delta);
             const double z = camera.focal * camera.baseline / (m.da + delta);
             for (std::size_t k = 0; k + 1 < kBands.size(); ++k) {
                 if (std::isfinite(excess) && z >= kBands[k] && z < kBands[k + 1]) {
@@ -304,7 +305,8 @@ void run(const Options& options) {
           "depth scale s, front end: < 10 / 10-20 / 20-40 m | s, StereoSGBM: < 10 / 10-20 / 20-40 "
           "m | front end - SGBM disparity (median px) | camera height, median m: B / slope / "
           "plane (frames) | road homography step (h = 1.65 m) / true, median (pairs) "
-          "| s, front end: road region (matches) / elsewhere | disparity offset bringing s closest to 1 "
+          "| s, front end: road region (matches) / elsewhere | disparity offset bringing s closest "
+          "to 1 "
           "in every band: offset px: s < 10 / 10-20 / 20-40 m |\n"
           "|---|---|---|---|---|---|---|---|---|---|\n";
     std::stringstream list(options.clips);
@@ -346,10 +348,9 @@ void run(const Options& options) {
                 const Eigen::Isometry3d truth =
                     (*sequence.truth)[static_cast<std::size_t>(i)].inverse() *
                     (*sequence.truth)[static_cast<std::size_t>(i - 1)];
-                const slam::MotionEstimate estimate =
-                    slam::estimate_motion(previous.features, previous.sparse, frame.features,
-                                          frame.sparse, camera, motion,
-                                          Eigen::Isometry3d::Identity());
+                const slam::MotionEstimate estimate = slam::estimate_motion(
+                    previous.features, previous.sparse, frame.features, frame.sparse, camera,
+                    motion, Eigen::Isometry3d::Identity());
                 length_ratio.push_back(estimate.motion.translation().norm() /
                                        truth.translation().norm());
                 rotation_ratio.push_back(slam::rotation_deg(estimate.motion) /

@@ -82,9 +82,8 @@ double huber_loss(double r, double huber) {
 double bundle_cost(const BundleProblem& problem, const Camera& camera, double huber) {
     double cost = 0.0;
     for (const StereoObservation& o : problem.observations) {
-        const Eigen::Vector3d p =
-            problem.world_to_camera[static_cast<std::size_t>(o.pose)] *
-            problem.points[static_cast<std::size_t>(o.point)];
+        const Eigen::Vector3d p = problem.world_to_camera[static_cast<std::size_t>(o.pose)] *
+                                  problem.points[static_cast<std::size_t>(o.point)];
         if (p.z() > kMinDepth) {
             cost += huber_loss((camera.project(p) - o.uvd).norm(), huber);
         }
@@ -164,7 +163,8 @@ BundleReport adjust_bundle(BundleProblem& problem, const Camera& camera,
             b_points[point] -= lin.weight * lin.d_point.transpose() * lin.residual;
             const int i = free_index[static_cast<std::size_t>(o.pose)];
             if (i >= 0) {
-                h_poses.block<6, 6>(6 * i, 6 * i) += lin.weight * lin.d_pose.transpose() * lin.d_pose;
+                h_poses.block<6, 6>(6 * i, 6 * i) +=
+                    lin.weight * lin.d_pose.transpose() * lin.d_pose;
                 b_poses.segment<6>(6 * i) -= lin.weight * lin.d_pose.transpose() * lin.residual;
                 coupling[k] = lin.weight * lin.d_pose.transpose() * lin.d_point;
             }

@@ -218,7 +218,8 @@ void Slam::add_key_frame(const MotionEstimate& motion, std::size_t keypoints) {
     key.landmark_of.assign(keypoints, -1);
     if (key.linked && !window_.empty()) {
         KeyFrame& previous = window_.back();
-        const Eigen::Isometry3d& previous_pose = adjusted_[static_cast<std::size_t>(previous.frame)];
+        const Eigen::Isometry3d& previous_pose =
+            adjusted_[static_cast<std::size_t>(previous.frame)];
         for (const KeypointPair& pair : motion.inlier_pairs) {
             int& id = previous.landmark_of[static_cast<std::size_t>(pair.previous)];
             if (id < 0) {  // a new track: placed from the previous frame's stereo point
@@ -272,7 +273,8 @@ BundleReport Slam::adjust_window() {
     }
     const BundleReport report = adjust_bundle(problem, camera_, params_.bundle);
     for (std::size_t i = first_free; i < window_.size(); ++i) {
-        adjusted_[static_cast<std::size_t>(window_[i].frame)] = problem.world_to_camera[i].inverse();
+        adjusted_[static_cast<std::size_t>(window_[i].frame)] =
+            problem.world_to_camera[i].inverse();
     }
     for (std::size_t p = 0; p < point_id.size(); ++p) {
         landmarks_[point_id[p]] = problem.points[p];

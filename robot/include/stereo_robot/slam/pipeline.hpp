@@ -83,9 +83,9 @@ class Slam {
   private:
     // A key frame of the bundle-adjustment window (every frame is one).
     struct KeyFrame {
-        int frame = 0;                  // index in the run
-        bool linked = false;            // its motion was estimated (not a fallback)
-        std::vector<int> landmark_of;   // per ORB keypoint: landmark id, or -1
+        int frame = 0;                 // index in the run
+        bool linked = false;           // its motion was estimated (not a fallback)
+        std::vector<int> landmark_of;  // per ORB keypoint: landmark id, or -1
         std::vector<std::pair<int, Eigen::Vector3d>> observations;  // (landmark id, (u, v, d))
     };
     void add_key_frame(const MotionEstimate& motion, std::size_t keypoints);
