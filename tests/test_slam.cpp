@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <memory>
 #include <numbers>
 #include <random>
 #include <stdexcept>
@@ -760,24 +761,47 @@ TEST(Frames, RangeSyntax) {
 
 // ---- real data (skipped without ../shared/data) -------------------------------------------
 
-TEST(RealData, KittiOdometryOnAShortClip) {
+// The first frames of kitti_sequence_1 at half size (48 labels) through a Slam with `params`;
+// nullptr without the data.
+struct ShortClip {
+    static constexpr int kFrames = 6;
+    Trajectory truth;  // relative to the first frame
+    std::vector<FrameReport> reports;
+    Slam slam;
+};
+
+std::unique_ptr<ShortClip> run_short_clip(SlamParams params) {
     const fs::path dir = io::data_dir() / "sequence" / "kitti_sequence_1";
     if (!fs::is_directory(dir)) {
-        GTEST_SKIP() << "no KITTI data at " << dir;
+        return nullptr;
     }
     const Sequence sequence = open_sequence(dir, Layout::kitti, std::nullopt);
-    ASSERT_TRUE(sequence.truth.has_value());
-    SlamParams params;
-    params.frontend.ndisp = 48;
-    Slam slam(sequence.camera.downscaled(2), params);
-    constexpr int kFrames = 6;
-    for (int i = 0; i < kFrames; ++i) {
-        const StereoFrame frame = load_frame(sequence, i, 2);
-        const FrameReport report = slam.process(frame.left, frame.right);
-        EXPECT_FALSE(report.motion.fallback) << i;
+    if (!sequence.truth) {
+        throw std::runtime_error("kitti_sequence_1 has no poses.txt");
     }
-    const Trajectory truth =
-        relative_to_first(Trajectory(sequence.truth->begin(), sequence.truth->begin() + kFrames));
+    params.frontend.ndisp = 48;
+    auto clip = std::make_unique<ShortClip>(
+        ShortClip{relative_to_first(Trajectory(sequence.truth->begin(),
+                                               sequence.truth->begin() + ShortClip::kFrames)),
+                  {},
+                  Slam(sequence.camera.downscaled(2), params)});
+    for (int i = 0; i < ShortClip::kFrames; ++i) {
+        const StereoFrame frame = load_frame(sequence, i, 2);
+        clip->reports.push_back(clip->slam.process(frame.left, frame.right));
+    }
+    return clip;
+}
+
+TEST(RealData, KittiOdometryOnAShortClip) {
+    const auto clip = run_short_clip({});
+    if (!clip) {
+        GTEST_SKIP() << "no KITTI data under " << io::data_dir();
+    }
+    for (int i = 0; i < ShortClip::kFrames; ++i) {
+        EXPECT_FALSE(clip->reports[static_cast<std::size_t>(i)].motion.fallback) << i;
+    }
+    const Trajectory& truth = clip->truth;
+    const Slam& slam = clip->slam;
     // The car drives about 6 m straight on; a working estimate ends within a few per cent.
     const double travelled = truth.back().translation().norm();
     const double error = (slam.odometry().back().translation() - truth.back().translation()).norm();
@@ -789,43 +813,35 @@ TEST(RealData, KittiOdometryOnAShortClip) {
     EXPECT_LE(merged, error + 0.01);
 }
 
+TEST(RealData, BundleAdjustmentOnAShortClipLowersTheCostAndKeepsTheTrack) {
+    SlamParams params;
+    params.bundle_enabled = true;
+    params.bundle.window = 4;
+    const auto clip = run_short_clip(params);
+    if (!clip) {
+        GTEST_SKIP() << "no KITTI data under " << io::data_dir();
+    }
+    for (int i = 1; i < ShortClip::kFrames; ++i) {
+        const BundleReport& bundle = clip->reports[static_cast<std::size_t>(i)].bundle;
+        EXPECT_GT(bundle.points, 50) << i;  // tracks of two or more frames
+        EXPECT_LT(bundle.final_cost, bundle.initial_cost) << i;
+    }
+    const Slam& slam = clip->slam;
+    ASSERT_EQ(slam.adjusted().size(), static_cast<std::size_t>(ShortClip::kFrames));
+    // The first pose is the gauge; the others moved, and the track stays on the true one.
+    EXPECT_TRUE(slam.adjusted().front().matrix() == Eigen::Isometry3d::Identity().matrix());
+    EXPECT_GT((slam.adjusted().back().translation() - slam.odometry().back().translation()).norm(),
+              1e-6);
+    const double travelled = clip->truth.back().translation().norm();
+    EXPECT_LT((slam.trajectory().back().translation() - clip->truth.back().translation()).norm(),
+              0.05 * travelled);
+}
+
 }  // namespace
 }  // namespace stereo::robot::slam
 
 namespace stereo::robot::slam {
 namespace {
-
-TEST(RealData, BundleAdjustmentOnAShortClipLowersTheCostAndKeepsTheTrack) {
-    const fs::path dir = io::data_dir() / "sequence" / "kitti_sequence_1";
-    if (!fs::is_directory(dir)) {
-        GTEST_SKIP() << "no KITTI data at " << dir;
-    }
-    const Sequence sequence = open_sequence(dir, Layout::kitti, std::nullopt);
-    SlamParams params;
-    params.frontend.ndisp = 48;
-    params.bundle_enabled = true;
-    params.bundle.window = 4;
-    Slam slam(sequence.camera.downscaled(2), params);
-    constexpr int kFrames = 6;
-    for (int i = 0; i < kFrames; ++i) {
-        const StereoFrame frame = load_frame(sequence, i, 2);
-        const FrameReport report = slam.process(frame.left, frame.right);
-        if (i > 0) {
-            EXPECT_GT(report.bundle.points, 50) << i;  // tracks of two or more frames
-            EXPECT_LT(report.bundle.final_cost, report.bundle.initial_cost) << i;
-        }
-    }
-    ASSERT_EQ(slam.adjusted().size(), static_cast<std::size_t>(kFrames));
-    // The first pose is the gauge; the others moved, and the track stays on the true one.
-    EXPECT_TRUE(slam.adjusted().front().matrix() == Eigen::Isometry3d::Identity().matrix());
-    EXPECT_GT((slam.adjusted().back().translation() - slam.odometry().back().translation()).norm(),
-              1e-6);
-    const Trajectory truth =
-        relative_to_first(Trajectory(sequence.truth->begin(), sequence.truth->begin() + kFrames));
-    const double travelled = truth.back().translation().norm();
-    EXPECT_LT((slam.trajectory().back().translation() - truth.back().translation()).norm(),
-              0.05 * travelled);
-}
 
 TEST(Calibration, CameraOutsideAnyRealRigIsRefused) {
     const Camera good{700.0, 320.0, 240.0, 0.5};
