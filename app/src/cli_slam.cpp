@@ -87,6 +87,8 @@ struct Totals {
     double bundle_points = 0.0;
     double bundle_initial = 0.0;
     double bundle_final = 0.0;
+    std::vector<double> offset_profile;  // least-cost disparity offsets (--ba-profile-offset)
+    std::vector<double> profile_costs;   // summed over the windows, per offset
 };
 
 void add_times(slam::StageTimes& sum, const slam::StageTimes& t) {
@@ -172,6 +174,13 @@ Totals run_frames(const SlamOptions& o, const Input& in, slam::Slam& slam,
             totals.bundle_points += report.bundle.points;
             totals.bundle_initial += report.bundle.initial_cost;
             totals.bundle_final += report.bundle.final_cost;
+            if (report.bundle.profiled) {
+                totals.offset_profile.push_back(report.bundle.best_offset * o.downscale);
+                totals.profile_costs.resize(report.bundle.profile_costs.size(), 0.0);
+                for (std::size_t k = 0; k < report.bundle.profile_costs.size(); ++k) {
+                    totals.profile_costs[k] += report.bundle.profile_costs[k];
+                }
+            }
         }
         if (i == o.vdisparity_frame && !o.vdisparity.empty()) {
             vdisparity_picture = slam::draw_v_disparity(slam.last_v_disparity(), report.ground,
@@ -215,6 +224,19 @@ nlohmann::json run_summary(const SlamOptions& o, const Input& in, const Totals& 
                          {"mean_points", totals.bundle_points / per_pair},
                          {"mean_initial_cost", totals.bundle_initial / per_pair},
                          {"mean_final_cost", totals.bundle_final / per_pair}};
+    if (!totals.offset_profile.empty()) {
+        std::vector<double> sorted = totals.offset_profile;
+        std::sort(sorted.begin(), sorted.end());
+        summary["bundle"]["offset_profile"] = {
+            {"windows", sorted.size()},
+            {"median_px", sorted[sorted.size() / 2]},
+            {"quartiles_px", {sorted[sorted.size() / 4], sorted[3 * sorted.size() / 4]}}};
+        const auto least =
+            std::min_element(totals.profile_costs.begin(), totals.profile_costs.end());
+        summary["bundle"]["offset_profile"]["summed_least_cost_px"] =
+            (-2.0 + 0.25 * static_cast<double>(least - totals.profile_costs.begin())) * o.downscale;
+        summary["bundle"]["offset_profile"]["summed_costs"] = totals.profile_costs;
+    }
     summary["ground_line_frames"] = totals.ground_found;
     summary["merges_applied"] = totals.merges_applied;
     const slam::Trajectory& estimate = slam.trajectory();
@@ -429,6 +451,8 @@ void add_slam_command(CLI::App& app) {
                                    "Huber threshold of the (u, v, d) reprojection error, pixels"},
                                   {"--ba-iterations", &p.bundle.iterations,
                                    "Levenberg-Marquardt iterations per adjustment"}});
+    command->add_flag("--ba-profile-offset", p.bundle.profile_offset,
+                      "Diagnostic: the least-cost disparity offset of every window (with --ba)");
     command->add_flag("!--no-merge", p.merge_enabled, "Place local maps with the odometry alone");
     add_number_options(
         *command,

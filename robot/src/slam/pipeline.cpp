@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <future>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -271,7 +272,26 @@ BundleReport Slam::adjust_window() {
             problem.observations.push_back({static_cast<int>(i), it->second, uvd});
         }
     }
-    const BundleReport report = adjust_bundle(problem, camera_, params_.bundle);
+    BundleReport profile;
+    if (params_.bundle.profile_offset && first_free < window_.size()) {
+        double least = std::numeric_limits<double>::infinity();
+        for (int quarter = -8; quarter <= 12; ++quarter) {
+            Camera shifted = camera_;
+            shifted.disparity_offset = quarter / 4.0;
+            BundleProblem trial = problem;
+            const double cost = adjust_bundle(trial, shifted, params_.bundle).final_cost;
+            profile.profile_costs.push_back(cost);
+            if (cost < least) {
+                least = cost;
+                profile.best_offset = shifted.disparity_offset;
+            }
+        }
+        profile.profiled = true;
+    }
+    BundleReport report = adjust_bundle(problem, camera_, params_.bundle);
+    report.best_offset = profile.best_offset;
+    report.profiled = profile.profiled;
+    report.profile_costs = std::move(profile.profile_costs);
     for (std::size_t i = first_free; i < window_.size(); ++i) {
         adjusted_[static_cast<std::size_t>(window_[i].frame)] =
             problem.world_to_camera[i].inverse();

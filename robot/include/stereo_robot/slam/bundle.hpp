@@ -19,6 +19,10 @@ struct BundleParams {
     // chi-square bound of three coordinates with 1 px noise each (the usual stereo choice).
     double huber_px = 2.7955;
     int iterations = 10;  // Levenberg-Marquardt iterations at most
+    // Diagnostic (docs/results-slam.md, issue 50): the SLAM window is also adjusted for every
+    // disparity offset in [-2, 3] px by quarter pixels, and the one of least final cost is
+    // reported (a profile likelihood of the offset, no ground truth involved).
+    bool profile_offset = false;
 };
 
 // One stereo observation: landmark `point` seen in pose `pose` at (u, v, d) pixels.
@@ -41,6 +45,9 @@ struct BundleReport {
     int iterations = 0;  // accepted steps
     int observations = 0;
     int points = 0;  // landmarks with at least two observations (the others are left alone)
+    double best_offset = 0.0;  // with BundleParams::profile_offset: the least-cost offset, px
+    bool profiled = false;
+    std::vector<double> profile_costs;  // final cost per offset -2, -1.75, ..., 3 px
 };
 
 // The robust cost of one residual norm r: r^2 up to `huber`, 2 huber r - huber^2 beyond.
