@@ -415,6 +415,62 @@ TEST(Threshold, CentreObstacleTurnsToTheFreerSide) {
     EXPECT_DOUBLE_EQ(d.certainty, 0.0);
 }
 
+// ---- safety rule (issue 50): never turn towards the side with the smaller free distance --------
+
+TEST(Safety, FreeDisparityByHand) {
+    WindowStats stats;
+    stats.valid = 10;
+    stats.ignored = 2;                                 // count as free
+    stats.histogram = {1, 0, 0, 0, 0, 3, 0, 0, 0, 4};  // d = 0 once, 5 three times, 9 four times
+    // Nearer than D (rate 0.2: fewer than 2 of 10): D = 8 leaves the four 9s (40 %), D = 9 none.
+    EXPECT_DOUBLE_EQ(stats.free_disparity(0.2), 9.0);
+    // Rate 0.5 (fewer than 5): D = 5 leaves the four 9s.
+    EXPECT_DOUBLE_EQ(stats.free_disparity(0.5), 5.0);
+    // Rate 0.9 (fewer than 9): even all 8 non-ignored pixels are fewer, so D = 0.
+    EXPECT_DOUBLE_EQ(stats.free_disparity(0.9), 0.0);
+    EXPECT_TRUE(std::isinf(WindowStats{}.free_disparity(0.2)));  // no valid pixel: blocked
+}
+
+TEST(Safety, ThresholdNeverTurnsTowardsTheNearerSide) {
+    // Left: a car at d = 30 over 35 % of the window (21 of 60 rows), open road (d = 1) beyond,
+    // mean (21 30 + 39) / 60 = 11.15; right: a uniform wall at d = 12, mean 12. The thesis' rule
+    // turns left (the smaller mean), into the car; the left is blocked within f B / 30, the
+    // right only within f B / 12.
+    DisparityMap map = flat_map(1);
+    paint(map, 73, 126, 20, 80, 40);
+    paint(map, 20, 73, 20, 41, 30);
+    paint(map, 126, 180, 20, 80, 12);
+    const auto d = decide_threshold(map, 10, 64);
+    EXPECT_LT(d.mean[0], d.mean[2]);
+    EXPECT_EQ(d.direction, Direction::right);
+    EXPECT_TRUE(d.safety_override);
+    EXPECT_DOUBLE_EQ(d.stats[0].free_disparity(0.2), 30.0);
+    EXPECT_DOUBLE_EQ(d.stats[2].free_disparity(0.2), 12.0);
+    EXPECT_DOUBLE_EQ(d.certainty, 0.0);  // the chosen side has the larger mean
+}
+
+TEST(Safety, FuzzyBacksOffInsteadOfTurningTowardsTheNearerSide) {
+    // Left 25 % at d = 30 (occupancy 0.25 at T = 10), right 40 % at d = 12 (0.40): the FIS turns
+    // left, the less occupied side, but the left is blocked nearer (free disparity 30 vs 12); the
+    // right is blocked too (0.40 >= r), so the fuzzy method backs off.
+    DisparityMap map = flat_map(1);
+    paint(map, 73, 126, 20, 80, 40);
+    paint(map, 20, 73, 20, 35, 30);
+    paint(map, 126, 180, 20, 44, 12);
+    EXPECT_EQ(evaluate_fis(0.25, 1.0, 0.40).decision, Direction::left);
+    const auto d = decide_fuzzy(map, 10);
+    EXPECT_EQ(d.fis.decision, Direction::backwards);
+    EXPECT_TRUE(d.safety_override);
+    // Without the right window's obstacle the right is free: the override turns right instead.
+    map = flat_map(1);
+    paint(map, 73, 126, 20, 80, 40);
+    paint(map, 20, 73, 20, 35, 30);
+    paint(map, 126, 180, 20, 30, 12);  // 10 rows: 17 % near
+    const auto free_right = decide_fuzzy(map, 10);
+    EXPECT_EQ(free_right.fis.decision, Direction::right);
+    EXPECT_FALSE(free_right.safety_override);  // the FIS itself already turns right there
+}
+
 TEST(Threshold, RateDecidesAtTheBoundary) {
     // 20 % of the centre window's 60 rows is 12 rows: below -> forward, at or above -> turn.
     DisparityMap map = flat_map(5);

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <memory>
 #include <numbers>
 #include <random>
 #include <stdexcept>
@@ -335,6 +336,16 @@ TEST(MutualNearest, EmptyAndMismatchedInputs) {
                  std::invalid_argument);
     EXPECT_THROW(match_mutual_nearest(some, cv::Mat(4, 32, CV_32FC1, cv::Scalar(7))),
                  std::invalid_argument);
+}
+
+TEST(Camera, DisparityOffsetByHand) {
+    Camera camera{700.0, 600.5, 180.0, 0.5};
+    camera.disparity_offset = 1.5;
+    // d = 33.5 px measured -> 35 px true -> Z = 700 * 0.5 / 35 = 10 m; back to 33.5 px.
+    const Eigen::Vector3d p = camera.lift(670.5, 180.0, 33.5);
+    EXPECT_NEAR((p - Eigen::Vector3d(1.0, 0.0, 10.0)).norm(), 0.0, 1e-12);
+    EXPECT_NEAR((camera.project(p) - Eigen::Vector3d(670.5, 180.0, 33.5)).norm(), 0.0, 1e-9);
+    EXPECT_DOUBLE_EQ(camera.downscaled(2).disparity_offset, 0.75);  // in half-size pixels
 }
 
 TEST(Camera, DownscaleAndLiftByHand) {
@@ -750,24 +761,47 @@ TEST(Frames, RangeSyntax) {
 
 // ---- real data (skipped without ../shared/data) -------------------------------------------
 
-TEST(RealData, KittiOdometryOnAShortClip) {
+// The first frames of kitti_sequence_1 at half size (48 labels) through a Slam with `params`;
+// nullptr without the data.
+struct ShortClip {
+    static constexpr int kFrames = 6;
+    Trajectory truth;  // relative to the first frame
+    std::vector<FrameReport> reports;
+    Slam slam;
+};
+
+std::unique_ptr<ShortClip> run_short_clip(SlamParams params) {
     const fs::path dir = io::data_dir() / "sequence" / "kitti_sequence_1";
     if (!fs::is_directory(dir)) {
-        GTEST_SKIP() << "no KITTI data at " << dir;
+        return nullptr;
     }
     const Sequence sequence = open_sequence(dir, Layout::kitti, std::nullopt);
-    ASSERT_TRUE(sequence.truth.has_value());
-    SlamParams params;
-    params.frontend.ndisp = 48;
-    Slam slam(sequence.camera.downscaled(2), params);
-    constexpr int kFrames = 6;
-    for (int i = 0; i < kFrames; ++i) {
-        const StereoFrame frame = load_frame(sequence, i, 2);
-        const FrameReport report = slam.process(frame.left, frame.right);
-        EXPECT_FALSE(report.motion.fallback) << i;
+    if (!sequence.truth) {
+        throw std::runtime_error("kitti_sequence_1 has no poses.txt");
     }
-    const Trajectory truth =
-        relative_to_first(Trajectory(sequence.truth->begin(), sequence.truth->begin() + kFrames));
+    params.frontend.ndisp = 48;
+    auto clip = std::make_unique<ShortClip>(
+        ShortClip{relative_to_first(Trajectory(sequence.truth->begin(),
+                                               sequence.truth->begin() + ShortClip::kFrames)),
+                  {},
+                  Slam(sequence.camera.downscaled(2), params)});
+    for (int i = 0; i < ShortClip::kFrames; ++i) {
+        const StereoFrame frame = load_frame(sequence, i, 2);
+        clip->reports.push_back(clip->slam.process(frame.left, frame.right));
+    }
+    return clip;
+}
+
+TEST(RealData, KittiOdometryOnAShortClip) {
+    const auto clip = run_short_clip({});
+    if (!clip) {
+        GTEST_SKIP() << "no KITTI data under " << io::data_dir();
+    }
+    for (int i = 0; i < ShortClip::kFrames; ++i) {
+        EXPECT_FALSE(clip->reports[static_cast<std::size_t>(i)].motion.fallback) << i;
+    }
+    const Trajectory& truth = clip->truth;
+    const Slam& slam = clip->slam;
     // The car drives about 6 m straight on; a working estimate ends within a few per cent.
     const double travelled = truth.back().translation().norm();
     const double error = (slam.odometry().back().translation() - truth.back().translation()).norm();
@@ -777,6 +811,30 @@ TEST(RealData, KittiOdometryOnAShortClip) {
     const double merged =
         (slam.trajectory().back().translation() - truth.back().translation()).norm();
     EXPECT_LE(merged, error + 0.01);
+}
+
+TEST(RealData, BundleAdjustmentOnAShortClipLowersTheCostAndKeepsTheTrack) {
+    SlamParams params;
+    params.bundle_enabled = true;
+    params.bundle.window = 4;
+    const auto clip = run_short_clip(params);
+    if (!clip) {
+        GTEST_SKIP() << "no KITTI data under " << io::data_dir();
+    }
+    for (int i = 1; i < ShortClip::kFrames; ++i) {
+        const BundleReport& bundle = clip->reports[static_cast<std::size_t>(i)].bundle;
+        EXPECT_GT(bundle.points, 50) << i;  // tracks of two or more frames
+        EXPECT_LT(bundle.final_cost, bundle.initial_cost) << i;
+    }
+    const Slam& slam = clip->slam;
+    ASSERT_EQ(slam.adjusted().size(), static_cast<std::size_t>(ShortClip::kFrames));
+    // The first pose is the gauge; the others moved, and the track stays on the true one.
+    EXPECT_TRUE(slam.adjusted().front().matrix() == Eigen::Isometry3d::Identity().matrix());
+    EXPECT_GT((slam.adjusted().back().translation() - slam.odometry().back().translation()).norm(),
+              1e-6);
+    const double travelled = clip->truth.back().translation().norm();
+    EXPECT_LT((slam.trajectory().back().translation() - clip->truth.back().translation()).norm(),
+              0.05 * travelled);
 }
 
 }  // namespace
@@ -800,6 +858,11 @@ TEST(Calibration, CameraOutsideAnyRealRigIsRefused) {
     bad = good;
     bad.cy = -500.0;  // more than one image height above the image
     EXPECT_THROW(validate_camera(bad, 640, 480), std::invalid_argument);
+    bad = good;
+    bad.disparity_offset = 700.0;  // more than one image width
+    EXPECT_THROW(validate_camera(bad, 640, 480), std::invalid_argument);
+    bad.disparity_offset = -2.5;  // a calibration value: either sign
+    EXPECT_NO_THROW(validate_camera(bad, 640, 480));
 }
 
 }  // namespace

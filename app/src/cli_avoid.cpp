@@ -1,6 +1,7 @@
 // `stereo avoid LEFT RIGHT [options]`: the obstacle-avoidance chain of thesis Sec. 4.1 on one
 // pair, or on a sequence (two folders, or one list file) with one JSON line per frame.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <future>
@@ -108,6 +109,16 @@ struct FrameResult {
     robot::OverlayInfo overlay;
 };
 
+// Each window's free distance as a disparity (docs/avoidance.md, safety rule); null when blocked.
+nlohmann::json free_disparity_json(const std::array<robot::WindowStats, 3>& stats, double rate) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const auto& window : stats) {
+        const double d = window.free_disparity(rate);
+        out.push_back(std::isfinite(d) ? nlohmann::json(d) : nlohmann::json(nullptr));
+    }
+    return out;
+}
+
 FrameResult decide(const AvoidOptions& o, const DisparityMap& map, double threshold,
                    const robot::GroundModel* ground) {
     FrameResult out;
@@ -119,10 +130,13 @@ FrameResult decide(const AvoidOptions& o, const DisparityMap& map, double thresh
         const double arrow = d.direction == robot::Direction::left    ? -kThresholdArrowDeg
                              : d.direction == robot::Direction::right ? kThresholdArrowDeg
                                                                       : 0.0;
-        out.json["threshold"] = {{"decision", robot::to_string(d.direction)},
-                                 {"certainty", d.certainty},
-                                 {"occupancy", occupancy_json(d.stats)},
-                                 {"mean_disparity", {d.mean[0], d.mean[1], d.mean[2]}}};
+        out.json["threshold"] = {
+            {"decision", robot::to_string(d.direction)},
+            {"certainty", d.certainty},
+            {"safety_override", d.safety_override},
+            {"free_disparity", free_disparity_json(d.stats, o.threshold_params.rate)},
+            {"occupancy", occupancy_json(d.stats)},
+            {"mean_disparity", {d.mean[0], d.mean[1], d.mean[2]}}};
         out.overlay = {{d.stats[0].occupancy(), d.stats[1].occupancy(), d.stats[2].occupancy()},
                        d.direction,
                        arrow,
@@ -137,6 +151,7 @@ FrameResult decide(const AvoidOptions& o, const DisparityMap& map, double thresh
                              {"backwards", d.fis.backwards},
                              {"mamdani_angle_deg", d.fis.mamdani_angle_deg},
                              {"default_rule", d.fis.default_rule},
+                             {"safety_override", d.safety_override},
                              {"occupancy", occupancy_json(d.stats)}};
         char caption[64];
         std::snprintf(caption, sizeof caption, "fuzzy %+.1f deg", d.fis.angle_deg);

@@ -2,6 +2,7 @@
 // EuRoC-layout sequence: trajectory, occupancy map and, with ground-truth poses, its errors.
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -51,8 +52,10 @@ struct SlamOptions {
     bool json = false;
     int downscale = 1;
     int ca_passes = 1;
+    double disparity_offset = 0.0;  // full-size pixels (docs/slam.md §2)
     slam::SlamParams params;
     MatcherOptions matcher;  // --ndisp, --window, --sigma of the front end (params.frontend)
+    const CLI::Option* ba_window_option = nullptr;  // given: above the run's frames is an error
 };
 
 nlohmann::json errors_json(const slam::TrajectoryErrors& e) {
@@ -81,11 +84,17 @@ struct Totals {
     double lifted = 0.0;
     double matches = 0.0;
     double valid_fraction = 0.0;
+    double bundle_points = 0.0;
+    double bundle_initial = 0.0;
+    double bundle_final = 0.0;
+    std::vector<double> offset_profile;  // least-cost disparity offsets (--ba-profile-offset)
+    std::vector<double> profile_costs;   // summed over the windows, per offset
 };
 
 void add_times(slam::StageTimes& sum, const slam::StageTimes& t) {
     sum.frontend_ms += t.frontend_ms;
     sum.motion_ms += t.motion_ms;
+    sum.bundle_ms += t.bundle_ms;
     sum.local_map_ms += t.local_map_ms;
     sum.global_map_ms += t.global_map_ms;
 }
@@ -119,6 +128,11 @@ Input checked_input(const SlamOptions& o) {
                                     " is larger than the images");
     }
     slam::validate(o.params, width, height);
+    if (o.ba_window_option->count() > 0 && o.params.bundle.window > frames) {
+        throw std::invalid_argument("--ba-window " + std::to_string(o.params.bundle.window) +
+                                    " is larger than the " + std::to_string(frames) +
+                                    " frames of the run");
+    }
     if (o.vdisparity_frame < 0 || o.vdisparity_frame >= frames) {
         throw std::invalid_argument("--vdisparity-frame must be in 0.." +
                                     std::to_string(frames - 1));
@@ -157,6 +171,16 @@ Totals run_frames(const SlamOptions& o, const Input& in, slam::Slam& slam,
             totals.inliers += report.motion.inliers;
             totals.lifted += report.motion.lifted;
             totals.matches += report.motion.matches;
+            totals.bundle_points += report.bundle.points;
+            totals.bundle_initial += report.bundle.initial_cost;
+            totals.bundle_final += report.bundle.final_cost;
+            if (report.bundle.profiled) {
+                totals.offset_profile.push_back(report.bundle.best_offset * o.downscale);
+                totals.profile_costs.resize(report.bundle.profile_costs.size(), 0.0);
+                for (std::size_t k = 0; k < report.bundle.profile_costs.size(); ++k) {
+                    totals.profile_costs[k] += report.bundle.profile_costs[k];
+                }
+            }
         }
         if (i == o.vdisparity_frame && !o.vdisparity.empty()) {
             vdisparity_picture = slam::draw_v_disparity(slam.last_v_disparity(), report.ground,
@@ -187,6 +211,7 @@ nlohmann::json run_summary(const SlamOptions& o, const Input& in, const Totals& 
                       {"load", fps(frames, totals.load_ms)},
                       {"frontend", fps(frames, totals.stages.frontend_ms)},
                       {"motion", fps(frames, totals.stages.motion_ms)},
+                      {"bundle", fps(frames, totals.stages.bundle_ms)},
                       {"local_map", fps(frames, totals.stages.local_map_ms)},
                       {"global_map", fps(frames, totals.stages.global_map_ms)}};
     summary["valid_fraction"] = totals.valid_fraction / frames;
@@ -194,17 +219,38 @@ nlohmann::json run_summary(const SlamOptions& o, const Input& in, const Totals& 
                          {"mean_matches", totals.matches / per_pair},
                          {"mean_lifted", totals.lifted / per_pair},
                          {"mean_inliers", totals.inliers / per_pair}};
+    summary["bundle"] = {{"enabled", o.params.bundle_enabled},
+                         {"window", o.params.bundle.window},
+                         {"mean_points", totals.bundle_points / per_pair},
+                         {"mean_initial_cost", totals.bundle_initial / per_pair},
+                         {"mean_final_cost", totals.bundle_final / per_pair}};
+    if (!totals.offset_profile.empty()) {
+        std::vector<double> sorted = totals.offset_profile;
+        std::sort(sorted.begin(), sorted.end());
+        summary["bundle"]["offset_profile"] = {
+            {"windows", sorted.size()},
+            {"median_px", sorted[sorted.size() / 2]},
+            {"quartiles_px", {sorted[sorted.size() / 4], sorted[3 * sorted.size() / 4]}}};
+        const auto least =
+            std::min_element(totals.profile_costs.begin(), totals.profile_costs.end());
+        summary["bundle"]["offset_profile"]["summed_least_cost_px"] =
+            (-2.0 + 0.25 * static_cast<double>(least - totals.profile_costs.begin())) * o.downscale;
+        summary["bundle"]["offset_profile"]["summed_costs"] = totals.profile_costs;
+    }
     summary["ground_line_frames"] = totals.ground_found;
     summary["merges_applied"] = totals.merges_applied;
     const slam::Trajectory& estimate = slam.trajectory();
     const slam::Trajectory& odometry = slam.odometry();
+    const slam::Trajectory& adjusted = slam.adjusted();
     summary["drift"] = {{"odometry", drift_json(slam::drift(odometry))},
+                        {"adjusted", drift_json(slam::drift(adjusted))},
                         {"merged", drift_json(slam::drift(estimate))}};
     if (truth && frames >= 3) {
         summary["poses"] = "present";
         summary["path_length_m"] = slam::trajectory_errors(odometry, *truth, kRpeGap).path_length_m;
         summary["errors"] = {
             {"odometry", errors_json(slam::trajectory_errors(odometry, *truth, kRpeGap))},
+            {"adjusted", errors_json(slam::trajectory_errors(adjusted, *truth, kRpeGap))},
             {"merged", errors_json(slam::trajectory_errors(estimate, *truth, kRpeGap))}};
     } else {
         summary["poses"] = truth ? "too few frames" : "absent";
@@ -276,7 +322,7 @@ void print_summary(const nlohmann::json& summary, const Input& in, const Totals&
                     d["final_translation_m"].get<double>(), d["final_rotation_deg"].get<double>());
         return;
     }
-    for (const char* name : {"odometry", "merged"}) {
+    for (const char* name : {"odometry", "adjusted", "merged"}) {
         const auto& e = summary["errors"][name];
         std::printf("%-8s ATE %.3f m (%.2f %% of %.1f m), RPE/%d frames %.2f %% %.3f deg\n", name,
                     e["ate_rmse_m"].get<double>(), e["ate_percent"].get<double>(),
@@ -296,7 +342,12 @@ void run_slam(SlamOptions o) {
         o.params.threads = robot::default_threads();
     }
     const Input in = checked_input(o);
-    const slam::Camera camera = in.sequence.camera.downscaled(o.downscale);
+    if (o.ba_window_option->count() == 0) {  // the default window, at most the run
+        o.params.bundle.window = std::max(2, std::min(o.params.bundle.window, in.frames));
+    }
+    slam::Camera full_size = in.sequence.camera;
+    full_size.disparity_offset = o.disparity_offset;
+    const slam::Camera camera = full_size.downscaled(o.downscale);
     slam::validate_camera(camera, in.width, in.height);
     slam::Slam slam(camera, o.params);
     cv::Mat vdisparity_picture;
@@ -378,12 +429,30 @@ void add_slam_command(CLI::App& app) {
          {"--min-inliers", &p.motion.ransac.min_inliers,
           "Fewer inliers: constant-velocity fallback"},
          {"--seed", &p.motion.ransac.seed, "RANSAC seed"},
+         {"--disparity-offset", &o->disparity_offset,
+          "Calibration: pixels added to every disparity before depth, full size (0: the "
+          "calibration matches its images)"},
          {"--cell", &p.cell_size, "Grid cell size, metres"},
          {"--max-range", &p.local.max_range, "Farthest mapped point, metres"},
          {"--max-height", &p.local.max_height, "Highest obstacle point above the ground, metres"},
          {"--ground-tolerance", &p.local.tolerance,
           "Ground band either side of the v-disparity line, pixels"},
          {"--stride", &p.local.stride, "Map every stride-th pixel"}});
+    command->add_flag("--ba", p.bundle_enabled,
+                      "Windowed bundle adjustment of the last --ba-window key frames (off: the "
+                      "frame-to-frame motion chain, docs/results-slam.md)");
+    o->ba_window_option =
+        command
+            ->add_option("--ba-window", p.bundle.window,
+                         "Key frames per bundle adjustment (the oldest held fixed), 2..frames; "
+                         "the default is cut to a shorter run")
+            ->capture_default_str();
+    add_number_options(*command, {{"--ba-huber", &p.bundle.huber_px,
+                                   "Huber threshold of the (u, v, d) reprojection error, pixels"},
+                                  {"--ba-iterations", &p.bundle.iterations,
+                                   "Levenberg-Marquardt iterations per adjustment"}});
+    command->add_flag("--ba-profile-offset", p.bundle.profile_offset,
+                      "Diagnostic: the least-cost disparity offset of every window (with --ba)");
     command->add_flag("!--no-merge", p.merge_enabled, "Place local maps with the odometry alone");
     add_number_options(
         *command,

@@ -29,6 +29,7 @@ void add_illumination_command(CLI::App& app);            // docs/results-illumin
 void add_quad_eval_command(CLI::App& app);               // docs/results-quad.md
 void add_asw_eval_command(CLI::App& app);                // docs/results-asw-tables.md
 void add_subpixel_calibration_command(CLI::App& app);    // docs/fixed-point.md, stage 6
+void add_slam_scale_command(CLI::App& app);              // docs/results-slam.md, issue 50
 
 // The Middlebury 2003 pairs under `root` that are present (with their masks), in the order of
 // io::middlebury2003_scenes(); absent ones are skipped, present but broken ones throw.

@@ -18,5 +18,6 @@ int main(int argc, char** argv) {
     stereo::experiments::add_quad_eval_command(app);
     stereo::experiments::add_asw_eval_command(app);
     stereo::experiments::add_subpixel_calibration_command(app);
+    stereo::experiments::add_slam_scale_command(app);
     return stereo::cli::run(app, argc, argv);
 }

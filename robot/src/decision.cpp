@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 namespace stereo::robot {
@@ -28,6 +29,14 @@ double centroid(double lo, double hi, double step, Membership membership) {
     return total > 0.0 ? weighted / total : 0.5 * (lo + hi);
 }
 
+// The centroid of one turn's whole output MF (-18.70 / +18.70 degrees with the defaults): the
+// angle the FIS gives when only that turn rule fires.
+double turn_angle(const FisParams& params, Direction side) {
+    const Gaussian& mf = side == Direction::left ? params.left : params.right;
+    return centroid(params.angle_min, params.angle_max, params.angle_step,
+                    [&](double a) { return mf(a); });
+}
+
 void check_params(const FisParams& params) {
     if (!(params.angle_min < params.angle_max) || !(params.angle_step > 0.0) ||
         !(params.backwards_step > 0.0)) {
@@ -40,6 +49,15 @@ void check_params(const FisParams& params) {
 }
 
 }  // namespace
+
+std::optional<Direction> freer_side(const std::array<WindowStats, 3>& stats, double rate) {
+    const double left = stats[kLeft].free_disparity(rate);
+    const double right = stats[kRight].free_disparity(rate);
+    if (left == right) {
+        return std::nullopt;
+    }
+    return left < right ? Direction::left : Direction::right;
+}
 
 std::string to_string(Direction direction) {
     // In the order of the enumerators.
@@ -64,10 +82,17 @@ ThresholdDecision decide_threshold(const DisparityMap& map, double threshold, in
     }
     const double av_left = decision.mean[kLeft];
     const double av_right = decision.mean[kRight];
+    // The thesis' rule: the side with the smaller mean disparity (ties left) ...
     decision.direction = av_left <= av_right ? Direction::left : Direction::right;
-    const double av1 = std::min(av_left, av_right);  // chosen side
-    const double av2 = std::max(av_left, av_right);
-    decision.certainty = av2 > 0.0 ? (av2 - av1) / av2 : 0.0;
+    // ... unless that side's free distance is the smaller one (issue 50: never turn towards it).
+    if (const auto safer = freer_side(decision.stats, params.rate);
+        safer && *safer != decision.direction) {
+        decision.direction = *safer;
+        decision.safety_override = true;
+    }
+    const double chosen = decision.direction == Direction::left ? av_left : av_right;
+    const double other = decision.direction == Direction::left ? av_right : av_left;
+    decision.certainty = other > 0.0 ? std::max(0.0, (other - chosen) / other) : 0.0;
     return decision;
 }
 
@@ -135,9 +160,7 @@ FisResult evaluate_fis(double left, double centre, double right, const FisParams
             result.decision = Direction::backwards;
         } else {
             result.decision = go_left ? Direction::left : Direction::right;
-            const Gaussian& mf = go_left ? params.left : params.right;
-            result.angle_deg = centroid(params.angle_min, params.angle_max, params.angle_step,
-                                        [&](double a) { return mf(a); });
+            result.angle_deg = turn_angle(params, result.decision);
         }
     }
     return result;
@@ -150,6 +173,21 @@ FuzzyDecision decide_fuzzy(const DisparityMap& map, double threshold, const FisP
     decision.fis =
         evaluate_fis(decision.stats[kLeft].occupancy(), decision.stats[kCentre].occupancy(),
                      decision.stats[kRight].occupancy(), params);
+    FisResult& fis = decision.fis;
+    const bool turning = fis.decision == Direction::left || fis.decision == Direction::right;
+    // A turn towards the side with the smaller free distance (issue 50) goes the other way, or
+    // backs off when that side is blocked too.
+    if (const auto safer = freer_side(decision.stats, params.rate);
+        turning && safer && *safer != fis.decision) {
+        decision.safety_override = true;
+        const WindowStats& side = decision.stats[*safer == Direction::left ? kLeft : kRight];
+        if (side.occupancy() >= params.rate) {
+            fis.decision = Direction::backwards;
+        } else {
+            fis.decision = *safer;
+            fis.angle_deg = turn_angle(params, *safer);
+        }
+    }
     return decision;
 }
 

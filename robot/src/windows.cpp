@@ -1,12 +1,31 @@
 #include "stereo_robot/windows.hpp"
 
 #include <cstdint>
-#include "stereo_robot/ground.hpp"
-
+#include <limits>
 #include <stdexcept>
 #include <string>
 
+#include "stereo_robot/ground.hpp"
+
 namespace stereo::robot {
+
+double WindowStats::free_disparity(double rate) const {
+    if (valid == 0) {
+        return std::numeric_limits<double>::infinity();
+    }
+    // nearer = valid pixels with disparity > D, for D = -1, 0, 1, ...
+    long long nearer = valid - ignored;
+    if (static_cast<double>(nearer) < rate * valid) {
+        return 0.0;  // free as far as the window shows
+    }
+    for (std::size_t d = 0; d < histogram.size(); ++d) {
+        nearer -= histogram[d];
+        if (static_cast<double>(nearer) < rate * valid) {
+            return static_cast<double>(d);
+        }
+    }
+    return std::numeric_limits<double>::infinity();  // rate 0: never free
+}
 
 std::array<Rect, 3> split_windows(int width, int height, int border) {
     if (border < 0) {
@@ -46,6 +65,12 @@ WindowStats window_stats(const DisparityMap& map, const Rect& window, double thr
             }
             stats.above += d > threshold ? 1 : 0;
             stats.disparity_sum += d;
+            if (d >= 0) {
+                if (static_cast<std::size_t>(d) >= stats.histogram.size()) {
+                    stats.histogram.resize(static_cast<std::size_t>(d) + 1, 0);
+                }
+                ++stats.histogram[static_cast<std::size_t>(d)];
+            }
         }
     }
     return stats;

@@ -70,6 +70,10 @@ void write_fixtures(const fs::path& dir) {
     make_sequence(dir / "unequal", kFrames, kFrames - 1, rng);
     make_sequence(dir / "bad_calib", kFrames, kFrames, rng);
     std::ofstream(dir / "bad_calib" / "calib.txt") << "P0: 1 2 3\nnot a calibration\n";
+    // Issue 50: both projection matrices with the same translation, i.e. no baseline.
+    make_sequence(dir / "no_baseline", kFrames, kFrames, rng);
+    std::ofstream(dir / "no_baseline" / "calib.txt")
+        << "P0: 100 0 48 0 0 100 24 0 0 0 1 0\nP1: 100 0 48 0 0 100 24 0 0 0 1 0\n";
     make_sequence(dir / "no_calib", kFrames, kFrames, rng);
     fs::remove(dir / "no_calib" / "calib.txt");
     make_sequence(dir / "no_right", kFrames, kFrames, rng);

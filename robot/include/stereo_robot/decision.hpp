@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 
 #include "stereo/image.hpp"
@@ -13,6 +14,11 @@ enum class Direction { forward, left, right, backwards };
 
 std::string to_string(Direction direction);
 
+// The side window with the larger free distance (WindowStats::free_disparity at `rate`: the
+// smaller free disparity), or nothing when both are equal. Both methods never turn towards the
+// other side (issue 50, docs/avoidance.md "Safety").
+std::optional<Direction> freer_side(const std::array<WindowStats, 3>& stats, double rate);
+
 // ---- threshold algorithm (Sec. 4.1.1) --------------------------------------------------------
 struct ThresholdParams {
     double rate =
@@ -22,13 +28,17 @@ struct ThresholdParams {
 
 struct ThresholdDecision {
     Direction direction = Direction::forward;
-    double certainty = 0.0;  // (avD2 - avD1) / avD2 for a turn; 0 when going straight
+    // (avD2 - avD1) / avD2 for a turn (avD1 the chosen side's mean, at least 0); 0 when going
+    // straight.
+    double certainty = 0.0;
+    bool safety_override = false;  // the mean-disparity rule chose the side with less free room
     std::array<WindowStats, 3> stats{};
     std::array<double, 3> mean{};  // mean valid disparity per window (ndisp when none is valid)
 };
 
 // Centre occupancy below `rate` -> forward; otherwise the side with the smaller mean disparity
-// (ties go left). `ndisp` stands in for the mean of a window with no valid pixel.
+// (ties go left), unless the other side has the larger free distance (freer_side), which then
+// wins. `ndisp` stands in for the mean of a window with no valid pixel.
 ThresholdDecision decide_threshold(const DisparityMap& map, double threshold, int ndisp,
                                    const ThresholdParams& params = {},
                                    const GroundModel* ground = nullptr);
@@ -87,9 +97,13 @@ void check_fraction(double value, const std::string& name);
 FisResult evaluate_fis(double left, double centre, double right, const FisParams& params = {});
 
 // The fuzzy decision on a disparity map: window occupancies at `threshold`, then evaluate_fis.
+// A turn of the FIS towards the side with the smaller free distance (freer_side) is replaced by
+// a turn the other way (angle: that side's whole-MF centroid), or by backwards when that side is
+// blocked as well (occupancy >= rate); safety_override says so.
 struct FuzzyDecision {
     FisResult fis;
     std::array<WindowStats, 3> stats{};
+    bool safety_override = false;
 };
 FuzzyDecision decide_fuzzy(const DisparityMap& map, double threshold, const FisParams& params = {},
                            int border = kDefaultBorder, const GroundModel* ground = nullptr);

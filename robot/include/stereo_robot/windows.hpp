@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <vector>
 
 #include "stereo/image.hpp"
 
@@ -35,6 +36,7 @@ struct WindowStats {
     int above = 0;                // valid, not ignored pixels with disparity > threshold
     int ignored = 0;              // valid pixels the ground model calls ground or overhead
     long long disparity_sum = 0;  // sum of the disparities of valid, not ignored pixels
+    std::vector<int> histogram;   // valid, not ignored pixels per disparity (index = disparity)
 
     // Fraction of valid pixels above the threshold (ignored pixels count as free); a window
     // without any valid pixel counts as fully occupied (1), since nothing shows that it is free.
@@ -47,6 +49,11 @@ struct WindowStats {
                : counted == 0 ? 0.0
                               : static_cast<double>(disparity_sum) / counted;
     }
+    // The free distance of the window as a disparity: the smallest D for which fewer than `rate`
+    // of its valid pixels are nearer (disparity > D; ignored pixels count as free), i.e. the
+    // window is "occupied" (the forward rule's sense) within f B / D and free up to it. Smaller
+    // means freer. A window without valid pixels is blocked at once: +infinity.
+    double free_disparity(double rate) const;
 };
 
 // `ground` (optional): pixels that are not obstacles by the ground model are ignored.

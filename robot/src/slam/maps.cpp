@@ -198,7 +198,8 @@ LocalMap local_map(const SparseDisparity& map, const GroundLine& line, const Cam
                 // The ground at this depth is seen at row (d - b) / a; the rows between, times
                 // Z / f = B / d metres per row, are the height above it.
                 const double ground_row = (d - line.intercept) / line.slope;
-                const double height = camera.baseline * (ground_row - v) / d;
+                const double height =
+                    camera.baseline * (ground_row - v) / (d + camera.disparity_offset);
                 if (height <= params.max_height) {
                     out.obstacles.push_back(point);
                 }

@@ -18,16 +18,17 @@ namespace stereo::robot::slam {
 Camera Camera::downscaled(int factor) const {
     const double f = factor;
     const double shift = (f - 1.0) / 2.0;
-    return {focal / f, (cx - shift) / f, (cy - shift) / f, baseline};
+    return {focal / f, (cx - shift) / f, (cy - shift) / f, baseline, disparity_offset / f};
 }
 
 Eigen::Vector3d Camera::lift(double u, double v, double d) const {
-    const double z = focal * baseline / d;
+    const double z = focal * baseline / (d + disparity_offset);
     return {(u - cx) * z / focal, (v - cy) * z / focal, z};
 }
 
 Eigen::Vector3d Camera::project(const Eigen::Vector3d& p) const {
-    return {focal * p.x() / p.z() + cx, focal * p.y() / p.z() + cy, focal * baseline / p.z()};
+    return {focal * p.x() / p.z() + cx, focal * p.y() / p.z() + cy,
+            focal * baseline / p.z() - disparity_offset};
 }
 
 Eigen::Isometry3d fit_rigid(const std::vector<Eigen::Vector3d>& src,
@@ -229,9 +230,7 @@ double rotation_deg(const Eigen::Isometry3d& transform) {
     return std::abs(angle_axis.angle()) * 180.0 / std::numbers::pi;
 }
 
-namespace {
-
-Eigen::Isometry3d increment(const Eigen::Matrix<double, 6, 1>& delta) {
+Eigen::Isometry3d se3_increment(const Eigen::Matrix<double, 6, 1>& delta) {
     Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
     const Eigen::Vector3d omega = delta.head<3>();
     if (omega.norm() > 0.0) {
@@ -240,8 +239,6 @@ Eigen::Isometry3d increment(const Eigen::Matrix<double, 6, 1>& delta) {
     step.translation() = delta.tail<3>();
     return step;
 }
-
-}  // namespace
 
 Eigen::Isometry3d refine_reprojection(const Eigen::Isometry3d& start,
                                       const std::vector<Eigen::Vector3d>& src,
@@ -267,7 +264,7 @@ Eigen::Isometry3d refine_reprojection(const Eigen::Isometry3d& start,
         for (int j = 0; j < 6; ++j) {
             Eigen::Matrix<double, 6, 1> delta = Eigen::Matrix<double, 6, 1>::Zero();
             delta(j) = kStep;
-            residuals(increment(delta) * t, shifted);
+            residuals(se3_increment(delta) * t, shifted);
             jacobian.col(j) = (shifted - r) / kStep;
         }
         const Eigen::Matrix<double, 6, 1> delta =
@@ -275,7 +272,7 @@ Eigen::Isometry3d refine_reprojection(const Eigen::Isometry3d& start,
         if (!delta.allFinite()) {
             break;
         }
-        t = increment(delta) * t;
+        t = se3_increment(delta) * t;
         if (delta.norm() < 1e-10) {
             break;
         }
@@ -315,11 +312,13 @@ MotionEstimate estimate_motion(const Features& previous, const SparseDisparity& 
         match_mutual_nearest(previous.descriptors, current.descriptors);
     estimate.matches = static_cast<int>(matches.size());
 
-    const double min_disparity = camera.focal * camera.baseline / params.max_depth;
+    const double min_disparity =
+        camera.focal * camera.baseline / params.max_depth - camera.disparity_offset;
     std::vector<Eigen::Vector3d> src;
     std::vector<Eigen::Vector3d> dst;
     std::vector<Eigen::Vector3d> observed;  // (u, v, d) in the current frame
     std::vector<double> weights;
+    std::vector<KeypointPair> pairs;  // keypoint indices of each lifted match
     for (const cv::DMatch& match : matches) {
         if (match.distance > params.max_hamming) {
             continue;
@@ -334,6 +333,8 @@ MotionEstimate estimate_motion(const Features& previous, const SparseDisparity& 
         src.push_back(camera.lift(a.x, a.y, da));
         dst.push_back(camera.lift(b.x, b.y, db));
         observed.emplace_back(b.x, b.y, db);
+        pairs.push_back({match.queryIdx, match.trainIdx, Eigen::Vector3d(a.x, a.y, da),
+                         Eigen::Vector3d(b.x, b.y, db)});
         // Depth variance grows with Z^4; 1/Z^2 still lets far points fix the rotation.
         weights.push_back(1.0 / (src.back().z() * dst.back().z()));
     }
@@ -352,8 +353,8 @@ MotionEstimate estimate_motion(const Features& previous, const SparseDisparity& 
                       std::to_string(estimate.lifted) + ")");
     }
     Eigen::Isometry3d motion = ransac.motion;
+    std::vector<int> inliers = ransac.inliers;
     if (params.refine_iterations > 0) {
-        std::vector<int> inliers = ransac.inliers;
         for (int round = 0; round < 2; ++round) {
             motion = refine_reprojection(motion, src, observed, inliers, camera,
                                          params.refine_iterations);
@@ -375,6 +376,9 @@ MotionEstimate estimate_motion(const Features& previous, const SparseDisparity& 
         return refuse("implausible step");
     }
     estimate.motion = motion;
+    for (const int i : inliers) {
+        estimate.inlier_pairs.push_back(pairs[static_cast<std::size_t>(i)]);
+    }
     return estimate;
 }
 

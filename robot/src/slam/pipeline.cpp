@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <future>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -82,6 +83,10 @@ void validate(const SlamParams& params, int width, int height) {
     require(params.merge.min_match >= 0.0 && params.merge.min_match <= 1.0,
             "--merge-min-match must be in [0, 1]");
     require(positive(params.ray_bin_deg), "ray bins must be > 0 degrees");
+    require(within(params.bundle.window, 2, 100000),
+            "--ba-window must be at least 2 key frames (the oldest is held fixed)");
+    require(within(params.bundle.huber_px, 1e-3, 1000.0), "--ba-huber must be in [0.001, 1000] px");
+    require(within(params.bundle.iterations, 1, 1000), "--ba-iterations must be in 1..1000");
 }
 
 void validate_camera(const Camera& camera, int width, int height) {
@@ -96,6 +101,8 @@ void validate_camera(const Camera& camera, int width, int height) {
     require(within(camera.cy, -height, 2.0 * height),
             "calibration: cy must lie within one image height of the image");
     require(within(camera.baseline, 1e-3, 1e3), "calibration: baseline must be in [1 mm, 1 km]");
+    require(within(camera.disparity_offset, -width, width),
+            "--disparity-offset must lie within one image width");
 }
 
 Slam::Slam(const Camera& camera, const SlamParams& params)
@@ -121,7 +128,9 @@ FrameReport Slam::process(const cv::Mat& left, const cv::Mat& right) {
     start = Clock::now();
     if (odometry_.empty()) {
         odometry_.push_back(Eigen::Isometry3d::Identity());
+        adjusted_.push_back(Eigen::Isometry3d::Identity());
         trajectory_.push_back(Eigen::Isometry3d::Identity());
+        merge_corrections_.push_back(Eigen::Isometry3d::Identity());
     } else {
         // Constant velocity is the fallback: the last accepted motion again.
         report.motion = estimate_motion(features_, disparity_, features, disparity, camera_,
@@ -131,11 +140,25 @@ FrameReport Slam::process(const cv::Mat& left, const cv::Mat& right) {
         }
         const Eigen::Isometry3d step = report.motion.motion.inverse();  // current -> previous
         odometry_.push_back(odometry_.back() * step);
+        adjusted_.push_back(adjusted_.back() * step);
         trajectory_.push_back(trajectory_.back() * step);
+        merge_corrections_.push_back(merge_corrections_.back());
     }
     features_ = std::move(features);
     disparity_ = std::move(disparity);
     report.ms.motion_ms = ms_since(start);
+
+    if (params_.bundle_enabled) {
+        start = Clock::now();
+        add_key_frame(report.motion, features_.keypoints.size());
+        report.bundle = adjust_window();
+        // The output is the adjusted chain under the merge corrections (all left-multiplied).
+        for (const KeyFrame& key : window_) {
+            const auto k = static_cast<std::size_t>(key.frame);
+            trajectory_[k] = merge_corrections_[k] * adjusted_[k];
+        }
+        report.ms.bundle_ms = ms_since(start);
+    }
 
     start = Clock::now();
     vdisp_ = v_disparity(disparity_, params_.frontend.ndisp);
@@ -167,6 +190,7 @@ FrameReport Slam::process(const cv::Mat& left, const cv::Mat& right) {
         const Eigen::Isometry3d correction =
             merge_correction(report.merge, pivot, params_.cell_size, params_.merge);
         pose = correction * pose;
+        merge_corrections_.back() = correction * merge_corrections_.back();
         for (auto& p : obstacles) {
             p = plane(correction * Eigen::Vector3d(p.x(), 0.0, p.y()));
         }
@@ -185,6 +209,96 @@ FrameReport Slam::process(const cv::Mat& left, const cv::Mat& right) {
     map_.add_frame(cell_of(origin, params_.cell_size), cells,
                    bearing_rays(origin, obstacles, ground, params_.cell_size, params_.ray_bin_deg));
     report.ms.global_map_ms = ms_since(start);
+    return report;
+}
+
+void Slam::add_key_frame(const MotionEstimate& motion, std::size_t keypoints) {
+    KeyFrame key;
+    key.frame = static_cast<int>(adjusted_.size()) - 1;
+    key.linked = key.frame > 0 && !motion.fallback;
+    key.landmark_of.assign(keypoints, -1);
+    if (key.linked && !window_.empty()) {
+        KeyFrame& previous = window_.back();
+        const Eigen::Isometry3d& previous_pose =
+            adjusted_[static_cast<std::size_t>(previous.frame)];
+        for (const KeypointPair& pair : motion.inlier_pairs) {
+            int& id = previous.landmark_of[static_cast<std::size_t>(pair.previous)];
+            if (id < 0) {  // a new track: placed from the previous frame's stereo point
+                id = next_landmark_++;
+                const Eigen::Vector3d& uvd = pair.previous_uvd;
+                landmarks_[id] = previous_pose * camera_.lift(uvd.x(), uvd.y(), uvd.z());
+                previous.observations.emplace_back(id, uvd);
+            }
+            key.landmark_of[static_cast<std::size_t>(pair.current)] = id;
+            key.observations.emplace_back(id, pair.current_uvd);
+        }
+    }
+    window_.push_back(std::move(key));
+    if (static_cast<int>(window_.size()) > params_.bundle.window) {
+        window_.pop_front();
+        std::unordered_map<int, Eigen::Vector3d> kept;
+        for (const KeyFrame& frame : window_) {
+            for (const auto& [id, uvd] : frame.observations) {
+                kept.emplace(id, landmarks_.at(id));
+            }
+        }
+        landmarks_ = std::move(kept);
+    }
+}
+
+BundleReport Slam::adjust_window() {
+    BundleProblem problem;
+    std::unordered_map<int, int> point_index;  // landmark id -> problem index
+    std::vector<int> point_id;
+    // The oldest pose is the gauge; a frame without a motion estimate has no observation
+    // linking it to its predecessor, so it and everything before it stay fixed too.
+    std::size_t first_free = 1;
+    for (std::size_t i = 1; i < window_.size(); ++i) {
+        if (!window_[i].linked) {
+            first_free = i + 1;
+        }
+    }
+    for (std::size_t i = 0; i < window_.size(); ++i) {
+        const KeyFrame& key = window_[i];
+        problem.world_to_camera.push_back(adjusted_[static_cast<std::size_t>(key.frame)].inverse());
+        problem.fixed.push_back(i < first_free);
+        for (const auto& [id, uvd] : key.observations) {
+            const auto [it, inserted] =
+                point_index.emplace(id, static_cast<int>(problem.points.size()));
+            if (inserted) {
+                problem.points.push_back(landmarks_.at(id));
+                point_id.push_back(id);
+            }
+            problem.observations.push_back({static_cast<int>(i), it->second, uvd});
+        }
+    }
+    BundleReport profile;
+    if (params_.bundle.profile_offset && first_free < window_.size()) {
+        double least = std::numeric_limits<double>::infinity();
+        for (int quarter = -8; quarter <= 12; ++quarter) {
+            Camera shifted = camera_;
+            shifted.disparity_offset = quarter / 4.0;
+            BundleProblem trial = problem;
+            const double cost = adjust_bundle(trial, shifted, params_.bundle).final_cost;
+            profile.profile_costs.push_back(cost);
+            if (cost < least) {
+                least = cost;
+                profile.best_offset = shifted.disparity_offset;
+            }
+        }
+        profile.profiled = true;
+    }
+    BundleReport report = adjust_bundle(problem, camera_, params_.bundle);
+    report.best_offset = profile.best_offset;
+    report.profiled = profile.profiled;
+    report.profile_costs = std::move(profile.profile_costs);
+    for (std::size_t i = first_free; i < window_.size(); ++i) {
+        adjusted_[static_cast<std::size_t>(window_[i].frame)] =
+            problem.world_to_camera[i].inverse();
+    }
+    for (std::size_t p = 0; p < point_id.size(); ++p) {
+        landmarks_[point_id[p]] = problem.points[p];
+    }
     return report;
 }
 

@@ -22,11 +22,15 @@ struct Camera {
     double cx = 0.0;     // principal point, pixels
     double cy = 0.0;
     double baseline = 0.0;  // metres
+    // Added to every measured disparity before depth (Z = f B / (d + offset)): the principal
+    // points' horizontal difference of a rig whose rectified images are not aligned with its
+    // projection matrices (Middlebury's "doffs"). 0 for a calibration that matches its images.
+    double disparity_offset = 0.0;
 
     // The camera of images shrunk by an integer factor with area averaging: pixel u' covers
     // u in [F u', F u' + F), so u = F u' + (F - 1) / 2 at its centre.
     Camera downscaled(int factor) const;
-    // (u, v, d) -> (X, Y, Z) with Z = f B / d.
+    // (u, v, d) -> (X, Y, Z) with Z = f B / (d + disparity_offset).
     Eigen::Vector3d lift(double u, double v, double d) const;
     // (X, Y, Z) -> (u, v, d), the inverse of lift.
     Eigen::Vector3d project(const Eigen::Vector3d& point) const;
@@ -91,6 +95,14 @@ Features detect_features(const cv::Mat& grey, const MotionParams& params);
 // calls, which took a quarter of a SLAM step.
 std::vector<cv::DMatch> match_mutual_nearest(const cv::Mat& query, const cv::Mat& train);
 
+// A lifted match: keypoint indices in the previous and the current frame, and their (u, v, d).
+struct KeypointPair {
+    int previous = 0;
+    int current = 0;
+    Eigen::Vector3d previous_uvd = Eigen::Vector3d::Zero();
+    Eigen::Vector3d current_uvd = Eigen::Vector3d::Zero();
+};
+
 struct MotionEstimate {
     Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();  // previous camera -> current
     bool fallback = false;  // the estimate was refused and `motion` is the fallback
@@ -98,6 +110,7 @@ struct MotionEstimate {
     int matches = 0;        // cross-checked descriptor matches
     int lifted = 0;         // matches with a validated disparity in both frames
     int inliers = 0;
+    std::vector<KeypointPair> inlier_pairs;  // the final inliers (empty when refused)
 };
 
 // Matches the two frames' ORB features (brute force, Hamming, cross-check), lifts each matched
@@ -120,6 +133,10 @@ Eigen::Isometry3d refine_reprojection(const Eigen::Isometry3d& start,
                                       const std::vector<Eigen::Vector3d>& observed,
                                       const std::vector<int>& subset, const Camera& camera,
                                       int iterations);
+
+// A small rigid motion: rotation exp(omega) (axis-angle, the first three entries), then the
+// translation tau (the last three). Left-multiplied increments of the refinements.
+Eigen::Isometry3d se3_increment(const Eigen::Matrix<double, 6, 1>& delta);
 
 // Rotation angle of T in degrees.
 double rotation_deg(const Eigen::Isometry3d& transform);

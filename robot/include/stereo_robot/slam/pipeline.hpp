@@ -4,11 +4,15 @@
 // alone (odometry) and the one with the merge corrections, so the refinement can be measured.
 #pragma once
 
+#include <deque>
 #include <optional>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include <opencv2/core/mat.hpp>
 
+#include "stereo_robot/slam/bundle.hpp"
 #include "stereo_robot/slam/evaluation.hpp"
 #include "stereo_robot/slam/frontend.hpp"
 #include "stereo_robot/slam/maps.hpp"
@@ -22,6 +26,10 @@ struct SlamParams {
     GroundParams ground;
     LocalMapParams local;
     MergeParams merge;
+    BundleParams bundle;
+    // Windowed bundle adjustment (docs/slam.md §2b); off by default: it did not lower the ATE
+    // of either KITTI clip at their calibration (docs/results-slam.md, issue 50).
+    bool bundle_enabled = false;
     double cell_size = 0.25;    // metres
     double ray_bin_deg = 0.5;   // bearing bins of the free-space rays
     bool merge_enabled = true;  // false: place local maps with the odometry alone
@@ -40,6 +48,7 @@ void validate_camera(const Camera& camera, int width, int height);
 struct StageTimes {
     double frontend_ms = 0.0;
     double motion_ms = 0.0;
+    double bundle_ms = 0.0;
     double local_map_ms = 0.0;
     double global_map_ms = 0.0;
 };
@@ -47,6 +56,7 @@ struct StageTimes {
 struct FrameReport {
     double valid_fraction = 0.0;  // of the sparse disparity map
     MotionEstimate motion;        // identity for the first frame
+    BundleReport bundle;          // the window's adjustment (zeros when off or first frame)
     bool ground_found = false;    // this frame's own line (else the previous one was used)
     std::optional<GroundLine> ground;
     int obstacle_points = 0;
@@ -62,17 +72,34 @@ class Slam {
     // One frame: 8-bit grey rectified left and right images of equal size.
     FrameReport process(const cv::Mat& left, const cv::Mat& right);
 
-    const Trajectory& odometry() const { return odometry_; }      // motion chain only
-    const Trajectory& trajectory() const { return trajectory_; }  // with merge corrections
+    const Trajectory& odometry() const { return odometry_; }  // frame-to-frame motion chain only
+    // The motion chain refined by the windowed bundle adjustment (= odometry() when it is off).
+    const Trajectory& adjusted() const { return adjusted_; }
+    const Trajectory& trajectory() const { return trajectory_; }  // adjusted + merge corrections
     const EvidenceGrid& map() const { return map_; }
     const SparseDisparity& last_disparity() const { return disparity_; }
     const VDisparity& last_v_disparity() const { return vdisp_; }
 
   private:
+    // A key frame of the bundle-adjustment window (every frame is one).
+    struct KeyFrame {
+        int frame = 0;                 // index in the run
+        bool linked = false;           // its motion was estimated (not a fallback)
+        std::vector<int> landmark_of;  // per ORB keypoint: landmark id, or -1
+        std::vector<std::pair<int, Eigen::Vector3d>> observations;  // (landmark id, (u, v, d))
+    };
+    void add_key_frame(const MotionEstimate& motion, std::size_t keypoints);
+    BundleReport adjust_window();
+
     Camera camera_;
     SlamParams params_;
     Trajectory odometry_;
     Trajectory trajectory_;
+    Trajectory adjusted_;
+    Trajectory merge_corrections_;  // per frame: the product of the merge corrections so far
+    std::deque<KeyFrame> window_;
+    std::unordered_map<int, Eigen::Vector3d> landmarks_;  // world positions
+    int next_landmark_ = 0;
     EvidenceGrid map_;
     Features features_;
     SparseDisparity disparity_;
