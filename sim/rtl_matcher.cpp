@@ -126,7 +126,7 @@ void register_matchers(MatcherRegistry& registry) {
                   pipeline_factory(&run_rtl)});
     registry.add({"asw", "rtl",
                   "Sec. 3.4 separable adaptive support weights, the Verilated stereo_top ASW = 1 "
-                  "(64x48, 16 labels; census at diameter 5, AD at 7)",
+                  "(64x48, 16 labels; census at diameter 5, AD at 31)",
                   asw_factory(&run_asw_rtl)});
     registry.add({"hierarchical", "rtl",
                   "Sec. 3.3 search with the plane field, the Verilated stereo_hier_top (64x48, "

@@ -62,7 +62,7 @@ const std::vector<TopConfig>& lanes_top_configs();
 const std::vector<TopConfig>& fpga_top_configs();
 
 // The adaptive-support-weight cores (ASW = 1, docs/asw.md): "asw-census" (diameter 5, all labels
-// per clock), "asw-census-lanes4" (4 per clock) and "asw-ad-lanes4" (the AD cost, diameter 7).
+// per clock), "asw-census-lanes4" (4 per clock) and "asw-ad-lanes4" (the AD cost, diameter 31).
 // Not among the other lists.
 const std::vector<TopConfig>& asw_top_configs();
 // The built ASW core that runs `weights` (the separable variant with the default responses) on a

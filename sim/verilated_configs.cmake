@@ -11,7 +11,7 @@ stereo_verilated_config(Vstereo_top_ndisp1 stereo_top "" WIDTH=64 HEIGHT=48 NDIS
 stereo_verilated_config(Vstereo_top_lean_lanes4 stereo_top "" WIDTH=64 HEIGHT=48 NDISP=16 WINDOW=5 LANES=4 RECOMPUTE_COSTS=1'b1)
 stereo_verilated_config(Vstereo_top_asw_census stereo_top "" WIDTH=64 HEIGHT=48 NDISP=16 WINDOW=5 COST=2 ASW=1'b1)
 stereo_verilated_config(Vstereo_top_asw_census_lanes4 stereo_top "" WIDTH=64 HEIGHT=48 NDISP=16 WINDOW=5 COST=2 LANES=4 ASW=1'b1)
-stereo_verilated_config(Vstereo_top_asw_ad_lanes4 stereo_top "" WIDTH=64 HEIGHT=48 NDISP=16 WINDOW=7 LANES=4 ASW=1'b1)
+stereo_verilated_config(Vstereo_top_asw_ad_lanes4 stereo_top "" WIDTH=64 HEIGHT=48 NDISP=16 WINDOW=31 LANES=4 ASW=1'b1)
 stereo_verilated_config(Vstereo_border_flags stereo_border_flags "")
 stereo_verilated_config(Vstereo_cost stereo_cost "" NDISP=16)
 stereo_verilated_config(Vstereo_top_lcdm stereo_top "" WIDTH=64 HEIGHT=48 NDISP=16 WINDOW=5 COST=1)

@@ -4,7 +4,8 @@
 // a relit pair, frames back to back of different sizes, a reset in the middle of a frame, and
 // the frame's cycle count. Built once per configuration (STEREO_TB_ASW_CONFIG names it,
 // testbench/CMakeLists.txt): asw-census (diameter 5, every label per clock), asw-census-lanes4
-// (4 per clock) and asw-ad-lanes4 (the truncated AD cost, diameter 7).
+// (4 per clock) and asw-ad-lanes4 (the truncated AD cost, diameter 31: the continuity factor of
+// pass 2 weighs label jumps above 255 / 31, which 16 labels reach).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -104,17 +105,47 @@ INSTANTIATE_TEST_SUITE_P(Asw, AswRandomPairs,
                                            AswCase{64, 48, 16, 0, true, 0.3, 0.3},
                                            AswCase{64, 48, 16, -5, true, 0.2, 0.5},
                                            AswCase{64, 48, 16, 4, true, 0.1, 0.1},
-                                           AswCase{37, 23, 9, 0, true, 0.1, 0.2}));
+                                           AswCase{37, 33, 9, 0, true, 0.1, 0.2}));
+
+// Two layers (disparities 2 and 14 in an 8x8 checkerboard of thirds): pass 1's labels jump by 12
+// between them, which pass 2's continuity factor weighs where 12 > 255 / w (diameter 31; at 5 the
+// factor is 255 for every jump below 51 labels). The test says whether it exercises the factor:
+// the model without it must differ there.
+TEST(AswContinuity, TwoLayersEqualTheModel) {
+    const std::uint32_t seed = tb::test_seed();
+    std::mt19937 rng(seed);
+    const auto [left, right] = test::shifted_pair(64, 48, 3, 2, 20, rng);
+    Image layered = right;
+    for (int y = 0; y < 48; ++y) {
+        for (int x = 0; x < 64; ++x) {
+            if ((x / 8 + y / 8) % 3 == 0) {
+                for (int c = 0; c < 3; ++c) {
+                    layered.pixels[(static_cast<std::size_t>(y) * 64 + x) * 3 + c] =
+                        x + 14 < 64 ? left.at(x + 14, y, c)
+                                    : static_cast<std::uint8_t>(rng() % 256);
+                }
+            }
+        }
+    }
+    const MatchParams params = match_params(16, 0, true);
+    tb::Cosim cosim(config());
+    EXPECT_TRUE(same_validated(model(left, layered, params),
+                               cosim.run(left, layered, params, {0.2, 0.2, seed})));
+    if (255 / config().window < 12) {
+        asw::Params no_continuity = asw_params();
+        no_continuity.continuity = false;
+        EXPECT_FALSE(tb::same_validated(model(left, layered, params),
+                                        asw::match(left, layered, params, no_continuity)))
+            << "the pair does not exercise the continuity factor";
+    }
+}
 
 TEST(AswRealPair, TsukubaCropAndTheRightImageDarkened) {
     const auto pair = tb::tsukuba_crop();
     if (!pair) {
         GTEST_SKIP() << "tsukuba not found in " << io::data_dir();
     }
-    Image darker = pair->right;
-    for (auto& p : darker.pixels) {
-        p = static_cast<std::uint8_t>(p * 3 / 4);
-    }
+    const Image darker = tb::darkened(pair->right);
     const MatchParams params = match_params(16, 0, true);
     const std::uint32_t seed = tb::test_seed();
     tb::Cosim cosim(config());
@@ -129,7 +160,7 @@ TEST(AswFraming, BackToBackFramesAndAResetInTheMiddleOfAFrame) {
     std::mt19937 rng(seed);
     const MatchParams params = match_params(16, 0, true);
     tb::Cosim cosim(config());
-    for (const auto& [width, height] : {std::pair{64, 48}, std::pair{37, 23}, std::pair{64, 48}}) {
+    for (const auto& [width, height] : {std::pair{64, 48}, std::pair{37, 33}, std::pair{64, 48}}) {
         const auto [left, right] = test::shifted_pair(width, height, 3, 4, 10, rng);
         EXPECT_TRUE(same_validated(model(left, right, params),
                                    cosim.run(left, right, params, {0.1, 0.1, seed})))

@@ -75,10 +75,7 @@ TEST(CostRealPair, TsukubaCropWithTheRightImageDarkened) {
     if (!pair) {
         GTEST_SKIP() << "tsukuba not found in " << io::data_dir();
     }
-    Image darker = pair->right;
-    for (auto& p : darker.pixels) {
-        p = static_cast<std::uint8_t>(p * 3 / 4);
-    }
+    const Image darker = tb::darkened(pair->right);
     const MatchParams params = cost_params(16, 5, true);
     const std::uint32_t seed = tb::test_seed();
     CostCosim cosim;

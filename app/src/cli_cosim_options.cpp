@@ -44,7 +44,7 @@ void add_cosim_options(CLI::App& command, CosimOptions& options) {
     command
         .add_option("--method", options.method,
                     "pipeline: stereo_top; asw: stereo_top with adaptive support weights (ASW = "
-                    "1: the separable variant, --window its diameter; census at 5 or AD at 7, "
+                    "1: the separable variant, --window its diameter; census at 5 or AD at 31, "
                     "up to 64x48, 16 labels; docs/asw.md); hierarchical: the hierarchical "
                     "search's whole core (stereo_hier_top: census, up to 64x48, 16 labels, pass "
                     "window 5, levels 9 / 15 / 15, V = 16) with the host's plane tracker in the "
