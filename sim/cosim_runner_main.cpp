@@ -78,10 +78,14 @@ class StageProbes {
             return;
         }
         const auto* root = model.rootp;
-        sample(0, root->stereo_top__DOT__agg_x, root->stereo_top__DOT__agg_y,
-               root->stereo_top__DOT__agg_data);
-        sample(1, root->stereo_top__DOT__rule1_x, root->stereo_top__DOT__rule1_y,
-               root->stereo_top__DOT__rule1_data);
+        // The aggregation and CA rule 1 sit in stereo_top's generate block of the Gaussian
+        // aggregation (ASW = 0), g_gaussian_ca.
+        sample(0, root->stereo_top__DOT__g_gaussian_ca__DOT__agg_x,
+               root->stereo_top__DOT__g_gaussian_ca__DOT__agg_y,
+               root->stereo_top__DOT__g_gaussian_ca__DOT__agg_data);
+        sample(1, root->stereo_top__DOT__g_gaussian_ca__DOT__rule1_x,
+               root->stereo_top__DOT__g_gaussian_ca__DOT__rule1_y,
+               root->stereo_top__DOT__g_gaussian_ca__DOT__rule1_data);
         sample(2, root->stereo_top__DOT__wta_in_x, root->stereo_top__DOT__wta_in_y,
                root->stereo_top__DOT__rule2_data);
 #endif

@@ -110,9 +110,11 @@ def config_from_args(args):
         config["recompute_costs"] = 1
     # stereo_top's ASW (adaptive support weights of diameter --window, docs/asw.md), likewise.
     if getattr(args, "asw", False):
-        if config.get("cost", "ad") not in ("ad", "census") or config.get("recompute_costs"):
-            raise ReportError("--asw (adaptive support weights) is for the costs ad and census, "
-                              "without --recompute")
+        # The ASW core recomputes its costs from image rows: the lean core's costs.
+        recomputed = [cost["name"] for cost in STAGE_TABLE["costs"] if cost["lean_core"]]
+        if config.get("cost", "ad") not in recomputed or config.get("recompute_costs"):
+            raise ReportError("--asw (adaptive support weights) is for the costs "
+                              + ", ".join(recomputed) + ", without --recompute")
         config["asw"] = 1
     # stereo_top's MAX_MIN_DISP, likewise recorded only when given.
     if getattr(args, "max_min_disp", None) is not None and getattr(args, "command", None) != "board":
