@@ -737,8 +737,9 @@ def module_kind(name):
 
 def stage_module_query(stage):
     """Yosys command listing `<module>/clk` of the module that implements stereo_top's instance
-    `stage` (every stage module has a clk port)."""
-    return f"select -list *stereo_top/{stage} %M w:clk %i"
+    `stage` (every stage module has a clk port): at the top, or inside the generate block of the
+    Gaussian aggregation and CA rules (g_gaussian_ca: cost, aggregate, ca_rule1, ca_rule2)."""
+    return (f"select -list *stereo_top/{stage} *stereo_top/g_gaussian_ca.{stage} %u %M w:clk %i")
 
 
 def stage_modules(listings):
