@@ -17,6 +17,7 @@
 
 #include "stereo/catalogue.hpp"
 #include "stereo/constants.hpp"
+#include "stereo/image.hpp"
 
 namespace stereo::fx {
 
@@ -140,6 +141,24 @@ inline constexpr int kOutCertaintyBits = fx::kCertaintyBits;
 inline constexpr int kOutCertaintyLsb = kOutBeatBits - kOutCertaintyBits;               // 24
 inline constexpr int kOutPadBits = kOutCertaintyLsb - kOutReasonLsb - fx::kReasonBits;  // 5
 static_assert(kOutPadBits >= 0);
+
+// s_axis_tdata of the pixel pair at (x, y): {right RGB, left RGB}; a grey image is matched as
+// (g, g, g). sim::frame_beats and the test vectors (stereo_io/test_vectors.hpp) pack with it.
+inline std::uint64_t in_beat_data(const Image& left, const Image& right, int x, int y) {
+    const auto rgb = [x, y](const Image& image) -> std::uint64_t {
+        const int g = image.channels == 1 ? 0 : 1;
+        const int b = image.channels == 1 ? 0 : 2;
+        return (std::uint64_t{image.at(x, y, 0)} << (2 * fx::kPixelBits)) |
+               (std::uint64_t{image.at(x, y, g)} << fx::kPixelBits) | image.at(x, y, b);
+    };
+    return (rgb(right) << kInRightLsb) | (rgb(left) << kInLeftLsb);
+}
+// m_axis_tdata of one pixel of stage 6 (fx_pkg::out_beat_t).
+constexpr std::uint32_t out_beat_data(std::int16_t fixed, unsigned reason, unsigned certainty) {
+    return (static_cast<std::uint32_t>(static_cast<std::uint16_t>(fixed)) << kOutFixedLsb) |
+           ((reason & ((1U << fx::kReasonBits) - 1)) << kOutReasonLsb) |
+           ((certainty & ((1U << kOutCertaintyBits) - 1)) << kOutCertaintyLsb);
+}
 // Sticky status bits (stereo_top's status port; stereo_hls_top's return value).
 inline constexpr int kStatusEolMisplaced = 0;   // tlast not at the row end
 inline constexpr int kStatusSofMisplaced = 1;   // tuser inside a frame
