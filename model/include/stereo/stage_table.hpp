@@ -374,6 +374,126 @@ inline constexpr std::uint32_t kRegmapId = 0x5354'4552;  // "STER"
 inline constexpr std::uint32_t kRegmapVersion = 0x0001'0001;
 inline constexpr std::string_view kRegmapVersionText = "1.1.0";
 
+// The register map of stereo_axil_top: the one definition. gen_stage_table writes from it the
+// REG_* constants of rtl/fx_pkg.sv (stereo_axil_top decodes its registers with them), the C
+// header drivers/c/stereo_regs.h (offsets, fields, masks, reset values; the C driver and the
+// testbenches use it) and the table of docs/integration.md. 32-bit registers, byte offsets.
+enum class RegAccess : unsigned char { ro, rw, wo };
+struct RegField {
+    std::string_view name;  // lower case: REG_MATCH_NDISP_LSB, STEREO_MATCH_NDISP_MASK
+    int lsb;
+    int bits;
+    std::string_view meaning;  // for the documentation
+};
+inline constexpr int kRegMaxFields = 5;
+struct Register {
+    std::string_view name;  // upper case: REG_MATCH, STEREO_REG_MATCH
+    std::uint32_t offset;
+    RegAccess access;
+    std::array<RegField, kRegMaxFields> fields;  // from bit 0 up; unused entries have no name
+    // The value after reset (ID, VERSION: the constant): a number, shown as reset_text when
+    // that is not empty; kRegResetParameters when it depends on the core's parameters
+    // (reset_text says how); kRegNoReset for MAX_SIZE, BUILD (parameters) and CONTROL.
+    std::int64_t reset;
+    std::string_view reset_text;
+    std::string_view note;  // after the fields in the documentation
+    int count = 1;          // KERNEL: an array of WINDOW registers, stride 4
+};
+inline constexpr std::int64_t kRegNoReset = -1;
+inline constexpr std::int64_t kRegResetParameters = -2;
+// The model's default uniqueness ratio (ValidationParams), THRESHOLDS' reset value.
+inline constexpr int kResetUniquenessRatio = 20;
+// clang-format off
+inline constexpr std::array<Register, 14> kRegisters = {{
+    {"ID", 0x00, RegAccess::ro, {{{"id", 0, 32, "\"STER\""}}}, kRegmapId, "", ""},
+    {"VERSION", 0x04, RegAccess::ro, {{{"version", 0, 32, "register-map version `0xMMMMmmmm`"}}},
+     kRegmapVersion, "", "1.1: BUILD's COST field widened to two bits for the census cost"},
+    {"MAX_SIZE", 0x08, RegAccess::ro,
+     {{{"width", 0, kCfgSizeBits, "WIDTH"}, {"height", 16, kCfgSizeBits, "HEIGHT"}}},
+     kRegNoReset, "", "the parameters: the largest frame"},
+    {"BUILD", 0x0C, RegAccess::ro,
+     {{{"ndisp", 0, kCfgNdispBits, "NDISP"},
+       {"radius", 9, kCfgRadiusBits, "WINDOW/2"},
+       {"max_min_disp", 14, kCfgMinDispBits, "MAX_MIN_DISP"},
+       {"runtime_kernel", 26, 1, "RUNTIME_KERNEL"},
+       {"cost", 27, 2, "COST (its `fx_pkg::cost_e` code: 0 AD, 1 LCDM, 2 census)"}}},
+     kRegNoReset, "", ""},
+    {"FRAME", 0x10, RegAccess::rw,
+     {{{"width", 0, kCfgSizeBits, ""}, {"height", 16, kCfgSizeBits, ""}}},
+     kRegResetParameters, "WIDTH, HEIGHT", "of the frames"},
+    {"MATCH", 0x14, RegAccess::rw,
+     {{{"ndisp", 0, kCfgNdispBits, "labels searched"},
+       {"radius", 16, kCfgRadiusBits, "window = 2 radius + 1"},
+       {"use_ca", 24, 1, "CA rules on"}}},
+     kRegResetParameters, "NDISP, WINDOW/2, 1", ""},
+    {"STAGE6", 0x18, RegAccess::rw,
+     {{{"min_disp", 0, kCfgMinDispBits, "minimum disparity (two's complement)"},
+       {"uniqueness_en", 12, 1, "uniqueness on"},
+       {"lr_en", 13, 1, "left-right check on"},
+       {"subpixel_en", 14, 1, "sub-pixel on"}}},
+     0, "0", ""},
+    {"THRESHOLDS", 0x1C, RegAccess::rw,
+     {{{"uniqueness", 0, kCfgUniquenessBits, "uniqueness ratio U (percent)"},
+       {"lr_tolerance", 8, kCfgLrToleranceBits, "left-right tolerance T (labels)"}}},
+     kResetUniquenessRatio, "20, 0", ""},
+    {"STATUS", 0x20, RegAccess::ro,
+     {{{"eol_misplaced", kStatusEolMisplaced, 1, "tlast not at a row end"},
+       {"sof_misplaced", kStatusSofMisplaced, 1, "tuser inside a frame"},
+       {"config_clamped", kStatusConfigClamped, 1, "configuration out of range (clamped)"}}},
+     0, "0", "sticky until a reset"},
+    {"CONTROL", 0x24, RegAccess::wo,
+     {{{"soft_reset", 0, 1, "one cycle of reset for the core and the counters (registers "
+                            "keep their values)"}}},
+     kRegNoReset, "", ""},
+    {"FRAMES_IN", 0x28, RegAccess::ro, {{{"count", 0, 32, "input start-of-frame beats accepted"}}},
+     0, "0", ""},
+    {"FRAMES_OUT", 0x2C, RegAccess::ro,
+     {{{"count", 0, 32, "output start-of-frame beats delivered"}}}, 0, "0", ""},
+    {"STALLS", 0x30, RegAccess::ro,
+     {{{"count", 0, 32, "cycles with `m_axis_tvalid` high and `m_axis_tready` low"}}}, 0, "0", ""},
+    {"KERNEL", 0x40, RegAccess::rw,
+     {{{"tap", 0, fx::kKernelBits + 1, "tap i of the 1-D Gaussian kernel"}}},
+     kRegResetParameters, "the model's default kernel for WINDOW",
+     "i = 0 .. WINDOW-1, taps summing to 256; a smaller window is written centred, zeros outside "
+     "(only with `RUNTIME_KERNEL = 1`)", fx::kMaxWindow},
+}};
+// clang-format on
+// The register of a name (a compile-time lookup for the checks below and the generator).
+constexpr const Register& reg(std::string_view name) {
+    for (const Register& r : kRegisters) {
+        if (r.name == name) {
+            return r;
+        }
+    }
+    throw "no such register";  // not a constant expression: a compile error where it is used
+}
+static_assert(reg("FRAME").fields[1].lsb == reg("FRAME").fields[0].bits, "FRAME: width, height");
+static_assert(
+    [] {
+        // Fields inside 32 bits, in ascending order, not overlapping; offsets word-aligned and
+        // ascending; the array register last.
+        std::uint32_t previous = 0;
+        for (std::size_t r = 0; r < kRegisters.size(); ++r) {
+            const Register& reg = kRegisters[r];
+            if (reg.offset % 4 != 0 || (r > 0 && reg.offset <= previous)) {
+                return false;
+            }
+            previous = reg.offset;
+            int next = 0;
+            for (const RegField& field : reg.fields) {
+                if (field.name.empty()) {
+                    continue;
+                }
+                if (field.lsb < next || field.bits < 1 || field.lsb + field.bits > 32) {
+                    return false;
+                }
+                next = field.lsb + field.bits;
+            }
+        }
+        return true;
+    }(),
+    "kRegisters: aligned ascending offsets, fields in order inside 32 bits");
+
 // ---- Verilated configurations (sim/verilated_configs.cmake) --------------------------------
 // Below every parameter value (V_MIN may be negative).
 inline constexpr int kUnset = -(1 << 30);
