@@ -21,8 +21,8 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <iomanip>
 #include <initializer_list>
+#include <iomanip>
 #include <iostream>
 #include <iterator>
 #include <sstream>
@@ -160,8 +160,7 @@ std::string register_map_section() {
                << "_BITS = " << field.bits << ";\n";
         }
         if (reg.reset >= 0) {
-            sv << "  localparam int " << name << "_RESET = 'h" << hex_text(reg.reset, 8)
-               << ";\n";
+            sv << "  localparam int " << name << "_RESET = 'h" << hex_text(reg.reset, 8) << ";\n";
         }
     }
     return sv.str();
@@ -623,8 +622,8 @@ std::string c_header_text() {
           << ") */\n";
         if (reg.count > 1) {
             h << "#define STEREO_REG_" << upper(reg.name) << "(i) (0x" << hex_text(reg.offset, 2)
-              << "u + 4u * (unsigned)(i))\n#define STEREO_REG_" << upper(reg.name)
-              << "_COUNT_MAX " << reg.count << "\n";
+              << "u + 4u * (unsigned)(i))\n#define STEREO_REG_" << upper(reg.name) << "_COUNT_MAX "
+              << reg.count << "\n";
         } else {
             h << "#define STEREO_REG_" << upper(reg.name) << " 0x" << hex_text(reg.offset, 2)
               << "u\n";
@@ -635,9 +634,8 @@ std::string c_header_text() {
             }
             const std::string prefix = name + "_" + upper(field.name);
             const std::uint64_t mask = ((std::uint64_t{1} << field.bits) - 1) << field.lsb;
-            h << "#define " << prefix << "_LSB " << field.lsb << "\n#define " << prefix
-              << "_BITS " << field.bits << "\n#define " << prefix << "_MASK 0x"
-              << hex_text(mask, 8) << "ul\n";
+            h << "#define " << prefix << "_LSB " << field.lsb << "\n#define " << prefix << "_BITS "
+              << field.bits << "\n#define " << prefix << "_MASK 0x" << hex_text(mask, 8) << "ul\n";
         }
         if (reg.reset >= 0) {
             h << "#define " << name << "_RESET 0x" << hex_text(reg.reset, 8) << "ul\n";
@@ -684,8 +682,7 @@ std::string register_table() {
                 }
                 md << "]` ";
             }
-            md << "`" << field.name << "`" << (field.meaning.empty() ? "" : ": ")
-               << field.meaning;
+            md << "`" << field.name << "`" << (field.meaning.empty() ? "" : ": ") << field.meaning;
         }
         if (!reg.note.empty()) {
             md << (reg.name == "VERSION" ? " (" : "; ") << reg.note
