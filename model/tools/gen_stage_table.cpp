@@ -560,9 +560,42 @@ std::string hls_lcdm_table_text() {
     return out.str();
 }
 
-// FuseSoC CAPI2 description of the core: the sources in compile order, the lint, simulation and
-// synthesis targets. FuseSoC is not in Debian, so nothing here runs it; generating the file keeps
-// its file list equal to rtl/files.f (docs/integration.md).
+// FuseSoC CAPI2 description of the core: the sources in compile order, the SystemVerilog
+// testbench, every top-level parameter, and the lint, simulation and synthesis targets. FuseSoC
+// is not in Debian, so nothing here runs it; generating the file keeps its file list equal to
+// rtl/files.f, and test_fusesoc_core parses it and checks every parameter against the RTL
+// (docs/integration.md). No YAML anchors: every target is written out in full.
+struct CoreParameter {
+    const char* name;
+    const char* datatype;   // int or str
+    const char* paramtype;  // vlogparam or plusarg
+    const char* description;
+};
+// The parameters of stereo_axil_top (the synthesis top) and of the testbenches, the RTL's defaults
+// in the descriptions: no default is given here, so FuseSoC passes only what a user sets and
+// the RTL's own defaults (LANES = NDISP, ...) hold otherwise.
+constexpr CoreParameter kCoreParameters[] = {
+    {"WIDTH", "int", "vlogparam", "Largest frame width (64)"},
+    {"HEIGHT", "int", "vlogparam", "Largest frame height (48)"},
+    {"NDISP", "int", "vlogparam", "Labels in parallel, the largest ndisp (16)"},
+    {"WINDOW", "int", "vlogparam", "Largest aggregation window, odd (5)"},
+    {"RUNTIME_KERNEL", "int", "vlogparam",
+     "1: the kernel from the KERNEL registers; 0: the default kernel as constants (1)"},
+    {"MAX_MIN_DISP", "int", "vlogparam", "Largest |minimum disparity| (8)"},
+    {"COST", "int", "vlogparam", "Matching cost, fx_pkg::cost_e code: 0 AD, 1 LCDM, 2 census (0)"},
+    {"LANES", "int", "vlogparam", "Labels per clock, divides NDISP (NDISP)"},
+    {"SHIFT_ADD", "int", "vlogparam",
+     "RUNTIME_KERNEL 0: tap products as shifts and adds, fx_pkg::shift_add_e code (0)"},
+    {"RECOMPUTE_COSTS", "int", "vlogparam", "1: the lean memory architecture, census or AD (0)"},
+    {"ADDR_BITS", "int", "vlogparam", "AXI4-Lite address width (8)"},
+    {"vectors", "str", "plusarg",
+     "Testbench: folder of config.hex, input.hex, expected.hex (stereo vectors -o DIR)"},
+    {"seed", "int", "plusarg", "Testbench: seed of the gap and stall generators (1)"},
+    {"gap", "int", "plusarg", "Testbench: percent of cycles s_axis_tvalid is withheld (30)"},
+    {"stall", "int", "plusarg", "Testbench: percent of cycles m_axis_tready is low (30)"},
+    {"max_errors", "int", "plusarg", "Testbench: mismatching beats printed (10)"},
+};
+
 std::string fusesoc_text() {
     std::ostringstream out;
     out << "CAPI=2:\n# " << kHeader << ".\n"
@@ -577,18 +610,49 @@ std::string fusesoc_text() {
         out << "      - rtl/" << include << ": {is_include_file: true}\n";
     }
     out << "    file_type: systemVerilogSource\n"
+           "  tb:\n    files:\n      - testbench/sv/tb_stereo_vectors.sv\n"
+           "      - testbench/sv/tb_stereo_top.sv\n      - testbench/sv/tb_stereo_axil_top.sv\n"
+           "    file_type: systemVerilogSource\n"
            "  arty_a7:\n    files:\n      - scripts/synth/boards/arty_a7_100t.xdc:\n"
-           "          file_type: xdc\n\n"
-           "targets:\n"
-           "  default: &default\n    filesets: [rtl]\n    toplevel: stereo_axil_top\n"
-           "  lint:\n    <<: *default\n    default_tool: verilator\n"
-           "    tools:\n      verilator:\n        mode: lint-only\n"
-           "        verilator_options: [-Wall]\n"
-           "  sim:\n    <<: *default\n    default_tool: verilator\n"
-           "    tools:\n      verilator:\n        mode: cc\n"
-           "        verilator_options: [--trace-fst, -Wno-fatal]\n"
-           "  synth:\n    <<: *default\n    default_tool: yosys\n"
-           "    tools:\n      yosys:\n        arch: xilinx\n"
+           "          file_type: xdc\n\nparameters:\n";
+    for (const CoreParameter& parameter : kCoreParameters) {
+        out << "  " << parameter.name << ":\n    datatype: " << parameter.datatype
+            << "\n    description: \"" << parameter.description
+            << "\"\n    paramtype: " << parameter.paramtype << '\n';
+    }
+    // The parameter lists of the targets: the core's (stereo_axil_top), the testbenches'.
+    const auto list = [](bool axil, bool plusargs) {
+        std::string names;
+        for (const CoreParameter& parameter : kCoreParameters) {
+            const bool plusarg = std::string_view(parameter.paramtype) == "plusarg";
+            if ((plusarg && !plusargs) ||
+                (std::string_view(parameter.name) == "ADDR_BITS" && !axil)) {
+                continue;
+            }
+            names += (names.empty() ? "" : ", ") + std::string(parameter.name);
+        }
+        return "[" + names + "]";
+    };
+    const std::string core = "    filesets: [rtl]\n    toplevel: stereo_axil_top\n"
+                             "    parameters: " +
+                             list(true, false) + "\n";
+    const auto simulation = [&list](const char* top, bool axil) {
+        return std::string("    filesets: [rtl, tb]\n    toplevel: ") + top +
+               "\n    parameters: " + list(axil, true) +
+               "\n    default_tool: verilator\n    tools:\n      verilator:\n"
+               "        mode: binary\n        verilator_options: [--timing, -Wno-fatal]\n";
+    };
+    out << "\ntargets:\n  default:\n"
+        << core
+        << "  lint:\n"
+        << core
+        << "    default_tool: verilator\n    tools:\n      verilator:\n"
+           "        mode: lint-only\n        verilator_options: [-Wall, -Wno-ENUMVALUE]\n"
+           "  sim:\n"
+        << simulation("tb_stereo_top", false) << "  sim_axil:\n"
+        << simulation("tb_stereo_axil_top", true) << "  synth:\n"
+        << core
+        << "    default_tool: yosys\n    tools:\n      yosys:\n        arch: xilinx\n"
            "  arty_a7:\n    filesets: [rtl, arty_a7]\n    toplevel: stereo_axil_top\n"
            "    default_tool: vivado\n    tools:\n      vivado:\n        part: xc7a100tcsg324-1\n";
     return out.str();
