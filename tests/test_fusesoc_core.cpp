@@ -81,7 +81,7 @@ TEST(FusesocCore, IsCapi2WithTheExpectedSections) {
     for (const char* section : {"description", "filesets", "parameters", "targets"}) {
         EXPECT_TRUE(core.root[section]) << section;
     }
-    for (const char* target : {"default", "lint", "sim", "sim_axil", "synth"}) {
+    for (const char* target : {"default", "lint", "sim", "sim_axil", "synth", "arty_a7"}) {
         EXPECT_TRUE(core.root["targets"][target]) << target;
     }
     const YAML::Node lint = core.root["targets"]["lint"]["tools"]["verilator"];
@@ -134,13 +134,11 @@ TEST(FusesocCore, TargetParametersAreTheTopLevelParameters) {
                     << target << ": no file reads +" << name;
             }
         }
-        if (target != "arty_a7") {  // the board target has no parameters yet
-            EXPECT_EQ(vlog, std::set<std::string>(rtl.begin(), rtl.end()))
-                << target << ": the vlogparams must be " << top << "'s parameters";
-            ++checked;
-        }
+        EXPECT_EQ(vlog, std::set<std::string>(rtl.begin(), rtl.end()))
+            << target << ": the vlogparams must be " << top << "'s parameters";
+        ++checked;
     }
-    EXPECT_EQ(checked, 5);
+    EXPECT_EQ(checked, 6);
     for (const auto& entry : declared) {
         EXPECT_TRUE(used.count(entry.first.as<std::string>()))
             << entry.first.as<std::string>() << " is used by no target";

@@ -569,31 +569,36 @@ struct CoreParameter {
     const char* name;
     const char* datatype;   // int or str
     const char* paramtype;  // vlogparam or plusarg
+    const char* tops;       // whose parameter: a (stereo_axil_top), t (tb_stereo_top), x
+                            // (tb_stereo_axil_top), b (stereo_arty_top)
     const char* description;
 };
 // The parameters of stereo_axil_top (the synthesis top) and of the testbenches, the RTL's defaults
 // in the descriptions: no default is given here, so FuseSoC passes only what a user sets and
 // the RTL's own defaults (LANES = NDISP, ...) hold otherwise.
 constexpr CoreParameter kCoreParameters[] = {
-    {"WIDTH", "int", "vlogparam", "Largest frame width (64)"},
-    {"HEIGHT", "int", "vlogparam", "Largest frame height (48)"},
-    {"NDISP", "int", "vlogparam", "Labels in parallel, the largest ndisp (16)"},
-    {"WINDOW", "int", "vlogparam", "Largest aggregation window, odd (5)"},
-    {"RUNTIME_KERNEL", "int", "vlogparam",
+    {"WIDTH", "int", "vlogparam", "atxb", "Largest frame width (64)"},
+    {"HEIGHT", "int", "vlogparam", "atxb", "Largest frame height (48)"},
+    {"NDISP", "int", "vlogparam", "atxb", "Labels in parallel, the largest ndisp (16)"},
+    {"WINDOW", "int", "vlogparam", "atxb", "Largest aggregation window, odd (5)"},
+    {"RUNTIME_KERNEL", "int", "vlogparam", "atx",
      "1: the kernel from the KERNEL registers; 0: the default kernel as constants (1)"},
-    {"MAX_MIN_DISP", "int", "vlogparam", "Largest |minimum disparity| (8)"},
-    {"COST", "int", "vlogparam", "Matching cost, fx_pkg::cost_e code: 0 AD, 1 LCDM, 2 census (0)"},
-    {"LANES", "int", "vlogparam", "Labels per clock, divides NDISP (NDISP)"},
-    {"SHIFT_ADD", "int", "vlogparam",
+    {"MAX_MIN_DISP", "int", "vlogparam", "atxb", "Largest |minimum disparity| (8)"},
+    {"COST", "int", "vlogparam", "atx",
+     "Matching cost, fx_pkg::cost_e code: 0 AD, 1 LCDM, 2 census (0)"},
+    {"LANES", "int", "vlogparam", "atxb", "Labels per clock, divides NDISP (NDISP)"},
+    {"SHIFT_ADD", "int", "vlogparam", "atx",
      "RUNTIME_KERNEL 0: tap products as shifts and adds, fx_pkg::shift_add_e code (0)"},
-    {"RECOMPUTE_COSTS", "int", "vlogparam", "1: the lean memory architecture, census or AD (0)"},
-    {"ADDR_BITS", "int", "vlogparam", "AXI4-Lite address width (8)"},
-    {"vectors", "str", "plusarg",
+    {"RECOMPUTE_COSTS", "int", "vlogparam", "atx",
+     "1: the lean memory architecture, census or AD (0)"},
+    {"ADDR_BITS", "int", "vlogparam", "ax", "AXI4-Lite address width (8)"},
+    {"CLKS_PER_BIT", "int", "vlogparam", "b", "Arty A7: clocks per UART bit (868: 115,200 baud)"},
+    {"vectors", "str", "plusarg", "tx",
      "Testbench: folder of config.hex, input.hex, expected.hex (stereo vectors -o DIR)"},
-    {"seed", "int", "plusarg", "Testbench: seed of the gap and stall generators (1)"},
-    {"gap", "int", "plusarg", "Testbench: percent of cycles s_axis_tvalid is withheld (30)"},
-    {"stall", "int", "plusarg", "Testbench: percent of cycles m_axis_tready is low (30)"},
-    {"max_errors", "int", "plusarg", "Testbench: mismatching beats printed (10)"},
+    {"seed", "int", "plusarg", "tx", "Testbench: seed of the gap and stall generators (1)"},
+    {"gap", "int", "plusarg", "tx", "Testbench: percent of cycles s_axis_tvalid is withheld (30)"},
+    {"stall", "int", "plusarg", "tx", "Testbench: percent of cycles m_axis_tready is low (30)"},
+    {"max_errors", "int", "plusarg", "tx", "Testbench: mismatching beats printed (10)"},
 };
 
 std::string fusesoc_text() {
@@ -613,48 +618,48 @@ std::string fusesoc_text() {
            "  tb:\n    files:\n      - testbench/sv/tb_stereo_vectors.sv\n"
            "      - testbench/sv/tb_stereo_top.sv\n      - testbench/sv/tb_stereo_axil_top.sv\n"
            "    file_type: systemVerilogSource\n"
-           "  arty_a7:\n    files:\n      - scripts/synth/boards/arty_a7_100t.xdc:\n"
+           "  arty_a7:\n    files:\n      - scripts/synth/boards/arty_a7.xdc:\n"
            "          file_type: xdc\n\nparameters:\n";
     for (const CoreParameter& parameter : kCoreParameters) {
         out << "  " << parameter.name << ":\n    datatype: " << parameter.datatype
             << "\n    description: \"" << parameter.description
             << "\"\n    paramtype: " << parameter.paramtype << '\n';
     }
-    // The parameter lists of the targets: the core's (stereo_axil_top), the testbenches'.
-    const auto list = [](bool axil, bool plusargs) {
+    // The parameter list of a top (its letter in CoreParameter::tops).
+    const auto list = [](char top) {
         std::string names;
         for (const CoreParameter& parameter : kCoreParameters) {
-            const bool plusarg = std::string_view(parameter.paramtype) == "plusarg";
-            if ((plusarg && !plusargs) ||
-                (std::string_view(parameter.name) == "ADDR_BITS" && !axil)) {
-                continue;
+            if (std::string_view(parameter.tops).find(top) != std::string_view::npos) {
+                names += (names.empty() ? "" : ", ") + std::string(parameter.name);
             }
-            names += (names.empty() ? "" : ", ") + std::string(parameter.name);
         }
         return "[" + names + "]";
     };
-    const std::string core = "    filesets: [rtl]\n    toplevel: stereo_axil_top\n"
-                             "    parameters: " +
-                             list(true, false) + "\n";
-    const auto simulation = [&list](const char* top, bool axil) {
+    const std::string core =
+        "    filesets: [rtl]\n    toplevel: stereo_axil_top\n"
+        "    parameters: " +
+        list('a') + "\n";
+    const auto simulation = [&list](const char* top, char key) {
         return std::string("    filesets: [rtl, tb]\n    toplevel: ") + top +
-               "\n    parameters: " + list(axil, true) +
+               "\n    parameters: " + list(key) +
                "\n    default_tool: verilator\n    tools:\n      verilator:\n"
                "        mode: binary\n        verilator_options: [--timing, -Wno-fatal]\n";
     };
     out << "\ntargets:\n  default:\n"
-        << core
-        << "  lint:\n"
+        << core << "  lint:\n"
         << core
         << "    default_tool: verilator\n    tools:\n      verilator:\n"
            "        mode: lint-only\n        verilator_options: [-Wall, -Wno-ENUMVALUE]\n"
            "  sim:\n"
-        << simulation("tb_stereo_top", false) << "  sim_axil:\n"
-        << simulation("tb_stereo_axil_top", true) << "  synth:\n"
+        << simulation("tb_stereo_top", 't') << "  sim_axil:\n"
+        << simulation("tb_stereo_axil_top", 'x') << "  synth:\n"
         << core
         << "    default_tool: yosys\n    tools:\n      yosys:\n        arch: xilinx\n"
-           "  arty_a7:\n    filesets: [rtl, arty_a7]\n    toplevel: stereo_axil_top\n"
-           "    default_tool: vivado\n    tools:\n      vivado:\n        part: xc7a100tcsg324-1\n";
+           "  arty_a7:\n    filesets: [rtl, arty_a7]\n    toplevel: stereo_arty_top\n"
+           "    parameters: "
+        << list('b')
+        << "\n    default_tool: vivado\n    tools:\n      vivado:\n"
+           "        part: xc7a100tcsg324-1\n";
     return out.str();
 }
 
