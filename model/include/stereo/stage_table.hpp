@@ -316,7 +316,7 @@ constexpr int hls_pipeline_latency(int width, int window, int ndisp, int min_dis
 // The package first, then every module before its first user. One module per file, named after
 // it; the list of modules to lint is this list without the package.
 inline constexpr std::string_view kPackageFile = "fx_pkg.sv";
-inline constexpr std::array<std::string_view, 43> kRtlModules = {
+inline constexpr std::array<std::string_view, 44> kRtlModules = {
     "stereo_coord_reg",
     "stereo_stage_output",
     "stereo_shift_reg",
@@ -346,6 +346,7 @@ inline constexpr std::array<std::string_view, 43> kRtlModules = {
     "stereo_board_link",
     "stereo_board_top",
     "stereo_uart_echo_top",
+    "stereo_arty_top",
     "stereo_downscale",
     "stereo_plane_stats",
     "stereo_plane_offset",
@@ -609,7 +610,7 @@ inline constexpr Params kFullCensusLean =
 inline constexpr Params kFullHier = {
     .width = 640, .height = 480, .ndisp = 64, .window = 11, .lanes = 8, .recompute_costs = 1};
 
-inline constexpr std::array<VerilatedConfig, 41> kVerilatedConfigs = {{
+inline constexpr std::array<VerilatedConfig, 42> kVerilatedConfigs = {{
     {"Vstereo_top_small", "stereo_top", kSmall, "", "small"},
     {"Vstereo_top_lanes4", "stereo_top", kSmallLanes4, "", "lanes4"},
     {"Vstereo_top_lanes1", "stereo_top", kSmallLanes1, "", "lanes1"},
@@ -664,6 +665,8 @@ inline constexpr std::array<VerilatedConfig, 41> kVerilatedConfigs = {{
      ""},
     // The iCEBreaker top: UART protocol, configuration registers and stereo_top.
     {"Vstereo_board_top", "stereo_board_top", kSmallBoard, ""},
+    // The same board design on the Arty A7 (rtl/stereo_arty_top.sv, issue 48), same size and UART.
+    {"Vstereo_arty_top", "stereo_arty_top", kSmallBoard, ""},
     // Its link test (UART echo, no core) with the same UART speed.
     {"Vstereo_uart_echo_top",
      "stereo_uart_echo_top",
