@@ -10,8 +10,7 @@
 #define STEREO_REGMAP_VERSION_MAJOR(version) ((version) >> 16)
 
 /* A field's value in a register word, and a register word's field. */
-#define STEREO_FIELD(field, value) \
-    ((((unsigned long)(value)) << field##_LSB) & field##_MASK)
+#define STEREO_FIELD(field, value) ((((unsigned long)(value)) << field##_LSB) & field##_MASK)
 #define STEREO_GET(field, word) ((((unsigned long)(word)) & field##_MASK) >> field##_LSB)
 
 /* ID (read-only) */

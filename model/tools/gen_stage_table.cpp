@@ -678,8 +678,8 @@ std::string c_header_text() {
       << hex_text(t::kRegmapVersion, 8)
       << "u\n#define STEREO_REGMAP_VERSION_MAJOR(version) ((version) >> 16)\n\n"
          "/* A field's value in a register word, and a register word's field. */\n"
-         "#define STEREO_FIELD(field, value) \\\n"
-         "    ((((unsigned long)(value)) << field##_LSB) & field##_MASK)\n"
+         "#define STEREO_FIELD(field, value) ((((unsigned long)(value)) << field##_LSB) & "
+         "field##_MASK)\n"
          "#define STEREO_GET(field, word) ((((unsigned long)(word)) & field##_MASK) >> "
          "field##_LSB)\n";
     for (const t::Register& reg : t::kRegisters) {

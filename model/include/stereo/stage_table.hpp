@@ -316,6 +316,8 @@ constexpr int hls_pipeline_latency(int width, int window, int ndisp, int min_dis
 // The package first, then every module before its first user. One module per file, named after
 // it; the list of modules to lint is this list without the package.
 inline constexpr std::string_view kPackageFile = "fx_pkg.sv";
+// One module a line: the compile order reads from top to bottom.
+// clang-format off
 inline constexpr std::array<std::string_view, 44> kRtlModules = {
     "stereo_coord_reg",
     "stereo_stage_output",
@@ -362,6 +364,7 @@ inline constexpr std::array<std::string_view, 44> kRtlModules = {
     "stereo_hier_levels",
     "stereo_hier_top",
 };
+// clang-format on
 // Port-list fragments and the parameter-check macro (`STEREO_ASSERT) the modules `include (found
 // in rtl/: tools need rtl/ on the include path).
 inline constexpr std::array<std::string_view, 7> kRtlIncludes = {
