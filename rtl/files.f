@@ -31,6 +31,7 @@ stereo_power_on_reset.sv
 stereo_board_link.sv
 stereo_board_top.sv
 stereo_uart_echo_top.sv
+stereo_arty_top.sv
 stereo_downscale.sv
 stereo_plane_stats.sv
 stereo_plane_offset.sv

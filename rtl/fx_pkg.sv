@@ -94,6 +94,58 @@ package fx_pkg;
   localparam int REGMAP_ID = 1398031698;  // stereo_axil_top's ID register
   localparam int REGMAP_VERSION = 65537;  // stereo_axil_top's VERSION register
 
+  // ---- stereo_axil_top's register map (stage_table.hpp kRegisters, docs/integration.md) ----
+  localparam int REG_ID = 'h00;
+  localparam int REG_ID_ID_LSB = 0, REG_ID_ID_BITS = 32;
+  localparam int REG_ID_RESET = 'h53544552;
+  localparam int REG_VERSION = 'h04;
+  localparam int REG_VERSION_VERSION_LSB = 0, REG_VERSION_VERSION_BITS = 32;
+  localparam int REG_VERSION_RESET = 'h00010001;
+  localparam int REG_MAX_SIZE = 'h08;
+  localparam int REG_MAX_SIZE_WIDTH_LSB = 0, REG_MAX_SIZE_WIDTH_BITS = 16;
+  localparam int REG_MAX_SIZE_HEIGHT_LSB = 16, REG_MAX_SIZE_HEIGHT_BITS = 16;
+  localparam int REG_BUILD = 'h0C;
+  localparam int REG_BUILD_NDISP_LSB = 0, REG_BUILD_NDISP_BITS = 9;
+  localparam int REG_BUILD_RADIUS_LSB = 9, REG_BUILD_RADIUS_BITS = 5;
+  localparam int REG_BUILD_MAX_MIN_DISP_LSB = 14, REG_BUILD_MAX_MIN_DISP_BITS = 12;
+  localparam int REG_BUILD_RUNTIME_KERNEL_LSB = 26, REG_BUILD_RUNTIME_KERNEL_BITS = 1;
+  localparam int REG_BUILD_COST_LSB = 27, REG_BUILD_COST_BITS = 2;
+  localparam int REG_FRAME = 'h10;
+  localparam int REG_FRAME_WIDTH_LSB = 0, REG_FRAME_WIDTH_BITS = 16;
+  localparam int REG_FRAME_HEIGHT_LSB = 16, REG_FRAME_HEIGHT_BITS = 16;
+  localparam int REG_MATCH = 'h14;
+  localparam int REG_MATCH_NDISP_LSB = 0, REG_MATCH_NDISP_BITS = 9;
+  localparam int REG_MATCH_RADIUS_LSB = 16, REG_MATCH_RADIUS_BITS = 5;
+  localparam int REG_MATCH_USE_CA_LSB = 24, REG_MATCH_USE_CA_BITS = 1;
+  localparam int REG_STAGE6 = 'h18;
+  localparam int REG_STAGE6_MIN_DISP_LSB = 0, REG_STAGE6_MIN_DISP_BITS = 12;
+  localparam int REG_STAGE6_UNIQUENESS_EN_LSB = 12, REG_STAGE6_UNIQUENESS_EN_BITS = 1;
+  localparam int REG_STAGE6_LR_EN_LSB = 13, REG_STAGE6_LR_EN_BITS = 1;
+  localparam int REG_STAGE6_SUBPIXEL_EN_LSB = 14, REG_STAGE6_SUBPIXEL_EN_BITS = 1;
+  localparam int REG_STAGE6_RESET = 'h00000000;
+  localparam int REG_THRESHOLDS = 'h1C;
+  localparam int REG_THRESHOLDS_UNIQUENESS_LSB = 0, REG_THRESHOLDS_UNIQUENESS_BITS = 8;
+  localparam int REG_THRESHOLDS_LR_TOLERANCE_LSB = 8, REG_THRESHOLDS_LR_TOLERANCE_BITS = 8;
+  localparam int REG_THRESHOLDS_RESET = 'h00000014;
+  localparam int REG_STATUS = 'h20;
+  localparam int REG_STATUS_EOL_MISPLACED_LSB = 0, REG_STATUS_EOL_MISPLACED_BITS = 1;
+  localparam int REG_STATUS_SOF_MISPLACED_LSB = 1, REG_STATUS_SOF_MISPLACED_BITS = 1;
+  localparam int REG_STATUS_CONFIG_CLAMPED_LSB = 2, REG_STATUS_CONFIG_CLAMPED_BITS = 1;
+  localparam int REG_STATUS_RESET = 'h00000000;
+  localparam int REG_CONTROL = 'h24;
+  localparam int REG_CONTROL_SOFT_RESET_LSB = 0, REG_CONTROL_SOFT_RESET_BITS = 1;
+  localparam int REG_FRAMES_IN = 'h28;
+  localparam int REG_FRAMES_IN_COUNT_LSB = 0, REG_FRAMES_IN_COUNT_BITS = 32;
+  localparam int REG_FRAMES_IN_RESET = 'h00000000;
+  localparam int REG_FRAMES_OUT = 'h2C;
+  localparam int REG_FRAMES_OUT_COUNT_LSB = 0, REG_FRAMES_OUT_COUNT_BITS = 32;
+  localparam int REG_FRAMES_OUT_RESET = 'h00000000;
+  localparam int REG_STALLS = 'h30;
+  localparam int REG_STALLS_COUNT_LSB = 0, REG_STALLS_COUNT_BITS = 32;
+  localparam int REG_STALLS_RESET = 'h00000000;
+  localparam int REG_KERNEL = 'h40;  // + 4 i, i < 31
+  localparam int REG_KERNEL_TAP_LSB = 0, REG_KERNEL_TAP_BITS = 9;
+
   // CA rules: 2|n - c| < c  <=>  c < 2n < 3c, exactly in integers (stereo::fx::agrees):
   // two comparisons instead of a subtraction, an absolute value and a comparison.
   function automatic logic agrees(input logic [AGG_BITS-1:0] neighbour,

@@ -1,25 +1,13 @@
 // stereo_axil_top: stereo_top for SoC integration. The video streams pass straight through
 // (AXI4-Stream, the beat layouts of stereo_top); the configuration lives in registers behind an
-// AXI4-Lite slave instead of ports. Register map (byte offsets; docs/integration.md has the
-// fields, reset values and a driver sequence):
-//   0x00 ID          RO  REGMAP_ID = 0x53544552 ("STER")
-//   0x04 VERSION     RO  REGMAP_VERSION (0xMMMMmmmm)
-//   0x08 MAX_SIZE    RO  [15:0] WIDTH, [31:16] HEIGHT (the largest frame)
-//   0x0C BUILD       RO  [8:0] NDISP, [13:9] WINDOW / 2, [25:14] MAX_MIN_DISP, [26] RUNTIME_KERNEL,
-//                        [28:27] COST (0 AD, 1 LCDM, 2 census)
-//   0x10 FRAME       RW  [15:0] width, [31:16] height           reset WIDTH, HEIGHT
-//   0x14 MATCH       RW  [8:0] ndisp, [20:16] radius, [24] use_ca  reset NDISP, WINDOW / 2, 1
-//   0x18 STAGE6      RW  [11:0] min_disp (signed), [12] uniqueness enable, [13] left-right enable,
-//                        [14] sub-pixel enable                  reset 0
-//   0x1C THRESHOLDS  RW  [7:0] uniqueness ratio (percent), [15:8] left-right tolerance
-//                                                               reset 20, 0 (the model's defaults)
-//   0x20 STATUS      RO  [2:0] stereo_top's sticky status (cleared by CONTROL.soft_reset)
-//   0x24 CONTROL     WO  [0] soft_reset: one-cycle reset of the core and the counters
-//   0x28 FRAMES_IN   RO  input start-of-frame beats accepted
-//   0x2C FRAMES_OUT  RO  output start-of-frame beats delivered
-//   0x30 STALLS      RO  cycles with m_axis_tvalid high and m_axis_tready low
-//   0x40 + 4 i KERNEL[i] RW [8:0] tap i of WINDOW (used when RUNTIME_KERNEL = 1; reset: the
-//                        model's default kernel for WINDOW)
+// AXI4-Lite slave instead of ports. The register map is defined once, in
+// model/include/stereo/stage_table.hpp (kRegisters), and generated into fx_pkg's REG_* constants
+// (offsets, field LSBs and widths, used below), the C header drivers/c/stereo_regs.h and the
+// table of docs/integration.md (fields, reset values, a driver sequence): ID, VERSION, MAX_SIZE,
+// BUILD (read-only: the build), FRAME, MATCH, STAGE6, THRESHOLDS (the frame configuration),
+// STATUS (stereo_top's sticky status, cleared by CONTROL.soft_reset), CONTROL (soft reset of the
+// core and the counters), FRAMES_IN, FRAMES_OUT, STALLS (counters) and KERNEL[i] (used when
+// RUNTIME_KERNEL = 1; reset: the model's default kernel for WINDOW).
 // Writes to RO registers and reads of unmapped offsets complete with OKAY and read 0. The core
 // samples the configuration with each start-of-frame beat (stereo_top), so register writes take
 // effect from the next frame. One outstanding transaction per direction; the write address and
@@ -68,7 +56,7 @@ module stereo_axil_top #(
   localparam int TAP_BITS = fx_pkg::TAP_BITS;
   localparam logic [31:0] ID = 32'(fx_pkg::REGMAP_ID);
   localparam logic [31:0] REGMAP_VERSION = 32'(fx_pkg::REGMAP_VERSION);
-  localparam int KERNEL_BASE = 'h40;
+  localparam int KERNEL_BASE = fx_pkg::REG_KERNEL;
 
   `STEREO_ASSERT(addr_bits_range, ADDR_BITS >= 8 && ADDR_BITS <= 32, "ADDR_BITS must be 8 .. 32")
   `STEREO_ASSERT(kernel_registers_fit, KERNEL_BASE + 4 * WINDOW <= (1 << ADDR_BITS),
@@ -129,24 +117,51 @@ module stereo_axil_top #(
     word = addr & ~ADDR_BITS'(3);
     register_word = '0;
     case (32'(word))
-      'h00: register_word = ID;
-      'h04: register_word = REGMAP_VERSION;
-      'h08: register_word = {16'(HEIGHT), 16'(WIDTH)};
-      'h0C:
-      register_word = {
-        3'b0, 2'(COST), RUNTIME_KERNEL, 12'(MAX_MIN_DISP), 5'(R), 9'(NDISP)
-      };
-      'h10: register_word = {cfg_height, cfg_width};
-      'h14: register_word = {7'b0, cfg_use_ca, 3'b0, cfg_radius, 7'b0, cfg_ndisp};
-      'h18:
-      register_word = {
-        17'b0, cfg_subpixel_en, cfg_lr_en, cfg_uniqueness_en, cfg_min_disp
-      };
-      'h1C: register_word = {16'b0, cfg_lr_tolerance, cfg_uniqueness};
-      'h20: register_word = 32'(core_status);
-      'h28: register_word = frames_in;
-      'h2C: register_word = frames_out;
-      'h30: register_word = stalls;
+      fx_pkg::REG_ID: register_word = ID;
+      fx_pkg::REG_VERSION: register_word = REGMAP_VERSION;
+      fx_pkg::REG_MAX_SIZE: begin
+        register_word[fx_pkg::REG_MAX_SIZE_WIDTH_LSB+:fx_pkg::REG_MAX_SIZE_WIDTH_BITS] =
+            fx_pkg::REG_MAX_SIZE_WIDTH_BITS'(WIDTH);
+        register_word[fx_pkg::REG_MAX_SIZE_HEIGHT_LSB+:fx_pkg::REG_MAX_SIZE_HEIGHT_BITS] =
+            fx_pkg::REG_MAX_SIZE_HEIGHT_BITS'(HEIGHT);
+      end
+      fx_pkg::REG_BUILD: begin
+        register_word[fx_pkg::REG_BUILD_NDISP_LSB+:fx_pkg::REG_BUILD_NDISP_BITS] =
+            fx_pkg::REG_BUILD_NDISP_BITS'(NDISP);
+        register_word[fx_pkg::REG_BUILD_RADIUS_LSB+:fx_pkg::REG_BUILD_RADIUS_BITS] =
+            fx_pkg::REG_BUILD_RADIUS_BITS'(R);
+        register_word[fx_pkg::REG_BUILD_MAX_MIN_DISP_LSB+:fx_pkg::REG_BUILD_MAX_MIN_DISP_BITS] =
+            fx_pkg::REG_BUILD_MAX_MIN_DISP_BITS'(MAX_MIN_DISP);
+        register_word[fx_pkg::REG_BUILD_RUNTIME_KERNEL_LSB] = RUNTIME_KERNEL;
+        register_word[fx_pkg::REG_BUILD_COST_LSB+:fx_pkg::REG_BUILD_COST_BITS] =
+            fx_pkg::REG_BUILD_COST_BITS'(COST);
+      end
+      fx_pkg::REG_FRAME: begin
+        register_word[fx_pkg::REG_FRAME_WIDTH_LSB+:fx_pkg::REG_FRAME_WIDTH_BITS] = cfg_width;
+        register_word[fx_pkg::REG_FRAME_HEIGHT_LSB+:fx_pkg::REG_FRAME_HEIGHT_BITS] = cfg_height;
+      end
+      fx_pkg::REG_MATCH: begin
+        register_word[fx_pkg::REG_MATCH_NDISP_LSB+:fx_pkg::REG_MATCH_NDISP_BITS] = cfg_ndisp;
+        register_word[fx_pkg::REG_MATCH_RADIUS_LSB+:fx_pkg::REG_MATCH_RADIUS_BITS] = cfg_radius;
+        register_word[fx_pkg::REG_MATCH_USE_CA_LSB] = cfg_use_ca;
+      end
+      fx_pkg::REG_STAGE6: begin
+        register_word[fx_pkg::REG_STAGE6_MIN_DISP_LSB+:fx_pkg::REG_STAGE6_MIN_DISP_BITS] =
+            cfg_min_disp;
+        register_word[fx_pkg::REG_STAGE6_UNIQUENESS_EN_LSB] = cfg_uniqueness_en;
+        register_word[fx_pkg::REG_STAGE6_LR_EN_LSB] = cfg_lr_en;
+        register_word[fx_pkg::REG_STAGE6_SUBPIXEL_EN_LSB] = cfg_subpixel_en;
+      end
+      fx_pkg::REG_THRESHOLDS: begin
+        register_word[fx_pkg::REG_THRESHOLDS_UNIQUENESS_LSB+:fx_pkg::REG_THRESHOLDS_UNIQUENESS_BITS] =
+            cfg_uniqueness;
+        register_word[fx_pkg::REG_THRESHOLDS_LR_TOLERANCE_LSB+:fx_pkg::REG_THRESHOLDS_LR_TOLERANCE_BITS] =
+            cfg_lr_tolerance;
+      end
+      fx_pkg::REG_STATUS: register_word = 32'(core_status);
+      fx_pkg::REG_FRAMES_IN: register_word = frames_in;
+      fx_pkg::REG_FRAMES_OUT: register_word = frames_out;
+      fx_pkg::REG_STALLS: register_word = stalls;
       default: begin
         for (int i = 0; i < WINDOW; i++) begin
           if (32'(word) == KERNEL_BASE + 4 * i) begin
@@ -183,7 +198,7 @@ module stereo_axil_top #(
       cfg_uniqueness_en <= 1'b0;
       cfg_lr_en <= 1'b0;
       cfg_subpixel_en <= 1'b0;
-      cfg_uniqueness <= fx_pkg::CFG_UNIQUENESS_BITS'(20);
+      cfg_uniqueness <= fx_pkg::CFG_UNIQUENESS_BITS'(fx_pkg::REG_THRESHOLDS_RESET);
       cfg_lr_tolerance <= '0;
       cfg_kernel <= default_kernel();
     end else begin
@@ -194,23 +209,30 @@ module stereo_axil_top #(
         s_axil_bvalid <= 1'b1;
         begin
           case (32'(write_word))
-            'h10: {cfg_height, cfg_width} <= write_value;
-            'h14: begin
-              cfg_ndisp <= write_value[8:0];
-              cfg_radius <= write_value[20:16];
-              cfg_use_ca <= write_value[24];
+            fx_pkg::REG_FRAME: begin
+              cfg_width <= write_value[fx_pkg::REG_FRAME_WIDTH_LSB+:fx_pkg::REG_FRAME_WIDTH_BITS];
+              cfg_height <= write_value[fx_pkg::REG_FRAME_HEIGHT_LSB+:fx_pkg::REG_FRAME_HEIGHT_BITS];
             end
-            'h18: begin
-              cfg_min_disp <= write_value[11:0];
-              cfg_uniqueness_en <= write_value[12];
-              cfg_lr_en <= write_value[13];
-              cfg_subpixel_en <= write_value[14];
+            fx_pkg::REG_MATCH: begin
+              cfg_ndisp <= write_value[fx_pkg::REG_MATCH_NDISP_LSB+:fx_pkg::REG_MATCH_NDISP_BITS];
+              cfg_radius <= write_value[fx_pkg::REG_MATCH_RADIUS_LSB+:fx_pkg::REG_MATCH_RADIUS_BITS];
+              cfg_use_ca <= write_value[fx_pkg::REG_MATCH_USE_CA_LSB];
             end
-            'h1C: begin
-              cfg_uniqueness <= write_value[7:0];
-              cfg_lr_tolerance <= write_value[15:8];
+            fx_pkg::REG_STAGE6: begin
+              cfg_min_disp <=
+                  write_value[fx_pkg::REG_STAGE6_MIN_DISP_LSB+:fx_pkg::REG_STAGE6_MIN_DISP_BITS];
+              cfg_uniqueness_en <= write_value[fx_pkg::REG_STAGE6_UNIQUENESS_EN_LSB];
+              cfg_lr_en <= write_value[fx_pkg::REG_STAGE6_LR_EN_LSB];
+              cfg_subpixel_en <= write_value[fx_pkg::REG_STAGE6_SUBPIXEL_EN_LSB];
             end
-            'h24: soft_reset <= write_strobe_now[0] && write_data_now[0];
+            fx_pkg::REG_THRESHOLDS: begin
+              cfg_uniqueness <= write_value[fx_pkg::REG_THRESHOLDS_UNIQUENESS_LSB+:
+                                            fx_pkg::REG_THRESHOLDS_UNIQUENESS_BITS];
+              cfg_lr_tolerance <= write_value[fx_pkg::REG_THRESHOLDS_LR_TOLERANCE_LSB+:
+                                              fx_pkg::REG_THRESHOLDS_LR_TOLERANCE_BITS];
+            end
+            fx_pkg::REG_CONTROL:
+            soft_reset <= write_strobe_now[0] && write_data_now[fx_pkg::REG_CONTROL_SOFT_RESET_LSB];
             default: begin
               for (int i = 0; i < WINDOW; i++) begin
                 if (32'(write_word) == KERNEL_BASE + 4 * i) begin

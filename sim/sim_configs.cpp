@@ -446,19 +446,10 @@ std::vector<InputBeat> frame_beats(const Image& left, const Image& right) {
     check_pair(left, right);
     std::vector<InputBeat> beats;
     beats.reserve(static_cast<std::size_t>(left.width) * left.height);
-    auto rgb = [](const Image& image, int x, int y) -> std::uint64_t {
-        if (image.channels == 1) {  // grey g is matched as (g, g, g)
-            const std::uint64_t g = image.at(x, y, 0);
-            return (g << 16) | (g << 8) | g;
-        }
-        return (std::uint64_t{image.at(x, y, 0)} << 16) | (std::uint64_t{image.at(x, y, 1)} << 8) |
-               image.at(x, y, 2);
-    };
     for (int y = 0; y < left.height; ++y) {
         for (int x = 0; x < left.width; ++x) {
             beats.push_back(
-                {(rgb(right, x, y) << table::kInRightLsb) | (rgb(left, x, y) << table::kInLeftLsb),
-                 x == left.width - 1, x == 0 && y == 0});
+                {table::in_beat_data(left, right, x, y), x == left.width - 1, x == 0 && y == 0});
         }
     }
     return beats;

@@ -34,6 +34,7 @@ stereo_verilated_config(Vstereo_synth_top_census_ndisp8_lanes2 stereo_synth_top 
 stereo_verilated_config(Vstereo_axil_top stereo_axil_top "" WIDTH=64 HEIGHT=48 NDISP=16 WINDOW=5)
 stereo_verilated_config(Vstereo_axil_top_census stereo_axil_top "" WIDTH=64 HEIGHT=48 NDISP=16 WINDOW=5 RUNTIME_KERNEL=1'b0 COST=2 LANES=4 SHIFT_ADD=1)
 stereo_verilated_config(Vstereo_board_top stereo_board_top "" WIDTH=64 HEIGHT=48 NDISP=16 WINDOW=5 CLKS_PER_BIT=4)
+stereo_verilated_config(Vstereo_arty_top stereo_arty_top "" WIDTH=64 HEIGHT=48 NDISP=16 WINDOW=5 CLKS_PER_BIT=4)
 stereo_verilated_config(Vstereo_uart_echo_top stereo_uart_echo_top "" CLKS_PER_BIT=4)
 stereo_verilated_config(Vstereo_downscale2 stereo_downscale "" WIDTH=64 FACTOR=2)
 stereo_verilated_config(Vstereo_downscale4 stereo_downscale "" WIDTH=64 FACTOR=4)
@@ -47,3 +48,4 @@ stereo_verilated_config(Vstereo_top_full stereo_top "STEREO_COSIM_FULL" WIDTH=64
 stereo_verilated_config(Vstereo_top_full_census_lean stereo_top "STEREO_COSIM_FULL_CENSUS" WIDTH=640 HEIGHT=480 NDISP=64 WINDOW=11 COST=2 LANES=8 RECOMPUTE_COSTS=1'b1)
 stereo_verilated_config(Vstereo_top_full_asw stereo_top "STEREO_COSIM_FULL_ASW" WIDTH=640 HEIGHT=480 NDISP=64 WINDOW=11 COST=2 LANES=8 ASW=1'b1)
 stereo_verilated_config(Vstereo_hier_top_full stereo_hier_top "STEREO_COSIM_FULL_HIER" WIDTH=640 HEIGHT=480 NDISP=64 WINDOW=11 LANES=8 RECOMPUTE_COSTS=1'b1)
+stereo_verilated_config(  "")

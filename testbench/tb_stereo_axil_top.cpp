@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <random>
+#include <set>
 #include <stdexcept>
 #include <tuple>
 #include <vector>
@@ -19,7 +20,9 @@
 #include "axis_driver.hpp"
 #include "stereo/pipeline.hpp"
 #include "stereo/stage_table.hpp"
+#include "stereo_driver.h"
 #include "stereo_io/test_support.hpp"
+#include "stereo_regs.h"
 #include "tb_compare.hpp"
 #include "tb_options.hpp"
 #include "verilated_harness.hpp"
@@ -300,6 +303,158 @@ TEST(AxilFrames, ClampedConfigurationSetsStatusAndSoftResetClearsIt) {
                                    top.frame(left, right, {0.1, 0.1, 2})));
     EXPECT_EQ(top.read(kStatus), 0U);
     EXPECT_EQ(top.read(kFramesIn), 1U);
+}
+
+// ---- The C driver (drivers/c) through a register-access shim ---------------------------------
+// stereo_device's read and write, each one AXI4-Lite transaction on the Verilated wrapper.
+std::uint32_t shim_read(void* context, std::uint32_t offset) {
+    return static_cast<AxilTop*>(context)->read(offset);
+}
+void shim_write(void* context, std::uint32_t offset, std::uint32_t value) {
+    static_cast<AxilTop*>(context)->write(offset, value);
+}
+
+// A pair in three bands of rows with true disparities -1, 2 and 5 (right(x) = left(x + d)).
+io::ImagePair banded_pair(int width, int height, std::mt19937& rng) {
+    io::ImagePair pair{test::random_image(width, height, 3, rng), Image(width, height, 3)};
+    for (const int d : {-1, 2, 5}) {
+        const Image shifted = test::shifted_copy(pair.left, d, 10, rng);
+        const int band = d == -1 ? 0 : d == 2 ? 1 : 2;
+        for (int y = band * height / 3; y < (band + 1) * height / 3; ++y) {
+            for (int x = 0; x < width; ++x) {
+                for (int c = 0; c < 3; ++c) {
+                    pair.right.at(x, y, c) = shifted.at(x, y, c);
+                }
+            }
+        }
+    }
+    return pair;
+}
+
+// The driver probes the build, configures a frame (a 3x3 kernel centred in the 5x5 core, a
+// negative minimum disparity, every stage-6 check and sub-pixel on), the frame streams under
+// gaps and stalls and equals the golden model pixel for pixel; the driver's wait and counters
+// see the frame, and its soft reset clears them.
+TEST(CDriver, ConfiguresAndRunsAFrameEqualToTheModel) {
+    const std::uint32_t seed = tb::test_seed();
+    std::mt19937 rng(seed);
+    AxilTop top;
+    const stereo_device dev{&shim_read, &shim_write, &top};
+    stereo_build build{};
+    ASSERT_EQ(stereo_probe(&dev, &build), STEREO_OK);
+    EXPECT_EQ(build.version, table::kRegmapVersion);
+    EXPECT_EQ(build.max_width, kConfig.width);
+    EXPECT_EQ(build.max_height, kConfig.height);
+    EXPECT_EQ(build.ndisp, kConfig.ndisp);
+    EXPECT_EQ(build.window, kConfig.window);
+    EXPECT_EQ(build.max_min_disp, table::kDefaultMaxMinDisp);
+    EXPECT_EQ(build.runtime_kernel, 1);
+    EXPECT_EQ(build.cost, STEREO_COST_AD);
+
+    const auto [left, right] = banded_pair(60, 45, rng);
+    MatchParams params{12, 3, 1.0, true};
+    params.min_disp = -2;
+    params.validation = ValidationParams::all_on();
+    params.validation.uniqueness_ratio = 10;
+    params.validation.lr_tolerance = 1;
+    const std::vector<std::int32_t> taps = gaussian_kernel(params.window, params.sigma);
+    const std::vector<std::uint16_t> kernel(taps.begin(), taps.end());
+    const stereo_config config{left.width,
+                               left.height,
+                               params.ndisp,
+                               params.window,
+                               1,
+                               params.min_disp,
+                               1,
+                               params.validation.uniqueness_ratio,
+                               1,
+                               params.validation.lr_tolerance,
+                               1,
+                               kernel.data()};
+    ASSERT_EQ(stereo_configure(&dev, &build, &config), STEREO_OK);
+    const ValidatedDisparity expected = match_validated(left, right, params);
+    EXPECT_TRUE(tb::same_validated(expected, top.frame(left, right, {0.2, 0.3, seed})));
+    // The map exercises the configuration: every band's disparity, sub-pixel values, rejects.
+    std::set<int> labels;
+    int valid = 0;
+    int rejected = 0;
+    for (std::size_t i = 0; i < expected.fixed.size(); ++i) {
+        valid += expected.valid(i) ? 1 : 0;
+        rejected += expected.reason[i] > fx::kReasonBorder ? 1 : 0;
+        if (expected.valid(i)) {
+            labels.insert(expected.fixed[i]);
+        }
+    }
+    EXPECT_GT(valid, static_cast<int>(expected.fixed.size()) / 2);
+    EXPECT_GT(labels.size(), 8U);
+    for (const int band : {-16, 32, 80}) {  // -1, 2 and 5 pixels, x 16
+        EXPECT_NE(labels.lower_bound(band - 8), labels.upper_bound(band + 8)) << band;
+    }
+    EXPECT_GT(rejected, 0);
+
+    ASSERT_EQ(stereo_wait_frames(&dev, 1, 4), STEREO_OK);
+    stereo_counters counters{};
+    stereo_read_counters(&dev, &counters);
+    EXPECT_EQ(counters.status, 0U);
+    EXPECT_EQ(counters.frames_in, 1U);
+    EXPECT_EQ(counters.frames_out, 1U);
+    EXPECT_GT(counters.stalls, 0U);  // 30 % of the cycles had tready low
+    EXPECT_EQ(stereo_wait_frames(&dev, 2, 4), STEREO_E_TIMEOUT);
+    stereo_soft_reset(&dev);
+    stereo_read_counters(&dev, &counters);
+    EXPECT_EQ(counters.frames_in, 0U);
+    EXPECT_EQ(counters.frames_out, 0U);
+    EXPECT_EQ(counters.stalls, 0U);
+}
+
+// The driver refuses what the build cannot take before writing anything, and a device without
+// the ID.
+TEST(CDriver, RefusesImpossibleConfigurationsWithoutWriting) {
+    AxilTop top;
+    const stereo_device dev{&shim_read, &shim_write, &top};
+    stereo_build build{};
+    ASSERT_EQ(stereo_probe(&dev, &build), STEREO_OK);
+    const std::uint16_t taps3[] = {64, 128, 64};
+    const std::uint16_t bad_sum[] = {64, 128, 65};
+    const stereo_config good{32, 24, 8, 3, 1, -2, 0, 20, 0, 0, 0, taps3};
+    ASSERT_EQ(stereo_configure(&dev, &build, &good), STEREO_OK);
+    const std::uint32_t frame = top.read(STEREO_REG_FRAME);
+    const std::uint32_t match = top.read(STEREO_REG_MATCH);
+    const std::uint32_t stage6 = top.read(STEREO_REG_STAGE6);
+    struct Bad {
+        stereo_config config;
+        int code;
+    };
+    const auto with = [&good](auto change) {
+        stereo_config config = good;
+        change(config);
+        return config;
+    };
+    for (const Bad& bad : {
+             Bad{with([&](stereo_config& c) { c.width = kConfig.width + 1; }), STEREO_E_RANGE},
+             Bad{with([&](stereo_config& c) { c.height = 0; }), STEREO_E_RANGE},
+             Bad{with([&](stereo_config& c) { c.ndisp = kConfig.ndisp + 1; }), STEREO_E_RANGE},
+             Bad{with([&](stereo_config& c) { c.window = kConfig.window + 2; }), STEREO_E_RANGE},
+             Bad{with([&](stereo_config& c) { c.window = 2; }), STEREO_E_RANGE},
+             Bad{with([&](stereo_config& c) { c.min_disp = -table::kDefaultMaxMinDisp - 1; }),
+                 STEREO_E_RANGE},
+             Bad{with([&](stereo_config& c) { c.uniqueness = 256; }), STEREO_E_RANGE},
+             Bad{with([&](stereo_config& c) { c.kernel = bad_sum; }), STEREO_E_KERNEL},
+         }) {
+        EXPECT_EQ(stereo_configure(&dev, &build, &bad.config), bad.code)
+            << stereo_error_text(bad.code);
+    }
+    // A constant-kernel build takes no taps.
+    stereo_build constant = build;
+    constant.runtime_kernel = 0;
+    EXPECT_EQ(stereo_configure(&dev, &constant, &good), STEREO_E_KERNEL);
+    EXPECT_EQ(top.read(STEREO_REG_FRAME), frame);
+    EXPECT_EQ(top.read(STEREO_REG_MATCH), match);
+    EXPECT_EQ(top.read(STEREO_REG_STAGE6), stage6);
+    // Something that is not the core.
+    const stereo_device nothing{[](void*, std::uint32_t) -> std::uint32_t { return 0; },
+                                [](void*, std::uint32_t, std::uint32_t) {}, nullptr};
+    EXPECT_EQ(stereo_probe(&nothing, &build), STEREO_E_ID);
 }
 
 }  // namespace

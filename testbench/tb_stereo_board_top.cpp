@@ -20,6 +20,7 @@
 #include <verilated.h>
 #include <verilated_fst_c.h>
 
+#include "Vstereo_arty_top.h"
 #include "Vstereo_board_top.h"
 #include "Vstereo_uart_echo_top.h"
 #include "stereo/pipeline.hpp"
@@ -93,7 +94,15 @@ class UartSim {
 
     std::size_t unexpected_bytes() const { return received_.size(); }
     int host_framing_errors() const { return host_framing_errors_; }
-    bool red_led() const { return harness_.model().led_red_n == 0; }
+    // The status LED: the iCEBreaker's red one (active low), the Arty's led[1] (active high).
+    bool red_led() const {
+        const Model& m = harness_.model();
+        if constexpr (requires { m.led_red_n; }) {
+            return m.led_red_n == 0;
+        } else {
+            return (m.led >> 1 & 1U) != 0;
+        }
+    }
 
     board::Identity identify() {
         send(board::identify_command());
@@ -217,8 +226,9 @@ MatchParams board_params(int ndisp, bool use_ca) {
 }
 
 // Configures the board for `params` on the pair's size, streams it and compares every beat.
-::testing::AssertionResult frame_equals_model(BoardSim& board, const Image& left,
-                                              const Image& right, const MatchParams& params) {
+template <class Board>
+::testing::AssertionResult frame_equals_model(Board& board, const Image& left, const Image& right,
+                                              const MatchParams& params) {
     const std::uint8_t status = board.configure(board::config_for(left.width, left.height, params));
     if (status != 0) {
         return ::testing::AssertionFailure() << "status after configure: " << int{status};
@@ -367,6 +377,45 @@ TEST(BoardErrors, AbandonedFrameTimesOutAndClearRecovers) {
 
 // The link test: every byte comes back, back to back and with gaps; a broken stop bit lights
 // the red LED.
+// The Arty A7 top (rtl/stereo_arty_top.sv, the board top at the same size and UART speed): the
+// same protocol through its pins, frames equal to the model, the status on led[1].
+TEST(ArtyBoard, IdentifyFramesAndStatusLed) {
+    constexpr table::Params arty = table::verilated("Vstereo_arty_top").params;
+    static_assert(arty.clks_per_bit == kClocksPerBit, "the testbench's UART speed");
+    const std::uint32_t seed = tb::test_seed();
+    std::mt19937 rng(seed);
+    UartSim<Vstereo_arty_top> board(seed, 0.05);
+    const board::Identity identity = board.identify();
+    EXPECT_EQ(identity.id, 0x53544552U);  // "STER", by hand
+    EXPECT_EQ(identity.width, arty.width);
+    EXPECT_EQ(identity.height, arty.height);
+    EXPECT_EQ(identity.ndisp, arty.ndisp);
+    EXPECT_EQ(identity.window, arty.window);
+    EXPECT_EQ(identity.status, 0);
+    {
+        const Image left = test::random_image(arty.width, arty.height, 3, rng);
+        const Image right = test::shifted_copy(left, 3, 20, rng);
+        MatchParams params{arty.ndisp, arty.window, fx::kDefaultSigma, true};
+        params.min_disp = -2;
+        params.validation = ValidationParams::all_on();
+        params.validation.lr_tolerance = 1;
+        EXPECT_TRUE(frame_equals_model(board, left, right, params));
+    }
+    EXPECT_FALSE(board.red_led());
+    // An out-of-range configuration: clamped when the frame starts, its status bit on led[1].
+    const MatchParams all{arty.ndisp, arty.window, fx::kDefaultSigma, true};
+    const Image left = test::random_image(24, 16, 3, rng);
+    const Image right = test::shifted_copy(left, 2, 10, rng);
+    board::Config config = board::config_for(24, 16, all);
+    config.ndisp = 0;
+    EXPECT_EQ(board.configure(config), 0);
+    EXPECT_TRUE(tb::same_validated(match_validated(left, right, all), board.frame(left, right)));
+    EXPECT_EQ(board.identify().status, 1U << board::kStatusConfigClamped);
+    EXPECT_TRUE(board.red_led());
+    EXPECT_EQ(board.host_framing_errors(), 0);
+    EXPECT_EQ(board.unexpected_bytes(), 0U);
+}
+
 TEST(UartEcho, EveryByteComesBack) {
     const std::uint32_t seed = tb::test_seed();
     std::mt19937 rng(seed);

@@ -23,6 +23,7 @@ void add_slam_command(CLI::App& app);
 void add_quad_command(CLI::App& app);
 void add_cloud_command(CLI::App& app);
 void add_board_command(CLI::App& app);
+void add_vectors_command(CLI::App& app);
 
 // All of the above, with one subcommand required: the whole `stereo` application.
 void add_stereo_commands(CLI::App& app);

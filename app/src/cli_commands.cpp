@@ -25,6 +25,7 @@ void add_stereo_commands(CLI::App& app) {
     add_quad_command(app);
     add_cloud_command(app);
     add_board_command(app);
+    add_vectors_command(app);
 }
 
 }  // namespace stereo::cli

@@ -38,30 +38,6 @@
 namespace stereo::cli {
 namespace {
 
-io::ImagePair apply_crop(io::ImagePair pair, const std::string& geometry) {
-    if (geometry.empty()) {
-        return pair;
-    }
-    static const std::regex pattern(R"((\d+)x(\d+)\+(\d+)\+(\d+))");
-    std::smatch parts;
-    if (!std::regex_match(geometry, parts, pattern)) {
-        throw std::invalid_argument("--crop must be WxH+X+Y, got '" + geometry + "'");
-    }
-    // Each number is at most 9 digits (the pattern's \d+ could hold any count): larger values
-    // cannot fit any image and must not overflow an int.
-    const auto number = [&geometry](const std::string& digits) {
-        if (digits.size() > 9) {
-            throw std::invalid_argument("--crop " + geometry + ": " + digits + " is too large");
-        }
-        return std::stoi(digits);
-    };
-    const int width = number(parts[1]);
-    const int height = number(parts[2]);
-    const int x0 = number(parts[3]);
-    const int y0 = number(parts[4]);
-    return io::crop(pair, x0, y0, width, height);
-}
-
 std::string config_text(const sim::TopConfig& config) {
     return std::to_string(config.width) + "x" + std::to_string(config.height) + ", " +
            std::to_string(config.ndisp) + " disparities, window " + std::to_string(config.window);
@@ -464,8 +440,7 @@ void run_cosim_hierarchical(const CosimOptions& given) {
     search.validation = params.validation;
     sim::check_hier_top(search);  // before any file: the size comes with the pair
     check_options(options);
-    const io::ImagePair pair =
-        apply_crop(io::load_pair(options.left, options.right, options.downscale), options.crop);
+    const io::ImagePair pair = load_core_pair(options);
     const int width = pair.left.width;
     const int height = pair.left.height;
     const sim::HierTopLimits core = sim::check_hier_top(search, width, height);
@@ -622,8 +597,7 @@ void run_cosim(const CosimOptions& given) {
     // The expected map: the golden model, made (and its parameters checked) before any file.
     const auto model = matchers().create(given.method, "model", match_config);
     check_options(options);
-    const io::ImagePair pair =
-        apply_crop(io::load_pair(options.left, options.right, options.downscale), options.crop);
+    const io::ImagePair pair = load_core_pair(options);
     const int width = pair.left.width;
     const int height = pair.left.height;
     model->validate(width, height);

@@ -1,11 +1,14 @@
 #include "cli_cosim_options.hpp"
 
+#include <regex>
+#include <stdexcept>
+
 #include "cli_command.hpp"
 #include "stereo/catalogue.hpp"
 
 namespace stereo::cli {
 
-void add_cosim_options(CLI::App& command, CosimOptions& options) {
+void add_core_pair_options(CLI::App& command, CorePairOptions& options) {
     command.add_option("LEFT", options.left, "Left image")->required();
     command.add_option("RIGHT", options.right, "Right image, same size as LEFT")->required();
     // stereo match's defaults where the core has them (defaults::match_config: the census cost,
@@ -30,6 +33,35 @@ void add_cosim_options(CLI::App& command, CosimOptions& options) {
         ->default_str(options.matcher.config.pipeline.cost);
     add_downscale_option(command, options.downscale, "Shrink both images by integer F");
     command.add_option("--crop", options.crop, "Use the region WxH+X+Y (after --downscale)");
+}
+
+io::ImagePair load_core_pair(const CorePairOptions& options) {
+    io::ImagePair pair = io::load_pair(options.left, options.right, options.downscale);
+    if (options.crop.empty()) {
+        return pair;
+    }
+    static const std::regex pattern(R"((\d+)x(\d+)\+(\d+)\+(\d+))");
+    std::smatch parts;
+    if (!std::regex_match(options.crop, parts, pattern)) {
+        throw std::invalid_argument("--crop must be WxH+X+Y, got '" + options.crop + "'");
+    }
+    // Each number is at most 9 digits (the pattern's \d+ could hold any count): larger values
+    // cannot fit any image and must not overflow an int.
+    const auto number = [&options](const std::string& digits) {
+        if (digits.size() > 9) {
+            throw std::invalid_argument("--crop " + options.crop + ": " + digits + " is too large");
+        }
+        return std::stoi(digits);
+    };
+    const int width = number(parts[1]);
+    const int height = number(parts[2]);
+    const int x0 = number(parts[3]);
+    const int y0 = number(parts[4]);
+    return io::crop(pair, x0, y0, width, height);
+}
+
+void add_cosim_options(CLI::App& command, CosimOptions& options) {
+    add_core_pair_options(command, options);
     command.add_option("--seed", options.seed, "Seed of the stall/gap generator")
         ->capture_default_str();
     // At most 0.95 (20 times the cycles of a frame): the old bound [0, 1) let 0.999999999 run

@@ -10,17 +10,27 @@
 
 #include "cli_matcher_options.hpp"
 #include "stereo/catalogue.hpp"
+#include "stereo_io/io.hpp"
 
 namespace stereo::cli {
 
-struct CosimOptions {
+// The pair and the matching options of a core: LEFT, RIGHT, the matcher options (stage 6, the
+// hardware costs), --downscale and --crop; `stereo cosim` and `stereo vectors` share them.
+struct CorePairOptions {
     std::string left;
     std::string right;
-    // pipeline: stereo_top; hierarchical: the hierarchical search's whole core (stereo_hier_top)
-    std::string method{catalogue::method(catalogue::Method::pipeline).name};
     MatcherOptions matcher;
     int downscale = 1;
     std::string crop;  // WxH+X+Y
+};
+void add_core_pair_options(CLI::App& command, CorePairOptions& options);
+// The pair as the options ask: loaded, shrunk by --downscale, cropped by --crop (a bad geometry
+// is a std::invalid_argument).
+io::ImagePair load_core_pair(const CorePairOptions& options);
+
+struct CosimOptions : CorePairOptions {
+    // pipeline: stereo_top; hierarchical: the hierarchical search's whole core (stereo_hier_top)
+    std::string method{catalogue::method(catalogue::Method::pipeline).name};
     std::uint32_t seed = 1;
     double stall = 0.0;  // probability that m_axis_tready is low in a cycle
     double gap = 0.0;    // probability that s_axis_tvalid is withheld in a cycle

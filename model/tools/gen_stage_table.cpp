@@ -8,6 +8,10 @@
 //   sim/verilated_configs.cmake   the Verilated configurations (sim/CMakeLists.txt)
 //   scripts/stage_table.json      stages, sources and lint configurations for the scripts
 //   hls/include/stereo/hls/lcdm_table.hpp   the LCDM cosine's quarter wave for the HLS kernels
+//   stereo.core                   the FuseSoC core description
+//   drivers/c/stereo_regs.h       stereo_axil_top's register map for C (kRegisters)
+//   docs/integration.md           its register table, between two markers (the rest of the
+//                                 page is read from the source tree, STEREO_SOURCE_DIR)
 // Usage: gen_stage_table ROOT (writes ROOT/<each path>); gen_stage_table --list (the paths).
 // `cmake --build build --target update_generated` rewrites the checked-in copies; the ctest
 // rtl.generated_files_current regenerates into a temporary folder and names any stale file.
@@ -18,9 +22,11 @@
 #include <fstream>
 #include <functional>
 #include <initializer_list>
+#include <iomanip>
 #include <iostream>
 #include <iterator>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -118,6 +124,50 @@ std::string parameter_types_section() {
 }
 
 std::string asw_section();  // below, beside the other generated tables
+
+// NAME_FIELD in upper case: "MATCH", "ndisp" -> "MATCH_NDISP".
+std::string upper(std::string_view text) {
+    std::string out;
+    for (const char c : text) {
+        out += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    }
+    return out;
+}
+
+std::string hex_text(std::uint64_t value, int digits) {
+    std::ostringstream out;
+    out << std::hex << std::uppercase << std::setw(digits) << std::setfill('0') << value;
+    return out.str();
+}
+
+// The register map (stage_table.hpp kRegisters) as package constants: REG_<NAME> (byte offset),
+// REG_<NAME>_<FIELD>_LSB and _BITS, REG_<NAME>_RESET where the reset value is a number.
+std::string register_map_section() {
+    namespace t = stereo::table;
+    std::ostringstream sv;
+    sv << "\n  // ---- stereo_axil_top's register map (stage_table.hpp kRegisters, "
+          "docs/integration.md) ----\n";
+    for (const t::Register& reg : t::kRegisters) {
+        const std::string name = "REG_" + upper(reg.name);
+        sv << "  localparam int " << name << " = 'h" << hex_text(reg.offset, 2) << ";";
+        if (reg.count > 1) {
+            sv << "  // + 4 i, i < " << reg.count;
+        }
+        sv << '\n';
+        for (const t::RegField& field : reg.fields) {
+            if (field.name.empty()) {
+                continue;
+            }
+            const std::string prefix = name + "_" + upper(field.name);
+            sv << "  localparam int " << prefix << "_LSB = " << field.lsb << ", " << prefix
+               << "_BITS = " << field.bits << ";\n";
+        }
+        if (reg.reset >= 0) {
+            sv << "  localparam int " << name << "_RESET = 'h" << hex_text(reg.reset, 8) << ";\n";
+        }
+    }
+    return sv.str();
+}
 
 std::string package_text() {
     namespace fx = stereo::fx;
@@ -244,6 +294,8 @@ std::string package_text() {
         {"REGMAP_VERSION", static_cast<std::int64_t>(t::kRegmapVersion),
          "stereo_axil_top's VERSION register"},
     });
+
+    sv << register_map_section();
 
     // The CA agreement test (stereo::fx::agrees), shared by rules 1 and 2.
     sv << "\n  // CA rules: 2|n - c| < c  <=>  c < 2n < 3c, exactly in integers "
@@ -600,9 +652,47 @@ std::string hls_lcdm_table_text() {
     return out.str();
 }
 
-// FuseSoC CAPI2 description of the core: the sources in compile order, the lint, simulation and
-// synthesis targets. FuseSoC is not in Debian, so nothing here runs it; generating the file keeps
-// its file list equal to rtl/files.f (docs/integration.md).
+// FuseSoC CAPI2 description of the core: the sources in compile order, the SystemVerilog
+// testbench, every top-level parameter, and the lint, simulation and synthesis targets. FuseSoC
+// is not in Debian, so nothing here runs it; generating the file keeps its file list equal to
+// rtl/files.f, and test_fusesoc_core parses it and checks every parameter against the RTL
+// (docs/integration.md). No YAML anchors: every target is written out in full.
+struct CoreParameter {
+    const char* name;
+    const char* datatype;   // int or str
+    const char* paramtype;  // vlogparam or plusarg
+    const char* tops;       // whose parameter: a (stereo_axil_top), t (tb_stereo_top), x
+                            // (tb_stereo_axil_top), b (stereo_arty_top)
+    const char* description;
+};
+// The parameters of stereo_axil_top (the synthesis top) and of the testbenches, the RTL's defaults
+// in the descriptions: no default is given here, so FuseSoC passes only what a user sets and
+// the RTL's own defaults (LANES = NDISP, ...) hold otherwise.
+constexpr CoreParameter kCoreParameters[] = {
+    {"WIDTH", "int", "vlogparam", "atxb", "Largest frame width (64)"},
+    {"HEIGHT", "int", "vlogparam", "atxb", "Largest frame height (48)"},
+    {"NDISP", "int", "vlogparam", "atxb", "Labels in parallel, the largest ndisp (16)"},
+    {"WINDOW", "int", "vlogparam", "atxb", "Largest aggregation window, odd (5)"},
+    {"RUNTIME_KERNEL", "int", "vlogparam", "atx",
+     "1: the kernel from the KERNEL registers; 0: the default kernel as constants (1)"},
+    {"MAX_MIN_DISP", "int", "vlogparam", "atxb", "Largest |minimum disparity| (8)"},
+    {"COST", "int", "vlogparam", "atx",
+     "Matching cost, fx_pkg::cost_e code: 0 AD, 1 LCDM, 2 census (0)"},
+    {"LANES", "int", "vlogparam", "atxb", "Labels per clock, divides NDISP (NDISP)"},
+    {"SHIFT_ADD", "int", "vlogparam", "atx",
+     "RUNTIME_KERNEL 0: tap products as shifts and adds, fx_pkg::shift_add_e code (0)"},
+    {"RECOMPUTE_COSTS", "int", "vlogparam", "atx",
+     "1: the lean memory architecture, census or AD (0)"},
+    {"ADDR_BITS", "int", "vlogparam", "ax", "AXI4-Lite address width (8)"},
+    {"CLKS_PER_BIT", "int", "vlogparam", "b", "Arty A7: clocks per UART bit (868: 115,200 baud)"},
+    {"vectors", "str", "plusarg", "tx",
+     "Testbench: folder of config.hex, input.hex, expected.hex (stereo vectors -o DIR)"},
+    {"seed", "int", "plusarg", "tx", "Testbench: seed of the gap and stall generators (1)"},
+    {"gap", "int", "plusarg", "tx", "Testbench: percent of cycles s_axis_tvalid is withheld (30)"},
+    {"stall", "int", "plusarg", "tx", "Testbench: percent of cycles m_axis_tready is low (30)"},
+    {"max_errors", "int", "plusarg", "tx", "Testbench: mismatching beats printed (10)"},
+};
+
 std::string fusesoc_text() {
     std::ostringstream out;
     out << "CAPI=2:\n# " << kHeader << ".\n"
@@ -617,21 +707,170 @@ std::string fusesoc_text() {
         out << "      - rtl/" << include << ": {is_include_file: true}\n";
     }
     out << "    file_type: systemVerilogSource\n"
-           "  arty_a7:\n    files:\n      - scripts/synth/boards/arty_a7_100t.xdc:\n"
-           "          file_type: xdc\n\n"
-           "targets:\n"
-           "  default: &default\n    filesets: [rtl]\n    toplevel: stereo_axil_top\n"
-           "  lint:\n    <<: *default\n    default_tool: verilator\n"
-           "    tools:\n      verilator:\n        mode: lint-only\n"
-           "        verilator_options: [-Wall]\n"
-           "  sim:\n    <<: *default\n    default_tool: verilator\n"
-           "    tools:\n      verilator:\n        mode: cc\n"
-           "        verilator_options: [--trace-fst, -Wno-fatal]\n"
-           "  synth:\n    <<: *default\n    default_tool: yosys\n"
-           "    tools:\n      yosys:\n        arch: xilinx\n"
-           "  arty_a7:\n    filesets: [rtl, arty_a7]\n    toplevel: stereo_axil_top\n"
-           "    default_tool: vivado\n    tools:\n      vivado:\n        part: xc7a100tcsg324-1\n";
+           "  tb:\n    files:\n      - testbench/sv/tb_stereo_vectors.sv\n"
+           "      - testbench/sv/tb_stereo_top.sv\n      - testbench/sv/tb_stereo_axil_top.sv\n"
+           "    file_type: systemVerilogSource\n"
+           "  arty_a7:\n    files:\n      - scripts/synth/boards/arty_a7.xdc:\n"
+           "          file_type: xdc\n\nparameters:\n";
+    for (const CoreParameter& parameter : kCoreParameters) {
+        out << "  " << parameter.name << ":\n    datatype: " << parameter.datatype
+            << "\n    description: \"" << parameter.description
+            << "\"\n    paramtype: " << parameter.paramtype << '\n';
+    }
+    // The parameter list of a top (its letter in CoreParameter::tops).
+    const auto list = [](char top) {
+        std::string names;
+        for (const CoreParameter& parameter : kCoreParameters) {
+            if (std::string_view(parameter.tops).find(top) != std::string_view::npos) {
+                names += (names.empty() ? "" : ", ") + std::string(parameter.name);
+            }
+        }
+        return "[" + names + "]";
+    };
+    const std::string core =
+        "    filesets: [rtl]\n    toplevel: stereo_axil_top\n"
+        "    parameters: " +
+        list('a') + "\n";
+    const auto simulation = [&list](const char* top, char key) {
+        return std::string("    filesets: [rtl, tb]\n    toplevel: ") + top +
+               "\n    parameters: " + list(key) +
+               "\n    default_tool: verilator\n    tools:\n      verilator:\n"
+               "        mode: binary\n        verilator_options: [--timing, -Wno-fatal]\n";
+    };
+    out << "\ntargets:\n  default:\n"
+        << core << "  lint:\n"
+        << core
+        << "    default_tool: verilator\n    tools:\n      verilator:\n"
+           "        mode: lint-only\n        verilator_options: [-Wall, -Wno-ENUMVALUE]\n"
+           "  sim:\n"
+        << simulation("tb_stereo_top", 't') << "  sim_axil:\n"
+        << simulation("tb_stereo_axil_top", 'x') << "  synth:\n"
+        << core
+        << "    default_tool: yosys\n    tools:\n      yosys:\n        arch: xilinx\n"
+           "  arty_a7:\n    filesets: [rtl, arty_a7]\n    toplevel: stereo_arty_top\n"
+           "    parameters: "
+        << list('b')
+        << "\n    default_tool: vivado\n    tools:\n      vivado:\n"
+           "        part: xc7a100tcsg324-1\n";
     return out.str();
+}
+
+// The C header of the register map (drivers/c/README.md): offsets, fields (LSB, width, mask),
+// reset values, the ID and version, and the codes the BUILD register reports, for C99 and C++.
+std::string c_header_text() {
+    namespace t = stereo::table;
+    std::ostringstream h;
+    h << "/* GENERATED by gen_stage_table from model/include/stereo/stage_table.hpp (kRegisters):\n"
+         " * do not edit (cmake --build build --target update_generated).\n"
+         " * The AXI4-Lite register map of stereo_axil_top (docs/integration.md): byte offsets,\n"
+         " * fields as STEREO_<REGISTER>_<FIELD>_{LSB,BITS,MASK}, reset values. */\n"
+         "#ifndef STEREO_REGS_H\n#define STEREO_REGS_H\n\n"
+         "#define STEREO_REGMAP_ID 0x"
+      << hex_text(t::kRegmapId, 8) << "u\n#define STEREO_REGMAP_VERSION 0x"
+      << hex_text(t::kRegmapVersion, 8)
+      << "u\n#define STEREO_REGMAP_VERSION_MAJOR(version) ((version) >> 16)\n\n"
+         "/* A field's value in a register word, and a register word's field. */\n"
+         "#define STEREO_FIELD(field, value) ((((unsigned long)(value)) << field##_LSB) & "
+         "field##_MASK)\n"
+         "#define STEREO_GET(field, word) ((((unsigned long)(word)) & field##_MASK) >> "
+         "field##_LSB)\n";
+    for (const t::Register& reg : t::kRegisters) {
+        const std::string name = "STEREO_" + upper(reg.name);
+        h << "\n/* " << reg.name << " ("
+          << (reg.access == t::RegAccess::ro   ? "read-only"
+              : reg.access == t::RegAccess::rw ? "read-write"
+                                               : "write-only")
+          << ") */\n";
+        if (reg.count > 1) {
+            h << "#define STEREO_REG_" << upper(reg.name) << "(i) (0x" << hex_text(reg.offset, 2)
+              << "u + 4u * (unsigned)(i))\n#define STEREO_REG_" << upper(reg.name) << "_COUNT_MAX "
+              << reg.count << "\n";
+        } else {
+            h << "#define STEREO_REG_" << upper(reg.name) << " 0x" << hex_text(reg.offset, 2)
+              << "u\n";
+        }
+        for (const t::RegField& field : reg.fields) {
+            if (field.name.empty()) {
+                continue;
+            }
+            const std::string prefix = name + "_" + upper(field.name);
+            const std::uint64_t mask = ((std::uint64_t{1} << field.bits) - 1) << field.lsb;
+            h << "#define " << prefix << "_LSB " << field.lsb << "\n#define " << prefix << "_BITS "
+              << field.bits << "\n#define " << prefix << "_MASK 0x" << hex_text(mask, 8) << "ul\n";
+        }
+        if (reg.reset >= 0) {
+            h << "#define " << name << "_RESET 0x" << hex_text(reg.reset, 8) << "ul\n";
+        }
+    }
+    h << "\n/* BUILD.cost: stereo_top's COST codes. */\n";
+    for (const stereo::catalogue::CostRow& row : stereo::catalogue::kCosts) {
+        if (row.hardware_code != stereo::catalogue::kNoHardware) {
+            h << "#define STEREO_COST_" << upper(row.name) << ' ' << row.hardware_code << '\n';
+        }
+    }
+    h << "\n#endif /* STEREO_REGS_H */\n";
+    return h.str();
+}
+
+// docs/integration.md with its register table regenerated between the markers kTableBegin and
+// kTableEnd (the rest of the page is read from the source tree and kept as it is).
+constexpr std::string_view kTableBegin =
+    "<!-- generated by gen_stage_table from stage_table.hpp kRegisters: edit the table there -->\n";
+constexpr std::string_view kTableEnd = "<!-- end of the generated table -->\n";
+
+std::string register_table() {
+    namespace t = stereo::table;
+    std::ostringstream md;
+    md << "| offset | name | access | fields | reset |\n|---|---|---|---|---|\n";
+    for (const t::Register& reg : t::kRegisters) {
+        md << "| 0x" << hex_text(reg.offset, 2) << (reg.count > 1 ? " + 4i" : "") << " | "
+           << reg.name << (reg.count > 1 ? "[i]" : "") << " | "
+           << (reg.access == t::RegAccess::ro   ? "RO"
+               : reg.access == t::RegAccess::rw ? "RW"
+                                                : "WO")
+           << " | ";
+        bool first = true;
+        for (const t::RegField& field : reg.fields) {
+            if (field.name.empty()) {
+                continue;
+            }
+            md << (first ? "" : ", ");
+            first = false;
+            if (field.bits < 32) {
+                md << "`[" << field.lsb + field.bits - 1;
+                if (field.bits > 1) {
+                    md << ':' << field.lsb;
+                }
+                md << "]` ";
+            }
+            md << "`" << field.name << "`" << (field.meaning.empty() ? "" : ": ") << field.meaning;
+        }
+        if (!reg.note.empty()) {
+            md << (reg.name == "VERSION" ? " (" : "; ") << reg.note
+               << (reg.name == "VERSION" ? ")" : "");
+        }
+        md << " |";
+        if (!reg.reset_text.empty()) {
+            md << ' ' << reg.reset_text;
+        } else if (reg.reset >= 0) {
+            md << " `0x" << hex_text(static_cast<std::uint64_t>(reg.reset), 8) << '`';
+        }
+        md << " |\n";
+    }
+    return md.str();
+}
+
+std::string integration_text() {
+    const std::filesystem::path source =
+        std::filesystem::path(STEREO_SOURCE_DIR) / "docs" / "integration.md";
+    std::ifstream in(source, std::ios::binary);
+    const std::string page{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    const std::size_t begin = page.find(kTableBegin);
+    const std::size_t end = page.find(kTableEnd);
+    if (!in || begin == std::string::npos || end == std::string::npos || end < begin) {
+        throw std::runtime_error(source.string() + " lacks the register table's markers");
+    }
+    return page.substr(0, begin + kTableBegin.size()) + register_table() + page.substr(end);
 }
 
 // Every generated file: its path under the source root and its text.
@@ -641,7 +880,9 @@ std::vector<std::pair<std::string, std::function<std::string()>>> generated_file
             {"sim/verilated_configs.cmake", cmake_text},
             {"scripts/stage_table.json", json_text},
             {"hls/include/stereo/hls/lcdm_table.hpp", hls_lcdm_table_text},
-            {"stereo.core", fusesoc_text}};
+            {"stereo.core", fusesoc_text},
+            {"drivers/c/stereo_regs.h", c_header_text},
+            {"docs/integration.md", integration_text}};
 }
 
 }  // namespace
@@ -658,7 +899,13 @@ int main(int argc, char** argv) {
             continue;
         }
         const std::filesystem::path target = std::filesystem::path(root) / path;
-        const std::string content = text();
+        std::string content;
+        try {
+            content = text();
+        } catch (const std::exception& error) {
+            std::cerr << "gen_stage_table: error: " << error.what() << '\n';
+            return 1;
+        }
         {
             // An unchanged file keeps its time stamp, so the build does not redo its users.
             std::ifstream in(target, std::ios::binary);

@@ -21,6 +21,7 @@ import io
 import json
 import os
 import re
+import signal
 import subprocess
 import sys
 import tempfile
@@ -161,18 +162,99 @@ def progress(message):
     print(f"synth.py: {message}", file=sys.stderr, flush=True)
 
 
+# A Yosys log line that starts a pass: "2.3. Executing SYNTH_XILINX pass." -> ("2.3", "SYNTH_XILINX").
+PASS_LINE = re.compile(r"^(\d+(?:\.\d+)*)\. Executing (\S+(?: \S+)*?)(?: pass)?[.(: ]")
+# Progress lines during a Yosys run: at most one per this many seconds (0: one per pass).
+PROGRESS_SECONDS = float(os.environ.get("STEREO_SYNTH_PROGRESS_SECONDS", "15"))
+# The Yosys run in progress, for the partial report of an interrupted command.
+RUNNING = {}
+
+
+class Interrupted(Exception):
+    """SIGINT or SIGTERM during a command: main() writes the partial report."""
+
+
+def pass_of(line):
+    """(number, name) of the pass a Yosys log line starts, or None."""
+    match = PASS_LINE.match(line)
+    return (match.group(1), match.group(2)) if match else None
+
+
 def run_yosys(script, log_path):
+    """Runs Yosys with its log in log_path; while it runs, a progress line (elapsed time, the
+    pass it is in) at most every PROGRESS_SECONDS. Interrupted, it stops Yosys, keeps the log and
+    raises Interrupted with the elapsed time and the last pass in RUNNING."""
     start = time.monotonic()
     progress(f"yosys running (log {log_path})")
-    result = subprocess.run(["yosys", "-q", "-l", str(log_path), "-p", script],
-                            capture_output=True, text=True)
-    if result.returncode != 0:
+    Path(log_path).unlink(missing_ok=True)
+    errors = tempfile.TemporaryFile(mode="w+")  # a file, not a pipe: Yosys never blocks on it
+    process = subprocess.Popen(["yosys", "-q", "-l", str(log_path), "-p", script],
+                               stdout=subprocess.DEVNULL, stderr=errors, text=True)
+    RUNNING.clear()
+    RUNNING.update({"log": str(log_path), "last_pass": None, "passes": 0})
+    offset, partial, last_print, outer = 0, "", start, ""
+    try:
+        while True:
+            try:
+                process.wait(timeout=1.0)
+                finished = True
+            except subprocess.TimeoutExpired:
+                finished = False
+            if Path(log_path).exists():
+                with open(log_path, "r", errors="replace") as log:
+                    log.seek(offset)
+                    chunk = log.read()
+                    offset = log.tell()
+                lines = (partial + chunk).split("\n")
+                partial = lines.pop()
+                for line in lines:
+                    found = pass_of(line)
+                    if found:
+                        # "46 SYNTH_XILINX / 46.2 Verilog-2005": the script's pass, the one in it.
+                        top = found[0].split(".")[0]
+                        if top == found[0]:
+                            outer = f"{found[0]} {found[1]}"
+                        RUNNING["last_pass"] = (outer if top == found[0] or not outer.startswith(
+                            top + " ") else f"{outer} / {found[0]} {found[1]}")
+                        RUNNING["passes"] += 1
+            now = time.monotonic()
+            RUNNING["seconds"] = round(now - start, 1)
+            if not finished and RUNNING["last_pass"] and now - last_print >= PROGRESS_SECONDS:
+                progress(f"yosys {now - start:.0f} s: pass {RUNNING['last_pass']} "
+                         f"({RUNNING['passes']} passes so far)")
+                last_print = now
+            if finished:
+                break
+    except (KeyboardInterrupt, Interrupted):
+        process.terminate()
+        try:
+            process.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            process.kill()
+        RUNNING["seconds"] = round(time.monotonic() - start, 1)
+        raise Interrupted()
+    errors.seek(0)
+    stderr = errors.read()
+    errors.close()
+    if process.returncode != 0:
         tail = "\n".join(Path(log_path).read_text().splitlines()[-15:]) if Path(
-            log_path).exists() else result.stderr
+            log_path).exists() else stderr
         raise ReportError(f"yosys failed (log {log_path}):\n{tail}")
     seconds = time.monotonic() - start
-    progress(f"yosys done in {seconds:.0f} s")
+    progress(f"yosys done in {seconds:.0f} s ({RUNNING['passes']} passes)")
+    RUNNING.clear()
     return seconds
+
+
+def partial_report(args, started):
+    """What an interrupted command leaves in its --out file: the command and its options, the
+    elapsed time, and the Yosys pass and log it was in."""
+    options = {key: value for key, value in vars(args).items()
+               if key not in ("handler", "command") and isinstance(value, (str, int, float, bool,
+                                                                           type(None), list))}
+    return {"partial": True, "command": args.command, "options": options,
+            "interrupted_after_seconds": round(time.monotonic() - started, 1),
+            "yosys": dict(RUNNING)}
 
 
 def load_stat_json(path):
@@ -1507,8 +1589,24 @@ def main():
     check.add_argument("--expect-placed", action="store_true")
     check.set_defaults(handler=command_check)
     args = parser.parse_args()
+    started = time.monotonic()
+
+    def stop(signum, frame):
+        raise Interrupted()
+    signal.signal(signal.SIGTERM, stop)
     try:
         args.handler(args)
+    except (Interrupted, KeyboardInterrupt):
+        report = partial_report(args, started)
+        where = ""
+        if getattr(args, "out", None):
+            write_report(report, args.out)
+            where = f"; partial report in {args.out}"
+        last = report["yosys"].get("last_pass")
+        print(f"synth.py: error: interrupted after {report['interrupted_after_seconds']:.0f} s"
+              + (f" in yosys pass {last} (log {report['yosys']['log']})" if last else "") + where,
+              file=sys.stderr)
+        return 130
     except (ReportError, OSError, json.JSONDecodeError) as error:
         print(f"synth.py: error: {error}", file=sys.stderr)
         return 1

@@ -651,5 +651,20 @@ class LeanReport(unittest.TestCase):
             self.assertGreaterEqual(stages[rule]["bram_kbits"], 2 * 640 * 64 * 14 / 1024)
 
 
+class Progress(unittest.TestCase):
+    """The pass names of the progress lines, from Yosys log lines written by hand (Yosys 0.23's
+    format: a section number, "Executing", the pass, "pass", a description)."""
+
+    def test_pass_lines(self):
+        self.assertEqual(synth.pass_of("3. Executing SYNTH_XILINX pass."), ("3", "SYNTH_XILINX"))
+        self.assertEqual(synth.pass_of("3.47.2. Executing ABC pass (technology mapping using ABC)."),
+                         ("3.47.2", "ABC"))
+        self.assertEqual(synth.pass_of("1. Executing Verilog-2005 frontend: rtl/fx_pkg.sv"),
+                         ("1", "Verilog-2005"))
+        self.assertIsNone(synth.pass_of("Executing ABC pass."))  # no section number
+        self.assertIsNone(synth.pass_of("  3.1. Executing HIERARCHY pass."))  # not at the start
+        self.assertIsNone(synth.pass_of("Number of cells: 12"))
+
+
 if __name__ == "__main__":
     unittest.main()

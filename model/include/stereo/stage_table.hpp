@@ -17,6 +17,7 @@
 
 #include "stereo/catalogue.hpp"
 #include "stereo/constants.hpp"
+#include "stereo/image.hpp"
 
 namespace stereo::fx {
 
@@ -140,6 +141,24 @@ inline constexpr int kOutCertaintyBits = fx::kCertaintyBits;
 inline constexpr int kOutCertaintyLsb = kOutBeatBits - kOutCertaintyBits;               // 24
 inline constexpr int kOutPadBits = kOutCertaintyLsb - kOutReasonLsb - fx::kReasonBits;  // 5
 static_assert(kOutPadBits >= 0);
+
+// s_axis_tdata of the pixel pair at (x, y): {right RGB, left RGB}; a grey image is matched as
+// (g, g, g). sim::frame_beats and the test vectors (stereo_io/test_vectors.hpp) pack with it.
+inline std::uint64_t in_beat_data(const Image& left, const Image& right, int x, int y) {
+    const auto rgb = [x, y](const Image& image) -> std::uint64_t {
+        const int g = image.channels == 1 ? 0 : 1;
+        const int b = image.channels == 1 ? 0 : 2;
+        return (std::uint64_t{image.at(x, y, 0)} << (2 * fx::kPixelBits)) |
+               (std::uint64_t{image.at(x, y, g)} << fx::kPixelBits) | image.at(x, y, b);
+    };
+    return (rgb(right) << kInRightLsb) | (rgb(left) << kInLeftLsb);
+}
+// m_axis_tdata of one pixel of stage 6 (fx_pkg::out_beat_t).
+constexpr std::uint32_t out_beat_data(std::int16_t fixed, unsigned reason, unsigned certainty) {
+    return (static_cast<std::uint32_t>(static_cast<std::uint16_t>(fixed)) << kOutFixedLsb) |
+           ((reason & ((1U << fx::kReasonBits) - 1)) << kOutReasonLsb) |
+           ((certainty & ((1U << kOutCertaintyBits) - 1)) << kOutCertaintyLsb);
+}
 // Sticky status bits (stereo_top's status port; stereo_hls_top's return value).
 inline constexpr int kStatusEolMisplaced = 0;   // tlast not at the row end
 inline constexpr int kStatusSofMisplaced = 1;   // tuser inside a frame
@@ -331,23 +350,57 @@ inline constexpr int kAswMaxDiameter = 31;
 // The package first, then every module before its first user. One module per file, named after
 // it; the list of modules to lint is this list without the package.
 inline constexpr std::string_view kPackageFile = "fx_pkg.sv";
-inline constexpr std::array<std::string_view, 45> kRtlModules = {
-    "stereo_coord_reg",       "stereo_stage_output",  "stereo_shift_reg",
-    "stereo_border_flags",    "stereo_window_centre", "stereo_line_buffer",
-    "stereo_row_stack",       "stereo_group_ring",    "stereo_window3x3",
-    "stereo_ca_plane",        "stereo_lcdm_convert",  "stereo_lcdm_distance",
-    "stereo_census",          "stereo_cost",          "stereo_weighted_sum",
-    "stereo_aggregate",       "stereo_wta",           "stereo_divider",
-    "stereo_validate",        "stereo_lr_check",      "stereo_asw_column",
-    "stereo_asw_aggregate",   "stereo_top",           "stereo_axil_top",
-    "stereo_synth_top",       "stereo_uart_rx",       "stereo_uart_tx",
-    "stereo_power_on_reset",  "stereo_board_link",    "stereo_board_top",
-    "stereo_uart_echo_top",   "stereo_downscale",     "stereo_plane_stats",
-    "stereo_plane_offset",    "stereo_row_warp",      "stereo_field_border",
-    "stereo_hier_pass",       "stereo_level_cost",    "stereo_level_wta",
-    "stereo_hier_level",      "stereo_fifo",          "stereo_level_stepper",
-    "stereo_prediction_ring", "stereo_hier_levels",   "stereo_hier_top",
+// One module a line: the compile order reads from top to bottom.
+// clang-format off
+inline constexpr std::array<std::string_view, 46> kRtlModules = {
+    "stereo_coord_reg",
+    "stereo_stage_output",
+    "stereo_shift_reg",
+    "stereo_border_flags",
+    "stereo_window_centre",
+    "stereo_line_buffer",
+    "stereo_row_stack",
+    "stereo_group_ring",
+    "stereo_window3x3",
+    "stereo_ca_plane",
+    "stereo_lcdm_convert",
+    "stereo_lcdm_distance",
+    "stereo_census",
+    "stereo_cost",
+    "stereo_weighted_sum",
+    "stereo_aggregate",
+    "stereo_wta",
+    "stereo_divider",
+    "stereo_validate",
+    "stereo_lr_check",
+    "stereo_asw_column",
+    "stereo_asw_aggregate",
+    "stereo_top",
+    "stereo_axil_top",
+    "stereo_synth_top",
+    "stereo_uart_rx",
+    "stereo_uart_tx",
+    "stereo_power_on_reset",
+    "stereo_board_link",
+    "stereo_board_top",
+    "stereo_uart_echo_top",
+    "stereo_arty_top",
+    "stereo_downscale",
+    "stereo_plane_stats",
+    "stereo_plane_offset",
+    "stereo_row_warp",
+    "stereo_field_border",
+    "stereo_hier_pass",
+    "stereo_level_cost",
+    "stereo_level_wta",
+    "stereo_hier_level",
+    "stereo_fifo",
+    "stereo_level_stepper",
+    "stereo_prediction_ring",
+    "stereo_hier_levels",
+    "stereo_hier_top",
 };
+// clang-format on
 // Port-list fragments and the parameter-check macro (`STEREO_ASSERT) the modules `include (found
 // in rtl/: tools need rtl/ on the include path).
 inline constexpr std::array<std::string_view, 7> kRtlIncludes = {
@@ -360,6 +413,126 @@ inline constexpr std::array<std::string_view, 7> kRtlIncludes = {
 inline constexpr std::uint32_t kRegmapId = 0x5354'4552;  // "STER"
 inline constexpr std::uint32_t kRegmapVersion = 0x0001'0001;
 inline constexpr std::string_view kRegmapVersionText = "1.1.0";
+
+// The register map of stereo_axil_top: the one definition. gen_stage_table writes from it the
+// REG_* constants of rtl/fx_pkg.sv (stereo_axil_top decodes its registers with them), the C
+// header drivers/c/stereo_regs.h (offsets, fields, masks, reset values; the C driver and the
+// testbenches use it) and the table of docs/integration.md. 32-bit registers, byte offsets.
+enum class RegAccess : unsigned char { ro, rw, wo };
+struct RegField {
+    std::string_view name;  // lower case: REG_MATCH_NDISP_LSB, STEREO_MATCH_NDISP_MASK
+    int lsb;
+    int bits;
+    std::string_view meaning;  // for the documentation
+};
+inline constexpr int kRegMaxFields = 5;
+struct Register {
+    std::string_view name;  // upper case: REG_MATCH, STEREO_REG_MATCH
+    std::uint32_t offset;
+    RegAccess access;
+    std::array<RegField, kRegMaxFields> fields;  // from bit 0 up; unused entries have no name
+    // The value after reset (ID, VERSION: the constant): a number, shown as reset_text when
+    // that is not empty; kRegResetParameters when it depends on the core's parameters
+    // (reset_text says how); kRegNoReset for MAX_SIZE, BUILD (parameters) and CONTROL.
+    std::int64_t reset;
+    std::string_view reset_text;
+    std::string_view note;  // after the fields in the documentation
+    int count = 1;          // KERNEL: an array of WINDOW registers, stride 4
+};
+inline constexpr std::int64_t kRegNoReset = -1;
+inline constexpr std::int64_t kRegResetParameters = -2;
+// The model's default uniqueness ratio (ValidationParams), THRESHOLDS' reset value.
+inline constexpr int kResetUniquenessRatio = 20;
+// clang-format off
+inline constexpr std::array<Register, 14> kRegisters = {{
+    {"ID", 0x00, RegAccess::ro, {{{"id", 0, 32, "\"STER\""}}}, kRegmapId, "", ""},
+    {"VERSION", 0x04, RegAccess::ro, {{{"version", 0, 32, "register-map version `0xMMMMmmmm`"}}},
+     kRegmapVersion, "", "1.1: BUILD's COST field widened to two bits for the census cost"},
+    {"MAX_SIZE", 0x08, RegAccess::ro,
+     {{{"width", 0, kCfgSizeBits, "WIDTH"}, {"height", 16, kCfgSizeBits, "HEIGHT"}}},
+     kRegNoReset, "", "the parameters: the largest frame"},
+    {"BUILD", 0x0C, RegAccess::ro,
+     {{{"ndisp", 0, kCfgNdispBits, "NDISP"},
+       {"radius", 9, kCfgRadiusBits, "WINDOW/2"},
+       {"max_min_disp", 14, kCfgMinDispBits, "MAX_MIN_DISP"},
+       {"runtime_kernel", 26, 1, "RUNTIME_KERNEL"},
+       {"cost", 27, 2, "COST (its `fx_pkg::cost_e` code: 0 AD, 1 LCDM, 2 census)"}}},
+     kRegNoReset, "", ""},
+    {"FRAME", 0x10, RegAccess::rw,
+     {{{"width", 0, kCfgSizeBits, ""}, {"height", 16, kCfgSizeBits, ""}}},
+     kRegResetParameters, "WIDTH, HEIGHT", "of the frames"},
+    {"MATCH", 0x14, RegAccess::rw,
+     {{{"ndisp", 0, kCfgNdispBits, "labels searched"},
+       {"radius", 16, kCfgRadiusBits, "window = 2 radius + 1"},
+       {"use_ca", 24, 1, "CA rules on"}}},
+     kRegResetParameters, "NDISP, WINDOW/2, 1", ""},
+    {"STAGE6", 0x18, RegAccess::rw,
+     {{{"min_disp", 0, kCfgMinDispBits, "minimum disparity (two's complement)"},
+       {"uniqueness_en", 12, 1, "uniqueness on"},
+       {"lr_en", 13, 1, "left-right check on"},
+       {"subpixel_en", 14, 1, "sub-pixel on"}}},
+     0, "0", ""},
+    {"THRESHOLDS", 0x1C, RegAccess::rw,
+     {{{"uniqueness", 0, kCfgUniquenessBits, "uniqueness ratio U (percent)"},
+       {"lr_tolerance", 8, kCfgLrToleranceBits, "left-right tolerance T (labels)"}}},
+     kResetUniquenessRatio, "20, 0", ""},
+    {"STATUS", 0x20, RegAccess::ro,
+     {{{"eol_misplaced", kStatusEolMisplaced, 1, "tlast not at a row end"},
+       {"sof_misplaced", kStatusSofMisplaced, 1, "tuser inside a frame"},
+       {"config_clamped", kStatusConfigClamped, 1, "configuration out of range (clamped)"}}},
+     0, "0", "sticky until a reset"},
+    {"CONTROL", 0x24, RegAccess::wo,
+     {{{"soft_reset", 0, 1, "one cycle of reset for the core and the counters (registers "
+                            "keep their values)"}}},
+     kRegNoReset, "", ""},
+    {"FRAMES_IN", 0x28, RegAccess::ro, {{{"count", 0, 32, "input start-of-frame beats accepted"}}},
+     0, "0", ""},
+    {"FRAMES_OUT", 0x2C, RegAccess::ro,
+     {{{"count", 0, 32, "output start-of-frame beats delivered"}}}, 0, "0", ""},
+    {"STALLS", 0x30, RegAccess::ro,
+     {{{"count", 0, 32, "cycles with `m_axis_tvalid` high and `m_axis_tready` low"}}}, 0, "0", ""},
+    {"KERNEL", 0x40, RegAccess::rw,
+     {{{"tap", 0, fx::kKernelBits + 1, "tap i of the 1-D Gaussian kernel"}}},
+     kRegResetParameters, "the model's default kernel for WINDOW",
+     "i = 0 .. WINDOW-1, taps summing to 256; a smaller window is written centred, zeros outside "
+     "(only with `RUNTIME_KERNEL = 1`)", fx::kMaxWindow},
+}};
+// clang-format on
+// The register of a name (a compile-time lookup for the checks below and the generator).
+constexpr const Register& reg(std::string_view name) {
+    for (const Register& r : kRegisters) {
+        if (r.name == name) {
+            return r;
+        }
+    }
+    throw "no such register";  // not a constant expression: a compile error where it is used
+}
+static_assert(reg("FRAME").fields[1].lsb == reg("FRAME").fields[0].bits, "FRAME: width, height");
+static_assert(
+    [] {
+        // Fields inside 32 bits, in ascending order, not overlapping; offsets word-aligned and
+        // ascending; the array register last.
+        std::uint32_t previous = 0;
+        for (std::size_t r = 0; r < kRegisters.size(); ++r) {
+            const Register& reg = kRegisters[r];
+            if (reg.offset % 4 != 0 || (r > 0 && reg.offset <= previous)) {
+                return false;
+            }
+            previous = reg.offset;
+            int next = 0;
+            for (const RegField& field : reg.fields) {
+                if (field.name.empty()) {
+                    continue;
+                }
+                if (field.lsb < next || field.bits < 1 || field.lsb + field.bits > 32) {
+                    return false;
+                }
+                next = field.lsb + field.bits;
+            }
+        }
+        return true;
+    }(),
+    "kRegisters: aligned ascending offsets, fields in order inside 32 bits");
 
 // ---- Verilated configurations (sim/verilated_configs.cmake) --------------------------------
 // Below every parameter value (V_MIN may be negative).
@@ -490,7 +663,7 @@ inline constexpr Params kFullCensusLean =
 inline constexpr Params kFullHier = {
     .width = 640, .height = 480, .ndisp = 64, .window = 11, .lanes = 8, .recompute_costs = 1};
 
-inline constexpr std::array<VerilatedConfig, 45> kVerilatedConfigs = {{
+inline constexpr std::array<VerilatedConfig, 47> kVerilatedConfigs = {{
     {"Vstereo_top_small", "stereo_top", kSmall, "", "small"},
     {"Vstereo_top_lanes4", "stereo_top", kSmallLanes4, "", "lanes4"},
     {"Vstereo_top_lanes1", "stereo_top", kSmallLanes1, "", "lanes1"},
@@ -548,6 +721,8 @@ inline constexpr std::array<VerilatedConfig, 45> kVerilatedConfigs = {{
      ""},
     // The iCEBreaker top: UART protocol, configuration registers and stereo_top.
     {"Vstereo_board_top", "stereo_board_top", kSmallBoard, ""},
+    // The same board design on the Arty A7 (rtl/stereo_arty_top.sv, issue 48), same size and UART.
+    {"Vstereo_arty_top", "stereo_arty_top", kSmallBoard, ""},
     // Its link test (UART echo, no core) with the same UART speed.
     {"Vstereo_uart_echo_top",
      "stereo_uart_echo_top",
