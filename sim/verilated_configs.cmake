@@ -48,4 +48,3 @@ stereo_verilated_config(Vstereo_top_full stereo_top "STEREO_COSIM_FULL" WIDTH=64
 stereo_verilated_config(Vstereo_top_full_census_lean stereo_top "STEREO_COSIM_FULL_CENSUS" WIDTH=640 HEIGHT=480 NDISP=64 WINDOW=11 COST=2 LANES=8 RECOMPUTE_COSTS=1'b1)
 stereo_verilated_config(Vstereo_top_full_asw stereo_top "STEREO_COSIM_FULL_ASW" WIDTH=640 HEIGHT=480 NDISP=64 WINDOW=11 COST=2 LANES=8 ASW=1'b1)
 stereo_verilated_config(Vstereo_hier_top_full stereo_hier_top "STEREO_COSIM_FULL_HIER" WIDTH=640 HEIGHT=480 NDISP=64 WINDOW=11 LANES=8 RECOMPUTE_COSTS=1'b1)
-stereo_verilated_config(  "")

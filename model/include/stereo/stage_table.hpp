@@ -663,7 +663,7 @@ inline constexpr Params kFullCensusLean =
 inline constexpr Params kFullHier = {
     .width = 640, .height = 480, .ndisp = 64, .window = 11, .lanes = 8, .recompute_costs = 1};
 
-inline constexpr std::array<VerilatedConfig, 47> kVerilatedConfigs = {{
+inline constexpr std::array<VerilatedConfig, 46> kVerilatedConfigs = {{
     {"Vstereo_top_small", "stereo_top", kSmall, "", "small"},
     {"Vstereo_top_lanes4", "stereo_top", kSmallLanes4, "", "lanes4"},
     {"Vstereo_top_lanes1", "stereo_top", kSmallLanes1, "", "lanes1"},
