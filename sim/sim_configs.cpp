@@ -133,6 +133,23 @@ class VerilatedTop final : public TopSim {
 
 // A stereo_top configuration of the stage table (stage_table.hpp).
 // The stereo_top or stereo_synth_top build of that Verilator prefix, under its cosim name.
+// The prefixes Verilated with FST tracing, "A,B,...", from sim/CMakeLists.txt.
+#ifndef STEREO_TRACED_PREFIXES
+#define STEREO_TRACED_PREFIXES ""
+#endif
+bool traced(std::string_view prefix) {
+    const std::string_view list = STEREO_TRACED_PREFIXES;
+    std::size_t start = 0;
+    while (start <= list.size()) {
+        const std::size_t end = std::min(list.find(',', start), list.size());
+        if (list.substr(start, end - start) == prefix) {
+            return true;
+        }
+        start = end + 1;
+    }
+    return false;
+}
+
 TopConfig top_config(std::string_view prefix) {
     const table::VerilatedConfig& config = table::verilated(prefix);
     const table::Params& p = config.params;
@@ -144,7 +161,8 @@ TopConfig top_config(std::string_view prefix) {
             p.max_min_disp == table::kUnset ? table::kDefaultMaxMinDisp : p.max_min_disp,
             p.lanes == table::kUnset ? p.ndisp : p.lanes,
             p.cost == table::kUnset ? table::kCostAd : p.cost,
-            p.asw != table::kUnset && p.asw != 0};
+            p.asw != table::kUnset && p.asw != 0,
+            traced(prefix)};
 }
 
 std::vector<TopConfig> top_configs(std::initializer_list<std::string_view> prefixes) {

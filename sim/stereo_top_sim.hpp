@@ -30,6 +30,9 @@ struct TopConfig {
     // ASW = 1: adaptive support weights of diameter `window` (stereo::asw::match, separable)
     // instead of the Gaussian aggregation and the CA rules.
     bool asw = false;
+    // FST tracing compiled in (sim/CMakeLists.txt STEREO_TRACE_CONFIGS): only then does
+    // trace_to() work. Cores built on demand trace when asked.
+    bool traced = true;
 };
 
 // The configurations built into this binary, smallest first.

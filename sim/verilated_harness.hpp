@@ -55,11 +55,20 @@ class VerilatedHarness {
     // Starts writing an FST waveform of everything that follows.
     void trace_to(const std::string& path) {
 #if STEREO_HARNESS_FST
-        trace_ = std::make_unique<VerilatedFstC>();
-        model_->trace(trace_.get(), 99);
-        trace_->open(path.c_str());
-        if (!trace_->isOpen()) {
-            throw std::runtime_error("cannot write waveform '" + path + "'");
+        // One library holds traced and untraced models (sim/CMakeLists.txt STEREO_TRACE_CONFIGS):
+        // an untraced one has no trace().
+        if constexpr (requires(Model& model, VerilatedFstC* fst) { model.trace(fst, 99); }) {
+            trace_ = std::make_unique<VerilatedFstC>();
+            model_->trace(trace_.get(), 99);
+            trace_->open(path.c_str());
+            if (!trace_->isOpen()) {
+                throw std::runtime_error("cannot write waveform '" + path + "'");
+            }
+        } else {
+            throw std::runtime_error(
+                "this model was Verilated without tracing (configure with "
+                "-DSTEREO_TRACE_CONFIGS=all to trace every one); cannot write '" +
+                path + "'");
         }
 #else
         throw std::runtime_error("this model was Verilated without tracing; cannot write '" + path +

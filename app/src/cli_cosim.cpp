@@ -603,6 +603,12 @@ void run_cosim(const CosimOptions& given) {
     model->validate(width, height);
     const Core core = asw ? asw_core(options, match_config, width, height)
                           : choose_core(options, params, width, height);
+    if (!options.trace.empty() && !core.config->traced) {
+        throw std::invalid_argument(
+            "--trace: the built configuration '" + core.config->name +
+            "' has no tracing compiled in (configure with -DSTEREO_TRACE_CONFIGS=all, or give "
+            "--size WxH for a core built on demand)");
+    }
 
     // Stage 6's full output: fixed disparity, reason and certainty of every pixel.
     const auto model_start = std::chrono::steady_clock::now();
