@@ -20,6 +20,7 @@
 #include "stereo/search.hpp"
 #include "stereo/stages.hpp"
 #include "stereo/stages/validate.hpp"
+#include "target_clones.hpp"
 
 namespace stereo::asw {
 namespace {
@@ -358,23 +359,13 @@ Dsi parallel_cost_volume(const CostFunction& cost, const Image& left, const Imag
 
 // Pixels whose sums stay in registers while every tap of a 1-D pass is added (two vectors).
 constexpr int kBlock = 32;
-constexpr int kHalf = kBlock / 2;
 
 int padded_width(int width) {
     return (width + kBlock - 1) / kBlock * kBlock;
 }
 
-// The sums run on GCC's vector extensions: one source for every target. target_clones compiles
-// it for AVX-512, AVX2 and the baseline and picks one at load time; the arithmetic is integer
-// (bar an exact division), so every clone gives the same bits.
-#if defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 11 && defined(__x86_64__) && \
-    defined(__linux__)
-#define STEREO_ASW_CLONES __attribute__((target_clones("arch=x86-64-v4", "avx2", "default")))
-#else
-#define STEREO_ASW_CLONES
-#endif
-
-using U16x16 = std::uint16_t __attribute__((vector_size(32)));
+// The sums run on GCC's vector extensions, one source for every clone (target_clones.hpp).
+using U16x32 = std::uint16_t __attribute__((vector_size(64)));
 using U32x16 = std::uint32_t __attribute__((vector_size(64)));
 using I32x16 = std::int32_t __attribute__((vector_size(64)));
 using F64x16 = double __attribute__((vector_size(128)));
@@ -388,53 +379,51 @@ struct Tap {
     const std::uint16_t* input;
 };
 
-// out[x] = floor(((sum_t w_t n_t) << shift + s / 2) / s), s = sum_t w_t, with the weight
-// w_t = (left_t * right_t + 128) >> 8 (left_t alone without right weights), for x in [0, count),
-// count a multiple of kBlock. Pixels of no weight (only the padding) give 0.
-STEREO_ASW_CLONES
+// out[x] = floor(((sum_t w_t c_t) << shift + s / 2) / s), s = sum_t w_t, with the weight
+// w_t = (left_t * right_t + 128) >> 8 (left_t alone without right weights) and c_t the input, for
+// x in [0, count), count a multiple of kBlock. Pixels of no weight (only the padding) give 0.
+// The 16-bit lanes are also read as 32-bit lanes, each an even pixel (low half) and an odd one
+// (high half): the products w * c (< 2^22) then need no widening shuffles.
+STEREO_TARGET_CLONES
 void weighted_means(const Tap* taps, int ntaps, bool right, int count, int shift,
                     std::uint16_t* out) {
+    constexpr std::uint32_t kLow = 0xFFFF;
     for (int x0 = 0; x0 < count; x0 += kBlock) {
-        U32x16 num0 = {};
-        U32x16 num1 = {};
-        U16x16 den0 = {};
-        U16x16 den1 = {};
+        U32x16 num_even = {};
+        U32x16 num_odd = {};
+        U16x32 den = {};
         for (int t = 0; t < ntaps; ++t) {
-            U16x16 w0;
-            U16x16 w1;
-            std::memcpy(&w0, taps[t].left + x0, sizeof w0);
-            std::memcpy(&w1, taps[t].left + x0 + kHalf, sizeof w1);
+            U16x32 w;
+            std::memcpy(&w, taps[t].left + x0, sizeof w);
             if (right) {
-                U16x16 r0;
-                U16x16 r1;
-                std::memcpy(&r0, taps[t].right + x0, sizeof r0);
-                std::memcpy(&r1, taps[t].right + x0 + kHalf, sizeof r1);
-                // left * right + 128 <= 65153: 16-bit lanes hold it.
-                w0 = (w0 * r0 + 128) >> kResponseBits;
-                w1 = (w1 * r1 + 128) >> kResponseBits;
+                U16x32 r;
+                std::memcpy(&r, taps[t].right + x0, sizeof r);
+                w = (w * r + 128) >> kResponseBits;  // left * right + 128 <= 65153: 16 bits
             }
-            U16x16 c0;
-            U16x16 c1;
-            std::memcpy(&c0, taps[t].input + x0, sizeof c0);
-            std::memcpy(&c1, taps[t].input + x0 + kHalf, sizeof c1);
-            num0 += __builtin_convertvector(w0, U32x16) * __builtin_convertvector(c0, U32x16);
-            num1 += __builtin_convertvector(w1, U32x16) * __builtin_convertvector(c1, U32x16);
+            U16x32 c;
+            std::memcpy(&c, taps[t].input + x0, sizeof c);
             // At most kMaxDiameter taps of weight <= 255: the 16-bit sum cannot wrap.
-            den0 += w0;
-            den1 += w1;
+            den += w;
+            const auto w32 = reinterpret_cast<U32x16>(w);
+            const auto c32 = reinterpret_cast<U32x16>(c);
+            num_even += (w32 & kLow) * (c32 & kLow);
+            num_odd += (w32 >> 16) * (c32 >> 16);
         }
-        // The division in double precision, as aggregate_rows argues: numerator < 2^32 and
-        // denominator < 2^15 are exact, and truncation of the quotient is the exact floor.
-        const U32x16 num[2] = {num0, num1};
-        const U16x16 den[2] = {den0, den1};
+        // The division in double precision, as aggregate_rows argues: the numerator (< 2^31) and
+        // the denominator (< 2^15) are exact, and truncating the quotient is the exact floor.
+        const auto den32 = reinterpret_cast<U32x16>(den);
+        const U32x16 dens[2] = {den32 & kLow, den32 >> 16};
+        const U32x16 nums[2] = {num_even, num_odd};
+        U32x16 quotients[2];
         for (int h = 0; h < 2; ++h) {
-            const U32x16 n = (num[h] << shift) + __builtin_convertvector(den[h] >> 1, U32x16);
-            const U16x16 safe = den[h] - reinterpret_cast<U16x16>(den[h] == 0);  // 0 -> 1 (padding)
+            const auto n = reinterpret_cast<I32x16>((nums[h] << shift) + (dens[h] >> 1));
+            const auto d = reinterpret_cast<I32x16>(dens[h] + (dens[h] == 0 ? 1 : 0));  // padding
             const F64x16 q =
-                __builtin_convertvector(n, F64x16) / __builtin_convertvector(safe, F64x16);
-            const U16x16 q16 = __builtin_convertvector(__builtin_convertvector(q, I32x16), U16x16);
-            std::memcpy(out + x0 + h * kHalf, &q16, sizeof q16);
+                __builtin_convertvector(n, F64x16) / __builtin_convertvector(d, F64x16);
+            quotients[h] = reinterpret_cast<U32x16>(__builtin_convertvector(q, I32x16));
         }
+        const U32x16 packed = quotients[0] | (quotients[1] << 16);
+        std::memcpy(out + x0, &packed, sizeof packed);
     }
 }
 
