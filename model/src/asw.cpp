@@ -545,7 +545,8 @@ class SeparableRow {
           width_(in.cost.width()),
           count_(in.cost.stride()),
           reach_(std::max(max_reach(in.column), max_reach(in.row))),
-          right_span_(static_cast<std::size_t>(count_ + in.ndisp)),
+          right_span_(static_cast<std::size_t>(count_ + in.ndisp + reach_)),
+          mirror_(mirrors(in.row)),
           left_(std::max(in.column.size(), in.row.size()) * static_cast<std::size_t>(count_)),
           continuity_left_(in.row.size() * static_cast<std::size_t>(count_)),
           right_(std::max(in.column.size(), in.row.size()) * right_span_),
@@ -592,6 +593,9 @@ class SeparableRow {
     // The left weights and right responses of the horizontal passes of row y (no continuity).
     void prepare_horizontal(int y) {
         for (std::size_t t = 0; t < in_.row.size(); ++t) {
+            if (mirror_[t] >= 0) {
+                continue;  // below, from its mirror
+            }
             const Offset& o = in_.row[t];
             std::uint16_t* lw = left_.data() + t * count_;
             std::fill(lw, lw + count_, std::uint16_t{0});
@@ -608,6 +612,14 @@ class SeparableRow {
                 right_responses(t, y, y, o.dx);
             }
         }
+        for (std::size_t t = 0; t < in_.row.size(); ++t) {
+            if (mirror_[t] >= 0) {
+                mirror_copy(left_.data(), count_, t);
+                if (in_.params.right_weights) {
+                    mirror_copy(right_.data(), right_span_, t);
+                }
+            }
+        }
     }
 
     // A horizontal pass of the row prepared last over vertical_ into horizontal_, with the
@@ -616,6 +628,9 @@ class SeparableRow {
         const std::uint16_t* left = left_.data();
         if (labels != nullptr) {
             for (std::size_t t = 0; t < in_.row.size(); ++t) {
+                if (mirror_[t] >= 0) {
+                    continue;
+                }
                 const int dx = in_.row[t].dx;
                 const std::uint16_t* lw = left_.data() + t * count_;
                 std::uint16_t* cw = continuity_left_.data() + t * count_;
@@ -624,6 +639,11 @@ class SeparableRow {
                     cw[x] = static_cast<std::uint16_t>(
                         combine(lw[x], in_.tables.continuity[static_cast<std::size_t>(
                                            std::abs(labels[x] - labels[x + dx]))]));
+                }
+            }
+            for (std::size_t t = 0; t < in_.row.size(); ++t) {
+                if (mirror_[t] >= 0) {
+                    mirror_copy(continuity_left_.data(), count_, t);
                 }
             }
             left = continuity_left_.data();
@@ -690,30 +710,55 @@ class SeparableRow {
         return vertical_.data() + static_cast<std::size_t>(k) * vertical_stride_ + reach_;
     }
 
-    // Right responses of tap t for the right pixels x' = x - d, x' in [-d_high, count - d_low):
-    // colour similarity of R(x', y) and R(x' + dx, qy), kResponseMax where either is outside.
+    // Right responses of tap t for the right pixels x' = x - d, x' in [-d_high, count - d_low),
+    // and reach_ more on the left (a mirrored tap reads them): colour similarity of R(x', y)
+    // and R(x' + dx, qy), kResponseMax where either is outside. rr[i] is x' = i - first_right().
     void right_responses(std::size_t t, int y, int qy, int dx) {
-        const int d_high = in_.min_disp + in_.ndisp - 1;
-        std::uint16_t* rr = right_.data() + t * right_span_;  // rr[i]: x' = i - d_high
+        const int first = first_right();
+        std::uint16_t* rr = right_.data() + t * right_span_;
         std::fill(rr, rr + right_span_, static_cast<std::uint16_t>(kResponseMax));
-        const int r0 = std::max(0, -dx);
-        const int r1 = std::min(width_, width_ - dx);
-        // x' in [r0, r1) intersected with the span [-d_high, -d_high + right_span_).
-        const int s0 = std::max(r0, -d_high);
-        const int s1 = std::min(r1, -d_high + static_cast<int>(right_span_));
+        // x' inside with x' + dx, intersected with the span [-first, -first + right_span_).
+        const int s0 = std::max({0, -dx, -first});
+        const int s1 = std::min({width_, width_ - dx, -first + static_cast<int>(right_span_)});
         if (s0 < s1) {
             colour_row(in_.right, y, qy, dx, s0, s1, difference_.data() - s0);
             for (int x = s0; x < s1; ++x) {
-                rr[x + d_high] = in_.tables.colour[difference_[static_cast<std::size_t>(x - s0)]];
+                rr[x + first] = in_.tables.colour[difference_[static_cast<std::size_t>(x - s0)]];
             }
         }
     }
 
+    int first_right() const { return in_.min_disp + in_.ndisp - 1 + reach_; }
+
     // Tap t's right responses at label k as seen from pixel x: rr at x' = x - d.
     const std::uint16_t* right_at(std::size_t t, int k) const {
-        const int d_high = in_.min_disp + in_.ndisp - 1;
-        const int d = in_.min_disp + k;
-        return right_.data() + t * right_span_ + (d_high - d);
+        return right_.data() + t * right_span_ + (first_right() - (in_.min_disp + k));
+    }
+
+    // The buffer of horizontal tap t (offset -a, a > 0) from its mirror's (+a): the colour, right
+    // and continuity stimuli are symmetric (|L(x) - L(x - a)| is the mirror's at x - a, and so
+    // is "both inside"), and so is the proximity, so each buffer is the mirror's shifted by a.
+    void mirror_copy(std::uint16_t* buffers, std::size_t size, std::size_t t) const {
+        const auto a = static_cast<std::size_t>(-in_.row[t].dx);
+        const std::uint16_t* from = buffers + static_cast<std::size_t>(mirror_[t]) * size;
+        std::uint16_t* to = buffers + t * size;
+        std::fill(to, to + a,
+                  std::uint16_t{0});  // the left buffers' outside; never read on the right
+        std::copy(from, from + (size - a), to + a);
+    }
+
+    // For each horizontal tap of negative dx, the tap of -dx with the same proximity; else -1.
+    static std::vector<int> mirrors(const std::vector<Offset>& axis) {
+        std::vector<int> mirror(axis.size(), -1);
+        for (std::size_t t = 0; t < axis.size(); ++t) {
+            for (std::size_t m = 0; m < axis.size() && axis[t].dx < 0; ++m) {
+                if (axis[m].dx == -axis[t].dx && axis[m].dy == axis[t].dy &&
+                    axis[m].proximity == axis[t].proximity) {
+                    mirror[t] = static_cast<int>(m);
+                }
+            }
+        }
+        return mirror;
     }
 
     const SeparableInputs& in_;
@@ -721,6 +766,7 @@ class SeparableRow {
     int count_;
     int reach_;
     std::size_t right_span_;
+    std::vector<int> mirror_;                     // mirrors(in_.row)
     std::vector<std::uint16_t> left_;             // per tap, count_ pixels
     std::vector<std::uint16_t> continuity_left_;  // left_ with the continuity factor
     std::vector<std::uint16_t> right_;            // per tap, right_span_ right pixels
