@@ -370,60 +370,85 @@ using U32x16 = std::uint32_t __attribute__((vector_size(64)));
 using I32x16 = std::int32_t __attribute__((vector_size(64)));
 using F64x16 = double __attribute__((vector_size(128)));
 
-// One tap of a 1-D pass at one label, each pointer at pixel 0 of the row: the left weight
+// One tap of a 1-D pass at label 0, each pointer at pixel 0 of the row: the left weight
 // (proximity, left colour and continuity factors; 0 where the neighbour is outside the image), the
-// right response at x - d and the input at x + dx. Every pointer is readable for padded_width.
+// right response at x - d and the input at x + dx. Label j reads the right responses one pixel
+// further left per label (x - d - j) and the input `input_step` further per label.
 struct Tap {
     const std::uint16_t* left;
     const std::uint16_t* right;
     const std::uint16_t* input;
 };
 
-// out[x] = floor(((sum_t w_t c_t) << shift + s / 2) / s), s = sum_t w_t, with the weight
-// w_t = (left_t * right_t + 128) >> 8 (left_t alone without right weights) and c_t the input, for
-// x in [0, count), count a multiple of kBlock. Pixels of no weight (only the padding) give 0.
-// The 16-bit lanes are also read as 32-bit lanes, each an even pixel (low half) and an odd one
-// (high half): the products w * c (< 2^22) then need no widening shuffles.
-STEREO_TARGET_CLONES
-void weighted_means(const Tap* taps, int ntaps, bool right, int count, int shift,
-                    std::uint16_t* out) {
+// The row of a 1-D pass at labels j0 .. j0 + kLabels - 1 (see weighted_means). Labels in pairs
+// share the left weights' loads and the loop over the taps.
+template <int kLabels>
+[[gnu::always_inline]] inline void weighted_means_of(const Tap* taps, int ntaps, bool right,
+                                                     int count, int shift, int j0,
+                                                     std::ptrdiff_t input_step, std::uint16_t* out,
+                                                     std::ptrdiff_t out_step) {
     constexpr std::uint32_t kLow = 0xFFFF;
     for (int x0 = 0; x0 < count; x0 += kBlock) {
-        U32x16 num_even = {};
-        U32x16 num_odd = {};
-        U16x32 den = {};
+        U32x16 num_even[kLabels] = {};
+        U32x16 num_odd[kLabels] = {};
+        U16x32 den[kLabels] = {};
         for (int t = 0; t < ntaps; ++t) {
-            U16x32 w;
-            std::memcpy(&w, taps[t].left + x0, sizeof w);
-            if (right) {
-                U16x32 r;
-                std::memcpy(&r, taps[t].right + x0, sizeof r);
-                w = (w * r + 128) >> kResponseBits;  // left * right + 128 <= 65153: 16 bits
+            U16x32 left;
+            std::memcpy(&left, taps[t].left + x0, sizeof left);
+            for (int l = 0; l < kLabels; ++l) {
+                const int j = j0 + l;
+                U16x32 w = left;
+                if (right) {
+                    U16x32 r;
+                    std::memcpy(&r, taps[t].right - j + x0, sizeof r);
+                    w = (w * r + 128) >> kResponseBits;  // left * right + 128 <= 65153: 16 bits
+                }
+                U16x32 c;
+                std::memcpy(&c, taps[t].input + j * input_step + x0, sizeof c);
+                // At most kMaxDiameter taps of weight <= 255: the 16-bit sum cannot wrap.
+                den[l] += w;
+                const auto w32 = reinterpret_cast<U32x16>(w);
+                const auto c32 = reinterpret_cast<U32x16>(c);
+                num_even[l] += (w32 & kLow) * (c32 & kLow);
+                num_odd[l] += (w32 >> 16) * (c32 >> 16);
             }
-            U16x32 c;
-            std::memcpy(&c, taps[t].input + x0, sizeof c);
-            // At most kMaxDiameter taps of weight <= 255: the 16-bit sum cannot wrap.
-            den += w;
-            const auto w32 = reinterpret_cast<U32x16>(w);
-            const auto c32 = reinterpret_cast<U32x16>(c);
-            num_even += (w32 & kLow) * (c32 & kLow);
-            num_odd += (w32 >> 16) * (c32 >> 16);
         }
         // The division in double precision, as aggregate_rows argues: the numerator (< 2^31) and
         // the denominator (< 2^15) are exact, and truncating the quotient is the exact floor.
-        const auto den32 = reinterpret_cast<U32x16>(den);
-        const U32x16 dens[2] = {den32 & kLow, den32 >> 16};
-        const U32x16 nums[2] = {num_even, num_odd};
-        U32x16 quotients[2];
-        for (int h = 0; h < 2; ++h) {
-            const auto n = reinterpret_cast<I32x16>((nums[h] << shift) + (dens[h] >> 1));
-            const auto d = reinterpret_cast<I32x16>(dens[h] + (dens[h] == 0 ? 1 : 0));  // padding
-            const F64x16 q =
-                __builtin_convertvector(n, F64x16) / __builtin_convertvector(d, F64x16);
-            quotients[h] = reinterpret_cast<U32x16>(__builtin_convertvector(q, I32x16));
+        for (int l = 0; l < kLabels; ++l) {
+            const auto den32 = reinterpret_cast<U32x16>(den[l]);
+            const U32x16 dens[2] = {den32 & kLow, den32 >> 16};
+            const U32x16 nums[2] = {num_even[l], num_odd[l]};
+            U32x16 quotients[2];
+            for (int h = 0; h < 2; ++h) {
+                const auto n = reinterpret_cast<I32x16>((nums[h] << shift) + (dens[h] >> 1));
+                const auto d =
+                    reinterpret_cast<I32x16>(dens[h] + (dens[h] == 0 ? 1 : 0));  // padding
+                const F64x16 q =
+                    __builtin_convertvector(n, F64x16) / __builtin_convertvector(d, F64x16);
+                quotients[h] = reinterpret_cast<U32x16>(__builtin_convertvector(q, I32x16));
+            }
+            const U32x16 packed = quotients[0] | (quotients[1] << 16);
+            std::memcpy(out + (j0 + l) * out_step + x0, &packed, sizeof packed);
         }
-        const U32x16 packed = quotients[0] | (quotients[1] << 16);
-        std::memcpy(out + x0, &packed, sizeof packed);
+    }
+}
+
+// One row of a 1-D pass at every label j in [0, nlabels): out_j[x] = floor(((sum_t w c) << shift
+// + s / 2) / s), s = sum_t w, with the weight w = (left_t[x] * right_t[x - j] + 128) >> 8
+// (left_t[x] alone without right weights) and c = input_t[x + j * input_step], for x in
+// [0, count), count a multiple of kBlock; out_j = out + j * out_step. Pixels of no weight (only
+// the padding) give 0. The 16-bit lanes are also read as 32-bit lanes, each an even pixel (low
+// half) and an odd one (high half), so the products w * c (< 2^22) need no widening shuffles.
+STEREO_TARGET_CLONES
+void weighted_means(const Tap* taps, int ntaps, bool right, int count, int shift, int nlabels,
+                    std::ptrdiff_t input_step, std::uint16_t* out, std::ptrdiff_t out_step) {
+    int j = 0;
+    for (; j + 1 < nlabels; j += 2) {
+        weighted_means_of<2>(taps, ntaps, right, count, shift, j, input_step, out, out_step);
+    }
+    if (j < nlabels) {
+        weighted_means_of<1>(taps, ntaps, right, count, shift, j, input_step, out, out_step);
     }
 }
 
@@ -438,6 +463,7 @@ class PaddedVolume {
                                                              height * ndisp)) {}
     int width() const { return width_; }
     int stride() const { return stride_; }
+    std::ptrdiff_t plane_step() const { return static_cast<std::ptrdiff_t>(height_) * stride_; }
     CostValue* row(int k, int y) {
         return cells_.get() + (static_cast<std::size_t>(k) * height_ + y) * stride_;
     }
@@ -579,15 +605,14 @@ class SeparableRow {
                 right_responses(t, y, qy, 0);
             }
         }
-        for (int k = 0; k < in_.ndisp; ++k) {
-            taps_.clear();
-            for (std::size_t t = 0; t < prepared_.size(); ++t) {
-                taps_.push_back({left_.data() + t * count_, right_at(t, k),
-                                 in_.cost.row(k, y + prepared_[t].dy)});
-            }
-            weighted_means(taps_.data(), static_cast<int>(taps_.size()), in_.params.right_weights,
-                           count_, kOutputFracBits, vertical_row(k));
+        taps_.clear();
+        for (std::size_t t = 0; t < prepared_.size(); ++t) {
+            taps_.push_back(
+                {left_.data() + t * count_, right_at(t, 0), in_.cost.row(0, y + prepared_[t].dy)});
         }
+        weighted_means(taps_.data(), static_cast<int>(taps_.size()), in_.params.right_weights,
+                       count_, kOutputFracBits, in_.ndisp, in_.cost.plane_step(), vertical_row(0),
+                       static_cast<std::ptrdiff_t>(vertical_stride_));
     }
 
     // The left weights and right responses of the horizontal passes of row y (no continuity).
@@ -648,15 +673,13 @@ class SeparableRow {
             }
             left = continuity_left_.data();
         }
-        for (int k = 0; k < in_.ndisp; ++k) {
-            taps_.clear();
-            for (std::size_t t = 0; t < in_.row.size(); ++t) {
-                taps_.push_back(
-                    {left + t * count_, right_at(t, k), vertical_row(k) + in_.row[t].dx});
-            }
-            weighted_means(taps_.data(), static_cast<int>(taps_.size()), in_.params.right_weights,
-                           count_, 0, horizontal_row(k));
+        taps_.clear();
+        for (std::size_t t = 0; t < in_.row.size(); ++t) {
+            taps_.push_back({left + t * count_, right_at(t, 0), vertical_row(0) + in_.row[t].dx});
         }
+        weighted_means(taps_.data(), static_cast<int>(taps_.size()), in_.params.right_weights,
+                       count_, 0, in_.ndisp, static_cast<std::ptrdiff_t>(vertical_stride_),
+                       horizontal_row(0), count_);
     }
 
     // Each pixel's first smallest label of horizontal_ among those whose match lies inside the
