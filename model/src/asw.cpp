@@ -1,7 +1,9 @@
-// Adaptive support weights (stereo/asw.hpp, docs/asw.md): the fast fixed-point model. Rows are
-// shared among threads; a row is cut into tiles, and for each tile the weights of a chunk of
-// offsets are computed once (for every disparity), then summed disparity by disparity, offset by
-// offset, with the innermost loop over the tile's contiguous pixels (it vectorises).
+// Adaptive support weights (stereo/asw.hpp, docs/asw.md): the fast fixed-point model. The full
+// variant: rows are shared among threads; a row is cut into tiles, and for each tile the weights
+// of a chunk of offsets are computed once (for every disparity), then summed disparity by
+// disparity, offset by offset, with the innermost loop over the tile's contiguous pixels (it
+// vectorises). The separable variant is streamed row by row (SeparableRow, docs/asw.md "On the
+// CPU"): no aggregated volume, the sums of 32 pixels kept in registers over every tap.
 #include "stereo/asw.hpp"
 #include "stereo/catalogue.hpp"
 
