@@ -38,6 +38,24 @@ std::vector<std::uint32_t> transform(const Image& image) {
 
 namespace {
 
+// The bits set in one byte, by halves, nibbles then the byte: unlike std::popcount (a library
+// call without the POPCNT instruction) it vectorises over the row.
+constexpr unsigned byte_popcount(unsigned v) {
+    v = v - ((v >> 1) & 0x55U);
+    v = (v & 0x33U) + ((v >> 2) & 0x33U);
+    return (v + (v >> 4)) & 0x0FU;
+}
+
+constexpr bool byte_popcount_exact() {
+    for (unsigned v = 0; v < 256; ++v) {
+        if (byte_popcount(v) != static_cast<unsigned>(std::popcount(v))) {
+            return false;
+        }
+    }
+    return true;
+}
+static_assert(byte_popcount_exact(), "every byte, checked at compile time");
+
 class CensusCost final : public CostFunction {
   public:
     // The code's three bytes as three planes.
@@ -54,13 +72,16 @@ class CensusCost final : public CostFunction {
 
     void row(const PlanarImage& left, const PlanarImage& right, int y, int yr, int x0, int count,
              int shift, CostValue* out) const override {
+        const std::uint8_t* l0 = left.row(0, y) + x0;
+        const std::uint8_t* l1 = left.row(1, y) + x0;
+        const std::uint8_t* l2 = left.row(2, y) + x0;
+        const std::uint8_t* r0 = right.row(0, yr) + x0 - shift;
+        const std::uint8_t* r1 = right.row(1, yr) + x0 - shift;
+        const std::uint8_t* r2 = right.row(2, yr) + x0 - shift;
         for (int n = 0; n < count; ++n) {
-            int distance = 0;
-            for (int b = 0; b < 3; ++b) {
-                const auto diff = static_cast<unsigned>(left.row(b, y)[x0 + n] ^
-                                                        right.row(b, yr)[x0 + n - shift]);
-                distance += std::popcount(diff);
-            }
+            const unsigned distance = byte_popcount(static_cast<unsigned>(l0[n] ^ r0[n])) +
+                                      byte_popcount(static_cast<unsigned>(l1[n] ^ r1[n])) +
+                                      byte_popcount(static_cast<unsigned>(l2[n] ^ r2[n]));
             out[n] = static_cast<CostValue>(distance * census::kWeight);
         }
     }
