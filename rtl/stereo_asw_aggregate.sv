@@ -62,6 +62,12 @@ module stereo_asw_aggregate #(
   localparam int HISTORY = 3 * R + 2;  // Av of columns x - 1 .. x - HISTORY
   localparam int DISP_BITS = fx_pkg::DISP_BITS;
   localparam logic [BITS-1:0] NO_CANDIDATE = BITS'(fx_pkg::ASW_NO_CANDIDATE);
+  // This diameter's row of fx_pkg::ASW_CONTINUITY (what fx_pkg::asw_continuity reads), so a
+  // look-up is a shifter over 256 entries, not over every diameter's (stereo_asw_column says why).
+  localparam int CONTINUITY_ROW_BITS = fx_pkg::ASW_CONTINUITY_ENTRIES * 8;
+  localparam logic [CONTINUITY_ROW_BITS-1:0] CONTINUITY_ROW =
+      fx_pkg::ASW_CONTINUITY[((DIAMETER - fx_pkg::ASW_MIN_DIAMETER) / 2) * CONTINUITY_ROW_BITS +:
+                             CONTINUITY_ROW_BITS];
 
   `STEREO_ASSERT(lanes_divide_ndisp, LANES >= 1 && NDISP % LANES == 0,
                  "LANES must be at least 1 and divide NDISP")
@@ -238,7 +244,7 @@ module stereo_asw_aggregate #(
                            ? labels[NEAR] - labels[NEAR-(i-R)]
                            : labels[NEAR-(i-R)] - labels[NEAR];
           left_factor[i*8+:8] = fx_pkg::asw_combine(
-              far_of(in_left, i), fx_pkg::asw_continuity(DIAMETER, 32'(label_step)));
+              far_of(in_left, i), CONTINUITY_ROW[32'(label_step)*8+:8]);
         end
       end
     end

@@ -67,8 +67,15 @@ module stereo_asw_column #(
     end
     colour_difference = sum;
   endfunction
+  // This diameter's row of fx_pkg::ASW_COLOUR (what fx_pkg::asw_colour reads): a look-up in the
+  // package's whole table, every diameter's, left Yosys a shifter over 91,920 bits per look-up,
+  // which its technology mapping did not finish.
+  localparam int COLOUR_ROW_BITS = fx_pkg::ASW_COLOUR_ENTRIES * 8;
+  localparam logic [COLOUR_ROW_BITS-1:0] COLOUR_ROW =
+      fx_pkg::ASW_COLOUR[((DIAMETER - fx_pkg::ASW_MIN_DIAMETER) / 2) * COLOUR_ROW_BITS +:
+                         COLOUR_ROW_BITS];
   function automatic logic [7:0] response(input logic [23:0] a, input logic [23:0] b);
-    response = fx_pkg::asw_colour(DIAMETER, colour_difference(a, b));
+    response = COLOUR_ROW[colour_difference(a, b)*8+:8];
   endfunction
 
   // ---- the column stack: row yc - r + j at slot j --------------------------------------------
