@@ -1,0 +1,513 @@
+// The fast CPU engine (stereo/fast_engine.hpp, docs/cpu-engine.md). Bit-exact with the model by
+// construction: every stage is the model's integer arithmetic on the same values, only the order
+// of the work changes (tiles of rows with their halos, planes of a tile instead of the image),
+// and every reordered sum is of integers. The cost rows come from the model's cost plug-ins.
+#include "stereo/fast_engine.hpp"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <cstdlib>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+#include "stereo/constants.hpp"
+#include "stereo/stage_table.hpp"
+#include "stereo/stages.hpp"
+#include "stereo/stages/validate.hpp"
+#include "target_clones.hpp"
+
+namespace stereo::fast {
+namespace {
+
+using Key = std::uint32_t;  // cost << 16 | label, as ValidatingSelector keeps them
+constexpr CostValue kUnset = kNoCandidate;
+constexpr Key key(CostValue cost, int k) {
+    return static_cast<Key>(cost) << 16 | static_cast<Key>(k);
+}
+constexpr int key_cost(Key k) {
+    return static_cast<int>(k >> 16);
+}
+constexpr int key_label(Key k) {
+    return static_cast<int>(k & 0xFFFFU);
+}
+constexpr int kKept = 4;
+// Rows per tile: its planes (a few tens of KB each at VGA) and stage 6's state stay in L2.
+constexpr int kTileRows = 16;
+
+// ---- Hot loops: integer code, so every clone gives the same bits -----------------------------
+
+// Stage 2, vertical pass: v = t0 * c + sum over j of t_j * (row above + row below) (the kernel is
+// symmetric; a row outside the image is zero and passed as such).
+STEREO_TARGET_CLONES
+void vertical_init(std::int32_t* __restrict v, const CostValue* __restrict c, std::int32_t tap,
+                   int n) {
+    for (int x = 0; x < n; ++x) {
+        v[x] = tap * c[x];
+    }
+}
+
+STEREO_TARGET_CLONES
+void vertical_pair(std::int32_t* __restrict v, const CostValue* __restrict a,
+                   const CostValue* __restrict b, std::int32_t tap, int n) {
+    for (int x = 0; x < n; ++x) {
+        v[x] += tap * (static_cast<std::int32_t>(a[x]) + static_cast<std::int32_t>(b[x]));
+    }
+}
+
+STEREO_TARGET_CLONES
+void vertical_one(std::int32_t* __restrict v, const CostValue* __restrict a, std::int32_t tap,
+                  int n) {
+    for (int x = 0; x < n; ++x) {
+        v[x] += tap * a[x];
+    }
+}
+
+// Horizontal pass over the vertical sums (`v` has `radius` zeros before and after), then the one
+// rounding shift.
+STEREO_TARGET_CLONES
+void horizontal(const std::int32_t* __restrict v, const std::int32_t* __restrict taps, int radius,
+                std::int32_t* __restrict sum, CostValue* __restrict out, int n) {
+    const std::int32_t t0 = taps[0];
+    for (int x = 0; x < n; ++x) {
+        sum[x] = t0 * v[x];
+    }
+    for (int i = 1; i <= radius; ++i) {
+        const std::int32_t t = taps[i];
+        const std::int32_t* __restrict left = v - i;
+        const std::int32_t* __restrict right = v + i;
+        for (int x = 0; x < n; ++x) {
+            sum[x] += t * (left[x] + right[x]);
+        }
+    }
+    constexpr std::int32_t round_half = 1 << (fx::kAggShift - 1);
+    for (int x = 0; x < n; ++x) {
+        out[x] = static_cast<CostValue>((sum[x] + round_half) >> fx::kAggShift);
+    }
+}
+
+constexpr bool agrees16(int n, int c) {
+    const int difference = n >= c ? n - c : c - n;
+    return 2 * difference < c;
+}
+static_assert(agrees16(3, 4) == fx::agrees(3, 4) && agrees16(0, 0) == fx::agrees(0, 0));
+
+// Stage 3, CA rule 1 on one row. `up`/`down`: the rows around it (zeros outside the image);
+// `before`/`after`: the neighbouring labels' aggregates (kUnset where the label does not exist,
+// which never agrees: 2 |65535 - c| >= c for every aggregate c <= fx::kAggMax).
+STEREO_TARGET_CLONES
+void ca1_row(const CostValue* __restrict up, const CostValue* __restrict mid,
+             const CostValue* __restrict down, const CostValue* __restrict before,
+             const CostValue* __restrict after, std::int32_t* __restrict columns,
+             CostValue* __restrict out, int n) {
+    // columns[-1] and columns[n] stay 0.
+    for (int x = 0; x < n; ++x) {
+        columns[x] = static_cast<std::int32_t>(up[x]) + mid[x] + down[x];
+    }
+    for (int x = 0; x < n; ++x) {
+        const int value = mid[x];
+        const bool fire = agrees16(before[x], value) || agrees16(after[x], value);
+        const auto box = static_cast<std::uint32_t>(columns[x - 1] + columns[x] + columns[x + 1]);
+        out[x] = fire ? static_cast<CostValue>(fx::mean9(box)) : static_cast<CostValue>(value);
+    }
+}
+static_assert(fx::kAggMax * 3 < 2 * 0xFFFF, "kUnset never agrees");
+
+// Stage 4, CA rule 2 on an inner row (the first and last pixel pass through).
+STEREO_TARGET_CLONES
+void ca2_row(const CostValue* __restrict up, const CostValue* __restrict mid,
+             const CostValue* __restrict down, CostValue* __restrict out, int n) {
+    out[0] = mid[0];
+    out[n - 1] = mid[n - 1];
+    for (int x = 1; x + 1 < n; ++x) {
+        const int c = mid[x];
+        const int count = agrees16(up[x - 1], c) + agrees16(up[x], c) + agrees16(up[x + 1], c) +
+                          agrees16(mid[x - 1], c) + agrees16(mid[x + 1], c) +
+                          agrees16(down[x - 1], c) + agrees16(down[x], c) +
+                          agrees16(down[x + 1], c);
+        out[x] = count >= fx::kRule2MinCount
+                     ? static_cast<CostValue>(fx::div13(static_cast<std::uint32_t>(c)))
+                     : static_cast<CostValue>(c);
+    }
+}
+
+// Stage 6's per-label update, the model's ValidatingSelector::update_kept.
+STEREO_TARGET_CLONES
+void update_kept(std::size_t size, int k, const CostValue* __restrict costs, Key* __restrict slot0,
+                 Key* __restrict slot1, Key* __restrict slot2, Key* __restrict slot3,
+                 CostValue* __restrict before, CostValue* __restrict after,
+                 CostValue* __restrict previous) {
+    for (std::size_t q = 0; q < size; ++q) {
+        const CostValue c = costs[q];
+        const Key incoming = key(c, k);
+        const Key best = slot0[q];
+        const bool new_winner = incoming < best;
+        const bool next_to_winner = key_label(best) + 1 == k && key_cost(best) != kUnset;
+        const CostValue before_value = k > 0 ? previous[q] : kUnset;
+        before[q] = new_winner ? before_value : before[q];
+        after[q] = new_winner ? kUnset : (next_to_winner ? c : after[q]);
+        Key carry = incoming;
+        Key kept = slot0[q];
+        slot0[q] = std::min(kept, carry);
+        carry = std::max(kept, carry);
+        kept = slot1[q];
+        slot1[q] = std::min(kept, carry);
+        carry = std::max(kept, carry);
+        kept = slot2[q];
+        slot2[q] = std::min(kept, carry);
+        carry = std::max(kept, carry);
+        slot3[q] = std::min(slot3[q], carry);
+        previous[q] = c;
+    }
+}
+
+STEREO_TARGET_CLONES
+void update_right(std::size_t size, std::uint16_t label, const CostValue* __restrict costs,
+                  CostValue* __restrict right_cost, std::uint16_t* __restrict right_label) {
+    for (std::size_t x = 0; x < size; ++x) {
+        const CostValue c = costs[x];
+        const bool better = c < right_cost[x];
+        right_cost[x] = better ? c : right_cost[x];
+        right_label[x] = better ? label : right_label[x];
+    }
+}
+
+// One worker's planes and stage-6 state for one tile, reused from tile to tile and frame to frame.
+struct Workspace {
+    std::vector<CostValue> cost;                // cost rows of the tile and its halo
+    std::array<std::vector<CostValue>, 3> agg;  // aggregates of labels k - 1, k, k + 1 (ring)
+    std::vector<CostValue> ca1;
+    std::vector<CostValue> ca2;
+    std::vector<std::int32_t> vertical;  // one row, `radius` zeros each side
+    std::vector<std::int32_t> sum;
+    std::vector<std::int32_t> columns;  // one zero each side
+    std::vector<Key> kept;
+    std::vector<CostValue> before, after, previous, right_cost;
+    std::vector<std::uint16_t> right_label;
+
+    void resize(int width, int radius, int ca) {
+        const auto w = static_cast<std::size_t>(width);
+        const auto rows = [&](int n) { return static_cast<std::size_t>(n) * w; };
+        cost.resize(rows(kTileRows + 2 * (radius + 2 * ca)));
+        for (auto& plane : agg) {
+            plane.resize(rows(kTileRows + 4 * ca));
+        }
+        ca1.resize(rows(kTileRows + 2 * ca));
+        ca2.resize(rows(kTileRows));
+        vertical.assign(w + 2 * static_cast<std::size_t>(radius), 0);
+        sum.resize(w);
+        columns.assign(w + 2, 0);
+        kept.resize(rows(kTileRows) * kKept);
+        before.resize(rows(kTileRows));
+        after.resize(rows(kTileRows));
+        previous.resize(rows(kTileRows));
+        right_cost.resize(rows(kTileRows));
+        right_label.resize(rows(kTileRows));
+    }
+};
+
+}  // namespace
+
+struct Engine::State {
+    std::vector<std::int32_t> kernel;     // full kernel, as gaussian_kernel gives it
+    std::vector<std::int32_t> half_taps;  // taps[radius + i], i = 0 .. radius
+    std::unique_ptr<CostFunction> cost;
+    std::vector<Workspace> workspaces;  // one per thread
+    std::vector<CostValue> zeros;       // a row outside the image
+    std::vector<CostValue> unset;       // a label outside the range
+    int width = 0;
+};
+
+void validate_threads(int threads) {
+    if (threads < 1 || threads > kMaxThreads) {
+        throw std::invalid_argument("threads must be in [1, " + std::to_string(kMaxThreads) +
+                                    "], got " + std::to_string(threads));
+    }
+}
+
+Engine::Engine(const MatchParams& params, int threads)
+    : params_(params), threads_(threads), state_(std::make_unique<State>()) {
+    validate_threads(threads);
+    validate_params(params);
+    state_->kernel = gaussian_kernel(params.window, params.sigma);
+    const int radius = params.window / 2;
+    for (int i = 0; i <= radius; ++i) {
+        const std::int32_t tap = state_->kernel[static_cast<std::size_t>(radius + i)];
+        if (tap != state_->kernel[static_cast<std::size_t>(radius - i)]) {
+            throw std::logic_error("fast engine: the Gaussian kernel is not symmetric");
+        }
+        state_->half_taps.push_back(tap);
+    }
+    state_->cost = make_cost(params.cost);
+    state_->workspaces.resize(static_cast<std::size_t>(threads));
+}
+
+Engine::~Engine() = default;
+
+void Engine::validate(int width, int height) const {
+    validate_size(params_, width, height);
+}
+
+namespace {
+
+struct Frame {
+    const MatchParams& params;
+    const CostFunction& cost;
+    const PlanarImage& left;
+    const PlanarImage& right;
+    const std::vector<std::int32_t>& half_taps;
+    const CostValue* zeros;
+    const CostValue* unset;
+    InvalidBorder border;
+    ValidatedDisparity& out;
+};
+
+// Cost row of label d (disparity `d`) into `row`: the model's cost_plane for one row.
+void cost_row(const Frame& f, int y, int d, CostValue* row) {
+    const int width = f.left.width;
+    constexpr auto outside = static_cast<CostValue>(fx::kCostOutside);
+    const int first = std::clamp(d, 0, width);
+    const int last = std::clamp(width + d, 0, width);
+    if (first >= last) {
+        std::fill_n(row, width, outside);
+        return;
+    }
+    std::fill(row, row + first, outside);
+    f.cost.row(f.left, f.right, y, y, first, last - first, d, row + first);
+    std::fill(row + last, row + width, outside);
+}
+
+void run_tile(const Frame& f, Workspace& ws, int y0, int y1) {
+    const MatchParams& p = f.params;
+    const int width = f.left.width;
+    const int height = f.left.height;
+    const auto w = static_cast<std::size_t>(width);
+    const int radius = p.window / 2;
+    const int ca = p.use_ca ? 1 : 0;
+    // Row ranges (clipped to the image) and the first row of each buffer (unclipped).
+    const int a0 = std::max(0, y0 - ca);  // CA rule 1 rows
+    const int a1 = std::min(height, y1 + ca);
+    const int g0 = std::max(0, a0 - ca);  // aggregate rows
+    const int g1 = std::min(height, a1 + ca);
+    const int c0 = std::max(0, g0 - radius);  // cost rows
+    const int c1 = std::min(height, g1 + radius);
+    const int cost_base = y0 - radius - 2 * ca;
+    const int agg_base = y0 - 2 * ca;
+    const int ca1_base = y0 - ca;
+    const auto row_of = [w](std::vector<CostValue>& plane, int y, int base) {
+        return plane.data() + static_cast<std::size_t>(y - base) * w;
+    };
+
+    const std::size_t size = static_cast<std::size_t>(y1 - y0) * w;
+    std::fill_n(ws.kept.begin(), size * kKept, key(kUnset, 0));
+    std::fill_n(ws.before.begin(), size, kUnset);
+    std::fill_n(ws.after.begin(), size, kUnset);
+    std::fill_n(ws.previous.begin(), size, kUnset);
+    std::fill_n(ws.right_cost.begin(), size, kUnset);
+    std::fill_n(ws.right_label.begin(), size, std::uint16_t{0});
+    Key* const slots = ws.kept.data();
+
+    std::int32_t* const vertical = ws.vertical.data() + radius;
+    const std::int32_t* const taps = f.half_taps.data();
+    // Cost and aggregate of label k into ring slot k % 3.
+    const auto aggregate = [&](int k) {
+        const int d = p.min_disp + k;
+        for (int y = c0; y < c1; ++y) {
+            cost_row(f, y, d, row_of(ws.cost, y, cost_base));
+        }
+        std::vector<CostValue>& plane = ws.agg[static_cast<std::size_t>(k % 3)];
+        for (int y = g0; y < g1; ++y) {
+            vertical_init(vertical, row_of(ws.cost, y, cost_base), taps[0], width);
+            for (int j = 1; j <= radius; ++j) {
+                const bool has_up = y - j >= 0;
+                const bool has_down = y + j < height;
+                if (has_up && has_down) {
+                    vertical_pair(vertical, row_of(ws.cost, y - j, cost_base),
+                                  row_of(ws.cost, y + j, cost_base), taps[j], width);
+                } else if (has_up) {
+                    vertical_one(vertical, row_of(ws.cost, y - j, cost_base), taps[j], width);
+                } else if (has_down) {
+                    vertical_one(vertical, row_of(ws.cost, y + j, cost_base), taps[j], width);
+                }
+            }
+            horizontal(vertical, taps, radius, ws.sum.data(), row_of(plane, y, agg_base), width);
+        }
+    };
+
+    if (ca != 0) {
+        aggregate(0);
+    }
+    for (int k = 0; k < p.ndisp; ++k) {
+        const CostValue* final_rows = nullptr;  // rows y0 .. y1 - 1 of label k
+        if (ca == 0) {
+            aggregate(k);
+            final_rows = row_of(ws.agg[static_cast<std::size_t>(k % 3)], y0, agg_base);
+        } else {
+            if (k + 1 < p.ndisp) {
+                aggregate(k + 1);
+            }
+            std::vector<CostValue>& centre = ws.agg[static_cast<std::size_t>(k % 3)];
+            std::vector<CostValue>* const before =
+                k > 0 ? &ws.agg[static_cast<std::size_t>((k + 2) % 3)] : nullptr;
+            std::vector<CostValue>* const after =
+                k + 1 < p.ndisp ? &ws.agg[static_cast<std::size_t>((k + 1) % 3)] : nullptr;
+            for (int y = a0; y < a1; ++y) {
+                ca1_row(y > 0 ? row_of(centre, y - 1, agg_base) : f.zeros,
+                        row_of(centre, y, agg_base),
+                        y + 1 < height ? row_of(centre, y + 1, agg_base) : f.zeros,
+                        before != nullptr ? row_of(*before, y, agg_base) : f.unset,
+                        after != nullptr ? row_of(*after, y, agg_base) : f.unset,
+                        ws.columns.data() + 1, row_of(ws.ca1, y, ca1_base), width);
+            }
+            // A border row passes rule 2 unchanged (at most 5 neighbours inside).
+            static_assert(fx::kRule2MinCount > 5);
+            for (int y = y0; y < y1; ++y) {
+                CostValue* dst = row_of(ws.ca2, y, y0);
+                if (y == 0 || y + 1 == height) {
+                    std::copy_n(row_of(ws.ca1, y, ca1_base), w, dst);
+                } else {
+                    ca2_row(row_of(ws.ca1, y - 1, ca1_base), row_of(ws.ca1, y, ca1_base),
+                            row_of(ws.ca1, y + 1, ca1_base), dst, width);
+                }
+            }
+            final_rows = ws.ca2.data();
+        }
+        update_kept(size, k, final_rows, slots, slots + size, slots + 2 * size, slots + 3 * size,
+                    ws.before.data(), ws.after.data(), ws.previous.data());
+        if (p.validation.left_right) {
+            const int d = p.min_disp + k;
+            const int x_begin = std::max(0, d);
+            const int x_end = std::min(width, width + d);
+            if (x_end > x_begin) {
+                for (int y = y0; y < y1; ++y) {
+                    const std::size_t row = static_cast<std::size_t>(y - y0) * w;
+                    const std::size_t right_begin = row + static_cast<std::size_t>(x_begin - d);
+                    update_right(
+                        static_cast<std::size_t>(x_end - x_begin), static_cast<std::uint16_t>(k),
+                        final_rows + row + static_cast<std::size_t>(x_begin),
+                        ws.right_cost.data() + right_begin, ws.right_label.data() + right_begin);
+                }
+            }
+        }
+    }
+
+    // ValidatingSelector::result for the tile's rows.
+    const ValidationParams& v = p.validation;
+    ValidatedDisparity& out = f.out;
+    for (int y = y0; y < y1; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const std::size_t q =
+                static_cast<std::size_t>(y - y0) * w + static_cast<std::size_t>(x);
+            const std::size_t o = out.index(x, y);
+            const Key best = slots[q];
+            const int winner = key_label(best);
+            const int c1 = key_cost(best);
+            int c2 = fx::kNoSecondCost;
+            for (int slot = 1; slot < kKept; ++slot) {
+                const Key candidate = slots[static_cast<std::size_t>(slot) * size + q];
+                if (key_cost(candidate) != kUnset && std::abs(key_label(candidate) - winner) > 1) {
+                    c2 = key_cost(candidate);
+                    break;
+                }
+            }
+            out.certainty[o] = static_cast<std::uint8_t>(validation::certainty(c1, c2));
+            const int d = p.min_disp + winner;
+            std::uint8_t reason = fx::kReasonValid;
+            if (!f.border.valid(x, y, d, width, height)) {
+                reason = fx::kReasonBorder;
+            } else if (v.uniqueness && !validation::unique(c1, c2, v.uniqueness_ratio)) {
+                reason = fx::kReasonUniqueness;
+            } else if (v.left_right &&
+                       std::abs(winner - ws.right_label[static_cast<std::size_t>(y - y0) * w +
+                                                        static_cast<std::size_t>(x - d)]) >
+                           v.lr_tolerance) {
+                reason = fx::kReasonLeftRight;
+            }
+            out.reason[o] = reason;
+            out.fixed[o] = 0;
+            if (reason != fx::kReasonValid) {
+                continue;
+            }
+            int offset = 0;
+            if (v.subpixel && winner > 0 && winner < p.ndisp - 1 && ws.before[q] != kUnset &&
+                ws.after[q] != kUnset) {
+                offset = validation::subpixel_offset(ws.before[q], c1, ws.after[q]);
+            }
+            out.fixed[o] = static_cast<std::int16_t>(d * fx::kSubpixelScale + offset);
+        }
+    }
+}
+
+// Runs job(t) for t = 0 .. threads - 1, job 0 on the calling thread.
+template <typename Job>
+void on_threads(int threads, const Job& job) {
+    std::vector<std::jthread> workers;
+    workers.reserve(static_cast<std::size_t>(threads - 1));
+    for (int t = 1; t < threads; ++t) {
+        workers.emplace_back([&job, t] { job(t); });
+    }
+    job(0);
+}
+
+}  // namespace
+
+void Engine::match(const Image& left, const Image& right, ValidatedDisparity& out) {
+    check_pair(left, right);
+    validate_size(params_, left.width, left.height);
+    const int width = left.width;
+    const int height = left.height;
+    State& s = *state_;
+    const int radius = params_.window / 2;
+    const int ca = params_.use_ca ? 1 : 0;
+    if (s.width != width) {
+        for (auto& ws : s.workspaces) {
+            ws.resize(width, radius, ca);
+        }
+        s.zeros.assign(static_cast<std::size_t>(width), 0);
+        s.unset.assign(static_cast<std::size_t>(width), kUnset);
+        s.width = width;
+    }
+    const std::size_t pixels = static_cast<std::size_t>(width) * height;
+    if (out.width != width || out.height != height || out.fixed.size() != pixels) {
+        out = ValidatedDisparity(width, height);
+    }
+
+    PlanarImage planes[2];
+    {
+        const Image* images[2] = {&left, &right};
+        on_threads(std::min(threads_, 2), [&](int t) {
+            for (int i = t; i < 2; i += std::min(threads_, 2)) {
+                planes[i] = s.cost->prepare(*images[i]);
+            }
+        });
+    }
+    const Frame frame{params_,     *s.cost,        planes[0],      planes[1],
+                      s.half_taps, s.zeros.data(), s.unset.data(), invalid_border(params_),
+                      out};
+    const int tiles = (height + kTileRows - 1) / kTileRows;
+    std::atomic<int> next{0};
+    on_threads(std::min(threads_, tiles), [&](int t) {
+        Workspace& ws = s.workspaces[static_cast<std::size_t>(t)];
+        for (int tile = next.fetch_add(1); tile < tiles; tile = next.fetch_add(1)) {
+            const int y0 = tile * kTileRows;
+            run_tile(frame, ws, y0, std::min(height, y0 + kTileRows));
+        }
+    });
+}
+
+ValidatedDisparity Engine::match(const Image& left, const Image& right) {
+    ValidatedDisparity out;
+    match(left, right, out);
+    return out;
+}
+
+ValidatedDisparity match_validated(const Image& left, const Image& right, const MatchParams& params,
+                                   int threads) {
+    Engine engine(params, threads);
+    return engine.match(left, right);
+}
+
+}  // namespace stereo::fast
