@@ -9,14 +9,18 @@
 #include <atomic>
 #include <cstdint>
 #include <cstdlib>
+#include <exception>
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <thread>
 
+#include "stereo/catalogue.hpp"
 #include "stereo/constants.hpp"
 #include "stereo/stage_table.hpp"
 #include "stereo/stages.hpp"
+#include "stereo/stages/census.hpp"
 #include "stereo/stages/validate.hpp"
 #include "target_clones.hpp"
 
@@ -35,8 +39,10 @@ constexpr int key_label(Key k) {
     return static_cast<int>(k & 0xFFFFU);
 }
 constexpr int kKept = 4;
-// Rows per tile: its planes (a few tens of KB each at VGA) and stage 6's state stay in L2.
-constexpr int kTileRows = 16;
+// Rows per tile: its planes (40 KB each at VGA) and stage 6's state stay in L2; the halo rows
+// (window radius + 2 for the CA rules, each side) cost less the taller the tile (measured: 32 and
+// 48 rows equal, 16 rows 5-10 % slower at VGA).
+constexpr int kTileRows = 32;
 
 // ---- Hot loops: integer code, so every clone gives the same bits -----------------------------
 
@@ -116,6 +122,32 @@ void ca1_row(const CostValue* __restrict up, const CostValue* __restrict mid,
 }
 static_assert(fx::kAggMax * 3 < 2 * 0xFFFF, "kUnset never agrees");
 
+// fx::agrees in 16-bit lanes: 2 |n - c| < c (2 |n - c| <= 2 fx::kAggMax fits).
+inline std::uint16_t agrees_u16(std::uint16_t n, std::uint16_t c) {
+    const auto difference = static_cast<std::uint16_t>(n > c ? n - c : c - n);
+    return static_cast<std::uint16_t>(static_cast<std::uint16_t>(difference + difference) < c);
+}
+static_assert(2 * fx::kAggMax < 0xFFFF);
+
+// fx::div13 in 16-bit lanes: (c * kDiv13Mul + 2^16) >> 17 with kDiv13Mul = 2^16 + 35289 is
+// (c + 1 + ((c * 35289) >> 16)) >> 1 (the low half of c * 35289 is below 2^16: it never carries
+// into the halving). Checked for every aggregate below.
+constexpr std::uint32_t kDiv13Low = fx::kDiv13Mul - (1U << 16);
+inline std::uint16_t div13_u16(std::uint16_t c) {
+    const auto high = static_cast<std::uint16_t>((static_cast<std::uint32_t>(c) * kDiv13Low) >> 16);
+    return static_cast<std::uint16_t>((c + 1 + high) >> 1);
+}
+constexpr bool div13_u16_exact() {
+    static_assert(fx::kDiv13Shift == 17 && fx::kDiv13Mul > (1U << 16));
+    for (std::uint32_t c = 0; c <= fx::kAggMax; ++c) {
+        if ((c + 1 + ((c * kDiv13Low) >> 16)) >> 1 != fx::div13(c)) {
+            return false;
+        }
+    }
+    return true;
+}
+static_assert(div13_u16_exact(), "every aggregate, checked at compile time");
+
 // Stage 4, CA rule 2 on an inner row (the first and last pixel pass through).
 STEREO_TARGET_CLONES
 void ca2_row(const CostValue* __restrict up, const CostValue* __restrict mid,
@@ -123,34 +155,43 @@ void ca2_row(const CostValue* __restrict up, const CostValue* __restrict mid,
     out[0] = mid[0];
     out[n - 1] = mid[n - 1];
     for (int x = 1; x + 1 < n; ++x) {
-        const int c = mid[x];
-        const int count = agrees16(up[x - 1], c) + agrees16(up[x], c) + agrees16(up[x + 1], c) +
-                          agrees16(mid[x - 1], c) + agrees16(mid[x + 1], c) +
-                          agrees16(down[x - 1], c) + agrees16(down[x], c) +
-                          agrees16(down[x + 1], c);
-        out[x] = count >= fx::kRule2MinCount
-                     ? static_cast<CostValue>(fx::div13(static_cast<std::uint32_t>(c)))
-                     : static_cast<CostValue>(c);
+        const std::uint16_t c = mid[x];
+        const auto count = static_cast<std::uint16_t>(
+            agrees_u16(up[x - 1], c) + agrees_u16(up[x], c) + agrees_u16(up[x + 1], c) +
+            agrees_u16(mid[x - 1], c) + agrees_u16(mid[x + 1], c) + agrees_u16(down[x - 1], c) +
+            agrees_u16(down[x], c) + agrees_u16(down[x + 1], c));
+        out[x] = count >= fx::kRule2MinCount ? div13_u16(c) : c;
     }
 }
 
-// Stage 6's per-label update, the model's ValidatingSelector::update_kept.
+// Stage 6's per-label update: ValidatingSelector::update_kept's values, written as bitwise blends
+// of full stores (a conditional store became a masked store behind a data-dependent branch).
 STEREO_TARGET_CLONES
 void update_kept(std::size_t size, int k, const CostValue* __restrict costs, Key* __restrict slot0,
                  Key* __restrict slot1, Key* __restrict slot2, Key* __restrict slot3,
                  CostValue* __restrict before, CostValue* __restrict after,
                  CostValue* __restrict previous) {
+    const auto label = static_cast<Key>(k);
+    const auto next_label = static_cast<Key>(k - 1);  // the winner's label when k is next to it
+    const CostValue first = k > 0 ? CostValue{0xFFFF} : CostValue{0};  // keep previous[] or not
     for (std::size_t q = 0; q < size; ++q) {
         const CostValue c = costs[q];
-        const Key incoming = key(c, k);
+        const Key incoming = static_cast<Key>(c) << 16 | label;
         const Key best = slot0[q];
-        const bool new_winner = incoming < best;
-        const bool next_to_winner = key_label(best) + 1 == k && key_cost(best) != kUnset;
-        const CostValue before_value = k > 0 ? previous[q] : kUnset;
-        before[q] = new_winner ? before_value : before[q];
-        after[q] = new_winner ? kUnset : (next_to_winner ? c : after[q]);
+        // All ones where true, in the width of the value they select.
+        const auto new_winner = static_cast<CostValue>(-static_cast<int>(incoming < best));
+        const auto next_to_winner = static_cast<CostValue>(
+            -static_cast<int>((best & 0xFFFFU) == next_label && (best >> 16) != kUnset && k > 0));
+        const auto before_value = static_cast<CostValue>((previous[q] & first) | (kUnset & ~first));
+        const CostValue old_before = before[q];
+        const CostValue old_after = after[q];
+        before[q] =
+            static_cast<CostValue>((before_value & new_winner) | (old_before & ~new_winner));
+        const auto after_kept =
+            static_cast<CostValue>((c & next_to_winner) | (old_after & ~next_to_winner));
+        after[q] = static_cast<CostValue>((kUnset & new_winner) | (after_kept & ~new_winner));
         Key carry = incoming;
-        Key kept = slot0[q];
+        Key kept = best;
         slot0[q] = std::min(kept, carry);
         carry = std::max(kept, carry);
         kept = slot1[q];
@@ -174,6 +215,71 @@ void update_right(std::size_t size, std::uint16_t label, const CostValue* __rest
         right_label[x] = better ? label : right_label[x];
     }
 }
+
+// Stage 1, census: the Hamming distance of two 24-bit codes (a SWAR popcount, which vectorises)
+// times the census weight.
+STEREO_TARGET_CLONES
+void census_row(const std::uint32_t* __restrict l, const std::uint32_t* __restrict r, int n,
+                CostValue* __restrict out) {
+    for (int x = 0; x < n; ++x) {
+        std::uint32_t v = l[x] ^ r[x];
+        v = v - ((v >> 1) & 0x55555555U);
+        v = (v & 0x33333333U) + ((v >> 2) & 0x33333333U);
+        v = (v + (v >> 4)) & 0x0F0F0F0FU;
+        v = v + (v >> 8);
+        v = (v + (v >> 16)) & 0x3FU;
+        out[x] = static_cast<CostValue>(v * census::kWeight);
+    }
+}
+
+// Stage 1, AD over three planar channels.
+STEREO_TARGET_CLONES
+void ad_row3(const std::uint8_t* __restrict l0, const std::uint8_t* __restrict l1,
+             const std::uint8_t* __restrict l2, const std::uint8_t* __restrict r0,
+             const std::uint8_t* __restrict r1, const std::uint8_t* __restrict r2, int n,
+             CostValue* __restrict out) {
+    for (int x = 0; x < n; ++x) {
+        const int d0 = l0[x] - r0[x];
+        const int d1 = l1[x] - r1[x];
+        const int d2 = l2[x] - r2[x];
+        out[x] =
+            static_cast<CostValue>((d0 < 0 ? -d0 : d0) + (d1 < 0 ? -d1 : d1) + (d2 < 0 ? -d2 : d2));
+    }
+}
+
+// Stage 1, AD of a grey pair: the three equal channel differences of (g, g, g).
+STEREO_TARGET_CLONES
+void ad_row1(const std::uint8_t* __restrict l, const std::uint8_t* __restrict r, int n,
+             CostValue* __restrict out) {
+    for (int x = 0; x < n; ++x) {
+        const int d = l[x] - r[x];
+        out[x] = static_cast<CostValue>(fx::kChannels * (d < 0 ? -d : d));
+    }
+}
+
+// The census codes of an image: the luma padded by 2 pixels of 255 (a neighbour outside the
+// image is never darker than the centre: bit clear), then one pass per neighbour in the code's
+// bit order (census::transform's: rows, then columns, first neighbour in the highest bit).
+STEREO_TARGET_CLONES
+void census_codes_row(const std::uint8_t* __restrict padded, int stride, int n,
+                      std::uint32_t* __restrict codes) {
+    const std::uint8_t* __restrict centre = padded + 2 * stride + 2;
+    for (int x = 0; x < n; ++x) {
+        codes[x] = 0;
+    }
+    for (int dy = -census::kRadius; dy <= census::kRadius; ++dy) {
+        for (int dx = -census::kRadius; dx <= census::kRadius; ++dx) {
+            if (dx == 0 && dy == 0) {
+                continue;
+            }
+            const std::uint8_t* __restrict nb = centre + dy * stride + dx;
+            for (int x = 0; x < n; ++x) {
+                codes[x] = (codes[x] << 1) | (nb[x] < centre[x] ? 1U : 0U);
+            }
+        }
+    }
+}
+static_assert(census::kRadius == 2, "the padding above is two pixels");
 
 // One worker's planes and stage-6 state for one tile, reused from tile to tile and frame to frame.
 struct Workspace {
@@ -209,6 +315,59 @@ struct Workspace {
     }
 };
 
+// What the cost reads of one image, reused from frame to frame.
+struct Prepared {
+    std::vector<std::uint8_t> grey;                     // census: the luma
+    std::vector<std::uint8_t> padded;                   // census: the luma, 2 pixels of 255 around
+    std::vector<std::uint32_t> codes;                   // census: one code per pixel
+    std::array<std::vector<std::uint8_t>, 3> channels;  // ad: the planar channels
+    int channel_count = 0;
+    PlanarImage planes;  // the other costs: their plug-in's prepare()
+};
+
+void prepare(catalogue::Cost kind, const CostFunction& cost, const Image& image, Prepared& out) {
+    const int width = image.width;
+    const int height = image.height;
+    const std::size_t pixels = static_cast<std::size_t>(width) * height;
+    if (kind == catalogue::Cost::census) {
+        const std::uint8_t* grey = image.pixels.data();
+        if (image.channels != 1) {  // stereo::luma's arithmetic, into a reused buffer
+            out.grey.resize(pixels);
+            const std::uint8_t* src = image.pixels.data();
+            for (std::size_t i = 0; i < pixels; ++i, src += 3) {
+                const int sum = fx::kLumaR * src[0] + fx::kLumaG * src[1] + fx::kLumaB * src[2];
+                out.grey[i] = static_cast<std::uint8_t>((sum + (1 << (fx::kLumaShift - 1))) >>
+                                                        fx::kLumaShift);
+            }
+            grey = out.grey.data();
+        }
+        const int stride = width + 2 * census::kRadius;
+        out.padded.assign(static_cast<std::size_t>(stride) * (height + 2 * census::kRadius), 255);
+        for (int y = 0; y < height; ++y) {
+            std::copy_n(grey + static_cast<std::size_t>(y) * width, width,
+                        out.padded.data() + static_cast<std::size_t>(y + census::kRadius) * stride +
+                            census::kRadius);
+        }
+        out.codes.resize(pixels);
+        for (int y = 0; y < height; ++y) {
+            census_codes_row(out.padded.data() + static_cast<std::size_t>(y) * stride, stride,
+                             width, out.codes.data() + static_cast<std::size_t>(y) * width);
+        }
+    } else if (kind == catalogue::Cost::ad) {
+        out.channel_count = image.channels;
+        for (int c = 0; c < image.channels; ++c) {
+            auto& plane = out.channels[static_cast<std::size_t>(c)];
+            plane.resize(pixels);
+            for (std::size_t i = 0; i < pixels; ++i) {
+                plane[i] = image.pixels[i * static_cast<std::size_t>(image.channels) +
+                                        static_cast<std::size_t>(c)];
+            }
+        }
+    } else {
+        out.planes = cost.prepare(image);
+    }
+}
+
 }  // namespace
 
 struct Engine::State {
@@ -218,6 +377,8 @@ struct Engine::State {
     std::vector<Workspace> workspaces;  // one per thread
     std::vector<CostValue> zeros;       // a row outside the image
     std::vector<CostValue> unset;       // a label outside the range
+    catalogue::Cost kind = catalogue::Cost::ad;
+    std::array<Prepared, 2> prepared;  // left, right
     int width = 0;
 };
 
@@ -242,6 +403,7 @@ Engine::Engine(const MatchParams& params, int threads)
         state_->half_taps.push_back(tap);
     }
     state_->cost = make_cost(params.cost);
+    state_->kind = catalogue::cost(params.cost).id;
     state_->workspaces.resize(static_cast<std::size_t>(threads));
 }
 
@@ -256,8 +418,11 @@ namespace {
 struct Frame {
     const MatchParams& params;
     const CostFunction& cost;
-    const PlanarImage& left;
-    const PlanarImage& right;
+    catalogue::Cost kind;
+    const Prepared& left;
+    const Prepared& right;
+    int width;
+    int height;
     const std::vector<std::int32_t>& half_taps;
     const CostValue* zeros;
     const CostValue* unset;
@@ -267,7 +432,7 @@ struct Frame {
 
 // Cost row of label d (disparity `d`) into `row`: the model's cost_plane for one row.
 void cost_row(const Frame& f, int y, int d, CostValue* row) {
-    const int width = f.left.width;
+    const int width = f.width;
     constexpr auto outside = static_cast<CostValue>(fx::kCostOutside);
     const int first = std::clamp(d, 0, width);
     const int last = std::clamp(width + d, 0, width);
@@ -276,14 +441,29 @@ void cost_row(const Frame& f, int y, int d, CostValue* row) {
         return;
     }
     std::fill(row, row + first, outside);
-    f.cost.row(f.left, f.right, y, y, first, last - first, d, row + first);
+    const int n = last - first;
+    const std::size_t at = static_cast<std::size_t>(y) * width + static_cast<std::size_t>(first);
+    const std::size_t at_right = at - static_cast<std::size_t>(d);
+    if (f.kind == catalogue::Cost::census) {
+        census_row(f.left.codes.data() + at, f.right.codes.data() + at_right, n, row + first);
+    } else if (f.kind == catalogue::Cost::ad && f.left.channel_count == 3) {
+        ad_row3(f.left.channels[0].data() + at, f.left.channels[1].data() + at,
+                f.left.channels[2].data() + at, f.right.channels[0].data() + at_right,
+                f.right.channels[1].data() + at_right, f.right.channels[2].data() + at_right, n,
+                row + first);
+    } else if (f.kind == catalogue::Cost::ad) {
+        ad_row1(f.left.channels[0].data() + at, f.right.channels[0].data() + at_right, n,
+                row + first);
+    } else {
+        f.cost.row(f.left.planes, f.right.planes, y, y, first, n, d, row + first);
+    }
     std::fill(row + last, row + width, outside);
 }
 
 void run_tile(const Frame& f, Workspace& ws, int y0, int y1) {
     const MatchParams& p = f.params;
-    const int width = f.left.width;
-    const int height = f.left.height;
+    const int width = f.width;
+    const int height = f.height;
     const auto w = static_cast<std::size_t>(width);
     const int radius = p.window / 2;
     const int ca = p.use_ca ? 1 : 0;
@@ -441,15 +621,33 @@ void run_tile(const Frame& f, Workspace& ws, int y0, int y1) {
     }
 }
 
-// Runs job(t) for t = 0 .. threads - 1, job 0 on the calling thread.
+// Runs job(t) for t = 0 .. threads - 1, job 0 on the calling thread; the first exception a job
+// throws is rethrown here once every job has finished.
 template <typename Job>
 void on_threads(int threads, const Job& job) {
-    std::vector<std::jthread> workers;
-    workers.reserve(static_cast<std::size_t>(threads - 1));
-    for (int t = 1; t < threads; ++t) {
-        workers.emplace_back([&job, t] { job(t); });
+    std::mutex mutex;
+    std::exception_ptr failure;
+    const auto guarded = [&](int t) {
+        try {
+            job(t);
+        } catch (...) {
+            const std::lock_guard lock(mutex);
+            if (!failure) {
+                failure = std::current_exception();
+            }
+        }
+    };
+    {
+        std::vector<std::jthread> workers;
+        workers.reserve(static_cast<std::size_t>(threads - 1));
+        for (int t = 1; t < threads; ++t) {
+            workers.emplace_back(guarded, t);
+        }
+        guarded(0);
     }
-    job(0);
+    if (failure) {
+        std::rethrow_exception(failure);
+    }
 }
 
 }  // namespace
@@ -475,18 +673,18 @@ void Engine::match(const Image& left, const Image& right, ValidatedDisparity& ou
         out = ValidatedDisparity(width, height);
     }
 
-    PlanarImage planes[2];
     {
         const Image* images[2] = {&left, &right};
-        on_threads(std::min(threads_, 2), [&](int t) {
-            for (int i = t; i < 2; i += std::min(threads_, 2)) {
-                planes[i] = s.cost->prepare(*images[i]);
+        const int workers = std::min(threads_, 2);
+        on_threads(workers, [&](int t) {
+            for (int i = t; i < 2; i += workers) {
+                prepare(s.kind, *s.cost, *images[i], s.prepared[static_cast<std::size_t>(i)]);
             }
         });
     }
-    const Frame frame{params_,     *s.cost,        planes[0],      planes[1],
-                      s.half_taps, s.zeros.data(), s.unset.data(), invalid_border(params_),
-                      out};
+    const Frame frame{
+        params_, *s.cost,     s.kind,         s.prepared[0],  s.prepared[1],           width,
+        height,  s.half_taps, s.zeros.data(), s.unset.data(), invalid_border(params_), out};
     const int tiles = (height + kTileRows - 1) / kTileRows;
     std::atomic<int> next{0};
     on_threads(std::min(threads_, tiles), [&](int t) {
