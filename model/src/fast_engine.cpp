@@ -389,6 +389,14 @@ void validate_threads(int threads) {
     }
 }
 
+int thread_count(int requested) {
+    if (requested == 0) {
+        return std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, kMaxThreads);
+    }
+    validate_threads(requested);
+    return requested;
+}
+
 Engine::Engine(const MatchParams& params, int threads)
     : params_(params), threads_(threads), state_(std::make_unique<State>()) {
     validate_threads(threads);

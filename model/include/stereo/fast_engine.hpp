@@ -20,6 +20,9 @@ inline constexpr int kMaxThreads = 256;
 
 // Throws std::invalid_argument (one line) unless 1 <= threads <= kMaxThreads.
 void validate_threads(int threads);
+// The threads a request means: 0 = every hardware thread (at most kMaxThreads); others as
+// validate_threads accepts them.
+int thread_count(int requested);
 
 class Engine {
   public:
