@@ -27,18 +27,7 @@
 namespace stereo::fast {
 namespace {
 
-using Key = std::uint32_t;  // cost << 16 | label, as ValidatingSelector keeps them
-constexpr CostValue kUnset = kNoCandidate;
-constexpr Key key(CostValue cost, int k) {
-    return static_cast<Key>(cost) << 16 | static_cast<Key>(k);
-}
-constexpr int key_cost(Key k) {
-    return static_cast<int>(k >> 16);
-}
-constexpr int key_label(Key k) {
-    return static_cast<int>(k & 0xFFFFU);
-}
-constexpr int kKept = 4;
+constexpr CostValue kUnset = kNoCandidate;  // no cost yet: above every aggregate
 // Rows per tile: its planes (40 KB each at VGA) and stage 6's state stay in L2; the halo rows
 // (window radius + 2 for the CA rules, each side) cost less the taller the tile (measured: 32 and
 // 48 rows equal, 16 rows 5-10 % slower at VGA).
@@ -164,46 +153,45 @@ void ca2_row(const CostValue* __restrict up, const CostValue* __restrict mid,
     }
 }
 
-// Stage 6's per-label update: ValidatingSelector::update_kept's values, written as bitwise blends
-// of full stores (a conditional store became a masked store behind a data-dependent branch).
+// Stage 6's per-label update in 16-bit lanes. ValidatingSelector keeps the four smallest
+// (cost, label) keys to find C2, the best cost of a label outside the winner w and its two
+// neighbours: that is min over |k - w| > 1 of C(k) (the smallest such key is among the four, as
+// only w - 1 and w + 1 can come before it). Streamed in label order it is min(left, right): left,
+// the smallest cost of the labels up to w - 2 (the prefix minimum two labels behind, taken when
+// w wins), and right, the smallest from w + 2 on (restarted when a label wins). Ties keep the
+// smaller label (strict <), like the keys. Bitwise blends: full stores, no masked ones.
+inline CostValue blend(CostValue mask, CostValue yes, CostValue no) {
+    return static_cast<CostValue>((yes & mask) | (no & ~mask));
+}
+
 STEREO_TARGET_CLONES
-void update_kept(std::size_t size, int k, const CostValue* __restrict costs, Key* __restrict slot0,
-                 Key* __restrict slot1, Key* __restrict slot2, Key* __restrict slot3,
+void update_best(std::size_t size, int k, const CostValue* __restrict costs,
+                 CostValue* __restrict best_cost, CostValue* __restrict best_label,
+                 CostValue* __restrict left, CostValue* __restrict right,
                  CostValue* __restrict before, CostValue* __restrict after,
-                 CostValue* __restrict previous) {
-    const auto label = static_cast<Key>(k);
-    const auto next_label = static_cast<Key>(k - 1);  // the winner's label when k is next to it
-    const CostValue first = k > 0 ? CostValue{0xFFFF} : CostValue{0};  // keep previous[] or not
+                 CostValue* __restrict previous, CostValue* __restrict lagging) {
+    const auto label = static_cast<CostValue>(k);
     for (std::size_t q = 0; q < size; ++q) {
         const CostValue c = costs[q];
-        const Key incoming = static_cast<Key>(c) << 16 | label;
-        const Key best = slot0[q];
-        // All ones where true, in the width of the value they select.
-        const auto new_winner = static_cast<CostValue>(-static_cast<int>(incoming < best));
-        const auto next_to_winner = static_cast<CostValue>(
-            -static_cast<int>((best & 0xFFFFU) == next_label && (best >> 16) != kUnset && k > 0));
-        const auto before_value = static_cast<CostValue>((previous[q] & first) | (kUnset & ~first));
-        const CostValue old_before = before[q];
-        const CostValue old_after = after[q];
-        before[q] =
-            static_cast<CostValue>((before_value & new_winner) | (old_before & ~new_winner));
-        const auto after_kept =
-            static_cast<CostValue>((c & next_to_winner) | (old_after & ~next_to_winner));
-        after[q] = static_cast<CostValue>((kUnset & new_winner) | (after_kept & ~new_winner));
-        Key carry = incoming;
-        Key kept = best;
-        slot0[q] = std::min(kept, carry);
-        carry = std::max(kept, carry);
-        kept = slot1[q];
-        slot1[q] = std::min(kept, carry);
-        carry = std::max(kept, carry);
-        kept = slot2[q];
-        slot2[q] = std::min(kept, carry);
-        carry = std::max(kept, carry);
-        slot3[q] = std::min(slot3[q], carry);
+        const CostValue w = best_label[q];
+        const CostValue p = previous[q];
+        const CostValue lag = lagging[q];
+        // All ones where true.
+        const auto new_winner = static_cast<CostValue>(-static_cast<int>(c < best_cost[q]));
+        const auto far_right = static_cast<CostValue>(-static_cast<int>(label >= w + 2));
+        const auto next = static_cast<CostValue>(-static_cast<int>(label == w + 1));
+        const CostValue r = right[q];
+        left[q] = blend(new_winner, lag, left[q]);
+        right[q] = blend(new_winner, kUnset, blend(far_right, std::min(r, c), r));
+        before[q] = blend(new_winner, p, before[q]);
+        after[q] = blend(new_winner, kUnset, blend(next, c, after[q]));
+        best_cost[q] = blend(new_winner, c, best_cost[q]);
+        best_label[q] = blend(new_winner, label, w);
+        lagging[q] = std::min(lag, p);
         previous[q] = c;
     }
 }
+static_assert(fx::kAggMax < kUnset && fx::kMaxDisparities <= 0xFFFF);
 
 STEREO_TARGET_CLONES
 void update_right(std::size_t size, std::uint16_t label, const CostValue* __restrict costs,
@@ -290,8 +278,10 @@ struct Workspace {
     std::vector<std::int32_t> vertical;  // one row, `radius` zeros each side
     std::vector<std::int32_t> sum;
     std::vector<std::int32_t> columns;  // one zero each side
-    std::vector<Key> kept;
-    std::vector<CostValue> before, after, previous, right_cost;
+    // Stage 6 per pixel of the tile (update_best): C1, w, left, right, C(w - 1), C(w + 1),
+    // C(k - 1), the lagging prefix minimum; the left-right check's best per right pixel.
+    std::array<std::vector<CostValue>, 8> best;
+    std::vector<CostValue> right_cost;
     std::vector<std::uint16_t> right_label;
 
     void resize(int width, int radius, int ca) {
@@ -306,10 +296,9 @@ struct Workspace {
         vertical.assign(w + 2 * static_cast<std::size_t>(radius), 0);
         sum.resize(w);
         columns.assign(w + 2, 0);
-        kept.resize(rows(kTileRows) * kKept);
-        before.resize(rows(kTileRows));
-        after.resize(rows(kTileRows));
-        previous.resize(rows(kTileRows));
+        for (auto& values : best) {
+            values.resize(rows(kTileRows));
+        }
         right_cost.resize(rows(kTileRows));
         right_label.resize(rows(kTileRows));
     }
@@ -490,13 +479,18 @@ void run_tile(const Frame& f, Workspace& ws, int y0, int y1) {
     };
 
     const std::size_t size = static_cast<std::size_t>(y1 - y0) * w;
-    std::fill_n(ws.kept.begin(), size * kKept, key(kUnset, 0));
-    std::fill_n(ws.before.begin(), size, kUnset);
-    std::fill_n(ws.after.begin(), size, kUnset);
-    std::fill_n(ws.previous.begin(), size, kUnset);
+    for (auto& values : ws.best) {
+        std::fill_n(values.begin(), size, kUnset);
+    }
+    std::fill_n(ws.best[1].begin(), size, CostValue{0});  // the label
     std::fill_n(ws.right_cost.begin(), size, kUnset);
     std::fill_n(ws.right_label.begin(), size, std::uint16_t{0});
-    Key* const slots = ws.kept.data();
+    CostValue* const best_cost = ws.best[0].data();
+    CostValue* const best_label = ws.best[1].data();
+    CostValue* const left_min = ws.best[2].data();
+    CostValue* const right_min = ws.best[3].data();
+    CostValue* const before = ws.best[4].data();
+    CostValue* const after = ws.best[5].data();
 
     std::int32_t* const vertical = ws.vertical.data() + radius;
     const std::int32_t* const taps = f.half_taps.data();
@@ -563,8 +557,8 @@ void run_tile(const Frame& f, Workspace& ws, int y0, int y1) {
             }
             final_rows = ws.ca2.data();
         }
-        update_kept(size, k, final_rows, slots, slots + size, slots + 2 * size, slots + 3 * size,
-                    ws.before.data(), ws.after.data(), ws.previous.data());
+        update_best(size, k, final_rows, best_cost, best_label, left_min, right_min, before, after,
+                    ws.best[6].data(), ws.best[7].data());
         if (p.validation.left_right) {
             const int d = p.min_disp + k;
             const int x_begin = std::max(0, d);
@@ -590,17 +584,10 @@ void run_tile(const Frame& f, Workspace& ws, int y0, int y1) {
             const std::size_t q =
                 static_cast<std::size_t>(y - y0) * w + static_cast<std::size_t>(x);
             const std::size_t o = out.index(x, y);
-            const Key best = slots[q];
-            const int winner = key_label(best);
-            const int c1 = key_cost(best);
-            int c2 = fx::kNoSecondCost;
-            for (int slot = 1; slot < kKept; ++slot) {
-                const Key candidate = slots[static_cast<std::size_t>(slot) * size + q];
-                if (key_cost(candidate) != kUnset && std::abs(key_label(candidate) - winner) > 1) {
-                    c2 = key_cost(candidate);
-                    break;
-                }
-            }
+            const int winner = best_label[q];
+            const int c1 = best_cost[q];
+            const int second = std::min(left_min[q], right_min[q]);
+            const int c2 = second == kUnset ? fx::kNoSecondCost : second;
             out.certainty[o] = static_cast<std::uint8_t>(validation::certainty(c1, c2));
             const int d = p.min_disp + winner;
             std::uint8_t reason = fx::kReasonValid;
@@ -620,9 +607,9 @@ void run_tile(const Frame& f, Workspace& ws, int y0, int y1) {
                 continue;
             }
             int offset = 0;
-            if (v.subpixel && winner > 0 && winner < p.ndisp - 1 && ws.before[q] != kUnset &&
-                ws.after[q] != kUnset) {
-                offset = validation::subpixel_offset(ws.before[q], c1, ws.after[q]);
+            if (v.subpixel && winner > 0 && winner < p.ndisp - 1 && before[q] != kUnset &&
+                after[q] != kUnset) {
+                offset = validation::subpixel_offset(before[q], c1, after[q]);
             }
             out.fixed[o] = static_cast<std::int16_t>(d * fx::kSubpixelScale + offset);
         }
