@@ -84,27 +84,6 @@ void horizontal(const std::int32_t* __restrict v, const std::int32_t* __restrict
     }
 }
 
-// fx::agrees in 16-bit lanes, as the RTL computes it: 2 |n - c| < c is c < 2n < 3c (n >= c:
-// 2n < 3c, and 2n > c unless c = 0, where both are false; n < c: c < 2n, and 2n < 3c). `c3` is
-// 3c; 3 fx::kAggMax fits 16 bits.
-inline std::uint16_t agrees_u16(std::uint16_t n, std::uint16_t c, std::uint16_t c3) {
-    const auto twice = static_cast<std::uint16_t>(n + n);
-    return static_cast<std::uint16_t>((twice > c) & (twice < c3));
-}
-static_assert(3 * fx::kAggMax <= 0xFFFF);
-constexpr bool agrees_u16_exact() {
-    for (int c = 0; c <= fx::kAggMax; c += 97) {
-        for (int n = 0; n <= fx::kAggMax; n += 3) {
-            const int twice = 2 * n;
-            if ((twice > c && twice < 3 * c) != fx::agrees(n, c)) {
-                return false;
-            }
-        }
-    }
-    return true;
-}
-static_assert(agrees_u16_exact(), "a grid of values, checked at compile time");
-
 // Stage 3, CA rule 1 on one row. `up`/`down`: the rows around it (zeros outside the image);
 // `before`/`after`: the neighbouring labels' aggregates (kUnset where the label does not exist,
 // which never agrees: 2 |65535 - c| >= c for every aggregate c <= fx::kAggMax).
@@ -118,16 +97,20 @@ void ca1_row(const CostValue* __restrict up, const CostValue* __restrict mid,
         columns[x] = static_cast<std::int32_t>(up[x]) + mid[x] + down[x];
     }
     for (int x = 0; x < n; ++x) {
-        const std::uint16_t value = mid[x];
-        const auto value3 = static_cast<std::uint16_t>(3 * value);
-        const bool fire =
-            (agrees_u16(before[x], value, value3) | agrees_u16(after[x], value, value3)) != 0;
+        const int value = mid[x];
+        const bool fire = fx::agrees(before[x], value) || fx::agrees(after[x], value);
         const auto box = static_cast<std::uint32_t>(columns[x - 1] + columns[x] + columns[x + 1]);
         out[x] = fire ? static_cast<CostValue>(fx::mean9(box)) : static_cast<CostValue>(value);
     }
 }
-// kUnset never agrees: 2 * 0xFFFF wraps to 0xFFFE in 16 bits, not below 3c.
-static_assert(3 * fx::kAggMax < 0xFFFE);
+static_assert(fx::kAggMax * 3 < 2 * 0xFFFF, "kUnset never agrees");
+
+// fx::agrees in 16-bit lanes: 2 |n - c| < c (2 |n - c| <= 2 fx::kAggMax fits).
+inline std::uint16_t agrees_u16(std::uint16_t n, std::uint16_t c) {
+    const auto difference = static_cast<std::uint16_t>(n > c ? n - c : c - n);
+    return static_cast<std::uint16_t>(static_cast<std::uint16_t>(difference + difference) < c);
+}
+static_assert(2 * fx::kAggMax < 0xFFFF);
 
 // fx::div13 in 16-bit lanes: (c * kDiv13Mul + 2^16) >> 17 with kDiv13Mul = 2^16 + 35289 is
 // (c + 1 + ((c * 35289) >> 16)) >> 1 (the low half of c * 35289 is below 2^16: it never carries
@@ -156,12 +139,10 @@ void ca2_row(const CostValue* __restrict up, const CostValue* __restrict mid,
     out[n - 1] = mid[n - 1];
     for (int x = 1; x + 1 < n; ++x) {
         const std::uint16_t c = mid[x];
-        const auto c3 = static_cast<std::uint16_t>(3 * c);
         const auto count = static_cast<std::uint16_t>(
-            agrees_u16(up[x - 1], c, c3) + agrees_u16(up[x], c, c3) + agrees_u16(up[x + 1], c, c3) +
-            agrees_u16(mid[x - 1], c, c3) + agrees_u16(mid[x + 1], c, c3) +
-            agrees_u16(down[x - 1], c, c3) + agrees_u16(down[x], c, c3) +
-            agrees_u16(down[x + 1], c, c3));
+            agrees_u16(up[x - 1], c) + agrees_u16(up[x], c) + agrees_u16(up[x + 1], c) +
+            agrees_u16(mid[x - 1], c) + agrees_u16(mid[x + 1], c) + agrees_u16(down[x - 1], c) +
+            agrees_u16(down[x], c) + agrees_u16(down[x + 1], c));
         out[x] = count >= fx::kRule2MinCount ? div13_u16(c) : c;
     }
 }
