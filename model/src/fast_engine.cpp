@@ -277,8 +277,10 @@ struct Workspace {
     std::array<std::vector<CostValue>, 8> best;
     std::vector<CostValue> right_cost;
     std::vector<std::uint16_t> right_label;
+    int width = 0;  // the image width the buffers are for; 0: not allocated yet
 
-    void resize(int width, int radius, int ca) {
+    void resize(int image_width, int radius, int ca) {
+        width = image_width;
         const auto w = static_cast<std::size_t>(width);
         const auto rows = [&](int n) { return static_cast<std::size_t>(n) * w; };
         cost.resize(rows(kTileRows + 2 * (radius + 2 * ca)));
@@ -650,9 +652,6 @@ void Engine::match(const Image& left, const Image& right, ValidatedDisparity& ou
     const int radius = params_.window / 2;
     const int ca = params_.use_ca ? 1 : 0;
     if (s.width != width) {
-        for (auto& ws : s.workspaces) {
-            ws.resize(width, radius, ca);
-        }
         s.zeros.assign(static_cast<std::size_t>(width), 0);
         s.unset.assign(static_cast<std::size_t>(width), kUnset);
         s.width = width;
@@ -678,6 +677,9 @@ void Engine::match(const Image& left, const Image& right, ValidatedDisparity& ou
     std::atomic<int> next{0};
     on_threads(std::min(threads_, tiles), [&](int t) {
         Workspace& ws = s.workspaces[static_cast<std::size_t>(t)];
+        if (ws.width != width) {  // only the workers a frame uses get buffers
+            ws.resize(width, radius, ca);
+        }
         for (int tile = next.fetch_add(1); tile < tiles; tile = next.fetch_add(1)) {
             const int y0 = tile * kTileRows;
             run_tile(frame, ws, y0, std::min(height, y0 + kTileRows));
