@@ -14,6 +14,12 @@
 // It also times adaptive support weights (docs/asw.md) at 60 disparities on two threads, the full
 // circle and the separable variant, against the issue's budget of 10x single-threaded StereoSGBM;
 // those verdicts are printed (docs/results-asw.md) but do not change the exit status.
+//
+// And the fast CPU engine (engine fast, stereo/fast_engine.hpp: what `stereo match` runs, the
+// validated census pipeline with the speckle filter) against StereoBM and StereoSGBM on 1 and 2
+// threads each (cv::setNumThreads), on Teddy and on Teddy resized to 640x480 (issue 49's goals:
+// >= 30 frames/s at 640x480 on 2 threads, >= 3x SGBM's throughput on 2 threads, >= BM's on 1);
+// printed (docs/cpu-engine.md), not in the exit status.
 
 #include <benchmark/benchmark.h>
 
@@ -42,6 +48,9 @@
 #include <opencv2/imgproc.hpp>
 
 #include "stereo/asw.hpp"
+#include "stereo/catalogue.hpp"
+#include "stereo/defaults.hpp"
+#include "stereo/matcher.hpp"
 #include "stereo/pipeline.hpp"
 #include "stereo/stage_table.hpp"
 #include "stereo/stages/validate.hpp"
@@ -93,6 +102,17 @@ const std::string kAswHardware = "BM_AswHardware2Threads";
 const std::string kAswHardwareOne = "BM_AswHardware1Thread";
 constexpr int kAswDisparities = 60;  // the issue's Teddy range
 constexpr int kAswThreads = 2;
+// The fast engine against OpenCV (issue 49): Teddy (BM_OpenCvStereoBM and BM_OpenCvStereoSGBM
+// above are its one-thread baselines) and the same pair resized to VGA.
+constexpr int kVgaWidth = 640;
+constexpr int kVgaHeight = 480;
+const std::string kFast1 = "BM_FastMatch1Thread";
+const std::string kFast2 = "BM_FastMatch2Threads";
+const std::string kOpenCvBm2 = "BM_OpenCvStereoBM2Threads";
+const std::string kOpenCvSgbm2 = "BM_OpenCvStereoSGBM2Threads";
+const std::string kVgaPrefix = "Vga/";
+constexpr double kGoalVgaFps = 30.0;
+constexpr double kGoalOverSgbm2 = 3.0;   // throughput on 2 threads, against SGBM's on 2
 constexpr double kAswBudgetRatio = 5.0;  // ASW on 2 threads <= 5x StereoSGBM on 1 (issue 46)
 // The hardware stages in pipeline order, from the stage table
 // (model/include/stereo/stage_table.hpp).
@@ -261,30 +281,51 @@ void bm_model_stage(benchmark::State& state, const StereoPair& pair, StageInputC
 }
 
 // One OpenCV matcher on the pair (BM wants grey images, SGBM colour ones).
+// `threads`: OpenCV's for the run (cv::setNumThreads), one again after it.
 void bm_opencv(benchmark::State& state, const StereoPair& pair,
-               const cv::Ptr<cv::StereoMatcher>& matcher, const cv::Mat& left,
-               const cv::Mat& right) {
+               const cv::Ptr<cv::StereoMatcher>& matcher, const cv::Mat& left, const cv::Mat& right,
+               int threads) {
+    cv::setNumThreads(threads);
     cv::Mat disparity;
     for (auto _ : state) {
         matcher->compute(left, right, disparity);
         benchmark::DoNotOptimize(disparity.data);
         benchmark::ClobberMemory();
     }
+    cv::setNumThreads(1);
     set_throughput(state, pair);
 }
 
-void bm_opencv_bm(benchmark::State& state, const StereoPair& pair) {
+void bm_opencv_bm(benchmark::State& state, const StereoPair& pair, int threads = 1) {
     bm_opencv(state, pair, cv::StereoBM::create(kDisparities, kBmBlockSize), pair.left_grey,
-              pair.right_grey);
+              pair.right_grey, threads);
 }
 
-void bm_opencv_sgbm(benchmark::State& state, const StereoPair& pair) {
+void bm_opencv_sgbm(benchmark::State& state, const StereoPair& pair, int threads = 1) {
     bm_opencv(state, pair,
               cv::StereoSGBM::create(
                   /*minDisparity=*/0, kDisparities, kSgbmBlockSize, kSgbmP1, kSgbmP2,
                   /*disp12MaxDiff=*/0, /*preFilterCap=*/0, kSgbmUniquenessRatio,
                   /*speckleWindowSize=*/0, /*speckleRange=*/0, cv::StereoSGBM::MODE_SGBM),
-              pair.left_bgr, pair.right_bgr);
+              pair.left_bgr, pair.right_bgr, threads);
+}
+
+// `stereo match`'s default run on the fast engine: the validated census pipeline and the speckle
+// filter, through the registry as the tool makes it (one matcher, its buffers reused).
+void bm_fast_match(benchmark::State& state, const StereoPair& pair, int threads) {
+    stereo::MatcherRegistry registry;
+    stereo::register_model_matchers(registry);
+    const std::string method(stereo::catalogue::method(stereo::catalogue::Method::pipeline).name);
+    const std::string engine(stereo::catalogue::kDefaultEngine);
+    stereo::MatchConfig config = stereo::defaults::match_config(method, engine);
+    config.pipeline.ndisp = kDisparities;
+    config.threads = threads;
+    const auto matcher = registry.create(method, engine, config);
+    for (auto _ : state) {
+        auto result = matcher->compute(pair.left_rgb, pair.right_rgb);
+        benchmark::DoNotOptimize(result);
+    }
+    set_throughput(state, pair);
 }
 
 void bm_asw(benchmark::State& state, const StereoPair& pair, const stereo::asw::Params& params,
@@ -298,7 +339,7 @@ void bm_asw(benchmark::State& state, const StereoPair& pair, const stereo::asw::
     set_throughput(state, pair);
 }
 
-void register_benchmarks(const StereoPair& pair, StageInputCache& cache) {
+void register_benchmarks(const StereoPair& pair, const StereoPair& vga, StageInputCache& cache) {
     const auto configure = [](benchmark::internal::Benchmark* bench) {
         bench->UseRealTime()->Unit(benchmark::kMillisecond);
     };
@@ -389,6 +430,37 @@ void register_benchmarks(const StereoPair& pair, StageInputCache& cache) {
                                            [&pair](auto& state) { bm_opencv_bm(state, pair); }));
     configure(benchmark::RegisterBenchmark(kOpenCvSgbm.c_str(),
                                            [&pair](auto& state) { bm_opencv_sgbm(state, pair); }));
+
+    // The fast engine and OpenCV on 1 and 2 threads, at Teddy's size and at VGA.
+    for (const auto& [prefix, input] :
+         {std::pair{std::string(), &pair}, std::pair{kVgaPrefix, &vga}}) {
+        const StereoPair& p = *input;
+        for (const auto& [name, threads] : {std::pair{kFast1, 1}, std::pair{kFast2, 2}}) {
+            configure(benchmark::RegisterBenchmark(
+                (prefix + name).c_str(),
+                [&p, threads](auto& state) { bm_fast_match(state, p, threads); }));
+        }
+        if (!prefix.empty()) {  // Teddy's one-thread baselines are registered above
+            configure(benchmark::RegisterBenchmark((prefix + kOpenCvBm).c_str(),
+                                                   [&p](auto& state) { bm_opencv_bm(state, p); }));
+            configure(benchmark::RegisterBenchmark(
+                (prefix + kOpenCvSgbm).c_str(), [&p](auto& state) { bm_opencv_sgbm(state, p); }));
+        }
+        configure(benchmark::RegisterBenchmark((prefix + kOpenCvBm2).c_str(),
+                                               [&p](auto& state) { bm_opencv_bm(state, p, 2); }));
+        configure(benchmark::RegisterBenchmark((prefix + kOpenCvSgbm2).c_str(),
+                                               [&p](auto& state) { bm_opencv_sgbm(state, p, 2); }));
+    }
+}
+
+// Teddy (or the synthetic pair) resized to VGA.
+StereoPair vga_pair(const StereoPair& pair) {
+    cv::Mat left;
+    cv::Mat right;
+    cv::resize(pair.left_bgr, left, cv::Size(kVgaWidth, kVgaHeight), 0, 0, cv::INTER_LINEAR);
+    cv::resize(pair.right_bgr, right, cv::Size(kVgaWidth, kVgaHeight), 0, 0, cv::INTER_LINEAR);
+    return make_pair(std::move(left), std::move(right), pair.description + " resized to VGA",
+                     pair.synthetic);
 }
 
 // ---- Collecting the results ---------------------------------------------------------------
@@ -479,6 +551,17 @@ std::vector<std::string> registration_order() {
     names.push_back(kAswSeparableOne);
     names.push_back(kAswHardware);
     names.push_back(kAswHardwareOne);
+    for (const std::string& prefix : {std::string(), kVgaPrefix}) {
+        for (const std::string& name : {kFast1, kFast2}) {
+            names.push_back(prefix + name);
+        }
+        if (!prefix.empty()) {
+            names.push_back(prefix + kOpenCvBm);
+            names.push_back(prefix + kOpenCvSgbm);
+        }
+        names.push_back(prefix + kOpenCvBm2);
+        names.push_back(prefix + kOpenCvSgbm2);
+    }
     return names;
 }
 
@@ -563,6 +646,51 @@ int summarise(const std::map<std::string, Measurement>& results, bool any_error,
         << format_ratio(rate(kModelMatchNoCa)) << ", StereoSGBM " << format_ratio(rate(kOpenCvSgbm))
         << ", StereoBM " << format_ratio(rate(kOpenCvBm)) << "\n";
 
+    // The fast engine against OpenCV (issue 49): frames/s and throughput ratios (time ratios
+    // inverted), on each input.
+    nlohmann::json fast_json = nlohmann::json::object();
+    for (const auto& [prefix, label] : {std::pair{std::string(), std::string("Teddy")},
+                                        std::pair{kVgaPrefix, std::string("VGA")}}) {
+        const auto speed_over = [&](const std::string& fast, const std::string& other) {
+            const std::optional<double> ratio = time_ratio(results, prefix + other, prefix + fast);
+            return ratio;  // other's time / fast's time = fast's throughput / other's
+        };
+        const auto fps = [&](const std::string& name) -> std::optional<double> {
+            const auto found = results.find(prefix + name);
+            return found == results.end() || found->second.seconds <= 0.0
+                       ? std::nullopt
+                       : std::optional<double>(1.0 / found->second.seconds);
+        };
+        if (!fps(kFast1) && !fps(kFast2)) {
+            continue;
+        }
+        const std::optional<double> over_sgbm2 = speed_over(kFast2, kOpenCvSgbm2);
+        const std::optional<double> over_bm1 = speed_over(kFast2, kOpenCvBm);
+        out << "fast engine, " << label << ": " << format_ratio(fps(kFast1))
+            << " frames/s on 1 thread, " << format_ratio(fps(kFast2))
+            << " on 2; throughput x SGBM (1|2 threads, same count) "
+            << format_ratio(speed_over(kFast1, kOpenCvSgbm)) << " | " << format_ratio(over_sgbm2)
+            << ", x BM " << format_ratio(speed_over(kFast1, kOpenCvBm)) << " | "
+            << format_ratio(speed_over(kFast2, kOpenCvBm2)) << "; 2 threads x BM on 1 "
+            << format_ratio(over_bm1) << "\n";
+        if (!prefix.empty() && fps(kFast2)) {
+            out << "  goal >= " << kGoalVgaFps << " frames/s at VGA on 2 threads: "
+                << (*fps(kFast2) >= kGoalVgaFps ? "MET" : "NOT MET") << "\n";
+        }
+        if (over_sgbm2 && over_bm1) {
+            out << "  goal >= " << kGoalOverSgbm2 << "x SGBM on 2 threads and >= BM on 1 (" << label
+                << "): " << (*over_sgbm2 >= kGoalOverSgbm2 && *over_bm1 >= 1.0 ? "MET" : "NOT MET")
+                << " (not in the exit status)\n";
+        }
+        fast_json[label] = {
+            {"fast_1thread_fps", optional_json(fps(kFast1))},
+            {"fast_2threads_fps", optional_json(fps(kFast2))},
+            {"fast_2threads_over_sgbm_2threads", optional_json(over_sgbm2)},
+            {"fast_2threads_over_bm_1thread", optional_json(over_bm1)},
+            {"fast_1thread_over_sgbm_1thread", optional_json(speed_over(kFast1, kOpenCvSgbm))},
+            {"fast_1thread_over_bm_1thread", optional_json(speed_over(kFast1, kOpenCvBm))}};
+    }
+
     // Share of each stage in the sum of the stages, to show where the model's time goes.
     double stage_total = 0.0;
     for (const std::string& stage : kStageNames) {
@@ -633,6 +761,7 @@ int summarise(const std::map<std::string, Measurement>& results, bool any_error,
              {{"max_model_match_over_sgbm", kBudgetRatio},
               {"checked", checked},
               {"pass", checked ? nlohmann::json(pass) : nlohmann::json(nullptr)}}},
+            {"fast_engine", fast_json},
             {"any_error", any_error},
             {"exit_status", status}};
         std::ofstream file(*json_path);
@@ -719,7 +848,8 @@ int main(int argc, char** argv) {
               << pair.height() << ", " << kDisparities << " disparities, OpenCV threads "
               << cv::getNumThreads() << "\n";
     StageInputCache stage_inputs(pair, stereo::MatchParams{.ndisp = kDisparities});
-    register_benchmarks(pair, stage_inputs);
+    const StereoPair vga = vga_pair(pair);
+    register_benchmarks(pair, vga, stage_inputs);
 
     // Owned by the library; it honours --benchmark_format and --benchmark_color.
     benchmark::BenchmarkReporter* const display = benchmark::CreateDefaultDisplayReporter();

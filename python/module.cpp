@@ -22,6 +22,7 @@
 
 #include "stereo/catalogue.hpp"
 #include "stereo/defaults.hpp"
+#include "stereo/fast_engine.hpp"
 #include "stereo/hls/match.hpp"
 #include "stereo/matcher.hpp"
 #include "stereo/validated.hpp"
@@ -55,6 +56,17 @@ const MatcherRegistry& registry() {
         return built;
     }();
     return r;
+}
+
+// The engine of `method` when the call names none: catalogue::kDefaultEngine where the method
+// has it, else the reference engine (stereo match's rule).
+std::string default_engine(const std::string& method) {
+    for (const auto& entry : registry().entries()) {
+        if (entry.method == method && entry.engine == stereo::catalogue::kDefaultEngine) {
+            return entry.engine;
+        }
+    }
+    return std::string(stereo::catalogue::kReferenceEngine);
 }
 
 // A numpy array of shape `shape` over `values`, which it takes over (freed with the array).
@@ -453,22 +465,25 @@ PYBIND11_MODULE(stereo, m) {
     m.def(
         "match",
         [](const py::object& left, const py::object& right, const std::string& method,
-           const std::string& engine, int ndisp, int window, double sigma, bool ca,
+           const std::optional<std::string>& engine, int ndisp, int window, double sigma, bool ca,
            std::optional<std::string> cost, int min_disp, bool validation,
            std::optional<int> uniqueness, std::optional<int> lr_check, std::optional<bool> subpixel,
            int vrange, const std::string& neighbours, int log_window, double log_sigma,
            int edge_value, int truncation, int sparse_uniqueness, int sparse_lr,
-           const std::optional<py::dict>& asw, std::optional<int> speckle_size, int speckle_range) {
+           const std::optional<py::dict>& asw, std::optional<int> speckle_size, int speckle_range,
+           int threads) {
             const Overrides keywords{std::move(cost), validation,   uniqueness,   lr_check,
                                      subpixel,        speckle_size, speckle_range};
-            return run_match(
-                left, right,
-                match_options(method, engine, ndisp, window, sigma, ca, min_disp, keywords, vrange,
-                              neighbours, log_window, log_sigma, edge_value, truncation,
-                              sparse_uniqueness, sparse_lr, asw));
+            MatchOptions options =
+                match_options(method, engine ? *engine : default_engine(method), ndisp, window,
+                              sigma, ca, min_disp, keywords, vrange, neighbours, log_window,
+                              log_sigma, edge_value, truncation, sparse_uniqueness, sparse_lr, asw);
+            stereo::fast::validate_threads(threads == 0 ? 1 : threads);
+            options.config.threads = threads;
+            return run_match(left, right, options);
         },
         py::arg("left"), py::arg("right"), py::kw_only(), py::arg("method") = "pipeline",
-        py::arg("engine") = "model", py::arg("ndisp") = defaults.ndisp,
+        py::arg("engine") = py::none(), py::arg("ndisp") = defaults.ndisp,
         py::arg("window") = defaults.window, py::arg("sigma") = defaults.sigma,
         py::arg("ca") = defaults.use_ca, py::arg("cost") = py::none(),
         py::arg("min_disp") = defaults.min_disp, py::arg("validation") = true,
@@ -480,9 +495,12 @@ PYBIND11_MODULE(stereo, m) {
         py::arg("truncation") = edges.truncation, py::arg("sparse_uniqueness") = sparse.uniqueness,
         py::arg("sparse_lr") = sparse.lr_tolerance, py::arg("asw") = py::none(),
         py::arg("speckle_size") = py::none(),
-        py::arg("speckle_range") = stereo::speckle::kDefaultRange,
-        "Match a pair with (method, engine) of stereo.matchers(); the defaults are stereo "
-        "match's (census where the method and engine have it, stage 6 with the cost's ratio and "
+        py::arg("speckle_range") = stereo::speckle::kDefaultRange, py::arg("threads") = 0,
+        "Match a pair with (method, engine) of stereo.matchers(); engine None: fast where the "
+        "method has it (the pipeline's CPU engine, bit-exact with model), else model; threads: "
+        "engine fast's worker threads, 0 = every core (the GIL is released while matching). The "
+        "other defaults are stereo match's (census where the method and engine have it, stage 6 "
+        "with the cost's ratio and "
         "tolerance, sub-pixel, the speckle filter). Returns a dict: disparity (uint8 labels), "
         "valid (bool), and for the methods with stage 6 disparity_px (float32, NaN invalid), "
         "fixed (int16, x16), reason, certainty; subpixel (sparse), vertical (2-D methods), "

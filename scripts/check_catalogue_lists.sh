@@ -10,7 +10,7 @@ root=${1:-$(dirname "$0")/..}
 cd "$root"
 cost='(ad|census|lcdm|zncc)'
 method='(pipeline|edges|hierarchical|sparse|vertical|diagonal|asw)'
-engine='(model|naive|float|hls|rtl|full-search)'
+engine='(model|fast|naive|float|hls|rtl|full-search)'
 q="[\"']"
 # Two names of one kind side by side (a hand-written list), or a cost, method or engine variable
 # compared with a name.

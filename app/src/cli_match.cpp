@@ -390,7 +390,7 @@ void summarise_plane_search(Summary& summary, const MatchOptions& options,
 
 void run_match(const MatchOptions& options) {
     const std::string method = options.matcher.resolved_method();
-    const std::string& engine = options.matcher.engine;
+    const std::string engine = options.matcher.resolved_engine();
     const catalogue::MethodRow& row = catalogue::method(method);
     // No extension is a PNG, as before; a folder or device fails the file checks (exit 1).
     const auto output_encoding =
@@ -413,8 +413,7 @@ void run_match(const MatchOptions& options) {
 
     // The Verilated core (engine rtl) outputs no level maps: nothing to dump, and no file written.
     if (!options.dump_levels.empty() && result.levels.empty()) {
-        throw std::invalid_argument("--dump-levels: engine " + options.matcher.engine +
-                                    " outputs no level maps");
+        throw std::invalid_argument("--dump-levels: engine " + engine + " outputs no level maps");
     }
     // Every output together, all or nothing (io::write_files_atomic).
     const auto files =

@@ -68,6 +68,19 @@ std::string MatcherOptions::resolved_method() const {
     return frontend;  // "edges"
 }
 
+std::string MatcherOptions::resolved_engine() const {
+    if (!engine.empty()) {
+        return engine;
+    }
+    const std::string chosen = resolved_method();
+    for (const auto& entry : matchers().entries()) {
+        if (entry.method == chosen && entry.engine == catalogue::kDefaultEngine) {
+            return entry.engine;
+        }
+    }
+    return std::string(catalogue::kReferenceEngine);
+}
+
 namespace {
 
 // "ad (absolute differences ...), census (...), ...": every cost with its summary, the default
@@ -93,7 +106,7 @@ MatchConfig MatcherOptions::resolved() const {
     // engine) brings its ratio and tolerance first; the given ones win.
     defaults::Overrides overrides = given;
     if (defaults_per_cost && !overrides.cost) {
-        overrides.cost = std::string(catalogue::default_cost(resolved_method(), engine));
+        overrides.cost = std::string(catalogue::default_cost(resolved_method(), resolved_engine()));
     } else if (!defaults_per_cost && overrides.cost) {
         resolved_config.pipeline.cost = *overrides.cost;  // no per-cost ratio and tolerance
         overrides.cost.reset();
@@ -109,6 +122,7 @@ MatchConfig MatcherOptions::resolved() const {
     weights.shape = asw::shape_from_name(asw_shape);
     weights.continuity = weights.continuity && !asw_no_continuity;
     weights.right_weights = weights.right_weights && !asw_left_weights_only;
+    weights.threads = config.threads;  // one --threads for ASW and the fast engine
     return resolved_config;
 }
 
@@ -233,8 +247,12 @@ void add_selection_options(CLI::App& command, MatcherOptions& options) {
     const std::string method_help = "Method: " + catalogue::method_help();
     add_choice("--method", options.method, method_help.c_str(), matchers().methods());
     const std::string engine_help =
-        "Engine: " + catalogue::engine_help() + "; not every method has every engine";
-    add_choice("--engine", options.engine, engine_help.c_str(), matchers().engines());
+        "Engine: " + catalogue::engine_help() +
+        "; not every method has every engine. Default: " + std::string(catalogue::kDefaultEngine) +
+        " where the method has it, else " + std::string(catalogue::kReferenceEngine);
+    command.add_option("--engine", options.engine, engine_help)
+        ->check(CLI::IsMember(matchers().engines()))
+        ->default_str(std::string(catalogue::kDefaultEngine));
     add_choice("--frontend", options.frontend, "model, or edges (the same as --method edges)",
                {"model", "edges"});
     add_choice("--aggregation", options.aggregation,
@@ -242,6 +260,12 @@ void add_selection_options(CLI::App& command, MatcherOptions& options) {
                "Sec. 3.4: --window is the circle's diameter, 55 when not given; the same as "
                "--method asw)",
                {"gaussian", "asw"});
+    command
+        .add_option("--threads", options.config.threads,
+                    "Worker threads of engine fast and of ASW, 0 = every core (the result does "
+                    "not depend on it)")
+        ->capture_default_str()
+        ->check(thread_count());
     asw::Params& weights = options.config.asw;
     const std::size_t asw_first = command.get_options().size();
     add_switch(command, "--no-continuity", "--continuity", options.asw_no_continuity,
@@ -261,9 +285,6 @@ void add_selection_options(CLI::App& command, MatcherOptions& options) {
                     "ASW: the cost is min(C, T) before the aggregation; -1: by the cost "
                     "(Yoon and Kweon's 40, census not truncated), 0: not truncated")
         ->capture_default_str();
-    command.add_option("--threads", weights.threads, "ASW: worker threads, 0 = every core")
-        ->capture_default_str()
-        ->check(thread_count());
     group_options_since(
         command, asw_first,
         "--method asw: " + std::string(catalogue::method(catalogue::Method::asw).summary));

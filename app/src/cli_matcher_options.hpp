@@ -25,7 +25,9 @@ struct MatcherOptions {
     MatchConfig config;
     bool no_ca = false;
     std::string method = "pipeline";
-    std::string engine = "model";
+    // Empty: catalogue::kDefaultEngine where the method has it, else kReferenceEngine
+    // (resolved_engine()).
+    std::string engine;
     std::string frontend = "model";        // "edges": the same as --method edges (kept for scripts)
     std::string aggregation = "gaussian";  // "asw": the same as --method asw
     std::string asw_response = "log";
@@ -55,6 +57,8 @@ struct MatcherOptions {
     // The method after --frontend and --aggregation; throws std::invalid_argument when they
     // contradict.
     std::string resolved_method() const;
+    // --engine when given, else the default engine of resolved_method().
+    std::string resolved_engine() const;
     // --window or --sigma was given on the command line.
     bool window_given() const { return window_set || sigma_set; }
     // --uniqueness, --lr-check, --subpixel / --no-subpixel or --speckle-size was given on the

@@ -1,10 +1,12 @@
 // The matcher registry and the model's registrations (stereo/matcher.hpp).
 #include <algorithm>
+#include <mutex>
 #include <stdexcept>
 #include <utility>
 
 #include "stereo/catalogue.hpp"
 #include "stereo/defaults.hpp"
+#include "stereo/fast_engine.hpp"
 #include "stereo/hierarchical.hpp"
 #include "stereo/hierarchical_reference.hpp"
 #include "stereo/matcher.hpp"
@@ -74,6 +76,28 @@ class ModelPipeline final : public Matcher {
     MatchParams params_;
     std::vector<std::int32_t> kernel_;
     std::unique_ptr<CostFunction> cost_;
+};
+
+// The fast CPU engine of the same pipeline (stereo/fast_engine.hpp): one engine, its buffers
+// reused from frame to frame; calls on one matcher take turns.
+class FastPipeline final : public Matcher {
+  public:
+    FastPipeline(const MatchParams& params, int threads)
+        : engine_(params, fast::thread_count(threads)) {}
+    void validate(int width, int height) const override { engine_.validate(width, height); }
+    MatchResult compute(const Image& left, const Image& right) const override {
+        MatchResult result;
+        {
+            const std::lock_guard lock(mutex_);
+            engine_.match(left, right, result.validated);
+        }
+        result.disparity = to_label_map(result.validated);
+        return result;
+    }
+
+  private:
+    mutable std::mutex mutex_;
+    mutable fast::Engine engine_;
 };
 
 // ---- edges: the obstacle-avoidance front end (Sec. 4.1.1) --------------------------------
@@ -358,6 +382,10 @@ void register_model_matchers(MatcherRegistry& registry) {
     registry.add({"pipeline", "model", "Sec. 3.1 pipeline, the bit-exact golden model",
                   [](const MatchConfig& config) -> std::unique_ptr<Matcher> {
                       return std::make_unique<ModelPipeline>(config.pipeline);
+                  }});
+    registry.add({"pipeline", "fast", "Sec. 3.1 pipeline, fast CPU engine (row tiles, threads)",
+                  [](const MatchConfig& config) -> std::unique_ptr<Matcher> {
+                      return std::make_unique<FastPipeline>(config.pipeline, config.threads);
                   }});
     registry.add({"pipeline", "naive", "Sec. 3.1 pipeline, naive reference (direct sums)",
                   pipeline_factory(&naive::match_validated)});

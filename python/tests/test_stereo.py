@@ -180,6 +180,20 @@ def test_model_equals_naive_reference():
         assert np.array_equal(model["fixed"], naive["fixed"]), options
 
 
+def test_default_engine_fast_equals_model_on_every_thread_count():
+    """The pipeline runs on engine fast by default (issue 49), bit for bit the model's output."""
+    left, right = shifted_pair()
+    for options in ({}, {"cost": "ad"}, {"min_disp": -3, "ca": False}):
+        model = stereo.match(left, right, ndisp=16, window=5, engine="model", **options)
+        for threads in (0, 1, 2, 3):
+            fast = stereo.match(left, right, ndisp=16, window=5, threads=threads, **options)
+            for key in ("disparity", "fixed", "reason", "certainty"):
+                assert np.array_equal(model[key], fast[key]), (options, threads, key)
+    for threads in (-1, 257):
+        with pytest.raises(ValueError, match="threads"):
+            stereo.match(left, right, ndisp=16, window=5, threads=threads)
+
+
 def test_edge_options_reach_the_matcher():
     left, right = shifted_pair()
     options = {"method": "edges", "ndisp": 16, "window": 5, "log_window": 5, "log_sigma": 0.8,

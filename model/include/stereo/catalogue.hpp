@@ -162,9 +162,10 @@ struct EngineRow {
 };
 
 // clang-format off
-inline constexpr std::array<EngineRow, 6> kEngines = {{
+inline constexpr std::array<EngineRow, 7> kEngines = {{
     //  name           costs                stage6 summary
     {"model",       CostUse::any,        true,  "the bit-exact golden model"},
+    {"fast",        CostUse::any,        true,  "the model's pipeline in row tiles on --threads cores, bit-exact (stereo match's default)"},
     {"naive",       CostUse::any,        true,  "the naive reference (direct sums), for tests"},
     {"float",       CostUse::floating,   false, "double precision, no stage 6"},
     {"hls",         CostUse::hardware,   true,  "the C-simulated HLS kernels"},
@@ -185,6 +186,10 @@ std::string join(const std::vector<std::string>& names, std::string_view last_se
 // the default of the methods and engines that do not have census.
 inline constexpr Cost kDefaultCost = Cost::census;
 inline constexpr Cost kFallbackCost = Cost::ad;
+// The engine `stereo match` runs a method on when it has it (the fast CPU engine of the
+// pipeline, stereo/fast_engine.hpp), else the reference engine every method has.
+inline constexpr std::string_view kDefaultEngine = "fast";
+inline constexpr std::string_view kReferenceEngine = "model";
 
 // The default cost of `method` on `engine`: census where the method defaults to it and the
 // engine has it, else AD.

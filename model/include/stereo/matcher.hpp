@@ -41,6 +41,9 @@ struct MatchConfig {
     // Every method with a validated output (pipeline, asw, quad pairs), every engine: the
     // host-side speckle filter after stage 6 (MatcherRegistry::create applies it). Off here.
     speckle::Params speckle;
+    // Engine fast (stereo/fast_engine.hpp): worker threads, 0 = every core (the result does not
+    // depend on it).
+    int threads = 0;
 };
 
 struct MatchResult {
