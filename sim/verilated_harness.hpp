@@ -57,7 +57,7 @@ class VerilatedHarness {
 #if STEREO_HARNESS_FST
         // One library holds traced and untraced models (sim/CMakeLists.txt STEREO_TRACE_CONFIGS):
         // an untraced one has no trace().
-        if constexpr (requires(Model& model, VerilatedFstC* fst) { model.trace(fst, 99); }) {
+        if constexpr (requires(Model & model, VerilatedFstC * fst) { model.trace(fst, 99); }) {
             trace_ = std::make_unique<VerilatedFstC>();
             model_->trace(trace_.get(), 99);
             trace_->open(path.c_str());
