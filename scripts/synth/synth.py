@@ -706,7 +706,8 @@ def estimate(config, target, work=None, use_dsp=True):
     resources_of = {"xilinx": resources_xilinx, "ecp5": resources_ecp5,
                     "ice40": resources_ice40}[target]
     cells = read_stat_json(stat)
-    modules = stage_modules({name: path.read_text() for name, path in instances.items()})
+    modules = stage_modules({name: path.read_text() for name, path in instances.items()},
+                            ASW_ABSENT_STAGES if config.get("asw") else ())
     stages = {name: resources_of(stage_cells) for name, stage_cells in
               stage_breakdown(stat, modules).items()}
     depth = logic_depth(netlist, target)
@@ -817,19 +818,31 @@ def module_kind(name):
     return match.group(1) if match else name
 
 
+# The ASW core's instance of a stage where its name differs (stereo_top ASW = 1, block g_asw):
+# the aggregation is stereo_asw_aggregate `asw`; it has no CA rules.
+ASW_INSTANCES = {"aggregate": "asw"}
+ASW_ABSENT_STAGES = ("ca_rule1", "ca_rule2")
+
+
 def stage_module_query(stage):
     """Yosys command listing `<module>/clk` of the module that implements stereo_top's instance
     `stage` (every stage module has a clk port): at the top, or inside the generate block of the
-    Gaussian aggregation and CA rules (g_gaussian_ca: cost, aggregate, ca_rule1, ca_rule2)."""
-    return (f"select -list *stereo_top/{stage} *stereo_top/g_gaussian_ca.{stage} %u %M w:clk %i")
+    Gaussian aggregation and CA rules (g_gaussian_ca: cost, aggregate, ca_rule1, ca_rule2) or of
+    the ASW core (g_asw: cost, asw)."""
+    asw = ASW_INSTANCES.get(stage, stage)
+    return (f"select -list *stereo_top/{stage} *stereo_top/g_gaussian_ca.{stage} %u "
+            f"*stereo_top/g_asw.{asw} %u %M w:clk %i")
 
 
-def stage_modules(listings):
-    """{module name: stage} from the output of stage_module_query for every stage."""
+def stage_modules(listings, absent=()):
+    """{module name: stage} from the output of stage_module_query for every stage; the stages in
+    `absent` may have no module (the ASW core's CA rules)."""
     modules = {}
     for stage, text in listings.items():
         found = [line.rsplit("/", 1)[0].lstrip("\\") for line in text.splitlines()
                  if line.endswith("/clk")]
+        if not found and stage in absent:
+            continue
         if len(found) != 1:
             raise ReportError(f"no single module implements stage {stage}: {found}")
         modules[found[0]] = stage
