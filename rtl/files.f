@@ -21,6 +21,7 @@ stereo_divider.sv
 stereo_validate.sv
 stereo_lr_check.sv
 stereo_asw_column.sv
+stereo_asw_weights.sv
 stereo_asw_aggregate.sv
 stereo_top.sv
 stereo_axil_top.sv

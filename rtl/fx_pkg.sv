@@ -441,6 +441,31 @@ package fx_pkg;
     product = 16'(a) * 16'(b) + 16'd128;
     asw_combine = product[15:8];
   endfunction
+  // Two combines with a common factor in one multiplier (a DSP block): {b1, 8'd0, b0} * a
+  // holds b1 * a and b0 * a in its two 16-bit halves (b0 * a < 2^16 never carries into b1's);
+  // each half rounds as asw_combine.
+  // Returns {b1 (x) a, b0 (x) a}.
+  function automatic logic [15:0] asw_combine_pair(input logic [7:0] a, input logic [7:0] b0,
+                                                   input logic [7:0] b1);
+    logic [31:0] product;
+    /* verilator lint_off UNUSEDSIGNAL */  // the rounded-off bytes
+    logic [15:0] low, high;
+    /* verilator lint_on UNUSEDSIGNAL */
+    product = 32'({b1, 8'd0, b0}) * 32'(a);
+    low = product[15:0] + 16'd128;
+    high = product[31:16] + 16'd128;
+    asw_combine_pair = {high[15:8], low[15:8]};
+  endfunction
+  // asw_combine with a constant a, as shifts and adds (a multiplier by a constant would take
+  // a DSP block).
+  function automatic logic [7:0] asw_combine_constant(input int a, input logic [7:0] b);
+    /* verilator lint_off UNUSEDSIGNAL */  // the rounded-off byte
+    logic [15:0] product;
+    /* verilator lint_on UNUSEDSIGNAL */
+    product = 16'd128;
+    for (int k = 0; k < 8; k++) if (a[k]) product = product + (16'(b) << k);
+    asw_combine_constant = product[15:8];
+  endfunction
 
   // ---- Census cost (constants.hpp, stages/census.hpp; COST = COST_CENSUS) ----
   localparam int LUMA_R = 77;  // luma = (R*LUMA_R + G*LUMA_G + B*LUMA_B

@@ -17,7 +17,8 @@
 //             lies outside.
 // round(n / s) is floor((n + floor(s / 2)) / s), a restoring division of 14 quotient bits; (x)
 // is fx_pkg::asw_combine. The words hand their right factors over with the right column
-// (stereo_asw_column), so every product is one combine per label and offset.
+// (stereo_asw_column), so every weight is one combine per label and offset (stereo_asw_weights:
+// two labels a multiplier).
 //
 // Stream positions: the input (x, yc) is the vertical pass' pixel; x1 is the pixel r + 1 steps
 // before it, x2 the one 2r + 2 steps before (both follow the stream across row ends: their
@@ -62,6 +63,7 @@ module stereo_asw_aggregate #(
   localparam int HISTORY = 3 * R + 2;  // Av of columns x - 1 .. x - HISTORY
   localparam int DISP_BITS = fx_pkg::DISP_BITS;
   localparam logic [BITS-1:0] NO_CANDIDATE = BITS'(fx_pkg::ASW_NO_CANDIDATE);
+  localparam int CENSUS_SHIFT = $clog2(fx_pkg::CENSUS_WEIGHT + 1);
   // This diameter's row of fx_pkg::ASW_CONTINUITY (what fx_pkg::asw_continuity reads), so a
   // look-up is a shifter over 256 entries, not over every diameter's (stereo_asw_column says why).
   localparam int CONTINUITY_ROW_BITS = fx_pkg::ASW_CONTINUITY_ENTRIES * 8;
@@ -97,7 +99,8 @@ module stereo_asw_aggregate #(
     sum = '0;
     if (CODES) begin
       for (int i = 0; i < fx_pkg::CENSUS_BITS; i++) sum = sum + {9'd0, a[i] ^ b[i]};
-      sum = 10'(sum * 10'(fx_pkg::CENSUS_WEIGHT));
+      // times CENSUS_WEIGHT as a shift and a subtraction (a constant product takes a DSP block)
+      sum = 10'((sum << CENSUS_SHIFT) - sum * 10'((1 << CENSUS_SHIFT) - fx_pkg::CENSUS_WEIGHT));
     end else begin
       for (int c = 0; c < 3; c++) begin
         channel = (a[c*8+:8] >= b[c*8+:8]) ? a[c*8+:8] - b[c*8+:8] : b[c*8+:8] - a[c*8+:8];
@@ -178,7 +181,22 @@ module stereo_asw_aggregate #(
 
   // ---- the vertical pass --------------------------------------------------------------------
   // Per lane (generate loops: every index below is a constant of the elaboration).
+  // Rows of the column stack inside the frame (the same for every lane).
+  logic [DIAMETER-1:0] row_inside;
+  always_comb begin
+    for (int j = 0; j < DIAMETER; j++) begin
+      row_inside[j] = in_range(18'(in_y) - 18'(R) + 18'(j), cfg.height);
+    end
+  end
   logic [LANES*BITS-1:0] vertical;  // lane l's Av of this step's column
+  logic [LANES*8*DIAMETER-1:0] vertical_right, vertical_weights;  // lane l's factors, weights
+  logic [8*DIAMETER-1:0] vertical_left;
+  always_comb begin
+    for (int j = 0; j < DIAMETER; j++) vertical_left[j*8+:8] = vert_of(in_left, j);
+  end
+  stereo_asw_weights #(.LANES(LANES), .TAPS(DIAMETER)) vertical_combine (
+      .shared(vertical_left), .lane_factors(vertical_right), .tap_inside(row_inside),
+      .weights(vertical_weights));
   for (genvar l = 0; l < LANES; l++) begin : g_vertical
     logic [WORD-1:0] right_word;
     logic signed [17:0] right_x;
@@ -187,10 +205,15 @@ module stereo_asw_aggregate #(
     assign right_x = 18'(in_x) - 18'(cfg.min_disp) - base_k - 18'(l);
     assign outside = !in_range(right_x, cfg.width);
     always_comb begin
+      for (int j = 0; j < DIAMETER; j++) begin
+        vertical_right[(l*DIAMETER+j)*8+:8] = outside ? 8'd255 : vert_of(right_word, j);
+      end
+    end
+    always_comb begin
       logic [31:0] num;
       logic [15:0] den;
       logic [9:0] cost;
-      logic [7:0] right_factor, weight;
+      logic [7:0] weight;
       logic [17:0] product;  // 8 x 10 bits
       num = '0;
       den = '0;
@@ -198,8 +221,7 @@ module stereo_asw_aggregate #(
         cost = outside ? 10'(fx_pkg::COST_OUTSIDE)
                        : matching_cost(code_of(in_left, j), code_of(right_word, j));
         if (TRUNCATION > 0 && cost > 10'(TRUNCATION)) cost = 10'(TRUNCATION);
-        right_factor = outside ? 8'd255 : vert_of(right_word, j);
-        weight = row_inside[j] ? fx_pkg::asw_combine(vert_of(in_left, j), right_factor) : '0;
+        weight = vertical_weights[(l*DIAMETER+j)*8+:8];
         product = 18'(weight) * 18'(cost);
         num = num + 32'(product);
         den = den + 16'(weight);
@@ -211,13 +233,6 @@ module stereo_asw_aggregate #(
     if (HISTORY > 1) begin : g_shift
       assign next_state[(l*HISTORY+1)*BITS+:(HISTORY-1)*BITS] =
           head[(l*HISTORY)*BITS+:(HISTORY-1)*BITS];
-    end
-  end
-  // Rows of the column stack inside the frame (the same for every lane).
-  logic [DIAMETER-1:0] row_inside;
-  always_comb begin
-    for (int j = 0; j < DIAMETER; j++) begin
-      row_inside[j] = in_range(18'(in_y) - 18'(R) + 18'(j), cfg.height);
     end
   end
 
@@ -248,6 +263,10 @@ module stereo_asw_aggregate #(
         end
       end
     end
+    logic [LANES*8*DIAMETER-1:0] right_factors, weights;  // lane l's factors, weights
+    stereo_asw_weights #(.LANES(LANES), .TAPS(DIAMETER)) combine (
+        .shared(left_factor), .lane_factors(right_factors), .tap_inside(column_inside),
+        .weights(weights));
     for (genvar l = 0; l < LANES; l++) begin : g_lane
       logic [WORD-1:0] right_word;
       logic signed [17:0] right_x;
@@ -257,18 +276,25 @@ module stereo_asw_aggregate #(
       assign right_x = centre - 18'(cfg.min_disp) - base_k - 18'(l);
       assign outside = !in_range(right_x, cfg.width);
       always_comb begin
+        for (int i = 0; i < DIAMETER; i++) begin
+          if (outside || !in_range(right_x + 18'(i - R), cfg.width)) begin
+            right_factors[(l*DIAMETER+i)*8+:8] = 8'd255;
+          end else if (pass == 1) begin
+            right_factors[(l*DIAMETER+i)*8+:8] = near_of(right_word, i);
+          end else begin
+            right_factors[(l*DIAMETER+i)*8+:8] = far_of(right_word, i);
+          end
+        end
+      end
+      always_comb begin
         logic [31:0] num;
         logic [15:0] den;
-        logic [7:0] right_factor, weight;
+        logic [7:0] weight;
         logic [21:0] product;  // 8 x 14 bits
         num = '0;
         den = '0;
         for (int i = 0; i < DIAMETER; i++) begin
-          if (outside || !in_range(right_x + 18'(i - R), cfg.width)) right_factor = 8'd255;
-          else if (pass == 1) right_factor = near_of(right_word, i);
-          else right_factor = far_of(right_word, i);
-          weight = column_inside[i] ? fx_pkg::asw_combine(left_factor[i*8+:8], right_factor)
-                                    : '0;
+          weight = weights[(l*DIAMETER+i)*8+:8];
           product = 22'(weight) * 22'(av_at(l, BACK - (i - R)));
           num = num + 32'(product);
           den = den + 16'(weight);

@@ -14,7 +14,8 @@
 //             [32 D + i*8 +: 8];
 //   far[i]    the same of pixel x - 2r - 2 for the second pass (near, r + 1 steps later), at
 //             [40 D + i*8 +: 8];
-// colour(a, b) = fx_pkg::asw_colour(DIAMETER, |dR| + |dG| + |dB|), (x) = fx_pkg::asw_combine.
+// colour(a, b) = fx_pkg::asw_colour(DIAMETER, |dR| + |dG| + |dB|), (x) = fx_pkg::asw_combine (with
+// the constant proximity: asw_combine_constant, shifts and adds).
 // The aggregation masks rows and columns outside the frame and right columns outside the right
 // image; nothing here knows the frame's edges, so words of pixels near them carry stale
 // neighbours, never read.
@@ -67,15 +68,20 @@ module stereo_asw_column #(
     end
     colour_difference = sum;
   endfunction
-  // This diameter's row of fx_pkg::ASW_COLOUR (what fx_pkg::asw_colour reads): a look-up in the
-  // package's whole table, every diameter's, left Yosys a shifter over 91,920 bits per look-up,
-  // which its technology mapping did not finish.
+  // This diameter's row of fx_pkg::ASW_COLOUR (what fx_pkg::asw_colour reads), as a ROM: a
+  // look-up in the package's constant vector (every diameter's table) left Yosys a shifter over
+  // 91,920 bits per look-up, and one over this diameter's 6,128 bits still took it minutes per
+  // look-up to map; a memory that is never written maps as a ROM.
   localparam int COLOUR_ROW_BITS = fx_pkg::ASW_COLOUR_ENTRIES * 8;
   localparam logic [COLOUR_ROW_BITS-1:0] COLOUR_ROW =
       fx_pkg::ASW_COLOUR[((DIAMETER - fx_pkg::ASW_MIN_DIAMETER) / 2) * COLOUR_ROW_BITS +:
                          COLOUR_ROW_BITS];
+  logic [7:0] colour_rom[fx_pkg::ASW_COLOUR_ENTRIES];
+  initial begin
+    for (int i = 0; i < fx_pkg::ASW_COLOUR_ENTRIES; i++) colour_rom[i] = COLOUR_ROW[i*8+:8];
+  end
   function automatic logic [7:0] response(input logic [23:0] a, input logic [23:0] b);
-    response = COLOUR_ROW[colour_difference(a, b)*8+:8];
+    response = colour_rom[colour_difference(a, b)];
   endfunction
 
   // ---- the column stack: row yc - r + j at slot j --------------------------------------------
@@ -119,8 +125,9 @@ module stereo_asw_column #(
         near_now[side][i*8+:8] = response(centre_history[side][NEAR-1-(i-R)],
                                           centre_history[side][NEAR-1]);
         if (side == 0) begin
-          near_now[side][i*8+:8] = fx_pkg::asw_combine(
-              fx_pkg::asw_proximity(DIAMETER, (i >= R) ? i - R : R - i), near_now[side][i*8+:8]);
+          near_now[side][i*8+:8] = fx_pkg::asw_combine_constant(
+              32'(fx_pkg::asw_proximity(DIAMETER, (i >= R) ? i - R : R - i)),
+              near_now[side][i*8+:8]);
         end
       end
     end
@@ -143,8 +150,8 @@ module stereo_asw_column #(
         word[side][j*24+:24] = code_at(side, j);
         word[side][24*DIAMETER+j*8+:8] = response(rgb_at(side, j), rgb_at(side, R));
         if (side == 0) begin
-          word[side][24*DIAMETER+j*8+:8] = fx_pkg::asw_combine(
-              fx_pkg::asw_proximity(DIAMETER, (j >= R) ? j - R : R - j),
+          word[side][24*DIAMETER+j*8+:8] = fx_pkg::asw_combine_constant(
+              32'(fx_pkg::asw_proximity(DIAMETER, (j >= R) ? j - R : R - j)),
               word[side][24*DIAMETER+j*8+:8]);
         end
       end

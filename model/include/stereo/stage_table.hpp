@@ -352,7 +352,7 @@ inline constexpr int kAswMaxDiameter = 31;
 inline constexpr std::string_view kPackageFile = "fx_pkg.sv";
 // One module a line: the compile order reads from top to bottom.
 // clang-format off
-inline constexpr std::array<std::string_view, 46> kRtlModules = {
+inline constexpr std::array<std::string_view, 47> kRtlModules = {
     "stereo_coord_reg",
     "stereo_stage_output",
     "stereo_shift_reg",
@@ -374,6 +374,7 @@ inline constexpr std::array<std::string_view, 46> kRtlModules = {
     "stereo_validate",
     "stereo_lr_check",
     "stereo_asw_column",
+    "stereo_asw_weights",
     "stereo_asw_aggregate",
     "stereo_top",
     "stereo_axil_top",
