@@ -1448,25 +1448,29 @@ def estimate_points(path):
 
 
 def command_table(args):
-    """Markdown tables of sweep points: one per target, then each stage's share at the largest
-    configuration. fps and M disparity evaluations/s at --clock MHz (an assumed clock: Yosys
-    gives no Fmax for these targets)."""
+    """Markdown tables of sweep points: one per target (and top, stereo_synth_top's first), then
+    each stage's share at the largest configuration. fps and M disparity evaluations/s at --clock
+    MHz (an assumed clock: Yosys gives no Fmax for these targets)."""
     points = [point for path in args.sweeps for point in estimate_points(path)]
     if not points:
         raise ReportError("no sweep points")
     lines = []
-    for target in sorted({p["target"] for p in points}):
-        rows = sorted((p for p in points if p["target"] == target),
+    for target, top in sorted({(p["target"], p.get("top", TOP)) for p in points},
+                              key=lambda group: (group[0], group[1] != TOP, group[1])):
+        name = target if top == TOP else f"{target}, {top}"
+        rows = sorted((p for p in points if p["target"] == target and p.get("top", TOP) == top),
                       key=lambda p: (not p.get("use_dsp", True), p["config"]["width"],
                                      p["config"]["ndisp"], p["config"]["window"]))
-        lines += [f"| {target} | W x H | labels | window | LUT | FF | carry | BRAM (Kib) | DSP | "
+        lines += [f"| {name} | W x H | labels | window | LUT | FF | carry | BRAM (Kib) | DSP | "
                   f"smallest listed part | fps at {args.clock:g} MHz | M disp. eval./s |",
                   "|---|---|---|---|---|---|---|---|---|---|---|---|"]
         for p in rows:
             c, r = p["config"], with_bram_kbits(p["resources"], target)
             fps, mdes = throughput(c, args.clock)
             dsp = "" if p.get("use_dsp", True) else " (no DSP)"
-            lines.append(f"| {target}{dsp} | {c['width']} x {c['height']} | {c['ndisp']} | "
+            if top != TOP and c.get("runtime_kernel") == 0:
+                dsp = " (constant kernel)" + dsp
+            lines.append(f"| {name}{dsp} | {c['width']} x {c['height']} | {c['ndisp']} | "
                          f"{c['window']}x{c['window']} | {r['luts']:,} | {r['ffs']:,} | "
                          f"{r['carries']:,} | {r['bram_kbits']:,} | {r['dsps']:,} | "
                          f"{smallest_device(target, r) or 'none listed'} | {fps:,.0f} | "
@@ -1479,7 +1483,7 @@ def command_table(args):
                                      * p["config"]["width"]), default=None)
         if largest:
             c = largest["config"]
-            lines += [f"| {target} {c['width']}x{c['height']} / {c['ndisp']} / "
+            lines += [f"| {name} {c['width']}x{c['height']} / {c['ndisp']} / "
                       f"{c['window']}x{c['window']}: stage | LUT | FF | BRAM (Kib) | DSP |",
                       "|---|---|---|---|---|"]
             for name in STAGE_COLOURS:
