@@ -38,8 +38,7 @@ TOP = "stereo_synth_top"
 # "absent": the options that set a parameter the top does not have.
 AXIL_TOP = "stereo_axil_top"
 ESTIMATE_TOPS = {
-    TOP: {"short": "synth", "absent": {"ring_block_min_fill": "--ring-min-fill", "asw": "--asw",
-                                       "runtime_kernel": "--constant-kernel"}},
+    TOP: {"short": "synth", "absent": {"runtime_kernel": "--constant-kernel"}},
     AXIL_TOP: {"short": "axil", "absent": {"ring_block_min_fill": "--ring-min-fill",
                                            "asw": "--asw"}},
 }
