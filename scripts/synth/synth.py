@@ -58,7 +58,7 @@ def check_top_config(top, config, target):
     RING_BLOCK_RAM: its group rings could not go to block RAM)."""
     for key, option in ESTIMATE_TOPS[top]["absent"].items():
         if key in config:
-            raise ReportError(f"{option} is not a parameter of {top}")
+            raise ReportError(f"{top} has no parameter for {option}")
     if top == AXIL_TOP and target == "ice40":
         raise ReportError(f"{top} has no RING_BLOCK_RAM for the iCE40; estimate it for xilinx or "
                           "ecp5")
@@ -891,10 +891,18 @@ def stage_modules(listings, absent=()):
     return modules
 
 
+# The stage of stereo_axil_top's own cells: the AXI4-Lite register file, the counters, the I/O.
+AXI_REGISTERS = "axi_registers"
+# Flip-flops it cannot have fewer of (rtl/stereo_axil_top.sv): the FRAMES_IN, FRAMES_OUT and
+# STALLS counters and the read data register, 32 bits each, all of them read over AXI4-Lite.
+AXI_REGISTERS_MIN_FFS = 4 * 32
+
+
 def stage_breakdown(stat_path, modules_of_stages, top=TOP):
     """Cells of each pipeline stage including its line buffers, and of the glue around them
-    (stereo_top's own logic and the AXI wrapper), from a hierarchical `stat -json`.
-    modules_of_stages maps each stage's module name (stage_modules) to the stage."""
+    (stereo_top's own logic and stereo_synth_top's I/O), from a hierarchical `stat -json`.
+    modules_of_stages maps each stage's module name (stage_modules) to the stage. The cells of
+    another top (stereo_axil_top) are its own stage, AXI_REGISTERS."""
     modules = load_stat_json(stat_path)["modules"]
     totals = hierarchy_totals(modules)
     stages = {}
@@ -904,7 +912,7 @@ def stage_breakdown(stat_path, modules_of_stages, top=TOP):
                  {cell: n for cell, n in data.get("num_cells_by_type", {}).items()
                   if submodule(cell, modules) is None}
                  if module_kind(name) in ("stereo_top", top) else {})
-        key = stage or "glue"
+        key = stage or (AXI_REGISTERS if top != TOP and module_kind(name) == top else "glue")
         if stage:  # a stage that synthesized to nothing is reported, with no cells
             stages.setdefault(key, {})
         for cell, n in cells.items():
@@ -1485,7 +1493,9 @@ def command_table(args):
             lines += [f"| {name} {c['width']}x{c['height']} / {c['ndisp']} / "
                       f"{c['window']}x{c['window']}: stage | LUT | FF | BRAM (Kib) | DSP |",
                       "|---|---|---|---|---|"]
-            for name in STAGE_COLOURS:
+            names = list(STAGE_COLOURS) + [name for name in [AXI_REGISTERS]
+                                           if name in largest["stages"]]
+            for name in names:
                 r = with_bram_kbits(dict(largest["stages"].get(name, {})), target)
                 total = largest["resources"]
                 share = 100 * r.get("luts", 0) / total["luts"] if total["luts"] else 0
@@ -1600,8 +1610,14 @@ def check_stages(report):
     if stages is None:
         return
     missing = [name for name in STAGES if name not in stages]
+    if report.get("top", TOP) != TOP:
+        missing += [name for name in [AXI_REGISTERS] if name not in stages]
     if missing:
         raise ReportError(f"stages lack {', '.join(missing)}")
+    if AXI_REGISTERS in stages and stages[AXI_REGISTERS].get("ffs", 0) < AXI_REGISTERS_MIN_FFS:
+        raise ReportError(f"{report['top']} has {stages[AXI_REGISTERS].get('ffs', 0)} flip-flops of "
+                          f"its own, fewer than its counters and read data ({AXI_REGISTERS_MIN_FFS}"
+                          "): its register file was optimized away")
     for key in ("luts", "ffs", "brams", "dsps"):
         total = sum(stage.get(key, 0) for stage in stages.values())
         if abs(total - report["resources"][key]) > 1e-9:

@@ -715,6 +715,29 @@ class Tops(unittest.TestCase):
         synth.check_top_config(axil, {"shift_add": "all", "runtime_kernel": 0}, "ecp5")
         synth.check_top_config(top, {"shift_add": "all", "asw": 1}, "ice40")
 
+    def test_axi_registers_are_a_stage_of_their_own(self):
+        with tempfile.TemporaryDirectory() as folder:
+            stat = Path(folder) / "stat.json"
+            stat.write_text(STAT_WITH_LISTING.replace("stereo_synth_top", "stereo_axil_top"))
+            stages = synth.stage_breakdown(stat, synth.stage_modules(STAGE_LISTINGS),
+                                           "stereo_axil_top")
+        # the top's own cells (3 LUT2, 5 IBUF) apart from stereo_top's (7 FDRE, the glue)
+        self.assertEqual(stages["axi_registers"], {"IBUF": 5, "LUT2": 3})
+        self.assertEqual(stages["glue"], {"FDRE": 7})
+        xilinx = {name: synth.resources_xilinx(cells) for name, cells in stages.items()}
+        report = {"top": "stereo_axil_top", "stages": xilinx,
+                  "resources": {"luts": 37, "ffs": 10, "brams": 3.0, "dsps": 4}}
+        # 0 flip-flops of its own: the register file was optimized away (Yosys 0.23 and
+        # `~ADDR_BITS'(3)`); 128 (three 32-bit counters and the read data) is the least.
+        with self.assertRaisesRegex(synth.ReportError, "register file"):
+            synth.check_stages(report)
+        xilinx["axi_registers"]["ffs"] = 128
+        report["resources"]["ffs"] = 10 + 128  # the stages must still add up
+        synth.check_stages(report)
+        del xilinx["axi_registers"]
+        with self.assertRaisesRegex(synth.ReportError, "lack axi_registers"):
+            synth.check_stages(report)
+
     def test_table_shows_both_tops(self):
         points = [dict(Tables.point(16, 9000, 20, True), top=top) for top in
                   ("stereo_axil_top", "stereo_synth_top")]
