@@ -1,13 +1,16 @@
 #!/usr/bin/python3
-"""Synthesis reports for stereo_synth_top (docs/synthesis.md).
+"""Synthesis reports for stereo_synth_top and stereo_axil_top (docs/synthesis.md).
 
 Subcommands (each writes one JSON report; run with -h for the options):
   ice40     Yosys synth_ice40 + nextpnr-ice40 place and route: resources and Fmax.
   board     the iCEBreaker build of stereo_board_top: synth_ice40, nextpnr-ice40 on the UP5K
             with the board's pins (boards/icebreaker.pcf), icepack to a flashable .bin.
-  estimate  Yosys synth_xilinx (7-series) or synth_ecp5 resource estimate, no place and route.
+  estimate  Yosys synth_xilinx (7-series) or synth_ecp5 resource estimate, no place and route;
+            --top axil: stereo_axil_top, the AXI4-Lite top with its run-time kernel.
   fit       the largest configuration that places and routes on an iCE40 device.
-  sweep     estimates over a list of configurations, one JSON with every point.
+  sweep     estimates over a list of configurations, one JSON with every point; --jobs N at a
+            time, or --emit-commands: one shell command per point for a job runner.
+  merge     the point JSON of those commands into the sweep JSON.
   plot      SVG plots of a sweep (resources against each parameter, and per stage).
   table     markdown tables of sweeps and estimate reports (docs/synthesis.md).
   check     validates a report's fields (used by the ctest of label `synth`).
