@@ -741,7 +741,8 @@ def estimate(config, target, work=None, use_dsp=True, top=TOP):
     instances = {name: work / f"stage_{name}.txt" for name in STAGES}
     # chparam leaves the top as a derived "$paramod...<top>": name it back for stat.
     netlist = work / "netlist.json"
-    script = (f"read_verilog -sv {' '.join(rtl_sources())}; {chparam(config, ice40=target == 'ice40', top=top)}; "
+    script = (f"read_verilog -sv {' '.join(rtl_sources())}; "
+              f"{chparam(config, ice40=target == 'ice40', top=top)}; "
               f"{synth}; chformal -remove; opt_clean; rename -top {top}; "
               f"tee -q -o {stat} stat -json; " +
               "; ".join(f"tee -q -o {path} {stage_module_query(name)}"
@@ -947,11 +948,11 @@ def write_sweep(points, out):
     Path(out).write_text(json.dumps({"points": points}, indent=2) + "\n")
 
 
-# A config key of an estimate and the `estimate` option that sets it (None: a flag, set when the
+# A config key of an estimate and the `estimate` option that sets it (FLAG_OPTIONS: set when the
 # value is true; "--constant-kernel" is set for runtime_kernel 0).
-CONFIG_OPTIONS = {"width": "--width", "height": "--height", "ndisp": "--ndisp", "window": "--window",
-                  "lanes": "--lanes", "ring_block_min_fill": "--ring-min-fill", "cost": "--cost",
-                  "shift_add": "--shift-add", "max_min_disp": "--max-min-disp",
+CONFIG_OPTIONS = {"width": "--width", "height": "--height", "ndisp": "--ndisp",
+                  "window": "--window", "lanes": "--lanes", "ring_block_min_fill": "--ring-min-fill",
+                  "cost": "--cost", "shift_add": "--shift-add", "max_min_disp": "--max-min-disp",
                   "recompute_costs": "--recompute", "asw": "--asw",
                   "runtime_kernel": "--constant-kernel"}
 FLAG_OPTIONS = ("recompute_costs", "asw")
@@ -1164,7 +1165,8 @@ def point_report(path):
     try:
         report = json.loads(Path(path).read_text())
     except json.JSONDecodeError:
-        raise ReportError(f"{path} is not JSON, not a point report of `synth.py estimate`") from None
+        raise ReportError(f"{path} is not JSON, not a point report of `synth.py estimate`"
+                          ) from None
     if isinstance(report, dict) and report.get("partial"):
         raise ReportError(f"{path} is the partial report of an interrupted point: run its command "
                           "again")
@@ -1617,10 +1619,11 @@ def check_stages(report):
         missing += [name for name in [AXI_REGISTERS] if name not in stages]
     if missing:
         raise ReportError(f"stages lack {', '.join(missing)}")
-    if AXI_REGISTERS in stages and stages[AXI_REGISTERS].get("ffs", 0) < AXI_REGISTERS_MIN_FFS:
-        raise ReportError(f"{report['top']} has {stages[AXI_REGISTERS].get('ffs', 0)} flip-flops of "
-                          f"its own, fewer than its counters and read data ({AXI_REGISTERS_MIN_FFS}"
-                          "): its register file was optimized away")
+    own = stages.get(AXI_REGISTERS, {}).get("ffs", 0)
+    if AXI_REGISTERS in stages and own < AXI_REGISTERS_MIN_FFS:
+        raise ReportError(f"{report['top']} has {own} flip-flops of its own, fewer than its "
+                          f"counters and read data ({AXI_REGISTERS_MIN_FFS}): its register file "
+                          "was optimized away")
     for key in ("luts", "ffs", "brams", "dsps"):
         total = sum(stage.get(key, 0) for stage in stages.values())
         if abs(total - report["resources"][key]) > 1e-9:
