@@ -951,7 +951,8 @@ def write_sweep(points, out):
 # A config key of an estimate and the `estimate` option that sets it (FLAG_OPTIONS: set when the
 # value is true; "--constant-kernel" is set for runtime_kernel 0).
 CONFIG_OPTIONS = {"width": "--width", "height": "--height", "ndisp": "--ndisp",
-                  "window": "--window", "lanes": "--lanes", "ring_block_min_fill": "--ring-min-fill",
+                  "window": "--window", "lanes": "--lanes",
+                  "ring_block_min_fill": "--ring-min-fill",
                   "cost": "--cost", "shift_add": "--shift-add", "max_min_disp": "--max-min-disp",
                   "recompute_costs": "--recompute", "asw": "--asw",
                   "runtime_kernel": "--constant-kernel"}
