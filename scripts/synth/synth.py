@@ -738,7 +738,9 @@ def estimate(config, target, work=None, use_dsp=True, top=TOP):
              "ice40": f"synth_ice40 -noflatten -top {top}"}[target]  # no DSPs: the HX parts have none
     # Each stage's module, found through its instance in stereo_top (two stages can share a
     # module with different parameters: the CA rules are both stereo_ca_plane).
-    instances = {name: work / f"stage_{name}.txt" for name in STAGES}
+    # The census stage in front of the cost stage (g_census.census) with the census cost.
+    names = STAGES + ((CENSUS_STAGE,) if config.get("cost") == "census" else ())
+    instances = {name: work / f"stage_{name}.txt" for name in names}
     # chparam leaves the top as a derived "$paramod...<top>": name it back for stat.
     netlist = work / "netlist.json"
     script = (f"read_verilog -sv {' '.join(rtl_sources())}; "
@@ -846,6 +848,8 @@ def logic_depth(netlist_path, target):
 
 # Stage names in pipeline order; each is also the name of the stage's instance in stereo_top.
 STAGES = tuple(stage["name"] for stage in STAGE_TABLE["stages"])
+# The census stage (COST_CENSUS only), instance g_census.census of stereo_top.
+CENSUS_STAGE = STAGE_TABLE["census_stage"]["name"]
 # stereo_top's MAX_MIN_DISP default, read from the generated package (one definition).
 DEFAULT_MAX_MIN_DISP = int(re.search(r"DEFAULT_MAX_MIN_DISP\s*=\s*(\d+)",
                                      (REPO / "rtl" / "fx_pkg.sv").read_text()).group(1))
@@ -874,10 +878,10 @@ def stage_module_query(stage):
     """Yosys command listing `<module>/clk` of the module that implements stereo_top's instance
     `stage` (every stage module has a clk port): at the top, or inside the generate block of the
     Gaussian aggregation and CA rules (g_gaussian_ca: cost, aggregate, ca_rule1, ca_rule2) or of
-    the ASW core (g_asw: cost, asw)."""
+    the ASW core (g_asw: cost, asw), or the census stage (g_census: census)."""
     asw = ASW_INSTANCES.get(stage, stage)
     return (f"select -list *stereo_top/{stage} *stereo_top/g_gaussian_ca.{stage} %u "
-            f"*stereo_top/g_asw.{asw} %u %M w:clk %i")
+            f"*stereo_top/g_asw.{asw} %u *stereo_top/g_census.{stage} %u %M w:clk %i")
 
 
 def stage_modules(listings, absent=()):
@@ -1499,8 +1503,8 @@ def command_table(args):
             lines += [f"| {name} {c['width']}x{c['height']} / {c['ndisp']} / "
                       f"{c['window']}x{c['window']}: stage | LUT | FF | BRAM (Kib) | DSP |",
                       "|---|---|---|---|---|"]
-            names = list(STAGE_COLOURS) + [name for name in [AXI_REGISTERS]
-                                           if name in largest["stages"]]
+            names = [CENSUS_STAGE] * (CENSUS_STAGE in largest["stages"]) + list(
+                STAGE_COLOURS) + [AXI_REGISTERS] * (AXI_REGISTERS in largest["stages"])
             for name in names:
                 r = with_bram_kbits(dict(largest["stages"].get(name, {})), target)
                 total = largest["resources"]
