@@ -68,6 +68,7 @@ def check_top_config(top, config, target):
     if "shift_add" in config and config.get("runtime_kernel", 0 if top == TOP else 1):
         raise ReportError(f"--shift-add needs a constant kernel ({top}: add --constant-kernel)")
 
+
 # Device capacities (vendor data sheets): logic cells, 4 Kib block RAMs, DSPs.
 ICE40_DEVICES = {
     "up5k": {"package": "sg48", "luts": 5280, "brams": 30, "dsps": 8},
