@@ -45,6 +45,11 @@ emit)
     # Self-contained: run from another folder, the second command first.
     (cd / && tac "$OLDPWD/commands.txt" | while read -r command; do sh -c "$command" || exit 1; done) \
         || exit 1
+    # Each point report is complete, its stages (the census stage of the second) adding up.
+    for point in sweep_emit_points/point_0001.json sweep_emit_points/point_0002.json; do
+        "$python" "$synth" check "$point" || exit 1
+    done
+    grep -q '"census": {' sweep_emit_points/point_0002.json || { echo "no census stage"; exit 1; }
     "$python" "$synth" merge sweep_emit.json sweep_emit_points || exit 1
     same sweep_ref.json sweep_emit.json ;;
 *)
