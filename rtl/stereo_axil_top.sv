@@ -114,7 +114,7 @@ module stereo_axil_top #(
   // The register word at a word offset, for reads and for merging partial writes.
   function automatic logic [31:0] register_word(input logic [ADDR_BITS-1:0] addr);
     logic [ADDR_BITS-1:0] word;
-    word = addr & ~ADDR_BITS'(3);
+    word = addr & ~(ADDR_BITS'(3));
     register_word = '0;
     case (32'(word))
       fx_pkg::REG_ID: register_word = ID;
@@ -176,7 +176,7 @@ module stereo_axil_top #(
   logic [ADDR_BITS-1:0] write_word;
   logic [31:0] write_value;
   always_comb begin
-    write_word = write_addr_now & ~ADDR_BITS'(3);
+    write_word = write_addr_now & ~(ADDR_BITS'(3));
     write_value = merge(register_word(write_addr_now), write_data_now, write_strobe_now);
   end
 

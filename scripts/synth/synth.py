@@ -1,13 +1,16 @@
 #!/usr/bin/python3
-"""Synthesis reports for stereo_synth_top (docs/synthesis.md).
+"""Synthesis reports for stereo_synth_top and stereo_axil_top (docs/synthesis.md).
 
 Subcommands (each writes one JSON report; run with -h for the options):
   ice40     Yosys synth_ice40 + nextpnr-ice40 place and route: resources and Fmax.
   board     the iCEBreaker build of stereo_board_top: synth_ice40, nextpnr-ice40 on the UP5K
             with the board's pins (boards/icebreaker.pcf), icepack to a flashable .bin.
-  estimate  Yosys synth_xilinx (7-series) or synth_ecp5 resource estimate, no place and route.
+  estimate  Yosys synth_xilinx (7-series) or synth_ecp5 resource estimate, no place and route;
+            --top axil: stereo_axil_top, the AXI4-Lite top with its run-time kernel.
   fit       the largest configuration that places and routes on an iCE40 device.
-  sweep     estimates over a list of configurations, one JSON with every point.
+  sweep     estimates over a list of configurations, one JSON with every point; --jobs N at a
+            time, or --emit-commands: one shell command per point for a job runner.
+  merge     the point JSON of those commands into the sweep JSON.
   plot      SVG plots of a sweep (resources against each parameter, and per stage).
   table     markdown tables of sweeps and estimate reports (docs/synthesis.md).
   check     validates a report's fields (used by the ctest of label `synth`).
@@ -21,6 +24,7 @@ import io
 import json
 import os
 import re
+import shlex
 import signal
 import subprocess
 import sys
@@ -31,6 +35,39 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parents[2]
 RTL = Path(os.environ.get("STEREO_RTL_DIR", REPO / "rtl"))  # override: a snapshot
 TOP = "stereo_synth_top"
+# The tops `estimate` (and the sweeps) synthesize, `--top NAME` (the module or its short name):
+# stereo_synth_top (the constant kernel, the configuration on ports) or stereo_axil_top (what
+# integrators instantiate: the configuration and a run-time kernel in AXI4-Lite registers).
+# "absent": the options that set a parameter the top does not have.
+AXIL_TOP = "stereo_axil_top"
+ESTIMATE_TOPS = {
+    TOP: {"short": "synth", "absent": {"runtime_kernel": "--constant-kernel"}},
+    AXIL_TOP: {"short": "axil", "absent": {"ring_block_min_fill": "--ring-min-fill",
+                                           "asw": "--asw"}},
+}
+
+
+def resolve_top(name):
+    """The module of an estimate top given by its name or short name."""
+    for module, info in ESTIMATE_TOPS.items():
+        if name in (module, info["short"]):
+            return module
+    raise ReportError(f"unknown top {name!r} (" + ", ".join(
+        f"{module} or {info['short']}" for module, info in ESTIMATE_TOPS.items()) + ")")
+
+
+def check_top_config(top, config, target):
+    """Refuses the options that set a parameter `top` lacks, and the iCE40 for the AXI top (no
+    RING_BLOCK_RAM: its group rings could not go to block RAM)."""
+    for key, option in ESTIMATE_TOPS[top]["absent"].items():
+        if key in config:
+            raise ReportError(f"{top} has no parameter for {option}")
+    if top == AXIL_TOP and target == "ice40":
+        raise ReportError(f"{top} has no RING_BLOCK_RAM for the iCE40; estimate it for xilinx or "
+                          "ecp5")
+    if "shift_add" in config and config.get("runtime_kernel", 0 if top == TOP else 1):
+        raise ReportError(f"--shift-add needs a constant kernel ({top}: add --constant-kernel)")
+
 
 # Device capacities (vendor data sheets): logic cells, 4 Kib block RAMs, DSPs.
 ICE40_DEVICES = {
@@ -120,6 +157,9 @@ def config_from_args(args):
     # stereo_top's MAX_MIN_DISP, likewise recorded only when given.
     if getattr(args, "max_min_disp", None) is not None and getattr(args, "command", None) != "board":
         config["max_min_disp"] = args.max_min_disp
+    # stereo_axil_top's RUNTIME_KERNEL 0 (the default kernel as constants), recorded when given.
+    if getattr(args, "constant_kernel", False):
+        config["runtime_kernel"] = 0
     if config["window"] % 2 != 1 or not 1 <= config["window"] <= 31:
         raise ReportError(f"window must be odd and in 1..31, got {config['window']}")
     if not 1 <= config["ndisp"] <= 256:
@@ -137,9 +177,10 @@ def clocks_per_step(config):
     return config["ndisp"] // config.get("lanes", config["ndisp"])
 
 
-def chparam(config, ice40=False):
-    """chparam of stereo_synth_top; ice40: the group rings in block RAM (RING_BLOCK_RAM, the
-    iCE40 has no LUT RAM and its flip-flops are logic cells)."""
+def chparam(config, ice40=False, top=TOP):
+    """chparam of stereo_synth_top (or `top`, which takes the same parameters but those of
+    check_top_config); ice40: the group rings in block RAM (RING_BLOCK_RAM, the iCE40 has no LUT
+    RAM and its flip-flops are logic cells)."""
     lanes = config.get("lanes", config["ndisp"])
     extra = (f"-set MAX_MIN_DISP {config['max_min_disp']} " if "max_min_disp" in config else "")
     if "ring_block_min_fill" in config:
@@ -152,9 +193,11 @@ def chparam(config, ice40=False):
         extra += "-set RECOMPUTE_COSTS 1 "
     if config.get("asw"):
         extra += "-set ASW 1 "
+    if "runtime_kernel" in config:
+        extra += f"-set RUNTIME_KERNEL {config['runtime_kernel']} "
     return (f"chparam -set WIDTH {config['width']} -set HEIGHT {config['height']} "
             f"-set NDISP {config['ndisp']} -set WINDOW {config['window']} "
-            f"-set LANES {lanes} {extra}{'-set RING_BLOCK_RAM 1 ' if ice40 else ''}{TOP}")
+            f"-set LANES {lanes} {extra}{'-set RING_BLOCK_RAM 1 ' if ice40 else ''}{top}")
 
 
 def progress(message):
@@ -676,28 +719,34 @@ def command_fit(args):
 
 def command_estimate(args):
     config = config_from_args(args)
-    report = estimate(config, args.target, args.work, use_dsp=not args.no_dsp)
+    top = resolve_top(args.top)
+    check_top_config(top, config, args.target)
+    report = estimate(config, args.target, args.work, use_dsp=not args.no_dsp, top=top)
     write_report(report, args.out)
     return report
 
 
-def estimate(config, target, work=None, use_dsp=True):
-    """Resource estimate of one configuration; the hierarchy is kept (no flattening), so that
-    every stage is synthesized once and reported on its own (`stages`)."""
+def estimate(config, target, work=None, use_dsp=True, top=TOP):
+    """Resource estimate of one configuration of `top` (ESTIMATE_TOPS); the hierarchy is kept
+    (no flattening), so that every stage is synthesized once and reported on its own
+    (`stages`)."""
     work = Path(work or tempfile.mkdtemp(prefix=f"stereo_{target}_"))
     work.mkdir(parents=True, exist_ok=True)
     stat = work / "stat.json"
     nodsp = "" if use_dsp else " -nodsp"
-    synth = {"xilinx": f"synth_xilinx -family xc7{nodsp} -top {TOP}",
-             "ecp5": f"synth_ecp5 -noflatten{nodsp} -top {TOP}",
-             "ice40": f"synth_ice40 -noflatten -top {TOP}"}[target]  # no DSPs: the HX parts have none
+    synth = {"xilinx": f"synth_xilinx -family xc7{nodsp} -top {top}",
+             "ecp5": f"synth_ecp5 -noflatten{nodsp} -top {top}",
+             "ice40": f"synth_ice40 -noflatten -top {top}"}[target]  # no DSPs: the HX parts have none
     # Each stage's module, found through its instance in stereo_top (two stages can share a
     # module with different parameters: the CA rules are both stereo_ca_plane).
-    instances = {name: work / f"stage_{name}.txt" for name in STAGES}
-    # chparam leaves the top as a derived "$paramod...stereo_synth_top": name it back for stat.
+    # The census stage in front of the cost stage (g_census.census) with the census cost.
+    names = STAGES + ((CENSUS_STAGE,) if config.get("cost") == "census" else ())
+    instances = {name: work / f"stage_{name}.txt" for name in names}
+    # chparam leaves the top as a derived "$paramod...<top>": name it back for stat.
     netlist = work / "netlist.json"
-    script = (f"read_verilog -sv {' '.join(rtl_sources())}; {chparam(config, ice40=target == 'ice40')}; "
-              f"{synth}; chformal -remove; opt_clean; rename -top {TOP}; "
+    script = (f"read_verilog -sv {' '.join(rtl_sources())}; "
+              f"{chparam(config, ice40=target == 'ice40', top=top)}; "
+              f"{synth}; chformal -remove; opt_clean; rename -top {top}; "
               f"tee -q -o {stat} stat -json; " +
               "; ".join(f"tee -q -o {path} {stage_module_query(name)}"
                         for name, path in instances.items()) +
@@ -705,14 +754,14 @@ def estimate(config, target, work=None, use_dsp=True):
     seconds = run_yosys(script, work / "yosys.log")
     resources_of = {"xilinx": resources_xilinx, "ecp5": resources_ecp5,
                     "ice40": resources_ice40}[target]
-    cells = read_stat_json(stat)
+    cells = read_stat_json(stat, top)
     modules = stage_modules({name: path.read_text() for name, path in instances.items()},
                             ASW_ABSENT_STAGES if config.get("asw") else ())
     stages = {name: resources_of(stage_cells) for name, stage_cells in
-              stage_breakdown(stat, modules).items()}
+              stage_breakdown(stat, modules, top).items()}
     depth = logic_depth(netlist, target)
     netlist.unlink()  # hundreds of MB at the VGA size; the depth is what was needed of it
-    return {"target": target, "top": TOP, "config": config, "use_dsp": use_dsp,
+    return {"target": target, "top": top, "config": config, "use_dsp": use_dsp,
             "resources": resources_of(cells), "stages": stages, "logic_depth": depth,
             "yosys_seconds": round(seconds, 1), "tools": {"yosys": tool_version(["yosys", "-V"])},
             "note": "Yosys resource estimate before place and route; no Fmax"}
@@ -800,6 +849,8 @@ def logic_depth(netlist_path, target):
 
 # Stage names in pipeline order; each is also the name of the stage's instance in stereo_top.
 STAGES = tuple(stage["name"] for stage in STAGE_TABLE["stages"])
+# The census stage (COST_CENSUS only), instance g_census.census of stereo_top.
+CENSUS_STAGE = STAGE_TABLE["census_stage"]["name"]
 # stereo_top's MAX_MIN_DISP default, read from the generated package (one definition).
 DEFAULT_MAX_MIN_DISP = int(re.search(r"DEFAULT_MAX_MIN_DISP\s*=\s*(\d+)",
                                      (REPO / "rtl" / "fx_pkg.sv").read_text()).group(1))
@@ -828,10 +879,10 @@ def stage_module_query(stage):
     """Yosys command listing `<module>/clk` of the module that implements stereo_top's instance
     `stage` (every stage module has a clk port): at the top, or inside the generate block of the
     Gaussian aggregation and CA rules (g_gaussian_ca: cost, aggregate, ca_rule1, ca_rule2) or of
-    the ASW core (g_asw: cost, asw)."""
+    the ASW core (g_asw: cost, asw), or the census stage (g_census: census)."""
     asw = ASW_INSTANCES.get(stage, stage)
     return (f"select -list *stereo_top/{stage} *stereo_top/g_gaussian_ca.{stage} %u "
-            f"*stereo_top/g_asw.{asw} %u %M w:clk %i")
+            f"*stereo_top/g_asw.{asw} %u *stereo_top/g_census.{stage} %u %M w:clk %i")
 
 
 def stage_modules(listings, absent=()):
@@ -849,10 +900,18 @@ def stage_modules(listings, absent=()):
     return modules
 
 
-def stage_breakdown(stat_path, modules_of_stages):
+# The stage of stereo_axil_top's own cells: the AXI4-Lite register file, the counters, the I/O.
+AXI_REGISTERS = "axi_registers"
+# Flip-flops it cannot have fewer of (rtl/stereo_axil_top.sv): the FRAMES_IN, FRAMES_OUT and
+# STALLS counters and the read data register, 32 bits each, all of them read over AXI4-Lite.
+AXI_REGISTERS_MIN_FFS = 4 * 32
+
+
+def stage_breakdown(stat_path, modules_of_stages, top=TOP):
     """Cells of each pipeline stage including its line buffers, and of the glue around them
-    (stereo_top's own logic and the AXI wrapper), from a hierarchical `stat -json`.
-    modules_of_stages maps each stage's module name (stage_modules) to the stage."""
+    (stereo_top's own logic and stereo_synth_top's I/O), from a hierarchical `stat -json`.
+    modules_of_stages maps each stage's module name (stage_modules) to the stage. The cells of
+    another top (stereo_axil_top) are its own stage, AXI_REGISTERS."""
     modules = load_stat_json(stat_path)["modules"]
     totals = hierarchy_totals(modules)
     stages = {}
@@ -861,8 +920,8 @@ def stage_breakdown(stat_path, modules_of_stages):
         cells = (totals[name] if stage else
                  {cell: n for cell, n in data.get("num_cells_by_type", {}).items()
                   if submodule(cell, modules) is None}
-                 if module_kind(name) in ("stereo_top", TOP) else {})
-        key = stage or "glue"
+                 if module_kind(name) in ("stereo_top", top) else {})
+        key = stage or (AXI_REGISTERS if top != TOP and module_kind(name) == top else "glue")
         if stage:  # a stage that synthesized to nothing is reported, with no cells
             stages.setdefault(key, {})
         for cell, n in cells.items():
@@ -878,25 +937,278 @@ SWEEP = ([{"width": 640, "height": 480, "ndisp": n, "window": 11} for n in (8, 1
          [{"width": w, "height": w * 3 // 4, "ndisp": 16, "window": 11} for w in (160, 320)])
 
 
-def command_sweep(args):
-    """Estimates of every SWEEP point not yet in the output file (it resumes after a stop)."""
+def point_key(point):
+    """What makes two estimate points the same point of a sweep (resuming, merging)."""
+    return (point["target"], point.get("top", TOP), json.dumps(point["config"], sort_keys=True),
+            point.get("use_dsp", True))
+
+
+def read_sweep(out):
+    """The points already in a sweep file (none when it does not exist)."""
+    out = Path(out)
+    return json.loads(out.read_text()).get("points", []) if out.exists() else []
+
+
+def write_sweep(points, out):
+    Path(out).write_text(json.dumps({"points": points}, indent=2) + "\n")
+
+
+# A config key of an estimate and the `estimate` option that sets it (FLAG_OPTIONS: set when the
+# value is true; "--constant-kernel" is set for runtime_kernel 0).
+CONFIG_OPTIONS = {"width": "--width", "height": "--height", "ndisp": "--ndisp",
+                  "window": "--window", "lanes": "--lanes",
+                  "ring_block_min_fill": "--ring-min-fill",
+                  "cost": "--cost", "shift_add": "--shift-add", "max_min_disp": "--max-min-disp",
+                  "recompute_costs": "--recompute", "asw": "--asw",
+                  "runtime_kernel": "--constant-kernel"}
+FLAG_OPTIONS = ("recompute_costs", "asw")
+
+
+def estimate_arguments(job):
+    """The `synth.py estimate` arguments of one sweep point {target, top, config, use_dsp}."""
+    words = ["estimate", "--target", job["target"], "--top", job["top"]]
+    for key, value in job["config"].items():
+        if key not in CONFIG_OPTIONS:
+            raise ReportError(f"configuration key {key!r} is not an estimate option (known: "
+                              + ", ".join(CONFIG_OPTIONS) + ")")
+        if key == "runtime_kernel":
+            if value not in (0, 1):
+                raise ReportError(f"runtime_kernel must be 0 or 1, got {value!r}")
+            words += [] if value else ["--constant-kernel"]
+        elif key in FLAG_OPTIONS:
+            words += [CONFIG_OPTIONS[key]] if value else []
+        else:
+            words += [CONFIG_OPTIONS[key], str(value)]
+    if not job.get("use_dsp", True):
+        words.append("--no-dsp")
+    return words
+
+
+class ArgumentError(ReportError):
+    """A parse error of build_parser(raising=True): one line, no usage text, no exit."""
+
+
+class RaisingParser(argparse.ArgumentParser):
+    def error(self, message):
+        raise ArgumentError(message)
+
+
+def sweep_job(target, top, config, use_dsp=True):
+    """One sweep point, checked and normalised as `synth.py estimate` would take it: its
+    arguments are parsed by estimate's own parser, so that a point command (point_command)
+    reproduces exactly this configuration."""
+    job = {"target": target, "top": resolve_top(top), "config": dict(config), "use_dsp": use_dsp}
+    try:
+        args = build_parser(raising=True).parse_args(estimate_arguments(job))
+        job["config"] = config_from_args(args)
+        check_top_config(job["top"], job["config"], target)
+    except ReportError as error:
+        raise ReportError(f"configuration {json.dumps(config)}: {error}") from None
+    return job
+
+
+def point_command(job, out, work=None):
+    """One self-contained shell command that estimates a sweep point into the JSON file `out`
+    (absolute paths: it runs from any folder, on any node that sees them)."""
+    words = [sys.executable, str(Path(__file__).resolve()), *estimate_arguments(job),
+             "--out", str(Path(out).resolve())]
+    if work:
+        words += ["--work", str(Path(work).resolve())]
+    if "STEREO_RTL_DIR" in os.environ:
+        words = ["env", f"STEREO_RTL_DIR={os.environ['STEREO_RTL_DIR']}"] + words
+    return shlex.join(words)
+
+
+def point_name(index, count):
+    """point_0001 ...: numbered from 1 in the sweep's order, so that file names sort as it."""
+    return f"point_{index + 1:0{max(4, len(str(count)))}d}"
+
+
+def positive_jobs(text):
+    try:
+        jobs = int(text)
+    except ValueError:
+        raise ReportError(f"--jobs must be a positive integer, got {text!r}") from None
+    if jobs < 1:
+        raise ReportError(f"--jobs must be a positive integer, got {jobs}")
+    return jobs
+
+
+def run_sweep(jobs, args):
+    """The sweep points `jobs` not yet in args.out, in their order: estimated in this process
+    (--jobs 1), as --jobs N parallel `synth.py estimate` processes, or written as one shell
+    command per point (--emit-commands FILE) for a job runner, whose JSON files `synth.py merge`
+    gathers. Either way the points land in args.out in the order of `jobs`."""
+    parallel = positive_jobs(args.jobs)
     out = Path(args.out)
-    points = json.loads(out.read_text()).get("points", []) if out.exists() else []
+    points = read_sweep(out)
+    done = {point_key(p) for p in points}
+    todo = [(index, job) for index, job in enumerate(jobs) if point_key(job) not in done]
+    folder = Path(args.points_dir or out.with_name(out.stem + "_points"))
+    if args.emit_commands:
+        folder.mkdir(parents=True, exist_ok=True)
+        lines = [point_command(job, folder / f"{point_name(i, len(jobs))}.json",
+                               folder / point_name(i, len(jobs))) for i, job in todo]
+        Path(args.emit_commands).write_text("".join(line + "\n" for line in lines))
+        progress(f"{len(lines)} point commands in {args.emit_commands} ({len(jobs) - len(todo)} "
+                 f"already in {out}); then: {Path(__file__).name} merge {out} {folder}")
+        return points
+    if parallel == 1:
+        for _, job in todo:
+            print(f"{job['target']} {job['config']}{'' if job['use_dsp'] else ' no DSP'}"
+                  f"{'' if job['top'] == TOP else ' ' + job['top']}", flush=True)
+            points.append(estimate(job["config"], job["target"], use_dsp=job["use_dsp"],
+                                   top=job["top"]))
+            write_sweep(points, out)
+        return points
+    folder.mkdir(parents=True, exist_ok=True)
+    before = list(points)
+    finished = {}
 
-    def key(target, config, use_dsp):
-        return (target, tuple(sorted(config.items())), use_dsp)
+    def record(position, point):
+        finished[position] = point
+        write_sweep(before + [finished[k] for k in sorted(finished)], out)
 
-    done = {key(p["target"], p["config"], p.get("use_dsp", True)) for p in points}
+    run_parallel([(position, job, folder / point_name(i, len(jobs)))
+                  for position, (i, job) in enumerate(todo)], parallel, record)
+    return before + [finished[k] for k in sorted(finished)]
+
+
+# The point processes of a parallel sweep that are running, stopped when the sweep is.
+CHILDREN = {}
+
+
+def run_parallel(tasks, parallel, record):
+    """Runs `synth.py estimate` for each (position, job, base) task, `parallel` at a time; each
+    writes base.json, its Yosys files in base/ and its stderr in base.log. record(position,
+    point) is called as each finishes. A failed point stops the launching of more; the sweep
+    fails once the running ones finish. Interrupted, it stops them and raises Interrupted."""
+    pending = list(tasks)
+    count = len(tasks)
+    failures = []
+    last_print = time.monotonic()
+    try:
+        while pending or CHILDREN:
+            while pending and len(CHILDREN) < parallel and not failures:
+                position, job, base = pending.pop(0)
+                Path(f"{base}.json").unlink(missing_ok=True)
+                log = open(f"{base}.log", "w")
+                command = point_command(job, f"{base}.json", base)
+                process = subprocess.Popen(shlex.split(command), stdout=log, stderr=log,
+                                           stdin=subprocess.DEVNULL)
+                CHILDREN[position] = (process, log, base, time.monotonic())
+                progress(f"point {position + 1}/{count} started: {job['target']} {job['top']} "
+                         f"{job['config']} (log {base}.log)")
+            time.sleep(0.2)
+            for position, (process, log, base, started) in list(CHILDREN.items()):
+                if process.poll() is None:
+                    continue
+                log.close()
+                del CHILDREN[position]
+                seconds = time.monotonic() - started
+                if process.returncode != 0:
+                    lines = Path(f"{base}.log").read_text(errors="replace").strip().splitlines()
+                    failures.append(f"point {position + 1} failed (log {base}.log): "
+                                    + (lines[-1] if lines else f"exit {process.returncode}"))
+                    progress(failures[-1])
+                    continue
+                record(position, json.loads(Path(f"{base}.json").read_text()))
+                progress(f"point {position + 1}/{count} done in {seconds:.0f} s")
+            now = time.monotonic()
+            if CHILDREN and now - last_print >= PROGRESS_SECONDS:
+                last_print = now
+                running = ", ".join(f"{position + 1} ({now - started:.0f} s)" for position,
+                                    (_, _, _, started) in sorted(CHILDREN.items()))
+                progress(f"{count - len(pending) - len(CHILDREN)} of {count} points finished; "
+                         f"running: {running}")
+    except (Interrupted, KeyboardInterrupt):
+        for process, log, base, _ in CHILDREN.values():
+            process.terminate()
+        for process, log, base, _ in CHILDREN.values():
+            try:
+                process.wait(timeout=15)
+            except subprocess.TimeoutExpired:
+                process.kill()
+            log.close()
+        CHILDREN.clear()
+        raise Interrupted()
+    if failures:
+        raise ReportError(failures[0] + (f" (and {len(failures) - 1} more)"
+                                         if len(failures) > 1 else ""))
+
+
+def sweep_configs(args):
+    """The configurations of `sweep`: --configs FILE (a JSON list of configuration objects, the
+    `config` of estimate reports, in the order given), else SWEEP up to --max-ndisp."""
+    if args.configs:
+        configs = json.loads(Path(args.configs).read_text())
+        if not isinstance(configs, list) or not all(isinstance(c, dict) for c in configs):
+            raise ReportError(f"{args.configs} is not a JSON list of configuration objects")
+        return configs
+    return [config for config in sorted(SWEEP, key=lambda c: (c["ndisp"], c["window"], c["width"]))
+            if config["ndisp"] <= args.max_ndisp]
+
+
+def command_sweep(args):
+    """Estimates of every sweep point not yet in the output file (it resumes after a stop)."""
     use_dsp = not args.no_dsp
+    jobs = []
     for target in args.targets.split(","):
         if target not in ("xilinx", "ecp5"):
             raise ReportError(f"unknown target {target!r} (xilinx or ecp5)")
-        for config in sorted(SWEEP, key=lambda c: (c["ndisp"], c["window"], c["width"])):
-            if config["ndisp"] > args.max_ndisp or key(target, config, use_dsp) in done:
-                continue
-            print(f"{target} {config}{'' if use_dsp else ' no DSP'}", flush=True)
-            points.append(estimate(config, target, use_dsp=use_dsp))
-            out.write_text(json.dumps({"points": points}, indent=2) + "\n")
+        jobs += [sweep_job(target, args.top, config | kernel_option(args), use_dsp)
+                 for config in sweep_configs(args)]
+    return run_sweep(jobs, args)
+
+
+def kernel_option(args):
+    """The configuration key of --constant-kernel, for the sweeps."""
+    return {"runtime_kernel": 0} if args.constant_kernel else {}
+
+
+def point_report(path):
+    """The estimate report in `path`, or a ReportError saying why it is not one."""
+    try:
+        report = json.loads(Path(path).read_text())
+    except json.JSONDecodeError:
+        raise ReportError(f"{path} is not JSON, not a point report of `synth.py estimate`"
+                          ) from None
+    if isinstance(report, dict) and report.get("partial"):
+        raise ReportError(f"{path} is the partial report of an interrupted point: run its command "
+                          "again")
+    if not (isinstance(report, dict) and report.get("target") in ("xilinx", "ecp5", "ice40") and
+            isinstance(report.get("config"), dict) and isinstance(report.get("resources"), dict)
+            and "use_dsp" in report):
+        raise ReportError(f"{path} is not a point report of `synth.py estimate` (a target, config, "
+                          "use_dsp and resources)")
+    return report
+
+
+def command_merge(args):
+    """The sweep JSON that the in-process sweep writes, from the point files of its
+    --emit-commands (in file-name order within a folder)."""
+    paths = []
+    for name in args.inputs:
+        path = Path(name)
+        if path.is_dir():
+            found = sorted(path.glob("*.json"))
+            if not found:
+                raise ReportError(f"{path} holds no .json files")
+            paths += found
+        elif path.is_file():
+            paths.append(path)
+        else:
+            raise ReportError(f"{path}: no such file or folder")
+    points = read_sweep(args.out)
+    done = {point_key(p) for p in points}
+    added = 0
+    for report in map(point_report, paths):
+        if point_key(report) not in done:
+            points.append(report)
+            done.add(point_key(report))
+            added += 1
+    write_sweep(points, args.out)
+    progress(f"{added} points added to {args.out} ({len(points)} in all)")
     return points
 
 
@@ -916,20 +1228,11 @@ def parse_lane_points(text):
 
 def command_lanes_sweep(args):
     """Estimates over (NDISP, LANES) at one frame size and window (resumable, like `sweep`)."""
-    out = Path(args.out)
-    points = json.loads(out.read_text()).get("points", []) if out.exists() else []
-    done = {(p["target"], p["config"]["ndisp"], p["config"].get("lanes", p["config"]["ndisp"]))
-            for p in points if p["config"]["width"] == args.width and
-            p["config"]["window"] == args.window}
-    for ndisp, lanes in parse_lane_points(args.points):
-        if (args.target, ndisp, lanes) in done:
-            continue
-        config = {"width": args.width, "height": args.height, "ndisp": ndisp,
-                  "window": args.window, "lanes": lanes}
-        progress(f"{args.target} {config}")
-        points.append(estimate(config, args.target))
-        out.write_text(json.dumps({"points": points}, indent=2) + "\n")
-    return points
+    jobs = [sweep_job(args.target, args.top, {"width": args.width, "height": args.height,
+                                              "ndisp": ndisp, "window": args.window,
+                                              "lanes": lanes} | kernel_option(args))
+            for ndisp, lanes in parse_lane_points(args.points)]
+    return run_sweep(jobs, args)
 
 
 def plot_lanes(points, target):
@@ -1163,25 +1466,29 @@ def estimate_points(path):
 
 
 def command_table(args):
-    """Markdown tables of sweep points: one per target, then each stage's share at the largest
-    configuration. fps and M disparity evaluations/s at --clock MHz (an assumed clock: Yosys
-    gives no Fmax for these targets)."""
+    """Markdown tables of sweep points: one per target (and top, stereo_synth_top's first), then
+    each stage's share at the largest configuration. fps and M disparity evaluations/s at --clock
+    MHz (an assumed clock: Yosys gives no Fmax for these targets)."""
     points = [point for path in args.sweeps for point in estimate_points(path)]
     if not points:
         raise ReportError("no sweep points")
     lines = []
-    for target in sorted({p["target"] for p in points}):
-        rows = sorted((p for p in points if p["target"] == target),
+    for target, top in sorted({(p["target"], p.get("top", TOP)) for p in points},
+                              key=lambda group: (group[0], group[1] != TOP, group[1])):
+        name = target if top == TOP else f"{target}, {top}"
+        rows = sorted((p for p in points if p["target"] == target and p.get("top", TOP) == top),
                       key=lambda p: (not p.get("use_dsp", True), p["config"]["width"],
                                      p["config"]["ndisp"], p["config"]["window"]))
-        lines += [f"| {target} | W x H | labels | window | LUT | FF | carry | BRAM (Kib) | DSP | "
+        lines += [f"| {name} | W x H | labels | window | LUT | FF | carry | BRAM (Kib) | DSP | "
                   f"smallest listed part | fps at {args.clock:g} MHz | M disp. eval./s |",
                   "|---|---|---|---|---|---|---|---|---|---|---|---|"]
         for p in rows:
             c, r = p["config"], with_bram_kbits(p["resources"], target)
             fps, mdes = throughput(c, args.clock)
             dsp = "" if p.get("use_dsp", True) else " (no DSP)"
-            lines.append(f"| {target}{dsp} | {c['width']} x {c['height']} | {c['ndisp']} | "
+            if top != TOP and c.get("runtime_kernel") == 0:
+                dsp = " (constant kernel)" + dsp
+            lines.append(f"| {name}{dsp} | {c['width']} x {c['height']} | {c['ndisp']} | "
                          f"{c['window']}x{c['window']} | {r['luts']:,} | {r['ffs']:,} | "
                          f"{r['carries']:,} | {r['bram_kbits']:,} | {r['dsps']:,} | "
                          f"{smallest_device(target, r) or 'none listed'} | {fps:,.0f} | "
@@ -1194,10 +1501,12 @@ def command_table(args):
                                      * p["config"]["width"]), default=None)
         if largest:
             c = largest["config"]
-            lines += [f"| {target} {c['width']}x{c['height']} / {c['ndisp']} / "
+            lines += [f"| {name} {c['width']}x{c['height']} / {c['ndisp']} / "
                       f"{c['window']}x{c['window']}: stage | LUT | FF | BRAM (Kib) | DSP |",
                       "|---|---|---|---|---|"]
-            for name in STAGE_COLOURS:
+            names = [CENSUS_STAGE] * (CENSUS_STAGE in largest["stages"]) + list(
+                STAGE_COLOURS) + [AXI_REGISTERS] * (AXI_REGISTERS in largest["stages"])
+            for name in names:
                 r = with_bram_kbits(dict(largest["stages"].get(name, {})), target)
                 total = largest["resources"]
                 share = 100 * r.get("luts", 0) / total["luts"] if total["luts"] else 0
@@ -1312,8 +1621,15 @@ def check_stages(report):
     if stages is None:
         return
     missing = [name for name in STAGES if name not in stages]
+    if report.get("top", TOP) != TOP:
+        missing += [name for name in [AXI_REGISTERS] if name not in stages]
     if missing:
         raise ReportError(f"stages lack {', '.join(missing)}")
+    own = stages.get(AXI_REGISTERS, {}).get("ffs", 0)
+    if AXI_REGISTERS in stages and own < AXI_REGISTERS_MIN_FFS:
+        raise ReportError(f"{report['top']} has {own} flip-flops of its own, fewer than its "
+                          f"counters and read data ({AXI_REGISTERS_MIN_FFS}): its register file "
+                          "was optimized away")
     for key in ("luts", "ffs", "brams", "dsps"):
         total = sum(stage.get(key, 0) for stage in stages.values())
         if abs(total - report["resources"][key]) > 1e-9:
@@ -1503,6 +1819,17 @@ def add_config_arguments(parser, width=64, height=48, ndisp=4, window=5):
     parser.add_argument("--out", help="JSON report file (default: stdout)")
 
 
+def add_top_arguments(parser):
+    """--top and --constant-kernel of `estimate` and the sweeps."""
+    parser.add_argument("--top", default=TOP, metavar="TOP",
+                        help=f"the top synthesized: {TOP} (synth, the default: constant kernel, "
+                        f"configuration on ports) or {AXIL_TOP} (axil: AXI4-Lite registers and a "
+                        "run-time kernel, what integrators instantiate)")
+    parser.add_argument("--constant-kernel", action="store_true",
+                        help=f"{AXIL_TOP} RUNTIME_KERNEL 0: the default kernel as constants, as "
+                        f"in {TOP}")
+
+
 def add_ice40_arguments(parser, device):
     """The place-and-route options of the ice40 and fit commands."""
     parser.add_argument("--device", choices=sorted(ICE40_DEVICES), default=device)
@@ -1513,9 +1840,26 @@ def add_ice40_arguments(parser, device):
                         help="stereo_top MAX_MIN_DISP (default: the RTL's default)")
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+def add_sweep_arguments(parser):
+    """The options of `sweep` and `lanes-sweep` about how the points run."""
+    add_top_arguments(parser)
+    parser.add_argument("--jobs", default="1", metavar="N",
+                        help="run N `synth.py estimate` processes at a time (one Yosys each); "
+                        "the JSON is the same for every N, points in the sweep's order")
+    parser.add_argument("--emit-commands", metavar="FILE",
+                        help="estimate nothing: write one self-contained shell command per point "
+                        "not yet in --out to FILE (for GNU parallel, xargs -P, make -j or a Slurm "
+                        "array), each writing its JSON to --points-dir; then `merge`")
+    parser.add_argument("--points-dir", metavar="DIR",
+                        help="the points' JSON files, logs and Yosys folders with --jobs N > 1 "
+                        "or --emit-commands (default: <out>_points beside --out)")
+
+
+def build_parser(raising=False):
+    """The command line; raising: errors raise ArgumentError instead of printing the usage and
+    exiting (sweep_job parses estimate arguments with it)."""
+    parser = (RaisingParser if raising else argparse.ArgumentParser)(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True)
     ice40 = sub.add_parser("ice40", help="synth_ice40 + nextpnr-ice40")
     add_config_arguments(ice40)
@@ -1555,6 +1899,7 @@ def main():
     est.add_argument("--no-dsp", action="store_true", help="multipliers in LUTs, not DSPs")
     est.add_argument("--max-min-disp", type=int, default=None,
                      help="stereo_top MAX_MIN_DISP (default: the RTL's default)")
+    add_top_arguments(est)
     est.set_defaults(handler=command_estimate)
     lanes_sweep = sub.add_parser("lanes-sweep", help="estimates over (NDISP, LANES) points")
     lanes_sweep.add_argument("--target", choices=["xilinx", "ecp5", "ice40"], default="xilinx")
@@ -1564,6 +1909,7 @@ def main():
     lanes_sweep.add_argument("--points", default="16:16,16:4,16:1,32:32,32:4,64:8,64:4",
                              help="NDISP:LANES,... (LANES divides NDISP)")
     lanes_sweep.add_argument("--out", required=True, help="JSON (points are appended; resumes)")
+    add_sweep_arguments(lanes_sweep)
     lanes_sweep.set_defaults(handler=command_lanes_sweep)
     plot_lanes_parser = sub.add_parser("plot-lanes", help="SVG of a lanes-sweep JSON")
     plot_lanes_parser.add_argument("sweep")
@@ -1574,7 +1920,19 @@ def main():
     sweep.add_argument("--max-ndisp", type=int, default=64)
     sweep.add_argument("--no-dsp", action="store_true", help="multipliers in LUTs, not DSPs")
     sweep.add_argument("--out", required=True, help="sweep JSON (points are appended; resumes)")
+    sweep.add_argument("--configs", metavar="FILE",
+                       help="a JSON list of configurations to sweep instead of this document's "
+                       "(objects as the `config` of an estimate report, e.g. {\"width\": 64, "
+                       "\"height\": 48, \"ndisp\": 16, \"window\": 5, \"lanes\": 4})")
+    add_sweep_arguments(sweep)
     sweep.set_defaults(handler=command_sweep)
+    merge = sub.add_parser("merge", help="gather the point JSON of --emit-commands into a sweep")
+    merge.add_argument("out", help="sweep JSON (its points are kept; points already there are "
+                       "not added twice)")
+    merge.add_argument("inputs", nargs="+", metavar="POINT",
+                       help="point JSON files (in this order) or folders (their *.json in name "
+                       "order)")
+    merge.set_defaults(handler=command_merge)
     plot = sub.add_parser("plot", help="SVG plots of sweep JSON files")
     plot.add_argument("sweep", help="sweep JSON (merge targets with `sweep --out` on one file)")
     plot.add_argument("--out-dir", required=True)
@@ -1601,7 +1959,11 @@ def main():
     check.add_argument("--expect-bram", action="store_true")
     check.add_argument("--expect-placed", action="store_true")
     check.set_defaults(handler=command_check)
-    args = parser.parse_args()
+    return parser
+
+
+def main():
+    args = build_parser().parse_args()
     started = time.monotonic()
 
     def stop(signum, frame):
@@ -1612,6 +1974,12 @@ def main():
     except (Interrupted, KeyboardInterrupt):
         report = partial_report(args, started)
         where = ""
+        if args.command in ("sweep", "lanes-sweep"):
+            # The points finished so far stay in the file, so that the sweep resumes from them.
+            try:
+                report["points"] = read_sweep(args.out)
+            except (OSError, json.JSONDecodeError):
+                report["points"] = []
         if getattr(args, "out", None):
             write_report(report, args.out)
             where = f"; partial report in {args.out}"

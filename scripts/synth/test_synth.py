@@ -2,9 +2,12 @@
 """Unit tests of synth.py's report arithmetic, without Yosys (ctest synth.report_arithmetic).
 
 Every expected value is worked out by hand in the test from the fabricated input."""
+import contextlib
 import importlib.util
+import io
 import json
 import re
+import shlex
 import sys
 import tempfile
 import unittest
@@ -665,6 +668,236 @@ class Progress(unittest.TestCase):
         self.assertIsNone(synth.pass_of("  3.1. Executing HIERARCHY pass."))  # not at the start
         self.assertIsNone(synth.pass_of("Number of cells: 12"))
 
+
+
+def fake_point(job):
+    """What an estimate of `job` could report: numbers that differ from point to point."""
+    c = job["config"]
+    return {"target": job["target"], "top": job["top"], "config": c, "use_dsp": job["use_dsp"],
+            "resources": {"luts": c["width"] * c["ndisp"] + 7 * c.get("lanes", 0),
+                          "ffs": c["window"], "brams": 0.5, "dsps": 0},
+            "yosys_seconds": 1.0}
+
+
+class Tops(unittest.TestCase):
+    """estimate --top: stereo_synth_top (synth) or stereo_axil_top (axil)."""
+
+    def test_names(self):
+        self.assertEqual(synth.resolve_top("axil"), "stereo_axil_top")
+        self.assertEqual(synth.resolve_top("stereo_axil_top"), "stereo_axil_top")
+        self.assertEqual(synth.resolve_top("synth"), "stereo_synth_top")
+        for bad in ("stereo_top", "AXIL", "", "stereo_board_top"):
+            with self.assertRaises(synth.ReportError, msg=bad):
+                synth.resolve_top(bad)
+
+    def test_chparam_names_the_top_and_its_kernel(self):
+        config = synth.config_from_args(SimpleNamespace(width=64, height=48, ndisp=16, window=5,
+                                                        lanes=4, cost="census",
+                                                        constant_kernel=True))
+        self.assertEqual(config["runtime_kernel"], 0)
+        command = synth.chparam(config, top="stereo_axil_top")
+        self.assertTrue(command.endswith(" stereo_axil_top"))
+        self.assertIn("-set RUNTIME_KERNEL 0 ", command)
+        self.assertIn("-set LANES 4 ", command)
+        # Without --constant-kernel nothing is set: stereo_axil_top's default, the run-time one.
+        del config["runtime_kernel"]
+        self.assertNotIn("RUNTIME_KERNEL", synth.chparam(config, top="stereo_axil_top"))
+
+    def test_parameters_a_top_lacks_are_refused(self):
+        axil, top = "stereo_axil_top", "stereo_synth_top"
+        for name, config, target in ((axil, {"ring_block_min_fill": 60}, "xilinx"),
+                                     (axil, {"asw": 1}, "xilinx"),
+                                     (axil, {}, "ice40"),
+                                     (axil, {"shift_add": "all"}, "xilinx"),
+                                     (top, {"runtime_kernel": 0}, "xilinx")):
+            with self.assertRaises(synth.ReportError, msg=f"{name} {config} {target}"):
+                synth.check_top_config(name, config, target)
+        synth.check_top_config(axil, {"shift_add": "all", "runtime_kernel": 0}, "ecp5")
+        synth.check_top_config(top, {"shift_add": "all", "asw": 1}, "ice40")
+
+    def test_axi_registers_are_a_stage_of_their_own(self):
+        with tempfile.TemporaryDirectory() as folder:
+            stat = Path(folder) / "stat.json"
+            stat.write_text(STAT_WITH_LISTING.replace("stereo_synth_top", "stereo_axil_top"))
+            stages = synth.stage_breakdown(stat, synth.stage_modules(STAGE_LISTINGS),
+                                           "stereo_axil_top")
+        # the top's own cells (3 LUT2, 5 IBUF) apart from stereo_top's (7 FDRE, the glue)
+        self.assertEqual(stages["axi_registers"], {"IBUF": 5, "LUT2": 3})
+        self.assertEqual(stages["glue"], {"FDRE": 7})
+        xilinx = {name: synth.resources_xilinx(cells) for name, cells in stages.items()}
+        report = {"top": "stereo_axil_top", "stages": xilinx,
+                  "resources": {"luts": 37, "ffs": 10, "brams": 3.0, "dsps": 4}}
+        # 0 flip-flops of its own: the register file was optimized away (Yosys 0.23 and
+        # `~ADDR_BITS'(3)`); 128 (three 32-bit counters and the read data) is the least.
+        with self.assertRaisesRegex(synth.ReportError, "register file"):
+            synth.check_stages(report)
+        xilinx["axi_registers"]["ffs"] = 128
+        report["resources"]["ffs"] = 10 + 128  # the stages must still add up
+        synth.check_stages(report)
+        del xilinx["axi_registers"]
+        with self.assertRaisesRegex(synth.ReportError, "lack axi_registers"):
+            synth.check_stages(report)
+
+    def test_table_shows_both_tops(self):
+        points = [dict(Tables.point(16, 9000, 20, True), top=top) for top in
+                  ("stereo_axil_top", "stereo_synth_top")]
+        points.append(dict(Tables.point(16, 8000, 10, True), top="stereo_axil_top"))
+        points[2]["config"] = dict(points[2]["config"], runtime_kernel=0)
+        with tempfile.TemporaryDirectory() as folder:
+            sweep, out = Path(folder) / "s.json", Path(folder) / "t.md"
+            sweep.write_text(json.dumps({"points": points}))
+            synth.command_table(SimpleNamespace(sweeps=[str(sweep)], clock=100, out=str(out)))
+            lines = out.read_text().splitlines()
+        headers = [line for line in lines if "| W x H |" in line]
+        # stereo_synth_top's table first, under the target's plain name (as before the AXI top).
+        self.assertEqual([h.split(" | ")[0] for h in headers],
+                         ["| xilinx", "| xilinx, stereo_axil_top"])
+        axil_rows = [line for line in lines if line.startswith("| xilinx, stereo_axil_top")
+                     and "W x H" not in line and "stage" not in line]
+        self.assertEqual(len(axil_rows), 2)
+        self.assertEqual(sum("(constant kernel)" in row for row in axil_rows), 1)
+        self.assertIn("| xilinx, stereo_axil_top 640x480 / 16 / 11x11: stage |", "\n".join(lines))
+
+
+class SweepPoints(unittest.TestCase):
+    """--jobs N, --emit-commands and merge, with the estimates faked (no Yosys)."""
+
+    CONFIGS = [{"width": 16, "height": 12, "ndisp": 2, "window": 3},
+               {"width": 32, "height": 24, "ndisp": 4, "window": 5, "lanes": 2, "cost": "census",
+                "max_min_disp": 0},
+               {"width": 64, "height": 48, "ndisp": 8, "window": 7, "lanes": 1, "cost": "census",
+                "recompute_costs": 1, "ring_block_min_fill": 60},
+               {"width": 64, "height": 48, "ndisp": 8, "window": 7, "cost": "census", "asw": 1,
+                "shift_add": "narrow"}]
+
+    def jobs(self):
+        jobs = [synth.sweep_job("xilinx", "synth", c) for c in self.CONFIGS]
+        jobs.append(synth.sweep_job("ecp5", "axil", dict(self.CONFIGS[1], runtime_kernel=0,
+                                                         shift_add="all"), use_dsp=False))
+        return jobs
+
+    @staticmethod
+    def args(folder, name, jobs="1", emit=None):
+        return SimpleNamespace(out=str(Path(folder) / f"{name}.json"), jobs=jobs,
+                               emit_commands=emit, points_dir=str(Path(folder) / f"{name}_points"))
+
+    def test_point_commands_reproduce_the_configuration(self):
+        for job in self.jobs():
+            command = shlex.split(synth.point_command(job, "p.json", "p"))
+            self.assertEqual(command[1], str(Path(synth.__file__).resolve()))
+            self.assertTrue(Path(command[0]).is_absolute() and Path(command[-1]).is_absolute())
+            args = synth.build_parser().parse_args(command[2:])
+            self.assertEqual(args.command, "estimate")
+            self.assertEqual((args.target, synth.resolve_top(args.top), not args.no_dsp),
+                             (job["target"], job["top"], job["use_dsp"]))
+            self.assertEqual(synth.config_from_args(args), job["config"])
+        # every configuration key an estimate records is covered by the jobs above
+        covered = {key for job in self.jobs() for key in job["config"]}
+        self.assertEqual(covered, set(synth.CONFIG_OPTIONS))
+
+    def test_bad_configurations(self):
+        for config in ({"width": 16, "height": 12, "ndisp": 2, "window": 4},
+                       {"width": 16, "height": 12, "ndisp": 2, "window": 3, "cost": "sad"},
+                       {"width": 16, "height": 12, "ndisp": 2, "window": 3, "colour": 1},
+                       {"width": 16, "height": 12, "ndisp": 3, "window": 3, "lanes": 2}):
+            with self.assertRaises(synth.ReportError, msg=str(config)):
+                synth.sweep_job("xilinx", "synth", config)
+        with self.assertRaises(synth.ReportError):
+            synth.sweep_job("xilinx", "axil", dict(self.CONFIGS[0], asw=1))
+
+    def run_in_process(self, folder, jobs):
+        with mock.patch.object(synth, "estimate", lambda config, target, use_dsp, top: fake_point(
+                {"target": target, "top": top, "config": config, "use_dsp": use_dsp})), \
+                contextlib.redirect_stdout(io.StringIO()):
+            return synth.run_sweep(jobs, self.args(folder, "in_process"))
+
+    def test_jobs_give_the_same_json_in_the_same_order(self):
+        jobs = self.jobs()
+
+        def slow_fake(job, out, work=None):
+            # The first point finishes last: the order of the file must not follow completion.
+            delay = 0.15 * (len(jobs) - jobs.index(job))
+            code = (f"import time; time.sleep({delay}); "
+                    f"open({str(out)!r}, 'w').write({json.dumps(fake_point(job))!r})")
+            return shlex.join([sys.executable, "-c", code])
+
+        with tempfile.TemporaryDirectory() as folder:
+            expected = self.run_in_process(folder, jobs)
+            self.assertEqual([p["config"] for p in expected], [j["config"] for j in jobs])
+            reference = Path(self.args(folder, "in_process").out).read_text()
+            for n in ("2", "3", "8"):
+                with mock.patch.object(synth, "point_command", slow_fake), \
+                        mock.patch.object(synth, "progress", lambda message: None):
+                    synth.run_sweep(jobs, self.args(folder, f"jobs{n}", jobs=n))
+                self.assertEqual(Path(self.args(folder, f"jobs{n}").out).read_text(), reference,
+                                 msg=f"--jobs {n}")
+
+    def test_failed_point_fails_the_sweep(self):
+        def failing(job, out, work=None):
+            return shlex.join([sys.executable, "-c", "import sys; sys.exit('no yosys here')"])
+
+        with tempfile.TemporaryDirectory() as folder, \
+                mock.patch.object(synth, "point_command", failing), \
+                mock.patch.object(synth, "progress", lambda message: None):
+            with self.assertRaisesRegex(synth.ReportError, "point 1 failed .*no yosys here"):
+                synth.run_sweep(self.jobs()[:2], self.args(folder, "failing", jobs="2"))
+
+    def test_emitted_commands_and_merge_give_the_in_process_sweep(self):
+        jobs = self.jobs()
+        with tempfile.TemporaryDirectory() as folder:
+            self.run_in_process(folder, jobs)
+            reference = Path(self.args(folder, "in_process").out).read_text()
+            args = self.args(folder, "emitted", emit=str(Path(folder) / "commands.txt"))
+            with mock.patch.object(synth, "progress", lambda message: None):
+                synth.run_sweep(jobs, args)
+            lines = Path(args.emit_commands).read_text().splitlines()
+            self.assertEqual(len(lines), len(jobs))
+            self.assertFalse(Path(args.out).exists())
+            # Run each "command" as a job runner would, in reverse order, faking the estimate.
+            for line, job in reversed(list(zip(lines, jobs))):
+                words = shlex.split(line)
+                parsed = synth.build_parser().parse_args(words[2:])
+                self.assertEqual(synth.config_from_args(parsed), job["config"])
+                Path(parsed.out).write_text(json.dumps(fake_point(job), indent=2))
+            self.assertEqual(sorted(p.name for p in Path(args.points_dir).glob("*.json")),
+                             [f"point_{i:04d}.json" for i in range(1, len(jobs) + 1)])
+            with mock.patch.object(synth, "progress", lambda message: None):
+                synth.command_merge(SimpleNamespace(out=args.out, inputs=[args.points_dir]))
+            self.assertEqual(Path(args.out).read_text(), reference)
+            # Merging again adds nothing; a sweep resumed from the file emits nothing.
+            with mock.patch.object(synth, "progress", lambda message: None):
+                synth.command_merge(SimpleNamespace(out=args.out, inputs=[args.points_dir]))
+                self.assertEqual(Path(args.out).read_text(), reference)
+                synth.run_sweep(jobs, args)
+            self.assertEqual(Path(args.emit_commands).read_text(), "")
+
+    def test_merge_refuses_what_is_not_a_point_report(self):
+        with tempfile.TemporaryDirectory() as folder:
+            folder = Path(folder)
+            good = folder / "good.json"
+            good.write_text(json.dumps(fake_point(self.jobs()[0])))
+            bad = {"text.json": "not json",
+                   "partial.json": json.dumps({"partial": True, "command": "estimate"}),
+                   "sweep.json": json.dumps({"points": [fake_point(self.jobs()[0])]}),
+                   "board.json": json.dumps({"target": "ice40_board", "config": {},
+                                             "resources": {}})}
+            for name, text in bad.items():
+                (folder / name).write_text(text)
+                with self.assertRaises(synth.ReportError, msg=name):
+                    synth.command_merge(SimpleNamespace(out=str(folder / "out.json"),
+                                                        inputs=[str(good), str(folder / name)]))
+                self.assertFalse((folder / "out.json").exists(), msg=name)
+            (folder / "empty").mkdir()
+            for missing in ("empty", "nothing.json"):
+                with self.assertRaises(synth.ReportError, msg=missing):
+                    synth.command_merge(SimpleNamespace(out=str(folder / "out.json"),
+                                                        inputs=[str(folder / missing)]))
+
+    def test_jobs_must_be_positive(self):
+        for text in ("0", "-1", "two", "1.5", ""):
+            with self.assertRaises(synth.ReportError, msg=text):
+                synth.positive_jobs(text)
+        self.assertEqual(synth.positive_jobs("3"), 3)
 
 if __name__ == "__main__":
     unittest.main()
