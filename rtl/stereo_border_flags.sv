@@ -46,8 +46,10 @@ module stereo_border_flags #(
         for (int v = 0; v < -O; v++) begin
           if (position == POS_BITS'(v)) above_zero = 1'b0;
         end
+        // -(POS_BITS'(v)), not -POS_BITS'(v): Yosys 0.23 drops a unary operator before a sized
+        // cast (the synthesized comparison was with +v; Verilator parsed it right).
         for (int v = 1; v <= O; v++) begin
-          if (position == -POS_BITS'(v)) above_zero = 1'b1;
+          if (position == -(POS_BITS'(v))) above_zero = 1'b1;
         end
         // p + O < limit
         below_limit = room_gt_zero;
