@@ -740,7 +740,9 @@ def estimate(config, target, work=None, use_dsp=True, top=TOP):
     # Each stage's module, found through its instance in stereo_top (two stages can share a
     # module with different parameters: the CA rules are both stereo_ca_plane).
     # The census stage in front of the cost stage (g_census.census) with the census cost.
-    names = STAGES + ((CENSUS_STAGE,) if config.get("cost") == "census" else ())
+    # The ASW core's column stacks and words (g_asw.asw_column), a stage of their own.
+    names = (STAGES + ((CENSUS_STAGE,) if config.get("cost") == "census" else ()) +
+             (ASW_EXTRA_STAGES if config.get("asw") else ()))
     instances = {name: work / f"stage_{name}.txt" for name in names}
     # chparam leaves the top as a derived "$paramod...<top>": name it back for stat.
     netlist = work / "netlist.json"
@@ -873,6 +875,8 @@ def module_kind(name):
 # the aggregation is stereo_asw_aggregate `asw`; it has no CA rules.
 ASW_INSTANCES = {"aggregate": "asw"}
 ASW_ABSENT_STAGES = ("ca_rule1", "ca_rule2")
+# ... and a stage the Gaussian core does not have: stereo_asw_column `asw_column`.
+ASW_EXTRA_STAGES = ("asw_column",)
 
 
 def stage_module_query(stage):
@@ -1620,7 +1624,8 @@ def check_stages(report):
     stages = report.get("stages")
     if stages is None:
         return
-    missing = [name for name in STAGES if name not in stages]
+    absent = ASW_ABSENT_STAGES if (report.get("config") or {}).get("asw") else ()
+    missing = [name for name in STAGES if name not in stages and name not in absent]
     if report.get("top", TOP) != TOP:
         missing += [name for name in [AXI_REGISTERS] if name not in stages]
     if missing:
