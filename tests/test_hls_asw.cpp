@@ -255,6 +255,89 @@ TEST(HlsAsw, LargeDiameterEqualsModel) {
     expect_cases_equal_model(std::begin(cases), std::end(cases), 4603);
 }
 
+TEST(HlsAsw, FlatAndExtremeImagesEqualModel) {
+    // Constant and two-level images: equal costs everywhere, so pass 1's winner and the WTA
+    // decide by their tie rule (the smaller label), and extreme differences saturate every cost.
+    std::mt19937 rng = test::seeded_rng(4609);
+    std::bernoulli_distribution coin(0.5);
+    Image zero(31, 12, 3);
+    Image full(31, 12, 3);
+    std::fill(full.pixels.begin(), full.pixels.end(), std::uint8_t{255});
+    Image stripes(31, 12, 3);
+    for (int y = 0; y < stripes.height; ++y) {
+        for (int x = 0; x < stripes.width; ++x) {
+            const std::uint8_t v = (x / 4 + y / 3) % 2 == 0 ? 40 : 200;
+            for (int c = 0; c < 3; ++c) {
+                stripes.at(x, y, c) = v;
+            }
+        }
+    }
+    Image speckle(31, 12, 3);
+    for (auto& p : speckle.pixels) {
+        p = coin(rng) ? 255 : 0;
+    }
+    const std::pair<const Image*, const Image*> pairs[] = {
+        {&zero, &zero}, {&full, &zero}, {&stripes, &stripes}, {&stripes, &zero}, {&speckle, &full}};
+    for (std::size_t i = 0; i < std::size(pairs); ++i) {
+        const auto [left, right] = pairs[i];
+        for (const char* cost : {"census", "ad"}) {
+            for (const int diameter : {3, 11}) {
+                MatchParams params;
+                params.ndisp = 9;
+                params.min_disp = -2;
+                params.cost = cost;
+                params.validation = ValidationParams::all_on();
+                const asw::Params weights = separable(diameter);
+                ASSERT_TRUE(same_validated(asw::match(*left, *right, params, weights),
+                                           run_diameter(*left, *right, params, weights)))
+                    << cost << " w " << diameter << " pair " << i;
+            }
+        }
+    }
+}
+
+TEST(HlsAsw, ContinuityAcrossLargeJumpsEqualsModel) {
+    // The continuity factor is below 255 only for label jumps above 255 / w (23 at w = 11, 8 at
+    // w = 31): 64 lanes and boxes far in front of the background, so that pass 1's labels, their
+    // history and its tie rule (flat images: equal costs) decide pass 2's weights.
+    std::mt19937 rng = test::seeded_rng(4610);
+    struct Jump {
+        int width, height, ndisp, min_disp, back, front;
+    };
+    const Jump jumps[] = {{97, 35, 56, 0, 3, 41}, {83, 33, 64, -6, -2, 30}};
+    Image flat(97, 35, 3);
+    std::fill(flat.pixels.begin(), flat.pixels.end(), std::uint8_t{90});
+    for (const Jump& j : jumps) {
+        const auto [left, right] = layered_pair(j.width, j.height, 3, j.back, j.front, rng);
+        for (const char* cost : {"census", "ad"}) {
+            for (const bool stage6 : {false, true}) {
+                MatchParams params;
+                params.ndisp = j.ndisp;
+                params.min_disp = j.min_disp;
+                params.cost = cost;
+                params.validation = stage6 ? ValidationParams::all_on() : ValidationParams{};
+                for (const int diameter : {11, 31}) {
+                    const asw::Params weights = separable(diameter);
+                    const auto run =
+                        diameter == 11
+                            ? (params.cost == "census" ? &run_core<64, 11, hls::census_measure>
+                                                       : &run_core<64, 11, hls::ad_measure>)
+                            : (params.cost == "census" ? &run_core<64, 31, hls::census_measure>
+                                                       : &run_core<64, 31, hls::ad_measure>);
+                    ASSERT_TRUE(same_validated(asw::match(left, right, params, weights),
+                                               run(left, right, params, weights, 1)))
+                        << j.width << "x" << j.height << " " << cost << " w " << diameter;
+                    if (j.width == flat.width && j.height == flat.height) {
+                        ASSERT_TRUE(same_validated(asw::match(flat, flat, params, weights),
+                                                   run(flat, flat, params, weights, 1)))
+                            << "flat " << cost << " w " << diameter;
+                    }
+                }
+            }
+        }
+    }
+}
+
 TEST(HlsAsw, OtherTruncationsEqualModel) {
     // The cost's cap is a runtime value: none for AD, and a cap for census.
     std::mt19937 rng = test::seeded_rng(4604);
