@@ -56,6 +56,8 @@ MatchConfig small_config(const std::string& method, const std::string& engine) {
     config.pipeline.window = 5;
     config.vrange = 8;
     config.asw.diameter = 9;
+    // The hardware engines compute the separable variant only (the HLS ASW core, issue 46).
+    config.asw.separable = engine == "hls" || engine == "rtl";
     config.speckle.max_size = std::min(config.speckle.max_size, 10);
     return config;
 }

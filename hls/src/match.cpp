@@ -5,6 +5,7 @@
 #include <string>
 
 #include "stereo/catalogue.hpp"
+#include "stereo/hls/asw_match.hpp"
 #include "stereo/hls/hierarchical.hpp"
 #include "stereo/hls/host.hpp"
 #include "stereo/hls/stream.hpp"
@@ -112,6 +113,10 @@ void register_matchers(MatcherRegistry& registry) {
     registry.add({"pipeline", "hls",
                   "Sec. 3.1 pipeline with stage 6, the HLS kernels in C simulation",
                   pipeline_factory(&match_validated)});
+    registry.add({"asw", "hls",
+                  "Sec. 3.4 separable adaptive support weights, the HLS ASW core in C simulation "
+                  "(census or AD, diameters 3 .. 31)",
+                  asw_factory(&asw_match_validated)});
     hierarchical::register_matchers(registry);
 }
 

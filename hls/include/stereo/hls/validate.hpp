@@ -5,7 +5,8 @@
 // validate_stage (latency 1): C2 = min { E(k) : |k - k1| > 1, k < ndisp } by a masked comparator
 // tree (a masked lane holds fx::kNoSecondCost, which is the result when no lane is left), and the
 // fixed disparity 16 (m + k1) + offset, the sub-pixel offset counted on a ladder of the eight
-// thresholds 16 |a - b| >= (2t - 1) den (no divider).
+// thresholds 16 |a - b| >= (2t - 1) den (no divider); no offset where a neighbour is no
+// candidate (kNoCandidateCost, the ASW core's; rtl/stereo_validate.sv).
 //
 // lr_check (latency NDISP): the right-referenced winners along the DSI diagonal in NDISP
 // (cost, label) accumulators that move one place per step (accumulator j holds right pixel
@@ -20,6 +21,13 @@
 #include "stereo/hls/wta.hpp"
 
 namespace stereo::hls {
+
+// An aggregated cost that is no candidate: the ASW core's label whose match lies outside the right
+// image (asw.hpp, rtl/fx_pkg.sv's ASW_NO_CANDIDATE), all ones of kAggBits, above every cost. No
+// other aggregation reaches it. Stage 6 draws no parabola through such a neighbour (the model's
+// rule, ValidatingSelector), and as a C2 candidate it equals "no second cost".
+inline constexpr agg_t kNoCandidateCost = (1 << fx::kAggBits) - 1;
+static_assert(kNoCandidateCost > fx::kAggMax && kNoCandidateCost == fx::kNoSecondCost);
 
 template <int NDISP>
 class validate_stage : public coord_output, public winner_output {
@@ -54,7 +62,8 @@ class validate_stage : public coord_output, public winner_output {
         int fixed = (min_disp + k1) * fx::kSubpixelScale;
         // The calibrated correction of the vertex: a 9-entry ROM (constants.hpp).
         const int corrected = fx::kSubpixelCorrection[static_cast<std::size_t>(steps)];
-        if (subpixel && k1 > 0 && k1 + 1 < ndisp && denominator != 0) {
+        const bool candidates = before != kNoCandidateCost && after != kNoCandidateCost;
+        if (subpixel && k1 > 0 && k1 + 1 < ndisp && denominator != 0 && candidates) {
             fixed += before >= after ? corrected : -corrected;
         }
         out_label_ = static_cast<disparity_t>(k1);
