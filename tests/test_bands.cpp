@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <random>
+#include <string>
 
 #include "stereo/edge_frontend.hpp"
 #include "stereo_io/data_dir.hpp"
@@ -62,17 +63,31 @@ TEST(Bands, EdgeFrontendEqualsTheSingleThreadedModel) {
               edge_frontend::match(left, right, params, edges));
 }
 
+// The SLAM front end runs on the fast engine: equal to the registry's model engine ("sparse",
+// "model"), disparities and reason counts, on every thread count.
 TEST(Bands, SparseFrontendEqualsTheSingleThreadedModel) {
     auto rng = test::seeded_rng(4);
     slam::FrontendParams params;
     params.ndisp = 16;
-    for (const auto& [w, h] : {std::pair{97, 61}, std::pair{64, 131}, std::pair{120, 203}}) {
-        const auto [left, right] = random_pair(w, h, 1, rng);
-        const auto one = slam::sparse_disparity(left, right, params);
-        for (const int threads : {2, 3, 7}) {
-            const auto many = sparse_disparity_bands(left, right, params, threads);
-            ASSERT_EQ(many.disparity.size(), one.disparity.size());
-            EXPECT_TRUE(many.disparity == one.disparity) << w << "x" << h << " " << threads;
+    for (const std::string cost : {"ad", "census"}) {
+        params.cost = cost;
+        for (const auto& [w, h] : {std::pair{97, 61}, std::pair{64, 131}, std::pair{120, 203}}) {
+            const auto [left, right] = random_pair(w, h, 1, rng);
+            slam::ValidationCounts model_counts;
+            const auto model = slam::sparse_disparity_model(left, right, params, &model_counts);
+            ASSERT_GT(model_counts.valid, 0U);
+            for (const int threads : {1, 2, 3, 7}) {
+                slam::ValidationCounts counts;
+                const auto fast = slam::sparse_disparity(left, right, params, &counts, threads);
+                ASSERT_EQ(fast.disparity.size(), model.disparity.size());
+                EXPECT_TRUE(fast.disparity == model.disparity)
+                    << cost << " " << w << "x" << h << " " << threads;
+                EXPECT_EQ(counts.valid, model_counts.valid) << cost << " " << threads;
+                EXPECT_EQ(counts.uncertain, model_counts.uncertain) << cost << " " << threads;
+                EXPECT_EQ(counts.inconsistent, model_counts.inconsistent) << cost << " " << threads;
+                EXPECT_TRUE(sparse_disparity_bands(left, right, params, threads).disparity ==
+                            model.disparity);
+            }
         }
     }
 }
@@ -89,7 +104,7 @@ TEST(Bands, KittiFrameEqualsTheSingleThreadedModel) {
               edge_frontend::match(pair.left, pair.right, params));
     slam::FrontendParams sparse;
     EXPECT_TRUE(sparse_disparity_bands(pair.left, pair.right, sparse, 2).disparity ==
-                slam::sparse_disparity(pair.left, pair.right, sparse).disparity);
+                slam::sparse_disparity_model(pair.left, pair.right, sparse).disparity);
 }
 
 }  // namespace

@@ -114,23 +114,9 @@ DisparityMap edge_match_bands(const Image& left, const Image& right, const Match
 
 slam::SparseDisparity sparse_disparity_bands(const Image& left, const Image& right,
                                              const slam::FrontendParams& params, int threads) {
-    if (threads <= 1) {
-        return slam::sparse_disparity(left, right, params);
-    }
-    slam::validate_frontend(params, left.width, left.height);
-    slam::SparseDisparity out(left.width, left.height);
-    const int halo = params.window / 2 + 2;
-    run_bands<slam::SparseDisparity>(
-        left, right, threads, halo,
-        [&](const Image& l, const Image& r) { return slam::sparse_disparity(l, r, params); },
-        [&](const slam::SparseDisparity& band, const Band& b) {
-            for (int y = b.first; y < b.last; ++y) {
-                for (int x = 0; x < out.width; ++x) {
-                    out.at(x, y) = band.at(x, y - b.from);
-                }
-            }
-        });
-    return out;
+    // The fast engine under slam::sparse_disparity splits the rows itself (tiles with exact
+    // seams, docs/cpu-engine.md) on its worker threads; no bands of whole images here.
+    return slam::sparse_disparity(left, right, params, nullptr, std::max(threads, 1));
 }
 
 }  // namespace stereo::robot

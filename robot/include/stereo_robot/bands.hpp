@@ -27,7 +27,7 @@ int edge_frontend_reach(const MatchParams& params, const edge_frontend::EdgePara
 DisparityMap edge_match_bands(const Image& left, const Image& right, const MatchParams& params,
                               const edge_frontend::EdgeParams& edges, int threads);
 
-// slam::sparse_disparity on `threads` bands (vertical reach: the aggregation radius).
+// slam::sparse_disparity on `threads` worker threads of the fast engine (its own row tiles).
 slam::SparseDisparity sparse_disparity_bands(const Image& left, const Image& right,
                                              const slam::FrontendParams& params, int threads);
 
