@@ -597,41 +597,9 @@ status_t stereo_hls_asw_top(
     status_t status = 0;
     const AswConfig cfg = sanitise_asw<WIDTH, HEIGHT, NDISP, MAX_MIN_DISP>(requested, status);
     state.reset();
-    const int pixels = cfg.width * cfg.height;
     const int steps =
         asw_frame_steps<NDISP, DIAMETER, MEASURE>(cfg.width, cfg.height, cfg.min_disp);
-    int x = 0;
-    int y = 0;
-asw_frame_loop:
-    for (int step = 0; step < steps; ++step) {
-#pragma HLS PIPELINE II = 1
-#pragma HLS LOOP_TRIPCOUNT min = 1 max = kMaxSteps
-        InputBeat beat;  // flush steps push zero pixels
-        if (step < pixels) {
-            beat = in.read();
-            if (beat.eol != (x == cfg.width - 1)) {
-                status |= kStatusEolMisplaced;
-            }
-            if (beat.sof != (step == 0)) {
-                status |= kStatusSofMisplaced;
-            }
-        }
-        state.step(to_coord(x), to_coord(y), beat.left, beat.right, cfg);
-        const int out_x = state.out_x();
-        const int out_y = state.out_y();
-        if (inside(out_x, out_y, cfg.width, cfg.height)) {
-            OutputBeat result;
-            result.result = state.out();
-            result.sof = out_x == 0 && out_y == 0;
-            result.eol = out_x == cfg.width - 1;
-            out.write(result);
-        }
-        if (++x == cfg.width) {
-            x = 0;
-            ++y;
-        }
-    }
-    (void)kMaxSteps;  // used by the trip-count pragma only
+    stream_frame<kMaxSteps>(in, out, cfg, state, steps, status);
     return status;
 }
 

@@ -165,29 +165,23 @@ FrameConfig<WINDOW> sanitise(const FrameConfig<WINDOW>& requested, status_t& sta
     return cfg;
 }
 
-// One frame: cfg.width * cfg.height beats from `in`, as many to `out`. Returns the status bits.
-// Unlike the RTL, which drops beats until a start of frame, a call reads exactly one frame's
-// beats; misplaced sof/eol flags are reported, not resynchronised on.
-template <int WIDTH, int HEIGHT, int NDISP, int WINDOW, int MAX_MIN_DISP, class MEASURE>
-status_t stereo_hls_top(stream<InputBeat>& in, stream<OutputBeat>& out,
-                        const FrameConfig<WINDOW>& requested,
-                        pipeline<WIDTH, HEIGHT, NDISP, WINDOW, MAX_MIN_DISP, MEASURE>& state) {
+// The frame loop of every HLS top: `steps` pixel steps (the frame's pixels, then the flush with
+// zero pixels), an input beat read per pixel with its framing checked (status bits added to
+// `status`), the state stepped once a step, an output beat written for every step whose output
+// pixel lies inside the frame. MAX_STEPS bounds the loop for the trip-count pragma.
+template <int MAX_STEPS, class Config, class State>
+void stream_frame(stream<InputBeat>& in, stream<OutputBeat>& out, const Config& cfg, State& state,
+                  int steps, status_t& status) {
 #pragma HLS INLINE
-    constexpr int kMaxSteps = frame_steps<NDISP, WINDOW, MEASURE>(WIDTH, HEIGHT, -MAX_MIN_DISP);
-    status_t status = 0;
-    const FrameConfig<WINDOW> cfg =
-        sanitise<WIDTH, HEIGHT, NDISP, WINDOW, MAX_MIN_DISP>(requested, status);
-    state.reset();
     const int pixels = cfg.width * cfg.height;
-    const int steps = frame_steps<NDISP, WINDOW, MEASURE>(cfg.width, cfg.height, cfg.min_disp);
     int x = 0;  // raster position of this step's input; y >= height while flushing
     int y = 0;
 frame_loop:
     for (int step = 0; step < steps; ++step) {
 #pragma HLS PIPELINE II = 1
-#pragma HLS LOOP_TRIPCOUNT min = 1 max = kMaxSteps
+#pragma HLS LOOP_TRIPCOUNT min = 1 max = MAX_STEPS
         // Loops inside the stages have constant bounds and are unrolled by the pipelining: all
-        // NDISP lanes and all window taps of one pixel in one iteration.
+        // lanes and all window taps of one pixel in one iteration.
         InputBeat beat;  // flush steps push zero pixels
         if (step < pixels) {
             beat = in.read();
@@ -213,7 +207,23 @@ frame_loop:
             ++y;
         }
     }
-    (void)kMaxSteps;  // used by the trip-count pragma only
+}
+
+// One frame: cfg.width * cfg.height beats from `in`, as many to `out`. Returns the status bits.
+// Unlike the RTL, which drops beats until a start of frame, a call reads exactly one frame's
+// beats; misplaced sof/eol flags are reported, not resynchronised on.
+template <int WIDTH, int HEIGHT, int NDISP, int WINDOW, int MAX_MIN_DISP, class MEASURE>
+status_t stereo_hls_top(stream<InputBeat>& in, stream<OutputBeat>& out,
+                        const FrameConfig<WINDOW>& requested,
+                        pipeline<WIDTH, HEIGHT, NDISP, WINDOW, MAX_MIN_DISP, MEASURE>& state) {
+#pragma HLS INLINE
+    constexpr int kMaxSteps = frame_steps<NDISP, WINDOW, MEASURE>(WIDTH, HEIGHT, -MAX_MIN_DISP);
+    status_t status = 0;
+    const FrameConfig<WINDOW> cfg =
+        sanitise<WIDTH, HEIGHT, NDISP, WINDOW, MAX_MIN_DISP>(requested, status);
+    state.reset();
+    const int steps = frame_steps<NDISP, WINDOW, MEASURE>(cfg.width, cfg.height, cfg.min_disp);
+    stream_frame<kMaxSteps>(in, out, cfg, state, steps, status);
     return status;
 }
 
