@@ -42,7 +42,10 @@ module stereo_asw_aggregate #(
     parameter bit CODES    = 1'b1,  // 1: census codes (cost 31 x Hamming); 0: AD over RGB
     parameter int TRUNCATION = 0,  // the cost's cap before the aggregation, 0: none
     parameter bit RING_BLOCK_RAM = 1'b0,  // stereo_group_ring BLOCK_RAM
-    parameter int RING_BLOCK_MIN_FILL = 50  // stereo_group_ring BLOCK_MIN_FILL
+    parameter int RING_BLOCK_MIN_FILL = 50,  // stereo_group_ring BLOCK_MIN_FILL
+    // stereo_top's SHIFT_ADD: anything but SHIFT_ADD_NONE builds the vertical pass' weight x
+    // cost products of the census cost (TRUNCATION = 0) from shifts and adds (below)
+    parameter fx_pkg::shift_add_e SHIFT_ADD = fx_pkg::SHIFT_ADD_NONE
 ) (
 `include "stereo_stage_ports.svh"
     input  wire logic [48*DIAMETER-1:0]          in_left,   // stereo_asw_column's words
@@ -64,6 +67,12 @@ module stereo_asw_aggregate #(
   localparam int DISP_BITS = fx_pkg::DISP_BITS;
   localparam logic [BITS-1:0] NO_CANDIDATE = BITS'(fx_pkg::ASW_NO_CANDIDATE);
   localparam int CENSUS_SHIFT = $clog2(fx_pkg::CENSUS_WEIGHT + 1);
+  // The census cost is CENSUS_WEIGHT x h (h the Hamming distance, 5 bits) or, for a whole lane,
+  // COST_OUTSIDE, so the vertical sum_j w_j c_j is CENSUS_WEIGHT x sum_j w_j h_j or COST_OUTSIDE
+  // x sum_j w_j: products of 8 by 5 bits (five gated additions each) and two by constants, no
+  // multiplier (DSP block) per label and row.
+  localparam bit VERTICAL_SHIFT_ADD =
+      CODES && TRUNCATION == 0 && SHIFT_ADD != fx_pkg::SHIFT_ADD_NONE;
   // This diameter's row of fx_pkg::ASW_CONTINUITY (what fx_pkg::asw_continuity reads), so a
   // look-up is a shifter over 256 entries, not over every diameter's (stereo_asw_column says why).
   localparam int CONTINUITY_ROW_BITS = fx_pkg::ASW_CONTINUITY_ENTRIES * 8;
@@ -93,13 +102,26 @@ module stereo_asw_aggregate #(
   endfunction
 
   // ---- arithmetic -------------------------------------------------------------------------------
+  function automatic logic [4:0] hamming(input logic [23:0] a, input logic [23:0] b);
+    logic [4:0] sum;
+    sum = '0;
+    for (int i = 0; i < fx_pkg::CENSUS_BITS; i++) sum = sum + {4'd0, a[i] ^ b[i]};
+    hamming = sum;
+  endfunction
+  // x * c for a constant c, as shifts and adds (a constant product takes a DSP block)
+  function automatic logic [31:0] times_constant(input logic [31:0] x, input int c);
+    logic [31:0] product;
+    product = '0;
+    for (int k = 0; k < 31; k++) if (c[k]) product = product + (x << k);
+    times_constant = product;
+  endfunction
   function automatic logic [9:0] matching_cost(input logic [23:0] a, input logic [23:0] b);
     logic [9:0] sum;
     logic [7:0] channel;
     sum = '0;
     if (CODES) begin
-      for (int i = 0; i < fx_pkg::CENSUS_BITS; i++) sum = sum + {9'd0, a[i] ^ b[i]};
       // times CENSUS_WEIGHT as a shift and a subtraction (a constant product takes a DSP block)
+      sum = {5'd0, hamming(a, b)};
       sum = 10'((sum << CENSUS_SHIFT) - sum * 10'((1 << CENSUS_SHIFT) - fx_pkg::CENSUS_WEIGHT));
     end else begin
       for (int c = 0; c < 3; c++) begin
@@ -210,21 +232,32 @@ module stereo_asw_aggregate #(
       end
     end
     always_comb begin
-      logic [31:0] num;
+      logic [31:0] num, weighted_h;
       logic [15:0] den;
       logic [9:0] cost;
+      logic [4:0] h;
       logic [7:0] weight;
       logic [17:0] product;  // 8 x 10 bits
       num = '0;
       den = '0;
+      weighted_h = '0;
       for (int j = 0; j < DIAMETER; j++) begin
-        cost = outside ? 10'(fx_pkg::COST_OUTSIDE)
-                       : matching_cost(code_of(in_left, j), code_of(right_word, j));
-        if (TRUNCATION > 0 && cost > 10'(TRUNCATION)) cost = 10'(TRUNCATION);
         weight = vertical_weights[(l*DIAMETER+j)*8+:8];
-        product = 18'(weight) * 18'(cost);
-        num = num + 32'(product);
         den = den + 16'(weight);
+        if (VERTICAL_SHIFT_ADD) begin
+          h = hamming(code_of(in_left, j), code_of(right_word, j));
+          for (int b = 0; b < 5; b++) if (h[b]) weighted_h = weighted_h + (32'(weight) << b);
+        end else begin
+          cost = outside ? 10'(fx_pkg::COST_OUTSIDE)
+                         : matching_cost(code_of(in_left, j), code_of(right_word, j));
+          if (TRUNCATION > 0 && cost > 10'(TRUNCATION)) cost = 10'(TRUNCATION);
+          product = 18'(weight) * 18'(cost);
+          num = num + 32'(product);
+        end
+      end
+      if (VERTICAL_SHIFT_ADD) begin
+        num = outside ? times_constant(32'(den), fx_pkg::COST_OUTSIDE)
+                      : times_constant(weighted_h, fx_pkg::CENSUS_WEIGHT);
       end
       vertical[l*BITS+:BITS] = mean(num, den, fx_pkg::AGG_FRAC_BITS);
     end

@@ -463,7 +463,8 @@ module stereo_top #(
           .TRUNCATION((COST == fx_pkg::COST_CENSUS) ? fx_pkg::ASW_TRUNCATION_CENSUS
                                                    : fx_pkg::ASW_TRUNCATION_AD),
           .RING_BLOCK_RAM(RING_BLOCK_RAM),
-          .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
+          .RING_BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL),
+          .SHIFT_ADD(SHIFT_ADD)
       ) asw (
           .clk(clk),
           .rst(clear_coordinates),

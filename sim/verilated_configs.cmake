@@ -10,7 +10,7 @@ stereo_verilated_config(Vstereo_top_ndisp2_lanes1 stereo_top "" WIDTH=64 HEIGHT=
 stereo_verilated_config(Vstereo_top_ndisp1 stereo_top "" WIDTH=64 HEIGHT=48 NDISP=1 WINDOW=5)
 stereo_verilated_config(Vstereo_top_lean_lanes4 stereo_top "" WIDTH=64 HEIGHT=48 NDISP=16 WINDOW=5 LANES=4 RECOMPUTE_COSTS=1'b1)
 stereo_verilated_config(Vstereo_top_asw_census stereo_top "" WIDTH=64 HEIGHT=48 NDISP=16 WINDOW=5 COST=2 ASW=1'b1)
-stereo_verilated_config(Vstereo_top_asw_census_lanes4 stereo_top "" WIDTH=64 HEIGHT=48 NDISP=16 WINDOW=5 COST=2 LANES=4 ASW=1'b1)
+stereo_verilated_config(Vstereo_top_asw_census_lanes4 stereo_top "" WIDTH=64 HEIGHT=48 NDISP=16 WINDOW=5 COST=2 LANES=4 SHIFT_ADD=1 ASW=1'b1)
 stereo_verilated_config(Vstereo_top_asw_ad_lanes4 stereo_top "" WIDTH=64 HEIGHT=48 NDISP=16 WINDOW=31 LANES=4 ASW=1'b1)
 stereo_verilated_config(Vstereo_border_flags stereo_border_flags "")
 stereo_verilated_config(Vstereo_cost stereo_cost "" NDISP=16)

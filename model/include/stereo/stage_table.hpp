@@ -643,12 +643,13 @@ inline constexpr Params kFpgaCensusNdisp8Lanes2 = kSmall.with({.ndisp = 8,
                                                                .shift_add = kShiftAddAll});
 
 // The adaptive-support-weight core (ASW = 1; the window is the support diameter): the census
-// cost at diameter 5, all labels per clock and 4 per clock, and the AD cost (truncated) at
+// cost at diameter 5, all labels per clock and 4 per clock (its vertical products from shifts
+// and adds, SHIFT_ADD narrow), and the AD cost (truncated) at
 // diameter 31, 4 per clock, where the continuity factor bites: label jumps above 255 / 31 (8)
 // (tb_stereo_asw_top).
 inline constexpr Params kSmallAswCensus = kSmall.with({.cost = kCostCensus, .asw = 1});
 inline constexpr Params kSmallAswCensusLanes4 =
-    kSmall.with({.cost = kCostCensus, .lanes = 4, .asw = 1});
+    kSmall.with({.cost = kCostCensus, .lanes = 4, .shift_add = kShiftAddNarrow, .asw = 1});
 inline constexpr Params kSmallAswAdLanes4 = kSmall.with({.window = 31, .lanes = 4, .asw = 1});
 
 // The VGA ASW core as an FPGA runs it (docs/results-asw.md "Hardware configuration"): census,
