@@ -11,6 +11,7 @@
 #include <memory>
 #include <numbers>
 #include <random>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -285,12 +286,16 @@ TEST(Ransac, MinimumInlierRuleRefusesAWeakConsensus) {
 void expect_same_matches(const cv::Mat& query, const cv::Mat& train) {
     std::vector<cv::DMatch> expected;
     cv::BFMatcher(cv::NORM_HAMMING, true).match(query, train, expected);
-    const std::vector<cv::DMatch> got = match_mutual_nearest(query, train);
-    ASSERT_EQ(got.size(), expected.size());
-    for (std::size_t m = 0; m < got.size(); ++m) {
-        EXPECT_EQ(got[m].queryIdx, expected[m].queryIdx) << m;
-        EXPECT_EQ(got[m].trainIdx, expected[m].trainIdx) << m;
-        EXPECT_EQ(got[m].distance, expected[m].distance) << m;
+    // Threads split the query rows; every count must give the same list (the merge of the
+    // slices keeps the lower query index on ties).
+    for (const int threads : {1, 2, 3, 7}) {
+        const std::vector<cv::DMatch> got = match_mutual_nearest(query, train, threads);
+        ASSERT_EQ(got.size(), expected.size()) << threads << " threads";
+        for (std::size_t m = 0; m < got.size(); ++m) {
+            EXPECT_EQ(got[m].queryIdx, expected[m].queryIdx) << m << ", " << threads;
+            EXPECT_EQ(got[m].trainIdx, expected[m].trainIdx) << m << ", " << threads;
+            EXPECT_EQ(got[m].distance, expected[m].distance) << m << ", " << threads;
+        }
     }
 }
 
@@ -336,6 +341,7 @@ TEST(MutualNearest, EmptyAndMismatchedInputs) {
                  std::invalid_argument);
     EXPECT_THROW(match_mutual_nearest(some, cv::Mat(4, 32, CV_32FC1, cv::Scalar(7))),
                  std::invalid_argument);
+    EXPECT_THROW(match_mutual_nearest(some, some, 0), std::invalid_argument);
 }
 
 TEST(Camera, DisparityOffsetByHand) {
@@ -586,6 +592,86 @@ TEST(MapMerge, ChanceOverlapWithAClutteredMapIsNotACorrection) {
     }
     EXPECT_GE(ungated_applied, 15);  // the failure mode the gates remove
     EXPECT_EQ(gated_applied, 0);
+}
+
+// The placement search written out plainly: every rotation and shift, the rotated points' cells
+// deduplicated in a std::set, the first best kept unless a later one scores more or ties closer.
+MergeResult naive_placement(const EvidenceGrid& global, const std::vector<Eigen::Vector2d>& points,
+                            const Eigen::Vector2d& pivot, const MergeParams& params) {
+    MergeResult best;
+    int best_size = std::numeric_limits<int>::max();
+    for (int step = -params.angle_steps; step <= params.angle_steps; ++step) {
+        const double angle = step * params.angle_step_deg * std::numbers::pi / 180.0;
+        std::set<std::pair<int, int>> cells;
+        for (const Eigen::Vector2d& p : points) {
+            const Eigen::Vector2d r = p - pivot;
+            const Eigen::Vector2d moved =
+                pivot + Eigen::Vector2d(std::cos(angle) * r.x() + std::sin(angle) * r.y(),
+                                        -std::sin(angle) * r.x() + std::cos(angle) * r.y());
+            const CellIndex c = cell_of(moved, global.cell_size());
+            cells.insert({c.x, c.z});
+        }
+        for (int dz = -params.max_shift; dz <= params.max_shift; ++dz) {
+            for (int dx = -params.max_shift; dx <= params.max_shift; ++dx) {
+                int score = 0;
+                for (const auto& [x, z] : cells) {
+                    score += global.occupied({x + dx, z + dz}) ? 1 : 0;
+                }
+                const int size = std::abs(dx) + std::abs(dz) + std::abs(step);
+                if (step == 0 && dx == 0 && dz == 0) {
+                    best.base_score = score;
+                }
+                if (score > best.score || (score == best.score && size < best_size)) {
+                    best.dx = dx;
+                    best.dz = dz;
+                    best.dtheta = step;
+                    best.score = score;
+                    best.cells = static_cast<int>(cells.size());
+                    best_size = size;
+                }
+            }
+        }
+    }
+    return best;
+}
+
+TEST(MapMerge, EqualsThePlainSearchOnDenseAndScatteredPoints) {
+    // Many points per cell (a local map's obstacles), and the same with a few points kilometres
+    // away, whose box is too large for the bitmap deduplication (the sorting path).
+    auto rng = test::seeded_rng(21);
+    std::uniform_real_distribution<double> where(0.0, 30.0);
+    std::bernoulli_distribution occupied(0.2);
+    EvidenceGrid global(0.25);
+    std::vector<CellIndex> cells;
+    for (int x = 0; x < 120; ++x) {
+        for (int z = 0; z < 120; ++z) {
+            if (occupied(rng)) {
+                cells.push_back({x, z});
+            }
+        }
+    }
+    global.add_frame({-10, -10}, cells, {});
+    for (const bool scattered : {false, true}) {
+        std::vector<Eigen::Vector2d> local;
+        for (int i = 0; i < 5000; ++i) {
+            local.emplace_back(where(rng), where(rng));
+        }
+        if (scattered) {
+            local.emplace_back(-4000.0, 3500.0);
+            local.emplace_back(2500.0, -3000.0);
+        }
+        MergeParams params;
+        params.angle_steps = 3;
+        const MergeResult got = best_placement(global, local, {15.0, 15.0}, params);
+        const MergeResult expected = naive_placement(global, local, {15.0, 15.0}, params);
+        EXPECT_EQ(got.dx, expected.dx) << scattered;
+        EXPECT_EQ(got.dz, expected.dz) << scattered;
+        EXPECT_EQ(got.dtheta, expected.dtheta) << scattered;
+        EXPECT_EQ(got.score, expected.score) << scattered;
+        EXPECT_EQ(got.base_score, expected.base_score) << scattered;
+        EXPECT_EQ(got.cells, expected.cells) << scattered;
+        EXPECT_GT(got.cells, 1000) << scattered;
+    }
 }
 
 // ---- evaluation -----------------------------------------------------------------------------

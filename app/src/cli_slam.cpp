@@ -7,11 +7,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <iostream>
 #include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -154,13 +156,23 @@ Totals run_frames(const SlamOptions& o, const Input& in, slam::Slam& slam,
                   cv::Mat& vdisparity_picture) {
     Totals totals;
     const ProgressBar progress("slam", in.frames);
+    // One frame's images and the time they took to read and decode.
+    const auto load = [&](int i) {
+        const auto start = std::chrono::steady_clock::now();
+        slam::StereoFrame frame = slam::load_frame(in.sequence, in.range.begin + i, o.downscale);
+        return std::pair{std::move(frame), std::chrono::duration<double, std::milli>(
+                                               std::chrono::steady_clock::now() - start)
+                                               .count()};
+    };
+    // With more than one thread the next frame is read while this one is processed (its
+    // single-threaded stages leave a core free); a read error still stops the run at that frame.
+    std::future<std::pair<slam::StereoFrame, double>> next;
     for (int i = 0; i < in.frames; ++i) {
-        const auto load_start = std::chrono::steady_clock::now();
-        const slam::StereoFrame frame =
-            slam::load_frame(in.sequence, in.range.begin + i, o.downscale);
-        totals.load_ms +=
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - load_start)
-                .count();
+        auto [frame, load_ms] = next.valid() ? next.get() : load(i);
+        totals.load_ms += load_ms;
+        if (o.params.threads > 1 && i + 1 < in.frames) {
+            next = std::async(std::launch::async, load, i + 1);
+        }
         const slam::FrameReport report = slam.process(frame.left, frame.right);
         add_times(totals.stages, report.ms);
         totals.valid_fraction += report.valid_fraction;

@@ -22,7 +22,7 @@
 #include "stereo/search.hpp"
 #include "stereo/stages.hpp"
 #include "stereo/stages/validate.hpp"
-#include "target_clones.hpp"
+#include "stereo/target_clones.hpp"
 
 namespace stereo::asw {
 namespace {
@@ -366,7 +366,7 @@ int padded_width(int width) {
     return (width + kBlock - 1) / kBlock * kBlock;
 }
 
-// The sums run on GCC's vector extensions, one source for every clone (target_clones.hpp).
+// The sums run on GCC's vector extensions, one source for every clone (stereo/target_clones.hpp).
 using U16x32 = std::uint16_t __attribute__((vector_size(64)));
 using U32x16 = std::uint32_t __attribute__((vector_size(64)));
 using I32x16 = std::int32_t __attribute__((vector_size(64)));

@@ -22,7 +22,7 @@
 #include "stereo/stages.hpp"
 #include "stereo/stages/census.hpp"
 #include "stereo/stages/validate.hpp"
-#include "target_clones.hpp"
+#include "stereo/target_clones.hpp"
 
 namespace stereo::fast {
 namespace {

@@ -6,7 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "../target_clones.hpp"
+#include "stereo/target_clones.hpp"
 
 namespace stereo {
 namespace {

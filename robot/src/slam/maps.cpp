@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <limits>
 #include <map>
@@ -417,6 +418,44 @@ double radians(double degrees) {
     return degrees * std::numbers::pi / 180.0;
 }
 
+// The distinct cells in (x, z) order, as sort + unique would leave them. A local map's cells lie
+// in a box of a few hundred cells a side, so marking them in a bitmap of that box and reading it
+// row by row is linear; sorting tens of thousands of points per rotation took a tenth of a SLAM
+// step. Boxes too large for the bitmap (scattered outliers) are sorted.
+void sort_unique_cells(std::vector<CellIndex>& cells) {
+    if (cells.empty()) {
+        return;
+    }
+    const auto [min_x, max_x] =
+        std::minmax_element(cells.begin(), cells.end(),
+                            [](const CellIndex& a, const CellIndex& b) { return a.x < b.x; });
+    const auto [min_z, max_z] =
+        std::minmax_element(cells.begin(), cells.end(),
+                            [](const CellIndex& a, const CellIndex& b) { return a.z < b.z; });
+    const std::int64_t width = static_cast<std::int64_t>(max_x->x) - min_x->x + 1;
+    const std::int64_t depth = static_cast<std::int64_t>(max_z->z) - min_z->z + 1;
+    constexpr std::int64_t kMaxBitmap = std::int64_t{1} << 24;
+    if (width * depth > kMaxBitmap) {
+        std::sort(cells.begin(), cells.end(), [](const CellIndex& a, const CellIndex& b) {
+            return a.x != b.x ? a.x < b.x : a.z < b.z;
+        });
+        cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+        return;
+    }
+    const int x0 = min_x->x;
+    const int z0 = min_z->z;
+    std::vector<std::uint8_t> seen(static_cast<std::size_t>(width * depth), 0);
+    for (const CellIndex& c : cells) {
+        seen[static_cast<std::size_t>((c.x - x0) * depth + (c.z - z0))] = 1;
+    }
+    cells.clear();
+    for (std::int64_t i = 0; i < width * depth; ++i) {
+        if (seen[static_cast<std::size_t>(i)] != 0) {
+            cells.push_back({x0 + static_cast<int>(i / depth), z0 + static_cast<int>(i % depth)});
+        }
+    }
+}
+
 }  // namespace
 
 MergeResult best_placement(const EvidenceGrid& global, const std::vector<Eigen::Vector2d>& points,
@@ -431,10 +470,7 @@ MergeResult best_placement(const EvidenceGrid& global, const std::vector<Eigen::
         for (const auto& p : points) {
             cells.push_back(cell_of(rotate_about(p, pivot, angle), global.cell_size()));
         }
-        std::sort(cells.begin(), cells.end(), [](const CellIndex& a, const CellIndex& b) {
-            return a.x != b.x ? a.x < b.x : a.z < b.z;
-        });
-        cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+        sort_unique_cells(cells);
         for (int dz = -params.max_shift; dz <= params.max_shift; ++dz) {
             for (int dx = -params.max_shift; dx <= params.max_shift; ++dx) {
                 int score = 0;

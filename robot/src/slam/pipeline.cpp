@@ -106,7 +106,9 @@ void validate_camera(const Camera& camera, int width, int height) {
 }
 
 Slam::Slam(const Camera& camera, const SlamParams& params)
-    : camera_(camera), params_(params), map_(params.cell_size) {}
+    : camera_(camera), params_(params), map_(params.cell_size) {
+    params_.motion.threads = params.threads;  // the descriptor matching shares the SLAM's threads
+}
 
 FrameReport Slam::process(const cv::Mat& left, const cv::Mat& right) {
     FrameReport report;

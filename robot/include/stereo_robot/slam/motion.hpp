@@ -78,6 +78,7 @@ struct MotionParams {
     double max_step_m = 4.0;  // a larger translation between two frames is refused
     double max_step_deg = 20.0;
     int refine_iterations = 10;  // Gauss-Newton on the reprojection error; 0 = SVD fit only
+    int threads = 1;             // of the descriptor matching (the same matches for any count)
 };
 
 struct Features {
@@ -92,8 +93,10 @@ Features detect_features(const cv::Mat& grey, const MotionParams& params);
 // row, ties to the lower index in both directions. One match per such query row, in query
 // order, distance in bits: the same list as cv::BFMatcher(NORM_HAMMING, true).match (tested
 // against it), in one pass over the pairs with 64-bit popcounts instead of OpenCV's per-pair
-// calls, which took a quarter of a SLAM step.
-std::vector<cv::DMatch> match_mutual_nearest(const cv::Mat& query, const cv::Mat& train);
+// calls, which took a quarter of a SLAM step. `threads` (>= 1) split the query rows; every
+// thread count gives the same list.
+std::vector<cv::DMatch> match_mutual_nearest(const cv::Mat& query, const cv::Mat& train,
+                                             int threads = 1);
 
 // A lifted match: keypoint indices in the previous and the current frame, and their (u, v, d).
 struct KeypointPair {
