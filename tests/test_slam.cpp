@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -921,6 +922,48 @@ TEST(RealData, BundleAdjustmentOnAShortClipLowersTheCostAndKeepsTheTrack) {
     const double travelled = clip->truth.back().translation().norm();
     EXPECT_LT((slam.trajectory().back().translation() - clip->truth.back().translation()).norm(),
               0.05 * travelled);
+}
+
+TEST(RealData, OverlappedFrontEndGivesTheSameRun) {
+    // `stereo slam` with threads > 1 matches frame i + 1 on another thread while frame i's motion
+    // and maps are computed; that must change nothing, the merged and adjusted chains included.
+    const fs::path dir = io::data_dir() / "sequence" / "kitti_sequence_1";
+    if (!fs::is_directory(dir)) {
+        GTEST_SKIP() << "no KITTI data under " << io::data_dir();
+    }
+    const Sequence sequence = open_sequence(dir, Layout::kitti, std::nullopt);
+    SlamParams params;
+    params.frontend.ndisp = 48;
+    params.threads = 2;
+    params.bundle_enabled = true;
+    params.bundle.window = 3;
+    Slam plain(sequence.camera.downscaled(2), params);
+    Slam overlapped(sequence.camera.downscaled(2), params);
+    constexpr int kFrames = 6;
+    std::vector<StereoFrame> frames;
+    for (int i = 0; i < kFrames; ++i) {
+        frames.push_back(load_frame(sequence, i, 2));
+    }
+    std::future<Slam::FrontendFrame> next;
+    for (int i = 0; i < kFrames; ++i) {
+        const FrameReport expected = plain.process(frames[i].left, frames[i].right);
+        Slam::FrontendFrame front =
+            next.valid() ? next.get() : overlapped.frontend(frames[i].left, frames[i].right);
+        if (i + 1 < kFrames) {
+            next = std::async(std::launch::async, [&, i] {
+                return overlapped.frontend(frames[i + 1].left, frames[i + 1].right);
+            });
+        }
+        const FrameReport got = overlapped.integrate(std::move(front));
+        EXPECT_EQ(got.motion.inliers, expected.motion.inliers) << i;
+        EXPECT_EQ(got.obstacle_points, expected.obstacle_points) << i;
+        EXPECT_EQ(got.valid_fraction, expected.valid_fraction) << i;
+    }
+    for (int i = 0; i < kFrames; ++i) {
+        EXPECT_TRUE(overlapped.trajectory()[i].matrix() == plain.trajectory()[i].matrix()) << i;
+        EXPECT_TRUE(overlapped.adjusted()[i].matrix() == plain.adjusted()[i].matrix()) << i;
+    }
+    EXPECT_GT(overlapped.trajectory().back().translation().norm(), 1.0);  // it moved
 }
 
 }  // namespace

@@ -156,24 +156,27 @@ Totals run_frames(const SlamOptions& o, const Input& in, slam::Slam& slam,
                   cv::Mat& vdisparity_picture) {
     Totals totals;
     const ProgressBar progress("slam", in.frames);
-    // One frame's images and the time they took to read and decode.
-    const auto load = [&](int i) {
+    // One frame read, decoded and through the front end, and the time the reading took.
+    const auto prepare = [&](int i) {
         const auto start = std::chrono::steady_clock::now();
-        slam::StereoFrame frame = slam::load_frame(in.sequence, in.range.begin + i, o.downscale);
-        return std::pair{std::move(frame), std::chrono::duration<double, std::milli>(
-                                               std::chrono::steady_clock::now() - start)
-                                               .count()};
+        const slam::StereoFrame frame =
+            slam::load_frame(in.sequence, in.range.begin + i, o.downscale);
+        const double load_ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                .count();
+        return std::pair{slam.frontend(frame.left, frame.right), load_ms};
     };
-    // With more than one thread the next frame is read while this one is processed (its
-    // single-threaded stages leave a core free); a read error still stops the run at that frame.
-    std::future<std::pair<slam::StereoFrame, double>> next;
+    // With more than one thread the next frame is read and matched while this one's motion and
+    // maps are computed (single-threaded stages that leave a core free): one frame of latency
+    // more, the same results. A read error still stops the run at its frame.
+    std::future<std::pair<slam::Slam::FrontendFrame, double>> next;
     for (int i = 0; i < in.frames; ++i) {
-        auto [frame, load_ms] = next.valid() ? next.get() : load(i);
+        auto [front, load_ms] = next.valid() ? next.get() : prepare(i);
         totals.load_ms += load_ms;
         if (o.params.threads > 1 && i + 1 < in.frames) {
-            next = std::async(std::launch::async, load, i + 1);
+            next = std::async(std::launch::async, prepare, i + 1);
         }
-        const slam::FrameReport report = slam.process(frame.left, frame.right);
+        const slam::FrameReport report = slam.integrate(std::move(front));
         add_times(totals.stages, report.ms);
         totals.valid_fraction += report.valid_fraction;
         totals.ground_found += report.ground_found ? 1 : 0;

@@ -111,9 +111,11 @@ Slam::Slam(const Camera& camera, const SlamParams& params)
 }
 
 FrameReport Slam::process(const cv::Mat& left, const cv::Mat& right) {
-    FrameReport report;
+    return integrate(frontend(left, right));
+}
 
-    auto start = Clock::now();
+Slam::FrontendFrame Slam::frontend(const cv::Mat& left, const cv::Mat& right) const {
+    const auto start = Clock::now();
     // ORB on the left image does not depend on the disparities: with threads > 1 it runs
     // beside the front end (its time is then included in frontend_ms).
     std::future<Features> detected;
@@ -121,13 +123,22 @@ FrameReport Slam::process(const cv::Mat& left, const cv::Mat& right) {
         detected =
             std::async(std::launch::async, [&] { return detect_features(left, params_.motion); });
     }
-    SparseDisparity disparity = sparse_disparity_bands(to_grey_image(left), to_grey_image(right),
-                                                       params_.frontend, params_.threads);
-    report.valid_fraction = disparity.valid_fraction();
-    Features features = detected.valid() ? detected.get() : detect_features(left, params_.motion);
-    report.ms.frontend_ms = ms_since(start);
+    FrontendFrame frame;
+    frame.disparity = sparse_disparity_bands(to_grey_image(left), to_grey_image(right),
+                                             params_.frontend, params_.threads);
+    frame.features = detected.valid() ? detected.get() : detect_features(left, params_.motion);
+    frame.ms = ms_since(start);
+    return frame;
+}
 
-    start = Clock::now();
+FrameReport Slam::integrate(FrontendFrame frame) {
+    FrameReport report;
+    report.valid_fraction = frame.disparity.valid_fraction();
+    report.ms.frontend_ms = frame.ms;
+    SparseDisparity& disparity = frame.disparity;
+    Features& features = frame.features;
+
+    auto start = Clock::now();
     if (odometry_.empty()) {
         odometry_.push_back(Eigen::Isometry3d::Identity());
         adjusted_.push_back(Eigen::Isometry3d::Identity());

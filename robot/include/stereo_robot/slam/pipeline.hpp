@@ -72,6 +72,18 @@ class Slam {
     // One frame: 8-bit grey rectified left and right images of equal size.
     FrameReport process(const cv::Mat& left, const cv::Mat& right);
 
+    // process() in two parts, for a caller that overlaps frames: frontend() (the sparse disparity
+    // map and the ORB features) reads only the parameters, so it may run for the next frame on
+    // another thread while integrate() takes this one (motion, bundle adjustment, maps).
+    // integrate(frontend(l, r)) is process(l, r).
+    struct FrontendFrame {
+        SparseDisparity disparity;
+        Features features;
+        double ms = 0.0;
+    };
+    FrontendFrame frontend(const cv::Mat& left, const cv::Mat& right) const;
+    FrameReport integrate(FrontendFrame frame);
+
     const Trajectory& odometry() const { return odometry_; }  // frame-to-frame motion chain only
     // The motion chain refined by the windowed bundle adjustment (= odometry() when it is off).
     const Trajectory& adjusted() const { return adjusted_; }
