@@ -2,6 +2,7 @@
 # slam_threads_same.sh OUT STEREO SEQUENCE ARGS...: `STEREO slam SEQUENCE ARGS` with --threads 1
 # and with --threads 2 (the next frame read and matched while this one is integrated) must
 # write the same trajectory and the same map, byte for byte.
+# shellcheck disable=SC2154  # the arguments: named_args (common.sh) assigns them
 set -eu
 # shellcheck source=tests/cli/common.sh
 . "$(dirname "$0")/common.sh"
