@@ -549,6 +549,38 @@ TEST(MapMerge, RecoversAKnownOffsetAndRotation) {
     }
 }
 
+TEST(MapMerge, APlacementOnTheEdgeOfTheWindowIsFoundButNotApplied) {
+    // A wall pattern moved by exactly the window's largest shift: the search finds it, but an
+    // optimum on the window's edge is not located (the true one may lie beyond), so the default
+    // does not apply it; without the edge gate it is applied. One cell less is interior.
+    constexpr double kCell = 0.5;
+    std::vector<CellIndex> walls;
+    for (int i = 0; i < 30; ++i) {
+        walls.push_back({i, 20});
+        walls.push_back({0, i});
+    }
+    for (const CellIndex c : {CellIndex{12, 7}, {20, 15}, {25, 3}, {7, 13}}) {
+        walls.push_back(c);
+    }
+    EvidenceGrid global(kCell);
+    global.add_frame({-5, -5}, walls, {});
+    for (const int shift : {2, 1}) {
+        std::vector<Eigen::Vector2d> local;
+        for (const CellIndex& c : walls) {
+            local.emplace_back((c.x + 0.5 - shift) * kCell, (c.z + 0.5) * kCell);
+        }
+        MergeParams params;  // max_shift 2
+        const MergeResult result = best_placement(global, local, {5.0, 5.0}, params);
+        EXPECT_EQ(result.dx, shift);
+        EXPECT_EQ(result.dz, 0);
+        EXPECT_EQ(result.dtheta, 0);
+        EXPECT_EQ(result.at_edge, shift == params.max_shift);
+        EXPECT_EQ(result.applied, shift < params.max_shift) << shift;
+        params.reject_edge = false;
+        EXPECT_TRUE(best_placement(global, local, {5.0, 5.0}, params).applied) << shift;
+    }
+}
+
 TEST(MapMerge, KeepsThePlacementWhenNothingIsGained) {
     EvidenceGrid global(1.0);
     global.add_frame({0, 0}, {{5, 5}, {6, 5}}, {});
@@ -588,6 +620,7 @@ TEST(MapMerge, ChanceOverlapWithAClutteredMapIsNotACorrection) {
         MergeParams ungated;
         ungated.significance = 0.0;
         ungated.min_match = 0.0;
+        ungated.reject_edge = false;
         ungated_applied += best_placement(global, local, {20.0, 20.0}, ungated).applied ? 1 : 0;
         gated_applied += best_placement(global, local, {20.0, 20.0}, {}).applied ? 1 : 0;
     }

@@ -220,6 +220,11 @@ nlohmann::json run_summary(const SlamOptions& o, const Input& in, const Totals& 
     summary["height"] = in.height;
     summary["downscale"] = o.downscale;
     summary["merge"] = o.params.merge_enabled;
+    summary["self_calibration"] = {
+        {"enabled", o.params.self_calibration_enabled},
+        {"calibrated_offset_px", o.disparity_offset},
+        {"final_offset_px", slam.camera().disparity_offset * o.downscale},
+        {"pairs", slam.self_calibration_pairs()}};
     summary["cost"] = o.params.frontend.cost;
     const double per_pair = frames > 1 ? frames - 1 : 1;
     summary["fps"] = {{"total", fps(frames, total_ms)},
@@ -362,6 +367,12 @@ void run_slam(SlamOptions o) {
     }
     slam::Camera full_size = in.sequence.camera;
     full_size.disparity_offset = o.disparity_offset;
+    // The self-calibration's pixels are those of the matched (downscaled) images.
+    for (double* px : {&o.params.self_calibration.min_offset, &o.params.self_calibration.max_offset,
+                       &o.params.self_calibration.step, &o.params.self_calibration.gate,
+                       &o.params.self_calibration.hysteresis}) {
+        *px /= o.downscale;
+    }
     const slam::Camera camera = full_size.downscaled(o.downscale);
     slam::validate_camera(camera, in.width, in.height);
     slam::Slam slam(camera, o.params);
@@ -469,6 +480,9 @@ void add_slam_command(CLI::App& app) {
     command->add_flag("--ba-profile-offset", p.bundle.profile_offset,
                       "Diagnostic: the least-cost disparity offset of every window (with --ba)");
     command->add_flag("!--no-merge", p.merge_enabled, "Place local maps with the odometry alone");
+    command->add_flag("!--no-self-calibration", p.self_calibration_enabled,
+                      "Keep --disparity-offset: do not measure the rig's disparity offset from "
+                      "the images while moving (docs/slam.md)");
     add_number_options(
         *command,
         {{"--merge-shift", &p.merge.max_shift, "Merge search: +- cells in x and z"},

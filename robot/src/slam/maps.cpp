@@ -460,9 +460,8 @@ void sort_unique_cells(std::vector<CellIndex>& cells) {
 
 MergeResult best_placement(const EvidenceGrid& global, const std::vector<Eigen::Vector2d>& points,
                            const Eigen::Vector2d& pivot, const MergeParams& params) {
-    MergeResult best;
-    bool first = true;
-    int best_size = 0;
+    // The distinct cells of the points under each rotation.
+    std::vector<std::vector<CellIndex>> rotated;
     for (int step = -params.angle_steps; step <= params.angle_steps; ++step) {
         const double angle = radians(step * params.angle_step_deg);
         std::vector<CellIndex> cells;
@@ -471,11 +470,53 @@ MergeResult best_placement(const EvidenceGrid& global, const std::vector<Eigen::
             cells.push_back(cell_of(rotate_about(p, pivot, angle), global.cell_size()));
         }
         sort_unique_cells(cells);
+        rotated.push_back(std::move(cells));
+    }
+    // The map's occupancy over the box the shifted cells can reach, read once: the search looks
+    // every cell up once per shift, and the map is a hash table.
+    CellIndex low{std::numeric_limits<int>::max(), std::numeric_limits<int>::max()};
+    CellIndex high{std::numeric_limits<int>::min(), std::numeric_limits<int>::min()};
+    for (const auto& cells : rotated) {
+        for (const CellIndex& c : cells) {
+            low = {std::min(low.x, c.x), std::min(low.z, c.z)};
+            high = {std::max(high.x, c.x), std::max(high.z, c.z)};
+        }
+    }
+    const std::int64_t shift = params.max_shift;
+    const std::int64_t width = static_cast<std::int64_t>(high.x) - low.x + 1 + 2 * shift;
+    const std::int64_t depth = static_cast<std::int64_t>(high.z) - low.z + 1 + 2 * shift;
+    constexpr std::int64_t kMaxWindow = std::int64_t{1} << 22;
+    std::vector<std::uint8_t> window;
+    if (low.x <= high.x && width * depth <= kMaxWindow) {
+        window.resize(static_cast<std::size_t>(width * depth));
+        for (std::int64_t i = 0; i < width; ++i) {
+            for (std::int64_t j = 0; j < depth; ++j) {
+                const CellIndex cell{static_cast<int>(low.x - shift + i),
+                                     static_cast<int>(low.z - shift + j)};
+                window[static_cast<std::size_t>(i * depth + j)] = global.occupied(cell) ? 1 : 0;
+            }
+        }
+    }
+    const auto occupied = [&](int x, int z) {
+        if (window.empty()) {
+            return global.occupied({x, z});
+        }
+        const std::int64_t i = static_cast<std::int64_t>(x) - (low.x - shift);
+        const std::int64_t j = static_cast<std::int64_t>(z) - (low.z - shift);
+        return window[static_cast<std::size_t>(i * depth + j)] != 0;
+    };
+
+    MergeResult best;
+    bool first = true;
+    int best_size = 0;
+    for (int step = -params.angle_steps; step <= params.angle_steps; ++step) {
+        const std::vector<CellIndex>& cells =
+            rotated[static_cast<std::size_t>(step + params.angle_steps)];
         for (int dz = -params.max_shift; dz <= params.max_shift; ++dz) {
             for (int dx = -params.max_shift; dx <= params.max_shift; ++dx) {
                 int score = 0;
                 for (const CellIndex& c : cells) {
-                    score += global.occupied({c.x + dx, c.z + dz}) ? 1 : 0;
+                    score += occupied(c.x + dx, c.z + dz) ? 1 : 0;
                 }
                 const int size = std::abs(dx) + std::abs(dz) + std::abs(step);
                 if (step == 0 && dx == 0 && dz == 0) {
@@ -502,7 +543,11 @@ MergeResult best_placement(const EvidenceGrid& global, const std::vector<Eigen::
         gain >= params.significance * std::sqrt(static_cast<double>(best.score + best.base_score));
     const bool confirmed =
         best.cells > 0 && best.score >= params.min_match * static_cast<double>(best.cells);
-    best.applied = significant && confirmed && best_size > 0;
+    const auto on_edge = [](int value, int range) { return range > 0 && std::abs(value) == range; };
+    best.at_edge = on_edge(best.dx, params.max_shift) || on_edge(best.dz, params.max_shift) ||
+                   on_edge(best.dtheta, params.angle_steps);
+    best.applied =
+        significant && confirmed && best_size > 0 && !(params.reject_edge && best.at_edge);
     return best;
 }
 

@@ -382,6 +382,9 @@ MotionEstimate estimate_motion(const Features& previous, const SparseDisparity& 
         const cv::Point2f& b = current.keypoints[match.trainIdx].pt;
         const double da = disparity_at(previous_disparity, a);
         const double db = disparity_at(current_disparity, b);
+        estimate.matched_pairs.push_back({match.queryIdx, match.trainIdx,
+                                          Eigen::Vector3d(a.x, a.y, da),
+                                          Eigen::Vector3d(b.x, b.y, db)});
         if (!(da >= min_disparity) || !(db >= min_disparity)) {
             continue;
         }

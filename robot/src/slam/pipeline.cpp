@@ -2,10 +2,12 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <future>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <unordered_set>
 
 #include "stereo_io/io.hpp"
 #include "stereo_robot/bands.hpp"
@@ -35,6 +37,58 @@ void require(bool condition, const std::string& message) {
     if (!condition) {
         throw std::invalid_argument(message);
     }
+}
+
+// One point of each camera-frame (x, z) square of side `size` (the first one met), as floats.
+// The squares are marked in a bitmap over the points' box (a local map spans a few hundred
+// squares a side); a box too large for it keeps every point.
+std::vector<Eigen::Vector3f> thinned(const std::vector<Eigen::Vector3d>& points, double size) {
+    std::vector<Eigen::Vector3f> kept;
+    if (points.empty()) {
+        return kept;
+    }
+    double low_x = points.front().x();
+    double high_x = low_x;
+    double low_z = points.front().z();
+    double high_z = low_z;
+    for (const Eigen::Vector3d& p : points) {
+        low_x = std::min(low_x, p.x());
+        high_x = std::max(high_x, p.x());
+        low_z = std::min(low_z, p.z());
+        high_z = std::max(high_z, p.z());
+    }
+    const double width = std::floor((high_x - low_x) / size) + 1.0;
+    const double depth = std::floor((high_z - low_z) / size) + 1.0;
+    if (!(width * depth <= double{1 << 24})) {
+        for (const Eigen::Vector3d& p : points) {
+            kept.push_back(p.cast<float>());
+        }
+        return kept;
+    }
+    const auto columns = static_cast<std::size_t>(depth);
+    std::vector<std::uint8_t> seen(static_cast<std::size_t>(width) * columns, 0);
+    for (const Eigen::Vector3d& p : points) {
+        const auto i = static_cast<std::size_t>((p.x() - low_x) / size);
+        const auto j = static_cast<std::size_t>((p.z() - low_z) / size);
+        std::uint8_t& mark = seen[i * columns + j];
+        if (mark == 0) {
+            mark = 1;
+            kept.push_back(p.cast<float>());
+        }
+    }
+    return kept;
+}
+
+// A camera-frame point lifted at offset `from`, lifted again at `to`: the same ray, the depth
+// of its disparity under the new offset (the point itself when the offset is the same).
+Eigen::Vector3d relift_point(const Eigen::Vector3f& point, const Camera& camera, double from,
+                             double to) {
+    if (from == to) {
+        return point.cast<double>();
+    }
+    const double fb = camera.focal * camera.baseline;
+    const double d = fb / point.z() - from;  // as matched
+    return point.cast<double>() * ((fb / (d + to)) / point.z());
 }
 
 }  // namespace
@@ -106,7 +160,11 @@ void validate_camera(const Camera& camera, int width, int height) {
 }
 
 Slam::Slam(const Camera& camera, const SlamParams& params)
-    : camera_(camera), params_(params), map_(params.cell_size) {
+    : camera_(camera),
+      params_(params),
+      map_(params.cell_size),
+      offset_estimator_(params.self_calibration),
+      calibrated_offset_(camera.disparity_offset) {
     params_.motion.threads = params.threads;  // the descriptor matching shares the SLAM's threads
 }
 
@@ -139,6 +197,7 @@ FrameReport Slam::integrate(FrontendFrame frame) {
     Features& features = frame.features;
 
     auto start = Clock::now();
+    bool offset_changed = false;
     if (odometry_.empty()) {
         odometry_.push_back(Eigen::Isometry3d::Identity());
         adjusted_.push_back(Eigen::Isometry3d::Identity());
@@ -150,13 +209,31 @@ FrameReport Slam::integrate(FrontendFrame frame) {
                                         params_.motion, last_motion_);
         if (!report.motion.fallback) {
             last_motion_ = report.motion.motion;
+            const bool added = params_.self_calibration_enabled &&
+                               offset_estimator_.add_pair(report.motion.matched_pairs, camera_,
+                                                          report.motion.motion);
+            if (added && offset_estimator_.due()) {
+                offset_changed = set_disparity_offset(
+                    offset_estimator_.offset_for(calibrated_offset_, camera_.disparity_offset));
+            }
         }
         const Eigen::Isometry3d step = report.motion.motion.inverse();  // current -> previous
         odometry_.push_back(odometry_.back() * step);
         adjusted_.push_back(adjusted_.back() * step);
         trajectory_.push_back(trajectory_.back() * step);
         merge_corrections_.push_back(merge_corrections_.back());
+        if (params_.self_calibration_enabled) {
+            steps_.push_back(
+                {report.motion.motion, report.motion.fallback, report.motion.inlier_pairs});
+            const auto kept = static_cast<std::size_t>(params_.self_calibration.resolve_steps);
+            if (steps_.size() > kept) {
+                steps_.front().inliers = {};  // too old to be solved again
+                steps_.pop_front();
+                ++first_step_;
+            }
+        }
     }
+    report.disparity_offset = camera_.disparity_offset;
     features_ = std::move(features);
     disparity_ = std::move(disparity);
     report.ms.motion_ms = ms_since(start);
@@ -191,26 +268,50 @@ FrameReport Slam::integrate(FrontendFrame frame) {
     report.ms.local_map_ms = ms_since(start);
 
     start = Clock::now();
-    Eigen::Isometry3d& pose = trajectory_.back();
+    // The local map thinned to one point per quarter cell (camera frame): the global map counts
+    // cells, and the kept copy rebuilds the map exactly as it was built.
+    const double quarter_cell = params_.cell_size / 4.0;
+    KeptLocalMap thin{thinned(local.obstacles, quarter_cell), thinned(local.ground, quarter_cell),
+                      camera_.disparity_offset};
+    report.merge = place_local_map(trajectory_.size() - 1, relifted(thin, camera_).first,
+                                   relifted(thin, camera_).second);
+    if (params_.self_calibration_enabled) {
+        keep_local_map(std::move(thin));
+        if (offset_changed) {
+            // Every kept motion and the map again at the new offset (docs/slam.md §2c).
+            resolve_steps();
+            rebuild_map();
+        }
+    }
+    report.ms.global_map_ms = ms_since(start);
+    return report;
+}
+
+MergeResult Slam::place_local_map(std::size_t frame,
+                                  const std::vector<Eigen::Vector3d>& obstacles_seen,
+                                  const std::vector<Eigen::Vector3d>& ground_seen) {
+    MergeResult merge;
+    Eigen::Isometry3d& pose = trajectory_[frame];
     std::vector<Eigen::Vector2d> obstacles;
-    obstacles.reserve(local.obstacles.size());
-    for (const auto& p : local.obstacles) {
+    obstacles.reserve(obstacles_seen.size());
+    for (const auto& p : obstacles_seen) {
         obstacles.push_back(plane(pose * p));
     }
     if (params_.merge_enabled && !map_.empty() && !obstacles.empty()) {
         const Eigen::Vector2d pivot = plane(pose.translation());
-        report.merge = best_placement(map_, obstacles, pivot, params_.merge);
+        merge = best_placement(map_, obstacles, pivot, params_.merge);
+
         const Eigen::Isometry3d correction =
-            merge_correction(report.merge, pivot, params_.cell_size, params_.merge);
+            merge_correction(merge, pivot, params_.cell_size, params_.merge);
         pose = correction * pose;
-        merge_corrections_.back() = correction * merge_corrections_.back();
+        merge_corrections_[frame] = correction * merge_corrections_[frame];
         for (auto& p : obstacles) {
             p = plane(correction * Eigen::Vector3d(p.x(), 0.0, p.y()));
         }
     }
     std::vector<Eigen::Vector2d> ground;
-    ground.reserve(local.ground.size());
-    for (const auto& p : local.ground) {
+    ground.reserve(ground_seen.size());
+    for (const auto& p : ground_seen) {
         ground.push_back(plane(pose * p));
     }
     const Eigen::Vector2d origin = plane(pose.translation());
@@ -221,8 +322,102 @@ FrameReport Slam::integrate(FrontendFrame frame) {
     }
     map_.add_frame(cell_of(origin, params_.cell_size), cells,
                    bearing_rays(origin, obstacles, ground, params_.cell_size, params_.ray_bin_deg));
-    report.ms.global_map_ms = ms_since(start);
-    return report;
+    return merge;
+}
+
+std::pair<std::vector<Eigen::Vector3d>, std::vector<Eigen::Vector3d>> Slam::relifted(
+    const KeptLocalMap& local, const Camera& camera) {
+    std::pair<std::vector<Eigen::Vector3d>, std::vector<Eigen::Vector3d>> points;
+    points.first.reserve(local.obstacles.size());
+    points.second.reserve(local.ground.size());
+    for (const auto& p : local.obstacles) {
+        points.first.push_back(relift_point(p, camera, local.offset, camera.disparity_offset));
+    }
+    for (const auto& p : local.ground) {
+        points.second.push_back(relift_point(p, camera, local.offset, camera.disparity_offset));
+    }
+    return points;
+}
+
+void Slam::keep_local_map(KeptLocalMap local) {
+    local_maps_.push_back(std::move(local));
+    if (local_maps_.size() > steps_.size() + 1) {
+        local_maps_.pop_front();  // its frame's step is no longer kept either
+    }
+}
+
+// The global map and the merge corrections again from the kept local maps, at the new offset
+// and the solved-again motions. Only while every frame of the run is kept: older evidence could
+// not be rebuilt, so a longer run keeps its map (and the motions are still solved again).
+void Slam::rebuild_map() {
+    if (first_step_ != 0 || local_maps_.size() != trajectory_.size()) {
+        return;
+    }
+    map_ = EvidenceGrid(params_.cell_size);
+    Eigen::Isometry3d running = Eigen::Isometry3d::Identity();
+    for (std::size_t frame = 0; frame < local_maps_.size(); ++frame) {
+        const auto [obstacles, ground] = relifted(local_maps_[frame], camera_);
+        merge_corrections_[frame] = running;
+        trajectory_[frame] = running * adjusted_[frame];
+        place_local_map(frame, obstacles, ground);
+        running = merge_corrections_[frame];
+    }
+}
+
+bool Slam::set_disparity_offset(double offset) {
+    if (offset == camera_.disparity_offset) {
+        return false;
+    }
+    camera_.disparity_offset = offset;
+    return true;
+}
+
+// The disparity offset changed: every kept step's motion again from its inliers at the new
+// offset (Gauss-Newton from the old motion), and the chains rebuilt from them (the adjusted
+// chain restarts from the odometry; rebuild_map() then redoes the merge corrections).
+void Slam::resolve_steps() {
+    for (std::size_t k = 0; k < steps_.size(); ++k) {
+        Step& step = steps_[k];
+        if (step.fallback || step.inliers.size() < 3) {
+            continue;
+        }
+        std::vector<Eigen::Vector3d> src;
+        std::vector<Eigen::Vector3d> observed;
+        std::vector<int> all;
+        for (const KeypointPair& p : step.inliers) {
+            if (!(p.previous_uvd.z() + camera_.disparity_offset > 0.0) ||
+                !(p.current_uvd.z() + camera_.disparity_offset > 0.0)) {
+                continue;
+            }
+            src.push_back(camera_.lift(p.previous_uvd.x(), p.previous_uvd.y(), p.previous_uvd.z()));
+            observed.push_back(p.current_uvd);
+            all.push_back(static_cast<int>(all.size()));
+        }
+        if (all.size() >= 3) {
+            step.motion = refine_reprojection(step.motion, src, observed, all, camera_,
+                                              std::max(params_.motion.refine_iterations, 1));
+        }
+    }
+    for (std::size_t k = 0; k < steps_.size(); ++k) {
+        const std::size_t frame = first_step_ + k + 1;  // steps_[k] leads to this frame
+        odometry_[frame] = odometry_[frame - 1] * steps_[k].motion.inverse();
+        adjusted_[frame] = odometry_[frame];
+        trajectory_[frame] = merge_corrections_[frame] * adjusted_[frame];
+    }
+    // The bundle-adjustment window's landmarks again, from their first observation at the new
+    // offset and the solved-again poses (the adjustment refines them from there).
+    std::unordered_set<int> placed;
+    for (const KeyFrame& key : window_) {
+        for (const auto& [id, uvd] : key.observations) {
+            if (placed.insert(id).second) {
+                landmarks_[id] = adjusted_[static_cast<std::size_t>(key.frame)] *
+                                 camera_.lift(uvd.x(), uvd.y(), uvd.z());
+            }
+        }
+    }
+    if (!steps_.empty() && !steps_.back().fallback) {
+        last_motion_ = steps_.back().motion;
+    }
 }
 
 void Slam::add_key_frame(const MotionEstimate& motion, std::size_t keypoints) {

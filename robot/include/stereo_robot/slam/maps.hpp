@@ -177,6 +177,10 @@ struct MergeParams {
     // The placed local map must land with at least this share of its cells on occupied map
     // cells: a correction is only trusted when the map confirms the local map (0 = off).
     double min_match = 0.5;
+    // A best placement on the edge of the search window (|dx| or |dz| = max_shift, or |dtheta| =
+    // angle_steps, where that range is not 0) is not applied: the optimum was not located, it
+    // may lie outside the window (docs/slam.md).
+    bool reject_edge = true;
 };
 
 struct MergeResult {
@@ -186,6 +190,7 @@ struct MergeResult {
     int score = 0;       // occupied cells of the chosen placement that are occupied in the map
     int base_score = 0;  // the same without correction
     int cells = 0;       // distinct cells of the chosen placement
+    bool at_edge = false;  // the placement lies on the edge of the search window
     bool applied = false;
 };
 
@@ -194,7 +199,7 @@ struct MergeResult {
 // (dx, dz) * cell size, and counts the distinct cells they fall in that the global grid holds as
 // occupied. Every combination in the window is tried; the largest count wins, ties to the
 // smallest |dx| + |dz| + |dtheta| and then to the first in (dtheta, dz, dx) order. Applied when
-// it beats the uncorrected count by at least min_gain.
+// it beats the uncorrected count by at least min_gain and the gates of MergeParams pass.
 MergeResult best_placement(const EvidenceGrid& global, const std::vector<Eigen::Vector2d>& points,
                            const Eigen::Vector2d& pivot, const MergeParams& params);
 

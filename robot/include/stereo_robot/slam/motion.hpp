@@ -113,6 +113,8 @@ struct MotionEstimate {
     int matches = 0;        // cross-checked descriptor matches
     int lifted = 0;         // matches with a validated disparity in both frames
     int inliers = 0;
+    // Every match within max_hamming, d < 0 where a frame has no validated disparity.
+    std::vector<KeypointPair> matched_pairs;
     std::vector<KeypointPair> inlier_pairs;  // the final inliers (empty when refused)
 };
 

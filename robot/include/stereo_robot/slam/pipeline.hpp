@@ -17,6 +17,7 @@
 #include "stereo_robot/slam/frontend.hpp"
 #include "stereo_robot/slam/maps.hpp"
 #include "stereo_robot/slam/motion.hpp"
+#include "stereo_robot/slam/self_calibration.hpp"
 
 namespace stereo::robot::slam {
 
@@ -33,6 +34,10 @@ struct SlamParams {
     double cell_size = 0.25;    // metres
     double ray_bin_deg = 0.5;   // bearing bins of the free-space rays
     bool merge_enabled = true;  // false: place local maps with the odometry alone
+    // The disparity offset measured from the images while moving (self_calibration.hpp),
+    // applied from the frame it is first known; false keeps the camera's offset.
+    bool self_calibration_enabled = true;
+    SelfCalibrationParams self_calibration;
     // Row bands of the front end matched in parallel (bit-exact, stereo_robot/bands.hpp), and
     // the ORB detection run beside the front end; 1 = everything on the calling thread.
     int threads = 1;
@@ -62,6 +67,7 @@ struct FrameReport {
     int obstacle_points = 0;
     MergeResult merge;
     StageTimes ms;
+    double disparity_offset = 0.0;  // the camera's, after this frame (px of the images)
 };
 
 class Slam {
@@ -90,6 +96,8 @@ class Slam {
     const Trajectory& trajectory() const { return trajectory_; }  // adjusted + merge corrections
     const EvidenceGrid& map() const { return map_; }
     const SparseDisparity& last_disparity() const { return disparity_; }
+    const Camera& camera() const { return camera_; }  // its offset may be self-calibrated
+    int self_calibration_pairs() const { return offset_estimator_.pairs_seen(); }
     const VDisparity& last_v_disparity() const { return vdisp_; }
 
   private:
@@ -101,6 +109,34 @@ class Slam {
         std::vector<std::pair<int, Eigen::Vector3d>> observations;  // (landmark id, (u, v, d))
     };
     void add_key_frame(const MotionEstimate& motion, std::size_t keypoints);
+    // The global-map stage of one frame: the merge search, then the local map (camera-frame
+    // points) into the map at trajectory_[frame], which the correction found updates.
+    MergeResult place_local_map(std::size_t frame, const std::vector<Eigen::Vector3d>& obstacles,
+                                const std::vector<Eigen::Vector3d>& ground);
+    bool set_disparity_offset(double offset);  // true when it changed
+    void resolve_steps();
+    void rebuild_map();
+
+    // A frame's local map, thinned, with the offset it was lifted at.
+    struct KeptLocalMap {
+        std::vector<Eigen::Vector3f> obstacles;
+        std::vector<Eigen::Vector3f> ground;
+        double offset = 0.0;
+    };
+    void keep_local_map(KeptLocalMap local);
+    // Its points at the camera's offset.
+    static std::pair<std::vector<Eigen::Vector3d>, std::vector<Eigen::Vector3d>> relifted(
+        const KeptLocalMap& local, const Camera& camera);
+    std::deque<KeptLocalMap> local_maps_;  // of frames first_step_ .. (with steps_)
+
+    // A frame-to-frame motion kept for solving again when the disparity offset changes.
+    struct Step {
+        Eigen::Isometry3d motion;
+        bool fallback = false;
+        std::vector<KeypointPair> inliers;
+    };
+    std::deque<Step> steps_;  // the most recent resolve_steps, leading to frames first_step_ + 1..
+    std::size_t first_step_ = 0;
     BundleReport adjust_window();
 
     Camera camera_;
@@ -118,6 +154,8 @@ class Slam {
     VDisparity vdisp_;
     std::optional<GroundLine> ground_;
     Eigen::Isometry3d last_motion_ = Eigen::Isometry3d::Identity();
+    DisparityOffsetEstimator offset_estimator_;
+    double calibrated_offset_;  // the camera's offset as given
 };
 
 // Camera positions (x, z) of a trajectory, for render_map.
