@@ -7,6 +7,8 @@
 #include <optional>
 #include <random>
 #include <stdexcept>
+#include <string>
+#include <tuple>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -183,28 +185,36 @@ TEST(SelfCalibration, ImpossibleParametersAreRefused) {
     EXPECT_NO_THROW(DisparityOffsetEstimator{SelfCalibrationParams{}});
 }
 
+// A clip under ../shared/data/sequence, or none without the data.
+std::optional<Sequence> kitti_clip(const std::string& name) {
+    const fs::path dir = io::data_dir() / "sequence" / name;
+    if (!fs::is_directory(dir)) {
+        return std::nullopt;
+    }
+    return open_sequence(dir, Layout::kitti, std::nullopt);
+}
+
 TEST(SelfCalibration, KittiClipWithItsMeasuredOffset) {
     // kitti_sequence_2's disparities are about 1.4 px short of its calib.txt (measured with its
     // poses, docs/results-slam.md); the rig must find an offset near it without the poses, and
     // kitti_sequence_1 (0.25 px by the poses) must keep its calibration. Half size, 48 labels.
     for (const auto& [clip, low, high] :
          {std::tuple{"kitti_sequence_2", 1.0, 2.25}, std::tuple{"kitti_sequence_1", 0.0, 0.0}}) {
-        const fs::path dir = io::data_dir() / "sequence" / clip;
-        if (!fs::is_directory(dir)) {
+        const std::optional<Sequence> sequence = kitti_clip(clip);
+        if (!sequence) {
             GTEST_SKIP() << "no KITTI data under " << io::data_dir();
         }
-        const Sequence sequence = open_sequence(dir, Layout::kitti, std::nullopt);
         SlamParams params;
-        params.frontend.ndisp = 48;
         params.threads = 2;
+        params.frontend.ndisp = 48;
         for (double* px : {&params.self_calibration.min_offset, &params.self_calibration.max_offset,
                            &params.self_calibration.step, &params.self_calibration.gate,
                            &params.self_calibration.hysteresis}) {
             *px /= 2.0;
         }
-        Slam slam(sequence.camera.downscaled(2), params);
-        for (int i = 0; i < static_cast<int>(sequence.frames.size()); ++i) {
-            const StereoFrame frame = load_frame(sequence, i, 2);
+        Slam slam(sequence->camera.downscaled(2), params);
+        for (int i = 0; i < static_cast<int>(sequence->frames.size()); ++i) {
+            const StereoFrame frame = load_frame(*sequence, i, 2);
             slam.process(frame.left, frame.right);
         }
         const double full_size_offset = 2.0 * slam.camera().disparity_offset;

@@ -593,23 +593,31 @@ TEST(MapMerge, KeepsThePlacementWhenNothingIsGained) {
     EXPECT_FALSE(result.applied);
 }
 
+// A map whose cells 0..side-1 in x and z are occupied with probability `fraction` (from one
+// frame's hits, no rays).
+template <typename Rng>
+EvidenceGrid scattered_map(int side, double fraction, double cell_size, Rng& rng) {
+    std::bernoulli_distribution occupied(fraction);
+    std::vector<CellIndex> cells;
+    for (int x = 0; x < side; ++x) {
+        for (int z = 0; z < side; ++z) {
+            if (occupied(rng)) {
+                cells.push_back({x, z});
+            }
+        }
+    }
+    EvidenceGrid global(cell_size);
+    global.add_frame({-100, -100}, cells, {});
+    return global;
+}
+
 TEST(MapMerge, ChanceOverlapWithAClutteredMapIsNotACorrection) {
     // A map of scattered occupied cells (30 % of a 40 x 40 m area, like roadside vegetation) and
     // a local map drawn independently of it: any "gain" of the best of the 125 placements is
     // chance. The ungated search of issue 9 takes it; the gated one must not.
     auto rng = test::seeded_rng(20);
     std::uniform_real_distribution<double> where(0.0, 40.0);
-    std::bernoulli_distribution occupied(0.3);
-    EvidenceGrid global(1.0);
-    std::vector<CellIndex> cells;
-    for (int x = 0; x < 40; ++x) {
-        for (int z = 0; z < 40; ++z) {
-            if (occupied(rng)) {
-                cells.push_back({x, z});
-            }
-        }
-    }
-    global.add_frame({-100, -100}, cells, {});
+    const EvidenceGrid global = scattered_map(40, 0.3, 1.0, rng);
     int ungated_applied = 0;
     int gated_applied = 0;
     for (int trial = 0; trial < 20; ++trial) {
@@ -628,12 +636,12 @@ TEST(MapMerge, ChanceOverlapWithAClutteredMapIsNotACorrection) {
     EXPECT_EQ(gated_applied, 0);
 }
 
-// The placement search written out plainly: every rotation and shift, the rotated points' cells
-// deduplicated in a std::set, the first best kept unless a later one scores more or ties closer.
+// The placement search written out plainly: every rotation and shift scored on the rotated
+// points' cells deduplicated in a std::set, all placements listed in search order, then the best
+// taken by its key (most cells, then the smallest |dx| + |dz| + |dtheta|, then the first).
 MergeResult naive_placement(const EvidenceGrid& global, const std::vector<Eigen::Vector2d>& points,
                             const Eigen::Vector2d& pivot, const MergeParams& params) {
-    MergeResult best;
-    int best_size = std::numeric_limits<int>::max();
+    std::vector<MergeResult> placements;
     for (int step = -params.angle_steps; step <= params.angle_steps; ++step) {
         const double angle = step * params.angle_step_deg * std::numbers::pi / 180.0;
         std::set<std::pair<int, int>> cells;
@@ -647,25 +655,25 @@ MergeResult naive_placement(const EvidenceGrid& global, const std::vector<Eigen:
         }
         for (int dz = -params.max_shift; dz <= params.max_shift; ++dz) {
             for (int dx = -params.max_shift; dx <= params.max_shift; ++dx) {
-                int score = 0;
-                for (const auto& [x, z] : cells) {
-                    score += global.occupied({x + dx, z + dz}) ? 1 : 0;
-                }
-                const int size = std::abs(dx) + std::abs(dz) + std::abs(step);
-                if (step == 0 && dx == 0 && dz == 0) {
-                    best.base_score = score;
-                }
-                if (score > best.score || (score == best.score && size < best_size)) {
-                    best.dx = dx;
-                    best.dz = dz;
-                    best.dtheta = step;
-                    best.score = score;
-                    best.cells = static_cast<int>(cells.size());
-                    best_size = size;
-                }
+                MergeResult placement{dx, dz, step};
+                placement.cells = static_cast<int>(cells.size());
+                placement.score = static_cast<int>(
+                    std::count_if(cells.begin(), cells.end(), [&](const auto& cell) {
+                        return global.occupied({cell.first + dx, cell.second + dz});
+                    }));
+                placements.push_back(placement);
             }
         }
     }
+    const auto key = [](const MergeResult& m) {
+        return std::pair{-m.score, std::abs(m.dx) + std::abs(m.dz) + std::abs(m.dtheta)};
+    };
+    MergeResult best = *std::min_element(
+        placements.begin(), placements.end(),
+        [&](const MergeResult& a, const MergeResult& b) { return key(a) < key(b); });
+    best.base_score = std::find_if(placements.begin(), placements.end(), [](const MergeResult& m) {
+                          return m.dx == 0 && m.dz == 0 && m.dtheta == 0;
+                      })->score;
     return best;
 }
 
@@ -674,17 +682,7 @@ TEST(MapMerge, EqualsThePlainSearchOnDenseAndScatteredPoints) {
     // away, whose box is too large for the bitmap deduplication (the sorting path).
     auto rng = test::seeded_rng(21);
     std::uniform_real_distribution<double> where(0.0, 30.0);
-    std::bernoulli_distribution occupied(0.2);
-    EvidenceGrid global(0.25);
-    std::vector<CellIndex> cells;
-    for (int x = 0; x < 120; ++x) {
-        for (int z = 0; z < 120; ++z) {
-            if (occupied(rng)) {
-                cells.push_back({x, z});
-            }
-        }
-    }
-    global.add_frame({-10, -10}, cells, {});
+    const EvidenceGrid global = scattered_map(120, 0.2, 0.25, rng);
     for (const bool scattered : {false, true}) {
         std::vector<Eigen::Vector2d> local;
         for (int i = 0; i < 5000; ++i) {
