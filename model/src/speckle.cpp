@@ -2,6 +2,8 @@
 // labelled once, so the cost is linear in the pixel count whatever the regions look like.
 #include "stereo/speckle.hpp"
 
+#include <cstddef>
+#include <cstdint>
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
@@ -26,50 +28,60 @@ int filter(ValidatedDisparity& map, const Params& params) {
         return 0;
     }
     const int width = map.width;
-    const int height = map.height;
+    const std::size_t pixels = map.fixed.size();
     const int max_step = params.range * fx::kSubpixelScale;
-    // 0: not visited yet; otherwise the region's number + 1.
-    std::vector<int> region_of(map.fixed.size(), 0);
-    std::vector<std::size_t> members;  // the current region, in fill order
-    std::vector<std::size_t> stack;
+    const auto max_size = static_cast<std::size_t>(params.max_size);
+    // Reused by the calling thread from one frame to the next (no allocation in a sequence).
+    thread_local std::vector<std::uint8_t> visited;
+    thread_local std::vector<std::size_t> members;  // the current region's first max_size + 1
+    struct Pixel {
+        std::size_t index;
+        int x;
+    };
+    thread_local std::vector<Pixel> stack;
+    visited.assign(pixels, 0);
     int removed = 0;
-    int next_region = 1;
-    for (std::size_t seed = 0; seed < map.fixed.size(); ++seed) {
-        if (!map.valid(seed) || region_of[seed] != 0) {
+    for (std::size_t seed = 0; seed < pixels; ++seed) {
+        if (visited[seed] != 0 || !map.valid(seed)) {
             continue;
         }
         members.clear();
-        stack.assign(1, seed);
-        region_of[seed] = next_region;
+        stack.assign(1, {seed, static_cast<int>(seed % static_cast<std::size_t>(width))});
+        visited[seed] = 1;
+        std::size_t size = 0;
         while (!stack.empty()) {
-            const std::size_t p = stack.back();
+            const Pixel p = stack.back();
             stack.pop_back();
-            members.push_back(p);
-            const int x = static_cast<int>(p % width);
-            const int y = static_cast<int>(p / width);
-            const auto visit = [&](int nx, int ny) {
-                if (nx < 0 || nx >= width || ny < 0 || ny >= height) {
-                    return;
-                }
-                const std::size_t q = map.index(nx, ny);
-                if (region_of[q] == 0 && map.valid(q) &&
-                    std::abs(map.fixed[q] - map.fixed[p]) <= max_step) {
-                    region_of[q] = next_region;
-                    stack.push_back(q);
+            if (size++ <= max_size) {  // a larger region is kept whole: no need to list it
+                members.push_back(p.index);
+            }
+            const int disparity = map.fixed[p.index];
+            const auto visit = [&](std::size_t q, int x) {
+                if (visited[q] == 0 && map.valid(q) &&
+                    std::abs(map.fixed[q] - disparity) <= max_step) {
+                    visited[q] = 1;
+                    stack.push_back({q, x});
                 }
             };
-            visit(x + 1, y);
-            visit(x - 1, y);
-            visit(x, y + 1);
-            visit(x, y - 1);
+            if (p.x + 1 < width) {
+                visit(p.index + 1, p.x + 1);
+            }
+            if (p.x > 0) {
+                visit(p.index - 1, p.x - 1);
+            }
+            if (p.index + width < pixels) {
+                visit(p.index + width, p.x);
+            }
+            if (p.index >= static_cast<std::size_t>(width)) {
+                visit(p.index - width, p.x);
+            }
         }
-        ++next_region;
-        if (static_cast<int>(members.size()) <= params.max_size) {
+        if (size <= max_size) {
             for (const std::size_t p : members) {
                 map.reason[p] = fx::kReasonSpeckle;
                 map.fixed[p] = 0;
             }
-            removed += static_cast<int>(members.size());
+            removed += static_cast<int>(size);
         }
     }
     return removed;
