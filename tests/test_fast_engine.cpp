@@ -160,6 +160,20 @@ TEST(FastEngine, RandomPairs_EveryOption_EveryThreadCount) {
     }
 }
 
+TEST(FastEngine, EveryWindowRadius) {
+    // The aggregation has one-pass kernels for radii 1 .. 7 and the tap-by-tap loop for the
+    // others (radius 0, 8, 9 here); rows outside the image must add nothing in both.
+    auto rng = test::seeded_rng(52);
+    const Image left = smooth_random(45, 41, 3, rng);
+    const Image right = test::shifted_copy(left, 3, 5, rng);
+    MatchParams params = defaults::match_config("pipeline", "model").pipeline;
+    params.ndisp = 6;
+    for (int window = 1; window <= 19; window += 2) {
+        params.window = window;
+        expect_same(left, right, params, 1 + window % 3, "w " + std::to_string(window));
+    }
+}
+
 TEST(FastEngine, TallAndTinyImages_TileSeams) {
     auto rng = test::seeded_rng(50);
     for (const auto& [width, height] : std::vector<std::pair<int, int>>{

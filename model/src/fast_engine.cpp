@@ -15,6 +15,7 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include "stereo/catalogue.hpp"
 #include "stereo/constants.hpp"
@@ -83,6 +84,49 @@ void horizontal(const std::int32_t* __restrict v, const std::int32_t* __restrict
         out[x] = static_cast<CostValue>((sum[x] + round_half) >> fx::kAggShift);
     }
 }
+
+// Stage 2 for the common window radii (1 .. kFusedRadii), each pass once over the row with the
+// taps in registers instead of one pass per tap: `rows` holds the 2R + 1 cost rows around the
+// row (the zero row for those outside the image, which adds nothing, as in the model).
+constexpr int kFusedRadii = 7;
+
+template <int R>
+STEREO_TARGET_CLONES void vertical_fused(std::int32_t* __restrict v,
+                                         const CostValue* const* __restrict rows,
+                                         const std::int32_t* __restrict taps, int n) {
+    for (int x = 0; x < n; ++x) {
+        std::int32_t sum = taps[0] * static_cast<std::int32_t>(rows[R][x]);
+        for (int j = 1; j <= R; ++j) {
+            sum += taps[j] * (static_cast<std::int32_t>(rows[R - j][x]) +
+                              static_cast<std::int32_t>(rows[R + j][x]));
+        }
+        v[x] = sum;
+    }
+}
+
+template <int R>
+STEREO_TARGET_CLONES void horizontal_fused(const std::int32_t* __restrict v,
+                                           const std::int32_t* __restrict taps,
+                                           CostValue* __restrict out, int n) {
+    constexpr std::int32_t round_half = 1 << (fx::kAggShift - 1);
+    for (int x = 0; x < n; ++x) {
+        std::int32_t sum = taps[0] * v[x];
+        for (int i = 1; i <= R; ++i) {
+            sum += taps[i] * (v[x - i] + v[x + i]);
+        }
+        out[x] = static_cast<CostValue>((sum + round_half) >> fx::kAggShift);
+    }
+}
+
+using VerticalFused = void (*)(std::int32_t*, const CostValue* const*, const std::int32_t*, int);
+using HorizontalFused = void (*)(const std::int32_t*, const std::int32_t*, CostValue*, int);
+template <int... R>
+constexpr std::array<std::pair<VerticalFused, HorizontalFused>, sizeof...(R)> fused_passes(
+    std::integer_sequence<int, R...>) {
+    return {std::pair{&vertical_fused<R + 1>, &horizontal_fused<R + 1>}...};
+}
+// Index radius - 1.
+const auto kFusedPasses = fused_passes(std::make_integer_sequence<int, kFusedRadii>{});
 
 // Stage 3, CA rule 1 on one row. `up`/`down`: the rows around it (zeros outside the image);
 // `before`/`after`: the neighbouring labels' aggregates (kUnset where the label does not exist,
@@ -500,6 +544,20 @@ void run_tile(const Frame& f, Workspace& ws, int y0, int y1) {
             cost_row(f, y, d, row_of(ws.cost, y, cost_base));
         }
         std::vector<CostValue>& plane = ws.agg[static_cast<std::size_t>(k % 3)];
+        if (radius >= 1 && radius <= kFusedRadii) {
+            const auto [vertical_pass, horizontal_pass] =
+                kFusedPasses[static_cast<std::size_t>(radius - 1)];
+            std::array<const CostValue*, 2 * kFusedRadii + 1> rows{};
+            for (int y = g0; y < g1; ++y) {
+                for (int j = -radius; j <= radius; ++j) {
+                    rows[static_cast<std::size_t>(j + radius)] =
+                        y + j >= 0 && y + j < height ? row_of(ws.cost, y + j, cost_base) : f.zeros;
+                }
+                vertical_pass(vertical, rows.data(), taps, width);
+                horizontal_pass(vertical, taps, row_of(plane, y, agg_base), width);
+            }
+            return;
+        }
         for (int y = g0; y < g1; ++y) {
             vertical_init(vertical, row_of(ws.cost, y, cost_base), taps[0], width);
             for (int j = 1; j <= radius; ++j) {
