@@ -186,10 +186,10 @@ struct MergeParams {
 struct MergeResult {
     int dx = 0;  // cells
     int dz = 0;
-    int dtheta = 0;      // steps of angle_step_deg
-    int score = 0;       // occupied cells of the chosen placement that are occupied in the map
-    int base_score = 0;  // the same without correction
-    int cells = 0;       // distinct cells of the chosen placement
+    int dtheta = 0;        // steps of angle_step_deg
+    int score = 0;         // occupied cells of the chosen placement that are occupied in the map
+    int base_score = 0;    // the same without correction
+    int cells = 0;         // distinct cells of the chosen placement
     bool at_edge = false;  // the placement lies on the edge of the search window
     bool applied = false;
 };
