@@ -91,6 +91,13 @@ Eigen::Vector3d relift_point(const Eigen::Vector3f& point, const Camera& camera,
     return point.cast<double>() * ((fb / (d + to)) / point.z());
 }
 
+// The self-calibration looks at the points the motion uses: the same farthest depth.
+SelfCalibrationParams self_calibration_params(const SlamParams& params) {
+    SelfCalibrationParams calibration = params.self_calibration;
+    calibration.max_depth = params.motion.max_depth;
+    return calibration;
+}
+
 }  // namespace
 
 void validate(const SlamParams& params, int width, int height) {
@@ -163,7 +170,7 @@ Slam::Slam(const Camera& camera, const SlamParams& params)
     : camera_(camera),
       params_(params),
       map_(params.cell_size),
-      offset_estimator_(params.self_calibration),
+      offset_estimator_(self_calibration_params(params)),
       calibrated_offset_(camera.disparity_offset) {
     params_.motion.threads = params.threads;  // the descriptor matching shares the SLAM's threads
 }

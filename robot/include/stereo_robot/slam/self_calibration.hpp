@@ -33,7 +33,7 @@ struct SelfCalibrationParams {
     double min_travel = 0.2;   // m: a pair's median travel below this observes nothing
     int min_points = 20;       // points with a disparity in both frames, per pair
     double epipolar_px = 1.0;  // Sampson distance of an inlier to the epipolar geometry
-    double max_depth = 40.0;   // m: farther points (at offset 0) are left out, as in the motion
+    double max_depth = 40.0;   // m: farther points (at offset 0) are left out (Slam: the motion's)
     double gate = 0.5;         // px: a smaller difference from the calibration is not applied
     double hysteresis = 0.25;  // px: a smaller change of the applied offset is not made
     int every = 5;             // pairs between estimates after the first
