@@ -234,8 +234,7 @@ FrameReport Slam::integrate(FrontendFrame frame) {
                 {report.motion.motion, report.motion.fallback, report.motion.inlier_pairs});
             const auto kept = static_cast<std::size_t>(params_.self_calibration.resolve_steps);
             if (steps_.size() > kept) {
-                steps_.front().inliers = {};  // too old to be solved again
-                steps_.pop_front();
+                steps_.pop_front();  // too old to be solved again
                 ++first_step_;
             }
         }
@@ -280,8 +279,8 @@ FrameReport Slam::integrate(FrontendFrame frame) {
     const double quarter_cell = params_.cell_size / 4.0;
     KeptLocalMap thin{thinned(local.obstacles, quarter_cell), thinned(local.ground, quarter_cell),
                       camera_.disparity_offset};
-    report.merge = place_local_map(trajectory_.size() - 1, relifted(thin, camera_).first,
-                                   relifted(thin, camera_).second);
+    const auto [obstacles, ground] = relifted(thin, camera_);
+    report.merge = place_local_map(trajectory_.size() - 1, obstacles, ground);
     if (params_.self_calibration_enabled) {
         keep_local_map(std::move(thin));
         if (offset_changed) {
