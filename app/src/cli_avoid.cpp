@@ -54,6 +54,10 @@ struct AvoidOptions {
     std::string ground = "fit";  // fit | off
     int threads = 0;             // row bands matched in parallel; 0 = every core
     robot::GroundRemoval ground_params;
+
+    static constexpr std::string_view kName = "avoid";
+    static constexpr std::string_view kDescription =
+        "Obstacle avoidance (thesis Sec. 4.1): direction decision on a pair or sequence.";
 };
 
 // The camera geometry when one is given (--calib, or --focal and --baseline).
@@ -294,10 +298,7 @@ void run_avoid(const AvoidOptions& o) {
 }  // namespace
 
 void add_avoid_command(CLI::App& app) {
-    const auto [command, o] = add_command<AvoidOptions>(
-        app, "avoid",
-        "Obstacle avoidance (thesis Sec. 4.1): direction decision on a pair or sequence.",
-        run_avoid);
+    const auto [command, o] = add_command<AvoidOptions>(app, run_avoid);
     command->add_option("LEFT", o->left, "Left image, folder of left images, or a list file")
         ->required();
     command->add_option("RIGHT", o->right,

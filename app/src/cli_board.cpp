@@ -36,6 +36,10 @@ struct BoardOptions {
     int downscale = 1;
     bool png16 = false;
     bool json = false;
+
+    static constexpr std::string_view kName = "board";
+    static constexpr std::string_view kDescription =
+        "Match a pair on the iCEBreaker (stereo_board_top) over its serial port (docs/board.md).";
 };
 
 nlohmann::json identity_json(const board::Identity& identity) {
@@ -172,10 +176,7 @@ void run_board(const BoardOptions& options) {
 }  // namespace
 
 void add_board_command(CLI::App& app) {
-    const auto [command, options] = add_command<BoardOptions>(
-        app, "board",
-        "Match a pair on the iCEBreaker (stereo_board_top) over its serial port (docs/board.md).",
-        run_board);
+    const auto [command, options] = add_command<BoardOptions>(app, run_board);
     command->footer(
         "The board answers with what it was built for (largest frame, labels, window): without "
         "--window its window is used, and a larger frame, more labels, another window or a "

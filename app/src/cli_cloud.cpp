@@ -35,6 +35,10 @@ struct CloudOptions {
     double scale = 1.0;
     bool png16 = false;
     bool binary = false;
+
+    static constexpr std::string_view kName = "cloud";
+    static constexpr std::string_view kDescription =
+        "Write a coloured 3-D point cloud (PLY) from a disparity map.";
 };
 
 void run_cloud(const CloudOptions& options) {
@@ -80,8 +84,7 @@ void run_cloud(const CloudOptions& options) {
 }  // namespace
 
 void add_cloud_command(CLI::App& app) {
-    const auto [command, options] = add_command<CloudOptions>(
-        app, "cloud", "Write a coloured 3-D point cloud (PLY) from a disparity map.", run_cloud);
+    const auto [command, options] = add_command<CloudOptions>(app, run_cloud);
     command
         ->add_option("DISP", options->disparity,
                      "Disparity: .pfm, or PNG (d * scale, 0 invalid; --png16: 32768 + 16 d)")

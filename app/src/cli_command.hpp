@@ -37,6 +37,14 @@ Command<Options> add_command(CLI::App& app, const std::string& name, const std::
     return {command, options};
 }
 
+// add_command for an Options that names its command beside its fields (Options::kName,
+// Options::kDescription).
+template <class Options, class Run>
+Command<Options> add_command(CLI::App& app, Run run) {
+    return add_command<Options>(app, std::string(Options::kName),
+                                std::string(Options::kDescription), std::move(run));
+}
+
 // --data: the folder that holds middlebury2003/ (its default shown by --help).
 inline void add_data_option(CLI::App& command, std::string& folder) {
     command.add_option("--data", folder, "Data folder (middlebury2003/ and the other data sets)")
@@ -57,8 +65,7 @@ struct ReportOptions {
 template <class Options, class Run>
 Command<Options> add_report_command(CLI::App& app, Run run) {
     static_assert(std::is_base_of_v<ReportOptions, Options>);
-    const Command<Options> command = add_command<Options>(
-        app, std::string(Options::kName), std::string(Options::kDescription), std::move(run));
+    const Command<Options> command = add_command<Options>(app, std::move(run));
     ReportOptions& report = *command.options;
     add_data_option(*command.app, report.data_dir);
     command.app->add_option("--markdown", report.markdown,

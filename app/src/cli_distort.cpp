@@ -30,6 +30,10 @@ struct DistortOptions {
     io::PairWarp warp{10.0, 0.0, 0.0};
     double gt_scale = 1.0;
     std::string gt_mode = "warped";  // or "exact"
+
+    static constexpr std::string_view kName = "distort";
+    static constexpr std::string_view kDescription =
+        "Write a decalibrated copy of a scene folder (lens distortion, shift, rotation).";
 };
 
 void check_size(const cv::Mat& mat, const cv::Mat& left, const fs::path& path) {
@@ -106,10 +110,7 @@ void run_distort(const DistortOptions& options) {
 }  // namespace
 
 void add_distort_command(CLI::App& app) {
-    const auto [command, options] = add_command<DistortOptions>(
-        app, "distort",
-        "Write a decalibrated copy of a scene folder (lens distortion, shift, rotation).",
-        run_distort);
+    const auto [command, options] = add_command<DistortOptions>(app, run_distort);
     command->add_option("SCENE", options->scene, "Folder with left.png, right.png [gt.png, masks]")
         ->required();
     command->add_option("OUT", options->output, "Output folder (created if its parent exists)")

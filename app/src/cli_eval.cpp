@@ -44,6 +44,10 @@ struct EvalOptions {
     bool scale_given = false;
     bool gt_scale_given = false;
     bool encoding_given = false;
+
+    static constexpr std::string_view kName = "eval";
+    static constexpr std::string_view kDescription =
+        "Score a disparity PNG against ground truth (Middlebury bad-pixel %, NMSE).";
 };
 
 // How to read a disparity file: its extension (.pfm), else its tag (a PNG the tools wrote,
@@ -196,9 +200,7 @@ void run_eval(const EvalOptions& options) {
 }  // namespace
 
 void add_eval_command(CLI::App& app) {
-    const auto [command, options] = add_command<EvalOptions>(
-        app, "eval", "Score a disparity PNG against ground truth (Middlebury bad-pixel %, NMSE).",
-        run_eval);
+    const auto [command, options] = add_command<EvalOptions>(app, run_eval);
     command->add_option("DISP", options->disparity, "Our disparity PNG or PFM")->required();
     command->add_option("GT", options->ground_truth, "Ground-truth PNG (0 = unknown) or PFM")
         ->required();

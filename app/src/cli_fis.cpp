@@ -21,6 +21,10 @@ struct FisOptions {
     double right = 0.0;
     bool json = false;
     robot::FisParams params;
+
+    static constexpr std::string_view kName = "fis";
+    static constexpr std::string_view kDescription =
+        "Evaluate the fuzzy obstacle-avoidance system on three window occupancies.";
 };
 
 void run_fis(const FisOptions& options) {
@@ -40,9 +44,7 @@ void run_fis(const FisOptions& options) {
 }  // namespace
 
 void add_fis_command(CLI::App& app) {
-    const auto [command, options] = add_command<FisOptions>(
-        app, "fis", "Evaluate the fuzzy obstacle-avoidance system on three window occupancies.",
-        run_fis);
+    const auto [command, options] = add_command<FisOptions>(app, run_fis);
     command->add_option("--left", options->left, "Occupied fraction of the left window, [0, 1]")
         ->required();
     command

@@ -47,6 +47,10 @@ struct MatchOptions {
     std::vector<int> level_windows;  // hierarchical: empty = the defaults
     std::string certainty;           // stage-6 methods: certainty PNG (0..255), empty: none
     std::string reasons;  // stage-6 methods: invalid-reason PNG (fx::kReason...), empty: none
+
+    static constexpr std::string_view kName = "match";
+    static constexpr std::string_view kDescription =
+        "Compute a disparity map from a stereo pair with any matcher.";
 };
 
 // One byte per pixel of stage 6's output (certainty or reason code) as an 8-bit PNG.
@@ -448,8 +452,7 @@ void run_match(const MatchOptions& options) {
 }  // namespace
 
 void add_match_command(CLI::App& app) {
-    const auto [command, options] = add_command<MatchOptions>(
-        app, "match", "Compute a disparity map from a stereo pair with any matcher.", run_match);
+    const auto [command, options] = add_command<MatchOptions>(app, run_match);
     command->add_option("LEFT", options->left, "Left image (8-bit grey, RGB or RGBA)")->required();
     command->add_option("RIGHT", options->right, "Right image, same size as LEFT")->required();
     command

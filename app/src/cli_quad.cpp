@@ -35,6 +35,11 @@ struct QuadOptions {
     MatcherOptions matcher;
     std::string fuse_by{quad::name(quad::FusionKey::certainty)};  // a quad::FusionKey by name
     bool json = false;
+
+    static constexpr std::string_view kName = "quad";
+    static constexpr std::string_view kDescription =
+        "Quad-camera matching (thesis Sec. 3.2): horizontal, vertical and diagonal pairs fused "
+        "pixel by pixel by maximum certainty (or, --fuse-by cost, by the smallest winner cost).";
 };
 
 // The source map as a visible 8-bit PNG: 85 * source code (0 none, 85 horizontal, 170
@@ -152,11 +157,7 @@ void run_quad(const QuadOptions& options) {
 }  // namespace
 
 void add_quad_command(CLI::App& app) {
-    const auto [command, options] = add_command<QuadOptions>(
-        app, "quad",
-        "Quad-camera matching (thesis Sec. 3.2): horizontal, vertical and diagonal pairs fused "
-        "pixel by pixel by maximum certainty (or, --fuse-by cost, by the smallest winner cost).",
-        run_quad);
+    const auto [command, options] = add_command<QuadOptions>(app, run_quad);
     command->add_option("REF", options->views[0], "Reference view (upper left)")->required();
     command->add_option("RIGHT", options->views[1], "Horizontal partner (upper right)")->required();
     command->add_option("BELOW", options->views[2], "Vertical partner (lower left)")->required();

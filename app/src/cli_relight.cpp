@@ -27,6 +27,11 @@ struct RelightOptions {
     io::Lighting lighting;
     std::vector<double> gradient;
     bool equalise = false;
+
+    static constexpr std::string_view kName = "relight";
+    static constexpr std::string_view kDescription =
+        "Write a copy of a colour image under changed illumination (HSL lightness, camera "
+        "gain/offset/gamma, gradient, vignette).";
 };
 
 void run_relight(RelightOptions& options) {
@@ -62,11 +67,8 @@ void run_relight(RelightOptions& options) {
 }  // namespace
 
 void add_relight_command(CLI::App& app) {
-    const auto [command, options] = add_command<RelightOptions>(
-        app, "relight",
-        "Write a copy of a colour image under changed illumination (HSL lightness, camera "
-        "gain/offset/gamma, gradient, vignette).",
-        [](RelightOptions& o) { run_relight(o); });
+    const auto [command, options] =
+        add_command<RelightOptions>(app, [](RelightOptions& o) { run_relight(o); });
     command->add_option("IN", options->input, "Colour image to relight")->required();
     command->add_option("OUT", options->output, "Output PNG (written atomically)")
         ->check(checks::png_output())

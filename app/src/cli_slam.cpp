@@ -58,6 +58,10 @@ struct SlamOptions {
     slam::SlamParams params;
     MatcherOptions matcher;  // --ndisp, --window, --sigma of the front end (params.frontend)
     const CLI::Option* ba_window_option = nullptr;  // given: above the run's frames is an error
+
+    static constexpr std::string_view kName = "slam";
+    static constexpr std::string_view kDescription =
+        "Stereo SLAM (thesis Sec. 4.2): trajectory and occupancy map of a sequence.";
 };
 
 nlohmann::json errors_json(const slam::TrajectoryErrors& e) {
@@ -401,9 +405,7 @@ void run_slam(SlamOptions o) {
 }  // namespace
 
 void add_slam_command(CLI::App& app) {
-    const auto [command, o] = add_command<SlamOptions>(
-        app, "slam", "Stereo SLAM (thesis Sec. 4.2): trajectory and occupancy map of a sequence.",
-        run_slam);
+    const auto [command, o] = add_command<SlamOptions>(app, run_slam);
     auto& p = o->params;
     p.threads = 0;  // the command line's default: every core
     command->add_option("--threads", p.threads, "Front-end row bands in parallel; 0: every core")

@@ -19,6 +19,11 @@ namespace {
 struct VectorsOptions : CorePairOptions {
     std::string folder;
     int frames = 1;
+
+    static constexpr std::string_view kName = "vectors";
+    static constexpr std::string_view kDescription =
+        "Write $readmemh test vectors (configuration, input beats, the golden model's output "
+        "beats) for the SystemVerilog testbench (testbench/sv/README.md).";
 };
 
 void run_vectors(const VectorsOptions& options) {
@@ -43,11 +48,7 @@ void run_vectors(const VectorsOptions& options) {
 }  // namespace
 
 void add_vectors_command(CLI::App& app) {
-    const auto [command, options] = add_command<VectorsOptions>(
-        app, "vectors",
-        "Write $readmemh test vectors (configuration, input beats, the golden model's output "
-        "beats) for the SystemVerilog testbench (testbench/sv/README.md).",
-        run_vectors);
+    const auto [command, options] = add_command<VectorsOptions>(app, run_vectors);
     add_core_pair_options(*command, *options);
     command
         ->add_option("-o,--out", options->folder, "Folder for config.hex, input.hex, expected.hex")
