@@ -21,16 +21,7 @@ ValidatedDisparity run_asw_variant(const Image& left, const Image& right, const 
     push_frame(left, right, in);
     const status_t status = stereo_hls_asw_top<kAswHostMaxWidth, kAswHostMaxHeight, NDISP, DIAMETER,
                                                kAswHostMaxMinDisp, MEASURE>(in, out, cfg, *state);
-    if (status != 0 || !in.empty()) {
-        throw std::logic_error("HLS ASW top reported status " + std::to_string(status) + " with " +
-                               std::to_string(in.size()) + " input beats left");
-    }
-    ValidatedDisparity map = collect_validated(out, left.width, left.height);
-    if (!out.empty()) {
-        throw std::logic_error("HLS ASW top wrote " + std::to_string(out.size()) +
-                               " output beats too many");
-    }
-    return map;
+    return finish_frame("HLS ASW top", status, in, out, left.width, left.height);
 }
 
 // The variant of `diameter` among the odd diameters kAswMinDiameter + 2 i, i in DIAMETERS.

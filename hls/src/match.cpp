@@ -28,16 +28,7 @@ ValidatedDisparity run_variant(const Image& left, const Image& right, const Matc
     const status_t status =
         stereo_hls_top<kHostMaxWidth, kHostMaxHeight, NDISP, WINDOW, kHostMaxMinDisp, MEASURE>(
             in, out, cfg, *state);
-    if (status != 0 || !in.empty()) {
-        throw std::logic_error("HLS top reported status " + std::to_string(status) + " with " +
-                               std::to_string(in.size()) + " input beats left");
-    }
-    ValidatedDisparity map = collect_validated(out, left.width, left.height);
-    if (!out.empty()) {
-        throw std::logic_error("HLS top wrote " + std::to_string(out.size()) +
-                               " output beats too many");
-    }
-    return map;
+    return finish_frame("HLS top", status, in, out, left.width, left.height);
 }
 
 template <int NDISP, class MEASURE>

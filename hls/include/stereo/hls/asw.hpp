@@ -28,6 +28,7 @@
 #include "stereo/hls/census.hpp"
 #include "stereo/hls/cost.hpp"
 #include "stereo/hls/line_buffer.hpp"
+#include "stereo/hls/shift_register.hpp"
 #include "stereo/hls/stage_output.hpp"
 #include "stereo/hls/stream.hpp"
 #include "stereo/hls/top.hpp"
@@ -272,22 +273,11 @@ class asw_cost : public coord_output {
         for (int k = 0; k < NDISP; ++k) {
             out_right_[k] = k == 0 ? selected : history_[k - 1];
         }
-        for (int i = kHistory - 1; i > 0; --i) {
-            history_[i] = history_[i - 1];
-        }
-        history_[0] = selected;
-        for (int i = kPreDelay - 1; i > 0; --i) {
-            pre_[i] = pre_[i - 1];
-        }
-        pre_[0] = right;
-        for (int i = kLeftDelay - 1; i > 0; --i) {
-            left_[i] = left_[i - 1];
-            left_x_[i] = left_x_[i - 1];
-            left_y_[i] = left_y_[i - 1];
-        }
-        left_[0] = left;
-        left_x_[0] = in_x;
-        left_y_[0] = in_y;
+        shift_in(history_, selected);
+        shift_in(pre_, right);
+        shift_in(left_, left);
+        shift_in(left_x_, in_x);
+        shift_in(left_y_, in_y);
     }
 
   private:
@@ -509,15 +499,7 @@ class asw_pipeline {
     static constexpr int kDiameter = DIAMETER;
     static constexpr int kMaxMinDisp = MAX_MIN_DISP;
 
-    void reset() {
-        census_.reset();
-        column_.reset();
-        cost_.reset();
-        aggregate_.reset();
-        wta_.reset();
-        validate_.reset();
-        lr_check_.reset();
-    }
+    void reset() { reset_stages(census_, column_, cost_, aggregate_, wta_, validate_, lr_check_); }
 
     // One pixel step of every stage, the last first (each reads its upstream register as it was
     // before this step).

@@ -15,6 +15,7 @@
 // Latency: 1 + K pixel steps.
 #pragma once
 
+#include "stereo/hls/shift_register.hpp"
 #include "stereo/hls/stage_output.hpp"
 #include "stereo/hls/types.hpp"
 
@@ -74,22 +75,11 @@ class cost : public lane_output<cost_t, NDISP> {
             out_data_[k] = right_x < 0 || right_x >= width ? static_cast<cost_t>(fx::kCostOutside)
                                                            : MEASURE::distance(matched, match);
         }
-        for (int i = kHistory - 1; i > 0; --i) {
-            history_[i] = history_[i - 1];
-        }
-        history_[0] = selected;
-        for (int i = kPreDelay - 1; i > 0; --i) {
-            pre_[i] = pre_[i - 1];
-        }
-        pre_[0] = new_right;
-        for (int i = kLeftDelay - 1; i > 0; --i) {
-            left_[i] = left_[i - 1];
-            left_x_[i] = left_x_[i - 1];
-            left_y_[i] = left_y_[i - 1];
-        }
-        left_[0] = new_left;
-        left_x_[0] = in_x;
-        left_y_[0] = in_y;
+        shift_in(history_, selected);
+        shift_in(pre_, new_right);
+        shift_in(left_, new_left);
+        shift_in(left_x_, in_x);
+        shift_in(left_y_, in_y);
         out_x_ = x;
         out_y_ = y;
     }

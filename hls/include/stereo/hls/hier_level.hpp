@@ -66,14 +66,7 @@ class hier_level {
                   "REFINE = 0: one candidate row per offset V_MIN .. V_MAX; REFINE = 1: a 3x3");
 
     // Every stage's coordinates to "no pixel"; memories keep their contents.
-    void reset() {
-        census_.reset();
-        cost_.reset();
-        aggregate_.reset();
-        rule1_.reset();
-        rule2_.reset();
-        wta_.reset();
-    }
+    void reset() { reset_stages(census_, cost_, aggregate_, rule1_, rule2_, wta_); }
 
     // The pixel whose base the next step() takes.
     coord_t req_x() const { return cost_.req_x(); }

@@ -92,6 +92,23 @@ inline ValidatedDisparity collect_validated(stream<OutputBeat>& out, int width, 
     return map;
 }
 
+// The frame a top wrote for one pushed frame, after checking that it reported no status, read
+// every input beat and wrote no beat beyond the frame; `top` names it in the errors.
+inline ValidatedDisparity finish_frame(const std::string& top, status_t status,
+                                       const stream<InputBeat>& in, stream<OutputBeat>& out,
+                                       int width, int height) {
+    if (status != 0 || !in.empty()) {
+        throw std::logic_error(top + " reported status " + std::to_string(status) + " with " +
+                               std::to_string(in.size()) + " input beats left");
+    }
+    ValidatedDisparity map = collect_validated(out, width, height);
+    if (!out.empty()) {
+        throw std::logic_error(top + " wrote " + std::to_string(out.size()) +
+                               " output beats too many");
+    }
+    return map;
+}
+
 // Its 8-bit view (stereo::to_label_map).
 inline DisparityMap collect_frame(stream<OutputBeat>& out, int width, int height) {
     return to_label_map(collect_validated(out, width, height));

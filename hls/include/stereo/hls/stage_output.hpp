@@ -23,6 +23,12 @@ class coord_output {
     coord_t out_y_ = kNoPixel;
 };
 
+// A pipeline's reset: every stage's reset(), in the order given.
+template <typename... Stages>
+void reset_stages(Stages&... stages) {
+    (stages.reset(), ...);
+}
+
 template <typename T, int LANES>
 class lane_output : public coord_output {
   public:

@@ -80,14 +80,7 @@ class pipeline {
     // Every stage's coordinate registers to "no pixel"; data registers and RAMs keep their
     // contents (stale data is masked by coordinates).
     void reset() {
-        census_.reset();
-        cost_.reset();
-        aggregate_.reset();
-        rule1_.reset();
-        rule2_.reset();
-        wta_.reset();
-        validate_.reset();
-        lr_check_.reset();
+        reset_stages(census_, cost_, aggregate_, rule1_, rule2_, wta_, validate_, lr_check_);
     }
 
     // One pixel step of every stage with the pixel pair of raster position (x, y). The stages

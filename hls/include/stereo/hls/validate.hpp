@@ -16,6 +16,7 @@
 // left-right test and the reason, then the output register.
 #pragma once
 
+#include "stereo/hls/shift_register.hpp"
 #include "stereo/hls/stage_output.hpp"
 #include "stereo/hls/types.hpp"
 #include "stereo/hls/wta.hpp"
@@ -159,10 +160,7 @@ class lr_check : public coord_output {
 
         // The delay line moves on.
         if (kDelay > 0) {
-            for (int i = kLine - 1; i > 0; --i) {
-                line_[i] = line_[i - 1];
-            }
-            line_[0] = entering(left, uniqueness, ratio);
+            shift_in(line_, entering(left, uniqueness, ratio));
         }
 
         // The accumulators along the diagonal, and the completed winner.
@@ -191,10 +189,7 @@ class lr_check : public coord_output {
             cost_[j] = cost;
             label_[j] = label;
         }
-        for (int i = NDISP - 1; i > 0; --i) {
-            hist_[i] = hist_[i - 1];
-        }
-        hist_[0] = completed;
+        shift_in(hist_, completed);
     }
 
     const Validated& out() const {
