@@ -487,7 +487,7 @@ constexpr int asw_frame_steps(int width, int height, int min_disp = 0) {
 // rows): a static object in a synthesis top, a heap object in C-simulation hosts. MEASURE:
 // ad_measure (RGB codes) or census_measure (the census stage in front).
 template <int WIDTH, int HEIGHT, int NDISP, int DIAMETER, int MAX_MIN_DISP, class MEASURE>
-class asw_pipeline {
+class asw_pipeline : public winner_stages<NDISP> {
     static_assert(WIDTH >= 1 && WIDTH <= kMaxFrameSide && HEIGHT >= 1 && HEIGHT <= kMaxFrameSide);
     static_assert(std::is_same_v<MEASURE, ad_measure> || kIsCensus<MEASURE>,
                   "the ASW core compares AD or census codes");
@@ -499,17 +499,17 @@ class asw_pipeline {
     static constexpr int kDiameter = DIAMETER;
     static constexpr int kMaxMinDisp = MAX_MIN_DISP;
 
-    void reset() { reset_stages(census_, column_, cost_, aggregate_, wta_, validate_, lr_check_); }
+    void reset() {
+        winner_stages<NDISP>::reset();
+        reset_stages(census_, column_, cost_, aggregate_);
+    }
 
     // One pixel step of every stage, the last first (each reads its upstream register as it was
     // before this step).
     void step(coord_t x, coord_t y, const Rgb& left, const Rgb& right, const AswConfig& cfg) {
 #pragma HLS INLINE
-        lr_check_.step(wta_, validate_, cfg.width, cfg.height, cfg.ndisp, cfg.min_disp,
-                       cfg.uniqueness, cfg.uniqueness_ratio, cfg.left_right, cfg.lr_tolerance);
-        validate_.step(wta_, cfg.ndisp, cfg.min_disp, cfg.subpixel);
-        wta_.step(aggregate_.out_x(), aggregate_.out_y(), aggregate_.out_data(), cfg.width,
-                  cfg.height, cfg.ndisp, 0, false, cfg.min_disp);
+        this->step_winner(aggregate_.out_x(), aggregate_.out_y(), aggregate_.out_data(), cfg, 0,
+                          false);
         aggregate_.step(cost_.out_x(), cost_.out_y(), cost_.out_left(), cost_.out_right(),
                         cfg.width, cfg.height, cfg.ndisp, cfg.min_disp, cfg.truncation);
         cost_.step(column_.out_x(), column_.out_y(), column_.out_left(), column_.out_right(),
@@ -522,24 +522,11 @@ class asw_pipeline {
         }
     }
 
-    coord_t out_x() const {
-        return lr_check_.out_x();
-    }
-    coord_t out_y() const {
-        return lr_check_.out_y();
-    }
-    const Validated& out() const {
-        return lr_check_.out();
-    }
-
   private:
     std::conditional_t<kIsCensus<MEASURE>, asw_census<WIDTH>, no_asw_census> census_;
     asw_column<WIDTH, DIAMETER> column_;
     asw_cost<NDISP, MAX_MIN_DISP, DIAMETER> cost_;
     asw_aggregate<NDISP, DIAMETER, MEASURE> aggregate_;
-    wta<NDISP> wta_;
-    validate_stage<NDISP> validate_;
-    lr_check<NDISP> lr_check_;
 };
 
 // The configuration as the stages use it: out-of-range values clamped as the RTL does, with

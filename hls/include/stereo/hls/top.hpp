@@ -67,7 +67,7 @@ struct no_census_stage {
 // COST parameter.
 template <int WIDTH, int HEIGHT, int NDISP, int WINDOW,
           int MAX_MIN_DISP = table::kDefaultMaxMinDisp, class MEASURE = ad_measure>
-class pipeline {
+class pipeline : public winner_stages<NDISP> {
     static_assert(WIDTH >= 1 && WIDTH <= kMaxFrameSide && HEIGHT >= 1 && HEIGHT <= kMaxFrameSide);
 
   public:
@@ -80,7 +80,8 @@ class pipeline {
     // Every stage's coordinate registers to "no pixel"; data registers and RAMs keep their
     // contents (stale data is masked by coordinates).
     void reset() {
-        reset_stages(census_, cost_, aggregate_, rule1_, rule2_, wta_, validate_, lr_check_);
+        winner_stages<NDISP>::reset();
+        reset_stages(census_, cost_, aggregate_, rule1_, rule2_);
     }
 
     // One pixel step of every stage with the pixel pair of raster position (x, y). The stages
@@ -89,11 +90,8 @@ class pipeline {
     void step(coord_t x, coord_t y, const Rgb& left, const Rgb& right,
               const FrameConfig<WINDOW>& cfg) {
 #pragma HLS INLINE
-        lr_check_.step(wta_, validate_, cfg.width, cfg.height, cfg.ndisp, cfg.min_disp,
-                       cfg.uniqueness, cfg.uniqueness_ratio, cfg.left_right, cfg.lr_tolerance);
-        validate_.step(wta_, cfg.ndisp, cfg.min_disp, cfg.subpixel);
-        wta_.step(rule2_.out_x(), rule2_.out_y(), rule2_.out_data(), cfg.width, cfg.height,
-                  cfg.ndisp, cfg.radius, cfg.use_ca, cfg.min_disp);
+        this->step_winner(rule2_.out_x(), rule2_.out_y(), rule2_.out_data(), cfg, cfg.radius,
+                          cfg.use_ca);
         rule2_.step(rule1_.out_x(), rule1_.out_y(), rule1_.out_data(), cfg.width, cfg.height,
                     cfg.ndisp, cfg.use_ca);
         rule1_.step(aggregate_.out_x(), aggregate_.out_y(), aggregate_.out_data(), cfg.width,
@@ -109,26 +107,12 @@ class pipeline {
         }
     }
 
-    // lr_check's register, which is the output register.
-    coord_t out_x() const {
-        return lr_check_.out_x();
-    }
-    coord_t out_y() const {
-        return lr_check_.out_y();
-    }
-    const Validated& out() const {
-        return lr_check_.out();
-    }
-
   private:
     std::conditional_t<kIsCensus<MEASURE>, census_transform<WIDTH>, no_census_stage> census_;
     cost<NDISP, MAX_MIN_DISP, MEASURE> cost_;
     aggregate<WIDTH, NDISP, WINDOW> aggregate_;
     ca_rule1<WIDTH, NDISP> rule1_;
     ca_rule2<WIDTH, NDISP> rule2_;
-    wta<NDISP> wta_;
-    validate_stage<NDISP> validate_;
-    lr_check<NDISP> lr_check_;
 };
 
 // The configuration as the stages will use it: out-of-range values clamped as the RTL does

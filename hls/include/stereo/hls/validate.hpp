@@ -220,4 +220,40 @@ class lr_check : public coord_output {
     Validated out_;
 };
 
+// The last three stages of every core (RTL: stereo_wta, stereo_validate, stereo_lr_check): the
+// winner of the aggregated lanes, stage 6, and the left-right check whose register is the core's
+// output register. Config has the stage 6 fields of FrameConfig / AswConfig.
+template <int NDISP>
+class winner_stages {
+  public:
+    void reset() { reset_stages(wta_, validate_, lr_check_); }
+
+    // radius, use_ca: the CA border rule of the winner (0, false: none).
+    template <class Config>
+    void step_winner(coord_t in_x, coord_t in_y, const agg_t (&lanes)[NDISP], const Config& cfg,
+                     int radius, bool use_ca) {
+#pragma HLS INLINE
+        lr_check_.step(wta_, validate_, cfg.width, cfg.height, cfg.ndisp, cfg.min_disp,
+                       cfg.uniqueness, cfg.uniqueness_ratio, cfg.left_right, cfg.lr_tolerance);
+        validate_.step(wta_, cfg.ndisp, cfg.min_disp, cfg.subpixel);
+        wta_.step(in_x, in_y, lanes, cfg.width, cfg.height, cfg.ndisp, radius, use_ca,
+                  cfg.min_disp);
+    }
+
+    coord_t out_x() const {
+        return lr_check_.out_x();
+    }
+    coord_t out_y() const {
+        return lr_check_.out_y();
+    }
+    const Validated& out() const {
+        return lr_check_.out();
+    }
+
+  private:
+    wta<NDISP> wta_;
+    validate_stage<NDISP> validate_;
+    lr_check<NDISP> lr_check_;
+};
+
 }  // namespace stereo::hls
