@@ -8,14 +8,7 @@
 `default_nettype none
 
 module tb_stereo_axil_top #(
-    parameter int WIDTH = 64,
-    parameter int HEIGHT = 48,
-    parameter int NDISP = 16,
-    parameter int WINDOW = 5,
-    parameter bit RUNTIME_KERNEL = 1'b1,
-    parameter int MAX_MIN_DISP = fx_pkg::DEFAULT_MAX_MIN_DISP,
-    parameter int COST = 0,  // fx_pkg::cost_e code: 0 AD, 1 LCDM, 2 census
-    parameter int LANES = NDISP,
+    `include "tb_core_params.svh"
     parameter int SHIFT_ADD = 0,  // fx_pkg::shift_add_e code
     parameter bit RECOMPUTE_COSTS = 1'b0,
     parameter int ADDR_BITS = 8

@@ -14,14 +14,7 @@
 `default_nettype none
 
 module tb_stereo_vectors #(
-    parameter int WIDTH = 64,
-    parameter int HEIGHT = 48,
-    parameter int NDISP = 16,
-    parameter int WINDOW = 5,
-    parameter bit RUNTIME_KERNEL = 1'b1,
-    parameter int MAX_MIN_DISP = fx_pkg::DEFAULT_MAX_MIN_DISP,
-    parameter int COST = 0,
-    parameter int LANES = NDISP,
+    `include "tb_core_params.svh"
     parameter int MAX_FRAMES = 4  // sizes the beat memories: WIDTH * HEIGHT * MAX_FRAMES
 ) (
     input wire logic clk,
