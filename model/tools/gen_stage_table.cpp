@@ -800,6 +800,8 @@ std::string fusesoc_text() {
            "  tb:\n    files:\n      - testbench/sv/tb_stereo_vectors.sv\n"
            "      - testbench/sv/tb_stereo_top.sv\n      - testbench/sv/tb_stereo_axil_top.sv\n"
            "      - testbench/sv/tb_core_params.svh: {is_include_file: true}\n"
+           "      - testbench/sv/tb_cfg_signals.svh: {is_include_file: true}\n"
+           "      - testbench/sv/tb_xorshift.svh: {is_include_file: true}\n"
            "    file_type: systemVerilogSource\n"
            "  arty_a7:\n    files:\n      - scripts/synth/boards/arty_a7.xdc:\n"
            "          file_type: xdc\n\nparameters:\n";

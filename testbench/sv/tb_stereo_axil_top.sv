@@ -28,15 +28,7 @@ module tb_stereo_axil_top #(
   fx_pkg::out_beat_t m_axis_tdata;
   logic m_axis_tvalid, m_axis_tready, m_axis_tlast, m_axis_tuser;
 
-  // The configuration from the vectors.
-  fx_pkg::cfg_size_t cfg_width, cfg_height;
-  fx_pkg::cfg_ndisp_t cfg_ndisp;
-  fx_pkg::cfg_radius_t cfg_radius;
-  logic [WINDOW*fx_pkg::TAP_BITS-1:0] cfg_kernel;
-  logic cfg_use_ca, cfg_uniqueness_en, cfg_lr_en, cfg_subpixel_en;
-  fx_pkg::cfg_min_disp_t cfg_min_disp;
-  fx_pkg::cfg_uniqueness_t cfg_uniqueness;
-  fx_pkg::cfg_lr_tolerance_t cfg_lr_tolerance;
+`include "tb_cfg_signals.svh"
   logic go, done;
   int errors, frames, stall_cycles;
 
@@ -60,12 +52,7 @@ module tb_stereo_axil_top #(
 
   // ---- AXI4-Lite master: one transaction at a time, random delays --------------------------
   logic [31:0] rng = 32'h2545F491;
-  function automatic logic [31:0] xorshift(input logic [31:0] x);
-    logic [31:0] y;
-    y = x ^ (x << 13);
-    y = y ^ (y >> 17);
-    return y ^ (y << 5);
-  endfunction
+`include "tb_xorshift.svh"
   // 0 .. 3 clock edges, from the testbench's own generator.
   task automatic random_wait();
     rng = xorshift(rng);

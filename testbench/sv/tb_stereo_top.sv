@@ -14,14 +14,7 @@ module tb_stereo_top #(
   logic rst = 1'b1;
   initial forever #5 clk = !clk;
 
-  fx_pkg::cfg_size_t cfg_width, cfg_height;
-  fx_pkg::cfg_ndisp_t cfg_ndisp;
-  fx_pkg::cfg_radius_t cfg_radius;
-  logic [WINDOW*fx_pkg::TAP_BITS-1:0] cfg_kernel;
-  logic cfg_use_ca, cfg_uniqueness_en, cfg_lr_en, cfg_subpixel_en;
-  fx_pkg::cfg_min_disp_t cfg_min_disp;
-  fx_pkg::cfg_uniqueness_t cfg_uniqueness;
-  fx_pkg::cfg_lr_tolerance_t cfg_lr_tolerance;
+`include "tb_cfg_signals.svh"
   logic [fx_pkg::STATUS_BITS-1:0] status;
   logic [fx_pkg::IN_BEAT_BITS-1:0] s_axis_tdata;
   logic s_axis_tvalid, s_axis_tready, s_axis_tlast, s_axis_tuser;

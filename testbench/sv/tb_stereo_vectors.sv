@@ -73,13 +73,7 @@ module tb_stereo_vectors #(
   longint timeout;
   string folder;
 
-  // xorshift32: the same sequence in every simulator.
-  function automatic logic [31:0] xorshift(input logic [31:0] x);
-    logic [31:0] y;
-    y = x ^ (x << 13);
-    y = y ^ (y >> 17);
-    return y ^ (y << 5);
-  endfunction
+`include "tb_xorshift.svh"
 
   // Stops with a message naming the problem (a vectors file or a parameter does not fit).
   task automatic refuse(input string message);
