@@ -236,9 +236,6 @@ class asw_column : public coord_output {
 // K = max(0, -m) steps with its coordinates. Latency 1 + K.
 template <int NDISP, int MAX_MIN_DISP, int DIAMETER>
 class asw_cost : public coord_output {
-    static_assert(NDISP >= 1 && NDISP <= fx::kMaxDisparities);
-    static_assert(MAX_MIN_DISP >= 0 && MAX_MIN_DISP <= fx::kMaxMinDisparity);
-
   public:
     using Word = AswWord<DIAMETER>;
     using Lanes = Word[NDISP];
@@ -247,10 +244,7 @@ class asw_cost : public coord_output {
 
     void reset() {
         coord_output::reset();
-        for (int i = 0; i < kLeftDelay; ++i) {
-            left_x_[i] = 0;
-            left_y_[i] = kNoPixel;
-        }
+        delays_.reset();
     }
 
     const Word& out_left() const { return out_left_; }
@@ -258,38 +252,19 @@ class asw_cost : public coord_output {
 
     void step(coord_t in_x, coord_t in_y, const Word& left, const Word& right, int min_disp) {
 #pragma HLS INLINE
-#pragma HLS ARRAY_PARTITION variable = history_ complete
-#pragma HLS ARRAY_PARTITION variable = pre_ complete
-#pragma HLS ARRAY_PARTITION variable = left_ complete
-#pragma HLS ARRAY_PARTITION variable = left_x_ complete
-#pragma HLS ARRAY_PARTITION variable = left_y_ complete
 #pragma HLS ARRAY_PARTITION variable = out_right_ complete
-        const int wait = min_disp < 0 ? -min_disp : 0;  // K
-        const int skip = min_disp > 0 ? min_disp : 0;   // P
-        out_left_ = wait == 0 ? left : left_[wait - 1];
-        out_x_ = wait == 0 ? in_x : left_x_[wait - 1];
-        out_y_ = wait == 0 ? in_y : left_y_[wait - 1];
-        const Word& selected = skip == 0 ? right : pre_[skip - 1];
+        const auto aligned = delays_.align(in_x, in_y, left, right, min_disp);
+        out_left_ = aligned.left;
+        out_x_ = aligned.x;
+        out_y_ = aligned.y;
         for (int k = 0; k < NDISP; ++k) {
-            out_right_[k] = k == 0 ? selected : history_[k - 1];
+            out_right_[k] = delays_.lane(aligned, k);
         }
-        shift_in(history_, selected);
-        shift_in(pre_, right);
-        shift_in(left_, left);
-        shift_in(left_x_, in_x);
-        shift_in(left_y_, in_y);
+        delays_.advance(aligned, in_x, in_y, left, right);
     }
 
   private:
-    static constexpr int kHistory = NDISP > 1 ? NDISP - 1 : 1;
-    static constexpr int kPreDelay = MAX_MIN_DISP > 0 ? MAX_MIN_DISP : 1;
-    static constexpr int kLeftDelay = MAX_MIN_DISP > 0 ? MAX_MIN_DISP : 1;
-
-    Word history_[kHistory] = {};  // the selected right word i + 1 steps ago
-    Word pre_[kPreDelay] = {};     // the right word i + 1 steps before the newest
-    Word left_[kLeftDelay] = {};   // the left word i + 1 steps ago, and its place
-    coord_t left_x_[kLeftDelay] = {};
-    coord_t left_y_[kLeftDelay] = {};
+    label_delays<Word, NDISP, MAX_MIN_DISP> delays_;
     Word out_left_;
     Lanes out_right_ = {};
 };
