@@ -468,12 +468,6 @@ class asw_pipeline : public winner_stages<NDISP> {
                   "the ASW core compares AD or census codes");
 
   public:
-    static constexpr int kWidth = WIDTH;
-    static constexpr int kHeight = HEIGHT;
-    static constexpr int kNdisp = NDISP;
-    static constexpr int kDiameter = DIAMETER;
-    static constexpr int kMaxMinDisp = MAX_MIN_DISP;
-
     void reset() {
         winner_stages<NDISP>::reset();
         reset_stages(census_, column_, cost_, aggregate_);

@@ -71,12 +71,6 @@ class pipeline : public winner_stages<NDISP> {
     static_assert(WIDTH >= 1 && WIDTH <= kMaxFrameSide && HEIGHT >= 1 && HEIGHT <= kMaxFrameSide);
 
   public:
-    static constexpr int kWidth = WIDTH;
-    static constexpr int kHeight = HEIGHT;
-    static constexpr int kNdisp = NDISP;
-    static constexpr int kWindow = WINDOW;
-    static constexpr int kMaxMinDisp = MAX_MIN_DISP;
-
     // Every stage's coordinate registers to "no pixel"; data registers and RAMs keep their
     // contents (stale data is masked by coordinates).
     void reset() {
