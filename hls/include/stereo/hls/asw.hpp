@@ -498,28 +498,14 @@ class asw_pipeline : public winner_stages<NDISP> {
     asw_aggregate<NDISP, DIAMETER, MEASURE> aggregate_;
 };
 
-// The configuration as the stages use it: out-of-range values clamped as the RTL does, with
-// kStatusConfigClamped set.
+// The configuration as the stages use it (sanitise_common, and the truncation to the cost's
+// range), with kStatusConfigClamped set when anything was clamped.
 template <int WIDTH, int HEIGHT, int NDISP, int MAX_MIN_DISP>
 AswConfig sanitise_asw(const AswConfig& requested, status_t& status) {
 #pragma HLS INLINE
     AswConfig cfg = requested;
-    const auto clamp = [&status](int& value, int low, int high) {
-        if (value < low || value > high) {
-            value = high;
-            status |= kStatusConfigClamped;
-        }
-    };
-    clamp(cfg.width, 1, WIDTH);
-    clamp(cfg.height, 1, HEIGHT);
-    clamp(cfg.ndisp, 1, NDISP);
-    clamp(cfg.truncation, 0, fx::kCostMax);
-    if (cfg.min_disp > MAX_MIN_DISP || cfg.min_disp < -MAX_MIN_DISP) {
-        cfg.min_disp = cfg.min_disp > 0 ? MAX_MIN_DISP : -MAX_MIN_DISP;
-        status |= kStatusConfigClamped;
-    }
-    cfg.uniqueness_ratio &= (1 << table::kCfgUniquenessBits) - 1;
-    cfg.lr_tolerance &= (1 << table::kCfgLrToleranceBits) - 1;
+    sanitise_common<WIDTH, HEIGHT, NDISP, MAX_MIN_DISP>(cfg, status);
+    clamp_config(cfg.truncation, 0, fx::kCostMax, status);
     return cfg;
 }
 

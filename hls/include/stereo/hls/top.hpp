@@ -109,30 +109,41 @@ class pipeline : public winner_stages<NDISP> {
     ca_rule2<WIDTH, NDISP> rule2_;
 };
 
-// The configuration as the stages will use it: out-of-range values clamped as the RTL does
-// (size 0 or above the maximum becomes the maximum), with kStatusConfigClamped set.
-template <int WIDTH, int HEIGHT, int NDISP, int WINDOW, int MAX_MIN_DISP>
-FrameConfig<WINDOW> sanitise(const FrameConfig<WINDOW>& requested, status_t& status) {
+// A configuration value outside [low, high] becomes high (a size of 0 or above the maximum
+// becomes the maximum), as the RTL clamps it, and sets kStatusConfigClamped.
+inline void clamp_config(int& value, int low, int high, status_t& status) {
+    if (value < low || value > high) {
+        value = high;
+        status |= kStatusConfigClamped;
+    }
+}
+
+// The fields every core's configuration has (FrameConfig, AswConfig), clamped as the RTL does:
+// the size and the labels to the build's; the minimum disparity to the nearer end of
+// +-MAX_MIN_DISP; the ratio and the tolerance are 8-bit ports in the RTL, which hold every value
+// of their range.
+template <int WIDTH, int HEIGHT, int NDISP, int MAX_MIN_DISP, class Config>
+void sanitise_common(Config& cfg, status_t& status) {
 #pragma HLS INLINE
-    FrameConfig<WINDOW> cfg = requested;
-    const auto clamp = [&status](int& value, int low, int high) {
-        if (value < low || value > high) {
-            value = high;
-            status |= kStatusConfigClamped;
-        }
-    };
-    clamp(cfg.width, 1, WIDTH);
-    clamp(cfg.height, 1, HEIGHT);
-    clamp(cfg.ndisp, 1, NDISP);
-    clamp(cfg.radius, 0, WINDOW / 2);
-    // The minimum disparity to the nearer end of +-MAX_MIN_DISP; the ratio and the tolerance
-    // are 8-bit ports in the RTL, which hold every value of their range.
+    clamp_config(cfg.width, 1, WIDTH, status);
+    clamp_config(cfg.height, 1, HEIGHT, status);
+    clamp_config(cfg.ndisp, 1, NDISP, status);
     if (cfg.min_disp > MAX_MIN_DISP || cfg.min_disp < -MAX_MIN_DISP) {
         cfg.min_disp = cfg.min_disp > 0 ? MAX_MIN_DISP : -MAX_MIN_DISP;
         status |= kStatusConfigClamped;
     }
     cfg.uniqueness_ratio &= (1 << table::kCfgUniquenessBits) - 1;
     cfg.lr_tolerance &= (1 << table::kCfgLrToleranceBits) - 1;
+}
+
+// The configuration as the stages will use it (sanitise_common, and the CA radius to the
+// window's), with kStatusConfigClamped set when anything was clamped.
+template <int WIDTH, int HEIGHT, int NDISP, int WINDOW, int MAX_MIN_DISP>
+FrameConfig<WINDOW> sanitise(const FrameConfig<WINDOW>& requested, status_t& status) {
+#pragma HLS INLINE
+    FrameConfig<WINDOW> cfg = requested;
+    sanitise_common<WIDTH, HEIGHT, NDISP, MAX_MIN_DISP>(cfg, status);
+    clamp_config(cfg.radius, 0, WINDOW / 2, status);
     return cfg;
 }
 
