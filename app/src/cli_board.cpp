@@ -22,6 +22,14 @@
 #include "stereo_io/serial_port.hpp"
 #include "stereo_io/versioned_json.hpp"
 
+namespace stereo::board {
+
+// The identity in the JSON output: a key per field, named as the field.
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Identity, id, version, width, height, ndisp, window,
+                                   max_min_disp, status)
+
+}  // namespace stereo::board
+
 namespace stereo::cli {
 namespace {
 
@@ -41,17 +49,6 @@ struct BoardOptions {
     static constexpr std::string_view kDescription =
         "Match a pair on the iCEBreaker (stereo_board_top) over its serial port (docs/board.md).";
 };
-
-nlohmann::json identity_json(const board::Identity& identity) {
-    return {{"id", identity.id},
-            {"version", identity.version},
-            {"width", identity.width},
-            {"height", identity.height},
-            {"ndisp", identity.ndisp},
-            {"window", identity.window},
-            {"max_min_disp", identity.max_min_disp},
-            {"status", identity.status}};
-}
 
 void check_options(const BoardOptions& options) {
     if (!io::supported_baud(options.baud)) {
@@ -160,7 +157,7 @@ void run_board(const BoardOptions& options) {
             {"bytes_sent", client.bytes_sent()},
             {"bytes_received", client.bytes_received()},
             {"status_cleared", cleared},
-            {"board", identity_json(identity)},
+            {"board", identity},
         });
         std::cout << io::versioned(summary).dump() << '\n';
         return;
