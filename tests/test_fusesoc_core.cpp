@@ -23,6 +23,26 @@ std::string read_text(const std::filesystem::path& path) {
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+// The text of the file at `path` with each `include "NAME" line replaced by the text of NAME,
+// looked up as a simulator would with the file's own folder and rtl/ as include directories
+// (the testbenches' parameter lists include testbench/sv/tb_core_params.svh).
+std::string read_with_includes(const std::filesystem::path& path) {
+    static const std::regex include(R"re(`include\s+"([^"]+)")re");
+    const std::string text = read_text(path);
+    std::string out;
+    std::sregex_iterator it(text.begin(), text.end(), include);
+    std::size_t done = 0;
+    for (const std::sregex_iterator last; it != last; ++it) {
+        const std::filesystem::path name = (*it)[1].str();
+        const std::filesystem::path beside = path.parent_path() / name;
+        out += text.substr(done, static_cast<std::size_t>(it->position(0)) - done);
+        out +=
+            read_with_includes(std::filesystem::exists(beside) ? beside : kSource / "rtl" / name);
+        done = static_cast<std::size_t>(it->position(0) + it->length(0));
+    }
+    return out + text.substr(done);
+}
+
 // The text of `source` without // and /* */ comments.
 std::string without_comments(const std::string& source) {
     static const std::regex comments(R"(//[^\n]*|/\*[\s\S]*?\*/)");
@@ -116,7 +136,7 @@ TEST(FusesocCore, TargetParametersAreTheTopLevelParameters) {
         const std::string top = node["toplevel"].as<std::string>();
         std::string sources;
         for (const std::string& file : core.files(node)) {
-            sources += read_text(kSource / file) + "\n";
+            sources += read_with_includes(kSource / file) + "\n";
         }
         std::vector<std::string> rtl;
         ASSERT_NO_THROW(rtl = module_parameters(sources, top)) << target << ": " << top;
