@@ -44,6 +44,8 @@ struct Options : cli::ReportOptions {
                              hierarchical::kDefaultLevelWindows.end()};
     int field_radius = hierarchical::kDefaultFieldRadius;
     std::string field_model{hierarchical::field_model_name(hierarchical::kDefaultFieldModel)};
+    double radial_min_gain = hierarchical::kDefaultRadialMinGain;
+    int prior_factor = hierarchical::Params{}.prior_factor;
     bool thesis_output = false;       // Output::full_level instead of the vertical field
     std::vector<std::string> scenes;  // empty: all
     std::vector<std::string> cases;   // empty: all
@@ -109,6 +111,8 @@ hierarchical::Params params_of(const Options& options, int ndisp) {
     params.output = options.thesis_output ? hierarchical::Output::full_level
                                           : hierarchical::Output::vertical_field;
     params.field_radius = options.field_radius;
+    params.radial_min_gain = options.radial_min_gain;
+    params.prior_factor = options.prior_factor;
     params.field_model = hierarchical::field_model_named(options.field_model)
                              .value_or(hierarchical::kDefaultFieldModel);
     const defaults::Validation chosen = defaults::validation_for(options.cost);
@@ -288,6 +292,8 @@ void run(const Options& options) {
                    {"windows", options.windows},
                    {"field_radius", options.field_radius},
                    {"field_model", options.field_model},
+                   {"radial_min_gain", options.radial_min_gain},
+                   {"prior_factor", options.prior_factor},
                    {"thesis_output", options.thesis_output},
                    {"rows", json::array()}};
     std::ostringstream md;
@@ -345,6 +351,14 @@ void add_hierarchical_validated_command(CLI::App& app) {
         ->capture_default_str();
     command->add_option("--field-model", options->field_model, "How the field is made")
         ->check(CLI::IsMember(field_model_names()))
+        ->capture_default_str();
+    command->add_option("--radial-min-gain", options->radial_min_gain,
+                        "Radial field models: keep the lens term if it explains this many times "
+                        "the plane's votes")
+        ->capture_default_str();
+    command->add_option("--prior-factor", options->prior_factor,
+                        "Prior field models: the prior's offset stays unless outvoted this many "
+                        "times")
         ->capture_default_str();
     command->add_flag("--thesis-output", options->thesis_output,
                       "The full level's 3x3 winners instead of the vertical field");
