@@ -81,7 +81,7 @@ struct Plane {
 // the thesis' configuration (V = D, windows 9 / 15 / 23, the full level's winners).
 inline constexpr int kDefaultVerticalRange = 16;
 inline constexpr Output kDefaultOutput = Output::vertical_field;
-inline constexpr FieldModel kDefaultFieldModel = FieldModel::mode_with_plane_prior;
+inline constexpr FieldModel kDefaultFieldModel = FieldModel::mode_with_radial_prior;
 
 // The field models by the names the CLI, the experiments and the JSON summaries use.
 struct FieldModelRow {
