@@ -84,9 +84,12 @@ cv::Mat nan_invalid(cv::Mat map) {
 //          right image's columns), the 1-D pass along it as for every field model;
 //  oracle-subpixel: the right image resampled (linear in y) at the exact, unrounded offset,
 //          then the same 1-D pass: what is left is the resampling of the warp and the changed
-//          disparities, not the whole-row field.
+//          disparities, not the whole-row field;
+//  oracle-half: as oracle-subpixel with the offset rounded to half rows (halves up): a field
+//          of twice the resolution.
 constexpr std::string_view kOracle = "oracle";
 constexpr std::string_view kOracleSubpixel = "oracle-subpixel";
+constexpr std::string_view kOracleHalf = "oracle-half";
 
 std::vector<std::string> field_model_names() {
     std::vector<std::string> names;
@@ -95,10 +98,13 @@ std::vector<std::string> field_model_names() {
     }
     names.emplace_back(kOracle);
     names.emplace_back(kOracleSubpixel);
+    names.emplace_back(kOracleHalf);
     return names;
 }
 
-bool is_oracle(const std::string& name) { return name == kOracle || name == kOracleSubpixel; }
+bool is_oracle(const std::string& name) {
+    return name == kOracle || name == kOracleSubpixel || name == kOracleHalf;
+}
 
 hierarchical::Params params_of(const Options& options, int ndisp) {
     hierarchical::Params params;
@@ -231,7 +237,7 @@ Image resample_rows(const Image& right, const std::vector<float>& offsets) {
 hierarchical::Result run_oracle(const Options& options, const io::SceneData& data,
                                 const io::WarpedScene& warped) {
     const hierarchical::Params params = params_of(options, data.scene.ndisp);
-    const std::vector<float> offsets =
+    std::vector<float> offsets =
         oracle_offsets(warped.exact_vertical, warped.exact_ground_truth.mat);
     std::vector<std::int8_t> field(offsets.size());
     for (std::size_t p = 0; p < offsets.size(); ++p) {
@@ -241,7 +247,12 @@ hierarchical::Result run_oracle(const Options& options, const io::SceneData& dat
     }
     hierarchical::CostCount count;
     ValidatedDisparity validated;
-    if (options.field_model == kOracleSubpixel) {
+    if (options.field_model == kOracleHalf) {
+        for (float& v : offsets) {
+            v = std::floor(2 * v + 0.5F) / 2;
+        }
+    }
+    if (options.field_model == kOracleSubpixel || options.field_model == kOracleHalf) {
         // The pass on the resampled image with field 0 (its border rule: the image border).
         const Image resampled = resample_rows(data.pair.right, offsets);
         ValidatedDisparity out =

@@ -277,7 +277,7 @@ struct RadialModel {
 // if it explains at least `min_gain` times as many votes as the plane (a vote is explained when
 // the rounded offset, halves up, is its own); otherwise std::nullopt: the frame's field is the
 // plane's. Without lens distortion the lens term only fits noise and explains about as many
-// votes as the plane (at most 1.7 % more on the 56 undistorted cases of
+// votes as the plane (at most 1.6 % more on the 56 undistorted cases of
 // docs/results-hierarchical.md); with it, 4-145 % more.
 std::optional<RadialModel> vertical_radial(const LevelMap& level, const Plane& plane,
                                            double min_gain = kDefaultRadialMinGain,
