@@ -27,8 +27,11 @@ namespace {
 // points outside the image. Column 1 is nearer 0 (3) than 3, column 2 nearer 3 (2), columns 4
 // and 5 take 3's. Row 1 has no valid winner: 0.
 TEST(RightDisparities, HandComputed) {
-    const LevelMap level{6, 2, {0, 2, 0, 3, 1, 2, 5, 5, 5, 5, 5, 5},
-                         std::vector<std::int16_t>(12, 0), {0, 1, 0, 1, 1, 1, 0, 0, 0, 0, 0, 0}};
+    const LevelMap level{6,
+                         2,
+                         {0, 2, 0, 3, 1, 2, 5, 5, 5, 5, 5, 5},
+                         std::vector<std::int16_t>(12, 0),
+                         {0, 1, 0, 1, 1, 1, 0, 0, 0, 0, 0, 0}};
     EXPECT_EQ(right_disparities(level),
               (std::vector<std::int16_t>{3, 3, 2, 2, 2, 2, 0, 0, 0, 0, 0, 0}));
 }
@@ -101,8 +104,8 @@ TEST(VerticalRadial, FollowsALensTermThePlaneCannot) {
             const long double cx = x - d - 79.5L;
             const long double cy = y - 59.5L;
             const long double row[4] = {1.0L, cx, cy, cy * d * (2 * cx + d)};
-            const long double residual = v - (fit->a + fit->b * row[1] + fit->c * row[2] +
-                                              fit->k * row[3]);
+            const long double residual =
+                v - (fit->a + fit->b * row[1] + fit->c * row[2] + fit->k * row[3]);
             for (int i = 0; i < 4; ++i) {
                 gradient[i] += row[i] * residual;
                 scale[i] += std::fabs(row[i]) * (std::fabs(residual) + 1);
@@ -152,8 +155,8 @@ TEST(VerticalRadial, KeepsThePlaneWithoutLensDistortion) {
 double exact_offset(const io::RadialDistortion& lens, int xr, int y, double d0) {
     double right_row = y;
     for (int i = 0; i < 4; ++i) {
-        const cv::Point2d left = lens.distort(lens.undistort({static_cast<double>(xr), right_row}) +
-                                              cv::Point2d(d0, 0));
+        const cv::Point2d left =
+            lens.distort(lens.undistort({static_cast<double>(xr), right_row}) + cv::Point2d(d0, 0));
         right_row += y - left.y;
     }
     return right_row - y;
@@ -171,8 +174,9 @@ TEST(RadialPrior, FollowsADistortedPairWhereThePlaneMisses) {
     std::uniform_int_distribution<int> value(0, 255);
     cv::Mat scene(kHeight, kWidth + kDisparity, CV_8UC3);
     for (auto it = scene.begin<cv::Vec3b>(); it != scene.end<cv::Vec3b>(); ++it) {
-        *it = cv::Vec3b(static_cast<std::uint8_t>(value(rng)), static_cast<std::uint8_t>(value(rng)),
-                        static_cast<std::uint8_t>(value(rng)));
+        *it =
+            cv::Vec3b(static_cast<std::uint8_t>(value(rng)), static_cast<std::uint8_t>(value(rng)),
+                      static_cast<std::uint8_t>(value(rng)));
     }
     cv::GaussianBlur(scene, scene, cv::Size(0, 0), 1.0);
     // right(x) = left(x + d0): the left pixel x matches the right pixel x - d0.
@@ -180,8 +184,7 @@ TEST(RadialPrior, FollowsADistortedPairWhereThePlaneMisses) {
     const cv::Mat right_mat = scene(cv::Rect(kDisparity, 0, kWidth, kHeight)).clone();
     const io::RadialDistortion lens(kWidth, kHeight, 20.0);
     const Image left = io::to_image(io::distort_image(left_mat, lens, cv::INTER_LINEAR), "left");
-    const Image right =
-        io::to_image(io::distort_image(right_mat, lens, cv::INTER_LINEAR), "right");
+    const Image right = io::to_image(io::distort_image(right_mat, lens, cv::INTER_LINEAR), "right");
 
     Params params;
     params.ndisp = 32;

@@ -6,10 +6,10 @@
 // (every pixel followed through the warp): coverage and bad > 1 px among the output.
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <string>
@@ -255,10 +255,9 @@ hierarchical::Result run_oracle(const Options& options, const io::SceneData& dat
     if (options.field_model == kOracleSubpixel || options.field_model == kOracleHalf) {
         // The pass on the resampled image with field 0 (its border rule: the image border).
         const Image resampled = resample_rows(data.pair.right, offsets);
-        ValidatedDisparity out =
-            hierarchical::match_along_field(data.pair.left, resampled,
-                                            std::vector<std::int8_t>(field.size(), 0), params,
-                                            count.field_pass);
+        ValidatedDisparity out = hierarchical::match_along_field(
+            data.pair.left, resampled, std::vector<std::int8_t>(field.size(), 0), params,
+            count.field_pass);
         validated = std::move(out);
     } else {
         validated = hierarchical::match_along_field(data.pair.left, data.pair.right, field, params,
@@ -269,11 +268,10 @@ hierarchical::Result run_oracle(const Options& options, const io::SceneData& dat
 
 cv::Mat run_hierarchical(const Options& options, const io::SceneData& data,
                          const io::WarpedScene& warped, double& agreement) {
-    hierarchical::Result result =
-        is_oracle(options.field_model)
-            ? run_oracle(options, data, warped)
-            : hierarchical::match(data.pair.left, data.pair.right,
-                                  params_of(options, data.scene.ndisp));
+    hierarchical::Result result = is_oracle(options.field_model)
+                                      ? run_oracle(options, data, warped)
+                                      : hierarchical::match(data.pair.left, data.pair.right,
+                                                            params_of(options, data.scene.ndisp));
     agreement = result.field.empty() ? 0.0
                                      : field_agreement(result.field, warped.exact_vertical,
                                                        warped.exact_ground_truth.mat);
@@ -363,13 +361,15 @@ void add_hierarchical_validated_command(CLI::App& app) {
     command->add_option("--field-model", options->field_model, "How the field is made")
         ->check(CLI::IsMember(field_model_names()))
         ->capture_default_str();
-    command->add_option("--radial-min-gain", options->radial_min_gain,
-                        "Radial field models: keep the lens term if it explains this many times "
-                        "the plane's votes")
+    command
+        ->add_option("--radial-min-gain", options->radial_min_gain,
+                     "Radial field models: keep the lens term if it explains this many times "
+                     "the plane's votes")
         ->capture_default_str();
-    command->add_option("--prior-factor", options->prior_factor,
-                        "Prior field models: the prior's offset stays unless outvoted this many "
-                        "times")
+    command
+        ->add_option("--prior-factor", options->prior_factor,
+                     "Prior field models: the prior's offset stays unless outvoted this many "
+                     "times")
         ->capture_default_str();
     command->add_flag("--thesis-output", options->thesis_output,
                       "The full level's 3x3 winners instead of the vertical field");

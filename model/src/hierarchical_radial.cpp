@@ -123,8 +123,7 @@ std::vector<std::uint8_t> inliers_of(const std::vector<Vote>& votes, const Radia
 }  // namespace
 
 std::optional<RadialModel> vertical_radial(const LevelMap& level, const Plane& plane,
-                                           double min_gain, double tolerance,
-                                           int max_iterations) {
+                                           double min_gain, double tolerance, int max_iterations) {
     // The plane, in the centred coordinates, starts the radial fits.
     const double one = static_cast<double>(kPlaneOne);
     RadialModel model;

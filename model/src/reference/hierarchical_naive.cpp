@@ -437,9 +437,9 @@ Result match(const Image& left, const Image& right, const Params& params) {
         const Plane plane = hierarchical::vertical_plane(full);
         const std::optional<RadialModel> lens =
             hierarchical::vertical_radial(full, plane, params.radial_min_gain);
-        field = lens ? hierarchical::radial_field(*lens, full, v_min, v_min + vrange - 1)
-                     : naive::plane_field(plane, full.width, full.height, v_min,
-                                          v_min + vrange - 1);
+        field = lens
+                    ? hierarchical::radial_field(*lens, full, v_min, v_min + vrange - 1)
+                    : naive::plane_field(plane, full.width, full.height, v_min, v_min + vrange - 1);
         if (params.field_model == FieldModel::mode_with_radial_prior) {
             field = naive::vertical_field(full, params.field_radius, field, params.prior_factor);
         }
