@@ -150,7 +150,8 @@ TEST(DefaultLevels, HardwareSizedWithTheVerticalField) {
     EXPECT_DOUBLE_EQ(params.levels[2].sigma, 3.0 * 15 / 11);
     EXPECT_EQ(params.vertical_range(), 16);
     EXPECT_EQ(params.output, Output::vertical_field);
-    EXPECT_EQ(params.field_model, FieldModel::mode_with_plane_prior);
+    EXPECT_EQ(params.field_model, FieldModel::mode_with_radial_prior);
+    EXPECT_DOUBLE_EQ(params.radial_min_gain, 1.03);
     EXPECT_EQ(params.field_radius, 48);
     EXPECT_EQ(params.field_level.window, fx::kDefaultWindow);
 }
@@ -276,7 +277,9 @@ TEST(VerticalFieldEqualsNaive, EveryFieldModel) {
          {Case{&moved, FieldModel::mode, true}, Case{&moved, FieldModel::plane, true},
           Case{&moved, FieldModel::mode_with_plane_prior, false},
           Case{&moved, FieldModel::mode_with_plane_prior, true},
-          Case{&unrelated, FieldModel::mode_with_plane_prior, true}}) {
+          Case{&moved, FieldModel::mode_with_radial_prior, true},
+          Case{&unrelated, FieldModel::mode_with_plane_prior, true},
+          Case{&unrelated, FieldModel::mode_with_radial_prior, true}}) {
         Params params = Params::thesis();
         params.ndisp = 16;
         params.vrange = 12;

@@ -475,6 +475,16 @@ Result match(const Image& left, const Image& right, const Params& params, const 
     std::vector<std::int8_t> field;
     if (params.field_model == FieldModel::mode) {
         field = vertical_field(full, params.field_radius);
+    } else if (params.field_model == FieldModel::radial ||
+               params.field_model == FieldModel::mode_with_radial_prior) {
+        const Plane plane = vertical_plane(full);
+        const std::optional<RadialModel> lens =
+            vertical_radial(full, plane, params.radial_min_gain);
+        field = lens ? radial_field(*lens, full, range.v_min, range.v_max)
+                     : plane_field(plane, full.width, full.height, range.v_min, range.v_max);
+        if (params.field_model == FieldModel::mode_with_radial_prior) {
+            field = vertical_field(full, params.field_radius, field, params.prior_factor);
+        }
     } else {
         field =
             plane_field(vertical_plane(full), full.width, full.height, range.v_min, range.v_max);

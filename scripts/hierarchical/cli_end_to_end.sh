@@ -23,7 +23,7 @@ echo "$summary"
 echo "$summary" | grep -q '"method":"hierarchical"'
 # D = V = 16: the levels' (4 x 4) / 16 + 9 / 4 + 9 = 12.25 per pixel, and the 1-D pass 16 more.
 echo "$summary" | grep -q '"cost_evaluations_per_pixel":28.25'
-echo "$summary" | grep -q '"field":"prior"'
+echo "$summary" | grep -q '"field":"radial-prior"'
 # The thesis' output (--field none): the levels alone, no 1-D pass.
 thesis=$("$stereo" match "$scene/left.png" "$scene/right.png" -o "$work/thesis.png" --ndisp 16 \
     --scale 16 --method hierarchical --field none --json)

@@ -430,6 +430,19 @@ Result match(const Image& left, const Image& right, const Params& params) {
     std::vector<std::int8_t> field;
     if (params.field_model == FieldModel::mode) {
         field = naive::vertical_field(full, params.field_radius, {}, 0);
+    } else if (params.field_model == FieldModel::radial ||
+               params.field_model == FieldModel::mode_with_radial_prior) {
+        // The radial fit and its field are the model's (checked by their own tests).
+        const int v_min = -(vrange / 2);
+        const Plane plane = hierarchical::vertical_plane(full);
+        const std::optional<RadialModel> lens =
+            hierarchical::vertical_radial(full, plane, params.radial_min_gain);
+        field = lens
+                    ? hierarchical::radial_field(*lens, full, v_min, v_min + vrange - 1)
+                    : naive::plane_field(plane, full.width, full.height, v_min, v_min + vrange - 1);
+        if (params.field_model == FieldModel::mode_with_radial_prior) {
+            field = naive::vertical_field(full, params.field_radius, field, params.prior_factor);
+        }
     } else {
         const int v_min = -(vrange / 2);
         field = naive::plane_field(hierarchical::vertical_plane(full), full.width, full.height,
