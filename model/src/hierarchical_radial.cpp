@@ -14,12 +14,9 @@
 namespace stereo::hierarchical {
 namespace {
 
-// One vote: a valid winner seen from the right image's column.
+// One vote: a valid winner (d, v) seen from the right image's column xr of its row y.
 struct Vote {
-    int xr = 0;
-    int y = 0;
-    int d = 0;
-    int v = 0;
+    int xr, y, d, v;
 };
 
 std::vector<Vote> votes_of(const LevelMap& level) {

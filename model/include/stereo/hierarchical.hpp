@@ -254,12 +254,8 @@ Plane vertical_plane(const LevelMap& level, int max_iterations = 16);
 // of the right camera add a plane. So
 //     v(xr, y, d) = a + b (xr - cx) + c (y - cy) + k (y - cy) d (2 (xr - cx) + d).
 struct RadialModel {
-    double a = 0;
-    double b = 0;
-    double c = 0;
-    double k = 0;
-    double cx = 0;
-    double cy = 0;
+    double a = 0, b = 0, c = 0, k = 0;  // the coefficients of v above
+    double cx = 0, cy = 0;              // the centre of the distortion
     double operator()(int xr, int y, int d) const {
         const double x = xr - cx;
         const double yy = y - cy;
