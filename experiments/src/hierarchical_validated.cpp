@@ -255,10 +255,9 @@ hierarchical::Result run_oracle(const Options& options, const io::SceneData& dat
     if (options.field_model == kOracleSubpixel || options.field_model == kOracleHalf) {
         // The pass on the resampled image with field 0 (its border rule: the image border).
         const Image resampled = resample_rows(data.pair.right, offsets);
-        ValidatedDisparity out = hierarchical::match_along_field(
-            data.pair.left, resampled, std::vector<std::int8_t>(field.size(), 0), params,
-            count.field_pass);
-        validated = std::move(out);
+        validated = hierarchical::match_along_field(data.pair.left, resampled,
+                                                    std::vector<std::int8_t>(field.size(), 0),
+                                                    params, count.field_pass);
     } else {
         validated = hierarchical::match_along_field(data.pair.left, data.pair.right, field, params,
                                                     count.field_pass);
