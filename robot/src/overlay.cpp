@@ -12,9 +12,9 @@
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <opencv2/videoio.hpp>
 
 #include "stereo_io/io.hpp"
+#include "stereo_io/mjpeg_avi.hpp"
 #include "stereo_io/output.hpp"
 #include "stereo_robot/ground.hpp"
 
@@ -145,31 +145,6 @@ std::string lower_extension(const std::filesystem::path& path) {
     return extension;
 }
 
-// OpenCV's VideoWriter writes by name and ignores a failed write: the video goes to a private
-// staging folder beside the destination (io::StagedOutput, no name another user can predict or
-// redirect) and replaces the destination only once complete, its RIFF chunks checked whole (a
-// full disk or a file-size limit leaves the previous video, and the error is reported).
-void write_video(const std::filesystem::path& path, const std::vector<cv::Mat>& frames,
-                 double fps) {
-    io::StagedOutput staged(path);
-    bool opened = false;
-    {
-        cv::VideoWriter writer(staged.path().string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'),
-                               fps, frames.front().size());
-        if (writer.isOpened()) {
-            for (const auto& frame : frames) {
-                writer.write(frame);
-            }
-            opened = true;
-        }
-    }
-    if (!opened) {
-        throw std::runtime_error("cannot write video " + path.string() +
-                                 ": OpenCV cannot open an MJPG writer");
-    }
-    staged.commit();
-}
-
 }  // namespace
 
 void check_overlay_path(const std::filesystem::path& path, bool sequence) {
@@ -208,7 +183,7 @@ void SequenceWriter::finish() {
         return;
     }
     if (state_->video) {
-        write_video(state_->path, frames, state_->fps);
+        io::write_file_atomic(state_->path, io::mjpeg_avi(frames, state_->fps));  // atomic
         return;
     }
     const int cols = std::min<int>(kSheetColumns, static_cast<int>(frames.size()));
