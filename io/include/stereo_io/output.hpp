@@ -33,7 +33,7 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view bytes
 // not expected; it is reported and leaves the files renamed so far.)
 void write_files_atomic(const std::vector<std::pair<std::filesystem::path, std::string>>& files);
 
-// A file that another library writes by name (Verilator's FST tracer; an AVI too) and
+// A file that another library writes by name (Verilator's FST tracer) and
 // that must still land atomically. path() names a file inside a fresh private folder (mode 0700,
 // made by mkdtemp beside the destination, ".NAME.PID-TAG.XXXXXX/"), so neither the file nor the
 // side files the library opens next to it (FST's ".hier") can be redirected by a link planted
