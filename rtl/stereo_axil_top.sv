@@ -15,6 +15,10 @@
 `default_nettype none
 `include "stereo_assert.svh"
 
+// One of several top-level modules (a top per integration: AXI4-Lite here, the boards', the
+// synthesis wrapper): Verilator linting every file of rtl/ as one design names the first top it
+// meets, this one, as MULTITOP; scripts/lint_rtl.sh lints each top on its own.
+// verilator lint_off MULTITOP
 module stereo_axil_top #(
     parameter int WIDTH          = 64,
     parameter int HEIGHT         = 48,
