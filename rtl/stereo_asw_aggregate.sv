@@ -20,18 +20,26 @@
 // (stereo_asw_column), so every weight is one combine per label and offset (stereo_asw_weights:
 // two labels a multiplier).
 //
-// Stream positions: the input (x, yc) is the vertical pass' pixel; x1 is the pixel r + 1 steps
-// before it, x2 the one 2r + 2 steps before (both follow the stream across row ends: their
+// Pipelined divisions: a step's weighted sums (num, den) of each pass go into a ring of one entry
+// per label group (stereo_group_ring, advanced like the Av ring), and the divisions read it when
+// the same group comes round again, one step later. So no clock holds both the weighted sums and
+// a division (the longest path was the sums, a 14-row divider and pass 1's winner), and every
+// group still sees its own lanes' sums. A division's result is one step late: Av(x) enters the
+// history at the next step, and pass 1's winner (over the divided costs) one step after its sums.
+//
+// Stream positions: the input (x, yc) is the vertical pass' pixel; x1 is the pixel r + 2 steps
+// before it, x2 the one 2r + 4 steps before (both follow the stream across row ends: their
 // coordinates come from a shift register). Pass 1 reads Av of the columns x1 - r .. x1 + r and
-// pass 2 those of x2 - r .. x2 + r, all computed at earlier steps: each label group keeps the last
-// 3r + 2 columns' Av in a ring (stereo_group_ring), so the passes never wait on this step's
-// vertical sums, and pass 2 reads the labels pass 1 gave x2 - r .. x2 + r at earlier steps.
-// Output: (x2, yc) and its labels' costs through the stage's output register (G = 1), or the
-// registered coordinates and this clock's group (G > 1, the stage contract of docs/rtl.md:
-// stereo_wta's input ring holds the group until the next step): latency 2r + 3 steps.
+// pass 2 those of x2 - r .. x2 + r, all divided at earlier steps: each label group keeps the last
+// 3r + 3 columns' Av (x - 2 .. x - 3r - 4) in a ring, and pass 2 reads the labels pass 1 gave
+// x2 - r .. x2 + r at earlier steps.
+// Output: (x2, yc) of the step before and its labels' costs, divided this step, through the
+// stage's output register (G = 1), or the registered coordinates and this clock's group (G > 1,
+// the stage contract of docs/rtl.md: stereo_wta's input ring holds the group until the next
+// step): latency 2r + 6 steps.
 // Time-multiplexed lanes (LANES < NDISP): the clock of group g computes labels [g*LANES +:
-// LANES] of all three passes; pass 1's winner runs over the groups (a register that group 0
-// restarts) and enters the label history at the step.
+// LANES] of all three passes' sums and divisions; pass 1's winner runs over the groups (a
+// register that group 0 restarts) and enters the label history at the step.
 `default_nettype none
 `include "stereo_assert.svh"
 
@@ -61,9 +69,16 @@ module stereo_asw_aggregate #(
   localparam int WORD = 48 * DIAMETER;
   localparam int BITS = fx_pkg::AGG_BITS;
   localparam int GROUPS = NDISP / LANES;
-  localparam int NEAR = R + 1;  // x1 = x - NEAR
-  localparam int FAR = 2 * R + 2;  // x2 = x - FAR
-  localparam int HISTORY = 3 * R + 2;  // Av of columns x - 1 .. x - HISTORY
+  localparam int NEAR = R + 2;  // x1 = x - NEAR
+  localparam int FAR = 2 * R + 4;  // x2 = x - FAR
+  localparam int HISTORY = 3 * R + 3;  // Av of columns x - 2 .. x - HISTORY - 1
+  localparam int OWN_LABEL = FAR - NEAR - 1;  // labels[OWN_LABEL]: pass 1's label of x2
+  // The sums' widths: weights below 2^8, costs below 2^10 (vertical) and means below 2^BITS.
+  localparam int DEN_BITS = $clog2(255 * DIAMETER + 1);
+  localparam int VNUM_BITS = $clog2(255 * 1023 * DIAMETER + 1);
+  localparam int HNUM_BITS = $clog2(255 * ((1 << BITS) - 1) * DIAMETER + 1);
+  localparam int VSUM_BITS = VNUM_BITS + DEN_BITS;  // a lane's {num, den}
+  localparam int HSUM_BITS = 1 + HNUM_BITS + DEN_BITS;  // {outside, num, den}
   localparam int DISP_BITS = fx_pkg::DISP_BITS;
   localparam logic [BITS-1:0] NO_CANDIDATE = BITS'(fx_pkg::ASW_NO_CANDIDATE);
   localparam int CENSUS_SHIFT = $clog2(fx_pkg::CENSUS_WEIGHT + 1);
@@ -156,20 +171,20 @@ module stereo_asw_aggregate #(
   endfunction
 
   // ---- positions --------------------------------------------------------------------------------
-  // xs[p], ys[p]: the input pixel p steps ago (p = 1 .. FAR); x1 = xs[NEAR], x2 = xs[FAR].
-  fx_pkg::coord_t xs[FAR+1], ys[FAR+1];
+  // xs[p], ys[p]: the input pixel p steps ago (p = 1 .. FAR + 1); x1 = xs[NEAR], x2 = xs[FAR].
+  fx_pkg::coord_t xs[FAR+2], ys[FAR+2];
   always_comb begin
     xs[0] = in_x;
     ys[0] = in_y;
   end
   always_ff @(posedge clk) begin
     if (rst) begin
-      for (int p = 1; p <= FAR; p++) begin
+      for (int p = 1; p <= FAR + 1; p++) begin
         xs[p] <= '0;
         ys[p] <= fx_pkg::NO_PIXEL;
       end
     end else if (ce) begin
-      for (int p = 1; p <= FAR; p++) begin
+      for (int p = 1; p <= FAR + 1; p++) begin
         xs[p] <= xs[p-1];
         ys[p] <= ys[p-1];
       end
@@ -181,7 +196,7 @@ module stereo_asw_aggregate #(
   assign base_k = 18'(32'(group) * LANES);
 
   // ---- the Av history of this clock's group ----------------------------------------------------
-  // head[(l*HISTORY + p - 1)*BITS +: BITS]: lane l's Av of column x - p.
+  // head[(l*HISTORY + p - 1)*BITS +: BITS]: lane l's Av of column x - p - 1.
   localparam int RING_BITS = LANES * HISTORY * BITS;
   logic [RING_BITS-1:0] head, next_state;
   logic advance;
@@ -201,6 +216,49 @@ module stereo_asw_aggregate #(
     av_at = head[(l*HISTORY+p-1)*BITS+:BITS];
   endfunction
 
+  // ---- the sums of the last step, per pass: one ring entry per group ----------------------------
+  logic [LANES*VSUM_BITS-1:0] vertical_sums, vertical_sums_q;
+  logic [LANES*HSUM_BITS-1:0] pass1_sums, pass1_sums_q, pass2_sums, pass2_sums_q;
+  stereo_group_ring #(
+      .BITS(LANES * VSUM_BITS),
+      .GROUPS(GROUPS),
+      .BLOCK_RAM(RING_BLOCK_RAM),
+      .BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
+  ) vertical_ring (
+      .clk(clk),
+      .advance(advance),
+      .next_state(vertical_sums),
+      .head(vertical_sums_q)
+  );
+  stereo_group_ring #(
+      .BITS(LANES * HSUM_BITS),
+      .GROUPS(GROUPS),
+      .BLOCK_RAM(RING_BLOCK_RAM),
+      .BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
+  ) pass1_ring (
+      .clk(clk),
+      .advance(advance),
+      .next_state(pass1_sums),
+      .head(pass1_sums_q)
+  );
+  stereo_group_ring #(
+      .BITS(LANES * HSUM_BITS),
+      .GROUPS(GROUPS),
+      .BLOCK_RAM(RING_BLOCK_RAM),
+      .BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
+  ) pass2_ring (
+      .clk(clk),
+      .advance(advance),
+      .next_state(pass2_sums),
+      .head(pass2_sums_q)
+  );
+  // A horizontal pass' division: NO_CANDIDATE where the label's match lies outside.
+  function automatic logic [BITS-1:0] horizontal_mean(input logic [HSUM_BITS-1:0] sums);
+    horizontal_mean = sums[HSUM_BITS-1]
+        ? NO_CANDIDATE
+        : mean(32'(sums[DEN_BITS+:HNUM_BITS]), 16'(sums[0+:DEN_BITS]), 0);
+  endfunction
+
   // ---- the vertical pass --------------------------------------------------------------------
   // Per lane (generate loops: every index below is a constant of the elaboration).
   // Rows of the column stack inside the frame (the same for every lane).
@@ -210,7 +268,7 @@ module stereo_asw_aggregate #(
       row_inside[j] = in_range(18'(in_y) - 18'(R) + 18'(j), cfg.height);
     end
   end
-  logic [LANES*BITS-1:0] vertical;  // lane l's Av of this step's column
+  logic [LANES*BITS-1:0] vertical;  // lane l's Av of column x - 1 (the last step's sums)
   logic [LANES*8*DIAMETER-1:0] vertical_right, vertical_weights;  // lane l's factors, weights
   logic [8*DIAMETER-1:0] vertical_left;
   always_comb begin
@@ -259,8 +317,12 @@ module stereo_asw_aggregate #(
         num = outside ? times_constant(32'(den), fx_pkg::COST_OUTSIDE)
                       : times_constant(weighted_h, fx_pkg::CENSUS_WEIGHT);
       end
-      vertical[l*BITS+:BITS] = mean(num, den, fx_pkg::AGG_FRAC_BITS);
+      vertical_sums[l*VSUM_BITS+:VSUM_BITS] = {VNUM_BITS'(num), DEN_BITS'(den)};
     end
+    // The last step's sums of this group: Av of column x - 1.
+    assign vertical[l*BITS+:BITS] =
+        mean(32'(vertical_sums_q[l*VSUM_BITS+DEN_BITS+:VNUM_BITS]),
+             16'(vertical_sums_q[l*VSUM_BITS+:DEN_BITS]), fx_pkg::AGG_FRAC_BITS);
     // The new Av enters position 1; the older ones move one column back.
     assign next_state[(l*HISTORY)*BITS+:BITS] = vertical[l*BITS+:BITS];
     if (HISTORY > 1) begin : g_shift
@@ -273,7 +335,7 @@ module stereo_asw_aggregate #(
   // Pass p (1, 2) at pixel `centre`, BACK steps back: column centre + dx is BACK - dx back. The
   // left factors do not depend on the label: computed once per pixel (pass 2's with the
   // continuity of the labels pass 1 gave), the right ones come with each lane's word.
-  logic [DISP_BITS-1:0] labels[1:2*R+1];  // labels[p]: pass 1's label of pixel x1 - p
+  logic [DISP_BITS-1:0] labels[1:2*R+1];  // labels[p]: pass 1's label of pixel x1 - p - 1
   logic [LANES*BITS-1:0] pass1, pass2;
   for (genvar pass = 1; pass <= 2; pass++) begin : g_pass
     localparam int BACK = (pass == 1) ? NEAR : FAR;
@@ -288,9 +350,9 @@ module stereo_asw_aggregate #(
         if (pass == 1) begin
           left_factor[i*8+:8] = near_of(in_left, i);
         end else begin
-          label_step = (labels[NEAR] >= labels[NEAR-(i-R)])
-                           ? labels[NEAR] - labels[NEAR-(i-R)]
-                           : labels[NEAR-(i-R)] - labels[NEAR];
+          label_step = (labels[OWN_LABEL] >= labels[OWN_LABEL-(i-R)])
+                           ? labels[OWN_LABEL] - labels[OWN_LABEL-(i-R)]
+                           : labels[OWN_LABEL-(i-R)] - labels[OWN_LABEL];
           left_factor[i*8+:8] = fx_pkg::asw_combine(
               far_of(in_left, i), CONTINUITY_ROW[32'(label_step)*8+:8]);
         end
@@ -304,7 +366,7 @@ module stereo_asw_aggregate #(
       logic [WORD-1:0] right_word;
       logic signed [17:0] right_x;
       logic outside;
-      logic [BITS-1:0] result;
+      logic [HSUM_BITS-1:0] sums;
       assign right_word = in_right[l*WORD+:WORD];
       assign right_x = centre - 18'(cfg.min_disp) - base_k - 18'(l);
       assign outside = !in_range(right_x, cfg.width);
@@ -328,21 +390,25 @@ module stereo_asw_aggregate #(
         den = '0;
         for (int i = 0; i < DIAMETER; i++) begin
           weight = weights[(l*DIAMETER+i)*8+:8];
-          product = 22'(weight) * 22'(av_at(l, BACK - (i - R)));
+          // column centre + dx is BACK - dx steps back: history position BACK - dx - 1
+          product = 22'(weight) * 22'(av_at(l, BACK - (i - R) - 1));
           num = num + 32'(product);
           den = den + 16'(weight);
         end
-        result = outside ? NO_CANDIDATE : mean(num, den, 0);
+        sums = {outside, HNUM_BITS'(num), DEN_BITS'(den)};
       end
+      // This step's sums, divided at the next (pass1, pass2: the last step's, divided now).
       if (pass == 1) begin : g_first
-        assign pass1[l*BITS+:BITS] = result;
+        assign pass1_sums[l*HSUM_BITS+:HSUM_BITS] = sums;
+        assign pass1[l*BITS+:BITS] = horizontal_mean(pass1_sums_q[l*HSUM_BITS+:HSUM_BITS]);
       end else begin : g_second
-        assign pass2[l*BITS+:BITS] = result;
+        assign pass2_sums[l*HSUM_BITS+:HSUM_BITS] = sums;
+        assign pass2[l*BITS+:BITS] = horizontal_mean(pass2_sums_q[l*HSUM_BITS+:HSUM_BITS]);
       end
     end
   end
 
-  // ---- pass 1's winner over the groups, the label history -------------------------------------
+  // ---- pass 1's winner over the groups (the last step's pixel x1), the label history ------------
   // Costs with one bit more: labels >= cfg.ndisp count as 2^BITS, above every cell.
   logic [BITS:0] group_cost, merged_cost, running_cost;
   logic [DISP_BITS-1:0] group_label, merged_label, running_label;
@@ -377,7 +443,7 @@ module stereo_asw_aggregate #(
   // The output register (G = 1), or the coordinates only (G > 1: stereo_wta's input ring holds
   // this clock's group until the next step, where the all-parallel stage has this register).
   stereo_stage_output #(.BITS(LANES * BITS), .REGISTERED(GROUPS == 1)) outputs (
-      .in_x(xs[FAR]), .in_y(ys[FAR]), .in_data(pass2), .*);
+      .in_x(xs[FAR+1]), .in_y(ys[FAR+1]), .in_data(pass2), .*);
 endmodule
 
 `default_nettype wire
