@@ -304,7 +304,9 @@ module stereo_asw_aggregate #(
         den = den + 16'(weight);
         if (VERTICAL_SHIFT_ADD) begin
           h = hamming(code_of(in_left, j), code_of(right_word, j));
-          for (int b = 0; b < 5; b++) if (h[b]) weighted_h = weighted_h + (32'(weight) << b);
+          // gated by AND, not by `if`: the terms form one sum (Yosys: one $macc, mapped to an
+          // adder tree), where a chain of conditional additions stays a chain (128 levels)
+          for (int b = 0; b < 5; b++) weighted_h = weighted_h + ((32'(weight) << b) & {32{h[b]}});
         end else begin
           cost = outside ? 10'(fx_pkg::COST_OUTSIDE)
                          : matching_cost(code_of(in_left, j), code_of(right_word, j));
