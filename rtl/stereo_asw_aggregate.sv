@@ -305,7 +305,8 @@ module stereo_asw_aggregate #(
         if (VERTICAL_SHIFT_ADD) begin
           h = hamming(code_of(in_left, j), code_of(right_word, j));
           // gated by AND, not by `if`: the terms form one sum (Yosys: one $macc, mapped to an
-          // adder tree), where a chain of conditional additions stays a chain (128 levels)
+          // adder tree), where conditional additions stay a chain (128 LUT levels at 640x480,
+          // LANES = 4: docs/results-asw.md)
           for (int b = 0; b < 5; b++) weighted_h = weighted_h + ((32'(weight) << b) & {32{h[b]}});
         end else begin
           cost = outside ? 10'(fx_pkg::COST_OUTSIDE)
