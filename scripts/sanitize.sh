@@ -28,7 +28,7 @@ cd "$(dirname "$0")/.."
 targets=(stereo stereo_experiments test_model test_matcher test_io test_output test_cli_run test_metrics test_middlebury
          test_edge_frontend test_hierarchical test_hierarchical_radial test_robot test_slam test_constants test_validation
          test_costs_lcdm test_speckle test_quad test_point_cloud test_obstacles test_bands test_asw test_board
-         test_catalogue test_fast_engine test_self_calibration make_cli_fixtures map_exercises make_slam_fixtures fuzz_replay_all)
+         test_catalogue test_fast_engine test_self_calibration test_mjpeg_avi make_cli_fixtures map_exercises make_slam_fixtures fuzz_replay_all)
 cmake --preset sanitize
 cmake --build build-sanitize -j"$(nproc)" --target "${targets[@]}"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
