@@ -182,7 +182,7 @@ class Setup:
             "slam": (["slam", os.path.join(self.slam_fixtures, "ok"), "--ndisp", "16", "--window",
                       "5", "--trajectory", "OUT/t.txt", "--map", "OUT/m.png", "--vdisparity",
                       "OUT/v.png"], "m.png"),
-            # OpenCV's VideoWriter through io::StagedOutput
+            # the MJPG video (io::mjpeg_avi, written by io::write_file_atomic)
             "avi": (["avoid", self.avoid_list(40 if big else 12), "--ndisp", "8", "--border",
                      "2", "--window", "5", "--threshold", "2", "--overlay", "OUT/o.avi"], "o.avi"),
         }
