@@ -54,8 +54,9 @@ class MjpegAvi : public ::testing::Test {
   protected:
     void SetUp() override {
         folder_ = fs::temp_directory_path() /
-                  ("stereo_mjpeg_avi_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                   "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+                  ("stereo_mjpeg_avi_" +
+                   std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
+                   ::testing::UnitTest::GetInstance()->current_test_info()->name());
         fs::remove_all(folder_);
         fs::create_directories(folder_);
     }
@@ -78,7 +79,7 @@ TEST_F(MjpegAvi, HeaderFieldsAndIndexDescribeTheFrames) {
     EXPECT_EQ(avi.substr(20, 4), "hdrl");
     ASSERT_EQ(avi.substr(24, 4), "avih");
     EXPECT_EQ(u32_at(avi, 28), 56u);
-    EXPECT_EQ(u32_at(avi, 32), 80000u);  // microseconds per frame at 12.5 frames/s
+    EXPECT_EQ(u32_at(avi, 32), 80000u);   // microseconds per frame at 12.5 frames/s
     EXPECT_EQ(u32_at(avi, 32 + 16), 5u);  // total frames
     EXPECT_EQ(u32_at(avi, 32 + 24), 1u);  // streams
     EXPECT_EQ(u32_at(avi, 32 + 32), 37u);
@@ -163,7 +164,8 @@ TEST_F(MjpegAvi, BadRequestsAreRefused) {
     EXPECT_THROW(mjpeg_avi({}, 10.0), std::invalid_argument);
     EXPECT_THROW(mjpeg_avi(frames, 0.0), std::invalid_argument);
     EXPECT_THROW(mjpeg_avi(frames, -1.0), std::invalid_argument);
-    EXPECT_THROW(mjpeg_avi(frames, std::numeric_limits<double>::quiet_NaN()), std::invalid_argument);
+    EXPECT_THROW(mjpeg_avi(frames, std::numeric_limits<double>::quiet_NaN()),
+                 std::invalid_argument);
     EXPECT_THROW(mjpeg_avi(frames, 10.0, 0), std::invalid_argument);
     EXPECT_THROW(mjpeg_avi(frames, 10.0, 101), std::invalid_argument);
     auto mixed = frames;

@@ -55,8 +55,8 @@ class RiffBuilder {
     std::string bytes_;
 };
 
-constexpr std::uint32_t kAvifHasIndex = 0x10;    // AVIF_HASINDEX: idx1 follows movi
-constexpr std::uint32_t kAviifKeyframe = 0x10;   // AVIIF_KEYFRAME: every JPEG frame stands alone
+constexpr std::uint32_t kAvifHasIndex = 0x10;   // AVIF_HASINDEX: idx1 follows movi
+constexpr std::uint32_t kAviifKeyframe = 0x10;  // AVIIF_KEYFRAME: every JPEG frame stands alone
 
 }  // namespace
 
@@ -73,8 +73,9 @@ std::string mjpeg_avi(const std::vector<cv::Mat>& frames, double fps, int jpeg_q
     const cv::Size size = frames.front().size();
     for (const cv::Mat& frame : frames) {
         if (frame.type() != CV_8UC3 || frame.size() != size || frame.empty()) {
-            throw std::invalid_argument("the frames of an AVI video must be non-empty 8-bit BGR "
-                                        "images of one size");
+            throw std::invalid_argument(
+                "the frames of an AVI video must be non-empty 8-bit BGR "
+                "images of one size");
         }
     }
 
@@ -92,8 +93,9 @@ std::string mjpeg_avi(const std::vector<cv::Mat>& frames, double fps, int jpeg_q
         total += encoded.size() + 8 + 1 + 16;  // chunk header, pad byte, index entry
         largest = std::max(largest, encoded.size());
         if (total + 4096 > kMaxAviBytes) {
-            throw std::runtime_error("the video would exceed the 1 GiB of an AVI file: write "
-                                     "fewer or smaller frames, or a contact sheet (.png)");
+            throw std::runtime_error(
+                "the video would exceed the 1 GiB of an AVI file: write "
+                "fewer or smaller frames, or a contact sheet (.png)");
         }
     }
 
