@@ -21,22 +21,24 @@
 // two labels a multiplier).
 //
 // Pipelined divisions: a step's weighted sums (num, den) of each pass go into a ring of one entry
-// per label group (stereo_group_ring, advanced like the Av ring), and the divisions read it when
-// the same group comes round again, one step later. So no clock holds both the weighted sums and
-// a division (the longest path was the sums, a 14-row divider and pass 1's winner), and every
-// group still sees its own lanes' sums. A division's result is one step late: Av(x) enters the
-// history at the next step, and pass 1's winner (over the divided costs) one step after its sums.
+// per label group (stereo_group_ring, advanced like the Av ring), and the division reads it when
+// the same group comes round again, one step later; it runs over S = fx_pkg::ASW_DIVIDE_STEPS
+// steps, ceil(14 / S) quotient rows each, its partial remainder in one more such ring per step.
+// So no clock holds both the weighted sums and a division, nor a whole division (the longest path
+// was the sums, a 14-row divider and pass 1's winner), and every group still sees its own lanes'
+// values. A division's result is S steps late: Av(x) enters the history S steps after its sums,
+// and pass 1's winner (over the divided costs) S steps after its sums.
 //
-// Stream positions: the input (x, yc) is the vertical pass' pixel; x1 is the pixel r + 2 steps
-// before it, x2 the one 2r + 4 steps before (both follow the stream across row ends: their
+// Stream positions: the input (x, yc) is the vertical pass' pixel; x1 is the pixel r + 1 + S
+// steps before it, x2 the one 2r + 2 + 2S before (both follow the stream across row ends: their
 // coordinates come from a shift register). Pass 1 reads Av of the columns x1 - r .. x1 + r and
 // pass 2 those of x2 - r .. x2 + r, all divided at earlier steps: each label group keeps the last
-// 3r + 3 columns' Av (x - 2 .. x - 3r - 4) in a ring, and pass 2 reads the labels pass 1 gave
-// x2 - r .. x2 + r at earlier steps.
-// Output: (x2, yc) of the step before and its labels' costs, divided this step, through the
+// 3r + 2 + S columns' Av (x - 1 - S .. x - 3r - 2 - 2S) in a ring, and pass 2 reads the labels
+// pass 1 gave x2 - r .. x2 + r at earlier steps.
+// Output: (x2, yc) of S steps before and its labels' costs, divided by this step, through the
 // stage's output register (G = 1), or the registered coordinates and this clock's group (G > 1,
 // the stage contract of docs/rtl.md: stereo_wta's input ring holds the group until the next
-// step): latency 2r + 6 steps.
+// step): latency 2r + 3 + 3S steps.
 // Time-multiplexed lanes (LANES < NDISP): the clock of group g computes labels [g*LANES +:
 // LANES] of all three passes' sums and divisions; pass 1's winner runs over the groups (a
 // register that group 0 restarts) and enters the label history at the step.
@@ -69,16 +71,21 @@ module stereo_asw_aggregate #(
   localparam int WORD = 48 * DIAMETER;
   localparam int BITS = fx_pkg::AGG_BITS;
   localparam int GROUPS = NDISP / LANES;
-  localparam int NEAR = R + 2;  // x1 = x - NEAR
-  localparam int FAR = 2 * R + 4;  // x2 = x - FAR
-  localparam int HISTORY = 3 * R + 3;  // Av of columns x - 2 .. x - HISTORY - 1
-  localparam int OWN_LABEL = FAR - NEAR - 1;  // labels[OWN_LABEL]: pass 1's label of x2
+  localparam int STEPS = fx_pkg::ASW_DIVIDE_STEPS;  // S: steps from the sums to the mean
+  localparam int ROWS = (BITS + STEPS - 1) / STEPS;  // quotient rows a step
+  localparam int NEAR = R + 1 + STEPS;  // x1 = x - NEAR
+  localparam int FAR = 2 * R + 2 + 2 * STEPS;  // x2 = x - FAR
+  localparam int HISTORY = 3 * R + 2 + STEPS;  // Av of columns x - 1 - S .. x - HISTORY - S
+  localparam int OWN_LABEL = FAR - NEAR - STEPS;  // labels[OWN_LABEL]: pass 1's label of x2
   // The sums' widths: weights below 2^8, costs below 2^10 (vertical) and means below 2^BITS.
   localparam int DEN_BITS = $clog2(255 * DIAMETER + 1);
   localparam int VNUM_BITS = $clog2(255 * 1023 * DIAMETER + 1);
   localparam int HNUM_BITS = $clog2(255 * ((1 << BITS) - 1) * DIAMETER + 1);
   localparam int VSUM_BITS = VNUM_BITS + DEN_BITS;  // a lane's {num, den}
   localparam int HSUM_BITS = 1 + HNUM_BITS + DEN_BITS;  // {outside, num, den}
+  // A division between steps: {outside, partial remainder (17), quotient, dividend's low bits,
+  // den (16)}.
+  localparam int DIV_BITS = 1 + 17 + 2 * BITS + 16;
   localparam int DISP_BITS = fx_pkg::DISP_BITS;
   localparam logic [BITS-1:0] NO_CANDIDATE = BITS'(fx_pkg::ASW_NO_CANDIDATE);
   localparam int CENSUS_SHIFT = $clog2(fx_pkg::CENSUS_WEIGHT + 1);
@@ -146,45 +153,25 @@ module stereo_asw_aggregate #(
     end
     matching_cost = sum;
   endfunction
-  // floor(((num << shift) + floor(den / 2)) / den), the quotient below 2^BITS (a weighted mean
-  // of values below 2^BITS / 16 << 4, or below 2^BITS): BITS rows of long division, the
-  // partial remainder below 2 den.
-  function automatic logic [BITS-1:0] mean(input logic [31:0] num, input logic [15:0] den,
-                                           input int shift);
-    logic [35:0] dividend;
-    logic [16:0] partial;
-    logic [BITS-1:0] quotient;
-    dividend = (36'(num) << shift) + 36'(den[15:1]);
-    partial = 17'(dividend >> BITS);
-    quotient = '0;
-    for (int i = BITS - 1; i >= 0; i--) begin
-      partial = {partial[15:0], dividend[i]};
-      if (partial >= {1'b0, den}) begin
-        partial = partial - {1'b0, den};
-        quotient[i] = 1'b1;
-      end
-    end
-    mean = quotient;
-  endfunction
   function automatic logic in_range(input logic signed [17:0] x, input fx_pkg::cfg_size_t width);
     in_range = x >= 18'sd0 && x < $signed(18'(width));
   endfunction
 
   // ---- positions --------------------------------------------------------------------------------
-  // xs[p], ys[p]: the input pixel p steps ago (p = 1 .. FAR + 1); x1 = xs[NEAR], x2 = xs[FAR].
-  fx_pkg::coord_t xs[FAR+2], ys[FAR+2];
+  // xs[p], ys[p]: the input pixel p steps ago (p = 1 .. FAR + S); x1 = xs[NEAR], x2 = xs[FAR].
+  fx_pkg::coord_t xs[FAR+STEPS+1], ys[FAR+STEPS+1];
   always_comb begin
     xs[0] = in_x;
     ys[0] = in_y;
   end
   always_ff @(posedge clk) begin
     if (rst) begin
-      for (int p = 1; p <= FAR + 1; p++) begin
+      for (int p = 1; p <= FAR + STEPS; p++) begin
         xs[p] <= '0;
         ys[p] <= fx_pkg::NO_PIXEL;
       end
     end else if (ce) begin
-      for (int p = 1; p <= FAR + 1; p++) begin
+      for (int p = 1; p <= FAR + STEPS; p++) begin
         xs[p] <= xs[p-1];
         ys[p] <= ys[p-1];
       end
@@ -196,7 +183,7 @@ module stereo_asw_aggregate #(
   assign base_k = 18'(32'(group) * LANES);
 
   // ---- the Av history of this clock's group ----------------------------------------------------
-  // head[(l*HISTORY + p - 1)*BITS +: BITS]: lane l's Av of column x - p - 1.
+  // head[(l*HISTORY + p - 1)*BITS +: BITS]: lane l's Av of column x - p - S.
   localparam int RING_BITS = LANES * HISTORY * BITS;
   logic [RING_BITS-1:0] head, next_state;
   logic advance;
@@ -252,12 +239,74 @@ module stereo_asw_aggregate #(
       .next_state(pass2_sums),
       .head(pass2_sums_q)
   );
-  // A horizontal pass' division: NO_CANDIDATE where the label's match lies outside.
-  function automatic logic [BITS-1:0] horizontal_mean(input logic [HSUM_BITS-1:0] sums);
-    horizontal_mean = sums[HSUM_BITS-1]
-        ? NO_CANDIDATE
-        : mean(32'(sums[DEN_BITS+:HNUM_BITS]), 16'(sums[0+:DEN_BITS]), 0);
+  // Means floor(((num << shift) + floor(den / 2)) / den), the quotient below 2^BITS (a weighted
+  // mean of values below 2^BITS / 16 << 4, or below 2^BITS): BITS rows of long division, the
+  // partial remainder below 2 den.
+  // The division of the three passes (0 vertical, 1 and 2), one part a step: start with the
+  // dividend of the last step's sums (ring above), then ROWS quotient rows a step, the state
+  // between steps in a ring of its own; NO_CANDIDATE where a horizontal pass' match lies outside.
+  function automatic logic [DIV_BITS-1:0] divide_start(input logic outside,
+                                                       input logic [31:0] num,
+                                                       input logic [15:0] den, input int shift);
+    logic [35:0] dividend;
+    dividend = (36'(num) << shift) + 36'(den[15:1]);
+    divide_start = {outside, 17'(dividend >> BITS), BITS'(0), dividend[BITS-1:0], den};
   endfunction
+  // The rows of quotient bits top .. bottom of a division's state (mean's rows).
+  function automatic logic [DIV_BITS-1:0] divide_rows(input logic [DIV_BITS-1:0] state,
+                                                      input int top, input int bottom);
+    logic outside;
+    logic [16:0] partial;
+    logic [BITS-1:0] quotient, low;
+    logic [15:0] den;
+    {outside, partial, quotient, low, den} = state;
+    for (int i = BITS - 1; i >= 0; i--) begin
+      if (i <= top && i >= bottom) begin
+        partial = {partial[15:0], low[i]};
+        if (partial >= {1'b0, den}) begin
+          partial = partial - {1'b0, den};
+          quotient[i] = 1'b1;
+        end
+      end
+    end
+    divide_rows = {outside, partial, quotient, low, den};
+  endfunction
+  logic [3*LANES*DIV_BITS-1:0] division_start;  // [(pass*LANES + l)*DIV_BITS +: DIV_BITS]
+  logic [3*LANES*BITS-1:0] division_result;  // [(pass*LANES + l)*BITS +: BITS]
+  for (genvar q = 0; q < 3; q++) begin : g_divide
+    // states[(s*LANES + l)*DIV_BITS +: DIV_BITS]: lane l after step s's rows
+    logic [STEPS*LANES*DIV_BITS-1:0] states;
+    for (genvar step = 0; step < STEPS; step++) begin : g_step
+      localparam int TOP = BITS - 1 - step * ROWS;
+      localparam int BOTTOM = (BITS - (step + 1) * ROWS > 0) ? BITS - (step + 1) * ROWS : 0;
+      logic [LANES*DIV_BITS-1:0] incoming;
+      if (step == 0) begin : g_first
+        assign incoming = division_start[q*LANES*DIV_BITS+:LANES*DIV_BITS];
+      end else begin : g_later
+        stereo_group_ring #(
+            .BITS(LANES * DIV_BITS),
+            .GROUPS(GROUPS),
+            .BLOCK_RAM(RING_BLOCK_RAM),
+            .BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
+        ) partial_ring (
+            .clk(clk),
+            .advance(advance),
+            .next_state(states[(step-1)*LANES*DIV_BITS+:LANES*DIV_BITS]),
+            .head(incoming)
+        );
+      end
+      for (genvar l = 0; l < LANES; l++) begin : g_lane
+        assign states[(step*LANES+l)*DIV_BITS+:DIV_BITS] =
+            divide_rows(incoming[l*DIV_BITS+:DIV_BITS], TOP, BOTTOM);
+      end
+    end
+    for (genvar l = 0; l < LANES; l++) begin : g_result
+      logic [DIV_BITS-1:0] done;
+      assign done = states[((STEPS-1)*LANES+l)*DIV_BITS+:DIV_BITS];
+      assign division_result[(q*LANES+l)*BITS+:BITS] =
+          done[DIV_BITS-1] ? NO_CANDIDATE : done[16+BITS+:BITS];
+    end
+  end
 
   // ---- the vertical pass --------------------------------------------------------------------
   // Per lane (generate loops: every index below is a constant of the elaboration).
@@ -268,7 +317,7 @@ module stereo_asw_aggregate #(
       row_inside[j] = in_range(18'(in_y) - 18'(R) + 18'(j), cfg.height);
     end
   end
-  logic [LANES*BITS-1:0] vertical;  // lane l's Av of column x - 1 (the last step's sums)
+  logic [LANES*BITS-1:0] vertical;  // lane l's Av of column x - S (its division's last step)
   logic [LANES*8*DIAMETER-1:0] vertical_right, vertical_weights;  // lane l's factors, weights
   logic [8*DIAMETER-1:0] vertical_left;
   always_comb begin
@@ -322,10 +371,11 @@ module stereo_asw_aggregate #(
       end
       vertical_sums[l*VSUM_BITS+:VSUM_BITS] = {VNUM_BITS'(num), DEN_BITS'(den)};
     end
-    // The last step's sums of this group: Av of column x - 1.
-    assign vertical[l*BITS+:BITS] =
-        mean(32'(vertical_sums_q[l*VSUM_BITS+DEN_BITS+:VNUM_BITS]),
-             16'(vertical_sums_q[l*VSUM_BITS+:DEN_BITS]), fx_pkg::AGG_FRAC_BITS);
+    // The last step's sums of this group start their division; Av of column x - S leaves it.
+    assign division_start[l*DIV_BITS+:DIV_BITS] =
+        divide_start(1'b0, 32'(vertical_sums_q[l*VSUM_BITS+DEN_BITS+:VNUM_BITS]),
+                     16'(vertical_sums_q[l*VSUM_BITS+:DEN_BITS]), fx_pkg::AGG_FRAC_BITS);
+    assign vertical[l*BITS+:BITS] = division_result[l*BITS+:BITS];
     // The new Av enters position 1; the older ones move one column back.
     assign next_state[(l*HISTORY)*BITS+:BITS] = vertical[l*BITS+:BITS];
     if (HISTORY > 1) begin : g_shift
@@ -338,7 +388,7 @@ module stereo_asw_aggregate #(
   // Pass p (1, 2) at pixel `centre`, BACK steps back: column centre + dx is BACK - dx back. The
   // left factors do not depend on the label: computed once per pixel (pass 2's with the
   // continuity of the labels pass 1 gave), the right ones come with each lane's word.
-  logic [DISP_BITS-1:0] labels[1:2*R+1];  // labels[p]: pass 1's label of pixel x1 - p - 1
+  logic [DISP_BITS-1:0] labels[1:2*R+1];  // labels[p]: pass 1's label of pixel x1 - p - S
   logic [LANES*BITS-1:0] pass1, pass2;
   for (genvar pass = 1; pass <= 2; pass++) begin : g_pass
     localparam int BACK = (pass == 1) ? NEAR : FAR;
@@ -393,25 +443,35 @@ module stereo_asw_aggregate #(
         den = '0;
         for (int i = 0; i < DIAMETER; i++) begin
           weight = weights[(l*DIAMETER+i)*8+:8];
-          // column centre + dx is BACK - dx steps back: history position BACK - dx - 1
-          product = 22'(weight) * 22'(av_at(l, BACK - (i - R) - 1));
+          // column centre + dx is BACK - dx steps back: history position BACK - dx - S
+          product = 22'(weight) * 22'(av_at(l, BACK - (i - R) - STEPS));
           num = num + 32'(product);
           den = den + 16'(weight);
         end
         sums = {outside, HNUM_BITS'(num), DEN_BITS'(den)};
       end
-      // This step's sums, divided at the next (pass1, pass2: the last step's, divided now).
+      // This step's sums into the ring; the last step's start their division (pass1, pass2:
+      // the means of the sums S steps ago).
+      logic [HSUM_BITS-1:0] sums_q;
       if (pass == 1) begin : g_first
         assign pass1_sums[l*HSUM_BITS+:HSUM_BITS] = sums;
-        assign pass1[l*BITS+:BITS] = horizontal_mean(pass1_sums_q[l*HSUM_BITS+:HSUM_BITS]);
+        assign sums_q = pass1_sums_q[l*HSUM_BITS+:HSUM_BITS];
       end else begin : g_second
         assign pass2_sums[l*HSUM_BITS+:HSUM_BITS] = sums;
-        assign pass2[l*BITS+:BITS] = horizontal_mean(pass2_sums_q[l*HSUM_BITS+:HSUM_BITS]);
+        assign sums_q = pass2_sums_q[l*HSUM_BITS+:HSUM_BITS];
+      end
+      assign division_start[(pass*LANES+l)*DIV_BITS+:DIV_BITS] =
+          divide_start(sums_q[HSUM_BITS-1], 32'(sums_q[DEN_BITS+:HNUM_BITS]),
+                       16'(sums_q[0+:DEN_BITS]), 0);
+      if (pass == 1) begin : g_first_mean
+        assign pass1[l*BITS+:BITS] = division_result[(LANES+l)*BITS+:BITS];
+      end else begin : g_second_mean
+        assign pass2[l*BITS+:BITS] = division_result[(2*LANES+l)*BITS+:BITS];
       end
     end
   end
 
-  // ---- pass 1's winner over the groups (the last step's pixel x1), the label history ------------
+  // ---- pass 1's winner over the groups (x1 of S steps ago), the label history -----------------
   // Costs with one bit more: labels >= cfg.ndisp count as 2^BITS, above every cell.
   logic [BITS:0] group_cost, merged_cost, running_cost;
   logic [DISP_BITS-1:0] group_label, merged_label, running_label;
@@ -446,7 +506,7 @@ module stereo_asw_aggregate #(
   // The output register (G = 1), or the coordinates only (G > 1: stereo_wta's input ring holds
   // this clock's group until the next step, where the all-parallel stage has this register).
   stereo_stage_output #(.BITS(LANES * BITS), .REGISTERED(GROUPS == 1)) outputs (
-      .in_x(xs[FAR+1]), .in_y(ys[FAR+1]), .in_data(pass2), .*);
+      .in_x(xs[FAR+STEPS]), .in_y(ys[FAR+STEPS]), .in_data(pass2), .*);
 endmodule
 
 `default_nettype wire

@@ -9,10 +9,11 @@
 //   vert[j]   the vertical pass' weight of row j against the centre: left image
 //             prox(|j - r|) (x) colour(L_j, L_c), right image colour(R_j, R_c) (the right
 //             factor of label d is that of the right column x - d), at [24 D + j*8 +: 8];
-//   near[i]   the horizontal weight of offset dx = i - r of pixel x - r - 2 of the centre row
-//             (left: prox(|dx|) (x) colour, right: colour) for the first horizontal pass, at
-//             [32 D + i*8 +: 8];
-//   far[i]    the same of pixel x - 2r - 4 for the second pass (near, r + 2 steps later), at
+//   near[i]   the horizontal weight of offset dx = i - r of pixel x - r - 1 - S of the centre
+//             row (S = fx_pkg::ASW_DIVIDE_STEPS; left: prox(|dx|) (x) colour, right: colour) for
+//             the first horizontal pass, at [32 D + i*8 +: 8];
+//   far[i]    the same of pixel x - 2r - 2 - 2S for the second pass (near, r + 1 + S steps
+//             later), at
 //             [40 D + i*8 +: 8];
 // colour(a, b) = fx_pkg::asw_colour(DIAMETER, |dR| + |dG| + |dB|), (x) = fx_pkg::asw_combine (with
 // the constant proximity: asw_combine_constant, shifts and adds).
@@ -50,9 +51,9 @@ module stereo_asw_column #(
   localparam int R = DIAMETER / 2;
   localparam int IMAGE_BITS = CODES ? 48 : 24;  // {code, RGB} or RGB, per image and row
   localparam int ROW_BITS = 2 * IMAGE_BITS;  // {right, left}
-  // pixel x - NEAR: the first horizontal pass (stereo_asw_aggregate's NEAR: its divisions are
-  // one step behind the sums, so x1 is r + 2 steps back)
-  localparam int NEAR = R + 2;
+  // pixel x - NEAR: the first horizontal pass (stereo_asw_aggregate's NEAR: its divisions take
+  // ASW_DIVIDE_STEPS steps after the sums, so x1 is r + 1 + ASW_DIVIDE_STEPS steps back)
+  localparam int NEAR = R + 1 + fx_pkg::ASW_DIVIDE_STEPS;
   localparam int HISTORY = NEAR + R;  // centre-row pixels kept, x - 1 .. x - HISTORY
 
   `STEREO_ASSERT(diameter_range,

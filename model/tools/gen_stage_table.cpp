@@ -557,6 +557,7 @@ std::string asw_section() {
     const std::pair<const char*, int> constants[] = {
         {"ASW_MIN_DIAMETER", table::kAswMinDiameter},
         {"ASW_MAX_DIAMETER", table::kAswMaxDiameter},
+        {"ASW_DIVIDE_STEPS", table::kAswDivideSteps},
         {"ASW_RESPONSE_BITS", asw::kResponseBits},
         {"ASW_COLOUR_ENTRIES", asw::kMaxColourDifference + 1},
         {"ASW_CONTINUITY_ENTRIES", 256},

@@ -298,15 +298,21 @@ constexpr long long frame_cycles(int width, int height, int window, int ndisp, i
     return g * steps - 2 * (g - 1) + 1;
 }
 
+// Steps between a pass' weighted sums and its mean in stereo_asw_aggregate: the 14-row restoring
+// division is cut into this many parts, one step each, through rings of one word per label group
+// (fx_pkg::ASW_DIVIDE_STEPS; docs/asw.md "Pipelined divisions"). Each step moves the passes one
+// column back and adds 3 steps of latency; the arithmetic is unchanged.
+inline constexpr int kAswDivideSteps = 2;
+
 // The adaptive-support-weight core (stereo_top ASW = 1, WINDOW = the diameter w, r = w / 2):
 // the census stage (COST = census), r rows of the column stack (stereo_asw_column: a pixel's
-// vertical pass waits for row y + r), the cost stage (1 + K), the passes' 2r + 4 columns, the
-// step of the pipelined divisions and the output register (stereo_asw_aggregate), the WTA and
-// stage 6 (1 + 1 + N) steps.
+// vertical pass waits for row y + r), the cost stage (1 + K), the passes' 2r + 2 + 2S columns,
+// the S steps of the pipelined divisions and the output register (stereo_asw_aggregate,
+// S = kAswDivideSteps), the WTA and stage 6 (1 + 1 + N) steps.
 constexpr int asw_pipeline_latency(int width, int diameter, int ndisp, int min_disp = 0,
                                    int cost = kCostCensus) {
     const int r = diameter / 2;
-    int steps = r * width + 2 * r + 6;
+    int steps = r * width + 2 * r + 3 + 3 * kAswDivideSteps;
     for (const std::size_t stage :
          {std::size_t{0}, std::size_t{4}, std::size_t{5}, std::size_t{6}}) {
         steps += kStages.at(stage).rtl.at(width, diameter, ndisp, min_disp);
