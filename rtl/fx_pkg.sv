@@ -361,7 +361,9 @@ package fx_pkg;
   // ---- Adaptive support weights (model/include/stereo/asw.hpp; stereo_top ASW = 1) ----
   localparam int ASW_MIN_DIAMETER = 3;
   localparam int ASW_MAX_DIAMETER = 31;
-  localparam int ASW_DIVIDE_STEPS = 2;
+  localparam int ASW_DIVIDE_STEPS = 5;
+  localparam int ASW_VERTICAL_STEPS = 1;
+  localparam int ASW_WINNER_STEPS = 1;
   localparam int ASW_RESPONSE_BITS = 8;
   localparam int ASW_COLOUR_ENTRIES = 766;
   localparam int ASW_CONTINUITY_ENTRIES = 256;

@@ -20,25 +20,29 @@
 // (stereo_asw_column), so every weight is one combine per label and offset (stereo_asw_weights:
 // two labels a multiplier).
 //
-// Pipelined divisions: a step's weighted sums (num, den) of each pass go into a ring of one entry
-// per label group (stereo_group_ring, advanced like the Av ring), and the division reads it when
-// the same group comes round again, one step later; it runs over S = fx_pkg::ASW_DIVIDE_STEPS
-// steps, ceil(14 / S) quotient rows each, its partial remainder in one more such ring per step.
-// So no clock holds both the weighted sums and a division, nor a whole division (the longest path
-// was the sums, a 14-row divider and pass 1's winner), and every group still sees its own lanes'
-// values. A division's result is S steps late: Av(x) enters the history S steps after its sums,
-// and pass 1's winner (over the divided costs) S steps after its sums.
+// Pipelined in whole steps (a plain register would hand group g's values to group g + 1's
+// clock; a ring of one entry per label group, stereo_group_ring, advanced like the Av ring,
+// hands them to group g's next clock, one step later):
+//   V = fx_pkg::ASW_VERTICAL_STEPS: the vertical pass' weights and the costs they weigh wait V
+//       steps before their sums (no clock holds the response products and the adder tree);
+//   S = fx_pkg::ASW_DIVIDE_STEPS: every pass' sums (num, den) wait one step in a ring, then the
+//       division runs over S steps, ceil(14 / S) quotient rows each, its state in one more ring
+//       per step (no clock holds the sums and a division, nor a whole division);
+//   W = fx_pkg::ASW_WINNER_STEPS: pass 1's means wait W steps before its winner over the labels.
+// Av(c) enters the history LATE = V + S steps after column c's weights; pass 1's label is final
+// S + W steps after its sums.
 //
-// Stream positions: the input (x, yc) is the vertical pass' pixel; x1 is the pixel r + 1 + S
-// steps before it, x2 the one 2r + 2 + 2S before (both follow the stream across row ends: their
-// coordinates come from a shift register). Pass 1 reads Av of the columns x1 - r .. x1 + r and
-// pass 2 those of x2 - r .. x2 + r, all divided at earlier steps: each label group keeps the last
-// 3r + 2 + S columns' Av (x - 1 - S .. x - 3r - 2 - 2S) in a ring, and pass 2 reads the labels
-// pass 1 gave x2 - r .. x2 + r at earlier steps.
+// Stream positions (stage_table.hpp asw_near_steps, asw_far_steps): the input (x, yc) is the
+// vertical pass' pixel; x1 is the pixel NEAR = r + 1 + LATE steps before it, x2 the one
+// FAR = NEAR + r + 1 + S + W before (both follow the stream across row ends: their coordinates
+// come from a shift register). Pass 1 reads Av of the columns x1 - r .. x1 + r and pass 2 those
+// of x2 - r .. x2 + r, all divided at earlier steps: each label group keeps the last
+// HISTORY = FAR + r - LATE columns' Av (x - 1 - LATE .. x - HISTORY - LATE) in a ring, and
+// pass 2 reads the labels pass 1 gave x2 - r .. x2 + r at earlier steps.
 // Output: (x2, yc) of S steps before and its labels' costs, divided by this step, through the
 // stage's output register (G = 1), or the registered coordinates and this clock's group (G > 1,
 // the stage contract of docs/rtl.md: stereo_wta's input ring holds the group until the next
-// step): latency 2r + 3 + 3S steps.
+// step): latency FAR + S + 1 = 2r + 3 + 3S + V + W steps.
 // Time-multiplexed lanes (LANES < NDISP): the clock of group g computes labels [g*LANES +:
 // LANES] of all three passes' sums and divisions; pass 1's winner runs over the groups (a
 // register that group 0 restarts) and enters the label history at the step.
@@ -72,11 +76,15 @@ module stereo_asw_aggregate #(
   localparam int BITS = fx_pkg::AGG_BITS;
   localparam int GROUPS = NDISP / LANES;
   localparam int STEPS = fx_pkg::ASW_DIVIDE_STEPS;  // S: steps from the sums to the mean
+  localparam int VSTEPS = fx_pkg::ASW_VERTICAL_STEPS;  // V: from the vertical weights to sums
+  localparam int WSTEPS = fx_pkg::ASW_WINNER_STEPS;  // W: from pass 1's means to its winner
   localparam int ROWS = (BITS + STEPS - 1) / STEPS;  // quotient rows a step
-  localparam int NEAR = R + 1 + STEPS;  // x1 = x - NEAR
-  localparam int FAR = 2 * R + 2 + 2 * STEPS;  // x2 = x - FAR
-  localparam int HISTORY = 3 * R + 2 + STEPS;  // Av of columns x - 1 - S .. x - HISTORY - S
-  localparam int OWN_LABEL = FAR - NEAR - STEPS;  // labels[OWN_LABEL]: pass 1's label of x2
+  // Positions (stage_table.hpp asw_near_steps, asw_far_steps): x1 = x - NEAR, x2 = x - FAR.
+  localparam int NEAR = R + 1 + STEPS + VSTEPS;
+  localparam int FAR = NEAR + R + 1 + STEPS + WSTEPS;
+  localparam int LATE = STEPS + VSTEPS;  // Av(c) enters the history LATE steps after column c
+  localparam int HISTORY = FAR + R - LATE;  // Av of columns x - 1 - LATE .. x - HISTORY - LATE
+  localparam int OWN_LABEL = FAR - NEAR - STEPS - WSTEPS;  // labels[OWN_LABEL]: pass 1's of x2
   // The sums' widths: weights below 2^8, costs below 2^10 (vertical) and means below 2^BITS.
   localparam int DEN_BITS = $clog2(255 * DIAMETER + 1);
   localparam int VNUM_BITS = $clog2(255 * 1023 * DIAMETER + 1);
@@ -102,6 +110,9 @@ module stereo_asw_aggregate #(
       fx_pkg::ASW_CONTINUITY[((DIAMETER - fx_pkg::ASW_MIN_DIAMETER) / 2) * CONTINUITY_ROW_BITS +:
                              CONTINUITY_ROW_BITS];
 
+  `STEREO_ASSERT(steps_range, STEPS >= 1 && STEPS <= BITS && (VSTEPS == 0 || VSTEPS == 1) &&
+                     (WSTEPS == 0 || WSTEPS == 1),
+                 "ASW_DIVIDE_STEPS must be 1 .. AGG_BITS, ASW_VERTICAL/WINNER_STEPS 0 or 1")
   `STEREO_ASSERT(lanes_divide_ndisp, LANES >= 1 && NDISP % LANES == 0,
                  "LANES must be at least 1 and divide NDISP")
   `STEREO_ASSERT(diameter_range,
@@ -183,7 +194,7 @@ module stereo_asw_aggregate #(
   assign base_k = 18'(32'(group) * LANES);
 
   // ---- the Av history of this clock's group ----------------------------------------------------
-  // head[(l*HISTORY + p - 1)*BITS +: BITS]: lane l's Av of column x - p - S.
+  // head[(l*HISTORY + p - 1)*BITS +: BITS]: lane l's Av of column x - p - LATE.
   localparam int RING_BITS = LANES * HISTORY * BITS;
   logic [RING_BITS-1:0] head, next_state;
   logic advance;
@@ -317,7 +328,7 @@ module stereo_asw_aggregate #(
       row_inside[j] = in_range(18'(in_y) - 18'(R) + 18'(j), cfg.height);
     end
   end
-  logic [LANES*BITS-1:0] vertical;  // lane l's Av of column x - S (its division's last step)
+  logic [LANES*BITS-1:0] vertical;  // lane l's Av of column x - LATE (its division's last step)
   logic [LANES*8*DIAMETER-1:0] vertical_right, vertical_weights;  // lane l's factors, weights
   logic [8*DIAMETER-1:0] vertical_left;
   always_comb begin
@@ -326,6 +337,26 @@ module stereo_asw_aggregate #(
   stereo_asw_weights #(.LANES(LANES), .TAPS(DIAMETER)) vertical_combine (
       .shared(vertical_left), .lane_factors(vertical_right), .tap_inside(row_inside),
       .weights(vertical_weights));
+  // A lane's terms: {outside, the rows' costs (the Hamming distances with SHIFT_ADD), weights},
+  // made at this step and summed VSTEPS steps later (a ring of one entry per group in between).
+  localparam int TERM_COST_BITS = VERTICAL_SHIFT_ADD ? 5 : 10;
+  localparam int VTERM_BITS = 1 + DIAMETER * (TERM_COST_BITS + 8);
+  logic [LANES*VTERM_BITS-1:0] vertical_terms, vertical_terms_q;
+  if (VSTEPS == 0) begin : g_terms_now
+    assign vertical_terms_q = vertical_terms;
+  end else begin : g_terms_ring
+    stereo_group_ring #(
+        .BITS(LANES * VTERM_BITS),
+        .GROUPS(GROUPS),
+        .BLOCK_RAM(RING_BLOCK_RAM),
+        .BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
+    ) terms_ring (
+        .clk(clk),
+        .advance(advance),
+        .next_state(vertical_terms),
+        .head(vertical_terms_q)
+    );
+  end
   for (genvar l = 0; l < LANES; l++) begin : g_vertical
     logic [WORD-1:0] right_word;
     logic signed [17:0] right_x;
@@ -339,39 +370,57 @@ module stereo_asw_aggregate #(
       end
     end
     always_comb begin
+      logic [9:0] cost;
+      logic [VTERM_BITS-1:0] terms;
+      terms = '0;
+      terms[VTERM_BITS-1] = outside;
+      for (int j = 0; j < DIAMETER; j++) begin
+        terms[j*8+:8] = vertical_weights[(l*DIAMETER+j)*8+:8];
+        if (VERTICAL_SHIFT_ADD) begin
+          cost = {5'd0, hamming(code_of(in_left, j), code_of(right_word, j))};
+        end else begin
+          cost = outside ? 10'(fx_pkg::COST_OUTSIDE)
+                         : matching_cost(code_of(in_left, j), code_of(right_word, j));
+          if (TRUNCATION > 0 && cost > 10'(TRUNCATION)) cost = 10'(TRUNCATION);
+        end
+        terms[8*DIAMETER+j*TERM_COST_BITS+:TERM_COST_BITS] = TERM_COST_BITS'(cost);
+      end
+      vertical_terms[l*VTERM_BITS+:VTERM_BITS] = terms;
+    end
+    always_comb begin
+      logic [VTERM_BITS-1:0] terms;
       logic [31:0] num, weighted_h;
       logic [15:0] den;
       logic [9:0] cost;
       logic [4:0] h;
       logic [7:0] weight;
       logic [17:0] product;  // 8 x 10 bits
+      terms = vertical_terms_q[l*VTERM_BITS+:VTERM_BITS];
       num = '0;
       den = '0;
       weighted_h = '0;
       for (int j = 0; j < DIAMETER; j++) begin
-        weight = vertical_weights[(l*DIAMETER+j)*8+:8];
+        weight = terms[j*8+:8];
         den = den + 16'(weight);
         if (VERTICAL_SHIFT_ADD) begin
-          h = hamming(code_of(in_left, j), code_of(right_word, j));
+          h = 5'(terms[8*DIAMETER+j*TERM_COST_BITS+:TERM_COST_BITS]);
           // gated by AND, not by `if`: the terms form one sum (Yosys: one $macc, mapped to an
           // adder tree), where conditional additions stay a chain (128 LUT levels at 640x480,
           // LANES = 4: docs/results-asw.md)
           for (int b = 0; b < 5; b++) weighted_h = weighted_h + ((32'(weight) << b) & {32{h[b]}});
         end else begin
-          cost = outside ? 10'(fx_pkg::COST_OUTSIDE)
-                         : matching_cost(code_of(in_left, j), code_of(right_word, j));
-          if (TRUNCATION > 0 && cost > 10'(TRUNCATION)) cost = 10'(TRUNCATION);
+          cost = 10'(terms[8*DIAMETER+j*TERM_COST_BITS+:TERM_COST_BITS]);
           product = 18'(weight) * 18'(cost);
           num = num + 32'(product);
         end
       end
       if (VERTICAL_SHIFT_ADD) begin
-        num = outside ? times_constant(32'(den), fx_pkg::COST_OUTSIDE)
-                      : times_constant(weighted_h, fx_pkg::CENSUS_WEIGHT);
+        num = terms[VTERM_BITS-1] ? times_constant(32'(den), fx_pkg::COST_OUTSIDE)
+                                  : times_constant(weighted_h, fx_pkg::CENSUS_WEIGHT);
       end
       vertical_sums[l*VSUM_BITS+:VSUM_BITS] = {VNUM_BITS'(num), DEN_BITS'(den)};
     end
-    // The last step's sums of this group start their division; Av of column x - S leaves it.
+    // The last step's sums of this group start their division; Av of column x - LATE leaves it.
     assign division_start[l*DIV_BITS+:DIV_BITS] =
         divide_start(1'b0, 32'(vertical_sums_q[l*VSUM_BITS+DEN_BITS+:VNUM_BITS]),
                      16'(vertical_sums_q[l*VSUM_BITS+:DEN_BITS]), fx_pkg::AGG_FRAC_BITS);
@@ -388,7 +437,7 @@ module stereo_asw_aggregate #(
   // Pass p (1, 2) at pixel `centre`, BACK steps back: column centre + dx is BACK - dx back. The
   // left factors do not depend on the label: computed once per pixel (pass 2's with the
   // continuity of the labels pass 1 gave), the right ones come with each lane's word.
-  logic [DISP_BITS-1:0] labels[1:2*R+1];  // labels[p]: pass 1's label of pixel x1 - p - S
+  logic [DISP_BITS-1:0] labels[1:2*R+1];  // labels[p]: pass 1's label of x1 - p - S - W
   logic [LANES*BITS-1:0] pass1, pass2;
   for (genvar pass = 1; pass <= 2; pass++) begin : g_pass
     localparam int BACK = (pass == 1) ? NEAR : FAR;
@@ -443,8 +492,8 @@ module stereo_asw_aggregate #(
         den = '0;
         for (int i = 0; i < DIAMETER; i++) begin
           weight = weights[(l*DIAMETER+i)*8+:8];
-          // column centre + dx is BACK - dx steps back: history position BACK - dx - S
-          product = 22'(weight) * 22'(av_at(l, BACK - (i - R) - STEPS));
+          // column centre + dx is BACK - dx steps back: history position BACK - dx - LATE
+          product = 22'(weight) * 22'(av_at(l, BACK - (i - R) - LATE));
           num = num + 32'(product);
           den = den + 16'(weight);
         end
@@ -471,7 +520,24 @@ module stereo_asw_aggregate #(
     end
   end
 
-  // ---- pass 1's winner over the groups (x1 of S steps ago), the label history -----------------
+  // ---- pass 1's winner over the groups (x1 of S + W steps ago), the label history -------------
+  // The means wait W steps (a ring of one entry per group) before the winner.
+  logic [LANES*BITS-1:0] pass1_means;
+  if (WSTEPS == 0) begin : g_winner_now
+    assign pass1_means = pass1;
+  end else begin : g_winner_ring
+    stereo_group_ring #(
+        .BITS(LANES * BITS),
+        .GROUPS(GROUPS),
+        .BLOCK_RAM(RING_BLOCK_RAM),
+        .BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
+    ) means_ring (
+        .clk(clk),
+        .advance(advance),
+        .next_state(pass1),
+        .head(pass1_means)
+    );
+  end
   // Costs with one bit more: labels >= cfg.ndisp count as 2^BITS, above every cell.
   logic [BITS:0] group_cost, merged_cost, running_cost;
   logic [DISP_BITS-1:0] group_label, merged_label, running_label;
@@ -479,8 +545,8 @@ module stereo_asw_aggregate #(
     group_cost = {1'b1, BITS'(0)};
     group_label = DISP_BITS'(base_k);
     for (int l = 0; l < LANES; l++) begin
-      if (32'(base_k) + l < 32'(cfg.ndisp) && {1'b0, pass1[l*BITS+:BITS]} < group_cost) begin
-        group_cost = {1'b0, pass1[l*BITS+:BITS]};
+      if (32'(base_k) + l < 32'(cfg.ndisp) && {1'b0, pass1_means[l*BITS+:BITS]} < group_cost) begin
+        group_cost = {1'b0, pass1_means[l*BITS+:BITS]};
         group_label = DISP_BITS'(32'(base_k) + l);
       end
     end

@@ -9,12 +9,11 @@
 //   vert[j]   the vertical pass' weight of row j against the centre: left image
 //             prox(|j - r|) (x) colour(L_j, L_c), right image colour(R_j, R_c) (the right
 //             factor of label d is that of the right column x - d), at [24 D + j*8 +: 8];
-//   near[i]   the horizontal weight of offset dx = i - r of pixel x - r - 1 - S of the centre
-//             row (S = fx_pkg::ASW_DIVIDE_STEPS; left: prox(|dx|) (x) colour, right: colour) for
-//             the first horizontal pass, at [32 D + i*8 +: 8];
-//   far[i]    the same of pixel x - 2r - 2 - 2S for the second pass (near, r + 1 + S steps
-//             later), at
-//             [40 D + i*8 +: 8];
+//   near[i]   the horizontal weight of offset dx = i - r of pixel x - NEAR of the centre row
+//             (NEAR = r + 1 + S + V, stereo_asw_aggregate; left: prox(|dx|) (x) colour, right:
+//             colour) for the first horizontal pass, at [32 D + i*8 +: 8];
+//   far[i]    the same of pixel x - FAR for the second pass (near, GAP = FAR - NEAR =
+//             r + 1 + S + W steps later), at [40 D + i*8 +: 8];
 // colour(a, b) = fx_pkg::asw_colour(DIAMETER, |dR| + |dG| + |dB|), (x) = fx_pkg::asw_combine (with
 // the constant proximity: asw_combine_constant, shifts and adds).
 // The aggregation masks rows and columns outside the frame and right columns outside the right
@@ -51,9 +50,10 @@ module stereo_asw_column #(
   localparam int R = DIAMETER / 2;
   localparam int IMAGE_BITS = CODES ? 48 : 24;  // {code, RGB} or RGB, per image and row
   localparam int ROW_BITS = 2 * IMAGE_BITS;  // {right, left}
-  // pixel x - NEAR: the first horizontal pass (stereo_asw_aggregate's NEAR: its divisions take
-  // ASW_DIVIDE_STEPS steps after the sums, so x1 is r + 1 + ASW_DIVIDE_STEPS steps back)
-  localparam int NEAR = R + 1 + fx_pkg::ASW_DIVIDE_STEPS;
+  // pixel x - NEAR: the first horizontal pass, x - FAR the second (stereo_asw_aggregate's
+  // positions: stage_table.hpp asw_near_steps, asw_far_steps)
+  localparam int NEAR = R + 1 + fx_pkg::ASW_DIVIDE_STEPS + fx_pkg::ASW_VERTICAL_STEPS;
+  localparam int GAP = R + 1 + fx_pkg::ASW_DIVIDE_STEPS + fx_pkg::ASW_WINNER_STEPS;  // FAR - NEAR
   localparam int HISTORY = NEAR + R;  // centre-row pixels kept, x - 1 .. x - HISTORY
 
   `STEREO_ASSERT(diameter_range,
@@ -135,13 +135,13 @@ module stereo_asw_column #(
       end
     end
   end
-  // far = near, NEAR steps later.
-  logic [8*DIAMETER-1:0] near_history[2][NEAR];
+  // far = near, GAP steps later.
+  logic [8*DIAMETER-1:0] near_history[2][GAP];
   always_ff @(posedge clk) begin
     if (ce) begin
       for (int side = 0; side < 2; side++) begin
         near_history[side][0] <= near_now[side];
-        for (int p = 1; p < NEAR; p++) near_history[side][p] <= near_history[side][p-1];
+        for (int p = 1; p < GAP; p++) near_history[side][p] <= near_history[side][p-1];
       end
     end
   end
@@ -159,7 +159,7 @@ module stereo_asw_column #(
         end
       end
       word[side][32*DIAMETER+:8*DIAMETER] = near_now[side];
-      word[side][40*DIAMETER+:8*DIAMETER] = near_history[side][NEAR-1];
+      word[side][40*DIAMETER+:8*DIAMETER] = near_history[side][GAP-1];
     end
   end
   assign out_left = word[0];

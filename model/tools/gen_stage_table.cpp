@@ -558,6 +558,8 @@ std::string asw_section() {
         {"ASW_MIN_DIAMETER", table::kAswMinDiameter},
         {"ASW_MAX_DIAMETER", table::kAswMaxDiameter},
         {"ASW_DIVIDE_STEPS", table::kAswDivideSteps},
+        {"ASW_VERTICAL_STEPS", table::kAswVerticalSteps},
+        {"ASW_WINNER_STEPS", table::kAswWinnerSteps},
         {"ASW_RESPONSE_BITS", asw::kResponseBits},
         {"ASW_COLOUR_ENTRIES", asw::kMaxColourDifference + 1},
         {"ASW_CONTINUITY_ENTRIES", 256},

@@ -300,19 +300,38 @@ constexpr long long frame_cycles(int width, int height, int window, int ndisp, i
 
 // Steps between a pass' weighted sums and its mean in stereo_asw_aggregate: the 14-row restoring
 // division is cut into this many parts, one step each, through rings of one word per label group
-// (fx_pkg::ASW_DIVIDE_STEPS; docs/asw.md "Pipelined divisions"). Each step moves the passes one
-// column back and adds 3 steps of latency; the arithmetic is unchanged.
-inline constexpr int kAswDivideSteps = 2;
+// (fx_pkg::ASW_DIVIDE_STEPS; docs/asw.md "Pipelined divisions"): 5 parts of ceil(14 / 5) = 3 rows,
+// about 10 LUT levels each. Each step moves the passes one column back and adds 3 steps of
+// latency; the arithmetic is unchanged.
+inline constexpr int kAswDivideSteps = 5;
+// Steps between the vertical pass' weights (with the costs they weigh) and its weighted sums: the
+// weights wait in a ring (fx_pkg::ASW_VERTICAL_STEPS, 0 or 1), so no clock holds the response
+// products and the sums' adder tree together. One step moves both passes one column back.
+inline constexpr int kAswVerticalSteps = 1;
+// Steps between pass 1's means and its winner over the labels (fx_pkg::ASW_WINNER_STEPS, 0 or 1):
+// the means wait in a ring, so no clock holds a division step and the winner. One step moves
+// pass 2 one column back.
+inline constexpr int kAswWinnerSteps = 1;
+
+// stereo_asw_aggregate's positions, in steps behind the vertical pass' pixel x (r = w / 2,
+// S = kAswDivideSteps, V = kAswVerticalSteps, W = kAswWinnerSteps): pass 1's centre
+// x1 = x - asw_near_steps(r), pass 2's x2 = x - asw_far_steps(r).
+constexpr int asw_near_steps(int r) {
+    return r + 1 + kAswDivideSteps + kAswVerticalSteps;
+}
+constexpr int asw_far_steps(int r) {
+    return asw_near_steps(r) + r + 1 + kAswDivideSteps + kAswWinnerSteps;
+}
 
 // The adaptive-support-weight core (stereo_top ASW = 1, WINDOW = the diameter w, r = w / 2):
 // the census stage (COST = census), r rows of the column stack (stereo_asw_column: a pixel's
-// vertical pass waits for row y + r), the cost stage (1 + K), the passes' 2r + 2 + 2S columns,
-// the S steps of the pipelined divisions and the output register (stereo_asw_aggregate,
-// S = kAswDivideSteps), the WTA and stage 6 (1 + 1 + N) steps.
+// vertical pass waits for row y + r), the cost stage (1 + K), stereo_asw_aggregate's pass 2
+// position, the S steps of its division and its output register, the WTA and stage 6 (1 + 1 + N)
+// steps.
 constexpr int asw_pipeline_latency(int width, int diameter, int ndisp, int min_disp = 0,
                                    int cost = kCostCensus) {
     const int r = diameter / 2;
-    int steps = r * width + 2 * r + 3 + 3 * kAswDivideSteps;
+    int steps = r * width + asw_far_steps(r) + kAswDivideSteps + 1;
     for (const std::size_t stage :
          {std::size_t{0}, std::size_t{4}, std::size_t{5}, std::size_t{6}}) {
         steps += kStages.at(stage).rtl.at(width, diameter, ndisp, min_disp);
