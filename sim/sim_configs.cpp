@@ -260,16 +260,7 @@ std::string model_cost_name_of(int hardware_code) {
 
 const TopConfig& asw_top_config(int width, int height, const MatchParams& params,
                                 const asw::Params& weights) {
-    asw::Params hardware;
-    hardware.diameter = weights.diameter;
-    hardware.separable = true;
-    hardware.threads = weights.threads;
-    if (weights != hardware) {
-        throw std::invalid_argument(
-            "the ASW core (engine rtl) computes the separable variant with the default "
-            "responses only: --separable, no --response, --shape, --no-continuity, "
-            "--left-weights-only or --truncation");
-    }
+    asw::check_hardware_variant(weights, "the ASW core (engine rtl)", false);
     const TopConfig* best = nullptr;
     for (const TopConfig& config : asw_top_configs()) {
         const bool fits = config.cost == catalogue::cost(params.cost).hardware_code &&

@@ -342,12 +342,8 @@ TEST(CDriver, ConfiguresAndRunsAFrameEqualToTheModel) {
     const stereo_device dev{&shim_read, &shim_write, &top};
     stereo_build build{};
     ASSERT_EQ(stereo_probe(&dev, &build), STEREO_OK);
-    EXPECT_EQ(build.version, table::kRegmapVersion);
-    EXPECT_EQ(build.max_width, kConfig.width);
-    EXPECT_EQ(build.max_height, kConfig.height);
-    EXPECT_EQ(build.ndisp, kConfig.ndisp);
-    EXPECT_EQ(build.window, kConfig.window);
-    EXPECT_EQ(build.max_min_disp, table::kDefaultMaxMinDisp);
+    tb::expect_reported_build(kConfig, build.version, build.max_width, build.max_height,
+                              build.ndisp, build.window, build.max_min_disp);
     EXPECT_EQ(build.runtime_kernel, 1);
     EXPECT_EQ(build.cost, STEREO_COST_AD);
 

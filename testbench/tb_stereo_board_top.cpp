@@ -240,12 +240,8 @@ TEST(BoardProtocol, IdentifyReportsTheBuild) {
     BoardSim board;
     const board::Identity identity = board.identify();
     EXPECT_EQ(identity.id, 0x53544552U);  // "STER", by hand
-    EXPECT_EQ(identity.version, table::kRegmapVersion);
-    EXPECT_EQ(identity.width, kConfig.width);
-    EXPECT_EQ(identity.height, kConfig.height);
-    EXPECT_EQ(identity.ndisp, kConfig.ndisp);
-    EXPECT_EQ(identity.window, kConfig.window);
-    EXPECT_EQ(identity.max_min_disp, table::kDefaultMaxMinDisp);
+    tb::expect_reported_build(kConfig, identity.version, identity.width, identity.height,
+                              identity.ndisp, identity.window, identity.max_min_disp);
     EXPECT_EQ(identity.status, 0);
     EXPECT_FALSE(board.red_led());
     EXPECT_EQ(board.host_framing_errors(), 0);

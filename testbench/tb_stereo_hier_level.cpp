@@ -181,6 +181,20 @@ h::LevelMap model_level(const Image& left, const Image& right, const CandidateGr
                           CaNeighbours::horizontal, count, search_params(use_ca).cost);
 }
 
+// One frame through `rtl` whose winners must equal the model's level: the RTL's winners, none when
+// the module put out no frame (the caller's failure).
+template <class Model>
+std::optional<h::LevelMap> run_equal_to_model(LevelSim<Model>& rtl, const Image& left,
+                                              const Image& right, const CandidateGrid& grid,
+                                              bool use_ca, double gap, std::mt19937& rng,
+                                              const std::string& what) {
+    std::optional<h::LevelMap> out = rtl.run(left, right, grid, use_ca, gap, rng);
+    if (out) {
+        expect_levels_equal(*out, model_level<Model>(left, right, grid, use_ca), what);
+    }
+    return out;
+}
+
 // A coarse level of random winners for the refinement level of `width` x `height`.
 h::LevelMap random_coarse(int width, int height, const h::SearchRange& coarse_range,
                           std::mt19937& rng) {
@@ -237,12 +251,10 @@ TEST(StereoHierLevel, QuarterLevelRandomPairsEqualModel) {
         const Image shifted = moved(left, 0, c.dy);
         for (const Image* r : {&right, &shifted}) {
             const CandidateGrid grid = h::full_grid(c.width, c.height, kQuarterRange);
-            const auto out = rtl.run(left, *r, grid, c.use_ca, c.gap, rng);
-            ASSERT_TRUE(out.has_value());
-            expect_levels_equal(*out,
-                                model_level<Vstereo_hier_level_quarter>(left, *r, grid, c.use_ca),
-                                std::to_string(c.width) + "x" + std::to_string(c.height) + " dy " +
-                                    std::to_string(c.dy) + (r == &shifted ? " moved" : " random"));
+            ASSERT_TRUE(run_equal_to_model(
+                rtl, left, *r, grid, c.use_ca, c.gap, rng,
+                std::to_string(c.width) + "x" + std::to_string(c.height) + " dy " +
+                    std::to_string(c.dy) + (r == &shifted ? " moved" : " random")));
         }
     }
 }
@@ -261,11 +273,8 @@ TEST(StereoHierLevel, HalfLevelRandomPredictionsEqualModel) {
         const Image right = moved(left, 0, c.dy);
         const auto coarse = random_coarse(c.width, c.height, kQuarterRange, rng);
         const CandidateGrid grid = h::refine_grid(coarse, c.width, c.height, kHalfRange);
-        const auto out = rtl.run(left, right, grid, c.use_ca, c.gap, rng);
-        ASSERT_TRUE(out.has_value());
-        expect_levels_equal(*out,
-                            model_level<Vstereo_hier_level_refine>(left, right, grid, c.use_ca),
-                            std::to_string(c.width) + "x" + std::to_string(c.height));
+        ASSERT_TRUE(run_equal_to_model(rtl, left, right, grid, c.use_ca, c.gap, rng,
+                                       std::to_string(c.width) + "x" + std::to_string(c.height)));
     }
 }
 
@@ -283,10 +292,8 @@ TEST(StereoHierLevel, FramesOneAfterAnotherAndAResetMidFrame) {
         const Image right = moved(left, 0, -3);
         const auto small = random_coarse(width, height, kQuarterRange, rng);
         const CandidateGrid g = h::refine_grid(small, width, height, kHalfRange);
-        const auto out = rtl.run(left, right, g, true, 0.05, rng);
-        ASSERT_TRUE(out.has_value());
-        expect_levels_equal(*out, model_level<Vstereo_hier_level_refine>(left, right, g, true),
-                            std::to_string(width) + "x" + std::to_string(height));
+        ASSERT_TRUE(run_equal_to_model(rtl, left, right, g, true, 0.05, rng,
+                                       std::to_string(width) + "x" + std::to_string(height)));
     }
 }
 
@@ -308,31 +315,23 @@ TEST(StereoHierLevel, RealCropQuarterPredictsHalf) {
     const CandidateGrid quarter_grid =
         h::full_grid(quarter_left.width, quarter_left.height, kQuarterRange);
     Quarter quarter;
-    const auto quarter_out = quarter.run(quarter_left, quarter_right, quarter_grid, true, 0.1, rng);
+    const auto quarter_out = run_equal_to_model(quarter, quarter_left, quarter_right, quarter_grid,
+                                                true, 0.1, rng, "quarter");
     ASSERT_TRUE(quarter_out.has_value());
-    const auto quarter_model =
-        model_level<Vstereo_hier_level_quarter>(quarter_left, quarter_right, quarter_grid, true);
-    expect_levels_equal(*quarter_out, quarter_model, "quarter");
 
     const Image half_left = h::downscale_area(left, 2);
     const Image half_right = h::downscale_area(right, 2);
     const CandidateGrid half_grid =
         h::refine_grid(*quarter_out, half_left.width, half_left.height, kHalfRange);
     Refine half;
-    const auto half_out = half.run(half_left, half_right, half_grid, true, 0.1, rng);
+    const auto half_out =
+        run_equal_to_model(half, half_left, half_right, half_grid, true, 0.1, rng, "half");
     ASSERT_TRUE(half_out.has_value());
-    const auto half_model =
-        model_level<Vstereo_hier_level_refine>(half_left, half_right, half_grid, true);
-    expect_levels_equal(*half_out, half_model, "half");
-    // The moved pair is found: most valid half-level winners have v = 2 (4 rows at full size).
-    int valid = 0;
-    int at_two = 0;
-    for (std::size_t p = 0; p < half_model.valid.size(); ++p) {
-        valid += half_model.valid[p];
-        at_two += half_model.valid[p] != 0 && half_model.vertical[p] == 2 ? 1 : 0;
-    }
-    EXPECT_GT(valid, 0);
-    EXPECT_GT(2 * at_two, valid);
+    // The moved pair is found: most valid half-level winners (the RTL's, equal to the model's)
+    // have v = 2 (4 rows at full size).
+    const test::ValidCount count = test::count_valid_at(half_out->valid, half_out->vertical, 2);
+    EXPECT_GT(count.valid, 0);
+    EXPECT_GT(2 * count.at_value, count.valid);
 }
 
 }  // namespace

@@ -228,13 +228,8 @@ TEST(StereoHierLevels, RealCropEqualsModel) {
     constexpr int kFullLevelGroups = 9 / 3;
     EXPECT_LT(ratio, kFullLevelGroups + 1.0)
         << "the levels should take about 9 / LANES_F clocks a pixel";
-    int valid = 0;
-    int at_four = 0;
-    for (std::size_t p = 0; p < model.valid.size(); ++p) {
-        valid += model.valid[p];
-        at_four += model.valid[p] != 0 && model.vertical[p] == 4 ? 1 : 0;
-    }
-    EXPECT_GT(2 * at_four, valid) << "the full level should find the 4-row move";
+    const test::ValidCount count = test::count_valid_at(model.valid, model.vertical, 4);
+    EXPECT_GT(2 * count.at_value, count.valid) << "the full level should find the 4-row move";
 }
 
 }  // namespace

@@ -698,6 +698,37 @@ TEST(AswCost, TruncationFollowsTheCost) {
     }
 }
 
+// The hardware cores' one check of the variant: the separable one at the default responses,
+// the truncation free for the HLS core only; the refusals word by word as each engine says them.
+TEST(AswHardware, VariantCheckNamesTheCoreAndWhatItTakes) {
+    asw::Params separable;
+    separable.separable = true;
+    separable.diameter = 7;
+    separable.threads = 3;
+    EXPECT_NO_THROW(asw::check_hardware_variant(separable, "rtl", false));
+    asw::Params truncated = separable;
+    truncated.truncation = 9;
+    EXPECT_NO_THROW(asw::check_hardware_variant(truncated, "hls", true));
+    const auto message = [](const asw::Params& params, const char* core, bool takes_truncation) {
+        try {
+            asw::check_hardware_variant(params, core, takes_truncation);
+        } catch (const std::invalid_argument& error) {
+            return std::string(error.what());
+        }
+        return std::string("accepted");
+    };
+    EXPECT_EQ(message(truncated, "the ASW core (engine rtl)", false),
+              "the ASW core (engine rtl) computes the separable variant with the default "
+              "responses only: --separable, no --response, --shape, --no-continuity, "
+              "--left-weights-only or --truncation");
+    asw::Params full = separable;
+    full.separable = false;
+    EXPECT_EQ(message(full, "the HLS ASW core (engine hls)", true),
+              "the HLS ASW core (engine hls) computes the separable variant with the default "
+              "responses only: --separable, no --response, --shape, --no-continuity or "
+              "--left-weights-only");
+}
+
 TEST(AswMatch, FindsTheShiftOfATexturedPair) {
     // A random texture shifted by 4: every pixel away from the edges gets 4 (shifted_copy clamps
     // the last 4 right columns, which makes the right edge ambiguous).

@@ -121,14 +121,9 @@ TEST(EdgeFrontend, FindsAShiftOnTexture) {
     params.ndisp = 8;
     params.window = 5;
     const DisparityMap map = ef::match(left, right, params);
-    int right_answers = 0;
-    int valid = 0;
-    for (std::size_t i = 0; i < map.valid.size(); ++i) {
-        valid += map.valid[i];
-        right_answers += map.valid[i] != 0 && map.disparity[i] == 4 ? 1 : 0;
-    }
-    EXPECT_GT(valid, 0);
-    EXPECT_GT(right_answers, valid * 9 / 10);
+    const test::ValidCount count = test::count_valid_at(map.valid, map.disparity, 4);
+    EXPECT_GT(count.valid, 0);
+    EXPECT_GT(count.at_value, count.valid * 9 / 10);
 }
 
 TEST(EdgeFrontend, RejectsBadParameters) {

@@ -317,6 +317,13 @@ Streamed stream_frames(const CosimOptions& options, sim::TopSim& sim,
     return out;
 }
 
+// What every --json summary reports of the run as asked (its frames, the reset, the traffic) and
+// the core's sticky status bits at its end.
+nlohmann::json run_json(const CosimOptions& options, unsigned status) {
+    return {{"frames", options.frames}, {"reset_at", options.reset_at}, {"seed", options.seed},
+            {"stall", options.stall},   {"gap", options.gap},           {"status", status}};
+}
+
 // The --json summary or the text report of a run.
 struct Run {
     const MatchParams& params;
@@ -337,10 +344,9 @@ void report(const CosimOptions& options, const Run& run, const Streamed& streame
     const int lr_check = params.validation.left_right ? params.validation.lr_tolerance : -1;
     if (options.json) {
         nlohmann::json summary = pipeline_json(run.width, run.height, params);
+        summary.update(run_json(options, result.status));
         summary.update({
             {"mismatches", comparison.mismatches},
-            {"frames", options.frames},
-            {"reset_at", options.reset_at},
             {"cycles", result.cycles},
             {"total_cycles", streamed.total_cycles},
             {"pixels", run.pixels},
@@ -350,10 +356,6 @@ void report(const CosimOptions& options, const Run& run, const Streamed& streame
             {"config", run.config.name},
             {"uniqueness", uniqueness},
             {"lr_check", lr_check},
-            {"seed", options.seed},
-            {"stall", options.stall},
-            {"gap", options.gap},
-            {"status", result.status},
             {"sim_seconds", streamed.seconds},
             {"sim_cycles_per_second", cycles_per_second},
             // The golden model's time for one frame, and the RTL's per frame against it.
@@ -527,24 +529,19 @@ void run_cosim_hierarchical(const CosimOptions& given) {
     const double per_pixel = static_cast<double>(last.cycles) / static_cast<double>(pixels);
     if (options.json) {
         nlohmann::json summary = pipeline_json(width, height, params);
+        summary.update(run_json(options, run.status));
         summary.update({{"method", catalogue::method(catalogue::Method::hierarchical).name},
                         {"config", std::string(core.config)},
                         {"plane", plane_json(last.setting)},
                         {"mismatches", mismatches},
                         {"statistics_mismatches", statistics_mismatches},
-                        {"frames", options.frames},
                         {"per_frame", per_frame},
-                        {"reset_at", options.reset_at},
                         {"pixels", pixels},
                         {"pixels_compared", pixels * run.frames.size()},
                         {"cycles", last.cycles},
                         {"total_cycles", run.total_clocks},
                         {"cycles_per_pixel", per_pixel},
                         {"first_mismatches", first},
-                        {"seed", options.seed},
-                        {"stall", options.stall},
-                        {"gap", options.gap},
-                        {"status", run.status},
                         {"sim_seconds", sim_seconds}});
         std::cout << io::versioned(summary).dump() << '\n';
     } else {

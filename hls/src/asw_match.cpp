@@ -65,17 +65,7 @@ void check_asw_core(const MatchParams& params, const asw::Params& weights, int w
     checked.window = 1;  // not read by ASW; its checks must not reject
     checked.use_ca = false;
     stereo::validate(checked, width, height);
-    asw::Params core;
-    core.diameter = weights.diameter;
-    core.separable = true;
-    core.truncation = weights.truncation;
-    core.threads = weights.threads;
-    if (weights != core) {
-        throw std::invalid_argument(
-            "the HLS ASW core (engine hls) computes the separable variant with the default "
-            "responses only: --separable, no --response, --shape, --no-continuity or "
-            "--left-weights-only");
-    }
+    asw::check_hardware_variant(weights, "the HLS ASW core (engine hls)", true);
     const catalogue::Cost cost = catalogue::cost(params.cost).id;
     if (cost != catalogue::Cost::census && cost != catalogue::Cost::ad) {
         throw std::invalid_argument("the HLS ASW core compares census or AD codes, not " +

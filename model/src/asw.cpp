@@ -1062,6 +1062,24 @@ Dsi aggregate(const Dsi& cost, const Image& left, const Image& right, int min_di
     return passes.full(labels);
 }
 
+void check_hardware_variant(const Params& params, std::string_view core, bool takes_truncation) {
+    Params hardware;
+    hardware.diameter = params.diameter;
+    hardware.separable = true;
+    if (takes_truncation) {
+        hardware.truncation = params.truncation;
+    }
+    hardware.threads = params.threads;
+    if (params != hardware) {
+        throw std::invalid_argument(
+            std::string(core) +
+            " computes the separable variant with the default responses only: --separable, no "
+            "--response, --shape, --no-continuity" +
+            (takes_truncation ? " or --left-weights-only"
+                              : ", --left-weights-only or --truncation"));
+    }
+}
+
 int truncation_for(int truncation, std::string_view cost) {
     if (truncation != kTruncationByCost) {
         return truncation;

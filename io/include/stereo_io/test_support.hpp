@@ -1,7 +1,7 @@
 // Helpers shared by tests/ and testbench/ (CMake target stereo_test_support, header-only):
-// seeded random images and pairs, constant extreme pairs. The seed is printed and replayable
-// with STEREO_SEED. The data folder is io::data_dir() (stereo_io/data_dir.hpp), not a helper of
-// its own.
+// seeded random images and pairs, constant extreme pairs, counts of a map's valid pixels. The seed
+// is printed and replayable with STEREO_SEED. The data folder is io::data_dir()
+// (stereo_io/data_dir.hpp), not a helper of its own.
 #pragma once
 
 #include <algorithm>
@@ -118,6 +118,25 @@ inline std::vector<ConstantPair> constant_pairs(int width, int height, int chann
         pairs.push_back(std::move(pair));
     }
     return pairs;
+}
+
+// A map's valid pixels and, of those, the ones whose `values` (its disparity or vertical plane)
+// hold `value`: how much of the output found a known displacement.
+struct ValidCount {
+    int valid = 0;
+    int at_value = 0;
+};
+template <class T>
+ValidCount count_valid_at(const std::vector<std::uint8_t>& valid, const std::vector<T>& values,
+                          int value) {
+    ValidCount count;
+    for (std::size_t i = 0; i < valid.size(); ++i) {
+        if (valid[i] != 0) {
+            ++count.valid;
+            count.at_value += values[i] == value ? 1 : 0;
+        }
+    }
+    return count;
 }
 
 }  // namespace stereo::test

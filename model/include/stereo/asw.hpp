@@ -124,6 +124,11 @@ int colour_difference(const Image& a, int ax, int ay, const Image& b, int bx, in
 // support region that does not fit the image, or normalisers outside [1, 765] / [1, 255].
 void validate(const Params& params, int width, int height);
 
+// Throws std::invalid_argument (one line naming `core`) unless `params` asks for what the
+// hardware ASW cores compute: the separable variant at the default responses, at any diameter
+// and thread count, and at any truncation where `takes_truncation`.
+void check_hardware_variant(const Params& params, std::string_view core, bool takes_truncation);
+
 // How far the support region reaches from its centre (the invalid border).
 int reach(const Params& params);
 
