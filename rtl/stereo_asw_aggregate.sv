@@ -521,35 +521,57 @@ module stereo_asw_aggregate #(
   end
 
   // ---- pass 1's winner over the groups (x1 of S + W steps ago), the label history -------------
-  // The means wait W steps (a ring of one entry per group) before the winner.
-  logic [LANES*BITS-1:0] pass1_means;
+  // Each lane's mean with one bit more, labels >= cfg.ndisp as 2^BITS (above every mean): made at
+  // the division's last step and, W = 1, kept a step in a ring of one entry per group.
+  localparam int LEAF_BITS = BITS + 1;
+  logic [LANES*LEAF_BITS-1:0] pass1_leaves, pass1_leaves_q;
+  always_comb begin
+    for (int l = 0; l < LANES; l++) begin
+      pass1_leaves[l*LEAF_BITS+:LEAF_BITS] = (32'(base_k) + l < 32'(cfg.ndisp))
+                                                 ? {1'b0, pass1[l*BITS+:BITS]}
+                                                 : {1'b1, BITS'(0)};
+    end
+  end
   if (WSTEPS == 0) begin : g_winner_now
-    assign pass1_means = pass1;
+    assign pass1_leaves_q = pass1_leaves;
   end else begin : g_winner_ring
     stereo_group_ring #(
-        .BITS(LANES * BITS),
+        .BITS(LANES * LEAF_BITS),
         .GROUPS(GROUPS),
         .BLOCK_RAM(RING_BLOCK_RAM),
         .BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
     ) means_ring (
         .clk(clk),
         .advance(advance),
-        .next_state(pass1),
-        .head(pass1_means)
+        .next_state(pass1_leaves),
+        .head(pass1_leaves_q)
     );
   end
-  // Costs with one bit more: labels >= cfg.ndisp count as 2^BITS, above every cell.
+  // The group's smallest leaf by a tree of pairs (the left one on equal values: ties to the
+  // smaller label; with no label below cfg.ndisp, lane 0 at 2^BITS); leaves past LANES are
+  // all ones, above every lane.
+  localparam int LEAVES = 1 << $clog2(LANES);
   logic [BITS:0] group_cost, merged_cost, running_cost;
   logic [DISP_BITS-1:0] group_label, merged_label, running_label;
   always_comb begin
-    group_cost = {1'b1, BITS'(0)};
-    group_label = DISP_BITS'(base_k);
-    for (int l = 0; l < LANES; l++) begin
-      if (32'(base_k) + l < 32'(cfg.ndisp) && {1'b0, pass1_means[l*BITS+:BITS]} < group_cost) begin
-        group_cost = {1'b0, pass1_means[l*BITS+:BITS]};
-        group_label = DISP_BITS'(32'(base_k) + l);
+    logic [LEAF_BITS-1:0] value[LEAVES];
+    logic [DISP_BITS-1:0] lane[LEAVES];
+    for (int l = 0; l < LEAVES; l++) begin
+      value[l] = (l < LANES) ? pass1_leaves_q[((l < LANES) ? l : 0)*LEAF_BITS+:LEAF_BITS] : '1;
+      lane[l] = DISP_BITS'(l);
+    end
+    for (int span = 1; span < LEAVES; span = span * 2) begin
+      for (int l = 0; l + span < LEAVES; l = l + 2 * span) begin
+        if (value[l+span] < value[l]) begin
+          value[l] = value[l+span];
+          lane[l] = lane[l+span];
+        end
       end
     end
+    group_cost = value[0];
+    group_label = DISP_BITS'(base_k) + lane[0];
+  end
+  always_comb begin
     if (32'(group) == 0 || group_cost < running_cost) begin
       merged_cost = group_cost;
       merged_label = group_label;

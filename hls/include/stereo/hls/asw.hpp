@@ -270,12 +270,13 @@ class asw_cost : public coord_output {
 };
 
 // The two-pass separable aggregation, every label at once (rtl/stereo_asw_aggregate.sv with
-// LANES = NDISP, before its divisions were pipelined: the RTL divides over the
-// fx_pkg::ASW_DIVIDE_STEPS steps after the sums, so its passes sit that many and twice as many
-// columns further back; here those registers are the HLS tool's retiming). Input: (x, yc) with the
-// left word and the right words of the lanes. Output: pass 2's means of (x2, yc), x2 = x - 2r - 2
-// (following the stream across row ends), through the output register: latency 2r + 3. MEASURE
-// compares two codes (ad_measure or census_measure).
+// LANES = NDISP, before it was pipelined in whole steps: the RTL's vertical sums wait
+// fx_pkg::ASW_VERTICAL_STEPS steps, its divisions take fx_pkg::ASW_DIVIDE_STEPS and pass 1's
+// winner fx_pkg::ASW_WINNER_STEPS more, so its passes sit further back, stage_table.hpp
+// asw_near_steps and asw_far_steps; here those registers are the HLS tool's retiming). Input: (x,
+// yc) with the left word and the right words of the lanes. Output: pass 2's means of (x2, yc), x2 =
+// x - 2r - 2 (following the stream across row ends), through the output register: latency 2r + 3.
+// MEASURE compares two codes (ad_measure or census_measure).
 template <int NDISP, int DIAMETER, class MEASURE>
 class asw_aggregate : public lane_output<agg_t, NDISP> {
     static_assert(NDISP >= 1 && NDISP <= fx::kMaxDisparities);
