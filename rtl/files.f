@@ -8,6 +8,7 @@ stereo_window_centre.sv
 stereo_line_buffer.sv
 stereo_row_stack.sv
 stereo_group_ring.sv
+stereo_group_delay.sv
 stereo_window3x3.sv
 stereo_ca_plane.sv
 stereo_lcdm_convert.sv

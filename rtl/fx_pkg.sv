@@ -364,6 +364,7 @@ package fx_pkg;
   localparam int ASW_DIVIDE_STEPS = 5;
   localparam int ASW_VERTICAL_STEPS = 1;
   localparam int ASW_WINNER_STEPS = 1;
+  localparam int ASW_HORIZONTAL_STEPS = 3;
   localparam int ASW_RESPONSE_BITS = 8;
   localparam int ASW_COLOUR_ENTRIES = 766;
   localparam int ASW_CONTINUITY_ENTRIES = 256;

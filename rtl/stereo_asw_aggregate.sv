@@ -80,17 +80,28 @@ module stereo_asw_aggregate #(
   localparam int WSTEPS = fx_pkg::ASW_WINNER_STEPS;  // W: from pass 1's means to its winner
   localparam int ROWS = (BITS + STEPS - 1) / STEPS;  // quotient rows a step
   // Positions (stage_table.hpp asw_near_steps, asw_far_steps): x1 = x - NEAR, x2 = x - FAR.
+  // The horizontal passes' steps (H = fx_pkg::ASW_HORIZONTAL_STEPS, 0 .. 3): A, the factors;
+  // B, the response products; C, the weight x mean products; D, the sums. A group delay of one
+  // step after each of the first H of A, B, C; none after the others.
+  localparam int HSTEPS = fx_pkg::ASW_HORIZONTAL_STEPS;
+  localparam int FACTOR_DELAY = (HSTEPS >= 1) ? 1 : 0;
+  localparam int WEIGHT_DELAY = (HSTEPS >= 2) ? 1 : 0;
+  localparam int PRODUCT_DELAY = (HSTEPS >= 3) ? 1 : 0;
+  localparam int PRODUCTS_AT = FACTOR_DELAY + WEIGHT_DELAY;  // step C, after step A
   localparam int NEAR = R + 1 + STEPS + VSTEPS;
-  localparam int FAR = NEAR + R + 1 + STEPS + WSTEPS;
+  localparam int FAR = NEAR + R + 1 + HSTEPS + STEPS + WSTEPS;
   localparam int LATE = STEPS + VSTEPS;  // Av(c) enters the history LATE steps after column c
-  localparam int HISTORY = FAR + R - LATE;  // Av of columns x - 1 - LATE .. x - HISTORY - LATE
-  localparam int OWN_LABEL = FAR - NEAR - STEPS - WSTEPS;  // labels[OWN_LABEL]: pass 1's of x2
+  // Av of columns x - 1 - LATE .. x - HISTORY - LATE (pass 2's oldest is read at step C)
+  localparam int HISTORY = FAR + R - LATE + PRODUCTS_AT;
+  localparam int OWN_LABEL = FAR - NEAR - HSTEPS - STEPS - WSTEPS;  // pass 1's label of x2
   // The sums' widths: weights below 2^8, costs below 2^10 (vertical) and means below 2^BITS.
   localparam int DEN_BITS = $clog2(255 * DIAMETER + 1);
   localparam int VNUM_BITS = $clog2(255 * 1023 * DIAMETER + 1);
   localparam int HNUM_BITS = $clog2(255 * ((1 << BITS) - 1) * DIAMETER + 1);
   localparam int VSUM_BITS = VNUM_BITS + DEN_BITS;  // a lane's {num, den}
   localparam int HSUM_BITS = 1 + HNUM_BITS + DEN_BITS;  // {outside, num, den}
+  localparam int FACTOR_BITS = 9 * DIAMETER + LANES * (8 * DIAMETER + 1);
+  localparam int PRODUCT_BITS = 1 + DEN_BITS + 22 * DIAMETER;  // {outside, den, 8 x 14 products}
   // A division between steps: {outside, partial remainder (17), quotient, dividend's low bits,
   // den (16)}.
   localparam int DIV_BITS = 1 + 17 + 2 * BITS + 16;
@@ -111,8 +122,8 @@ module stereo_asw_aggregate #(
                              CONTINUITY_ROW_BITS];
 
   `STEREO_ASSERT(steps_range, STEPS >= 1 && STEPS <= BITS && (VSTEPS == 0 || VSTEPS == 1) &&
-                     (WSTEPS == 0 || WSTEPS == 1),
-                 "ASW_DIVIDE_STEPS must be 1 .. AGG_BITS, ASW_VERTICAL/WINNER_STEPS 0 or 1")
+                     (WSTEPS == 0 || WSTEPS == 1) && HSTEPS >= 0 && HSTEPS <= 3,
+                 "ASW_DIVIDE_STEPS must be 1 .. AGG_BITS, ASW_VERTICAL/WINNER_STEPS 0 or 1, ASW_HORIZONTAL_STEPS 0 .. 3")
   `STEREO_ASSERT(lanes_divide_ndisp, LANES >= 1 && NDISP % LANES == 0,
                  "LANES must be at least 1 and divide NDISP")
   `STEREO_ASSERT(diameter_range,
@@ -169,20 +180,20 @@ module stereo_asw_aggregate #(
   endfunction
 
   // ---- positions --------------------------------------------------------------------------------
-  // xs[p], ys[p]: the input pixel p steps ago (p = 1 .. FAR + S); x1 = xs[NEAR], x2 = xs[FAR].
-  fx_pkg::coord_t xs[FAR+STEPS+1], ys[FAR+STEPS+1];
+  // xs[p], ys[p]: the input pixel p steps ago (p = 1 .. FAR + H + S); x1 = xs[NEAR], x2 = xs[FAR].
+  fx_pkg::coord_t xs[FAR+HSTEPS+STEPS+1], ys[FAR+HSTEPS+STEPS+1];
   always_comb begin
     xs[0] = in_x;
     ys[0] = in_y;
   end
   always_ff @(posedge clk) begin
     if (rst) begin
-      for (int p = 1; p <= FAR + STEPS; p++) begin
+      for (int p = 1; p <= FAR + HSTEPS + STEPS; p++) begin
         xs[p] <= '0;
         ys[p] <= fx_pkg::NO_PIXEL;
       end
     end else if (ce) begin
-      for (int p = 1; p <= FAR + STEPS; p++) begin
+      for (int p = 1; p <= FAR + HSTEPS + STEPS; p++) begin
         xs[p] <= xs[p-1];
         ys[p] <= ys[p-1];
       end
@@ -441,63 +452,109 @@ module stereo_asw_aggregate #(
   logic [LANES*BITS-1:0] pass1, pass2;
   for (genvar pass = 1; pass <= 2; pass++) begin : g_pass
     localparam int BACK = (pass == 1) ? NEAR : FAR;
+    // -- step A: the factors (pass 2's left ones with the continuity), which taps and lanes lie
+    //    inside; to step B through a group delay of FACTOR_DELAY steps.
     logic signed [17:0] centre;
-    logic [8*DIAMETER-1:0] left_factor;
-    logic [DIAMETER-1:0] column_inside;
+    logic [FACTOR_BITS-1:0] factors, factors_q;  // {lanes' {outside, right factors}, inside, left}
     assign centre = 18'(xs[BACK]);
     always_comb begin
       logic [DISP_BITS-1:0] label_step;
       for (int i = 0; i < DIAMETER; i++) begin
-        column_inside[i] = in_range(centre + 18'(i - R), cfg.width);
+        factors[8*DIAMETER+i] = in_range(centre + 18'(i - R), cfg.width);
         if (pass == 1) begin
-          left_factor[i*8+:8] = near_of(in_left, i);
+          factors[i*8+:8] = near_of(in_left, i);
         end else begin
           label_step = (labels[OWN_LABEL] >= labels[OWN_LABEL-(i-R)])
                            ? labels[OWN_LABEL] - labels[OWN_LABEL-(i-R)]
                            : labels[OWN_LABEL-(i-R)] - labels[OWN_LABEL];
-          left_factor[i*8+:8] = fx_pkg::asw_combine(
+          factors[i*8+:8] = fx_pkg::asw_combine(
               far_of(in_left, i), CONTINUITY_ROW[32'(label_step)*8+:8]);
         end
       end
     end
-    logic [LANES*8*DIAMETER-1:0] right_factors, weights;  // lane l's factors, weights
-    stereo_asw_weights #(.LANES(LANES), .TAPS(DIAMETER)) combine (
-        .shared(left_factor), .lane_factors(right_factors), .tap_inside(column_inside),
-        .weights(weights));
-    for (genvar l = 0; l < LANES; l++) begin : g_lane
+    for (genvar l = 0; l < LANES; l++) begin : g_lane_factors
       logic [WORD-1:0] right_word;
       logic signed [17:0] right_x;
       logic outside;
-      logic [HSUM_BITS-1:0] sums;
       assign right_word = in_right[l*WORD+:WORD];
       assign right_x = centre - 18'(cfg.min_disp) - base_k - 18'(l);
       assign outside = !in_range(right_x, cfg.width);
       always_comb begin
+        logic [8*DIAMETER:0] lane;  // {outside, right factors}
+        lane[8*DIAMETER] = outside;
         for (int i = 0; i < DIAMETER; i++) begin
           if (outside || !in_range(right_x + 18'(i - R), cfg.width)) begin
-            right_factors[(l*DIAMETER+i)*8+:8] = 8'd255;
+            lane[i*8+:8] = 8'd255;
           end else if (pass == 1) begin
-            right_factors[(l*DIAMETER+i)*8+:8] = near_of(right_word, i);
+            lane[i*8+:8] = near_of(right_word, i);
           end else begin
-            right_factors[(l*DIAMETER+i)*8+:8] = far_of(right_word, i);
+            lane[i*8+:8] = far_of(right_word, i);
           end
         end
+        factors[9*DIAMETER+l*(8*DIAMETER+1)+:8*DIAMETER+1] = lane;
       end
+    end
+    stereo_group_delay #(
+        .BITS(FACTOR_BITS), .GROUPS(GROUPS), .STEPS(FACTOR_DELAY), .BLOCK_RAM(RING_BLOCK_RAM),
+        .BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
+    ) factor_delay (.clk(clk), .advance(advance), .in_data(factors), .out_data(factors_q));
+    // -- step B: the response products (weights); to step C through WEIGHT_DELAY steps.
+    logic [LANES*8*DIAMETER-1:0] right_factors, weights;  // lane l's factors, weights
+    logic [LANES-1:0] outside_b;
+    for (genvar l = 0; l < LANES; l++) begin : g_lane_split
+      localparam int AT = 9 * DIAMETER + l * (8 * DIAMETER + 1);
+      assign right_factors[l*8*DIAMETER+:8*DIAMETER] = factors_q[AT+:8*DIAMETER];
+      assign outside_b[l] = factors_q[AT+8*DIAMETER];
+    end
+    stereo_asw_weights #(.LANES(LANES), .TAPS(DIAMETER)) combine (
+        .shared(factors_q[0+:8*DIAMETER]), .lane_factors(right_factors),
+        .tap_inside(factors_q[8*DIAMETER+:DIAMETER]), .weights(weights));
+    logic [LANES*(8*DIAMETER+1)-1:0] weighted, weighted_q;  // lane l: {outside, weights}
+    for (genvar l = 0; l < LANES; l++) begin : g_lane_weights
+      assign weighted[l*(8*DIAMETER+1)+:8*DIAMETER+1] =
+          {outside_b[l], weights[l*8*DIAMETER+:8*DIAMETER]};
+    end
+    stereo_group_delay #(
+        .BITS(LANES * (8 * DIAMETER + 1)), .GROUPS(GROUPS), .STEPS(WEIGHT_DELAY),
+        .BLOCK_RAM(RING_BLOCK_RAM), .BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
+    ) weight_delay (.clk(clk), .advance(advance), .in_data(weighted), .out_data(weighted_q));
+    // -- step C: weight x mean products (the means of the history, PRODUCTS_AT steps after step
+    //    A) and the weights' sum; to step D through PRODUCT_DELAY steps.
+    logic [LANES*PRODUCT_BITS-1:0] products, products_q;  // lane l: {outside, den, products}
+    for (genvar l = 0; l < LANES; l++) begin : g_lane_products
       always_comb begin
-        logic [31:0] num;
+        logic [8*DIAMETER:0] lane;
+        logic [PRODUCT_BITS-1:0] out;
         logic [15:0] den;
         logic [7:0] weight;
-        logic [21:0] product;  // 8 x 14 bits
-        num = '0;
+        lane = weighted_q[l*(8*DIAMETER+1)+:8*DIAMETER+1];
         den = '0;
         for (int i = 0; i < DIAMETER; i++) begin
-          weight = weights[(l*DIAMETER+i)*8+:8];
-          // column centre + dx is BACK - dx steps back: history position BACK - dx - LATE
-          product = 22'(weight) * 22'(av_at(l, BACK - (i - R) - LATE));
-          num = num + 32'(product);
+          weight = lane[i*8+:8];
+          // column centre + dx is BACK - dx steps back at step A: history position
+          // BACK - dx - LATE + PRODUCTS_AT here
+          out[i*22+:22] = 22'(weight) * 22'(av_at(l, BACK - (i - R) - LATE + PRODUCTS_AT));
           den = den + 16'(weight);
         end
-        sums = {outside, HNUM_BITS'(num), DEN_BITS'(den)};
+        out[22*DIAMETER+:DEN_BITS] = DEN_BITS'(den);
+        out[PRODUCT_BITS-1] = lane[8*DIAMETER];
+        products[l*PRODUCT_BITS+:PRODUCT_BITS] = out;
+      end
+    end
+    stereo_group_delay #(
+        .BITS(LANES * PRODUCT_BITS), .GROUPS(GROUPS), .STEPS(PRODUCT_DELAY),
+        .BLOCK_RAM(RING_BLOCK_RAM), .BLOCK_MIN_FILL(RING_BLOCK_MIN_FILL)
+    ) product_delay (.clk(clk), .advance(advance), .in_data(products), .out_data(products_q));
+    // -- step D: the weighted sums.
+    for (genvar l = 0; l < LANES; l++) begin : g_lane
+      logic [HSUM_BITS-1:0] sums;
+      always_comb begin
+        logic [PRODUCT_BITS-1:0] lane;
+        logic [31:0] num;
+        lane = products_q[l*PRODUCT_BITS+:PRODUCT_BITS];
+        num = '0;
+        for (int i = 0; i < DIAMETER; i++) num = num + 32'(lane[i*22+:22]);
+        sums = {lane[PRODUCT_BITS-1], HNUM_BITS'(num), lane[22*DIAMETER+:DEN_BITS]};
       end
       // This step's sums into the ring; the last step's start their division (pass1, pass2:
       // the means of the sums S steps ago).
@@ -594,7 +651,7 @@ module stereo_asw_aggregate #(
   // The output register (G = 1), or the coordinates only (G > 1: stereo_wta's input ring holds
   // this clock's group until the next step, where the all-parallel stage has this register).
   stereo_stage_output #(.BITS(LANES * BITS), .REGISTERED(GROUPS == 1)) outputs (
-      .in_x(xs[FAR+STEPS]), .in_y(ys[FAR+STEPS]), .in_data(pass2), .*);
+      .in_x(xs[FAR+HSTEPS+STEPS]), .in_y(ys[FAR+HSTEPS+STEPS]), .in_data(pass2), .*);
 endmodule
 
 `default_nettype wire

@@ -13,7 +13,7 @@
 //             (NEAR = r + 1 + S + V, stereo_asw_aggregate; left: prox(|dx|) (x) colour, right:
 //             colour) for the first horizontal pass, at [32 D + i*8 +: 8];
 //   far[i]    the same of pixel x - FAR for the second pass (near, GAP = FAR - NEAR =
-//             r + 1 + S + W steps later), at [40 D + i*8 +: 8];
+//             r + 1 + H + S + W steps later), at [40 D + i*8 +: 8];
 // colour(a, b) = fx_pkg::asw_colour(DIAMETER, |dR| + |dG| + |dB|), (x) = fx_pkg::asw_combine (with
 // the constant proximity: asw_combine_constant, shifts and adds).
 // The aggregation masks rows and columns outside the frame and right columns outside the right
@@ -53,7 +53,8 @@ module stereo_asw_column #(
   // pixel x - NEAR: the first horizontal pass, x - FAR the second (stereo_asw_aggregate's
   // positions: stage_table.hpp asw_near_steps, asw_far_steps)
   localparam int NEAR = R + 1 + fx_pkg::ASW_DIVIDE_STEPS + fx_pkg::ASW_VERTICAL_STEPS;
-  localparam int GAP = R + 1 + fx_pkg::ASW_DIVIDE_STEPS + fx_pkg::ASW_WINNER_STEPS;  // FAR - NEAR
+  localparam int GAP = R + 1 + fx_pkg::ASW_HORIZONTAL_STEPS + fx_pkg::ASW_DIVIDE_STEPS +
+                      fx_pkg::ASW_WINNER_STEPS;  // FAR - NEAR
   localparam int HISTORY = NEAR + R;  // centre-row pixels kept, x - 1 .. x - HISTORY
 
   `STEREO_ASSERT(diameter_range,

@@ -560,6 +560,7 @@ std::string asw_section() {
         {"ASW_DIVIDE_STEPS", table::kAswDivideSteps},
         {"ASW_VERTICAL_STEPS", table::kAswVerticalSteps},
         {"ASW_WINNER_STEPS", table::kAswWinnerSteps},
+        {"ASW_HORIZONTAL_STEPS", table::kAswHorizontalSteps},
         {"ASW_RESPONSE_BITS", asw::kResponseBits},
         {"ASW_COLOUR_ENTRIES", asw::kMaxColourDifference + 1},
         {"ASW_CONTINUITY_ENTRIES", 256},

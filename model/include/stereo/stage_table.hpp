@@ -312,26 +312,33 @@ inline constexpr int kAswVerticalSteps = 1;
 // the means wait in a ring, so no clock holds a division step and the winner. One step moves
 // pass 2 one column back.
 inline constexpr int kAswWinnerSteps = 1;
+// Steps between a horizontal pass' factors and its weighted sums (fx_pkg::ASW_HORIZONTAL_STEPS,
+// 0 .. 3): the factors (pass 2's with the continuity look-up and its product), the response
+// products, and the weight x mean products each wait one step in a ring, so no clock holds two
+// multipliers in a row, nor a multiplier and the sums' adder tree (Yosys chains the eleven
+// products of a sum through the DSP blocks' cascade otherwise). Each step moves pass 2 one
+// column back.
+inline constexpr int kAswHorizontalSteps = 3;
 
 // stereo_asw_aggregate's positions, in steps behind the vertical pass' pixel x (r = w / 2,
-// S = kAswDivideSteps, V = kAswVerticalSteps, W = kAswWinnerSteps): pass 1's centre
-// x1 = x - asw_near_steps(r), pass 2's x2 = x - asw_far_steps(r).
+// S = kAswDivideSteps, V = kAswVerticalSteps, W = kAswWinnerSteps, H = kAswHorizontalSteps):
+// pass 1's centre x1 = x - asw_near_steps(r), pass 2's x2 = x - asw_far_steps(r).
 constexpr int asw_near_steps(int r) {
     return r + 1 + kAswDivideSteps + kAswVerticalSteps;
 }
 constexpr int asw_far_steps(int r) {
-    return asw_near_steps(r) + r + 1 + kAswDivideSteps + kAswWinnerSteps;
+    return asw_near_steps(r) + r + 1 + kAswHorizontalSteps + kAswDivideSteps + kAswWinnerSteps;
 }
 
 // The adaptive-support-weight core (stereo_top ASW = 1, WINDOW = the diameter w, r = w / 2):
 // the census stage (COST = census), r rows of the column stack (stereo_asw_column: a pixel's
 // vertical pass waits for row y + r), the cost stage (1 + K), stereo_asw_aggregate's pass 2
-// position, the S steps of its division and its output register, the WTA and stage 6 (1 + 1 + N)
-// steps.
+// position, the H steps to its sums, the S of its division and its output register, the WTA and
+// stage 6 (1 + 1 + N) steps.
 constexpr int asw_pipeline_latency(int width, int diameter, int ndisp, int min_disp = 0,
                                    int cost = kCostCensus) {
     const int r = diameter / 2;
-    int steps = r * width + asw_far_steps(r) + kAswDivideSteps + 1;
+    int steps = r * width + asw_far_steps(r) + kAswHorizontalSteps + kAswDivideSteps + 1;
     for (const std::size_t stage :
          {std::size_t{0}, std::size_t{4}, std::size_t{5}, std::size_t{6}}) {
         steps += kStages.at(stage).rtl.at(width, diameter, ndisp, min_disp);
@@ -378,7 +385,7 @@ inline constexpr int kAswMaxDiameter = 31;
 inline constexpr std::string_view kPackageFile = "fx_pkg.sv";
 // One module a line: the compile order reads from top to bottom.
 // clang-format off
-inline constexpr std::array<std::string_view, 47> kRtlModules = {
+inline constexpr std::array<std::string_view, 48> kRtlModules = {
     "stereo_coord_reg",
     "stereo_stage_output",
     "stereo_shift_reg",
@@ -387,6 +394,7 @@ inline constexpr std::array<std::string_view, 47> kRtlModules = {
     "stereo_line_buffer",
     "stereo_row_stack",
     "stereo_group_ring",
+    "stereo_group_delay",
     "stereo_window3x3",
     "stereo_ca_plane",
     "stereo_lcdm_convert",
