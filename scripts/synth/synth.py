@@ -762,11 +762,60 @@ def estimate(config, target, work=None, use_dsp=True, top=TOP):
     stages = {name: resources_of(stage_cells) for name, stage_cells in
               stage_breakdown(stat, modules, top).items()}
     depth = logic_depth(netlist, target)
+    delay = logic_delay(netlist, target, work / "sta.log")
     netlist.unlink()  # hundreds of MB at the VGA size; the depth is what was needed of it
-    return {"target": target, "top": top, "config": config, "use_dsp": use_dsp,
-            "resources": resources_of(cells), "stages": stages, "logic_depth": depth,
-            "yosys_seconds": round(seconds, 1), "tools": {"yosys": tool_version(["yosys", "-V"])},
-            "note": "Yosys resource estimate before place and route; no Fmax"}
+    report = {"target": target, "top": top, "config": config, "use_dsp": use_dsp,
+              "resources": resources_of(cells), "stages": stages, "logic_depth": depth,
+              "yosys_seconds": round(seconds, 1),
+              "tools": {"yosys": tool_version(["yosys", "-V"])},
+              "note": "Yosys resource estimate before place and route; no Fmax"}
+    if delay is not None:
+        report["logic_delay"] = delay
+    return report
+
+
+# Yosys' timing models of the target's cells (specify blocks of its cells_sim.v), read beside a
+# netlist so that `sta` can time it: the 7-series models give each LUT input, carry, LUT RAM,
+# block RAM and DSP48E1 path its delay (the DSP's depend on its pipeline registers), no routing.
+STA_MODELS = {"xilinx": "+/xilinx/cells_sim.v"}
+
+
+def parse_sta(text):
+    """The longest path of a Yosys `sta` log: {"ps": arrival, "cells": [(ps, cell type, pins)]},
+    first to last, or None when the log holds no path."""
+    match = re.search(r"Latest arrival time in '[^']*' is (\d+):\n(.*?)(?:\n\s*\n|\Z)", text, re.S)
+    if not match:
+        return None
+    cells = []
+    for line in match.group(2).splitlines():
+        step = re.match(r"\s*(\d+)\s+\S+\s+\((\w+)\.([^)]*)\)\s*$", line)
+        if step:
+            cells.append((int(step.group(1)), step.group(2), step.group(3)))
+    return {"ps": int(match.group(1)), "cells": cells[::-1]}
+
+
+def logic_delay(netlist_path, target, log_path):
+    """The longest register-to-register path of a flattened netlist by the cells' delays alone
+    (Yosys `sta` over STA_MODELS; routing is not in it): {"ns", "cells" (how many of each cell
+    type lie on it), "path" (type and pins, first to last)}; None for a target without models or
+    when `sta` fails."""
+    if target not in STA_MODELS:
+        return None
+    try:
+        subprocess.run(["yosys", "-q", "-l", str(log_path), "-p",
+                        f"read_json {netlist_path}; read_verilog -lib -specify "
+                        f"{STA_MODELS[target]}; sta"],
+                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)
+        parsed = parse_sta(Path(log_path).read_text())
+    except (OSError, subprocess.CalledProcessError):
+        return None
+    if parsed is None:
+        return None
+    counts = {}
+    for _, kind, _ in parsed["cells"]:
+        counts[kind] = counts.get(kind, 0) + 1
+    return {"ns": round(parsed["ps"] / 1000, 3), "cells": counts,
+            "path": [f"{kind}.{pins}" for _, kind, pins in parsed["cells"]]}
 
 
 # What each cell counts on a register-to-register path: "level" cells are one level of logic
